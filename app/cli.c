@@ -1,0 +1,183 @@
+/* cli.c: shared command-line helpers: parsing, folders, references, progress, frame output.
+ * Must never implement a rendering method. */
+#include "cli.h"
+
+#include <errno.h>
+#include <omp.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "core/check.h"
+#include "io/image_io.h"
+#include "render/pt.h"
+
+void cli_error(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fputs("restir: ", stderr);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+int cli_parse_int(const char *opt, const char *s, long long lo, long long hi, long long *out, char *msg)
+{
+    char *end = NULL;
+    errno = 0;
+    long long v = s ? strtoll(s, &end, 10) : 0;
+    if (!s || end == s || *end != '\0' || errno != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "%s expects a whole number, got '%s'", opt, s ? s : "(nothing)");
+        return -1;
+    }
+    if (v < lo || v > hi) {
+        snprintf(msg, RESTIR_MSG_LEN, "%s %lld is out of range [%lld, %lld]", opt, v, lo, hi);
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+int cli_parse_res(const char *s, int *w, int *h, char *msg)
+{
+    long long a, b;
+    char buf[64];
+    const char *x = s ? strchr(s, 'x') : NULL;
+    if (!x || (size_t)(x - s) >= sizeof(buf)) {
+        snprintf(msg, RESTIR_MSG_LEN, "--res expects WxH (e.g. 640x360), got '%s'", s ? s : "(nothing)");
+        return -1;
+    }
+    memcpy(buf, s, (size_t)(x - s));
+    buf[x - s] = '\0';
+    if (cli_parse_int("--res width", buf, 1, 16384, &a, msg) != 0 ||
+        cli_parse_int("--res height", x + 1, 1, 16384, &b, msg) != 0)
+        return -1;
+    *w = (int)a;
+    *h = (int)b;
+    return 0;
+}
+
+int cli_make_dir(const char *dir, char *msg)
+{
+    char path[4096];
+    if (snprintf(path, sizeof(path), "%s", dir) >= (int)sizeof(path)) {
+        snprintf(msg, RESTIR_MSG_LEN, "output folder name is too long");
+        return -1;
+    }
+    for (char *p = path + 1;; p++) {
+        char c = *p;
+        if (c == '/' || c == '\0') {
+            *p = '\0';
+            if (mkdir(path, 0777) != 0 && errno != EEXIST) {
+                snprintf(msg, RESTIR_MSG_LEN, "cannot create folder '%.300s': %s", path, strerror(errno));
+                return -1;
+            }
+            *p = c;
+        }
+        if (c == '\0')
+            break;
+    }
+    struct stat st;
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        snprintf(msg, RESTIR_MSG_LEN, "'%.300s' is not a folder", dir);
+        return -1;
+    }
+    return 0;
+}
+
+int cli_load_reference(const char *path, int width, int height, float **ref, char *msg)
+{
+    int w, h;
+    if (exr_read_rgb(path, ref, &w, &h, msg) != 0)
+        return -1;
+    if (w != width || h != height) {
+        snprintf(msg, RESTIR_MSG_LEN, "reference '%.300s' is %dx%d but the render is %dx%d", path, w, h, width,
+                 height);
+        free(*ref);
+        *ref = NULL;
+        return -1;
+    }
+    for (long i = 0; i < 3l * w * h; i++) {
+        if (!isfinite((*ref)[i])) {
+            snprintf(msg, RESTIR_MSG_LEN, "reference '%.300s' has a NaN or infinite value at pixel %ld", path, i / 3);
+            free(*ref);
+            *ref = NULL;
+            return -1;
+        }
+    }
+    return 0;
+}
+
+void progress_begin(struct progress *pg, const char *label, int total)
+{
+    pg->enabled = isatty(STDERR_FILENO);
+    pg->total = total;
+    pg->t0 = omp_get_wtime();
+    pg->label = label;
+    progress_update(pg, 0);
+}
+
+void progress_update(struct progress *pg, int done)
+{
+    if (!pg->enabled)
+        return;
+    const int width = 30;
+    int filled = pg->total > 0 ? width * done / pg->total : width;
+    double elapsed = omp_get_wtime() - pg->t0;
+    double eta = done > 0 ? elapsed * (pg->total - done) / done : 0.0;
+    char bar[64];
+    for (int k = 0; k < width; k++)
+        bar[k] = k < filled ? '#' : '.';
+    bar[width] = '\0';
+    fprintf(stderr, "\r%-12s [%s] %d/%d  %.1fs elapsed, ETA %.1fs ", pg->label, bar, done, pg->total, elapsed,
+            eta);
+    fflush(stderr);
+}
+
+void progress_end(struct progress *pg)
+{
+    if (pg->enabled)
+        fputc('\n', stderr);
+}
+
+int cli_write_frame(const char *dir, int frame, const float *rgb, int w, int h, char *msg)
+{
+    char path[4200];
+    snprintf(path, sizeof(path), "%s/frame_%04d.exr", dir, frame);
+    if (exr_write_rgb(path, rgb, w, h, msg) != 0)
+        return -1;
+    snprintf(path, sizeof(path), "%s/frame_%04d.png", dir, frame);
+    return png_write_srgb(path, rgb, w, h, 0.0f, msg);
+}
+
+float *cli_render_reference(const struct scene *s, enum method_id method, const struct render_params *p,
+                            const struct camera *cam, int spp)
+{
+    struct render_params rp = *p;
+    renderer_reference_params(method, &rp);
+    struct camera_view view;
+    camera_view_init(&view, cam, rp.width, rp.height);
+    size_t n = 3 * (size_t)rp.width * (size_t)rp.height;
+    float *sum = xcalloc(n, sizeof(float)), *chunk = xcalloc(n, sizeof(float));
+    const int per_chunk = 16;
+    int chunks = (spp + per_chunk - 1) / per_chunk, done = 0;
+    struct progress pg;
+    progress_begin(&pg, "reference", spp);
+    for (int c = 0; c < chunks; c++) {
+        int k = spp - done < per_chunk ? spp - done : per_chunk;
+        /* A frame number no render uses keeps reference noise independent of the compared runs. */
+        pt_pass(s, &view, &rp, 1000000 + c, k, chunk);
+        for (size_t i = 0; i < n; i++)
+            sum[i] += chunk[i] * (float)k;
+        done += k;
+        progress_update(&pg, done);
+    }
+    progress_end(&pg);
+    for (size_t i = 0; i < n; i++)
+        sum[i] /= (float)spp;
+    free(chunk);
+    return sum;
+}

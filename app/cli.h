@@ -1,0 +1,57 @@
+/* cli.h: helpers shared by the `restir` subcommands: argument parsing, scene and reference
+ * loading, output folders, progress display and frame output. Must never implement a method. */
+#ifndef RESTIR_APP_CLI_H
+#define RESTIR_APP_CLI_H
+
+#include <stdio.h>
+
+#include "render/params.h"
+#include "render/renderer.h"
+#include "restir/metrics.h"
+#include "scene/scene.h"
+
+/* Exit codes: 0 success, 2 bad usage, 1 runtime failure. */
+#define EXIT_USAGE 2
+#define EXIT_RUNTIME 1
+
+/* Prints "restir: <message>" to stderr. */
+void cli_error(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+/* Parses "WxH" into width/height. Returns 0, or -1 with msg. */
+int cli_parse_res(const char *s, int *w, int *h, char *msg);
+/* Parses a whole number in [lo, hi] for option `opt`. Returns 0, or -1 with msg. */
+int cli_parse_int(const char *opt, const char *s, long long lo, long long hi, long long *out, char *msg);
+/* Creates dir and its parents. Returns 0, or -1 with msg. */
+int cli_make_dir(const char *dir, char *msg);
+
+/* Loads a reference EXR and checks it has the render size. Returns 0, or -1 with msg. */
+int cli_load_reference(const char *path, int width, int height, float **ref, char *msg);
+
+/* Progress bar with ETA on stderr when it is a terminal; silent otherwise. */
+struct progress {
+    int enabled;
+    int total;
+    double t0;
+    const char *label;
+};
+void progress_begin(struct progress *pg, const char *label, int total);
+void progress_update(struct progress *pg, int done);
+void progress_end(struct progress *pg);
+
+/* Writes DIR/frame_NNNN.exr and .png. Returns 0, or -1 with msg. */
+int cli_write_frame(const char *dir, int frame, const float *rgb, int w, int h, char *msg);
+
+/* Renders the converged image of what `method` estimates (pt with the method's integrand) with
+ * spp samples per pixel from camera cam into a new malloc'ed RGB buffer. */
+float *cli_render_reference(const struct scene *s, enum method_id method, const struct render_params *p,
+                            const struct camera *cam, int spp);
+
+int cmd_render(int argc, char **argv);
+int cmd_reference(int argc, char **argv);
+int cmd_compare(int argc, char **argv);
+
+#endif

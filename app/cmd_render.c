@@ -1,0 +1,236 @@
+/* cmd_render.c: `restir render` (frames of one method, with per-frame metrics, CSV and JSON
+ * summary) and `restir reference` (a converged image of what a method estimates).
+ * Must never implement a method: it drives the renderer. */
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "core/check.h"
+#include "io/image_io.h"
+#include "io/report.h"
+#include "options.h"
+
+static void render_usage(FILE *out)
+{
+    fprintf(out,
+            "usage: restir render --scene NAME --method NAME [--res WxH] [--frames N] [--spp N] [--seed N]\n"
+            "                     [--threads N] [--camera static|path] [--ref FILE.exr] [--out DIR]\n"
+            "                     [--save all|last] [--set key=value]...\n"
+            "Writes DIR/frame_NNNN.exr and .png, DIR/metrics.csv (per frame: times per pass, rays, and\n"
+            "error metrics when --ref is given) and DIR/summary.json. Default DIR: out/SCENE-METHOD.\n"
+            "ReSTIR methods render 1 sample per pixel per frame; --spp applies to pt.\n\n"
+            "Parameters (--set key=value, defaults shown):\n");
+    render_params_help(out);
+    fprintf(out, "\nMetrics (against --ref):\n%s", restir_metrics_help());
+}
+
+/* Resolves scene and method; returns 0 or an exit code after printing the problem. */
+static int open_scene_and_method(const struct cli_options *o, struct scene *s, enum method_id *method)
+{
+    char msg[RESTIR_MSG_LEN];
+    if (!o->method) {
+        cli_error("--method is required (see restir list)");
+        return EXIT_USAGE;
+    }
+    int m = method_find(o->method);
+    if (m < 0) {
+        cli_error("unknown method '%s' (see restir list)", o->method);
+        return EXIT_USAGE;
+    }
+    *method = (enum method_id)m;
+    if (scene_create_builtin(o->scene, s, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+static cJSON *params_json(const struct cli_options *o)
+{
+    const struct render_params *p = &o->params;
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddStringToObject(j, "scene", o->scene);
+    cJSON_AddStringToObject(j, "method", o->method);
+    cJSON_AddNumberToObject(j, "width", p->width);
+    cJSON_AddNumberToObject(j, "height", p->height);
+    cJSON_AddNumberToObject(j, "frames", o->frames);
+    cJSON_AddNumberToObject(j, "spp", p->spp);
+    cJSON_AddNumberToObject(j, "seed", (double)p->seed);
+    cJSON_AddStringToObject(j, "camera", p->camera_path ? "path" : "static");
+    cJSON_AddNumberToObject(j, "max_bounces", p->max_bounces);
+    cJSON_AddNumberToObject(j, "light_candidates", p->light_candidates);
+    cJSON_AddNumberToObject(j, "bsdf_candidates", p->bsdf_candidates);
+    cJSON_AddBoolToObject(j, "temporal", p->temporal);
+    cJSON_AddBoolToObject(j, "spatial", p->spatial);
+    cJSON_AddNumberToObject(j, "spatial_neighbors", p->spatial_neighbors);
+    cJSON_AddNumberToObject(j, "spatial_radius", p->spatial_radius);
+    cJSON_AddNumberToObject(j, "confidence_cap", p->confidence_cap);
+    cJSON_AddStringToObject(j, "mis", restir_mis_name(p->mis));
+    cJSON_AddBoolToObject(j, "temporal_ratio_guard", p->temporal_ratio_guard);
+    return j;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    struct cli_options o;
+    char msg[RESTIR_MSG_LEN];
+    if (cli_parse_options("render", argc, argv, &o, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
+    if (o.help) {
+        render_usage(stdout);
+        return 0;
+    }
+    struct scene s;
+    enum method_id method;
+    int rc = open_scene_and_method(&o, &s, &method);
+    if (rc != 0)
+        return rc;
+    char out_dir[4096];
+    if (o.out)
+        snprintf(out_dir, sizeof(out_dir), "%s", o.out);
+    else
+        snprintf(out_dir, sizeof(out_dir), "out/%s-%s", o.scene, o.method);
+    float *ref = NULL;
+    if (o.ref && cli_load_reference(o.ref, o.params.width, o.params.height, &ref, msg) != 0) {
+        cli_error("%s", msg);
+        scene_destroy(&s);
+        return EXIT_RUNTIME;
+    }
+    if (cli_make_dir(out_dir, msg) != 0) {
+        cli_error("%s", msg);
+        free(ref);
+        scene_destroy(&s);
+        return EXIT_RUNTIME;
+    }
+    char csv_path[4200], json_path[4200];
+    snprintf(csv_path, sizeof(csv_path), "%s/metrics.csv", out_dir);
+    snprintf(json_path, sizeof(json_path), "%s/summary.json", out_dir);
+    struct csv_writer csv;
+    if (csv_open(&csv, csv_path,
+                 "frame,ms_total,ms_gbuffer,ms_initial,ms_temporal,ms_spatial,ms_shade,ms_pt,rays,mrays_per_s,"
+                 "temporal_accept,relmse,mape,smape,luma_rmse",
+                 msg) != 0) {
+        cli_error("%s", msg);
+        free(ref);
+        scene_destroy(&s);
+        return EXIT_RUNTIME;
+    }
+    struct renderer r;
+    renderer_init(&r, &s, method, &o.params);
+    struct progress pg;
+    progress_begin(&pg, o.method, o.frames);
+    double ms_sum = 0.0, rays_sum = 0.0;
+    struct restir_error err = {0, 0, 0, 0}, err_sum = {0, 0, 0, 0};
+    size_t npix = (size_t)o.params.width * (size_t)o.params.height;
+    rc = 0;
+    for (int f = 0; f < o.frames && rc == 0; f++) {
+        struct frame_stats st;
+        struct camera cam = scene_camera_at(&s, o.params.camera_path, (float)f);
+        renderer_render(&r, f, &cam, &st);
+        ms_sum += st.ms_total;
+        rays_sum += (double)st.rays;
+        if (ref) {
+            restir_error_compute(r.image, ref, npix, NULL, &err);
+            err_sum.relmse += err.relmse;
+            err_sum.mape += err.mape;
+            err_sum.smape += err.smape;
+            err_sum.luma_rmse += err.luma_rmse;
+        }
+        double accept = st.valid_pixels > 0 ? (double)st.temporal_accepted / (double)st.valid_pixels : 0.0;
+        csv_row(&csv, "%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%lld,%.3f,%.4f,%.6g,%.6g,%.6g,%.6g", f, st.ms_total,
+                st.ms[PASS_GBUFFER], st.ms[PASS_INITIAL], st.ms[PASS_TEMPORAL], st.ms[PASS_SPATIAL],
+                st.ms[PASS_SHADE], st.ms[PASS_PT], st.rays, (double)st.rays / (st.ms_total * 1e3), accept,
+                ref ? err.relmse : 0.0, ref ? err.mape : 0.0, ref ? err.smape : 0.0, ref ? err.luma_rmse : 0.0);
+        if ((o.save_all || f == o.frames - 1) &&
+            cli_write_frame(out_dir, f, r.image, o.params.width, o.params.height, msg) != 0) {
+            cli_error("%s", msg);
+            rc = EXIT_RUNTIME;
+        }
+        progress_update(&pg, f + 1);
+    }
+    progress_end(&pg);
+    if (rc == 0 && csv_close(&csv, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    } else if (rc != 0) {
+        csv_abort(&csv);
+    }
+    if (rc == 0) {
+        cJSON *j = params_json(&o);
+        cJSON_AddNumberToObject(j, "ms_per_frame", ms_sum / o.frames);
+        cJSON_AddNumberToObject(j, "mrays_per_s", rays_sum / (ms_sum * 1e3));
+        if (ref) {
+            cJSON *last = cJSON_AddObjectToObject(j, "last_frame");
+            cJSON_AddNumberToObject(last, "relmse", err.relmse);
+            cJSON_AddNumberToObject(last, "mape", err.mape);
+            cJSON_AddNumberToObject(last, "smape", err.smape);
+            cJSON_AddNumberToObject(last, "luma_rmse", err.luma_rmse);
+            cJSON *mean = cJSON_AddObjectToObject(j, "mean_over_frames");
+            cJSON_AddNumberToObject(mean, "relmse", err_sum.relmse / o.frames);
+            cJSON_AddNumberToObject(mean, "mape", err_sum.mape / o.frames);
+            cJSON_AddNumberToObject(mean, "smape", err_sum.smape / o.frames);
+            cJSON_AddNumberToObject(mean, "luma_rmse", err_sum.luma_rmse / o.frames);
+        }
+        if (json_write_file(json_path, j, msg) != 0) {
+            cli_error("%s", msg);
+            rc = EXIT_RUNTIME;
+        }
+        cJSON_Delete(j);
+    }
+    if (rc == 0) {
+        printf("%s on %s, %dx%d, %d frame(s): %.2f ms/frame, %.2f Mrays/s", o.method, o.scene, o.params.width,
+               o.params.height, o.frames, ms_sum / o.frames, rays_sum / (ms_sum * 1e3));
+        if (ref)
+            printf(", last frame relMSE %.5g MAPE %.5g SMAPE %.4g", err.relmse, err.mape, err.smape);
+        printf("\noutput: %s\n", out_dir);
+    }
+    renderer_fini(&r);
+    free(ref);
+    scene_destroy(&s);
+    return rc;
+}
+
+int cmd_reference(int argc, char **argv)
+{
+    struct cli_options o;
+    char msg[RESTIR_MSG_LEN];
+    if (cli_parse_options("reference", argc, argv, &o, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
+    if (o.help) {
+        printf("usage: restir reference --scene NAME --method NAME [--res WxH] [--spp N] [--camera static|path]\n"
+               "                        [--frame F] [--seed N] [--threads N] --out FILE.exr\n"
+               "Renders the converged image of what METHOD estimates (pt over the same integrand: direct\n"
+               "lighting only for DI methods) from the camera of frame F. Default --spp 1024.\n");
+        return 0;
+    }
+    if (!o.out) {
+        cli_error("--out FILE.exr is required");
+        return EXIT_USAGE;
+    }
+    struct scene s;
+    enum method_id method;
+    int rc = open_scene_and_method(&o, &s, &method);
+    if (rc != 0)
+        return rc;
+    int spp = o.spp_given ? o.params.spp : 1024;
+    if (o.params.threads > 0)
+        omp_set_num_threads(o.params.threads);
+    struct camera cam = scene_camera_at(&s, o.params.camera_path, (float)o.frame);
+    float *img = cli_render_reference(&s, method, &o.params, &cam, spp);
+    rc = 0;
+    if (exr_write_rgb(o.out, img, o.params.width, o.params.height, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    } else {
+        printf("reference of %s on %s (%dx%d, %d spp) written to %s\n", o.method, o.scene, o.params.width,
+               o.params.height, spp, o.out);
+    }
+    free(img);
+    scene_destroy(&s);
+    return rc;
+}

@@ -1,0 +1,50 @@
+/* main.c: the `restir` command: dispatches to list, render, reference and compare.
+ * Must never parse method parameters itself (options.c and params.c do). */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: restir <command> [options]\n"
+            "commands:\n"
+            "  list        scenes and methods, one per line\n"
+            "  render      render frames of one method (restir render --help)\n"
+            "  reference   render a converged reference of what a method estimates\n"
+            "  compare     run several methods on the same frames, optionally at equal time\n");
+}
+
+static int cmd_list(void)
+{
+    for (int i = 0; scene_builtin_names[i]; i++)
+        printf("scene %s\t%s\n", scene_builtin_names[i], scene_builtin_descriptions[i]);
+    for (int m = 0; m < METHOD_COUNT; m++)
+        printf("method %s\t%s\n", method_table[m].name, method_table[m].description);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return EXIT_USAGE;
+    }
+    const char *cmd = argv[1];
+    if (!strcmp(cmd, "list"))
+        return cmd_list();
+    if (!strcmp(cmd, "render"))
+        return cmd_render(argc - 2, argv + 2);
+    if (!strcmp(cmd, "reference"))
+        return cmd_reference(argc - 2, argv + 2);
+    if (!strcmp(cmd, "compare"))
+        return cmd_compare(argc - 2, argv + 2);
+    if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
+        usage(stdout);
+        return 0;
+    }
+    cli_error("unknown command '%s'", cmd);
+    usage(stderr);
+    return EXIT_USAGE;
+}

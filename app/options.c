@@ -1,0 +1,110 @@
+/* options.c: parsing of the shared subcommand options into struct cli_options, with the error
+ * message naming the offending option. Must never run a render. */
+#include "options.h"
+
+#include <string.h>
+
+#include "cli.h"
+#include "core/check.h"
+
+static int need_value(int i, int argc, char **argv, char *msg)
+{
+    if (i + 1 >= argc) {
+        snprintf(msg, RESTIR_MSG_LEN, "option %s needs a value", argv[i]);
+        return -1;
+    }
+    return 0;
+}
+
+int cli_parse_options(const char *command, int argc, char **argv, struct cli_options *o, char *msg)
+{
+    memset(o, 0, sizeof(*o));
+    render_params_defaults(&o->params);
+    o->scene = "many-lights";
+    o->frames = 1;
+    o->ref_spp = 1024;
+    o->save_all = 1;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        long long v;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            o->help = 1;
+            continue;
+        }
+        if (!strcmp(a, "--equal-time")) {
+            o->equal_time = 1;
+            continue;
+        }
+        if (strncmp(a, "--", 2) != 0) {
+            snprintf(msg, RESTIR_MSG_LEN, "%s: unexpected argument '%s'", command, a);
+            return -1;
+        }
+        if (need_value(i, argc, argv, msg) != 0)
+            return -1;
+        const char *val = argv[++i];
+        if (!strcmp(a, "--scene"))
+            o->scene = val;
+        else if (!strcmp(a, "--method"))
+            o->method = val;
+        else if (!strcmp(a, "--methods"))
+            o->methods = val;
+        else if (!strcmp(a, "--ref"))
+            o->ref = val;
+        else if (!strcmp(a, "--out"))
+            o->out = val;
+        else if (!strcmp(a, "--res")) {
+            if (cli_parse_res(val, &o->params.width, &o->params.height, msg) != 0)
+                return -1;
+        } else if (!strcmp(a, "--frames")) {
+            if (cli_parse_int(a, val, 1, 100000, &v, msg) != 0)
+                return -1;
+            o->frames = (int)v;
+        } else if (!strcmp(a, "--frame")) {
+            if (cli_parse_int(a, val, 0, 100000, &v, msg) != 0)
+                return -1;
+            o->frame = (int)v;
+        } else if (!strcmp(a, "--spp")) {
+            if (cli_parse_int(a, val, 1, 1 << 20, &v, msg) != 0)
+                return -1;
+            o->params.spp = (int)v;
+            o->spp_given = 1;
+        } else if (!strcmp(a, "--ref-spp")) {
+            if (cli_parse_int(a, val, 1, 1 << 20, &v, msg) != 0)
+                return -1;
+            o->ref_spp = (int)v;
+        } else if (!strcmp(a, "--seed")) {
+            if (cli_parse_int(a, val, 0, (1ll << 62), &v, msg) != 0)
+                return -1;
+            o->params.seed = (uint64_t)v;
+        } else if (!strcmp(a, "--threads")) {
+            if (cli_parse_int(a, val, 0, 1024, &v, msg) != 0)
+                return -1;
+            o->params.threads = (int)v;
+        } else if (!strcmp(a, "--camera")) {
+            if (!strcmp(val, "static"))
+                o->params.camera_path = 0;
+            else if (!strcmp(val, "path"))
+                o->params.camera_path = 1;
+            else {
+                snprintf(msg, RESTIR_MSG_LEN, "--camera expects static or path, got '%s'", val);
+                return -1;
+            }
+        } else if (!strcmp(a, "--save")) {
+            if (!strcmp(val, "all"))
+                o->save_all = 1;
+            else if (!strcmp(val, "last"))
+                o->save_all = 0;
+            else {
+                snprintf(msg, RESTIR_MSG_LEN, "--save expects all or last, got '%s'", val);
+                return -1;
+            }
+        } else if (!strcmp(a, "--set")) {
+            if (render_params_set(&o->params, val, msg) != 0)
+                return -1;
+        } else {
+            snprintf(msg, RESTIR_MSG_LEN, "%s: unknown option '%s'", command, a);
+            return -1;
+        }
+    }
+    return render_params_validate(&o->params, msg);
+}

@@ -1,0 +1,27 @@
+/* options.h: the options the subcommands share, parsed once into struct cli_options.
+ * Must never run a render. */
+#ifndef RESTIR_APP_OPTIONS_H
+#define RESTIR_APP_OPTIONS_H
+
+#include "render/params.h"
+
+struct cli_options {
+    const char *scene;
+    const char *method;
+    const char *methods; /* compare: comma-separated */
+    const char *ref;
+    const char *out;
+    int frames;
+    int frame;           /* reference: camera of this frame */
+    int equal_time;
+    int ref_spp;         /* compare: spp of the reference rendered when --ref is absent */
+    int save_all;        /* render: write every frame (1) or only the last (0) */
+    int help;
+    int spp_given;
+    struct render_params params;
+};
+
+/* Parses argv[first..argc) for `command`. Returns 0, or -1 with msg naming the bad option. */
+int cli_parse_options(const char *command, int argc, char **argv, struct cli_options *o, char *msg);
+
+#endif

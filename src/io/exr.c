@@ -1,0 +1,396 @@
+/* exr.c: OpenEXR reading and writing of interleaved RGB float images through the OpenEXR Core C API.
+ * Must never depend on scenes, render code or anything that aborts on bad input. */
+#include "io/image_io.h"
+
+#include "core/check.h"
+
+#include <openexr.h>
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Formats a message into msg (RESTIR_MSG_LEN bytes, may be NULL), truncating long paths. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+static void set_msg(char *msg, const char *fmt, ...)
+{
+    if (!msg)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, RESTIR_MSG_LEN, fmt, ap);
+    va_end(ap);
+}
+
+/* Largest image side and pixel count we accept; anything beyond is a broken or hostile header. */
+#define EXR_MAX_SIDE 65536
+#define EXR_MAX_PIXELS ((int64_t)1 << 27)
+#define EXR_PATH_MAX 4096
+
+/* The library reports details through a callback; keep the last one for our own message. Its
+ * user_data slot belongs to the default file stream, so a thread-local buffer is used instead. */
+static _Thread_local char exr_last_error[256];
+
+static void exr_error_capture(exr_const_context_t ctxt, exr_result_t code, const char *text)
+{
+    (void)ctxt;
+    snprintf(exr_last_error, sizeof exr_last_error, "%s (%s)", text ? text : "",
+             exr_get_error_code_as_string(code));
+}
+
+static exr_context_initializer_t exr_initializer(void)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = exr_error_capture;
+    init.max_image_width = EXR_MAX_SIDE;
+    init.max_image_height = EXR_MAX_SIDE;
+    init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
+    return init;
+}
+
+/* Fills msg with "path: what: library detail". */
+static void exr_fail(char *msg, const char *path, const char *what, exr_result_t rv)
+{
+    if (!msg)
+        return;
+    if (exr_last_error[0])
+        set_msg(msg, "%s: %s: %s", path, what, exr_last_error);
+    else
+        set_msg(msg, "%s: %s: %s", path, what, exr_get_default_error_message(rv));
+}
+
+/* Points the encoder's channels at the interleaved source rows of this chunk. */
+static int exr_bind_encode(exr_encode_pipeline_t *enc, const float *rgb, int w, int start_y)
+{
+    for (int c = 0; c < enc->channel_count; c++) {
+        exr_coding_channel_info_t *ch = &enc->channels[c];
+        int off;
+        if (strcmp(ch->channel_name, "R") == 0)
+            off = 0;
+        else if (strcmp(ch->channel_name, "G") == 0)
+            off = 1;
+        else if (strcmp(ch->channel_name, "B") == 0)
+            off = 2;
+        else
+            return -1;
+        ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
+        ch->user_line_stride = 3 * (int32_t)sizeof(float) * w;
+        ch->user_data_type = EXR_PIXEL_FLOAT;
+        ch->user_bytes_per_element = (int16_t)sizeof(float);
+        ch->encode_from_ptr = (const uint8_t *)(rgb + ((size_t)start_y * (size_t)w * 3 + (size_t)off));
+    }
+    return 0;
+}
+
+static int exr_write_body(exr_context_t ctxt, const char *path, const float *rgb, int w, int h,
+                          char *msg)
+{
+    int part = 0;
+    exr_result_t rv = exr_add_part(ctxt, NULL, EXR_STORAGE_SCANLINE, &part);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_initialize_required_attr_simple(ctxt, part, w, h, EXR_COMPRESSION_ZIP);
+    /* Channel order in the file is alphabetical; the library sorts the list itself. */
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_add_channel(ctxt, part, "B", EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_add_channel(ctxt, part, "G", EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_add_channel(ctxt, part, "R", EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_write_header(ctxt);
+    if (rv != EXR_ERR_SUCCESS) {
+        exr_fail(msg, path, "cannot write EXR header", rv);
+        return -1;
+    }
+
+    int32_t lines = 0;
+    rv = exr_get_scanlines_per_chunk(ctxt, part, &lines);
+    if (rv != EXR_ERR_SUCCESS || lines <= 0) {
+        exr_fail(msg, path, "cannot query EXR chunk layout", rv);
+        return -1;
+    }
+
+    exr_encode_pipeline_t enc;
+    memset(&enc, 0, sizeof enc);
+    int have_enc = 0;
+    int status = 0;
+    for (int y = 0; y < h && status == 0; y += lines) {
+        exr_chunk_info_t cinfo;
+        rv = exr_write_scanline_chunk_info(ctxt, part, y, &cinfo);
+        if (rv == EXR_ERR_SUCCESS) {
+            if (!have_enc) {
+                rv = exr_encoding_initialize(ctxt, part, &cinfo, &enc);
+                have_enc = rv == EXR_ERR_SUCCESS;
+            } else {
+                rv = exr_encoding_update(ctxt, part, &cinfo, &enc);
+            }
+        }
+        if (rv == EXR_ERR_SUCCESS && exr_bind_encode(&enc, rgb, w, cinfo.start_y) != 0) {
+            set_msg(msg, "%s: unexpected channel in EXR encoder", path);
+            status = -1;
+            break;
+        }
+        if (rv == EXR_ERR_SUCCESS)
+            rv = exr_encoding_choose_default_routines(ctxt, part, &enc);
+        if (rv == EXR_ERR_SUCCESS)
+            rv = exr_encoding_run(ctxt, part, &enc);
+        if (rv != EXR_ERR_SUCCESS) {
+            exr_fail(msg, path, "cannot encode EXR scanlines", rv);
+            status = -1;
+        }
+    }
+    if (have_enc)
+        exr_encoding_destroy(ctxt, &enc);
+    return status;
+}
+
+int exr_write_rgb(const char *path, const float *rgb, int w, int h, char *msg)
+{
+    if (w <= 0 || h <= 0 || w > EXR_MAX_SIDE || h > EXR_MAX_SIDE || !rgb) {
+        set_msg(msg, "%s: cannot write EXR of invalid size %dx%d", path, w, h);
+        return -1;
+    }
+    char tmp[EXR_PATH_MAX + 32];
+    if (strlen(path) >= EXR_PATH_MAX) {
+        set_msg(msg, "%.200s...: output path is too long", path);
+        return -1;
+    }
+    io_temp_path(path, tmp, sizeof tmp);
+
+    /* Open the temporary file ourselves first so a bad directory gets a plain errno message. */
+    FILE *probe = fopen(tmp, "wb");
+    if (!probe) {
+        set_msg(msg, "%s: cannot create temporary file %.200s: %s", path, tmp, strerror(errno));
+        return -1;
+    }
+    fclose(probe);
+
+    exr_last_error[0] = '\0';
+    exr_context_initializer_t init = exr_initializer();
+    exr_context_t ctxt = NULL;
+    exr_result_t rv = exr_start_write(&ctxt, tmp, EXR_WRITE_FILE_DIRECTLY, &init);
+    if (rv != EXR_ERR_SUCCESS) {
+        exr_fail(msg, path, "cannot start EXR write", rv);
+        if (ctxt)
+            exr_finish(&ctxt);
+        remove(tmp);
+        return -1;
+    }
+    int status = exr_write_body(ctxt, path, rgb, w, h, msg);
+    rv = exr_finish(&ctxt);
+    if (status == 0 && rv != EXR_ERR_SUCCESS) {
+        exr_fail(msg, path, "cannot finish EXR file", rv);
+        status = -1;
+    }
+    if (status != 0) {
+        remove(tmp);
+        return -1;
+    }
+    return io_commit(tmp, path, msg);
+}
+
+/* Checks the four magic bytes so that missing and foreign files get a precise message. */
+static int exr_probe_file(const char *path, char *msg)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        set_msg(msg, "%s: cannot open: %s", path, strerror(errno));
+        return -1;
+    }
+    unsigned char magic[4];
+    size_t got = fread(magic, 1, sizeof magic, f);
+    fclose(f);
+    if (got != sizeof magic || magic[0] != 0x76 || magic[1] != 0x2f || magic[2] != 0x31 ||
+        magic[3] != 0x01) {
+        set_msg(msg, "%s: not an OpenEXR file (bad magic number)", path);
+        return -1;
+    }
+    return 0;
+}
+
+/* Finds channel index for R/G/B in the channel list; returns -1 where absent. */
+static int exr_find_channel(const exr_attr_chlist_t *chl, const char *name)
+{
+    for (int i = 0; i < chl->num_channels; i++)
+        if (strcmp(chl->entries[i].name.str, name) == 0)
+            return i;
+    return -1;
+}
+
+/* Points the decoder's R, G, B channels at this chunk's rows of the output; skips the others. */
+static void exr_bind_decode(exr_decode_pipeline_t *dec, float *out, int w, int row)
+{
+    for (int c = 0; c < dec->channel_count; c++) {
+        exr_coding_channel_info_t *ch = &dec->channels[c];
+        int off = -1;
+        if (strcmp(ch->channel_name, "R") == 0)
+            off = 0;
+        else if (strcmp(ch->channel_name, "G") == 0)
+            off = 1;
+        else if (strcmp(ch->channel_name, "B") == 0)
+            off = 2;
+        if (off < 0) {
+            ch->decode_to_ptr = NULL;
+            continue;
+        }
+        ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
+        ch->user_line_stride = 3 * (int32_t)sizeof(float) * w;
+        ch->user_data_type = EXR_PIXEL_FLOAT;
+        ch->user_bytes_per_element = (int16_t)sizeof(float);
+        ch->decode_to_ptr = (uint8_t *)(out + ((size_t)row * (size_t)w * 3 + (size_t)off));
+    }
+}
+
+static int exr_read_body(exr_context_t ctxt, const char *path, float **rgb, int *w_out, int *h_out,
+                         char *msg)
+{
+    int parts = 0;
+    exr_result_t rv = exr_get_count(ctxt, &parts);
+    if (rv != EXR_ERR_SUCCESS || parts < 1) {
+        exr_fail(msg, path, "cannot read EXR parts", rv);
+        return -1;
+    }
+    exr_storage_t storage;
+    rv = exr_get_storage(ctxt, 0, &storage);
+    if (rv != EXR_ERR_SUCCESS) {
+        exr_fail(msg, path, "cannot read EXR storage type", rv);
+        return -1;
+    }
+    if (storage != EXR_STORAGE_SCANLINE) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "%s: unsupported EXR layout (%s); only scanline images can be read", path,
+                 storage == EXR_STORAGE_TILED           ? "tiled"
+                 : storage == EXR_STORAGE_DEEP_SCANLINE ? "deep scanline"
+                                                        : "deep tiled");
+        return -1;
+    }
+
+    exr_attr_box2i_t dw;
+    rv = exr_get_data_window(ctxt, 0, &dw);
+    if (rv != EXR_ERR_SUCCESS) {
+        exr_fail(msg, path, "cannot read EXR data window", rv);
+        return -1;
+    }
+    int64_t w = (int64_t)dw.max.x - dw.min.x + 1, h = (int64_t)dw.max.y - dw.min.y + 1;
+    if (w <= 0 || h <= 0 || w > EXR_MAX_SIDE || h > EXR_MAX_SIDE || w * h > EXR_MAX_PIXELS) {
+        set_msg(msg, "%s: unsupported EXR image size %lldx%lld", path,
+                 (long long)w, (long long)h);
+        return -1;
+    }
+
+    const exr_attr_chlist_t *chl = NULL;
+    rv = exr_get_channels(ctxt, 0, &chl);
+    if (rv != EXR_ERR_SUCCESS || !chl) {
+        exr_fail(msg, path, "cannot read EXR channel list", rv);
+        return -1;
+    }
+    static const char *const names[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; c++) {
+        int i = exr_find_channel(chl, names[c]);
+        if (i < 0) {
+            set_msg(msg, "%s: EXR has no '%s' channel (R, G and B are required)",
+                     path, names[c]);
+            return -1;
+        }
+        const exr_attr_chlist_entry_t *e = &chl->entries[i];
+        if (e->pixel_type != EXR_PIXEL_HALF && e->pixel_type != EXR_PIXEL_FLOAT) {
+            set_msg(msg, "%s: EXR channel '%s' is not half or float", path,
+                     names[c]);
+            return -1;
+        }
+        if (e->x_sampling != 1 || e->y_sampling != 1) {
+            set_msg(msg, "%s: EXR channel '%s' is subsampled (unsupported)", path,
+                     names[c]);
+            return -1;
+        }
+    }
+
+    int32_t lines = 0;
+    rv = exr_get_scanlines_per_chunk(ctxt, 0, &lines);
+    if (rv != EXR_ERR_SUCCESS || lines <= 0) {
+        exr_fail(msg, path, "cannot query EXR chunk layout", rv);
+        return -1;
+    }
+
+    float *out = calloc((size_t)(w * h * 3), sizeof(float));
+    if (!out) {
+        set_msg(msg, "%s: out of memory for %lldx%lld image", path, (long long)w,
+                 (long long)h);
+        return -1;
+    }
+
+    exr_decode_pipeline_t dec;
+    memset(&dec, 0, sizeof dec);
+    int have_dec = 0;
+    int status = 0;
+    for (int64_t y = dw.min.y; y <= dw.max.y; y += lines) {
+        exr_chunk_info_t cinfo;
+        rv = exr_read_scanline_chunk_info(ctxt, 0, (int)y, &cinfo);
+        if (rv == EXR_ERR_SUCCESS) {
+            if (!have_dec) {
+                rv = exr_decoding_initialize(ctxt, 0, &cinfo, &dec);
+                have_dec = rv == EXR_ERR_SUCCESS;
+            } else {
+                rv = exr_decoding_update(ctxt, 0, &cinfo, &dec);
+            }
+        }
+        if (rv == EXR_ERR_SUCCESS) {
+            int64_t row = (int64_t)cinfo.start_y - dw.min.y;
+            if (row < 0 || row + cinfo.height > h || cinfo.width != w) {
+                set_msg(msg, "%s: EXR chunk at line %lld is outside the image",
+                         path, (long long)y);
+                status = -1;
+                break;
+            }
+            exr_bind_decode(&dec, out, (int)w, (int)row);
+            rv = exr_decoding_choose_default_routines(ctxt, 0, &dec);
+        }
+        if (rv == EXR_ERR_SUCCESS)
+            rv = exr_decoding_run(ctxt, 0, &dec);
+        if (rv != EXR_ERR_SUCCESS) {
+            char what[96];
+            snprintf(what, sizeof what, "cannot decode EXR scanlines at y=%lld (truncated or corrupt?)",
+                     (long long)y);
+            exr_fail(msg, path, what, rv);
+            status = -1;
+            break;
+        }
+    }
+    if (have_dec)
+        exr_decoding_destroy(ctxt, &dec);
+    if (status != 0) {
+        free(out);
+        return -1;
+    }
+    *rgb = out;
+    *w_out = (int)w;
+    *h_out = (int)h;
+    return 0;
+}
+
+int exr_read_rgb(const char *path, float **rgb, int *w, int *h, char *msg)
+{
+    *rgb = NULL;
+    *w = *h = 0;
+    if (exr_probe_file(path, msg) != 0)
+        return -1;
+
+    exr_last_error[0] = '\0';
+    exr_context_initializer_t init = exr_initializer();
+    exr_context_t ctxt = NULL;
+    exr_result_t rv = exr_start_read(&ctxt, path, &init);
+    if (rv != EXR_ERR_SUCCESS) {
+        exr_fail(msg, path, "invalid or unreadable EXR header", rv);
+        if (ctxt)
+            exr_finish(&ctxt);
+        return -1;
+    }
+    int status = exr_read_body(ctxt, path, rgb, w, h, msg);
+    exr_finish(&ctxt);
+    return status;
+}

@@ -1,0 +1,74 @@
+/* metrics.c: the project's image error metrics (relMSE, MAPE, SMAPE, luminance RMSE) as declared
+ * in restir/metrics.h. Must never depend on src/ headers, a ray tracer, files or the renderer. */
+#include "restir/metrics.h"
+
+#include <math.h>
+#include <stddef.h>
+
+static double metrics_luminance(const float *p)
+{
+    return 0.2126 * (double)p[0] + 0.7152 * (double)p[1] + 0.0722 * (double)p[2];
+}
+
+static int metrics_selected(const unsigned char *mask, size_t i)
+{
+    return mask == NULL || mask[i] != 0;
+}
+
+int restir_error_compute(const float *image, const float *reference, size_t n_pixels,
+                         const unsigned char *mask, struct restir_error *out)
+{
+    /* First pass: count selected pixels and the reference mean that MAPE's denominator uses. */
+    size_t count = 0;
+    double ref_sum = 0.0;
+    for (size_t i = 0; i < n_pixels; i++) {
+        if (!metrics_selected(mask, i))
+            continue;
+        count++;
+        for (int c = 0; c < 3; c++)
+            ref_sum += (double)reference[3 * i + (size_t)c];
+    }
+    if (count == 0)
+        return -1;
+    double ref_mean = ref_sum / (3.0 * (double)count);
+    double mape_offset = 0.01 * ref_mean;
+
+    double relmse = 0.0, mape = 0.0, smape = 0.0, luma_se = 0.0;
+    for (size_t i = 0; i < n_pixels; i++) {
+        if (!metrics_selected(mask, i))
+            continue;
+        const float *p = image + 3 * i;
+        const float *r = reference + 3 * i;
+        for (int c = 0; c < 3; c++) {
+            double iv = (double)p[c], rv = (double)r[c];
+            double d = iv - rv;
+            relmse += d * d / (rv * rv + 1e-3);
+            /* An exact match contributes 0 even where the denominator vanishes. */
+            if (d != 0.0)
+                mape += fabs(d) / (rv + mape_offset);
+        }
+        double li = metrics_luminance(p), lr = metrics_luminance(r);
+        double dl = li - lr;
+        smape += fabs(dl) / (fabs(li) + fabs(lr) + 1e-4);
+        luma_se += dl * dl;
+    }
+    double n = (double)count;
+    out->relmse = relmse / (3.0 * n);
+    out->mape = mape / (3.0 * n);
+    out->smape = 100.0 * smape / n;
+    out->luma_rmse = sqrt(luma_se / n);
+    return 0;
+}
+
+const char *restir_metrics_help(void)
+{
+    return "Error metrics (image I against reference R; interleaved RGB; only pixels selected by\n"
+           "the mask, if any; sums in double precision):\n"
+           "  relMSE    = mean over pixels and channels c of (I_c - R_c)^2 / (R_c^2 + 1e-3)\n"
+           "  MAPE      = mean over pixels and channels c of |I_c - R_c| / (R_c + 0.01 * mean(R)),\n"
+           "              mean(R) = mean of R over all selected pixels and all three channels;\n"
+           "              a channel with I_c == R_c contributes 0\n"
+           "  SMAPE     = 100 * mean over pixels of |L(I) - L(R)| / (|L(I)| + |L(R)| + 1e-4)\n"
+           "  luma RMSE = sqrt(mean over pixels of (L(I) - L(R))^2)\n"
+           "  L(x)      = 0.2126 x_r + 0.7152 x_g + 0.0722 x_b (Rec. 709 luminance)\n";
+}

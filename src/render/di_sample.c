@@ -1,0 +1,24 @@
+/* di_sample.c: evaluation of the ReSTIR DI integrand without visibility, shared by initial
+ * sampling, temporal and spatial reuse and shading. Must never trace rays. */
+#include "di_sample.h"
+
+vec3 di_unshadowed(const struct shading_point *sp, const struct di_sample *y)
+{
+    if (!sp->valid || y->tri < 0)
+        return v3s(0.0f);
+    vec3 to = v3_sub(y->p, sp->p);
+    float d2 = v3_length2(to);
+    if (!(d2 > 0.0f))
+        return v3s(0.0f);
+    vec3 wi = v3_scale(to, 1.0f / sqrtf(d2));
+    float cos_x = v3_dot(sp->n, wi), cos_y = -v3_dot(y->n, wi);
+    if (cos_x <= 0.0f || cos_y <= 0.0f || v3_dot(sp->ng, wi) <= 0.0f)
+        return v3s(0.0f);
+    vec3 f = bsdf_eval(&sp->bsdf, sp->n, sp->wo, wi);
+    return v3_scale(v3_mul(y->Le, f), cos_x * cos_y / d2);
+}
+
+float di_target(const struct shading_point *sp, const struct di_sample *y)
+{
+    return v3_luminance(di_unshadowed(sp, y));
+}

@@ -1,0 +1,109 @@
+/* gbuffer.c: allocation of the G-buffer and the primary-visibility pass that fills it, with
+ * sub-pixel jitter and backward motion vectors. Must never depend on reservoirs or methods. */
+#include "gbuffer.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/check.h"
+#include "core/rng.h"
+#include "shading/lights.h"
+#include "tiles.h"
+
+void gbuffer_init(struct gbuffer *g, int width, int height)
+{
+    size_t n = (size_t)width * (size_t)height;
+    memset(g, 0, sizeof(*g));
+    g->width = width;
+    g->height = height;
+    g->position = xcalloc(n, sizeof(vec3));
+    g->normal = xcalloc(n, sizeof(vec3));
+    g->geo_normal = xcalloc(n, sizeof(vec3));
+    g->depth = xcalloc(n, sizeof(float));
+    g->albedo = xcalloc(n, sizeof(vec3));
+    g->roughness = xcalloc(n, sizeof(float));
+    g->material = xcalloc(n, sizeof(int));
+    g->object = xcalloc(n, sizeof(int));
+    g->motion = xcalloc(2 * n, sizeof(float));
+    g->emission = xcalloc(n, sizeof(vec3));
+    g->sub_pixel = xcalloc(n, sizeof(vec3));
+    g->valid = xcalloc(n, 1);
+}
+
+void gbuffer_fini(struct gbuffer *g)
+{
+    free(g->position);
+    free(g->normal);
+    free(g->geo_normal);
+    free(g->depth);
+    free(g->albedo);
+    free(g->roughness);
+    free(g->material);
+    free(g->object);
+    free(g->motion);
+    free(g->emission);
+    free(g->sub_pixel);
+    free(g->valid);
+    memset(g, 0, sizeof(*g));
+}
+
+long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct camera_view *view,
+                       const struct camera_view *prev_view, int jitter, uint64_t seed, int frame)
+{
+    long long rays = 0;
+    g->camera_position = view->position;
+    const int ntiles = tile_count(g->width, g->height);
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
+    for (int t = 0; t < ntiles; t++) {
+        struct tile_range r = tile_get(g->width, g->height, t);
+        for (int y = r.y0; y < r.y1; y++) {
+            for (int x = r.x0; x < r.x1; x++) {
+                int i = y * g->width + x;
+                pcg32 rng = rng_for(seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_GBUFFER);
+                float jx = jitter ? pcg32_float(&rng) : 0.5f, jy = jitter ? pcg32_float(&rng) : 0.5f;
+                float px = (float)x + jx, py = (float)y + jy;
+                vec3 dir = camera_view_ray(view, px, py);
+                struct surface_hit h;
+                rays++;
+                g->sub_pixel[i] = v3(px, py, 0.0f);
+                g->motion[2 * i] = g->motion[2 * i + 1] = prev_view ? GBUFFER_NO_MOTION : 0.0f;
+                if (!scene_intersect(s, view->position, dir, 0.0f, INFINITY, &h)) {
+                    g->valid[i] = 0;
+                    g->emission[i] = v3s(0.0f);
+                    g->material[i] = g->object[i] = -1;
+                    g->depth[i] = INFINITY;
+                    continue;
+                }
+                const struct material *m = &s->materials[h.material];
+                g->valid[i] = 1;
+                g->position[i] = h.p;
+                g->normal[i] = h.ns;
+                g->geo_normal[i] = h.ng;
+                g->depth[i] = h.t;
+                g->albedo[i] = m->base_color;
+                g->roughness[i] = m->roughness;
+                g->material[i] = h.material;
+                g->object[i] = h.object;
+                g->emission[i] = s->tri_emitter[h.tri] >= 0 ? lights_radiance(s, h.tri, v3_neg(dir)) : v3s(0.0f);
+                float qx, qy;
+                if (prev_view && camera_view_project(prev_view, h.p, &qx, &qy)) {
+                    g->motion[2 * i] = qx - px;
+                    g->motion[2 * i + 1] = qy - py;
+                }
+            }
+        }
+    }
+    return rays;
+}
+
+void gbuffer_shading_point(const struct gbuffer *g, const struct scene *s, int i, struct shading_point *sp)
+{
+    sp->valid = g->valid[i];
+    if (!sp->valid)
+        return;
+    sp->p = g->position[i];
+    sp->n = g->normal[i];
+    sp->ng = g->geo_normal[i];
+    sp->wo = v3_normalize(v3_sub(g->camera_position, g->position[i]));
+    bsdf_from_material(&s->materials[g->material[i]], &sp->bsdf);
+}

@@ -1,0 +1,48 @@
+/* gbuffer.h: per-pixel primary-hit data (structure of arrays) and the pass that fills it; two
+ * of them ping-pong so temporal reuse can validate against the previous frame.
+ * Must never depend on reservoirs or methods. */
+#ifndef RESTIR_RENDER_GBUFFER_H
+#define RESTIR_RENDER_GBUFFER_H
+
+#include "scene/camera.h"
+#include "scene/scene.h"
+#include "shading/bsdf.h"
+
+#define GBUFFER_NO_MOTION 1e30f
+
+struct gbuffer {
+    int width, height;
+    vec3 camera_position; /* of the frame it was rendered for (the wo of every pixel) */
+    vec3 *position;
+    vec3 *normal;         /* shading normal, facing the camera */
+    vec3 *geo_normal;     /* geometric normal, facing the camera */
+    float *depth;         /* distance from the camera */
+    vec3 *albedo;         /* base colour */
+    float *roughness;
+    int *material;
+    int *object;
+    float *motion;        /* 2 per pixel: backward motion (previous - current image position), pixels;
+                             GBUFFER_NO_MOTION when the point was behind the previous camera */
+    vec3 *emission;       /* radiance emitted toward the camera by the primary hit */
+    vec3 *sub_pixel;      /* x, y: image position of the primary ray (pixel units); z unused */
+    unsigned char *valid; /* 1 when the primary ray hit geometry */
+};
+
+void gbuffer_init(struct gbuffer *g, int width, int height);
+void gbuffer_fini(struct gbuffer *g);
+
+/* Traces one (jittered when jitter != 0) primary ray per pixel from view; prev_view gives the
+ * motion vectors (NULL: zero motion). Returns the number of rays traced. */
+long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct camera_view *view,
+                       const struct camera_view *prev_view, int jitter, uint64_t seed, int frame);
+
+/* The surface at pixel i as a shading point: position, normal, outgoing direction, BSDF. */
+struct shading_point {
+    vec3 p, n, ng, wo;
+    struct bsdf bsdf;
+    int valid;
+};
+
+void gbuffer_shading_point(const struct gbuffer *g, const struct scene *s, int i, struct shading_point *sp);
+
+#endif

@@ -1,0 +1,176 @@
+/* params.c: the table that maps `--set` keys to fields of struct render_params, with parsing,
+ * range checks and help text. Must never depend on the ray tracer or render passes. */
+#include "params.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/check.h"
+
+enum param_type { P_INT, P_FLOAT, P_BOOL, P_MIS };
+
+struct param_def {
+    const char *key;
+    enum param_type type;
+    size_t offset;
+    double lo, hi; /* accepted range for numbers */
+    const char *help;
+};
+
+#define F(field) offsetof(struct render_params, field)
+static const struct param_def params[] = {
+    {"spp", P_INT, F(spp), 1, 1 << 20, "pt: paths per pixel per frame"},
+    {"jitter", P_BOOL, F(jitter), 0, 1, "jitter primary rays over the pixel (integrates the box filter)"},
+    {"pt.max_bounces", P_INT, F(max_bounces), 1, 1024,
+     "pt: maximum scattering events (1 = direct lighting; set for you when comparing DI methods)"},
+    {"pt.rr_bounces", P_INT, F(rr_bounces), 0, 1024, "pt: Russian roulette after this many bounces"},
+    {"di.light_candidates", P_INT, F(light_candidates), 0, 4096, "initial RIS: light-sampled candidates"},
+    {"di.bsdf_candidates", P_INT, F(bsdf_candidates), 0, 64, "initial RIS: BSDF-sampled candidates"},
+    {"temporal", P_BOOL, F(temporal), 0, 1, "temporal reuse on/off"},
+    {"spatial", P_BOOL, F(spatial), 0, 1, "spatial reuse on/off"},
+    {"spatial.neighbors", P_INT, F(spatial_neighbors), 1, 5, "spatial neighbors tried per pixel"},
+    {"spatial.radius", P_FLOAT, F(spatial_radius), 1, 512, "spatial reuse disk radius in pixels"},
+    {"spatial.normal", P_FLOAT, F(spatial_normal), -1, 1, "Bitterli test (000 Eq. 7): minimum n . n_i"},
+    {"spatial.depth", P_FLOAT, F(spatial_depth), 0, 1e30, "Bitterli test (000 Eq. 7): max |d_i - d| / d"},
+    {"confidence_cap", P_FLOAT, F(confidence_cap), 1, 1e9, "cap on confidence weights c (M cap)"},
+    {"mis", P_MIS, F(mis), 0, 0,
+     "resampling MIS: pairwise (defensive, unbiased), balance (unbiased), 1/M (BIASED: ignores that "
+     "domains cannot all produce every sample)"},
+    {"temporal.normal", P_FLOAT, F(temporal_normal), -1, 1, "history rejected when n . n_prev is below"},
+    {"temporal.plane", P_FLOAT, F(temporal_plane), 0, 1e30,
+     "history rejected when the plane distance / depth is above"},
+    {"temporal.ratio_guard", P_BOOL, F(temporal_ratio_guard), 0, 1,
+     "BIASED: reject history whose target ratio leaves [ratio_lo, ratio_hi] (001 Sec. 5)"},
+    {"temporal.ratio_lo", P_FLOAT, F(ratio_lo), 0, 1e30, "target-ratio guard lower bound"},
+    {"temporal.ratio_hi", P_FLOAT, F(ratio_hi), 0, 1e30, "target-ratio guard upper bound"},
+};
+#undef F
+#define NUM_PARAMS (sizeof(params) / sizeof(params[0]))
+
+void render_params_defaults(struct render_params *p)
+{
+    memset(p, 0, sizeof(*p));
+    p->width = 640;
+    p->height = 360;
+    p->spp = 1;
+    p->seed = 1;
+    p->threads = 0;
+    p->camera_path = 0;
+    p->jitter = 1;
+    p->max_bounces = 8;
+    p->rr_bounces = 3;
+    p->light_candidates = 32;
+    p->bsdf_candidates = 1;
+    p->temporal = 1;
+    p->spatial = 1;
+    p->spatial_neighbors = 1;
+    p->spatial_radius = 30.0f;
+    p->spatial_normal = 0.5f;
+    p->spatial_depth = 0.1f;
+    p->confidence_cap = 20.0f;
+    p->mis = RESTIR_MIS_PAIRWISE;
+    p->temporal_normal = 0.8f;
+    p->temporal_plane = 0.05f;
+    p->temporal_ratio_guard = 0;
+    p->ratio_lo = 0.1f;
+    p->ratio_hi = 10.0f;
+}
+
+static int parse_value(const struct param_def *d, const char *val, struct render_params *p, char *msg)
+{
+    char *base = (char *)p + d->offset;
+    if (d->type == P_MIS) {
+        if (restir_mis_parse(val, (enum restir_mis *)(void *)base) != 0) {
+            snprintf(msg, RESTIR_MSG_LEN, "--set %s: unknown MIS '%s' (pairwise, balance, 1/M)", d->key, val);
+            return -1;
+        }
+        return 0;
+    }
+    if (d->type == P_BOOL) {
+        int v;
+        if (!strcmp(val, "on") || !strcmp(val, "1") || !strcmp(val, "true"))
+            v = 1;
+        else if (!strcmp(val, "off") || !strcmp(val, "0") || !strcmp(val, "false"))
+            v = 0;
+        else {
+            snprintf(msg, RESTIR_MSG_LEN, "--set %s: expected on or off, got '%s'", d->key, val);
+            return -1;
+        }
+        *(int *)(void *)base = v;
+        return 0;
+    }
+    errno = 0;
+    char *end = NULL;
+    double v = strtod(val, &end);
+    if (end == val || *end != '\0' || errno != 0 || !isfinite(v)) {
+        snprintf(msg, RESTIR_MSG_LEN, "--set %s: '%s' is not a number", d->key, val);
+        return -1;
+    }
+    if (v < d->lo || v > d->hi || (d->type == P_INT && v != floor(v))) {
+        snprintf(msg, RESTIR_MSG_LEN, "--set %s: %s is out of range (%s in [%g, %g])", d->key, val,
+                 d->type == P_INT ? "integer" : "number", d->lo, d->hi);
+        return -1;
+    }
+    if (d->type == P_INT)
+        *(int *)(void *)base = (int)v;
+    else
+        *(float *)(void *)base = (float)v;
+    return 0;
+}
+
+int render_params_set(struct render_params *p, const char *assignment, char *msg)
+{
+    const char *eq = strchr(assignment, '=');
+    if (!eq || eq == assignment) {
+        snprintf(msg, RESTIR_MSG_LEN, "--set expects key=value, got '%s'", assignment);
+        return -1;
+    }
+    size_t klen = (size_t)(eq - assignment);
+    for (size_t i = 0; i < NUM_PARAMS; i++) {
+        if (strlen(params[i].key) == klen && strncmp(params[i].key, assignment, klen) == 0)
+            return parse_value(&params[i], eq + 1, p, msg);
+    }
+    snprintf(msg, RESTIR_MSG_LEN, "--set: unknown key '%.*s' (see restir render --help)", (int)klen, assignment);
+    return -1;
+}
+
+int render_params_validate(const struct render_params *p, char *msg)
+{
+    if (p->width < 1 || p->height < 1 || p->width > 16384 || p->height > 16384 ||
+        (long long)p->width * p->height > 64ll * 1024 * 1024) {
+        snprintf(msg, RESTIR_MSG_LEN, "resolution %dx%d is out of range (1..16384 per side, 64 Mpixel total)",
+                 p->width, p->height);
+        return -1;
+    }
+    if (p->light_candidates + p->bsdf_candidates < 1) {
+        snprintf(msg, RESTIR_MSG_LEN, "di.light_candidates + di.bsdf_candidates must be at least 1");
+        return -1;
+    }
+    if (p->ratio_lo > p->ratio_hi) {
+        snprintf(msg, RESTIR_MSG_LEN, "temporal.ratio_lo (%g) exceeds temporal.ratio_hi (%g)", p->ratio_lo,
+                 p->ratio_hi);
+        return -1;
+    }
+    return 0;
+}
+
+void render_params_help(FILE *out)
+{
+    struct render_params d;
+    render_params_defaults(&d);
+    for (size_t i = 0; i < NUM_PARAMS; i++) {
+        const struct param_def *pd = &params[i];
+        const char *base = (const char *)&d + pd->offset;
+        char val[32];
+        switch (pd->type) {
+        case P_INT: snprintf(val, sizeof(val), "%d", *(const int *)(const void *)base); break;
+        case P_FLOAT: snprintf(val, sizeof(val), "%g", *(const float *)(const void *)base); break;
+        case P_BOOL: snprintf(val, sizeof(val), "%s", *(const int *)(const void *)base ? "on" : "off"); break;
+        case P_MIS: snprintf(val, sizeof(val), "%s", restir_mis_name(*(const enum restir_mis *)(const void *)base)); break;
+        }
+        fprintf(out, "  %-22s %-9s %s\n", pd->key, val, pd->help);
+    }
+}

@@ -1,0 +1,21 @@
+/* pt.h: the unidirectional path tracer (next-event estimation and BSDF sampling combined by
+ * MIS, Russian roulette, maximum bounce count), used as method `pt` and for references.
+ * Must never depend on reservoirs. */
+#ifndef RESTIR_RENDER_PT_H
+#define RESTIR_RENDER_PT_H
+
+#include "core/rng.h"
+#include "params.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+
+/* Radiance along the camera ray (o, d): emission seen directly plus up to max_bounces scattering
+ * events. *rays counts the rays traced. */
+vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, int rr_bounces, pcg32 *rng,
+              long long *rays);
+
+/* Renders spp paths per pixel into rgb (w*h*3, the mean). Returns the number of rays traced. */
+long long pt_pass(const struct scene *s, const struct camera_view *view, const struct render_params *p,
+                  int frame, int spp, float *rgb);
+
+#endif

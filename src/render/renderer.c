@@ -1,0 +1,120 @@
+/* renderer.c: runs one frame of a method as a sequence of passes, keeps the ping-pong state
+ * between frames, and times each pass. Must never read or write files. */
+#include "renderer.h"
+
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/check.h"
+#include "pt.h"
+#include "restir_di.h"
+
+const struct method_info method_table[METHOD_COUNT] = {
+    {"pt", "path tracing: NEE + BSDF sampling with MIS, Russian roulette (the reference method)", 0},
+    {"ris-di", "direct lighting by initial RIS only, no reuse (the no-reuse baseline of 001)", 1},
+    {"restir-di", "ReSTIR DI: initial RIS, temporal and spatial reuse by GRIS (pairwise MIS default)", 1},
+};
+
+const char *const pass_names[PASS_COUNT] = {"gbuffer", "initial", "temporal", "spatial", "shade", "pt"};
+
+int method_find(const char *name)
+{
+    for (int m = 0; m < METHOD_COUNT; m++)
+        if (strcmp(name, method_table[m].name) == 0)
+            return m;
+    return -1;
+}
+
+void renderer_reference_params(enum method_id method, struct render_params *p)
+{
+    if (method_table[method].direct_only)
+        p->max_bounces = 1;
+}
+
+void renderer_init(struct renderer *r, const struct scene *s, enum method_id method, const struct render_params *p)
+{
+    memset(r, 0, sizeof(*r));
+    r->scene = s;
+    r->p = *p;
+    r->method = method;
+    if (method == METHOD_RIS_DI) {
+        r->p.temporal = 0;
+        r->p.spatial = 0;
+    }
+    size_t n = (size_t)p->width * (size_t)p->height;
+    r->image = xcalloc(3 * n, sizeof(float));
+    if (method != METHOD_PT) {
+        gbuffer_init(&r->gb[0], p->width, p->height);
+        gbuffer_init(&r->gb[1], p->width, p->height);
+        r->work = xcalloc(n, sizeof(struct di_reservoir));
+        r->hist[0] = xcalloc(n, sizeof(struct di_reservoir));
+        r->hist[1] = xcalloc(n, sizeof(struct di_reservoir));
+    }
+    if (p->threads > 0)
+        omp_set_num_threads(p->threads);
+}
+
+void renderer_fini(struct renderer *r)
+{
+    if (r->method != METHOD_PT) {
+        gbuffer_fini(&r->gb[0]);
+        gbuffer_fini(&r->gb[1]);
+    }
+    free(r->work);
+    free(r->hist[0]);
+    free(r->hist[1]);
+    free(r->image);
+    memset(r, 0, sizeof(*r));
+}
+
+void renderer_reset(struct renderer *r) { r->has_history = 0; }
+
+#define TIMED(st, pass, stmt)                                                                  \
+    do {                                                                                       \
+        double t0_ = omp_get_wtime();                                                          \
+        stmt;                                                                                  \
+        (st)->ms[pass] += 1e3 * (omp_get_wtime() - t0_);                                       \
+    } while (0)
+
+static void render_restir_di(struct renderer *r, const struct camera_view *view, struct frame_stats *st)
+{
+    const struct scene *s = r->scene;
+    const struct render_params *p = &r->p;
+    struct gbuffer *g = &r->gb[r->cur], *prev_g = &r->gb[1 - r->cur];
+    struct di_reservoir *out = r->hist[r->cur], *prev_res = r->hist[1 - r->cur];
+    const int frame = r->frame;
+    TIMED(st, PASS_GBUFFER,
+          st->rays += gbuffer_pass(g, s, view, r->has_history ? &r->prev_view : NULL, p->jitter, p->seed, frame));
+    TIMED(st, PASS_INITIAL, st->rays += di_initial_pass(s, p, frame, g, r->work));
+    if (p->temporal && r->has_history)
+        TIMED(st, PASS_TEMPORAL,
+              st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, r->work));
+    if (p->spatial)
+        TIMED(st, PASS_SPATIAL, di_spatial_pass(s, p, frame, g, r->work, out));
+    else
+        memcpy(out, r->work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
+    TIMED(st, PASS_SHADE, st->rays += di_shade_pass(s, g, out, r->image));
+    long long valid = 0;
+    for (int i = 0; i < g->width * g->height; i++)
+        valid += g->valid[i];
+    st->valid_pixels = valid;
+}
+
+void renderer_render(struct renderer *r, int frame, const struct camera *cam, struct frame_stats *st)
+{
+    memset(st, 0, sizeof(*st));
+    struct camera_view view;
+    camera_view_init(&view, cam, r->p.width, r->p.height);
+    double t0 = omp_get_wtime();
+    r->frame = frame;
+    if (r->method == METHOD_PT) {
+        TIMED(st, PASS_PT, st->rays += pt_pass(r->scene, &view, &r->p, frame, r->p.spp, r->image));
+    } else {
+        render_restir_di(r, &view, st);
+        r->cur = 1 - r->cur;
+        r->has_history = 1;
+    }
+    r->prev_view = view;
+    st->ms_total = 1e3 * (omp_get_wtime() - t0);
+}

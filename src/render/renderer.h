@@ -1,0 +1,58 @@
+/* renderer.h: the methods (pt, ris-di, restir-di), the per-frame state they keep (ping-pong
+ * G-buffers and reservoirs, cameras), and per-pass timings. Must never read or write files. */
+#ifndef RESTIR_RENDER_RENDERER_H
+#define RESTIR_RENDER_RENDERER_H
+
+#include "di_sample.h"
+#include "gbuffer.h"
+#include "params.h"
+
+enum method_id { METHOD_PT = 0, METHOD_RIS_DI, METHOD_RESTIR_DI, METHOD_COUNT };
+
+struct method_info {
+    const char *name;
+    const char *description;
+    int direct_only; /* estimates direct lighting only: its reference is pt with 1 bounce */
+};
+
+extern const struct method_info method_table[METHOD_COUNT];
+/* Returns the method id, or -1 for an unknown name. */
+int method_find(const char *name);
+
+enum pass_id { PASS_GBUFFER, PASS_INITIAL, PASS_TEMPORAL, PASS_SPATIAL, PASS_SHADE, PASS_PT, PASS_COUNT };
+extern const char *const pass_names[PASS_COUNT];
+
+struct frame_stats {
+    double ms[PASS_COUNT];
+    double ms_total;
+    long long rays;
+    long long temporal_accepted; /* pixels whose history passed validation */
+    long long valid_pixels;
+};
+
+struct renderer {
+    const struct scene *scene;
+    struct render_params p;
+    enum method_id method;
+    struct gbuffer gb[2];
+    int cur; /* index of the current G-buffer / history */
+    int frame;
+    int has_history;
+    struct camera_view prev_view;
+    struct di_reservoir *work;    /* initial, then temporal outputs */
+    struct di_reservoir *hist[2]; /* spatial outputs: this frame's and the previous frame's */
+    float *image;                 /* this frame's radiance, RGB */
+};
+
+/* p must have passed render_params_validate. */
+void renderer_init(struct renderer *r, const struct scene *s, enum method_id method, const struct render_params *p);
+void renderer_fini(struct renderer *r);
+/* Renders frame number `frame` seen by cam into r->image. */
+void renderer_render(struct renderer *r, int frame, const struct camera *cam, struct frame_stats *st);
+/* Forgets history (the next frame starts without temporal reuse). */
+void renderer_reset(struct renderer *r);
+
+/* The parameters a method's reference integrates with: pt with max_bounces = 1 for DI methods. */
+void renderer_reference_params(enum method_id method, struct render_params *p);
+
+#endif

@@ -1,0 +1,312 @@
+/* restir_di.c: ReSTIR DI passes: initial RIS with light and BSDF candidates, temporal reuse with
+ * reprojection and validation (001), spatial reuse with Bitterli's neighbor test (000 Eq. 7), GRIS
+ * merges with selectable resampling MIS (004 Eq. 5-12), and shading. Must never allocate per pixel. */
+#include "restir_di.h"
+
+#include "core/rng.h"
+#include "restir/mis.h"
+#include "restir/neighbors.h"
+#include "restir/reservoir.h"
+#include "shading/lights.h"
+#include "tiles.h"
+
+/* Canonical domain + at most 5 spatial neighbors. */
+#define DI_MAX_DOMAINS 6
+
+static void sample_from_light(const struct light_sample *ls, struct di_sample *y)
+{
+    y->tri = ls->tri;
+    y->b1 = ls->b1;
+    y->b2 = ls->b2;
+    y->p = ls->p;
+    y->n = ls->n;
+    y->Le = ls->Le;
+}
+
+/* Area density with which the BSDF strategy produces light point y from sp: the solid-angle
+ * BSDF pdf times cos_y / d^2. The BSDF strategy traces the emitters-only BVH and yields every
+ * emitter point along the ray, so this density carries no visibility term: both strategies are
+ * unshadowed, and the MIS weights below sum to one wherever p_hat > 0. This keeps W a valid
+ * unbiased contribution weight on p_hat's whole support, which spatial reuse relies on. */
+static float bsdf_pdf_area(const struct shading_point *sp, const struct di_sample *y)
+{
+    vec3 to = v3_sub(y->p, sp->p);
+    float d2 = v3_length2(to);
+    if (!(d2 > 0.0f))
+        return 0.0f;
+    vec3 wi = v3_scale(to, 1.0f / sqrtf(d2));
+    float cos_y = -v3_dot(y->n, wi);
+    if (cos_y <= 0.0f)
+        return 0.0f;
+    return bsdf_pdf(&sp->bsdf, sp->n, sp->wo, wi) * cos_y / d2;
+}
+
+/* RIS weight of a candidate under the multi-strategy balance heuristic with candidate counts:
+ * w = p_hat(y) / (N_light p_light(y) + N_bsdf p_bsdf(y)); W = sum w / p_hat(Y) is then unbiased. */
+static float initial_weight(float target, int n_light, float p_light, int n_bsdf, float p_bsdf)
+{
+    float denom = (float)n_light * p_light + (float)n_bsdf * p_bsdf;
+    return denom > 0.0f ? target / denom : 0.0f;
+}
+
+static void offer_candidate(struct restir_wrs *wrs, struct di_reservoir *r, const struct di_sample *y,
+                            float target, float w, pcg32 *rng)
+{
+    if (restir_wrs_offer(wrs, w, pcg32_float(rng))) {
+        r->y = *y;
+        r->target = target;
+    }
+}
+
+static void initial_pixel(const struct scene *s, const struct render_params *p, const struct shading_point *sp,
+                          pcg32 *rng, struct di_reservoir *r, long long *rays)
+{
+    struct restir_wrs wrs;
+    restir_wrs_init(&wrs);
+    di_reservoir_clear(r, 1.0f);
+    const int nl = s->num_emitters > 0 ? p->light_candidates : 0, nb = p->bsdf_candidates;
+    for (int k = 0; k < nl; k++) {
+        struct light_sample ls;
+        float u0 = pcg32_float(rng), u1 = pcg32_float(rng), u2 = pcg32_float(rng);
+        if (!lights_sample(s, u0, u1, u2, &ls))
+            continue;
+        struct di_sample y;
+        sample_from_light(&ls, &y);
+        float target = di_target(sp, &y);
+        if (target <= 0.0f)
+            continue;
+        float w = initial_weight(target, nl, ls.pdf_area, nb, nb ? bsdf_pdf_area(sp, &y) : 0.0f);
+        offer_candidate(&wrs, r, &y, target, w, rng);
+    }
+    for (int k = 0; k < nb; k++) {
+        vec3 wi, f;
+        float pdf;
+        float u0 = pcg32_float(rng), u1 = pcg32_float(rng), u2 = pcg32_float(rng);
+        if (!bsdf_sample(&sp->bsdf, sp->n, sp->wo, u0, u1, u2, &wi, &pdf, &f) || v3_dot(wi, sp->ng) <= 0.0f)
+            continue;
+        /* Every emitter point along the ray is a candidate of this strategy (see bsdf_pdf_area). */
+        vec3 o = scene_offset_point(sp->p, sp->ng, wi);
+        float tmin = 0.0f;
+        struct surface_hit h;
+        for (int hits = 0; hits < 8 && scene_intersect_emitters(s, o, wi, tmin, INFINITY, &h); hits++) {
+            (*rays)++;
+            tmin = h.t * (1.0f + 1e-5f) + 1e-6f;
+            if (!h.front)
+                continue;
+            struct light_sample ls;
+            lights_point(s, h.tri, h.b1, h.b2, &ls);
+            struct di_sample y;
+            sample_from_light(&ls, &y);
+            float target = di_target(sp, &y);
+            if (target <= 0.0f)
+                continue;
+            float w = initial_weight(target, nl, nl ? ls.pdf_area : 0.0f, nb, bsdf_pdf_area(sp, &y));
+            offer_candidate(&wrs, r, &y, target, w, rng);
+        }
+        (*rays)++; /* the final ray that left the emitters */
+    }
+    r->W = restir_gris_contribution_weight(&wrs, r->target);
+    if (r->W <= 0.0f)
+        di_reservoir_clear(r, 1.0f);
+}
+
+long long di_initial_pass(const struct scene *s, const struct render_params *p, int frame,
+                          const struct gbuffer *g, struct di_reservoir *out)
+{
+    long long rays = 0;
+    const int ntiles = tile_count(g->width, g->height);
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
+    for (int t = 0; t < ntiles; t++) {
+        struct tile_range r = tile_get(g->width, g->height, t);
+        for (int y = r.y0; y < r.y1; y++) {
+            for (int x = r.x0; x < r.x1; x++) {
+                int i = y * g->width + x;
+                struct shading_point sp;
+                gbuffer_shading_point(g, s, i, &sp);
+                if (!sp.valid) {
+                    di_reservoir_clear(&out[i], 0.0f);
+                    continue;
+                }
+                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_INITIAL);
+                initial_pixel(s, p, &sp, &rng, &out[i], &rays);
+            }
+        }
+    }
+    return rays;
+}
+
+/* One GRIS merge (004 Eq. 5-7) into domain 0 (canonical). For DI the sample space is the same
+ * in every pixel (points on lights, area measure), so every shift is the identity with Jacobian 1
+ * and p_hat_{<-k}(y) is simply domain k's target at y (004 Eq. 10). */
+static void gris_merge(const struct render_params *p, int n, const struct shading_point *sp,
+                       const struct di_reservoir *const *in, pcg32 *rng, struct di_reservoir *out)
+{
+    float c[DI_MAX_DOMAINS] = {0}, P[DI_MAX_DOMAINS * DI_MAX_DOMAINS] = {0}, m[DI_MAX_DOMAINS] = {0};
+    float c_sum = 0.0f;
+    for (int j = 0; j < n; j++) {
+        c[j] = fminf(in[j]->c, p->confidence_cap);
+        c_sum += c[j];
+    }
+    for (int k = 0; k < n; k++) {
+        for (int j = 0; j < n; j++) {
+            /* Row 0 (canonical target of every sample) is needed for the resampling weights. */
+            if (k != 0 && !restir_mis_needs(p->mis, k, j))
+                continue;
+            if (in[j]->y.tri < 0)
+                P[k * n + j] = 0.0f;
+            else if (k == j)
+                P[k * n + j] = in[j]->target; /* cached p_hat_j(Y_j) */
+            else
+                P[k * n + j] = di_target(&sp[k], &in[j]->y);
+        }
+    }
+    restir_mis_weights(p->mis, n, c, P, m);
+    struct restir_wrs wrs;
+    restir_wrs_init(&wrs);
+    int chosen = -1;
+    for (int j = 0; j < n; j++) {
+        /* 004 Eq. 6 with |dT/dX| = 1 */
+        float w = in[j]->y.tri >= 0 ? m[j] * P[j] * in[j]->W : 0.0f;
+        if (restir_wrs_offer(&wrs, w, pcg32_float(rng)))
+            chosen = j;
+    }
+    struct di_reservoir result;
+    di_reservoir_clear(&result, restir_confidence_merge(c_sum, p->confidence_cap));
+    if (chosen >= 0) {
+        result.y = in[chosen]->y;
+        result.target = P[chosen];
+        result.W = restir_gris_contribution_weight(&wrs, result.target); /* 004 Eq. 7 */
+        if (result.W <= 0.0f)
+            di_reservoir_clear(&result, result.c);
+    }
+    *out = result;
+}
+
+/* 001 Sec. 5: the previous pixel must show the same surface neighborhood. These checks read
+ * only G-buffers, never samples, so they cannot bias GRIS. */
+static int history_matches(const struct render_params *p, const struct gbuffer *g, int i,
+                           const struct gbuffer *prev_g, int q)
+{
+    if (!prev_g->valid[q] || prev_g->material[q] != g->material[i])
+        return 0;
+    if (v3_dot(g->normal[i], prev_g->normal[q]) < p->temporal_normal)
+        return 0;
+    float plane = fabsf(v3_dot(prev_g->normal[q], v3_sub(g->position[i], prev_g->position[q])));
+    return plane <= p->temporal_plane * g->depth[i];
+}
+
+long long di_temporal_pass(const struct scene *s, const struct render_params *p, int frame,
+                           const struct gbuffer *g, const struct gbuffer *prev_g,
+                           const struct di_reservoir *prev_res, struct di_reservoir *io)
+{
+    long long accepted = 0;
+    const int w = g->width, h = g->height, ntiles = tile_count(w, h);
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : accepted)
+    for (int t = 0; t < ntiles; t++) {
+        struct tile_range r = tile_get(w, h, t);
+        for (int y = r.y0; y < r.y1; y++) {
+            for (int x = r.x0; x < r.x1; x++) {
+                int i = y * w + x;
+                if (!g->valid[i] || g->motion[2 * i] == GBUFFER_NO_MOTION)
+                    continue;
+                float qx = g->sub_pixel[i].x + g->motion[2 * i], qy = g->sub_pixel[i].y + g->motion[2 * i + 1];
+                if (!(qx >= 0.0f && qy >= 0.0f && qx < (float)w && qy < (float)h))
+                    continue;
+                int q = (int)qy * w + (int)qx;
+                if (!history_matches(p, g, i, prev_g, q))
+                    continue;
+                struct shading_point sp[2];
+                gbuffer_shading_point(g, s, i, &sp[0]);
+                gbuffer_shading_point(prev_g, s, q, &sp[1]);
+                const struct di_reservoir *hist = &prev_res[q];
+                if (p->temporal_ratio_guard && hist->y.tri >= 0) {
+                    /* 001 Sec. 5 guard: depends on the sample, hence BIASED (documented in --help). */
+                    float ratio = di_target(&sp[0], &hist->y) / hist->target;
+                    if (!(ratio >= p->ratio_lo && ratio <= p->ratio_hi))
+                        continue;
+                }
+                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_TEMPORAL);
+                const struct di_reservoir *in[2] = {&io[i], hist};
+                gris_merge(p, 2, sp, in, &rng, &io[i]);
+                accepted++;
+            }
+        }
+    }
+    return accepted;
+}
+
+void di_spatial_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
+                     const struct di_reservoir *in, struct di_reservoir *out)
+{
+    const int w = g->width, h = g->height, ntiles = tile_count(w, h);
+    const int nmax = p->spatial_neighbors < DI_MAX_DOMAINS - 1 ? p->spatial_neighbors : DI_MAX_DOMAINS - 1;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int t = 0; t < ntiles; t++) {
+        struct tile_range r = tile_get(w, h, t);
+        for (int y = r.y0; y < r.y1; y++) {
+            for (int x = r.x0; x < r.x1; x++) {
+                int i = y * w + x;
+                if (!g->valid[i]) {
+                    out[i] = in[i];
+                    continue;
+                }
+                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_SPATIAL);
+                struct shading_point sp[DI_MAX_DOMAINS];
+                const struct di_reservoir *src[DI_MAX_DOMAINS];
+                gbuffer_shading_point(g, s, i, &sp[0]);
+                src[0] = &in[i];
+                int n = 1;
+                const float ni[3] = {g->normal[i].x, g->normal[i].y, g->normal[i].z};
+                for (int k = 0; k < nmax; k++) {
+                    /* Bitterli et al. 2020: uniform in the disk, kept when 000 Eq. 7 holds. */
+                    float dx, dy;
+                    warp_concentric_disk(pcg32_float(&rng), pcg32_float(&rng), &dx, &dy);
+                    int nx = x + (int)lrintf(dx * p->spatial_radius), ny = y + (int)lrintf(dy * p->spatial_radius);
+                    if (nx < 0 || ny < 0 || nx >= w || ny >= h || (nx == x && ny == y))
+                        continue;
+                    int j = ny * w + nx;
+                    const float nj[3] = {g->normal[j].x, g->normal[j].y, g->normal[j].z};
+                    if (!g->valid[j] ||
+                        !restir_bitterli_compatible(ni, nj, g->depth[i], g->depth[j], p->spatial_normal,
+                                                    p->spatial_depth))
+                        continue;
+                    gbuffer_shading_point(g, s, j, &sp[n]);
+                    src[n++] = &in[j];
+                }
+                gris_merge(p, n, sp, src, &rng, &out[i]);
+            }
+        }
+    }
+}
+
+long long di_shade_pass(const struct scene *s, const struct gbuffer *g, const struct di_reservoir *res,
+                        float *rgb)
+{
+    long long rays = 0;
+    const int w = g->width, h = g->height, ntiles = tile_count(w, h);
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
+    for (int t = 0; t < ntiles; t++) {
+        struct tile_range r = tile_get(w, h, t);
+        for (int y = r.y0; y < r.y1; y++) {
+            for (int x = r.x0; x < r.x1; x++) {
+                int i = y * w + x;
+                vec3 L = g->valid[i] ? g->emission[i] : v3s(0.0f);
+                const struct di_reservoir *rv = &res[i];
+                if (g->valid[i] && rv->y.tri >= 0 && rv->W > 0.0f) {
+                    struct shading_point sp;
+                    gbuffer_shading_point(g, s, i, &sp);
+                    vec3 f = di_unshadowed(&sp, &rv->y);
+                    if (v3_max_component(f) > 0.0f) {
+                        rays++;
+                        if (scene_visible(s, sp.p, sp.ng, rv->y.p, rv->y.n))
+                            L = v3_add(L, v3_scale(f, rv->W)); /* f(Y) W_Y */
+                    }
+                }
+                rgb[3 * i] = L.x;
+                rgb[3 * i + 1] = L.y;
+                rgb[3 * i + 2] = L.z;
+            }
+        }
+    }
+    return rays;
+}

@@ -1,0 +1,31 @@
+/* restir_di.h: the passes of ReSTIR DI (Bitterli et al. 2020; 001; 004 Sec. 2): initial RIS,
+ * temporal reuse, spatial reuse and shading. Each is a plain function over per-pixel arrays.
+ * Must never allocate per pixel or read files. */
+#ifndef RESTIR_RENDER_RESTIR_DI_H
+#define RESTIR_RENDER_RESTIR_DI_H
+
+#include "di_sample.h"
+#include "params.h"
+
+/* Initial RIS: light + BSDF candidates combined by MIS into one reservoir per pixel, c = 1.
+ * Returns rays traced. */
+long long di_initial_pass(const struct scene *s, const struct render_params *p, int frame,
+                          const struct gbuffer *g, struct di_reservoir *out);
+
+/* Temporal reuse (001): reprojects each pixel into the previous frame, validates against the
+ * previous G-buffer and merges the history reservoir by GRIS. io holds the initial reservoirs on
+ * entry and the temporal outputs on return. Returns the number of pixels whose history was
+ * accepted. */
+long long di_temporal_pass(const struct scene *s, const struct render_params *p, int frame,
+                           const struct gbuffer *g, const struct gbuffer *prev_g,
+                           const struct di_reservoir *prev_res, struct di_reservoir *io);
+
+/* Spatial reuse: Bitterli selection in a disk, GRIS merge of the neighbors' reservoirs. */
+void di_spatial_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
+                     const struct di_reservoir *in, struct di_reservoir *out);
+
+/* Final shading: primary emission + f(Y) W_Y with one shadow ray. Returns rays traced. */
+long long di_shade_pass(const struct scene *s, const struct gbuffer *g, const struct di_reservoir *res,
+                        float *rgb);
+
+#endif

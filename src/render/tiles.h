@@ -1,0 +1,38 @@
+/* tiles.h: how passes split the image into 8x8 tiles for the OpenMP parallel-for, and the stream
+ * ids of the seeding rule. Must never hold state. */
+#ifndef RESTIR_RENDER_TILES_H
+#define RESTIR_RENDER_TILES_H
+
+#define RESTIR_TILE 8
+
+struct tile_range {
+    int x0, y0, x1, y1;
+};
+
+static inline int tile_count(int width, int height)
+{
+    return ((width + RESTIR_TILE - 1) / RESTIR_TILE) * ((height + RESTIR_TILE - 1) / RESTIR_TILE);
+}
+
+static inline struct tile_range tile_get(int width, int height, int tile)
+{
+    int tiles_x = (width + RESTIR_TILE - 1) / RESTIR_TILE;
+    struct tile_range r;
+    r.x0 = (tile % tiles_x) * RESTIR_TILE;
+    r.y0 = (tile / tiles_x) * RESTIR_TILE;
+    r.x1 = r.x0 + RESTIR_TILE < width ? r.x0 + RESTIR_TILE : width;
+    r.y1 = r.y0 + RESTIR_TILE < height ? r.y0 + RESTIR_TILE : height;
+    return r;
+}
+
+/* Stream ids per pass, the fourth term of the (seed, frame, pixel, pass) seeding rule. */
+enum rng_pass {
+    RNG_PASS_GBUFFER = 1,
+    RNG_PASS_PT,
+    RNG_PASS_DI_INITIAL,
+    RNG_PASS_DI_TEMPORAL,
+    RNG_PASS_DI_SPATIAL,
+    RNG_PASS_DI_SHADE
+};
+
+#endif

@@ -1,0 +1,231 @@
+/* scene.c: building a scene from triangles (builder), deriving normals, areas and the emitter
+ * table, and releasing it. Must never include embree headers (scene_rt.c owns the back end). */
+#include "scene.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../core/check.h"
+#include "../shading/lights.h"
+#include "scene_rt.h"
+
+static void *grow_to(void *p, int cap, size_t elem)
+{
+    void *q = realloc(p, (size_t)cap * elem);
+    if (!q) {
+        fprintf(stderr, "out of memory growing scene arrays\n");
+        exit(1);
+    }
+    return q;
+}
+
+void scene_builder_begin(struct scene_builder *b, struct scene *s, const char *name)
+{
+    memset(s, 0, sizeof(*s));
+    memset(b, 0, sizeof(*b));
+    b->s = s;
+    snprintf(s->name, sizeof(s->name), "%s", name);
+    s->camera = (struct camera){v3(0, 1, 3), v3(0, 1, 0), v3(0, 1, 0), 45.0f};
+}
+
+int scene_add_material(struct scene_builder *b, struct material m)
+{
+    struct scene *s = b->s;
+    if (s->num_materials == b->cap_materials) {
+        b->cap_materials = b->cap_materials ? 2 * b->cap_materials : 16;
+        s->materials = grow_to(s->materials, b->cap_materials, sizeof(*s->materials));
+    }
+    s->materials[s->num_materials] = m;
+    return s->num_materials++;
+}
+
+int scene_new_object(struct scene_builder *b) { return b->s->num_objects++; }
+
+void scene_add_triangle(struct scene_builder *b, vec3 a, vec3 c, vec3 d, int material, int object)
+{
+    struct scene *s = b->s;
+    if (s->num_tris == b->cap_tris) {
+        b->cap_tris = b->cap_tris ? 2 * b->cap_tris : 256;
+        s->indices = grow_to(s->indices, 3 * b->cap_tris, sizeof(*s->indices));
+        s->tri_material = grow_to(s->tri_material, b->cap_tris, sizeof(int));
+        s->tri_object = grow_to(s->tri_object, b->cap_tris, sizeof(int));
+    }
+    if (s->num_verts + 3 > b->cap_verts) {
+        b->cap_verts = b->cap_verts ? 2 * b->cap_verts : 768;
+        s->verts = grow_to(s->verts, b->cap_verts, sizeof(*s->verts));
+    }
+    uint32_t base = (uint32_t)s->num_verts;
+    s->verts[s->num_verts++] = a;
+    s->verts[s->num_verts++] = c;
+    s->verts[s->num_verts++] = d;
+    for (int k = 0; k < 3; k++)
+        s->indices[3 * s->num_tris + k] = base + (uint32_t)k;
+    s->tri_material[s->num_tris] = material;
+    s->tri_object[s->num_tris] = object;
+    s->num_tris++;
+}
+
+void scene_add_quad(struct scene_builder *b, vec3 a, vec3 c, vec3 d, vec3 e, int material, int object)
+{
+    scene_add_triangle(b, a, c, d, material, object);
+    scene_add_triangle(b, a, d, e, material, object);
+}
+
+/* Emits the six outward faces of the box spanned by the 8 corners
+ * corner(i) = (i&1 ? hi.x : lo.x, i&2 ? hi.y : lo.y, i&4 ? hi.z : lo.z), transformed by rotate. */
+static void add_box_corners(struct scene_builder *b, const vec3 corner[8], int material, int object)
+{
+    /* Each face lists its corners counter-clockwise seen from outside. */
+    static const int faces[6][4] = {
+        {0, 4, 6, 2}, /* -x */
+        {1, 3, 7, 5}, /* +x */
+        {0, 1, 5, 4}, /* -y */
+        {2, 6, 7, 3}, /* +y */
+        {0, 2, 3, 1}, /* -z */
+        {4, 5, 7, 6}, /* +z */
+    };
+    for (int f = 0; f < 6; f++)
+        scene_add_quad(b, corner[faces[f][0]], corner[faces[f][1]], corner[faces[f][2]], corner[faces[f][3]],
+                       material, object);
+}
+
+void scene_add_box_rotated_y(struct scene_builder *b, vec3 lo, vec3 hi, float angle_rad, int material,
+                             int object)
+{
+    vec3 center = v3_scale(v3_add(lo, hi), 0.5f);
+    float cs = cosf(angle_rad), sn = sinf(angle_rad);
+    vec3 corner[8];
+    for (int i = 0; i < 8; i++) {
+        vec3 p = v3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+        vec3 d = v3_sub(p, center);
+        corner[i] = v3_add(center, v3(cs * d.x + sn * d.z, d.y, -sn * d.x + cs * d.z));
+    }
+    add_box_corners(b, corner, material, object);
+}
+
+void scene_add_box(struct scene_builder *b, vec3 lo, vec3 hi, int material, int object)
+{
+    scene_add_box_rotated_y(b, lo, hi, 0.0f, material, object);
+}
+
+void scene_add_sphere(struct scene_builder *b, vec3 center, float radius, int segments, int inward_facing,
+                      int material, int object)
+{
+    int rings = segments / 2 > 2 ? segments / 2 : 2;
+    for (int i = 0; i < rings; i++) {
+        float t0 = RESTIR_PI * (float)i / (float)rings, t1 = RESTIR_PI * (float)(i + 1) / (float)rings;
+        for (int j = 0; j < segments; j++) {
+            float p0 = 2.0f * RESTIR_PI * (float)j / (float)segments;
+            float p1 = 2.0f * RESTIR_PI * (float)(j + 1) / (float)segments;
+#define SPHERE_POINT(t, p) v3_madd(center, v3(sinf(t) * cosf(p), cosf(t), sinf(t) * sinf(p)), radius)
+            vec3 a = SPHERE_POINT(t0, p0), c = SPHERE_POINT(t0, p1);
+            vec3 d = SPHERE_POINT(t1, p1), e = SPHERE_POINT(t1, p0);
+#undef SPHERE_POINT
+            /* Outward winding is a, e, d, c; inward reverses it. Poles degenerate to triangles. */
+            if (inward_facing) {
+                if (i != 0)
+                    scene_add_triangle(b, a, c, d, material, object);
+                if (i != rings - 1)
+                    scene_add_triangle(b, a, d, e, material, object);
+            } else {
+                if (i != 0)
+                    scene_add_triangle(b, a, d, c, material, object);
+                if (i != rings - 1)
+                    scene_add_triangle(b, a, e, d, material, object);
+            }
+        }
+    }
+}
+
+static int derive_triangle_data(struct scene *s, char *msg)
+{
+    s->tri_normal = xmalloc(sizeof(vec3) * (size_t)s->num_tris);
+    s->tri_area = xmalloc(sizeof(float) * (size_t)s->num_tris);
+    for (int i = 0; i < s->num_verts; i++) {
+        if (!v3_is_finite(s->verts[i])) {
+            snprintf(msg, RESTIR_MSG_LEN, "scene '%s': vertex %d is not finite", s->name, i);
+            return -1;
+        }
+    }
+    for (int t = 0; t < s->num_tris; t++) {
+        if (s->tri_material[t] < 0 || s->tri_material[t] >= s->num_materials) {
+            snprintf(msg, RESTIR_MSG_LEN, "scene '%s': triangle %d has unknown material %d", s->name, t,
+                     s->tri_material[t]);
+            return -1;
+        }
+        vec3 a = s->verts[s->indices[3 * t]], c = s->verts[s->indices[3 * t + 1]];
+        vec3 d = s->verts[s->indices[3 * t + 2]];
+        vec3 n = v3_cross(v3_sub(c, a), v3_sub(d, a));
+        float len = v3_length(n);
+        s->tri_area[t] = 0.5f * len;
+        s->tri_normal[t] = len > 0.0f ? v3_scale(n, 1.0f / len) : v3(0, 1, 0);
+    }
+    return 0;
+}
+
+static int build_emitters(struct scene *s, char *msg)
+{
+    s->tri_emitter = xmalloc(sizeof(int) * (size_t)s->num_tris);
+    s->emitter_tri = xmalloc(sizeof(int) * (size_t)s->num_tris);
+    s->num_emitters = 0;
+    for (int t = 0; t < s->num_tris; t++) {
+        vec3 e = s->materials[s->tri_material[t]].emission;
+        int emits = v3_max_component(e) > 0.0f && s->tri_area[t] > 0.0f;
+        s->tri_emitter[t] = emits ? s->num_emitters : -1;
+        if (emits)
+            s->emitter_tri[s->num_emitters++] = t;
+    }
+    if (s->num_emitters == 0)
+        return 0; /* a scene without lights renders black; light sampling reports no sample */
+    float *power = xmalloc(sizeof(float) * (size_t)s->num_emitters);
+    for (int i = 0; i < s->num_emitters; i++)
+        power[i] = lights_emitter_power(s, s->emitter_tri[i]);
+    int rc = alias_table_init(&s->emitter_table, power, s->num_emitters);
+    free(power);
+    if (rc != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "scene '%s': emitter powers are invalid (negative or NaN emission)",
+                 s->name);
+        return -1;
+    }
+    return 0;
+}
+
+int scene_builder_end(struct scene_builder *b, char *msg)
+{
+    struct scene *s = b->s;
+    if (s->num_tris == 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "scene '%s' has no triangles", s->name);
+        return -1;
+    }
+    for (int m = 0; m < s->num_materials; m++) {
+        const struct material *mt = &s->materials[m];
+        if (!v3_is_finite(mt->base_color) || !v3_is_finite(mt->emission) || !isfinite(mt->metallic) ||
+            !isfinite(mt->roughness) || v3_max_component(v3_neg(mt->emission)) > 0.0f) {
+            snprintf(msg, RESTIR_MSG_LEN, "scene '%s': material %d has NaN, infinite or negative values",
+                     s->name, m);
+            return -1;
+        }
+    }
+    if (derive_triangle_data(s, msg) != 0 || build_emitters(s, msg) != 0)
+        return -1;
+    return scene_rt_build(s, msg);
+}
+
+void scene_destroy(struct scene *s)
+{
+    scene_rt_destroy(s);
+    free(s->verts);
+    free(s->indices);
+    free(s->tri_material);
+    free(s->tri_object);
+    free(s->tri_normal);
+    free(s->tri_area);
+    free(s->tri_emitter);
+    free(s->emitter_tri);
+    free(s->materials);
+    free(s->camera_path.keys);
+    if (s->num_emitters > 0)
+        alias_table_fini(&s->emitter_table);
+    memset(s, 0, sizeof(*s));
+}

@@ -1,0 +1,125 @@
+/* scene.h: the scene as plain data: an indexed triangle soup with per-triangle material and
+ * object ids, materials, the emitter list, the camera and camera path, and the opaque handle of
+ * the ray-tracing back end. Must never include embree headers (only scene_rt.c does). */
+#ifndef RESTIR_SCENE_SCENE_H
+#define RESTIR_SCENE_SCENE_H
+
+#include <stdint.h>
+#include "../core/sampling.h"
+#include "../core/vec3.h"
+
+/* glTF-style metallic/roughness material; emission is one-sided (front = geometric normal). */
+struct material {
+    vec3 base_color;
+    float metallic;  /* 0 dielectric (diffuse + 4% specular), 1 conductor */
+    float roughness; /* perceptual roughness; GGX alpha = roughness^2 */
+    vec3 emission;   /* emitted radiance, W / (m^2 sr) */
+};
+
+struct camera {
+    vec3 position;
+    vec3 target;
+    vec3 up;
+    float vfov_deg; /* vertical field of view */
+};
+
+/* A camera path: keyframes at given frame numbers, interpolated piecewise linearly with
+ * smoothstep easing; frames outside the range clamp to the ends. */
+struct camera_key {
+    float frame;
+    struct camera cam;
+};
+
+struct camera_path {
+    int num_keys;
+    struct camera_key *keys;
+};
+
+struct scene_rt; /* Embree back end, opaque (scene_rt.c) */
+
+struct scene {
+    char name[64];
+    int num_verts;
+    vec3 *verts;
+    int num_tris;
+    uint32_t *indices;     /* 3 per triangle */
+    int *tri_material;     /* material id per triangle */
+    int *tri_object;       /* object id per triangle */
+    vec3 *tri_normal;      /* unit geometric normal per triangle (counter-clockwise winding) */
+    float *tri_area;
+    int *tri_emitter;      /* emitter index per triangle, -1 when not emissive */
+    int num_materials;
+    struct material *materials;
+    int num_objects;
+
+    /* Emitters: emissive triangles, chosen proportionally to power (alias table). */
+    int num_emitters;
+    int *emitter_tri;
+    struct alias_table emitter_table;
+
+    struct camera camera;           /* default static camera */
+    struct camera_path camera_path; /* default moving camera */
+
+    struct scene_rt *rt;
+};
+
+/* Surface point reconstructed from a triangle hit. */
+struct surface_hit {
+    vec3 p;
+    vec3 ng;   /* geometric normal, unit, facing the incoming ray */
+    vec3 ns;   /* shading normal (equal to ng: flat shading) */
+    float t;
+    int tri;
+    float b1, b2; /* barycentrics of p: p = (1-b1-b2) v0 + b1 v1 + b2 v2 */
+    int material;
+    int object;
+    int front; /* 1 when the ray hit the front (emitting) side */
+};
+
+/* Builder used by the built-in scenes and tests. */
+struct scene_builder {
+    struct scene *s;
+    int cap_verts, cap_tris, cap_materials; /* capacities of the growing arrays */
+};
+
+void scene_builder_begin(struct scene_builder *b, struct scene *s, const char *name);
+int scene_add_material(struct scene_builder *b, struct material m);
+int scene_new_object(struct scene_builder *b);
+void scene_add_triangle(struct scene_builder *b, vec3 a, vec3 c, vec3 d, int material, int object);
+/* Quad a-b-c-d (counter-clockwise seen from the front) as two triangles. */
+void scene_add_quad(struct scene_builder *b, vec3 a, vec3 c, vec3 d, vec3 e, int material, int object);
+/* Axis-aligned box with outward faces. */
+void scene_add_box(struct scene_builder *b, vec3 lo, vec3 hi, int material, int object);
+/* Box rotated by angle_rad about the y axis through its center. */
+void scene_add_box_rotated_y(struct scene_builder *b, vec3 lo, vec3 hi, float angle_rad, int material,
+                             int object);
+/* Closed UV sphere; inward_facing flips the winding so the front faces the center. */
+void scene_add_sphere(struct scene_builder *b, vec3 center, float radius, int segments, int inward_facing,
+                      int material, int object);
+/* Finishes derived data (normals, areas, emitters, alias table) and builds the Embree scene.
+ * Returns 0 on success, -1 with msg filled (e.g. no geometry, NaN vertex). */
+int scene_builder_end(struct scene_builder *b, char *msg);
+
+void scene_destroy(struct scene *s);
+
+/* Camera at a frame of the default path (or the static camera when path is 0). */
+struct camera scene_camera_at(const struct scene *s, int use_path, float frame);
+
+/* Ray queries (scene_rt.c). tmax may be INFINITY. */
+int scene_intersect(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax, struct surface_hit *hit);
+/* Closest hit among the emissive triangles only, ignoring every other surface. */
+int scene_intersect_emitters(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax,
+                             struct surface_hit *hit);
+int scene_occluded(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax);
+/* p moved off its surface (normal n) to the side that direction `toward` leaves from. */
+vec3 scene_offset_point(vec3 p, vec3 n, vec3 toward);
+/* Visibility between two surface points with normals, offsetting both ends. */
+int scene_visible(const struct scene *s, vec3 p0, vec3 n0, vec3 p1, vec3 n1);
+
+/* Built-in scenes (scenes_builtin.c). Returns 0, or -1 with msg naming the unknown scene. */
+int scene_create_builtin(const char *name, struct scene *s, char *msg);
+/* Names of built-in scenes, NULL terminated. */
+extern const char *const scene_builtin_names[];
+extern const char *const scene_builtin_descriptions[];
+
+#endif

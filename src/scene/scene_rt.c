@@ -1,0 +1,206 @@
+/* scene_rt.c: the Embree 3 back end: builds the BVH over the scene's triangles and answers
+ * closest-hit and occlusion queries. The only file that includes embree3/rtcore.h. */
+#include "scene_rt.h"
+
+#include <embree3/rtcore.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "../core/check.h"
+
+struct scene_rt {
+    RTCDevice device;
+    RTCScene scene;
+    RTCScene emitters; /* emissive triangles only (NULL without lights); primID = emitter index */
+};
+
+static void embree_error(void *user, enum RTCError code, const char *str)
+{
+    (void)user;
+    fprintf(stderr, "embree error %d: %s\n", (int)code, str ? str : "");
+}
+
+static RTCScene build_triangles(RTCDevice device, const struct scene *s, const int *tris, int count)
+{
+    RTCScene scene = rtcNewScene(device);
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    float *vb = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                        3 * (size_t)count);
+    unsigned *ib = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                           3 * sizeof(unsigned), (size_t)count);
+    if (!vb || !ib) {
+        rtcReleaseGeometry(geom);
+        rtcReleaseScene(scene);
+        return NULL;
+    }
+    /* Un-indexed copy: three vertices per triangle, in the order of tris[] (or all triangles). */
+    for (int i = 0; i < count; i++) {
+        int t = tris ? tris[i] : i;
+        for (int k = 0; k < 3; k++) {
+            vec3 v = s->verts[s->indices[3 * t + k]];
+            vb[9 * i + 3 * k + 0] = v.x;
+            vb[9 * i + 3 * k + 1] = v.y;
+            vb[9 * i + 3 * k + 2] = v.z;
+            ib[3 * i + k] = (unsigned)(3 * i + k);
+        }
+    }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene, geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(scene);
+    return scene;
+}
+
+int scene_rt_build(struct scene *s, char *msg)
+{
+    struct scene_rt *rt = xcalloc(1, sizeof(*rt));
+    rt->device = rtcNewDevice(NULL);
+    if (!rt->device) {
+        snprintf(msg, RESTIR_MSG_LEN, "scene '%s': Embree device creation failed (error %d)", s->name,
+                 (int)rtcGetDeviceError(NULL));
+        free(rt);
+        return -1;
+    }
+    rtcSetDeviceErrorFunction(rt->device, embree_error, NULL);
+    rt->scene = build_triangles(rt->device, s, NULL, s->num_tris);
+    rt->emitters = s->num_emitters > 0 ? build_triangles(rt->device, s, s->emitter_tri, s->num_emitters) : NULL;
+    if (!rt->scene || (s->num_emitters > 0 && !rt->emitters)) {
+        snprintf(msg, RESTIR_MSG_LEN, "scene '%s': Embree BVH construction failed", s->name);
+        if (rt->scene)
+            rtcReleaseScene(rt->scene);
+        rtcReleaseDevice(rt->device);
+        free(rt);
+        return -1;
+    }
+    s->rt = rt;
+    return 0;
+}
+
+void scene_rt_destroy(struct scene *s)
+{
+    if (!s->rt)
+        return;
+    rtcReleaseScene(s->rt->scene);
+    if (s->rt->emitters)
+        rtcReleaseScene(s->rt->emitters);
+    rtcReleaseDevice(s->rt->device);
+    free(s->rt);
+    s->rt = NULL;
+}
+
+/* Closest hit in rtc_scene; returns the primitive id or -1, with the distance and barycentrics. */
+static int intersect_closest(RTCScene rtc_scene, vec3 o, vec3 d, float tmin, float tmax, float *t, float *u,
+                             float *v)
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    struct RTCRayHit rh;
+    rh.ray.org_x = o.x;
+    rh.ray.org_y = o.y;
+    rh.ray.org_z = o.z;
+    rh.ray.dir_x = d.x;
+    rh.ray.dir_y = d.y;
+    rh.ray.dir_z = d.z;
+    rh.ray.tnear = tmin;
+    rh.ray.tfar = tmax;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(rtc_scene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+        return -1;
+    *t = rh.ray.tfar;
+    *u = rh.hit.u;
+    *v = rh.hit.v;
+    return (int)rh.hit.primID;
+}
+
+static void fill_hit(const struct scene *s, int tri, vec3 o, vec3 d, float t, float u, float v,
+                     struct surface_hit *hit)
+{
+    vec3 n = s->tri_normal[tri];
+    hit->t = t;
+    hit->p = v3_madd(o, d, t);
+    hit->front = v3_dot(n, d) < 0.0f;
+    hit->ng = hit->front ? n : v3_neg(n);
+    hit->ns = hit->ng;
+    hit->tri = tri;
+    hit->b1 = u;
+    hit->b2 = v;
+    hit->material = s->tri_material[tri];
+    hit->object = s->tri_object[tri];
+}
+
+int scene_intersect(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax, struct surface_hit *hit)
+{
+    float t, u, v;
+    int tri = intersect_closest(s->rt->scene, o, d, tmin, tmax, &t, &u, &v);
+    if (tri < 0)
+        return 0;
+    fill_hit(s, tri, o, d, t, u, v, hit);
+    return 1;
+}
+
+int scene_intersect_emitters(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax,
+                             struct surface_hit *hit)
+{
+    if (!s->rt->emitters)
+        return 0;
+    float t, u, v;
+    int e = intersect_closest(s->rt->emitters, o, d, tmin, tmax, &t, &u, &v);
+    if (e < 0)
+        return 0;
+    fill_hit(s, s->emitter_tri[e], o, d, t, u, v, hit);
+    return 1;
+}
+
+int scene_occluded(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax)
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    struct RTCRay ray;
+    ray.org_x = o.x;
+    ray.org_y = o.y;
+    ray.org_z = o.z;
+    ray.dir_x = d.x;
+    ray.dir_y = d.y;
+    ray.dir_z = d.z;
+    ray.tnear = tmin;
+    ray.tfar = tmax;
+    ray.time = 0.0f;
+    ray.mask = 0xffffffffu;
+    ray.id = 0;
+    ray.flags = 0;
+    rtcOccluded1(s->rt->scene, &ctx, &ray);
+    return ray.tfar == -INFINITY;
+}
+
+/* Offset scale for self-intersection: relative to the coordinates' magnitude, so it tracks float
+ * precision whatever the scene's size. */
+static float ray_epsilon(vec3 p)
+{
+    return 1e-4f * (1.0f + fmaxf(fabsf(p.x), fmaxf(fabsf(p.y), fabsf(p.z))));
+}
+
+vec3 scene_offset_point(vec3 p, vec3 n, vec3 toward)
+{
+    float e = ray_epsilon(p);
+    return v3_madd(p, n, v3_dot(n, toward) >= 0.0f ? e : -e);
+}
+
+int scene_visible(const struct scene *s, vec3 p0, vec3 n0, vec3 p1, vec3 n1)
+{
+    vec3 d = v3_sub(p1, p0);
+    vec3 o = scene_offset_point(p0, n0, d);
+    vec3 e = scene_offset_point(p1, n1, v3_neg(d));
+    vec3 od = v3_sub(e, o);
+    float dist = v3_length(od);
+    if (!(dist > 0.0f))
+        return 1;
+    return !scene_occluded(s, o, v3_scale(od, 1.0f / dist), 0.0f, dist * (1.0f - 1e-4f));
+}

@@ -1,0 +1,216 @@
+/* scenes_builtin.c: the scenes made in code (cornell, many-lights, foliage, pillars, furnace),
+ * each with a default static camera and camera path. Must never read files. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../core/check.h"
+#include "../core/rng.h"
+#include "scene.h"
+
+const char *const scene_builtin_names[] = {"many-lights", "cornell", "foliage", "pillars", "furnace", NULL};
+const char *const scene_builtin_descriptions[] = {
+    "floor and occluders lit by 1200 small emissive triangles of varied colour and power (default)",
+    "Cornell box with a ceiling light, a diffuse block and a glossy metal block",
+    "thousands of thin leaf quads on a few stems over a ground, lit by two area lights (hard pixels)",
+    "a row of pillars before a lit wall; the camera path strafes sideways (disocclusion)",
+    "closed sphere of albedo 0.5 and emission 0.5 seen from inside: radiance is exactly 1 (test)",
+    NULL};
+
+static struct material diffuse(float r, float g, float b)
+{
+    return (struct material){v3(r, g, b), 0.0f, 1.0f, v3s(0.0f)};
+}
+
+static struct material emitter(vec3 e) { return (struct material){v3s(0.0f), 0.0f, 1.0f, e}; }
+
+/* Rectangle centred at c with unit normal n, unit tangent t, half extents hu (along t) and hv. */
+static void add_rect(struct scene_builder *b, vec3 c, vec3 n, vec3 t, float hu, float hv, int mat, int obj)
+{
+    vec3 u = v3_scale(t, hu), v = v3_scale(v3_cross(n, t), hv);
+    vec3 p0 = v3_sub(v3_sub(c, u), v), p1 = v3_sub(v3_add(c, u), v);
+    vec3 p2 = v3_add(v3_add(c, u), v), p3 = v3_add(v3_sub(c, u), v);
+    scene_add_quad(b, p0, p1, p2, p3, mat, obj);
+}
+
+static void set_path(struct scene *s, int n, const struct camera_key *keys)
+{
+    s->camera_path.num_keys = n;
+    s->camera_path.keys = xmalloc(sizeof(*keys) * (size_t)n);
+    memcpy(s->camera_path.keys, keys, sizeof(*keys) * (size_t)n);
+}
+
+static float rnd(pcg32 *r, float lo, float hi) { return lo + (hi - lo) * pcg32_float(r); }
+
+static vec3 hue_color(float h)
+{
+    /* Saturated colour from a hue in [0,1): piecewise-linear RGB wheel, mixed with white. */
+    float r = fabsf(h * 6.0f - 3.0f) - 1.0f, g = 2.0f - fabsf(h * 6.0f - 2.0f), b = 2.0f - fabsf(h * 6.0f - 4.0f);
+    vec3 c = v3(fminf(fmaxf(r, 0.0f), 1.0f), fminf(fmaxf(g, 0.0f), 1.0f), fminf(fmaxf(b, 0.0f), 1.0f));
+    return v3_lerp(c, v3s(1.0f), 0.25f);
+}
+
+static vec3 random_unit(pcg32 *r)
+{
+    float z = rnd(r, -1.0f, 1.0f), phi = rnd(r, 0.0f, 2.0f * RESTIR_PI);
+    float s = sqrtf(fmaxf(0.0f, 1.0f - z * z));
+    return v3(s * cosf(phi), s * sinf(phi), z);
+}
+
+static void build_cornell(struct scene_builder *b)
+{
+    int white = scene_add_material(b, diffuse(0.73f, 0.73f, 0.73f));
+    int red = scene_add_material(b, diffuse(0.65f, 0.05f, 0.05f));
+    int green = scene_add_material(b, diffuse(0.12f, 0.45f, 0.15f));
+    int glossy = scene_add_material(b, (struct material){v3(0.95f, 0.64f, 0.54f), 1.0f, 0.25f, v3s(0.0f)});
+    int light = scene_add_material(b, emitter(v3(17.0f, 12.0f, 4.0f)));
+    int room = scene_new_object(b);
+    add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 1, 1, white, room);    /* floor */
+    add_rect(b, v3(0, 2, 0), v3(0, -1, 0), v3(1, 0, 0), 1, 1, white, room);   /* ceiling */
+    add_rect(b, v3(0, 1, -1), v3(0, 0, 1), v3(1, 0, 0), 1, 1, white, room);   /* back */
+    add_rect(b, v3(-1, 1, 0), v3(1, 0, 0), v3(0, 0, 1), 1, 1, red, room);     /* left */
+    add_rect(b, v3(1, 1, 0), v3(-1, 0, 0), v3(0, 0, 1), 1, 1, green, room);   /* right */
+    add_rect(b, v3(0, 1.995f, 0), v3(0, -1, 0), v3(1, 0, 0), 0.25f, 0.2f, light, scene_new_object(b));
+    scene_add_box_rotated_y(b, v3(-0.65f, 0, -0.55f), v3(-0.05f, 1.2f, 0.05f), 0.3f, white, scene_new_object(b));
+    scene_add_box_rotated_y(b, v3(0.05f, 0, -0.05f), v3(0.65f, 0.6f, 0.55f), -0.3f, glossy, scene_new_object(b));
+    b->s->camera = (struct camera){v3(0, 1, 3.4f), v3(0, 1, 0), v3(0, 1, 0), 40.0f};
+    struct camera_key keys[2] = {{0, {v3(-0.3f, 1.0f, 3.4f), v3(0, 1, 0), v3(0, 1, 0), 40.0f}},
+                                 {64, {v3(0.3f, 1.1f, 3.2f), v3(0, 1, 0), v3(0, 1, 0), 40.0f}}};
+    set_path(b->s, 2, keys);
+}
+
+static void build_many_lights(struct scene_builder *b)
+{
+    pcg32 r = pcg32_make(7, 11);
+    int floor_mat = scene_add_material(b, diffuse(0.6f, 0.6f, 0.6f));
+    int box_mat = scene_add_material(b, diffuse(0.7f, 0.68f, 0.62f));
+    int metal = scene_add_material(b, (struct material){v3(0.9f, 0.9f, 0.92f), 1.0f, 0.3f, v3s(0.0f)});
+    add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 12, 12, floor_mat, scene_new_object(b));
+    for (int i = 0; i < 5; i++) {
+        for (int j = 0; j < 5; j++) {
+            float x = -8.0f + 4.0f * (float)i + rnd(&r, -0.6f, 0.6f);
+            float z = -8.0f + 4.0f * (float)j + rnd(&r, -0.6f, 0.6f);
+            float h = rnd(&r, 0.4f, 2.5f), w = rnd(&r, 0.3f, 0.9f);
+            scene_add_box_rotated_y(b, v3(x - w, 0, z - w), v3(x + w, h, z + w), rnd(&r, 0, 1.5f),
+                                    (i + j) % 3 == 0 ? metal : box_mat, scene_new_object(b));
+        }
+    }
+    /* 1200 small one-sided emitters facing mostly downward, power spread over two decades. */
+    int light_obj = scene_new_object(b);
+    for (int i = 0; i < 1200; i++) {
+        vec3 c = v3(rnd(&r, -11, 11), rnd(&r, 0.4f, 4.0f), rnd(&r, -11, 11));
+        vec3 n = random_unit(&r);
+        n.y = -fabsf(n.y) - 0.5f;
+        n = v3_normalize(n);
+        frame f = frame_from_normal(n);
+        float size = rnd(&r, 0.08f, 0.25f);
+        float power = expf(rnd(&r, logf(0.5f), logf(40.0f)));
+        int m = scene_add_material(b, emitter(v3_scale(hue_color(pcg32_float(&r)), power)));
+        vec3 p0 = v3_madd(c, f.t, size), p1 = v3_madd(c, v3_add(v3_scale(f.t, -0.5f), v3_scale(f.b, 0.866f)), size);
+        vec3 p2 = v3_madd(c, v3_add(v3_scale(f.t, -0.5f), v3_scale(f.b, -0.866f)), size);
+        /* counter-clockwise around n: t -> b */
+        scene_add_triangle(b, p0, p1, p2, m, light_obj);
+    }
+    b->s->camera = (struct camera){v3(0, 7, 15), v3(0, 0.5f, 0), v3(0, 1, 0), 50.0f};
+    struct camera_key keys[2] = {{0, {v3(-3, 7, 15), v3(-1, 0.5f, 0), v3(0, 1, 0), 50.0f}},
+                                 {64, {v3(3, 6, 13), v3(1, 0.5f, 0), v3(0, 1, 0), 50.0f}}};
+    set_path(b->s, 2, keys);
+}
+
+static void build_foliage(struct scene_builder *b)
+{
+    pcg32 r = pcg32_make(3, 5);
+    int ground = scene_add_material(b, diffuse(0.35f, 0.28f, 0.2f));
+    int bark = scene_add_material(b, diffuse(0.3f, 0.2f, 0.12f));
+    int leaf[3] = {scene_add_material(b, diffuse(0.25f, 0.5f, 0.12f)),
+                   scene_add_material(b, diffuse(0.35f, 0.55f, 0.1f)),
+                   scene_add_material(b, (struct material){v3(0.2f, 0.45f, 0.1f), 0.0f, 0.35f, v3s(0.0f)})};
+    int sky = scene_add_material(b, emitter(v3(6.0f, 6.0f, 5.5f)));
+    int sun = scene_add_material(b, emitter(v3(40.0f, 34.0f, 26.0f)));
+    add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 8, 8, ground, scene_new_object(b));
+    const vec3 stems[3] = {v3(-1.3f, 0, -0.5f), v3(0.2f, 0, -1.2f), v3(1.4f, 0, -0.2f)};
+    for (int s = 0; s < 3; s++) {
+        float h = 2.2f + 0.3f * (float)s;
+        vec3 base = stems[s];
+        scene_add_box(b, v3(base.x - 0.05f, 0, base.z - 0.05f), v3(base.x + 0.05f, h, base.z + 0.05f), bark,
+                      scene_new_object(b));
+        int obj = scene_new_object(b);
+        for (int i = 0; i < 1500; i++) {
+            /* Leaves fill an ellipsoidal crown around the top of the stem. */
+            vec3 d = random_unit(&r);
+            float rad = cbrtf(pcg32_float(&r));
+            vec3 c = v3(base.x + 0.9f * rad * d.x, h - 0.5f + 0.8f * rad * d.y, base.z + 0.9f * rad * d.z);
+            vec3 n = random_unit(&r);
+            frame f = frame_from_normal(n);
+            float len = rnd(&r, 0.06f, 0.12f), wid = rnd(&r, 0.025f, 0.05f);
+            add_rect(b, c, n, f.t, len, wid, leaf[i % 3], obj);
+        }
+    }
+    add_rect(b, v3(0, 6, 0), v3(0, -1, 0), v3(1, 0, 0), 3, 3, sky, scene_new_object(b));
+    vec3 sun_n = v3_normalize(v3(-1, -1.2f, -0.6f));
+    add_rect(b, v3(5, 5, 3), sun_n, frame_from_normal(sun_n).t, 0.5f, 0.5f, sun, scene_new_object(b));
+    b->s->camera = (struct camera){v3(0, 1.7f, 5.0f), v3(0, 1.6f, -0.5f), v3(0, 1, 0), 45.0f};
+    struct camera_key keys[2] = {{0, {v3(-0.6f, 1.7f, 5.0f), v3(0, 1.6f, -0.5f), v3(0, 1, 0), 45.0f}},
+                                 {64, {v3(0.6f, 1.8f, 4.6f), v3(0, 1.6f, -0.5f), v3(0, 1, 0), 45.0f}}};
+    set_path(b->s, 2, keys);
+}
+
+static void build_pillars(struct scene_builder *b)
+{
+    int white = scene_add_material(b, diffuse(0.75f, 0.75f, 0.72f));
+    int floor_mat = scene_add_material(b, (struct material){v3(0.5f, 0.5f, 0.55f), 0.0f, 0.3f, v3s(0.0f)});
+    int stone = scene_add_material(b, diffuse(0.55f, 0.45f, 0.35f));
+    int warm = scene_add_material(b, emitter(v3(30.0f, 20.0f, 10.0f)));
+    int cool = scene_add_material(b, emitter(v3(8.0f, 14.0f, 30.0f)));
+    add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 10, 6, floor_mat, scene_new_object(b));
+    add_rect(b, v3(0, 2.5f, -2.5f), v3(0, 0, 1), v3(1, 0, 0), 10, 2.5f, white, scene_new_object(b));
+    for (int i = 0; i < 7; i++) {
+        float x = -6.0f + 2.0f * (float)i;
+        scene_add_box(b, v3(x - 0.25f, 0, -0.25f), v3(x + 0.25f, 3.5f, 0.25f), stone, scene_new_object(b));
+    }
+    /* Light strips hidden above, between pillars and wall, washing the wall. */
+    vec3 down_back = v3_normalize(v3(0, -1, -0.6f));
+    for (int i = 0; i < 4; i++) {
+        float x = -6.0f + 4.0f * (float)i;
+        add_rect(b, v3(x, 4.6f, -1.2f), down_back, v3(1, 0, 0), 0.9f, 0.1f, i % 2 ? cool : warm,
+                 scene_new_object(b));
+    }
+    b->s->camera = (struct camera){v3(-1, 1.6f, 6), v3(-1, 1.6f, -2.5f), v3(0, 1, 0), 50.0f};
+    struct camera_key keys[2] = {{0, {v3(-4, 1.6f, 6), v3(-4, 1.6f, -2.5f), v3(0, 1, 0), 50.0f}},
+                                 {64, {v3(4, 1.6f, 6), v3(4, 1.6f, -2.5f), v3(0, 1, 0), 50.0f}}};
+    set_path(b->s, 2, keys);
+}
+
+static void build_furnace(struct scene_builder *b)
+{
+    int m = scene_add_material(b, (struct material){v3s(0.5f), 0.0f, 1.0f, v3s(0.5f)});
+    scene_add_sphere(b, v3(0, 0, 0), 1.0f, 48, 1, m, scene_new_object(b));
+    b->s->camera = (struct camera){v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), 60.0f};
+    struct camera_key keys[2] = {{0, {v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), 60.0f}},
+                                 {64, {v3(0.2f, 0, 0), v3(1, 0, 1), v3(0, 1, 0), 60.0f}}};
+    set_path(b->s, 2, keys);
+}
+
+int scene_create_builtin(const char *name, struct scene *s, char *msg)
+{
+    static void (*const builders[])(struct scene_builder *) = {build_many_lights, build_cornell, build_foliage,
+                                                               build_pillars, build_furnace};
+    for (int i = 0; scene_builtin_names[i]; i++) {
+        if (strcmp(name, scene_builtin_names[i]) == 0) {
+            struct scene_builder b;
+            scene_builder_begin(&b, s, name);
+            builders[i](&b);
+            if (scene_builder_end(&b, msg) != 0) {
+                scene_destroy(s);
+                return -1;
+            }
+            return 0;
+        }
+    }
+    int n = snprintf(msg, RESTIR_MSG_LEN, "unknown scene '%s' (built-in scenes:", name);
+    for (int i = 0; scene_builtin_names[i] && n < RESTIR_MSG_LEN; i++)
+        n += snprintf(msg + n, (size_t)(RESTIR_MSG_LEN - n), " %s", scene_builtin_names[i]);
+    if (n < RESTIR_MSG_LEN)
+        snprintf(msg + n, (size_t)(RESTIR_MSG_LEN - n), ")");
+    return -1;
+}

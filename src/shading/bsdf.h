@@ -1,0 +1,34 @@
+/* bsdf.h: the material model: Lambert diffuse plus GGX microfacet specular (glTF
+ * metallic/roughness), with eval / sample / pdf. All directions are unit vectors pointing away
+ * from the surface; pdfs are in solid angle; eval returns f_r without the cosine.
+ * Must never depend on the ray tracer or on render passes. */
+#ifndef RESTIR_SHADING_BSDF_H
+#define RESTIR_SHADING_BSDF_H
+
+#include "../core/vec3.h"
+#include "../scene/scene.h"
+
+/* Minimum GGX alpha: keeps near-mirror lobes finite so eval/pdf stay well defined. */
+#define BSDF_MIN_ALPHA 0.0025f
+
+struct bsdf {
+    vec3 diffuse;   /* Lambert albedo: base_color * (1 - metallic) */
+    vec3 f0;        /* Schlick reflectance at normal incidence: mix(0.04, base_color, metallic) */
+    float alpha;    /* GGX alpha = max(roughness^2, BSDF_MIN_ALPHA) */
+    float p_spec;   /* probability of sampling the specular lobe */
+};
+
+void bsdf_from_material(const struct material *m, struct bsdf *b);
+
+/* f_r(wo, wi) for normal n (n on the side of wo; zero when either direction is below). */
+vec3 bsdf_eval(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi);
+/* Solid-angle density with which bsdf_sample produces wi. */
+float bsdf_pdf(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi);
+/* Samples wi from three uniforms. Returns 0 when no direction is produced (e.g. below the
+ * surface); otherwise 1 with *wi, *pdf (solid angle, equal to bsdf_pdf) and *f = bsdf_eval. */
+int bsdf_sample(const struct bsdf *b, vec3 n, vec3 wo, float u0, float u1, float u2, vec3 *wi,
+                float *pdf, vec3 *f);
+/* Roughness measure used by path-space heuristics (GGX alpha; 1 for pure diffuse). */
+float bsdf_roughness(const struct bsdf *b);
+
+#endif

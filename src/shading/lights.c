@@ -1,0 +1,80 @@
+/* lights.c: emitter selection by power (the scene's alias table), uniform points on emissive
+ * triangles, one-sided emission and area-to-solid-angle conversion. Must never depend on the
+ * ray tracer or on render passes. */
+#include "lights.h"
+
+#include <math.h>
+
+static vec3 tri_vertex(const struct scene *s, int tri, int k) { return s->verts[s->indices[3 * tri + k]]; }
+
+static vec3 tri_emission(const struct scene *s, int tri) { return s->materials[s->tri_material[tri]].emission; }
+
+/* Power of a Lambertian emitter of radiance L over area A: integral of L cos over the
+ * hemisphere times A = pi L A (one-sided). Luminance collapses the colour for selection. */
+float lights_emitter_power(const struct scene *s, int tri)
+{
+    return v3_luminance(tri_emission(s, tri)) * s->tri_area[tri] * RESTIR_PI;
+}
+
+/* Area density of a point = P(choose triangle) * 1 / area (uniform on the triangle). */
+float lights_pdf_area(const struct scene *s, int tri)
+{
+    if (tri < 0 || tri >= s->num_tris)
+        return 0.0f;
+    int e = s->tri_emitter[tri];
+    if (e < 0 || e >= s->num_emitters)
+        return 0.0f;
+    float area = s->tri_area[tri];
+    if (!(area > 0.0f))
+        return 0.0f;
+    return s->emitter_table.pmf[e] / area;
+}
+
+void lights_point(const struct scene *s, int tri, float b1, float b2, struct light_sample *ls)
+{
+    vec3 a = tri_vertex(s, tri, 0);
+    vec3 b = tri_vertex(s, tri, 1);
+    vec3 c = tri_vertex(s, tri, 2);
+    float b0 = 1.0f - b1 - b2;
+    ls->tri = tri;
+    ls->b1 = b1;
+    ls->b2 = b2;
+    ls->p = v3_add(v3_add(v3_scale(a, b0), v3_scale(b, b1)), v3_scale(c, b2));
+    ls->n = s->tri_normal[tri];
+    ls->Le = tri_emission(s, tri);
+    ls->pdf_area = lights_pdf_area(s, tri);
+}
+
+int lights_sample(const struct scene *s, float u_select, float u1, float u2, struct light_sample *ls)
+{
+    if (s->num_emitters < 1)
+        return 0;
+    int e = alias_table_sample(&s->emitter_table, u_select);
+    int tri = s->emitter_tri[e];
+    float b1, b2;
+    warp_uniform_triangle(u1, u2, &b1, &b2);
+    lights_point(s, tri, b1, b2, ls);
+    return ls->pdf_area > 0.0f;
+}
+
+/* Emission is one-sided: only the front (counter-clockwise, geometric normal) side emits. */
+vec3 lights_radiance(const struct scene *s, int tri, vec3 w_out)
+{
+    if (tri < 0 || tri >= s->num_tris || v3_dot(s->tri_normal[tri], w_out) <= 0.0f)
+        return v3s(0.0f);
+    return tri_emission(s, tri);
+}
+
+/* dA = dist^2 / |cos_l| dw (PBRT 3rd ed., eq. 5.6), so p_w = p_A dist^2 / cos_l. A light that
+ * shows x its back (cos_l <= 0) cannot deliver light there, so its density is 0. */
+float lights_pdf_solid_angle(float pdf_area, vec3 x, vec3 light_p, vec3 light_n)
+{
+    vec3 d = v3_sub(x, light_p);
+    float dist2 = v3_length2(d);
+    if (!(dist2 > 0.0f))
+        return 0.0f;
+    float cos_l = v3_dot(light_n, d) / sqrtf(dist2);
+    if (cos_l <= 0.0f)
+        return 0.0f;
+    return pdf_area * dist2 / cos_l;
+}

@@ -1,0 +1,31 @@
+/* lights.h: emitter sampling: an emissive triangle chosen proportionally to power through the
+ * scene's alias table, then a uniform point on it. Densities are in area measure on the light;
+ * lights_pdf_solid_angle converts. Must never depend on render passes. */
+#ifndef RESTIR_SHADING_LIGHTS_H
+#define RESTIR_SHADING_LIGHTS_H
+
+#include "../scene/scene.h"
+
+struct light_sample {
+    int tri;        /* triangle index of the emitter */
+    float b1, b2;   /* barycentrics of the point on the triangle */
+    vec3 p;         /* point on the light */
+    vec3 n;         /* light's geometric (emitting) normal */
+    vec3 Le;        /* emitted radiance toward the front side */
+    float pdf_area; /* density of choosing this point, area measure */
+};
+
+/* Emitter power used for selection: luminance(Le) * area * pi. */
+float lights_emitter_power(const struct scene *s, int tri);
+/* Samples a point on the emitters from three uniforms. Returns 0 when the scene has no lights. */
+int lights_sample(const struct scene *s, float u_select, float u1, float u2, struct light_sample *ls);
+/* Area density of producing the point on triangle tri (0 when tri is not an emitter). */
+float lights_pdf_area(const struct scene *s, int tri);
+/* Fills ls->p, n, Le, pdf_area from tri and barycentrics. */
+void lights_point(const struct scene *s, int tri, float b1, float b2, struct light_sample *ls);
+/* Radiance leaving emitter triangle tri toward direction w_out (zero on its back side). */
+vec3 lights_radiance(const struct scene *s, int tri, vec3 w_out);
+/* Converts an area density at a light point to solid angle as seen from x. */
+float lights_pdf_solid_angle(float pdf_area, vec3 x, vec3 light_p, vec3 light_n);
+
+#endif

@@ -1,0 +1,96 @@
+/* test_metrics.c: unit tests for restir_error_compute on small images with hand-computed values.
+ * Must never depend on src/ headers, files or the renderer; only on include/restir/metrics.h. */
+#include "restir/metrics.h"
+#include "test_util.h"
+
+#include <string.h>
+
+/* Two pixels. Reference R and image I (all values exact in float):
+ *   R0 = (1, 0, 2)      I0 = (1, 0.5, 1)     I0 - R0 = (0, 0.5, -1)
+ *   R1 = (0.5, 1, 0.5)  I1 = (0.5, 1, 1.5)   I1 - R1 = (0, 0, 1)        */
+static const float ref2[6] = {1.0f, 0.0f, 2.0f, 0.5f, 1.0f, 0.5f};
+static const float img2[6] = {1.0f, 0.5f, 1.0f, 0.5f, 1.0f, 1.5f};
+
+static void test_two_pixels(void)
+{
+    struct restir_error e;
+    EXPECT(restir_error_compute(img2, ref2, 2, NULL, &e) == 0, "compute failed");
+
+    /* relMSE: terms 0/(1+1e-3), 0.25/(0+1e-3) = 250, 1/(4+1e-3), 0, 0, 1/(0.25+1e-3);
+     * sum = 250 + 0.2499375156 + 3.9840637450 = 254.2340012607, mean over 6 = 42.37233354. */
+    double relmse = (0.25 / 1e-3 + 1.0 / 4.001 + 1.0 / 0.251) / 6.0;
+    EXPECT_NEAR(e.relmse, relmse, 1e-12, "relmse");
+    EXPECT_NEAR(e.relmse, 42.37233354, 1e-7, "relmse decimal");
+
+    /* MAPE: mean(R) = (1 + 0 + 2 + 0.5 + 1 + 0.5) / 6 = 5/6, so the offset is 1/120.
+     * Nonzero terms: 0.5 / (0 + 1/120) = 60, 1 / (2 + 1/120) = 120/241, 1 / (0.5 + 1/120) = 120/61;
+     * sum = 60 + 0.4979253112 + 1.9672131148 = 62.4651384260, mean over 6 = 10.41085640. */
+    double mape = (60.0 + 120.0 / 241.0 + 120.0 / 61.0) / 6.0;
+    EXPECT_NEAR(e.mape, mape, 1e-12, "mape");
+    EXPECT_NEAR(e.mape, 10.41085640, 1e-7, "mape decimal");
+
+    /* Luminance L = 0.2126 r + 0.7152 g + 0.0722 b:
+     *   L(R0) = 0.2126 + 0.1444 = 0.357       L(I0) = 0.2126 + 0.3576 + 0.0722 = 0.6424
+     *   L(R1) = 0.1063 + 0.7152 + 0.0361 = 0.8576   L(I1) = 0.1063 + 0.7152 + 0.1083 = 0.9298
+     * differences 0.2854 and 0.0722.
+     * SMAPE = 100 * (0.2854 / (0.6424 + 0.357 + 1e-4) + 0.0722 / (0.9298 + 0.8576 + 1e-4)) / 2
+     *       = 100 * (0.2855427714 + 0.0403916084) / 2 = 16.29671899. */
+    double smape = 100.0 * (0.2854 / 0.9995 + 0.0722 / 1.7875) / 2.0;
+    EXPECT_NEAR(e.smape, smape, 1e-9, "smape");
+    EXPECT_NEAR(e.smape, 16.29671899, 1e-6, "smape decimal");
+
+    /* luma RMSE = sqrt((0.2854^2 + 0.0722^2) / 2) = sqrt((0.08145316 + 0.00521284) / 2)
+     *           = sqrt(0.043333) = 0.2081658. */
+    EXPECT_NEAR(e.luma_rmse, 0.20816580, 1e-7, "luma_rmse");
+}
+
+static void test_mask(void)
+{
+    struct restir_error e;
+    const unsigned char only_second[2] = {0, 7};
+    EXPECT(restir_error_compute(img2, ref2, 2, only_second, &e) == 0, "masked compute failed");
+    /* Pixel 1 only: relMSE = (1 / 0.251) / 3 = 1.3280212483. */
+    EXPECT_NEAR(e.relmse, 1.0 / 0.251 / 3.0, 1e-12, "masked relmse");
+    /* mean(R) over the selected pixel = 2/3, offset 1/150: MAPE = (1 / (0.5 + 1/150)) / 3
+     * = (150/76) / 3 = 0.6578947368. */
+    EXPECT_NEAR(e.mape, 150.0 / 76.0 / 3.0, 1e-12, "masked mape");
+    /* SMAPE = 100 * 0.0722 / 1.7875 = 4.039160839; luma RMSE = 0.0722. */
+    EXPECT_NEAR(e.smape, 100.0 * 0.0722 / 1.7875, 1e-9, "masked smape");
+    EXPECT_NEAR(e.luma_rmse, 0.0722, 1e-7, "masked luma_rmse");
+
+    const unsigned char none[2] = {0, 0};
+    memset(&e, 0, sizeof e);
+    EXPECT(restir_error_compute(img2, ref2, 2, none, &e) == -1, "empty mask accepted");
+    EXPECT(restir_error_compute(img2, ref2, 0, NULL, &e) == -1, "zero pixels accepted");
+}
+
+static void test_identical(void)
+{
+    struct restir_error e;
+    EXPECT(restir_error_compute(ref2, ref2, 2, NULL, &e) == 0, "compute failed");
+    EXPECT(e.relmse == 0.0 && e.mape == 0.0 && e.smape == 0.0 && e.luma_rmse == 0.0,
+           "identical: %g %g %g %g", e.relmse, e.mape, e.smape, e.luma_rmse);
+
+    /* An all-black reference matched exactly: 0, not NaN, although MAPE's denominator is 0. */
+    const float black[9] = {0};
+    EXPECT(restir_error_compute(black, black, 3, NULL, &e) == 0, "compute failed");
+    EXPECT(e.relmse == 0.0 && e.mape == 0.0 && e.smape == 0.0 && e.luma_rmse == 0.0,
+           "black identical: %g %g %g %g", e.relmse, e.mape, e.smape, e.luma_rmse);
+}
+
+static void test_help(void)
+{
+    const char *h = restir_metrics_help();
+    EXPECT(h && strstr(h, "relMSE") && strstr(h, "MAPE") && strstr(h, "SMAPE") &&
+               strstr(h, "RMSE") && strstr(h, "0.7152"),
+           "help text incomplete");
+}
+
+int main(void)
+{
+    test_two_pixels();
+    test_mask();
+    test_identical();
+    test_help();
+    return test_finish();
+}
