@@ -2,8 +2,12 @@
  * sampling, temporal and spatial reuse and shading. Must never trace rays. */
 #include "di_sample.h"
 
-vec3 di_unshadowed(const struct shading_point *sp, const struct di_sample *y)
+#include <stddef.h>
+
+vec3 di_unshadowed_pdf(const struct shading_point *sp, const struct di_sample *y, float *bsdf_pdf_area)
 {
+    if (bsdf_pdf_area)
+        *bsdf_pdf_area = 0.0f;
     if (!sp->valid || y->tri < 0)
         return v3s(0.0f);
     vec3 to = v3_sub(y->p, sp->p);
@@ -14,8 +18,17 @@ vec3 di_unshadowed(const struct shading_point *sp, const struct di_sample *y)
     float cos_x = v3_dot(sp->n, wi), cos_y = -v3_dot(y->n, wi);
     if (cos_x <= 0.0f || cos_y <= 0.0f || v3_dot(sp->ng, wi) <= 0.0f)
         return v3s(0.0f);
-    vec3 f = bsdf_eval(&sp->bsdf, sp->n, sp->wo, wi);
-    return v3_scale(v3_mul(y->Le, f), cos_x * cos_y / d2);
+    float pdf_sa;
+    vec3 f = bsdf_frame_eval(&sp->bf, wi, bsdf_pdf_area ? &pdf_sa : NULL);
+    float g = cos_y / d2; /* solid angle to area at y */
+    if (bsdf_pdf_area)
+        *bsdf_pdf_area = pdf_sa * g;
+    return v3_scale(v3_mul(y->Le, f), cos_x * g);
+}
+
+vec3 di_unshadowed(const struct shading_point *sp, const struct di_sample *y)
+{
+    return di_unshadowed_pdf(sp, y, NULL);
 }
 
 float di_target(const struct shading_point *sp, const struct di_sample *y)

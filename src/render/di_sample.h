@@ -33,6 +33,9 @@ static inline void di_reservoir_clear(struct di_reservoir *r, float c)
 /* Unshadowed contribution Le(y) f_r(x, wo, wi) cos_x cos_y / |x - y|^2 of light point y at the
  * shading point; zero when y is behind x's surface or x behind y's emitting side. */
 vec3 di_unshadowed(const struct shading_point *sp, const struct di_sample *y);
+/* di_unshadowed, and the area density with which BSDF sampling at sp produces y (solid-angle
+ * pdf times cos_y / d^2, no visibility term), 0 where the contribution is 0. */
+vec3 di_unshadowed_pdf(const struct shading_point *sp, const struct di_sample *y, float *bsdf_pdf_area);
 /* Target function p_hat(x, y) = luminance of di_unshadowed (001 Sec. 1). */
 float di_target(const struct shading_point *sp, const struct di_sample *y);
 

@@ -105,5 +105,7 @@ void gbuffer_shading_point(const struct gbuffer *g, const struct scene *s, int i
     sp->n = g->normal[i];
     sp->ng = g->geo_normal[i];
     sp->wo = v3_normalize(v3_sub(g->camera_position, g->position[i]));
-    bsdf_from_material(&s->materials[g->material[i]], &sp->bsdf);
+    struct bsdf b;
+    bsdf_from_material(&s->materials[g->material[i]], &b);
+    bsdf_frame_init(&sp->bf, &b, sp->n, sp->wo);
 }

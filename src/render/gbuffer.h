@@ -39,7 +39,7 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
 /* The surface at pixel i as a shading point: position, normal, outgoing direction, BSDF. */
 struct shading_point {
     vec3 p, n, ng, wo;
-    struct bsdf bsdf;
+    struct bsdf_frame bf; /* the BSDF prepared for wo */
     int valid;
 };
 

@@ -23,25 +23,11 @@ static void sample_from_light(const struct light_sample *ls, struct di_sample *y
     y->Le = ls->Le;
 }
 
-/* Area density with which the BSDF strategy produces light point y from sp: the solid-angle
- * BSDF pdf times cos_y / d^2. The BSDF strategy traces the emitters-only BVH and yields every
- * emitter point along the ray, so this density carries no visibility term: both strategies are
+/* Every emitter point along the BSDF ray is a candidate (the BSDF strategy traces the
+ * emitters-only BVH), so its area density carries no visibility term: both strategies are
  * unshadowed, and the MIS weights below sum to one wherever p_hat > 0. This keeps W a valid
- * unbiased contribution weight on p_hat's whole support, which spatial reuse relies on. */
-static float bsdf_pdf_area(const struct shading_point *sp, const struct di_sample *y)
-{
-    vec3 to = v3_sub(y->p, sp->p);
-    float d2 = v3_length2(to);
-    if (!(d2 > 0.0f))
-        return 0.0f;
-    vec3 wi = v3_scale(to, 1.0f / sqrtf(d2));
-    float cos_y = -v3_dot(y->n, wi);
-    if (cos_y <= 0.0f)
-        return 0.0f;
-    return bsdf_pdf(&sp->bsdf, sp->n, sp->wo, wi) * cos_y / d2;
-}
-
-/* RIS weight of a candidate under the multi-strategy balance heuristic with candidate counts:
+ * unbiased contribution weight on p_hat's whole support, which spatial reuse relies on.
+ * RIS weight of a candidate under the multi-strategy balance heuristic with candidate counts:
  * w = p_hat(y) / (N_light p_light(y) + N_bsdf p_bsdf(y)); W = sum w / p_hat(Y) is then unbiased. */
 static float initial_weight(float target, int n_light, float p_light, int n_bsdf, float p_bsdf)
 {
@@ -72,17 +58,18 @@ static void initial_pixel(const struct scene *s, const struct render_params *p, 
             continue;
         struct di_sample y;
         sample_from_light(&ls, &y);
-        float target = di_target(sp, &y);
+        float p_bsdf;
+        float target = v3_luminance(di_unshadowed_pdf(sp, &y, &p_bsdf));
         if (target <= 0.0f)
             continue;
-        float w = initial_weight(target, nl, ls.pdf_area, nb, nb ? bsdf_pdf_area(sp, &y) : 0.0f);
+        float w = initial_weight(target, nl, ls.pdf_area, nb, p_bsdf);
         offer_candidate(&wrs, r, &y, target, w, rng);
     }
     for (int k = 0; k < nb; k++) {
         vec3 wi, f;
         float pdf;
         float u0 = pcg32_float(rng), u1 = pcg32_float(rng), u2 = pcg32_float(rng);
-        if (!bsdf_sample(&sp->bsdf, sp->n, sp->wo, u0, u1, u2, &wi, &pdf, &f) || v3_dot(wi, sp->ng) <= 0.0f)
+        if (!bsdf_sample(&sp->bf.b, sp->n, sp->wo, u0, u1, u2, &wi, &pdf, &f) || v3_dot(wi, sp->ng) <= 0.0f)
             continue;
         /* Every emitter point along the ray is a candidate of this strategy (see bsdf_pdf_area). */
         vec3 o = scene_offset_point(sp->p, sp->ng, wi);
@@ -97,10 +84,11 @@ static void initial_pixel(const struct scene *s, const struct render_params *p, 
             lights_point(s, h.tri, h.b1, h.b2, &ls);
             struct di_sample y;
             sample_from_light(&ls, &y);
-            float target = di_target(sp, &y);
+            float p_bsdf;
+            float target = v3_luminance(di_unshadowed_pdf(sp, &y, &p_bsdf));
             if (target <= 0.0f)
                 continue;
-            float w = initial_weight(target, nl, nl ? ls.pdf_area : 0.0f, nb, bsdf_pdf_area(sp, &y));
+            float w = initial_weight(target, nl, nl ? ls.pdf_area : 0.0f, nb, p_bsdf);
             offer_candidate(&wrs, r, &y, target, w, rng);
         }
         (*rays)++; /* the final ray that left the emitters */

@@ -188,6 +188,18 @@ static int build_emitters(struct scene *s, char *msg)
                  s->name);
         return -1;
     }
+    s->emitters = xmalloc(sizeof(*s->emitters) * (size_t)s->num_emitters);
+    for (int e = 0; e < s->num_emitters; e++) {
+        int t = s->emitter_tri[e];
+        struct emitter *em = &s->emitters[e];
+        em->v0 = s->verts[s->indices[3 * t]];
+        em->e1 = v3_sub(s->verts[s->indices[3 * t + 1]], em->v0);
+        em->e2 = v3_sub(s->verts[s->indices[3 * t + 2]], em->v0);
+        em->n = s->tri_normal[t];
+        em->Le = s->materials[s->tri_material[t]].emission;
+        em->pdf_area = s->emitter_table.pmf[e] / s->tri_area[t];
+        em->tri = t;
+    }
     return 0;
 }
 
@@ -223,6 +235,7 @@ void scene_destroy(struct scene *s)
     free(s->tri_area);
     free(s->tri_emitter);
     free(s->emitter_tri);
+    free(s->emitters);
     free(s->materials);
     free(s->camera_path.keys);
     if (s->num_emitters > 0)

@@ -37,6 +37,15 @@ struct camera_path {
 
 struct scene_rt; /* Embree back end, opaque (scene_rt.c) */
 
+/* What sampling a point on an emissive triangle needs, in one cache-friendly record. */
+struct emitter {
+    vec3 v0, e1, e2; /* p = v0 + b1 e1 + b2 e2 */
+    vec3 n;          /* emitting (geometric) normal */
+    vec3 Le;         /* emitted radiance */
+    float pdf_area;  /* P(choose this emitter) / area */
+    int tri;
+};
+
 struct scene {
     char name[64];
     int num_verts;
@@ -55,6 +64,7 @@ struct scene {
     /* Emitters: emissive triangles, chosen proportionally to power (alias table). */
     int num_emitters;
     int *emitter_tri;
+    struct emitter *emitters; /* compact copy of what light sampling reads, per emitter */
     struct alias_table emitter_table;
 
     struct camera camera;           /* default static camera */

@@ -204,6 +204,58 @@ int bsdf_sample(const struct bsdf *b, vec3 n, vec3 wo, float u0, float u1, float
     return 1;
 }
 
+void bsdf_frame_init(struct bsdf_frame *bf, const struct bsdf *b, vec3 n, vec3 wo)
+{
+    bf->b = *b;
+    bf->fr = frame_from_normal(n);
+    bf->wo_local = frame_to_local(&bf->fr, wo);
+    bf->valid = bf->wo_local.z > 0.0f;
+    float cos_o = fmaxf(bf->wo_local.z, 1e-12f);
+    bf->lambda_o = b->p_spec > 0.0f ? ggx_lambda(bf->wo_local, b->alpha) : 0.0f;
+    /* The factors of eval_local and pdf_local that depend on wo only. */
+    float coupling = 1.0f;
+    if (b->p_spec > 0.0f) {
+        const float f0 = DIELECTRIC_F0;
+        coupling = (1.0f - schlick_scalar(f0, cos_o)) / (1.0f - (f0 + (1.0f - f0) / 21.0f));
+    }
+    bf->diffuse_scale = coupling * RESTIR_INV_PI;
+    bf->spec_pdf_scale = b->p_spec / ((1.0f + bf->lambda_o) * 4.0f * cos_o);
+}
+
+/* eval_local and pdf_local fused: the half vector, D and the Fresnel term are computed once. */
+vec3 bsdf_frame_eval(const struct bsdf_frame *bf, vec3 wi, float *pdf)
+{
+    const struct bsdf *b = &bf->b;
+    vec3 li = frame_to_local(&bf->fr, wi);
+    vec3 lo = bf->wo_local;
+    if (!bf->valid || li.z <= 0.0f) {
+        if (pdf)
+            *pdf = 0.0f;
+        return v3s(0.0f);
+    }
+    vec3 f = v3s(0.0f);
+    float p = 0.0f;
+    if (b->p_spec < 1.0f) {
+        float scale = bf->diffuse_scale;
+        if (b->p_spec > 0.0f)
+            scale *= 1.0f - schlick_scalar(DIELECTRIC_F0, li.z);
+        f = v3_scale(b->diffuse, scale);
+        p = (1.0f - b->p_spec) * li.z * RESTIR_INV_PI;
+    }
+    if (b->p_spec > 0.0f) {
+        vec3 h = v3_normalize(v3_add(lo, li));
+        float d = ggx_d(h, b->alpha);
+        vec3 F = fresnel_schlick(b->f0, v3_dot(li, h));
+        float g2 = 1.0f / (1.0f + bf->lambda_o + ggx_lambda(li, b->alpha));
+        f = v3_add(f, v3_scale(F, d * g2 / (4.0f * lo.z * li.z)));
+        if (v3_dot(lo, h) > 0.0f)
+            p += bf->spec_pdf_scale * d;
+    }
+    if (pdf)
+        *pdf = p;
+    return f;
+}
+
 /* Heuristic for ReSTIR PT's hybrid shift (Lin et al. 2022, "Generalized Resampled Importance
  * Sampling": reconnect only at vertices that are rough enough). Only a purely specular-sampled
  * material (metal, or black diffuse, p_spec = 1) is judged by its GGX alpha; anything with a

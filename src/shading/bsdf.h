@@ -28,6 +28,22 @@ float bsdf_pdf(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi);
  * surface); otherwise 1 with *wi, *pdf (solid angle, equal to bsdf_pdf) and *f = bsdf_eval. */
 int bsdf_sample(const struct bsdf *b, vec3 n, vec3 wo, float u0, float u1, float u2, vec3 *wi,
                 float *pdf, vec3 *f);
+/* A BSDF prepared for one shading point and outgoing direction: the local frame and every term
+ * that depends on wo only, so that evaluating many wi (RIS candidates, reuse) is cheap. */
+struct bsdf_frame {
+    struct bsdf b;
+    frame fr;
+    vec3 wo_local;
+    float lambda_o;      /* Smith Lambda(wo) */
+    float diffuse_scale; /* Kelemen coupling factor (1 - F(cos_o)) / (1 - F_avg) times 1/pi */
+    float spec_pdf_scale;/* p_spec G1(wo) / (4 cos_o) */
+    int valid;           /* wo above the surface */
+};
+
+void bsdf_frame_init(struct bsdf_frame *bf, const struct bsdf *b, vec3 n, vec3 wo);
+/* f_r(wo, wi) as bsdf_eval, and when pdf != NULL the solid-angle density of wi as bsdf_pdf. */
+vec3 bsdf_frame_eval(const struct bsdf_frame *bf, vec3 wi, float *pdf);
+
 /* Roughness measure used by path-space heuristics (GGX alpha; 1 for pure diffuse). */
 float bsdf_roughness(const struct bsdf *b);
 

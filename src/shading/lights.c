@@ -30,19 +30,33 @@ float lights_pdf_area(const struct scene *s, int tri)
     return s->emitter_table.pmf[e] / area;
 }
 
-void lights_point(const struct scene *s, int tri, float b1, float b2, struct light_sample *ls)
+static void emitter_point(const struct emitter *em, float b1, float b2, struct light_sample *ls)
 {
-    vec3 a = tri_vertex(s, tri, 0);
-    vec3 b = tri_vertex(s, tri, 1);
-    vec3 c = tri_vertex(s, tri, 2);
-    float b0 = 1.0f - b1 - b2;
-    ls->tri = tri;
+    ls->tri = em->tri;
     ls->b1 = b1;
     ls->b2 = b2;
-    ls->p = v3_add(v3_add(v3_scale(a, b0), v3_scale(b, b1)), v3_scale(c, b2));
-    ls->n = s->tri_normal[tri];
-    ls->Le = tri_emission(s, tri);
-    ls->pdf_area = lights_pdf_area(s, tri);
+    ls->p = v3_add(em->v0, v3_add(v3_scale(em->e1, b1), v3_scale(em->e2, b2)));
+    ls->n = em->n;
+    ls->Le = em->Le;
+    ls->pdf_area = em->pdf_area;
+}
+
+void lights_point(const struct scene *s, int tri, float b1, float b2, struct light_sample *ls)
+{
+    int e = (tri >= 0 && tri < s->num_tris) ? s->tri_emitter[tri] : -1;
+    if (e < 0) {
+        /* Not an emitter: a point with zero radiance and zero density. */
+        vec3 a = tri_vertex(s, tri, 0), b = tri_vertex(s, tri, 1), c = tri_vertex(s, tri, 2);
+        ls->tri = tri;
+        ls->b1 = b1;
+        ls->b2 = b2;
+        ls->p = v3_add(a, v3_add(v3_scale(v3_sub(b, a), b1), v3_scale(v3_sub(c, a), b2)));
+        ls->n = s->tri_normal[tri];
+        ls->Le = tri_emission(s, tri);
+        ls->pdf_area = 0.0f;
+        return;
+    }
+    emitter_point(&s->emitters[e], b1, b2, ls);
 }
 
 int lights_sample(const struct scene *s, float u_select, float u1, float u2, struct light_sample *ls)
@@ -50,10 +64,9 @@ int lights_sample(const struct scene *s, float u_select, float u1, float u2, str
     if (s->num_emitters < 1)
         return 0;
     int e = alias_table_sample(&s->emitter_table, u_select);
-    int tri = s->emitter_tri[e];
     float b1, b2;
     warp_uniform_triangle(u1, u2, &b1, &b2);
-    lights_point(s, tri, b1, b2, ls);
+    emitter_point(&s->emitters[e], b1, b2, ls);
     return ls->pdf_area > 0.0f;
 }
 
