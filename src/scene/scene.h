@@ -4,6 +4,7 @@
 #ifndef RESTIR_SCENE_SCENE_H
 #define RESTIR_SCENE_SCENE_H
 
+#include <stddef.h>
 #include <stdint.h>
 #include "../core/sampling.h"
 #include "../core/vec3.h"
@@ -125,6 +126,21 @@ int scene_occluded(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax
 vec3 scene_offset_point(vec3 p, vec3 n, vec3 toward);
 /* Visibility between two surface points with normals, offsetting both ends. */
 int scene_visible(const struct scene *s, vec3 p0, vec3 n0, vec3 p1, vec3 n1);
+
+/* Ray logging for benchmarks: while a log is active every query is recorded (per thread, no
+ * locks), so a frame's rays can be replayed through Embree alone to separate ray-tracing time
+ * from shading time. */
+enum ray_kind { RAY_CLOSEST = 0, RAY_OCCLUDED, RAY_EMITTERS };
+struct ray_record {
+    vec3 o, d;
+    float tmin, tmax;
+    int kind;
+};
+void scene_ray_log_begin(const struct scene *s);
+/* Stops logging and returns all recorded rays (malloc'ed, caller frees) and their count. */
+struct ray_record *scene_ray_log_end(const struct scene *s, size_t *count);
+/* Traces the recorded rays again in parallel; returns the elapsed milliseconds. */
+double scene_ray_replay(const struct scene *s, const struct ray_record *rays, size_t count);
 
 /* Built-in scenes (scenes_builtin.c). Returns 0, or -1 with msg naming the unknown scene. */
 int scene_create_builtin(const char *name, struct scene *s, char *msg);

@@ -5,11 +5,23 @@
 #include <embree3/rtcore.h>
 #include <math.h>
 #include <stdio.h>
+#include <omp.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "../core/check.h"
 
+/* Per-thread append-only ray log (benchmarks only). */
+struct ray_log {
+    struct ray_record *rays;
+    size_t count, cap;
+};
+
+#define RAY_LOG_MAX_THREADS 256
+
 struct scene_rt {
+    int logging;
+    struct ray_log logs[RAY_LOG_MAX_THREADS];
     RTCDevice device;
     RTCScene scene;
     RTCScene emitters; /* emissive triangles only (NULL without lights); primID = emitter index */
@@ -82,12 +94,29 @@ void scene_rt_destroy(struct scene *s)
 {
     if (!s->rt)
         return;
+    for (int t = 0; t < RAY_LOG_MAX_THREADS; t++)
+        free(s->rt->logs[t].rays);
     rtcReleaseScene(s->rt->scene);
     if (s->rt->emitters)
         rtcReleaseScene(s->rt->emitters);
     rtcReleaseDevice(s->rt->device);
     free(s->rt);
     s->rt = NULL;
+}
+
+static void log_ray(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax, int kind)
+{
+    int t = omp_get_thread_num();
+    if (t >= RAY_LOG_MAX_THREADS)
+        return;
+    struct ray_log *lg = &s->rt->logs[t];
+    if (lg->count == lg->cap) {
+        lg->cap = lg->cap ? 2 * lg->cap : 4096;
+        struct ray_record *grown = realloc(lg->rays, lg->cap * sizeof(*lg->rays));
+        RESTIR_CHECK(grown != NULL);
+        lg->rays = grown;
+    }
+    lg->rays[lg->count++] = (struct ray_record){o, d, tmin, tmax, kind};
 }
 
 /* Closest hit in rtc_scene; returns the primitive id or -1, with the distance and barycentrics. */
@@ -139,6 +168,8 @@ static void fill_hit(const struct scene *s, int tri, vec3 o, vec3 d, float t, fl
 int scene_intersect(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax, struct surface_hit *hit)
 {
     float t, u, v;
+    if (s->rt->logging)
+        log_ray(s, o, d, tmin, tmax, RAY_CLOSEST);
     int tri = intersect_closest(s->rt->scene, o, d, tmin, tmax, &t, &u, &v);
     if (tri < 0)
         return 0;
@@ -152,6 +183,8 @@ int scene_intersect_emitters(const struct scene *s, vec3 o, vec3 d, float tmin, 
     if (!s->rt->emitters)
         return 0;
     float t, u, v;
+    if (s->rt->logging)
+        log_ray(s, o, d, tmin, tmax, RAY_EMITTERS);
     int e = intersect_closest(s->rt->emitters, o, d, tmin, tmax, &t, &u, &v);
     if (e < 0)
         return 0;
@@ -159,7 +192,7 @@ int scene_intersect_emitters(const struct scene *s, vec3 o, vec3 d, float tmin, 
     return 1;
 }
 
-int scene_occluded(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax)
+static int occluded(RTCScene rtc_scene, vec3 o, vec3 d, float tmin, float tmax)
 {
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -176,8 +209,58 @@ int scene_occluded(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax
     ray.mask = 0xffffffffu;
     ray.id = 0;
     ray.flags = 0;
-    rtcOccluded1(s->rt->scene, &ctx, &ray);
+    rtcOccluded1(rtc_scene, &ctx, &ray);
     return ray.tfar == -INFINITY;
+}
+
+int scene_occluded(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax)
+{
+    if (s->rt->logging)
+        log_ray(s, o, d, tmin, tmax, RAY_OCCLUDED);
+    return occluded(s->rt->scene, o, d, tmin, tmax);
+}
+
+void scene_ray_log_begin(const struct scene *s)
+{
+    for (int t = 0; t < RAY_LOG_MAX_THREADS; t++)
+        s->rt->logs[t].count = 0;
+    s->rt->logging = 1;
+}
+
+struct ray_record *scene_ray_log_end(const struct scene *s, size_t *count)
+{
+    s->rt->logging = 0;
+    size_t n = 0;
+    for (int t = 0; t < RAY_LOG_MAX_THREADS; t++)
+        n += s->rt->logs[t].count;
+    struct ray_record *all = xmalloc(sizeof(*all) * (n ? n : 1));
+    size_t k = 0;
+    for (int t = 0; t < RAY_LOG_MAX_THREADS; t++) {
+        struct ray_log *lg = &s->rt->logs[t];
+        if (lg->count)
+            memcpy(all + k, lg->rays, lg->count * sizeof(*all));
+        k += lg->count;
+    }
+    *count = n;
+    return all;
+}
+
+double scene_ray_replay(const struct scene *s, const struct ray_record *rays, size_t count)
+{
+    long long hits = 0;
+    double t0 = omp_get_wtime();
+#pragma omp parallel for schedule(dynamic, 4096) reduction(+ : hits)
+    for (long long i = 0; i < (long long)count; i++) {
+        const struct ray_record *r = &rays[i];
+        float t, u, v;
+        if (r->kind == RAY_OCCLUDED)
+            hits += occluded(s->rt->scene, r->o, r->d, r->tmin, r->tmax);
+        else
+            hits += intersect_closest(r->kind == RAY_EMITTERS ? s->rt->emitters : s->rt->scene, r->o, r->d,
+                                      r->tmin, r->tmax, &t, &u, &v) >= 0;
+    }
+    (void)hits;
+    return 1e3 * (omp_get_wtime() - t0);
 }
 
 /* Offset scale for self-intersection: relative to the coordinates' magnitude, so it tracks float

@@ -1,0 +1,289 @@
+/* bench_main.c: `restir_bench`: per-pass timings with rays per second and the Embree-only replay
+ * ratio, equal-time error of pt against restir-di, and the temporal-reuse experiment of 001
+ * Sec. 6. Prints Markdown tables for docs/BENCHMARKS.md. Must never be run by the tests. */
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/check.h"
+#include "render/pt.h"
+#include "render/renderer.h"
+#include "restir/metrics.h"
+
+struct bench_config {
+    const char *scene;
+    int width, height;
+    int frames;   /* frames per timing run; error measured at the last */
+    int ref_spp;
+    int temporal_frames;
+};
+
+static struct scene load_scene(const char *name)
+{
+    struct scene s;
+    char msg[RESTIR_MSG_LEN];
+    if (scene_create_builtin(name, &s, msg) != 0) {
+        fprintf(stderr, "restir_bench: %s\n", msg);
+        exit(1);
+    }
+    return s;
+}
+
+static struct render_params base_params(const struct bench_config *c)
+{
+    struct render_params p;
+    render_params_defaults(&p);
+    p.width = c->width;
+    p.height = c->height;
+    return p;
+}
+
+static float *reference(const struct scene *s, const struct render_params *p, float frame, int use_path, int spp)
+{
+    struct render_params rp = *p;
+    renderer_reference_params(METHOD_RESTIR_DI, &rp);
+    rp.seed = 0xbe4c4ull;
+    struct camera cam = scene_camera_at(s, use_path, frame);
+    struct camera_view view;
+    camera_view_init(&view, &cam, rp.width, rp.height);
+    size_t n = 3 * (size_t)rp.width * (size_t)rp.height;
+    float *sum = xcalloc(n, sizeof(float)), *chunk = xcalloc(n, sizeof(float));
+    for (int done = 0, c = 0; done < spp; c++) {
+        int k = spp - done < 32 ? spp - done : 32;
+        pt_pass(s, &view, &rp, 2000000 + c, k, chunk);
+        for (size_t i = 0; i < n; i++)
+            sum[i] += chunk[i] * (float)k / (float)spp;
+        done += k;
+    }
+    free(chunk);
+    return sum;
+}
+
+/* Per-pass timing over frames 1..N-1 (frame 0 has no history), rays per second, and the last
+ * frame's rays replayed through Embree alone. */
+static void bench_passes(const struct bench_config *c)
+{
+    struct scene s = load_scene(c->scene);
+    printf("\n### Per-pass time, %s %dx%d, static camera, mean of frames 1-%d (%d threads)\n\n", c->scene,
+           c->width, c->height, c->frames - 1, omp_get_max_threads());
+    printf("| method | gbuffer | initial | temporal | spatial | shade | pt | frame ms | Mrays/s | rays/px | "
+           "Embree-only ms | frame / Embree-only |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    const enum method_id methods[] = {METHOD_RESTIR_DI, METHOD_RIS_DI, METHOD_PT};
+    for (int k = 0; k < 3; k++) {
+        struct render_params p = base_params(c);
+        if (methods[k] == METHOD_PT)
+            renderer_reference_params(METHOD_RESTIR_DI, &p); /* pt over the DI integrand, 1 spp */
+        struct renderer r;
+        renderer_init(&r, &s, methods[k], &p);
+        double ms[PASS_COUNT] = {0}, total = 0.0, rays = 0.0;
+        struct frame_stats st;
+        struct camera cam = scene_camera_at(&s, 0, 0.0f);
+        for (int f = 0; f < c->frames; f++) {
+            if (f == c->frames - 1)
+                scene_ray_log_begin(&s);
+            renderer_render(&r, f, &cam, &st);
+            if (f == 0)
+                continue;
+            for (int q = 0; q < PASS_COUNT; q++)
+                ms[q] += st.ms[q];
+            total += st.ms_total;
+            rays += (double)st.rays;
+        }
+        size_t nrays;
+        struct ray_record *log = scene_ray_log_end(&s, &nrays);
+        double replay = scene_ray_replay(&s, log, nrays);
+        double replay2 = scene_ray_replay(&s, log, nrays);
+        replay = replay2 < replay ? replay2 : replay;
+        free(log);
+        int n = c->frames - 1;
+        printf("| %s |", method_table[methods[k]].name);
+        for (int q = 0; q < PASS_COUNT; q++)
+            printf(" %.2f |", ms[q] / n);
+        printf(" %.2f | %.2f | %.2f | %.2f | %.2f |\n", total / n, rays / (total * 1e3),
+               (double)nrays / ((double)c->width * c->height), replay, st.ms_total / replay);
+        renderer_fini(&r);
+    }
+    scene_destroy(&s);
+}
+
+/* Equal time: restir-di's mean frame time buys pt as many paths per pixel as fit. */
+static void bench_equal_time(const struct bench_config *c)
+{
+    struct scene s = load_scene(c->scene);
+    struct render_params p = base_params(c);
+    float *ref = reference(&s, &p, 0.0f, 0, c->ref_spp);
+    size_t npix = (size_t)c->width * c->height;
+    struct camera cam = scene_camera_at(&s, 0, 0.0f);
+    struct frame_stats st;
+
+    struct renderer r;
+    renderer_init(&r, &s, METHOD_RESTIR_DI, &p);
+    double total = 0.0;
+    for (int f = 0; f < c->frames; f++) {
+        renderer_render(&r, f, &cam, &st);
+        total += st.ms_total;
+    }
+    double budget = total / c->frames;
+    struct restir_error e_di;
+    restir_error_compute(r.image, ref, npix, NULL, &e_di);
+    renderer_fini(&r);
+
+    /* pt cost per path: time 1 and 4 spp (the difference removes per-frame overhead). */
+    struct render_params q = p;
+    renderer_reference_params(METHOD_RESTIR_DI, &q);
+    double t[2];
+    for (int k = 0; k < 2; k++) {
+        q.spp = k ? 4 : 1;
+        renderer_init(&r, &s, METHOD_PT, &q);
+        renderer_render(&r, 0, &cam, &st);
+        renderer_render(&r, 0, &cam, &st);
+        t[k] = st.ms_total;
+        renderer_fini(&r);
+    }
+    double per_spp = (t[1] - t[0]) / 3.0 > 0.25 * t[0] ? (t[1] - t[0]) / 3.0 : t[0];
+    q.spp = (int)(budget / per_spp);
+    if (q.spp < 1)
+        q.spp = 1;
+    renderer_init(&r, &s, METHOD_PT, &q);
+    renderer_render(&r, c->frames - 1, &cam, &st);
+    struct restir_error e_pt;
+    restir_error_compute(r.image, ref, npix, NULL, &e_pt);
+    double pt_ms = st.ms_total;
+    renderer_fini(&r);
+
+    printf("\n### Equal time, %s %dx%d, static camera, error at frame %d (reference: %d spp)\n\n", c->scene,
+           c->width, c->height, c->frames - 1, c->ref_spp);
+    printf("| method | ms/frame | spp | relMSE | MAPE | SMAPE |\n|---|---|---|---|---|---|\n");
+    printf("| restir-di | %.1f | 1 | %.5g | %.4f | %.2f |\n", budget, e_di.relmse, e_di.mape, e_di.smape);
+    printf("| pt | %.1f | %d | %.5g | %.4f | %.2f |\n", pt_ms, q.spp, e_pt.relmse, e_pt.mape, e_pt.smape);
+    printf("\nrelMSE(pt) / relMSE(restir-di) = **%.2f**; MAPE ratio %.2f; SMAPE ratio %.2f\n",
+           e_pt.relmse / e_di.relmse, e_pt.mape / e_di.mape, e_pt.smape / e_di.smape);
+    free(ref);
+    scene_destroy(&s);
+}
+
+static double luma_rmse(const float *a, const float *b, size_t npix)
+{
+    double sum = 0.0;
+    for (size_t i = 0; i < npix; i++) {
+        double d = v3_luminance(v3(a[3 * i], a[3 * i + 1], a[3 * i + 2])) -
+                   v3_luminance(v3(b[3 * i], b[3 * i + 1], b[3 * i + 2]));
+        sum += d * d;
+    }
+    return sqrt(sum / (double)npix);
+}
+
+/* 001 Sec. 6: per-frame accuracy (static and moving camera), adjacent-frame stability and the
+ * accuracy of the progressive average, with and without temporal reuse (spatial reuse off, as in
+ * the note), for mis=1/M (the note's biased MVP) and mis=pairwise. */
+static void bench_temporal(const struct bench_config *c)
+{
+    struct scene s = load_scene(c->scene);
+    struct render_params p = base_params(c);
+    size_t npix = (size_t)c->width * c->height, n3 = 3 * npix;
+    const int nf = c->temporal_frames, moving_frames = 16;
+    float *ref_static = reference(&s, &p, 0.0f, 0, c->ref_spp);
+    float **ref_moving = xmalloc(sizeof(float *) * moving_frames);
+    for (int f = 0; f < moving_frames; f++)
+        ref_moving[f] = reference(&s, &p, (float)f, 1, c->ref_spp / 4);
+    printf("\n### Temporal reuse (001 Sec. 6), %s %dx%d, spatial reuse off; static: %d frames, moving: %d "
+           "frames of the camera path; references %d / %d spp\n\n",
+           c->scene, c->width, c->height, nf, moving_frames, c->ref_spp, c->ref_spp / 4);
+    printf("| mis | temporal | static per-frame luma RMSE | adjacent-frame luma RMSE | moving per-frame luma RMSE | "
+           "accumulated RGB RMSE | accumulated luma ratio |\n|---|---|---|---|---|---|---|\n");
+    const char *mis_names[2] = {"1/M", "pairwise"};
+    float *prev = xcalloc(n3, sizeof(float)), *acc = xcalloc(n3, sizeof(float));
+    for (int m = 0; m < 2; m++) {
+        for (int temporal = 0; temporal < 2; temporal++) {
+            struct render_params q = p;
+            char msg[RESTIR_MSG_LEN];
+            char set[32];
+            snprintf(set, sizeof(set), "mis=%s", mis_names[m]);
+            render_params_set(&q, set, msg);
+            q.spatial = 0;
+            q.temporal = temporal;
+            struct renderer r;
+            struct frame_stats st;
+            renderer_init(&r, &s, METHOD_RESTIR_DI, &q);
+            double per_frame = 0.0, adjacent = 0.0;
+            memset(acc, 0, n3 * sizeof(float));
+            struct camera cam = scene_camera_at(&s, 0, 0.0f);
+            for (int f = 0; f < nf; f++) {
+                renderer_render(&r, f, &cam, &st);
+                if (f > 0) {
+                    per_frame += luma_rmse(r.image, ref_static, npix);
+                    adjacent += luma_rmse(r.image, prev, npix);
+                }
+                memcpy(prev, r.image, n3 * sizeof(float));
+                for (size_t i = 0; i < n3; i++)
+                    acc[i] += r.image[i] / (float)nf;
+            }
+            renderer_fini(&r);
+            double rgb = 0.0, lum_acc = 0.0, lum_ref = 0.0;
+            for (size_t i = 0; i < n3; i++)
+                rgb += (double)(acc[i] - ref_static[i]) * (acc[i] - ref_static[i]);
+            for (size_t i = 0; i < npix; i++) {
+                lum_acc += v3_luminance(v3(acc[3 * i], acc[3 * i + 1], acc[3 * i + 2]));
+                lum_ref += v3_luminance(v3(ref_static[3 * i], ref_static[3 * i + 1], ref_static[3 * i + 2]));
+            }
+            q.camera_path = 1;
+            renderer_init(&r, &s, METHOD_RESTIR_DI, &q);
+            double moving = 0.0;
+            for (int f = 0; f < moving_frames; f++) {
+                struct camera mc = scene_camera_at(&s, 1, (float)f);
+                renderer_render(&r, f, &mc, &st);
+                if (f > 0)
+                    moving += luma_rmse(r.image, ref_moving[f], npix);
+            }
+            renderer_fini(&r);
+            printf("| %s | %s | %.5f | %.5f | %.5f | %.6f | %.6f |\n", mis_names[m], temporal ? "on" : "off",
+                   per_frame / (nf - 1), adjacent / (nf - 1), moving / (moving_frames - 1), sqrt(rgb / (double)n3),
+                   lum_acc / lum_ref);
+        }
+    }
+    free(prev);
+    free(acc);
+    for (int f = 0; f < moving_frames; f++)
+        free(ref_moving[f]);
+    free(ref_moving);
+    free(ref_static);
+    scene_destroy(&s);
+}
+
+int main(int argc, char **argv)
+{
+    struct bench_config c = {"many-lights", 640, 360, 17, 1024, 64};
+    int run_passes = 0, run_equal = 0, run_temporal = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "passes"))
+            run_passes = 1;
+        else if (!strcmp(argv[i], "equal-time"))
+            run_equal = 1;
+        else if (!strcmp(argv[i], "temporal"))
+            run_temporal = 1;
+        else if (!strcmp(argv[i], "--quick")) {
+            c.width = 320;
+            c.height = 180;
+            c.ref_spp = 256;
+            c.temporal_frames = 16;
+        } else {
+            fprintf(stderr, "usage: restir_bench [passes] [equal-time] [temporal] [--quick]\n");
+            return 2;
+        }
+    }
+    if (!run_passes && !run_equal && !run_temporal)
+        run_passes = run_equal = run_temporal = 1;
+    if (run_passes)
+        bench_passes(&c);
+    if (run_equal)
+        bench_equal_time(&c);
+    if (run_temporal) {
+        struct bench_config t = c;
+        t.width = c.width / 2;
+        t.height = c.height / 2;
+        bench_temporal(&t);
+    }
+    return 0;
+}

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# bench.sh: runs the benchmarks (per-pass time, rays/s, Embree-only replay ratio, equal-time error,
+# 001's temporal experiment) and prints Markdown for docs/BENCHMARKS.md. Not a test.
+set -euo pipefail
+build=${1:-build}
+echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
+echo "commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+"$build/restir_bench" ${BENCH_ARGS:-}
