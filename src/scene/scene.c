@@ -122,17 +122,18 @@ void scene_add_sphere(struct scene_builder *b, vec3 center, float radius, int se
             vec3 a = SPHERE_POINT(t0, p0), c = SPHERE_POINT(t0, p1);
             vec3 d = SPHERE_POINT(t1, p1), e = SPHERE_POINT(t1, p0);
 #undef SPHERE_POINT
-            /* Outward winding is a, e, d, c; inward reverses it. Poles degenerate to triangles. */
+            /* The tangent along theta crossed with the one along phi points inward, so a, c, d, e
+             * winds outward and a, e, d, c inward. Poles degenerate to triangles. */
             if (inward_facing) {
-                if (i != 0)
-                    scene_add_triangle(b, a, c, d, material, object);
-                if (i != rings - 1)
-                    scene_add_triangle(b, a, d, e, material, object);
-            } else {
                 if (i != 0)
                     scene_add_triangle(b, a, d, c, material, object);
                 if (i != rings - 1)
                     scene_add_triangle(b, a, e, d, material, object);
+            } else {
+                if (i != 0)
+                    scene_add_triangle(b, a, c, d, material, object);
+                if (i != rings - 1)
+                    scene_add_triangle(b, a, d, e, material, object);
             }
         }
     }

@@ -15,6 +15,8 @@ struct material {
     float metallic;  /* 0 dielectric (diffuse + 4% specular), 1 conductor */
     float roughness; /* perceptual roughness; GGX alpha = roughness^2 */
     vec3 emission;   /* emitted radiance, W / (m^2 sr) */
+    int lambert_only; /* 1: no specular layer at all, a pure Lambertian of albedo base_color (what
+                         analytic test scenes need; glTF's KHR_materials_specular factor 0) */
 };
 
 struct camera {

@@ -19,10 +19,10 @@ const char *const scene_builtin_descriptions[] = {
 
 static struct material diffuse(float r, float g, float b)
 {
-    return (struct material){v3(r, g, b), 0.0f, 1.0f, v3s(0.0f)};
+    return (struct material){v3(r, g, b), 0.0f, 1.0f, v3s(0.0f), 0};
 }
 
-static struct material emitter(vec3 e) { return (struct material){v3s(0.0f), 0.0f, 1.0f, e}; }
+static struct material emitter(vec3 e) { return (struct material){v3s(0.0f), 0.0f, 1.0f, e, 0}; }
 
 /* Rectangle centred at c with unit normal n, unit tangent t, half extents hu (along t) and hv. */
 static void add_rect(struct scene_builder *b, vec3 c, vec3 n, vec3 t, float hu, float hv, int mat, int obj)
@@ -62,7 +62,7 @@ static void build_cornell(struct scene_builder *b)
     int white = scene_add_material(b, diffuse(0.73f, 0.73f, 0.73f));
     int red = scene_add_material(b, diffuse(0.65f, 0.05f, 0.05f));
     int green = scene_add_material(b, diffuse(0.12f, 0.45f, 0.15f));
-    int glossy = scene_add_material(b, (struct material){v3(0.95f, 0.64f, 0.54f), 1.0f, 0.25f, v3s(0.0f)});
+    int glossy = scene_add_material(b, (struct material){v3(0.95f, 0.64f, 0.54f), 1.0f, 0.25f, v3s(0.0f), 0});
     int light = scene_add_material(b, emitter(v3(17.0f, 12.0f, 4.0f)));
     int room = scene_new_object(b);
     add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 1, 1, white, room);    /* floor */
@@ -84,7 +84,7 @@ static void build_many_lights(struct scene_builder *b)
     pcg32 r = pcg32_make(7, 11);
     int floor_mat = scene_add_material(b, diffuse(0.6f, 0.6f, 0.6f));
     int box_mat = scene_add_material(b, diffuse(0.7f, 0.68f, 0.62f));
-    int metal = scene_add_material(b, (struct material){v3(0.9f, 0.9f, 0.92f), 1.0f, 0.3f, v3s(0.0f)});
+    int metal = scene_add_material(b, (struct material){v3(0.9f, 0.9f, 0.92f), 1.0f, 0.3f, v3s(0.0f), 0});
     add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 12, 12, floor_mat, scene_new_object(b));
     for (int i = 0; i < 5; i++) {
         for (int j = 0; j < 5; j++) {
@@ -124,7 +124,7 @@ static void build_foliage(struct scene_builder *b)
     int bark = scene_add_material(b, diffuse(0.3f, 0.2f, 0.12f));
     int leaf[3] = {scene_add_material(b, diffuse(0.25f, 0.5f, 0.12f)),
                    scene_add_material(b, diffuse(0.35f, 0.55f, 0.1f)),
-                   scene_add_material(b, (struct material){v3(0.2f, 0.45f, 0.1f), 0.0f, 0.35f, v3s(0.0f)})};
+                   scene_add_material(b, (struct material){v3(0.2f, 0.45f, 0.1f), 0.0f, 0.35f, v3s(0.0f), 0})};
     int sky = scene_add_material(b, emitter(v3(6.0f, 6.0f, 5.5f)));
     int sun = scene_add_material(b, emitter(v3(40.0f, 34.0f, 26.0f)));
     add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 8, 8, ground, scene_new_object(b));
@@ -158,7 +158,7 @@ static void build_foliage(struct scene_builder *b)
 static void build_pillars(struct scene_builder *b)
 {
     int white = scene_add_material(b, diffuse(0.75f, 0.75f, 0.72f));
-    int floor_mat = scene_add_material(b, (struct material){v3(0.5f, 0.5f, 0.55f), 0.0f, 0.3f, v3s(0.0f)});
+    int floor_mat = scene_add_material(b, (struct material){v3(0.5f, 0.5f, 0.55f), 0.0f, 0.3f, v3s(0.0f), 0});
     int stone = scene_add_material(b, diffuse(0.55f, 0.45f, 0.35f));
     int warm = scene_add_material(b, emitter(v3(30.0f, 20.0f, 10.0f)));
     int cool = scene_add_material(b, emitter(v3(8.0f, 14.0f, 30.0f)));
@@ -183,7 +183,8 @@ static void build_pillars(struct scene_builder *b)
 
 static void build_furnace(struct scene_builder *b)
 {
-    int m = scene_add_material(b, (struct material){v3s(0.5f), 0.0f, 1.0f, v3s(0.5f)});
+    /* A pure Lambertian (no specular layer) so that L = Le / (1 - albedo) = 1 exactly. */
+    int m = scene_add_material(b, (struct material){v3s(0.5f), 0.0f, 1.0f, v3s(0.5f), 1});
     scene_add_sphere(b, v3(0, 0, 0), 1.0f, 48, 1, m, scene_new_object(b));
     b->s->camera = (struct camera){v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), 60.0f};
     struct camera_key keys[2] = {{0, {v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), 60.0f}},

@@ -61,6 +61,13 @@ void bsdf_from_material(const struct material *m, struct bsdf *b)
 {
     float metallic = clampf(m->metallic, 0.0f, 1.0f);
     vec3 base = v3(fmaxf(m->base_color.x, 0.0f), fmaxf(m->base_color.y, 0.0f), fmaxf(m->base_color.z, 0.0f));
+    if (m->lambert_only) {
+        b->diffuse = base;
+        b->f0 = v3s(0.0f);
+        b->alpha = 1.0f;
+        b->p_spec = 0.0f; /* no specular lobe: eval, pdf and sample are exactly Lambert */
+        return;
+    }
     b->diffuse = v3_scale(base, 1.0f - metallic);
     b->f0 = v3_lerp(v3s(DIELECTRIC_F0), base, metallic);
     float r = clampf(m->roughness, 0.0f, 1.0f);
@@ -254,6 +261,58 @@ vec3 bsdf_frame_eval(const struct bsdf_frame *bf, vec3 wi, float *pdf)
     if (pdf)
         *pdf = p;
     return f;
+}
+
+void bsdf_frame_eval_batch(const struct bsdf_frame *bf, int n, const float *restrict wx,
+                           const float *restrict wy, const float *restrict wz, float *restrict fr,
+                           float *restrict fg, float *restrict fb, float *restrict pdf)
+{
+    const struct bsdf *b = &bf->b;
+    const frame fr_ = bf->fr;
+    const vec3 lo = bf->wo_local;
+    const float a = b->alpha, a2 = a * a, inv_a2 = 1.0f / a2;
+    const float has_diffuse = b->p_spec < 1.0f ? 1.0f : 0.0f, has_spec = b->p_spec > 0.0f ? 1.0f : 0.0f;
+    /* Diffuse coupling only for mixed materials (see eval_local). */
+    const float couple = b->p_spec > 0.0f ? 1.0f : 0.0f;
+    const float dscale = has_diffuse * bf->diffuse_scale, dpdf = (1.0f - b->p_spec) * RESTIR_INV_PI;
+    const float one_m_f0d = 1.0f - DIELECTRIC_F0;
+    const float valid = bf->valid ? 1.0f : 0.0f;
+    const float inv_4cos_o = 1.0f / (4.0f * fmaxf(lo.z, 1e-12f));
+    const float lambda_o = bf->lambda_o, spec_pdf = has_spec * bf->spec_pdf_scale;
+    /* Locals, not loads through b inside the loop: the stores below could alias them. */
+    const float kdr = b->diffuse.x, kdg = b->diffuse.y, kdb = b->diffuse.z;
+    const float f0r = b->f0.x, f0g = b->f0.y, f0b = b->f0.z;
+    const float tx = fr_.t.x, ty = fr_.t.y, tz = fr_.t.z, bx = fr_.b.x, by = fr_.b.y, bz = fr_.b.z;
+    const float nx = fr_.n.x, ny = fr_.n.y, nz = fr_.n.z, ox = lo.x, oy = lo.y, oz = lo.z;
+    for (int k = 0; k < n; k++) {
+        /* to local frame */
+        float lx = wx[k] * tx + wy[k] * ty + wz[k] * tz;
+        float ly = wx[k] * bx + wy[k] * by + wz[k] * bz;
+        float lz = wx[k] * nx + wy[k] * ny + wz[k] * nz;
+        float above = lz > 0.0f ? valid : 0.0f;
+        float cz = max_f(lz, 1e-12f);
+        /* diffuse with the Kelemen coupling (1 - F(cos_i)) for mixed materials */
+        float m = min_f(max_f(1.0f - cz, 0.0f), 1.0f), m2 = m * m, sw = m2 * m2 * m;
+        float couple_i = 1.0f - couple * (DIELECTRIC_F0 + one_m_f0d * sw);
+        float fd = dscale * couple_i;
+        /* specular: half vector, GGX D, Schlick F at wi.h, height-correlated G2 */
+        float hx = ox + lx, hy = oy + ly, hz = oz + lz;
+        float inv_h = 1.0f / sqrtf(max_f(hx * hx + hy * hy + hz * hz, 1e-30f));
+        hx *= inv_h;
+        hy *= inv_h;
+        hz *= inv_h;
+        float t = (hx * hx + hy * hy) * inv_a2 + hz * hz;
+        float d = hz > 0.0f ? 1.0f / (RESTIR_PI * a2 * t * t) : 0.0f;
+        float cos_d = lx * hx + ly * hy + lz * hz;
+        float mh = min_f(max_f(1.0f - cos_d, 0.0f), 1.0f), mh2 = mh * mh, swh = mh2 * mh2 * mh;
+        float lambda_i = 0.5f * (sqrtf(1.0f + a2 * (lx * lx + ly * ly) / (cz * cz)) - 1.0f);
+        float s = has_spec * d / (1.0f + lambda_o + lambda_i) * inv_4cos_o / cz;
+        fr[k] = above * (kdr * fd + (f0r + (1.0f - f0r) * swh) * s);
+        fg[k] = above * (kdg * fd + (f0g + (1.0f - f0g) * swh) * s);
+        fb[k] = above * (kdb * fd + (f0b + (1.0f - f0b) * swh) * s);
+        float wo_h = ox * hx + oy * hy + oz * hz;
+        pdf[k] = above * (dpdf * lz + (wo_h > 0.0f ? spec_pdf * d : 0.0f));
+    }
 }
 
 /* Heuristic for ReSTIR PT's hybrid shift (Lin et al. 2022, "Generalized Resampled Importance

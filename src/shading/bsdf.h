@@ -44,6 +44,13 @@ void bsdf_frame_init(struct bsdf_frame *bf, const struct bsdf *b, vec3 n, vec3 w
 /* f_r(wo, wi) as bsdf_eval, and when pdf != NULL the solid-angle density of wi as bsdf_pdf. */
 vec3 bsdf_frame_eval(const struct bsdf_frame *bf, vec3 wi, float *pdf);
 
+/* bsdf_frame_eval over n directions in structure-of-arrays form (world space, unit), written
+ * branch-free so the compiler vectorizes it: f_r into fr/fg/fb and the solid-angle pdf into pdf.
+ * Directions below the surface get 0. Agrees with bsdf_frame_eval to rounding. */
+void bsdf_frame_eval_batch(const struct bsdf_frame *bf, int n, const float *restrict wx,
+                           const float *restrict wy, const float *restrict wz, float *restrict fr,
+                           float *restrict fg, float *restrict fb, float *restrict pdf);
+
 /* Roughness measure used by path-space heuristics (GGX alpha; 1 for pure diffuse). */
 float bsdf_roughness(const struct bsdf *b);
 

@@ -1,5 +1,5 @@
-/* test_bsdf_frame.c: the fused per-shading-point evaluation (bsdf_frame_eval) returns the same
- * f_r and pdf as bsdf_eval and bsdf_pdf for random materials and directions. */
+/* test_bsdf_frame.c: the fused per-shading-point evaluations (bsdf_frame_eval and the batch
+ * form) return the same f_r and pdf as bsdf_eval and bsdf_pdf for random materials and directions. */
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "shading/bsdf.h"
@@ -14,7 +14,7 @@ int main(void)
     int zero_mismatch = 0, nonzero = 0;
     for (int k = 0; k < 200000; k++) {
         struct material m = {v3(pcg32_float(&rng), pcg32_float(&rng), pcg32_float(&rng)),
-                             k % 3 == 0 ? 1.0f : pcg32_float(&rng), pcg32_float(&rng), v3s(0.0f)};
+                             k % 3 == 0 ? 1.0f : pcg32_float(&rng), pcg32_float(&rng), v3s(0.0f), k % 7 == 0};
         struct bsdf b;
         bsdf_from_material(&m, &b);
         vec3 n = warp_uniform_sphere(pcg32_float(&rng), pcg32_float(&rng));
@@ -26,12 +26,18 @@ int main(void)
         vec3 f_fused = bsdf_frame_eval(&bf, wi, &pdf_fused);
         vec3 f = bsdf_eval(&b, n, wo, wi);
         float pdf = bsdf_pdf(&b, n, wo, wi);
-        if ((v3_max_component(f) > 0.0f) != (v3_max_component(f_fused) > 0.0f) || (pdf > 0.0f) != (pdf_fused > 0.0f))
+        float wx = wi.x, wy = wi.y, wz = wi.z, br, bg, bb, bpdf;
+        bsdf_frame_eval_batch(&bf, 1, &wx, &wy, &wz, &br, &bg, &bb, &bpdf);
+        vec3 f_batch = v3(br, bg, bb);
+        if ((v3_max_component(f) > 0.0f) != (v3_max_component(f_fused) > 0.0f) || (pdf > 0.0f) != (pdf_fused > 0.0f) ||
+            (v3_max_component(f) > 0.0f) != (v3_max_component(f_batch) > 0.0f) || (pdf > 0.0f) != (bpdf > 0.0f))
             zero_mismatch++;
         if (pdf > 0.0f) {
             nonzero++;
             worst_f = fmaxf(worst_f, rel_diff(v3_luminance(f), v3_luminance(f_fused)));
             worst_p = fmaxf(worst_p, rel_diff(pdf, pdf_fused));
+            worst_f = fmaxf(worst_f, rel_diff(v3_luminance(f), v3_luminance(f_batch)));
+            worst_p = fmaxf(worst_p, rel_diff(pdf, bpdf));
         }
     }
     printf("%d nonzero cases: worst relative difference f %.3g, pdf %.3g\n", nonzero, worst_f, worst_p);
