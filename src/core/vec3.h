@@ -33,6 +33,11 @@ static inline vec3 v3_normalize(vec3 a)
 static inline float v3_max_component(vec3 a) { return fmaxf(a.x, fmaxf(a.y, a.z)); }
 static inline int v3_is_finite(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 
+/* max/min as plain comparisons: unlike fmaxf/fminf (IEEE NaN rules) they vectorize to
+ * maxps/minps. With a NaN argument they return the second operand. */
+static inline float max_f(float a, float b) { return a > b ? a : b; }
+static inline float min_f(float a, float b) { return a < b ? a : b; }
+
 /* Rec. 709 luminance, as DESIGN.md defines it. */
 static inline float v3_luminance(vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 

@@ -1,127 +1,17 @@
-/* restir_di.c: ReSTIR DI passes: initial RIS with light and BSDF candidates, temporal reuse with
- * reprojection and validation (001), spatial reuse with Bitterli's neighbor test (000 Eq. 7), GRIS
- * merges with selectable resampling MIS (004 Eq. 5-12), and shading. Must never allocate per pixel. */
+/* restir_di.c: ReSTIR DI reuse and shading passes: temporal reuse with reprojection and
+ * validation (001), spatial reuse with Bitterli's neighbor test (000 Eq. 7), GRIS merges with
+ * selectable resampling MIS (004 Eq. 5-12), and shading (initial RIS is in di_initial.c).
+ * Must never allocate per pixel. */
 #include "restir_di.h"
 
 #include "core/rng.h"
 #include "restir/mis.h"
 #include "restir/neighbors.h"
 #include "restir/reservoir.h"
-#include "shading/lights.h"
 #include "tiles.h"
 
 /* Canonical domain + at most 5 spatial neighbors. */
 #define DI_MAX_DOMAINS 6
-
-static void sample_from_light(const struct light_sample *ls, struct di_sample *y)
-{
-    y->tri = ls->tri;
-    y->b1 = ls->b1;
-    y->b2 = ls->b2;
-    y->p = ls->p;
-    y->n = ls->n;
-    y->Le = ls->Le;
-}
-
-/* Every emitter point along the BSDF ray is a candidate (the BSDF strategy traces the
- * emitters-only BVH), so its area density carries no visibility term: both strategies are
- * unshadowed, and the MIS weights below sum to one wherever p_hat > 0. This keeps W a valid
- * unbiased contribution weight on p_hat's whole support, which spatial reuse relies on.
- * RIS weight of a candidate under the multi-strategy balance heuristic with candidate counts:
- * w = p_hat(y) / (N_light p_light(y) + N_bsdf p_bsdf(y)); W = sum w / p_hat(Y) is then unbiased. */
-static float initial_weight(float target, int n_light, float p_light, int n_bsdf, float p_bsdf)
-{
-    float denom = (float)n_light * p_light + (float)n_bsdf * p_bsdf;
-    return denom > 0.0f ? target / denom : 0.0f;
-}
-
-static void offer_candidate(struct restir_wrs *wrs, struct di_reservoir *r, const struct di_sample *y,
-                            float target, float w, pcg32 *rng)
-{
-    if (restir_wrs_offer(wrs, w, pcg32_float(rng))) {
-        r->y = *y;
-        r->target = target;
-    }
-}
-
-static void initial_pixel(const struct scene *s, const struct render_params *p, const struct shading_point *sp,
-                          pcg32 *rng, struct di_reservoir *r, long long *rays)
-{
-    struct restir_wrs wrs;
-    restir_wrs_init(&wrs);
-    di_reservoir_clear(r, 1.0f);
-    const int nl = s->num_emitters > 0 ? p->light_candidates : 0, nb = p->bsdf_candidates;
-    for (int k = 0; k < nl; k++) {
-        struct light_sample ls;
-        float u0 = pcg32_float(rng), u1 = pcg32_float(rng), u2 = pcg32_float(rng);
-        if (!lights_sample(s, u0, u1, u2, &ls))
-            continue;
-        struct di_sample y;
-        sample_from_light(&ls, &y);
-        float p_bsdf;
-        float target = v3_luminance(di_unshadowed_pdf(sp, &y, &p_bsdf));
-        if (target <= 0.0f)
-            continue;
-        float w = initial_weight(target, nl, ls.pdf_area, nb, p_bsdf);
-        offer_candidate(&wrs, r, &y, target, w, rng);
-    }
-    for (int k = 0; k < nb; k++) {
-        vec3 wi, f;
-        float pdf;
-        float u0 = pcg32_float(rng), u1 = pcg32_float(rng), u2 = pcg32_float(rng);
-        if (!bsdf_sample(&sp->bf.b, sp->n, sp->wo, u0, u1, u2, &wi, &pdf, &f) || v3_dot(wi, sp->ng) <= 0.0f)
-            continue;
-        /* Every emitter point along the ray is a candidate of this strategy (see bsdf_pdf_area). */
-        vec3 o = scene_offset_point(sp->p, sp->ng, wi);
-        float tmin = 0.0f;
-        struct surface_hit h;
-        for (int hits = 0; hits < 8 && scene_intersect_emitters(s, o, wi, tmin, INFINITY, &h); hits++) {
-            (*rays)++;
-            tmin = h.t * (1.0f + 1e-5f) + 1e-6f;
-            if (!h.front)
-                continue;
-            struct light_sample ls;
-            lights_point(s, h.tri, h.b1, h.b2, &ls);
-            struct di_sample y;
-            sample_from_light(&ls, &y);
-            float p_bsdf;
-            float target = v3_luminance(di_unshadowed_pdf(sp, &y, &p_bsdf));
-            if (target <= 0.0f)
-                continue;
-            float w = initial_weight(target, nl, nl ? ls.pdf_area : 0.0f, nb, p_bsdf);
-            offer_candidate(&wrs, r, &y, target, w, rng);
-        }
-        (*rays)++; /* the final ray that left the emitters */
-    }
-    r->W = restir_gris_contribution_weight(&wrs, r->target);
-    if (r->W <= 0.0f)
-        di_reservoir_clear(r, 1.0f);
-}
-
-long long di_initial_pass(const struct scene *s, const struct render_params *p, int frame,
-                          const struct gbuffer *g, struct di_reservoir *out)
-{
-    long long rays = 0;
-    const int ntiles = tile_count(g->width, g->height);
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
-    for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(g->width, g->height, t);
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                int i = y * g->width + x;
-                struct shading_point sp;
-                gbuffer_shading_point(g, s, i, &sp);
-                if (!sp.valid) {
-                    di_reservoir_clear(&out[i], 0.0f);
-                    continue;
-                }
-                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_INITIAL);
-                initial_pixel(s, p, &sp, &rng, &out[i], &rays);
-            }
-        }
-    }
-    return rays;
-}
 
 /* One GRIS merge (004 Eq. 5-7) into domain 0 (canonical). For DI the sample space is the same
  * in every pixel (points on lights, area measure), so every shift is the identity with Jacobian 1

@@ -1,0 +1,193 @@
+/* di_initial.c: ReSTIR DI initial sampling: per pixel, RIS over light-sampled and BSDF-sampled
+ * candidates combined by MIS into one reservoir (Bitterli et al. 2020; 001 Sec. 1). Light
+ * candidates are generated and evaluated in batches laid out for SIMD. Must never allocate per pixel. */
+#include "core/rng.h"
+#include "restir/reservoir.h"
+#include "restir_di.h"
+#include "shading/lights.h"
+#include "tiles.h"
+
+/* Light candidates evaluated together; more than the default 32 are processed batch by batch. */
+#define DI_BATCH 64
+
+struct light_batch {
+    int emitter[DI_BATCH];
+    float b1[DI_BATCH], b2[DI_BATCH];
+    float px[DI_BATCH], py[DI_BATCH], pz[DI_BATCH];  /* point on the light */
+    float nx[DI_BATCH], ny[DI_BATCH], nz[DI_BATCH];  /* its emitting normal */
+    float Lr[DI_BATCH], Lg[DI_BATCH], Lb[DI_BATCH];  /* its radiance */
+    float pdf_light[DI_BATCH];                        /* its area density under light sampling */
+    float wx[DI_BATCH], wy[DI_BATCH], wz[DI_BATCH];  /* unit direction x -> y */
+    float geo[DI_BATCH];                              /* cos_x cos_y / d^2, 0 when not facing */
+    float to_area[DI_BATCH];                          /* cos_y / d^2: solid angle -> area at y */
+    float fr[DI_BATCH], fg[DI_BATCH], fb[DI_BATCH], pdf[DI_BATCH]; /* BSDF value and pdf */
+    float w[DI_BATCH];                                /* RIS weight */
+};
+
+static void sample_from_emitter(const struct scene *s, int e, float b1, float b2, struct di_sample *y)
+{
+    struct light_sample ls;
+    lights_point(s, s->emitters[e].tri, b1, b2, &ls);
+    y->tri = ls.tri;
+    y->b1 = ls.b1;
+    y->b2 = ls.b2;
+    y->p = ls.p;
+    y->n = ls.n;
+    y->Le = ls.Le;
+}
+
+/* Fills n light candidates and their RIS weights
+ *   w = p_hat(y) / (N_light p_light(y) + N_bsdf p_bsdf(y))
+ * (the balance heuristic over strategies with candidate counts, so W = sum w / p_hat(Y) is an
+ * unbiased contribution weight). Every emitter point along a BSDF ray is a candidate (the BSDF
+ * strategy traces the emitters-only BVH), so p_bsdf has no visibility term: both strategies are
+ * unshadowed, their MIS weights sum to one wherever p_hat > 0, and W stays valid on p_hat's whole
+ * support, which spatial reuse relies on. */
+static void light_batch_fill(const struct scene *s, const struct shading_point *sp, int n, int nl, int nb,
+                             pcg32 *rng, struct light_batch *lb)
+{
+    for (int k = 0; k < n; k++) {
+        int e = alias_table_sample(&s->emitter_table, pcg32_float(rng));
+        float u1 = pcg32_float(rng), u2 = pcg32_float(rng);
+        warp_uniform_triangle(u1, u2, &lb->b1[k], &lb->b2[k]);
+        const struct emitter *em = &s->emitters[e];
+        lb->emitter[k] = e;
+        lb->px[k] = em->v0.x + lb->b1[k] * em->e1.x + lb->b2[k] * em->e2.x;
+        lb->py[k] = em->v0.y + lb->b1[k] * em->e1.y + lb->b2[k] * em->e2.y;
+        lb->pz[k] = em->v0.z + lb->b1[k] * em->e1.z + lb->b2[k] * em->e2.z;
+        lb->nx[k] = em->n.x;
+        lb->ny[k] = em->n.y;
+        lb->nz[k] = em->n.z;
+        lb->Lr[k] = em->Le.x;
+        lb->Lg[k] = em->Le.y;
+        lb->Lb[k] = em->Le.z;
+        lb->pdf_light[k] = em->pdf_area;
+    }
+    /* The loops below read only the batch's arrays, so they vectorize. */
+    const vec3 x = sp->p, n_s = sp->n, n_g = sp->ng;
+    for (int k = 0; k < n; k++) {
+        float dx = lb->px[k] - x.x, dy = lb->py[k] - x.y, dz = lb->pz[k] - x.z;
+        float d2 = max_f(dx * dx + dy * dy + dz * dz, 1e-30f), inv_d = 1.0f / sqrtf(d2);
+        dx *= inv_d;
+        dy *= inv_d;
+        dz *= inv_d;
+        float cos_x = n_s.x * dx + n_s.y * dy + n_s.z * dz;
+        float cos_g = n_g.x * dx + n_g.y * dy + n_g.z * dz;
+        float cos_y = -(lb->nx[k] * dx + lb->ny[k] * dy + lb->nz[k] * dz);
+        float facing = (cos_x > 0.0f && cos_y > 0.0f && cos_g > 0.0f) ? 1.0f : 0.0f;
+        lb->wx[k] = dx;
+        lb->wy[k] = dy;
+        lb->wz[k] = dz;
+        lb->to_area[k] = facing * cos_y / d2;
+        lb->geo[k] = lb->to_area[k] * cos_x;
+    }
+    bsdf_frame_eval_batch(&sp->bf, n, lb->wx, lb->wy, lb->wz, lb->fr, lb->fg, lb->fb, lb->pdf);
+    const float fnl = (float)nl, fnb = (float)nb;
+    for (int k = 0; k < n; k++) {
+        float target = lb->geo[k] * (0.2126f * lb->Lr[k] * lb->fr[k] + 0.7152f * lb->Lg[k] * lb->fg[k] +
+                                     0.0722f * lb->Lb[k] * lb->fb[k]);
+        float denom = fnl * lb->pdf_light[k] + fnb * lb->pdf[k] * lb->to_area[k];
+        lb->w[k] = target > 0.0f ? target / denom : 0.0f;
+    }
+}
+
+/* Picks index k with probability w_k / sum w by one uniform (inverse CDF): the same distribution
+ * as streaming reservoir sampling over the batch, with one random number instead of n. */
+static int pick_by_weight(const float *w, int n, float total, float u)
+{
+    float x = u * total, acc = 0.0f;
+    int last = -1;
+    for (int k = 0; k < n; k++) {
+        if (w[k] > 0.0f) {
+            acc += w[k];
+            last = k;
+            if (x < acc)
+                return k;
+        }
+    }
+    return last; /* rounding: x landed past the float sum */
+}
+
+static void initial_pixel(const struct scene *s, const struct render_params *p, const struct shading_point *sp,
+                          pcg32 *rng, struct di_reservoir *r, long long *rays)
+{
+    struct restir_wrs wrs;
+    restir_wrs_init(&wrs);
+    di_reservoir_clear(r, 1.0f);
+    const int nl = s->num_emitters > 0 ? p->light_candidates : 0, nb = p->bsdf_candidates;
+    struct light_batch lb;
+    for (int done = 0; done < nl; done += DI_BATCH) {
+        int n = nl - done < DI_BATCH ? nl - done : DI_BATCH;
+        light_batch_fill(s, sp, n, nl, nb, rng, &lb);
+        struct restir_wrs batch;
+        restir_wrs_init(&batch);
+        for (int k = 0; k < n; k++)
+            batch.w_sum += lb.w[k];
+        batch.offered = n;
+        batch.selected = batch.w_sum > 0.0f ? pick_by_weight(lb.w, n, batch.w_sum, pcg32_float(rng)) : -1;
+        if (restir_wrs_merge(&wrs, &batch, pcg32_float(rng))) {
+            int k = batch.selected;
+            sample_from_emitter(s, lb.emitter[k], lb.b1[k], lb.b2[k], &r->y);
+        }
+    }
+    for (int k = 0; k < nb; k++) {
+        vec3 wi, f;
+        float pdf;
+        float u0 = pcg32_float(rng), u1 = pcg32_float(rng), u2 = pcg32_float(rng);
+        if (!bsdf_sample(&sp->bf.b, sp->n, sp->wo, u0, u1, u2, &wi, &pdf, &f) || v3_dot(wi, sp->ng) <= 0.0f)
+            continue;
+        vec3 o = scene_offset_point(sp->p, sp->ng, wi);
+        float tmin = 0.0f;
+        struct surface_hit h;
+        for (int hits = 0; hits < 8 && scene_intersect_emitters(s, o, wi, tmin, INFINITY, &h); hits++) {
+            (*rays)++;
+            tmin = h.t * (1.0f + 1e-5f) + 1e-6f;
+            if (!h.front)
+                continue;
+            struct di_sample y;
+            sample_from_emitter(s, s->tri_emitter[h.tri], h.b1, h.b2, &y);
+            float p_bsdf;
+            float target = v3_luminance(di_unshadowed_pdf(sp, &y, &p_bsdf));
+            if (target <= 0.0f)
+                continue;
+            float p_light = nl ? lights_pdf_area(s, h.tri) : 0.0f;
+            float w = target / ((float)nl * p_light + (float)nb * p_bsdf);
+            if (restir_wrs_offer(&wrs, w, pcg32_float(rng)))
+                r->y = y;
+        }
+        (*rays)++; /* the final ray that left the emitters */
+    }
+    if (wrs.selected < 0)
+        return;
+    /* The selected sample's target is evaluated once more by the scalar path that reuse uses,
+     * so the cached value and every later evaluation agree exactly. */
+    r->target = di_target(sp, &r->y);
+    r->W = restir_gris_contribution_weight(&wrs, r->target);
+    if (r->W <= 0.0f)
+        di_reservoir_clear(r, 1.0f);
+}
+
+long long di_initial_pass(const struct scene *s, const struct render_params *p, int frame,
+                          const struct gbuffer *g, struct di_reservoir *out)
+{
+    long long rays = 0;
+    const int ntiles = tile_count(g->width, g->height);
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
+    for (int t = 0; t < ntiles; t++) {
+        struct tile_range r = tile_get(g->width, g->height, t);
+        for (int y = r.y0; y < r.y1; y++) {
+            for (int x = r.x0; x < r.x1; x++) {
+                int i = y * g->width + x;
+                struct shading_point sp;
+                gbuffer_shading_point(g, s, i, &sp);
+                if (!sp.valid) {
+                    di_reservoir_clear(&out[i], 0.0f);
+                    continue;
+                }
+                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_INITIAL);
+                initial_pixel(s, p, &sp, &rng, &out[i], &rays);
+            }
+        }
+    }
+    return rays;
+}
