@@ -20,9 +20,10 @@ struct compare_result {
     struct restir_error err; /* of the last frame */
 };
 
-/* Runs `frames` frames of a method and measures the last frame against ref. */
-static void run_method(const struct scene *s, enum method_id m, const struct render_params *p, int frames,
-                       const float *ref, const char *out_dir, struct compare_result *res, char *msg)
+/* Runs `frames` frames of a method and measures the last frame against ref. Returns 0, or -1
+ * with msg when its last frame cannot be written to out_dir/METHOD. */
+static int run_method(const struct scene *s, enum method_id m, const struct render_params *p, int frames,
+                      const float *ref, const char *out_dir, struct compare_result *res, char *msg)
 {
     struct renderer r;
     renderer_init(&r, s, m, p);
@@ -43,9 +44,11 @@ static void run_method(const struct scene *s, enum method_id m, const struct ren
     restir_error_compute(r.image, ref, (size_t)p->width * (size_t)p->height, NULL, &res->err);
     char path[4300];
     snprintf(path, sizeof(path), "%s/%s", out_dir, method_table[m].name);
-    if (cli_make_dir(path, msg) == 0)
-        cli_write_frame(path, frames - 1, r.image, p->width, p->height, msg);
+    int rc = cli_make_dir(path, msg);
+    if (rc == 0)
+        rc = cli_write_frame(path, frames - 1, r.image, p->width, p->height, msg);
     renderer_fini(&r);
+    return rc;
 }
 
 /* Paths per pixel that fit in budget_ms, from a 1-spp and a 4-spp timing (the difference
@@ -114,6 +117,10 @@ int cmd_compare(int argc, char **argv)
         methods[n++] = (enum method_id)m;
         any_direct |= method_table[m].direct_only;
     }
+    if (n == 0) {
+        cli_error("--methods lists no method (see restir list)");
+        return EXIT_USAGE;
+    }
     struct scene s;
     if (scene_create_builtin(o.scene, &s, msg) != 0) {
         cli_error("%s", msg);
@@ -158,17 +165,27 @@ int cmd_compare(int argc, char **argv)
     for (int k = 0; k < n; k++) {
         if (methods[k] == METHOD_PT)
             continue;
-        run_method(&s, methods[k], &p, o.frames, ref, out_dir, &res[k], msg);
+        if (run_method(&s, methods[k], &p, o.frames, ref, out_dir, &res[k], msg) != 0) {
+            rc = EXIT_RUNTIME;
+            break;
+        }
         if (budget < 0.0)
             budget = res[k].ms_per_frame;
     }
-    for (int k = 0; k < n; k++) {
+    for (int k = 0; k < n && rc == 0; k++) {
         if (methods[k] != METHOD_PT)
             continue;
         struct render_params q = p;
         if (o.equal_time && budget > 0.0)
             q.spp = pt_spp_for_budget(&s, &p, budget);
-        run_method(&s, methods[k], &q, o.frames, ref, out_dir, &res[k], msg);
+        if (run_method(&s, methods[k], &q, o.frames, ref, out_dir, &res[k], msg) != 0)
+            rc = EXIT_RUNTIME;
+    }
+    if (rc != 0) {
+        cli_error("%s", msg);
+        free(ref);
+        scene_destroy(&s);
+        return rc;
     }
 
     char csv_path[4200];

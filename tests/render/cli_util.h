@@ -1,0 +1,150 @@
+/* cli_util.h: helpers for tests driving the `restir` binary ($RESTIR_BIN) via the shell: capture, temp folders, files.
+ * Must never include renderer headers: these tests see the program from outside, as a user does. */
+#ifndef RESTIR_TEST_CLI_UTIL_H
+#define RESTIR_TEST_CLI_UTIL_H
+
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#define CLI_PATH_MAX 4096
+#define CLI_ERR_MAX 32768 /* captured stdout or stderr, bytes */
+
+/* The binary under test, or NULL (and a message) when RESTIR_BIN is unset. */
+static inline const char *cli_bin(void)
+{
+    const char *b = getenv("RESTIR_BIN");
+    if (!b || !*b) {
+        printf("RESTIR_BIN is not set (run through ctest, or export RESTIR_BIN=path/to/restir)\n");
+        return NULL;
+    }
+    return b;
+}
+
+/* Creates a fresh folder /tmp/restir-test-XXXXXX (under $TMPDIR when set) into dir. */
+static inline int cli_make_temp_dir(char *dir)
+{
+    const char *t = getenv("TMPDIR");
+    snprintf(dir, CLI_PATH_MAX, "%s/restir-test-XXXXXX", t && *t ? t : "/tmp");
+    return mkdtemp(dir) ? 0 : -1;
+}
+
+/* Runs `$RESTIR_BIN args` with stdout and stderr captured into out and err (NUL terminated,
+ * truncated to CLI_ERR_MAX; out may be NULL to discard stdout). args is pasted into a shell command
+ * line: callers quote paths. Returns the exit code; a crash reads as 128 + signal (the shell's
+ * convention), and a failure to run the shell as -1. */
+static inline int cli_run_capture(const char *tmp_dir, const char *args, char *out, char *err)
+{
+    const char *bin = cli_bin();
+    char out_path[CLI_PATH_MAX + 16], err_path[CLI_PATH_MAX + 16], cmd[3 * CLI_PATH_MAX];
+    char *bufs[2] = {out, err};
+    const char *paths[2] = {out_path, err_path};
+    err[0] = '\0';
+    if (out)
+        out[0] = '\0';
+    if (!bin)
+        return -1;
+    if (snprintf(out_path, sizeof(out_path), "%s/stdout.txt", tmp_dir) >= (int)sizeof(out_path) ||
+        snprintf(err_path, sizeof(err_path), "%s/stderr.txt", tmp_dir) >= (int)sizeof(err_path) ||
+        snprintf(cmd, sizeof(cmd), "'%s' %s >'%s' 2>'%s'", bin, args, out ? out_path : "/dev/null", err_path) >=
+            (int)sizeof(cmd))
+        return -1;
+    int st = system(cmd);
+    for (int k = 0; k < 2; k++) {
+        if (!bufs[k])
+            continue;
+        FILE *f = fopen(paths[k], "rb");
+        if (f) {
+            size_t n = fread(bufs[k], 1, CLI_ERR_MAX - 1, f);
+            bufs[k][n] = '\0';
+            fclose(f);
+        }
+        remove(paths[k]);
+    }
+    if (st == -1 || !WIFEXITED(st))
+        return -1;
+    return WEXITSTATUS(st);
+}
+
+static inline int cli_run(const char *tmp_dir, const char *args, char *err)
+{
+    return cli_run_capture(tmp_dir, args, NULL, err);
+}
+
+/* Number of entries of dir whose name contains `part` ("" counts every entry); -1 when dir does
+ * not exist or is not a folder. */
+static inline int cli_count_entries(const char *dir, const char *part)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return -1;
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
+            continue;
+        if (strstr(e->d_name, part))
+            n++;
+    }
+    closedir(d);
+    return n;
+}
+
+/* Removes path: a file, or a folder with everything below it. Returns 0 when nothing is left. */
+static inline int cli_remove_tree(const char *path)
+{
+    struct stat st;
+    if (lstat(path, &st) != 0)
+        return 0;
+    if (S_ISDIR(st.st_mode)) {
+        DIR *d = opendir(path);
+        if (d) {
+            struct dirent *e;
+            char child[CLI_PATH_MAX];
+            while ((e = readdir(d)) != NULL) {
+                if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
+                    continue;
+                if (snprintf(child, sizeof(child), "%s/%s", path, e->d_name) < (int)sizeof(child))
+                    cli_remove_tree(child);
+            }
+            closedir(d);
+        }
+        return rmdir(path);
+    }
+    return remove(path);
+}
+
+/* 1 when both files exist and have the same bytes, 0 when they differ, -1 when one cannot be
+ * read. *size gets the first file's size. */
+static inline int cli_files_equal(const char *a, const char *b, long *size)
+{
+    FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
+    *size = 0;
+    if (!fa || !fb) {
+        if (fa)
+            fclose(fa);
+        if (fb)
+            fclose(fb);
+        return -1;
+    }
+    int same = 1;
+    for (;;) {
+        int ca = fgetc(fa), cb = fgetc(fb);
+        if (ca != cb) {
+            same = 0;
+            break;
+        }
+        if (ca == EOF)
+            break;
+        (*size)++;
+    }
+    fclose(fa);
+    fclose(fb);
+    return same;
+}
+
+#endif

@@ -1,0 +1,200 @@
+/* test_cli_errors.c: bad input to `restir` gets exit 2 (usage) or 1 (runtime), a "restir: " message naming
+ * the problem, and no output files; plus list, bare `restir` and --help. Must never render in-process. */
+#include "cli_util.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+#include "test_util.h"
+
+static char tmp[CLI_PATH_MAX];
+static int case_no;
+
+/* No entries (or no folder) at dir: a failed run must not leave frames, reports or temp files. */
+static void expect_no_output(const char *what, const char *dir)
+{
+    int all = cli_count_entries(dir, ""), frames = cli_count_entries(dir, "frame_"),
+        temps = cli_count_entries(dir, ".tmp-");
+    EXPECT(frames <= 0, "%s: %d frame files left in %s", what, frames, dir);
+    EXPECT(temps <= 0, "%s: %d temporary files left in %s", what, temps, dir);
+    EXPECT(all <= 0, "%s: %d files left in %s", what, all, dir);
+}
+
+/* Runs `restir <args>`; args may use %1$s for a fresh output folder path (never created here).
+ * Checks the exit code, the "restir: " prefix, that stderr names the problem (need1, need2), and
+ * that the output folder holds nothing. */
+static void expect_failure(const char *what, const char *args_fmt, int want_rc, const char *need1,
+                           const char *need2)
+{
+    char out[2 * CLI_PATH_MAX], args[6 * CLI_PATH_MAX], err[CLI_ERR_MAX];
+    snprintf(out, sizeof(out), "%s/out-%d", tmp, ++case_no);
+    if (snprintf(args, sizeof(args), args_fmt, out) >= (int)sizeof(args)) {
+        EXPECT(0, "%s: command line too long", what);
+        return;
+    }
+    int rc = cli_run(tmp, args, err);
+    printf("[%s] exit %d: %s", what, rc, err[0] ? err : "(no message)\n");
+    EXPECT(rc == want_rc, "%s: exit code %d, want %d (restir %s)", what, rc, want_rc, args);
+    EXPECT(strncmp(err, "restir: ", 8) == 0, "%s: stderr does not start with 'restir: ': %s", what, err);
+    EXPECT(strstr(err, need1) != NULL, "%s: message does not mention '%s': %s", what, need1, err);
+    if (need2)
+        EXPECT(strstr(err, need2) != NULL, "%s: message does not mention '%s': %s", what, need2, err);
+    EXPECT(strstr(err, "internal error") == NULL, "%s: bad input hit an internal check: %s", what, err);
+    expect_no_output(what, out);
+    EXPECT(cli_count_entries(tmp, ".tmp-") == 0, "%s: temporary files left in %s", what, tmp);
+}
+
+/* The line of text that contains `part`, copied into line (empty when absent). */
+static void line_with(const char *text, const char *part, char *line, size_t n)
+{
+    line[0] = '\0';
+    const char *p = strstr(text, part);
+    if (!p)
+        return;
+    const char *b = p, *e = p;
+    while (b > text && b[-1] != '\n')
+        b--;
+    while (*e && *e != '\n')
+        e++;
+    size_t len = (size_t)(e - b) < n - 1 ? (size_t)(e - b) : n - 1;
+    memcpy(line, b, len);
+    line[len] = '\0';
+}
+
+static void check_bad_render_input(void)
+{
+    char path[2 * CLI_PATH_MAX], fmt[4 * CLI_PATH_MAX], err[CLI_ERR_MAX];
+    const char *base = "render --scene cornell --method pt --res 16x16";
+#define RENDER_ARGS(extra) "render --scene cornell --method pt --res 16x16 " extra " --out '%1$s'"
+    expect_failure("unknown scene", "render --scene no-such-scene --method pt --res 16x16 --out '%1$s'", 2,
+                   "no-such-scene", NULL);
+    expect_failure("unknown method", "render --scene cornell --method no-such-method --res 16x16 --out '%1$s'", 2,
+                   "no-such-method", NULL);
+    expect_failure("zero width", "render --scene cornell --method pt --res 0x10 --out '%1$s'", 2, "--res", "0");
+    expect_failure("huge width", "render --scene cornell --method pt --res 100000x10 --out '%1$s'", 2, "--res",
+                   "100000");
+    expect_failure("malformed resolution", "render --scene cornell --method pt --res abc --out '%1$s'", 2, "--res",
+                   "abc");
+    expect_failure("unknown --set key", RENDER_ARGS("--set nosuchkey=1"), 2, "nosuchkey", NULL);
+    expect_failure("NaN parameter", RENDER_ARGS("--set spatial.radius=nan"), 2, "spatial.radius", "nan");
+    expect_failure("unknown MIS", RENDER_ARGS("--set mis=foo"), 2, "mis", "foo");
+    expect_failure("fractional integer parameter", RENDER_ARGS("--set spp=1.5"), 2, "spp", "1.5");
+    expect_failure("zero frames", RENDER_ARGS("--frames 0"), 2, "--frames", NULL);
+    expect_failure("missing value", "render --scene cornell --method pt --res 16x16 --out '%1$s' --frames", 2,
+                   "--frames", NULL);
+
+    /* References: missing, not an EXR, wrong size. */
+    snprintf(path, sizeof(path), "%s/missing.exr", tmp);
+    snprintf(fmt, sizeof(fmt), "%s --ref '%s' --out '%%1$s'", base, path);
+    expect_failure("missing reference", fmt, 1, path, NULL);
+    snprintf(path, sizeof(path), "%s/text.exr", tmp);
+    FILE *f = fopen(path, "w");
+    if (f) {
+        fputs("this is not an image\n", f);
+        fclose(f);
+    }
+    snprintf(fmt, sizeof(fmt), "%s --ref '%s' --out '%%1$s'", base, path);
+    expect_failure("text file as reference", fmt, 1, path, NULL);
+    snprintf(path, sizeof(path), "%s/ref16.exr", tmp);
+    snprintf(fmt, sizeof(fmt), "reference --scene cornell --method pt --res 16x16 --spp 1 --out '%s'", path);
+    EXPECT(cli_run(tmp, fmt, err) == 0, "cannot make a 16x16 reference: %s", err);
+    snprintf(fmt, sizeof(fmt), "render --scene cornell --method pt --res 32x16 --ref '%s' --out '%%1$s'", path);
+    expect_failure("reference of the wrong size", fmt, 1, "16x16", "32x16");
+
+    /* Output under a regular file, and the regular file itself as the folder. */
+    snprintf(path, sizeof(path), "%s/regular", tmp);
+    f = fopen(path, "w");
+    if (f)
+        fclose(f);
+    snprintf(fmt, sizeof(fmt), "%s --out '%s/sub'", base, path);
+    expect_failure("output under a regular file", fmt, 1, path, NULL);
+    snprintf(fmt, sizeof(fmt), "%s --out '%s'", base, path);
+    expect_failure("output is a regular file", fmt, 1, path, NULL);
+#undef RENDER_ARGS
+}
+
+/* A write that fails mid-run (frame 1's EXR path is taken by a folder): exit 1 naming the file, no
+ * temporary files, no metrics.csv / summary.json, and no frame after the failing one. Frame 0,
+ * written whole before the failure, may stay. */
+static void check_failed_write(void)
+{
+    char out[2 * CLI_PATH_MAX], blocker[3 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX], err[CLI_ERR_MAX];
+    snprintf(out, sizeof(out), "%s/blocked", tmp);
+    snprintf(blocker, sizeof(blocker), "%s/frame_0001.exr", out);
+    EXPECT(mkdir(out, 0777) == 0 && mkdir(blocker, 0777) == 0, "cannot create %s", blocker);
+    snprintf(args, sizeof(args), "render --scene cornell --method restir-di --res 16x16 --frames 3 --out '%s'", out);
+    int rc = cli_run(tmp, args, err);
+    printf("[failed write] exit %d: %s", rc, err);
+    EXPECT(rc == 1, "failed frame write: exit %d", rc);
+    EXPECT(strncmp(err, "restir: ", 8) == 0 && strstr(err, "frame_0001.exr"), "message: %s", err);
+    EXPECT(cli_count_entries(out, ".tmp-") == 0, "temporary files left in %s", out);
+    EXPECT(cli_count_entries(out, "metrics.csv") == 0 && cli_count_entries(out, "summary.json") == 0,
+           "reports of a failed run were committed in %s", out);
+    EXPECT(cli_count_entries(out, "frame_0002") == 0, "frames after the failure were written");
+}
+
+/* `restir compare` with no usable method list, and with a method's folder blocked by a file. */
+static void check_compare(void)
+{
+    char fmt[4 * CLI_PATH_MAX], out[2 * CLI_PATH_MAX], blocker[3 * CLI_PATH_MAX], err[CLI_ERR_MAX];
+    expect_failure("compare with an empty method list", "compare --scene cornell --methods '' --res 16x16 --out '%1$s'",
+                   2, "--methods", NULL);
+    expect_failure("compare with only commas", "compare --scene cornell --methods , --res 16x16 --out '%1$s'", 2,
+                   "--methods", NULL);
+    expect_failure("compare with an unknown method",
+                   "compare --scene cornell --methods pt,no-such-method --res 16x16 --out '%1$s'", 2,
+                   "no-such-method", NULL);
+    snprintf(out, sizeof(out), "%s/compare-blocked", tmp);
+    snprintf(blocker, sizeof(blocker), "%s/pt", out);
+    EXPECT(mkdir(out, 0777) == 0, "cannot create %s", out);
+    FILE *f = fopen(blocker, "w");
+    if (f)
+        fclose(f);
+    snprintf(fmt, sizeof(fmt), "compare --scene cornell --methods pt --res 16x16 --ref-spp 1 --out '%s'", out);
+    int rc = cli_run(tmp, fmt, err);
+    printf("[compare, method folder blocked] exit %d: %s", rc, err[0] ? err : "(no message)\n");
+    EXPECT(rc == 1, "compare could not write %s but exited %d", blocker, rc);
+    EXPECT(strstr(err, blocker) != NULL, "message does not name %s: %s", blocker, err);
+    EXPECT(cli_count_entries(out, ".tmp-") == 0, "temporary files left in %s", out);
+}
+
+static void check_list_and_help(void)
+{
+    char out[CLI_ERR_MAX], err[CLI_ERR_MAX], line[512], want[128];
+    int rc = cli_run_capture(tmp, "list", out, err);
+    EXPECT(rc == 0, "restir list exited %d: %s", rc, err);
+    for (int i = 0; scene_builtin_names[i]; i++) {
+        snprintf(want, sizeof(want), "scene %s\t", scene_builtin_names[i]);
+        EXPECT(strstr(out, want) != NULL, "restir list does not list scene %s", scene_builtin_names[i]);
+    }
+    for (int m = 0; m < METHOD_COUNT; m++) {
+        snprintf(want, sizeof(want), "method %s\t", method_table[m].name);
+        EXPECT(strstr(out, want) != NULL, "restir list does not list method %s", method_table[m].name);
+    }
+
+    rc = cli_run_capture(tmp, "", out, err);
+    EXPECT(rc == 2, "bare restir exited %d", rc);
+    EXPECT(strstr(err, "usage") != NULL, "bare restir prints no usage on stderr: %s", err);
+
+    rc = cli_run_capture(tmp, "no-such-command", out, err);
+    EXPECT(rc == 2, "unknown command exited %d", rc);
+    EXPECT(strstr(err, "no-such-command") != NULL, "unknown command not named: %s", err);
+
+    rc = cli_run_capture(tmp, "render --help", out, err);
+    EXPECT(rc == 0, "restir render --help exited %d", rc);
+    EXPECT(strstr(out, "spatial.radius") != NULL, "render --help does not list spatial.radius");
+    line_with(out, "1/M", line, sizeof(line));
+    EXPECT(strstr(line, "BIASED") != NULL, "render --help does not call 1/M BIASED: '%s'", line);
+}
+
+int main(void)
+{
+    if (!cli_bin() || cli_make_temp_dir(tmp) != 0) {
+        EXPECT(0, "cannot set up (RESTIR_BIN or temporary folder)");
+        return test_finish();
+    }
+    check_bad_render_input();
+    check_failed_write();
+    check_compare();
+    check_list_and_help();
+    EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
+    return test_finish();
+}
