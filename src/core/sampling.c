@@ -70,23 +70,6 @@ vec3 warp_cosine_hemisphere(float u1, float u2)
 
 float warp_cosine_hemisphere_pdf(vec3 local_dir) { return fmaxf(0.0f, local_dir.z) * RESTIR_INV_PI; }
 
-/* Heitz 2019, "A Low-Distortion Map Between Triangle and Square": a sqrt-free map that keeps
- * neighbouring square points close on the triangle (better stratification than the classic
- * sqrt warp). It is uniform on {t0, t1 >= 0, t0 + t1 <= 1}, so (t0, t1) serve as (b1, b2). */
-void warp_uniform_triangle(float u1, float u2, float *b1, float *b2)
-{
-    float t0, t1;
-    if (u2 > u1) {
-        t0 = 0.5f * u1;
-        t1 = u2 - t0;
-    } else {
-        t1 = 0.5f * u2;
-        t0 = u1 - t1;
-    }
-    *b1 = t0;
-    *b2 = t1;
-}
-
 /* Archimedes' hat-box theorem: z uniform in [-1,1] and phi uniform give a uniform sphere. */
 vec3 warp_uniform_sphere(float u1, float u2)
 {
@@ -103,8 +86,7 @@ vec3 warp_uniform_sphere(float u1, float u2)
 int alias_table_init(struct alias_table *t, const float *weights, int n)
 {
     t->n = 0;
-    t->prob = NULL;
-    t->alias = NULL;
+    t->bucket = NULL;
     t->pmf = NULL;
     t->total = 0.0;
     if (n < 1 || !weights)
@@ -124,8 +106,7 @@ int alias_table_init(struct alias_table *t, const float *weights, int n)
 
     t->n = n;
     t->total = total;
-    t->prob = xmalloc((size_t)n * sizeof *t->prob);
-    t->alias = xmalloc((size_t)n * sizeof *t->alias);
+    t->bucket = xmalloc((size_t)n * sizeof *t->bucket);
     t->pmf = xmalloc((size_t)n * sizeof *t->pmf);
     double *scaled = xmalloc((size_t)n * sizeof *scaled);
     int *small = xmalloc((size_t)n * sizeof *small);
@@ -135,7 +116,7 @@ int alias_table_init(struct alias_table *t, const float *weights, int n)
         double p = (double)weights[i] / total;
         t->pmf[i] = (float)p;
         scaled[i] = p * (double)n;
-        t->alias[i] = i;
+        t->bucket[i].alias = i;
         if (scaled[i] < 1.0)
             small[ns++] = i;
         else
@@ -144,8 +125,8 @@ int alias_table_init(struct alias_table *t, const float *weights, int n)
     while (ns > 0 && nl > 0) {
         int s = small[--ns];
         int l = large[--nl];
-        t->prob[s] = (float)scaled[s];
-        t->alias[s] = l;
+        t->bucket[s].prob = (float)scaled[s];
+        t->bucket[s].alias = l;
         scaled[l] = (scaled[l] + scaled[s]) - 1.0;
         if (scaled[l] < 1.0)
             small[ns++] = l;
@@ -157,15 +138,15 @@ int alias_table_init(struct alias_table *t, const float *weights, int n)
      * index. */
     while (nl > 0) {
         int l = large[--nl];
-        t->prob[l] = 1.0f;
+        t->bucket[l].prob = 1.0f;
     }
     while (ns > 0) {
         int s = small[--ns];
         if (weights[s] > 0.0f) {
-            t->prob[s] = 1.0f;
+            t->bucket[s].prob = 1.0f;
         } else {
-            t->prob[s] = 0.0f;
-            t->alias[s] = heaviest;
+            t->bucket[s].prob = 0.0f;
+            t->bucket[s].alias = heaviest;
         }
     }
     free(scaled);
@@ -176,27 +157,10 @@ int alias_table_init(struct alias_table *t, const float *weights, int n)
 
 void alias_table_fini(struct alias_table *t)
 {
-    free(t->prob);
-    free(t->alias);
+    free(t->bucket);
     free(t->pmf);
-    t->prob = NULL;
-    t->alias = NULL;
+    t->bucket = NULL;
     t->pmf = NULL;
     t->n = 0;
     t->total = 0.0;
-}
-
-/* One uniform picks the bucket (integer part) and the coin inside it (fraction). The product
- * is formed in double so no rounding is added; a 24-bit u still leaves only 24 - log2(n) bits
- * for the coin, which is ample for emitter tables of up to ~1e5 entries. */
-int alias_table_sample(const struct alias_table *t, float u)
-{
-    double x = (double)u * (double)t->n;
-    int i = (int)x;
-    if (i >= t->n)
-        i = t->n - 1;
-    if (i < 0)
-        i = 0;
-    double frac = x - (double)i;
-    return frac < (double)t->prob[i] ? i : t->alias[i];
 }
