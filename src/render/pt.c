@@ -47,7 +47,6 @@ vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, int rr_bou
 {
     vec3 L = v3s(0.0f), beta = v3s(1.0f);
     float prev_bsdf_pdf = 0.0f; /* solid-angle pdf of the direction that reached this vertex */
-    vec3 prev_p = o;
     struct surface_hit h;
     for (int bounce = 0;; bounce++) {
         (*rays)++;
@@ -87,11 +86,9 @@ vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, int rr_bou
             beta = v3_scale(beta, 1.0f / q);
         }
         prev_bsdf_pdf = pdf;
-        prev_p = h.p;
         o = scene_offset_point(h.p, h.ng, wi);
         d = wi;
     }
-    (void)prev_p;
     return L;
 }
 
