@@ -24,7 +24,7 @@ struct param_def {
 static const struct param_def params[] = {
     {"spp", P_INT, F(spp), 1, 1 << 20, "pt: paths per pixel per frame"},
     {"jitter", P_BOOL, F(jitter), 0, 1, "jitter primary rays over the pixel (integrates the box filter)"},
-    {"pt.max_bounces", P_INT, F(max_bounces), 1, 1024,
+    {"pt.max_bounces", P_INT, F(max_bounces), 1, 64,
      "pt: maximum scattering events (1 = direct lighting; set for you when comparing DI methods)"},
     {"pt.rr_bounces", P_INT, F(rr_bounces), 0, 1024, "pt: Russian roulette after this many bounces"},
     {"di.light_candidates", P_INT, F(light_candidates), 0, 4096, "initial RIS: light-sampled candidates"},

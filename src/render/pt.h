@@ -10,8 +10,9 @@
 #include "scene/scene.h"
 
 /* Radiance along the camera ray (o, d): emission seen directly plus up to max_bounces scattering
- * events. *rays counts the rays traced. */
-vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, int rr_bounces, pcg32 *rng,
+ * events, with the path's random numbers drawn from path_seed (path_walk.h). *rays counts the
+ * rays traced. */
+vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, uint64_t path_seed, int rr_bounces,
               long long *rays);
 
 /* Renders spp paths per pixel into rgb (w*h*3, the mean). Returns the number of rays traced. */

@@ -1,0 +1,134 @@
+/* path_walk.c: the path generator shared by `pt` and ReSTIR PT: NEE and BSDF sampling combined by
+ * the power heuristic (Veach 1997, Ch. 9) and throughput-based Russian roulette, reporting every
+ * complete path as a candidate. Must never depend on reservoirs. */
+#include "path_walk.h"
+
+#include "shading/bsdf.h"
+#include "shading/lights.h"
+
+static float power_heuristic(float a, float b)
+{
+    float a2 = a * a, b2 = b * b;
+    return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+
+struct path_vertex path_vertex_from_hit(const struct surface_hit *h, vec3 ray_dir)
+{
+    struct path_vertex v = {0};
+    v.p = h->p;
+    v.ns = h->ns;
+    v.ng = h->ng;
+    v.wo = v3_neg(ray_dir);
+    v.material = h->material;
+    return v;
+}
+
+/* NEE at x (the last vertex of the walk): one light point, reported as a candidate of length
+ * nv + 1 when it contributes. prefix_f / prefix_pdf describe x_1 .. x. */
+static long long next_event(const struct scene *s, const struct path_walk *w, const struct bsdf *b,
+                            vec3 prefix_f, float prefix_pdf, pcg32 *rng, path_candidate_fn emit, void *ctx)
+{
+    const struct path_vertex *x = &w->v[w->nv - 1];
+    struct light_sample ls;
+    float u0 = pcg32_float(rng), u1 = pcg32_float(rng), u2 = pcg32_float(rng);
+    if (!lights_sample(s, u0, u1, u2, &ls))
+        return 0;
+    vec3 to = v3_sub(ls.p, x->p);
+    float d2 = v3_length2(to);
+    if (!(d2 > 0.0f))
+        return 0;
+    vec3 wi = v3_scale(to, 1.0f / sqrtf(d2));
+    float cos_l = -v3_dot(ls.n, wi), cos_x = v3_dot(x->ns, wi);
+    if (cos_l <= 0.0f || cos_x <= 0.0f || v3_dot(x->ng, wi) <= 0.0f)
+        return 0;
+    vec3 f = bsdf_eval(b, x->ns, x->wo, wi);
+    if (v3_max_component(f) <= 0.0f)
+        return 0;
+    if (!scene_visible(s, x->p, x->ng, ls.p, ls.n))
+        return 1;
+    float pdf_light = ls.pdf_area * d2 / cos_l;
+    struct path_candidate c;
+    c.length = w->nv + 1;
+    c.via_nee = 1;
+    c.light_p = ls.p;
+    c.light_n = ls.n;
+    c.Le = ls.Le;
+    c.w_last = wi;
+    c.fcos_last = v3_scale(f, cos_x);
+    c.f = v3_mul(v3_mul(prefix_f, c.fcos_last), ls.Le);
+    c.pdf = prefix_pdf * pdf_light;
+    c.mis = power_heuristic(pdf_light, bsdf_pdf(b, x->ns, x->wo, wi));
+    emit(ctx, w, &c);
+    return 1;
+}
+
+long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uint64_t seed, int max_bounces,
+                        int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx)
+{
+    long long rays = 0;
+    if (max_bounces > PATH_MAX_VERTICES)
+        max_bounces = PATH_MAX_VERTICES;
+    w->nv = 1;
+    w->v[0] = *x1;
+    vec3 prefix_f = v3s(1.0f); /* prod of fcos over x_1 .. x_{nv-1} */
+    float prefix_pdf = 1.0f;
+    for (;;) {
+        struct path_vertex *x = &w->v[w->nv - 1];
+        const int j = w->nv;
+        if (j > max_bounces)
+            break;
+        pcg32 rng = path_rng(seed, j);
+        float ub0 = pcg32_float(&rng), ub1 = pcg32_float(&rng), ub2 = pcg32_float(&rng);
+        struct bsdf b;
+        bsdf_from_material(&s->materials[x->material], &b);
+        rays += next_event(s, w, &b, prefix_f, prefix_pdf, &rng, emit, ctx);
+        float u_rr = pcg32_float(&rng);
+        vec3 wi, f;
+        float pdf;
+        if (!bsdf_sample(&b, x->ns, x->wo, ub0, ub1, ub2, &wi, &pdf, &f))
+            break;
+        /* A sampled direction below the geometric surface would leak through it. */
+        if (v3_dot(wi, x->ng) <= 0.0f)
+            break;
+        x->w_next = wi;
+        x->fcos = v3_scale(f, v3_dot(x->ns, wi));
+        x->pdf_dir = pdf;
+        prefix_f = v3_mul(prefix_f, x->fcos);
+        prefix_pdf *= pdf;
+        if (j > rr_bounces) {
+            vec3 beta = v3_scale(prefix_f, 1.0f / prefix_pdf);
+            float q = fminf(v3_max_component(beta), 0.95f);
+            if (!(u_rr < q))
+                break;
+            prefix_pdf *= q;
+        }
+        if (!(prefix_pdf > 0.0f) || !isfinite(prefix_pdf))
+            break;
+        struct surface_hit h;
+        rays++;
+        vec3 o = scene_offset_point(x->p, x->ng, wi);
+        if (!scene_intersect(s, o, wi, 0.0f, INFINITY, &h))
+            break;
+        int emitter = s->tri_emitter[h.tri];
+        if (emitter >= 0 && h.front) {
+            struct path_candidate c;
+            c.length = j + 1;
+            c.via_nee = 0;
+            c.light_p = h.p;
+            c.light_n = s->tri_normal[h.tri];
+            c.Le = lights_radiance(s, h.tri, v3_neg(wi));
+            c.w_last = wi;
+            c.fcos_last = x->fcos;
+            c.f = v3_mul(prefix_f, c.Le);
+            c.pdf = prefix_pdf;
+            float cos_l = fabsf(v3_dot(c.light_n, wi));
+            float pdf_light = lights_pdf_area(s, h.tri) * h.t * h.t / fmaxf(cos_l, 1e-12f);
+            c.mis = power_heuristic(pdf, pdf_light);
+            emit(ctx, w, &c);
+        }
+        if (w->nv >= PATH_MAX_VERTICES)
+            break;
+        w->v[w->nv++] = path_vertex_from_hit(&h, wi);
+    }
+    return rays;
+}

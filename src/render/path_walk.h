@@ -1,0 +1,74 @@
+/* path_walk.h: one unidirectional path from a primary hit, with next-event estimation and BSDF
+ * sampling at every vertex. Every complete path it forms (a prefix plus a light vertex, reached
+ * by NEE or by a BSDF-sampled ray) is reported as a candidate with its contribution f, sampling
+ * density and NEE/BSDF power-heuristic weight, so that `pt` can sum m f / p and ReSTIR PT can
+ * resample the same candidates (the initial path sampling of Lin et al. 2022).
+ *
+ * Measure: the primary hit is parameterized by its image position (000 footnote 1) and every
+ * later vertex by the solid angle of the direction that reaches it, so
+ * f = prod_j f_s(x_j) |n_j . w_j| * Le(x_D) and densities are products of solid-angle pdfs.
+ *
+ * Random numbers: vertex j draws from its own stream path_rng(seed, j), first the three BSDF
+ * numbers, then three NEE numbers, then one for Russian roulette. A shift mapping that replays a
+ * path therefore needs only the seed (random replay, Lin et al. 2022 Sec. 7).
+ * Must never depend on reservoirs. */
+#ifndef RESTIR_RENDER_PATH_WALK_H
+#define RESTIR_RENDER_PATH_WALK_H
+
+#include "core/rng.h"
+#include "scene/scene.h"
+
+/* Vertices a walk can hold: x_1 .. x_{max_bounces}; max_bounces is capped to this. */
+#define PATH_MAX_VERTICES 64
+
+/* A scattering vertex x_j of the walk. */
+struct path_vertex {
+    vec3 p;
+    vec3 ns, ng;   /* shading and geometric normals, on the side the path arrived from */
+    vec3 wo;       /* unit direction back toward x_{j-1} (the camera for j = 1) */
+    int material;
+    /* The BSDF-sampled continuation (valid for every vertex but the last one reported): */
+    vec3 w_next;   /* sampled direction */
+    vec3 fcos;     /* f_s(wo, w_next) |ns . w_next| */
+    float pdf_dir; /* solid-angle density of w_next (BSDF lobe mixture) */
+};
+
+/* A complete path x_1 .. x_D, D >= 2, whose last vertex x_D is on an emitter. Vertices x_1 ..
+ * x_{D-1} are walk->v[0 .. D-2]; the last segment is described here because for NEE it is not
+ * the BSDF-sampled continuation of x_{D-1}. */
+struct path_candidate {
+    int length;       /* D */
+    int via_nee;      /* 1: x_D from light sampling, 0: hit by the BSDF-sampled ray */
+    vec3 light_p;     /* x_D */
+    vec3 light_n;     /* emitting normal at x_D */
+    vec3 Le;          /* radiance emitted from x_D toward x_{D-1} */
+    vec3 w_last;      /* unit direction x_{D-1} -> x_D */
+    vec3 fcos_last;   /* f_s(x_{D-1}) |ns . w_last| */
+    vec3 f;           /* path contribution */
+    float pdf;        /* density of the path under this strategy, Russian roulette included */
+    float mis;        /* power-heuristic weight of this strategy against the other */
+};
+
+struct path_walk {
+    int nv;           /* vertices stored in v */
+    struct path_vertex v[PATH_MAX_VERTICES];
+};
+
+typedef void (*path_candidate_fn)(void *ctx, const struct path_walk *w, const struct path_candidate *c);
+
+/* Random stream of vertex j (1-based) of the path with this seed. */
+static inline pcg32 path_rng(uint64_t seed, int vertex)
+{
+    return pcg32_make(rng_mix64(seed + 0x632be59bd9b4e019ull * (uint64_t)vertex), seed ^ 0x9e3779b97f4a7c15ull);
+}
+
+/* Walks from the primary hit x1 (x1.wo toward the camera; x1's own emission is not reported:
+ * paths of length 1 are the caller's) with up to max_bounces scattering events, Russian roulette
+ * after rr_bounces, calling emit for every candidate. Returns the number of rays traced. */
+long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uint64_t seed, int max_bounces,
+                        int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx);
+
+/* The primary vertex from a camera-ray hit (wo = -ray direction). */
+struct path_vertex path_vertex_from_hit(const struct surface_hit *h, vec3 ray_dir);
+
+#endif
