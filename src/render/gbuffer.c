@@ -109,3 +109,20 @@ void gbuffer_shading_point(const struct gbuffer *g, const struct scene *s, int i
     bsdf_from_material(&s->materials[g->material[i]], &b);
     bsdf_frame_init(&sp->bf, &b, sp->n, sp->wo);
 }
+
+int gbuffer_history_pixel(const struct gbuffer *g, int i, const struct gbuffer *prev_g, float normal_min,
+                          float plane_max)
+{
+    if (!g->valid[i] || g->motion[2 * i] == GBUFFER_NO_MOTION)
+        return -1;
+    float qx = g->sub_pixel[i].x + g->motion[2 * i], qy = g->sub_pixel[i].y + g->motion[2 * i + 1];
+    if (!(qx >= 0.0f && qy >= 0.0f && qx < (float)prev_g->width && qy < (float)prev_g->height))
+        return -1;
+    int q = (int)qy * prev_g->width + (int)qx;
+    if (!prev_g->valid[q] || prev_g->material[q] != g->material[i])
+        return -1;
+    if (v3_dot(g->normal[i], prev_g->normal[q]) < normal_min)
+        return -1;
+    float plane = fabsf(v3_dot(prev_g->normal[q], v3_sub(g->position[i], prev_g->position[q])));
+    return plane <= plane_max * g->depth[i] ? q : -1;
+}

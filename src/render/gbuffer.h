@@ -36,6 +36,13 @@ void gbuffer_fini(struct gbuffer *g);
 long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct camera_view *view,
                        const struct camera_view *prev_view, int jitter, uint64_t seed, int frame);
 
+/* Temporal reprojection with validation (001 Sec. 5): the previous-frame pixel under pixel i's
+ * sub-pixel position moved by its backward motion vector, when it shows the same surface
+ * (same material, n . n_prev >= normal_min, plane distance <= plane_max * depth). Reads only
+ * G-buffers, so it cannot bias GRIS. Returns the pixel index, or -1. */
+int gbuffer_history_pixel(const struct gbuffer *g, int i, const struct gbuffer *prev_g, float normal_min,
+                          float plane_max);
+
 /* The surface at pixel i as a shading point: position, normal, outgoing direction, BSDF. */
 struct shading_point {
     vec3 p, n, ng, wo;

@@ -10,7 +10,7 @@
 
 #include "core/check.h"
 
-enum param_type { P_INT, P_FLOAT, P_BOOL, P_MIS };
+enum param_type { P_INT, P_FLOAT, P_BOOL, P_MIS, P_SHIFT };
 
 struct param_def {
     const char *key;
@@ -31,7 +31,8 @@ static const struct param_def params[] = {
     {"di.bsdf_candidates", P_INT, F(bsdf_candidates), 0, 64, "initial RIS: BSDF-sampled candidates"},
     {"temporal", P_BOOL, F(temporal), 0, 1, "temporal reuse on/off"},
     {"spatial", P_BOOL, F(spatial), 0, 1, "spatial reuse on/off"},
-    {"spatial.neighbors", P_INT, F(spatial_neighbors), 1, 5, "spatial neighbors tried per pixel"},
+    {"spatial.neighbors", P_INT, F(spatial_neighbors), 0, 5,
+     "spatial neighbors tried per pixel (0: method default, 1 for restir-di, 3 for restir-pt)"},
     {"spatial.radius", P_FLOAT, F(spatial_radius), 1, 512, "spatial reuse disk radius in pixels"},
     {"spatial.normal", P_FLOAT, F(spatial_normal), -1, 1, "Bitterli test (000 Eq. 7): minimum n . n_i"},
     {"spatial.depth", P_FLOAT, F(spatial_depth), 0, 1e30, "Bitterli test (000 Eq. 7): max |d_i - d| / d"},
@@ -46,6 +47,13 @@ static const struct param_def params[] = {
      "BIASED: reject history whose target ratio leaves [ratio_lo, ratio_hi] (001 Sec. 5)"},
     {"temporal.ratio_lo", P_FLOAT, F(ratio_lo), 0, 1e30, "target-ratio guard lower bound"},
     {"temporal.ratio_hi", P_FLOAT, F(ratio_hi), 0, 1e30, "target-ratio guard upper bound"},
+    {"pt.candidates", P_INT, F(pt_candidates), 1, 64, "restir-pt: initial paths resampled per pixel"},
+    {"shift", P_SHIFT, F(shift), 0, 0,
+     "restir-pt shift mapping: hybrid (replay until two rough, distant vertices, then reconnect), "
+     "reconnection (at the secondary vertex), replay (whole prefix; reconnects only at the light)"},
+    {"shift.roughness", P_FLOAT, F(shift_roughness), 0, 1, "hybrid shift: GGX alpha at or above which a vertex is rough"},
+    {"shift.distance", P_FLOAT, F(shift_distance), 0, 1,
+     "hybrid shift: minimum reconnection length as a fraction of the scene diagonal"},
 };
 #undef F
 #define NUM_PARAMS (sizeof(params) / sizeof(params[0]))
@@ -66,7 +74,7 @@ void render_params_defaults(struct render_params *p)
     p->bsdf_candidates = 1;
     p->temporal = 1;
     p->spatial = 1;
-    p->spatial_neighbors = 1;
+    p->spatial_neighbors = 0;
     p->spatial_radius = 30.0f;
     p->spatial_normal = 0.5f;
     p->spatial_depth = 0.1f;
@@ -77,6 +85,10 @@ void render_params_defaults(struct render_params *p)
     p->temporal_ratio_guard = 0;
     p->ratio_lo = 0.1f;
     p->ratio_hi = 10.0f;
+    p->pt_candidates = 1;
+    p->shift = SHIFT_HYBRID;
+    p->shift_roughness = 0.2f;
+    p->shift_distance = 0.01f;
 }
 
 static int parse_value(const struct param_def *d, const char *val, struct render_params *p, char *msg)
@@ -85,6 +97,13 @@ static int parse_value(const struct param_def *d, const char *val, struct render
     if (d->type == P_MIS) {
         if (restir_mis_parse(val, (enum restir_mis *)(void *)base) != 0) {
             snprintf(msg, RESTIR_MSG_LEN, "--set %s: unknown MIS '%s' (pairwise, balance, 1/M)", d->key, val);
+            return -1;
+        }
+        return 0;
+    }
+    if (d->type == P_SHIFT) {
+        if (shift_kind_parse(val, (enum shift_kind *)(void *)base) != 0) {
+            snprintf(msg, RESTIR_MSG_LEN, "--set %s: unknown shift '%s' (hybrid, reconnection, replay)", d->key, val);
             return -1;
         }
         return 0;
@@ -170,6 +189,7 @@ void render_params_help(FILE *out)
         case P_FLOAT: snprintf(val, sizeof(val), "%g", *(const float *)(const void *)base); break;
         case P_BOOL: snprintf(val, sizeof(val), "%s", *(const int *)(const void *)base ? "on" : "off"); break;
         case P_MIS: snprintf(val, sizeof(val), "%s", restir_mis_name(*(const enum restir_mis *)(const void *)base)); break;
+        case P_SHIFT: snprintf(val, sizeof(val), "%s", shift_kind_name(*(const enum shift_kind *)(const void *)base)); break;
         }
         fprintf(out, "  %-22s %-9s %s\n", pd->key, val, pd->help);
     }

@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "restir/mis.h"
+#include "shift_kind.h"
 
 struct render_params {
     int width, height;
@@ -25,7 +26,7 @@ struct render_params {
     int bsdf_candidates;
     int temporal;
     int spatial;
-    int spatial_neighbors;
+    int spatial_neighbors;  /* 0: the method's default (render_params_spatial_neighbors) */
     float spatial_radius;
     float spatial_normal;   /* Bitterli test, 000 Eq. 7: n . n_i >= spatial_normal */
     float spatial_depth;    /* Bitterli test, 000 Eq. 7: |d_i - d| / d < spatial_depth */
@@ -35,7 +36,20 @@ struct render_params {
     float temporal_plane;   /* ... or when the plane distance exceeds temporal_plane * depth */
     int temporal_ratio_guard; /* 001 Sec. 5 target-ratio guard (biased) */
     float ratio_lo, ratio_hi;
+
+    /* ReSTIR PT */
+    int pt_candidates;      /* initial paths per pixel */
+    enum shift_kind shift;
+    float shift_roughness;  /* hybrid: GGX alpha at or above which a vertex is rough */
+    float shift_distance;   /* hybrid: minimum reconnection length, fraction of the scene diagonal */
 };
+
+/* Spatial neighbors a method tries: spatial.neighbors, or when 0 the default of 001 for ReSTIR DI
+ * (1) and of Lin et al. 2022 for ReSTIR PT (3). */
+static inline int render_params_spatial_neighbors(const struct render_params *p, int path_reuse)
+{
+    return p->spatial_neighbors > 0 ? p->spatial_neighbors : (path_reuse ? 3 : 1);
+}
 
 void render_params_defaults(struct render_params *p);
 /* Applies one "key=value". Returns 0, or -1 with msg naming the key or the bad value. */

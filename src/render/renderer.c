@@ -9,11 +9,14 @@
 #include "core/check.h"
 #include "pt.h"
 #include "restir_di.h"
+#include "restir_pt.h"
 
 const struct method_info method_table[METHOD_COUNT] = {
     {"pt", "path tracing: NEE + BSDF sampling with MIS, Russian roulette (the reference method)", 0},
     {"ris-di", "direct lighting by initial RIS only, no reuse (the no-reuse baseline of 001)", 1},
     {"restir-di", "ReSTIR DI: initial RIS, temporal and spatial reuse by GRIS (pairwise MIS default)", 1},
+    {"restir-pt", "ReSTIR PT: path resampling, temporal and spatial path reuse by GRIS with shift mappings "
+                  "(hybrid default) and sub-pixel reservoirs", 0},
 };
 
 const char *const pass_names[PASS_COUNT] = {"gbuffer", "initial", "temporal", "spatial", "shade", "pt"};
@@ -47,9 +50,18 @@ void renderer_init(struct renderer *r, const struct scene *s, enum method_id met
     if (method != METHOD_PT) {
         gbuffer_init(&r->gb[0], p->width, p->height);
         gbuffer_init(&r->gb[1], p->width, p->height);
+    }
+    if (method == METHOD_RIS_DI || method == METHOD_RESTIR_DI) {
         r->work = xcalloc(n, sizeof(struct di_reservoir));
         r->hist[0] = xcalloc(n, sizeof(struct di_reservoir));
         r->hist[1] = xcalloc(n, sizeof(struct di_reservoir));
+    }
+    if (method == METHOD_RESTIR_PT) {
+        r->pt_work = xcalloc(n, sizeof(struct pt_reservoir));
+        r->pt_hist[0] = xcalloc(n, sizeof(struct pt_reservoir));
+        r->pt_hist[1] = xcalloc(n, sizeof(struct pt_reservoir));
+        r->pt_emission = xcalloc(n, sizeof(vec3));
+        r->scene_diagonal = scene_diagonal(s);
     }
     if (p->threads > 0)
         omp_set_num_threads(p->threads);
@@ -64,6 +76,10 @@ void renderer_fini(struct renderer *r)
     free(r->work);
     free(r->hist[0]);
     free(r->hist[1]);
+    free(r->pt_work);
+    free(r->pt_hist[0]);
+    free(r->pt_hist[1]);
+    free(r->pt_emission);
     free(r->image);
     memset(r, 0, sizeof(*r));
 }
@@ -101,6 +117,31 @@ static void render_restir_di(struct renderer *r, const struct camera_view *view,
     st->valid_pixels = valid;
 }
 
+static void render_restir_pt(struct renderer *r, const struct camera_view *view, struct frame_stats *st)
+{
+    const struct render_params *p = &r->p;
+    struct gbuffer *g = &r->gb[r->cur], *prev_g = &r->gb[1 - r->cur];
+    struct pt_reservoir *out = r->pt_hist[r->cur], *prev_res = r->pt_hist[1 - r->cur];
+    struct pt_frame fr = {r->scene, p, {0}, view, &r->prev_view, r->frame};
+    pt_shift_params(p, r->scene_diagonal, &fr.shift);
+    TIMED(st, PASS_GBUFFER,
+          st->rays += gbuffer_pass(g, r->scene, view, r->has_history ? &r->prev_view : NULL, 0, p->seed,
+                                   r->frame)); /* pixel centres: see pt_initial_pass */
+    TIMED(st, PASS_INITIAL, st->rays += pt_initial_pass(&fr, g, r->pt_work, r->pt_emission));
+    if (p->temporal && r->has_history)
+        TIMED(st, PASS_TEMPORAL,
+              st->rays += pt_temporal_pass(&fr, g, prev_g, prev_res, r->pt_work, &st->temporal_accepted));
+    if (p->spatial)
+        TIMED(st, PASS_SPATIAL, st->rays += pt_spatial_pass(&fr, g, r->pt_work, out));
+    else
+        memcpy(out, r->pt_work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
+    TIMED(st, PASS_SHADE, pt_shade_pass(g, out, r->pt_emission, r->image));
+    long long valid = 0;
+    for (int i = 0; i < g->width * g->height; i++)
+        valid += g->valid[i];
+    st->valid_pixels = valid;
+}
+
 void renderer_render(struct renderer *r, int frame, const struct camera *cam, struct frame_stats *st)
 {
     memset(st, 0, sizeof(*st));
@@ -111,7 +152,10 @@ void renderer_render(struct renderer *r, int frame, const struct camera *cam, st
     if (r->method == METHOD_PT) {
         TIMED(st, PASS_PT, st->rays += pt_pass(r->scene, &view, &r->p, frame, r->p.spp, r->image));
     } else {
-        render_restir_di(r, &view, st);
+        if (r->method == METHOD_RESTIR_PT)
+            render_restir_pt(r, &view, st);
+        else
+            render_restir_di(r, &view, st);
         r->cur = 1 - r->cur;
         r->has_history = 1;
     }

@@ -1,4 +1,4 @@
-/* renderer.h: the methods (pt, ris-di, restir-di), the per-frame state they keep (ping-pong
+/* renderer.h: the methods (pt, ris-di, restir-di, restir-pt), the per-frame state they keep (ping-pong
  * G-buffers and reservoirs, cameras), and per-pass timings. Must never read or write files. */
 #ifndef RESTIR_RENDER_RENDERER_H
 #define RESTIR_RENDER_RENDERER_H
@@ -6,8 +6,9 @@
 #include "di_sample.h"
 #include "gbuffer.h"
 #include "params.h"
+#include "restir_pt.h"
 
-enum method_id { METHOD_PT = 0, METHOD_RIS_DI, METHOD_RESTIR_DI, METHOD_COUNT };
+enum method_id { METHOD_PT = 0, METHOD_RIS_DI, METHOD_RESTIR_DI, METHOD_RESTIR_PT, METHOD_COUNT };
 
 struct method_info {
     const char *name;
@@ -41,6 +42,10 @@ struct renderer {
     struct camera_view prev_view;
     struct di_reservoir *work;    /* initial, then temporal outputs */
     struct di_reservoir *hist[2]; /* spatial outputs: this frame's and the previous frame's */
+    struct pt_reservoir *pt_work;    /* restir-pt: as work */
+    struct pt_reservoir *pt_hist[2]; /* restir-pt: as hist */
+    vec3 *pt_emission;               /* restir-pt: emission seen directly by the initial paths */
+    float scene_diagonal;            /* scales shift.distance */
     float *image;                 /* this frame's radiance, RGB */
 };
 

@@ -6,8 +6,8 @@
 
 #include "core/rng.h"
 #include "restir/mis.h"
-#include "restir/neighbors.h"
 #include "restir/reservoir.h"
+#include "spatial_select.h"
 #include "tiles.h"
 
 /* Canonical domain + at most 5 spatial neighbors. */
@@ -60,19 +60,6 @@ static void gris_merge(const struct render_params *p, int n, const struct shadin
     *out = result;
 }
 
-/* 001 Sec. 5: the previous pixel must show the same surface neighborhood. These checks read
- * only G-buffers, never samples, so they cannot bias GRIS. */
-static int history_matches(const struct render_params *p, const struct gbuffer *g, int i,
-                           const struct gbuffer *prev_g, int q)
-{
-    if (!prev_g->valid[q] || prev_g->material[q] != g->material[i])
-        return 0;
-    if (v3_dot(g->normal[i], prev_g->normal[q]) < p->temporal_normal)
-        return 0;
-    float plane = fabsf(v3_dot(prev_g->normal[q], v3_sub(g->position[i], prev_g->position[q])));
-    return plane <= p->temporal_plane * g->depth[i];
-}
-
 long long di_temporal_pass(const struct scene *s, const struct render_params *p, int frame,
                            const struct gbuffer *g, const struct gbuffer *prev_g,
                            const struct di_reservoir *prev_res, struct di_reservoir *io)
@@ -85,13 +72,8 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
         for (int y = r.y0; y < r.y1; y++) {
             for (int x = r.x0; x < r.x1; x++) {
                 int i = y * w + x;
-                if (!g->valid[i] || g->motion[2 * i] == GBUFFER_NO_MOTION)
-                    continue;
-                float qx = g->sub_pixel[i].x + g->motion[2 * i], qy = g->sub_pixel[i].y + g->motion[2 * i + 1];
-                if (!(qx >= 0.0f && qy >= 0.0f && qx < (float)w && qy < (float)h))
-                    continue;
-                int q = (int)qy * w + (int)qx;
-                if (!history_matches(p, g, i, prev_g, q))
+                int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
+                if (q < 0)
                     continue;
                 struct shading_point sp[2];
                 gbuffer_shading_point(g, s, i, &sp[0]);
@@ -117,7 +99,7 @@ void di_spatial_pass(const struct scene *s, const struct render_params *p, int f
                      const struct di_reservoir *in, struct di_reservoir *out)
 {
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
-    const int nmax = p->spatial_neighbors < DI_MAX_DOMAINS - 1 ? p->spatial_neighbors : DI_MAX_DOMAINS - 1;
+    const int nmax = render_params_spatial_neighbors(p, 0); /* at most 5 = DI_MAX_DOMAINS - 1 (params.c) */
 #pragma omp parallel for schedule(dynamic, 1)
     for (int t = 0; t < ntiles; t++) {
         struct tile_range r = tile_get(w, h, t);
@@ -133,23 +115,11 @@ void di_spatial_pass(const struct scene *s, const struct render_params *p, int f
                 const struct di_reservoir *src[DI_MAX_DOMAINS];
                 gbuffer_shading_point(g, s, i, &sp[0]);
                 src[0] = &in[i];
-                int n = 1;
-                const float ni[3] = {g->normal[i].x, g->normal[i].y, g->normal[i].z};
-                for (int k = 0; k < nmax; k++) {
-                    /* Bitterli et al. 2020: uniform in the disk, kept when 000 Eq. 7 holds. */
-                    float dx, dy;
-                    warp_concentric_disk(pcg32_float(&rng), pcg32_float(&rng), &dx, &dy);
-                    int nx = x + (int)lrintf(dx * p->spatial_radius), ny = y + (int)lrintf(dy * p->spatial_radius);
-                    if (nx < 0 || ny < 0 || nx >= w || ny >= h || (nx == x && ny == y))
-                        continue;
-                    int j = ny * w + nx;
-                    const float nj[3] = {g->normal[j].x, g->normal[j].y, g->normal[j].z};
-                    if (!g->valid[j] ||
-                        !restir_bitterli_compatible(ni, nj, g->depth[i], g->depth[j], p->spatial_normal,
-                                                    p->spatial_depth))
-                        continue;
-                    gbuffer_shading_point(g, s, j, &sp[n]);
-                    src[n++] = &in[j];
+                int idx[DI_MAX_DOMAINS - 1];
+                int n = 1 + spatial_select_bitterli(p, g, x, y, nmax, &rng, idx);
+                for (int k = 1; k < n; k++) {
+                    gbuffer_shading_point(g, s, idx[k - 1], &sp[k]);
+                    src[k] = &in[idx[k - 1]];
                 }
                 gris_merge(p, n, sp, src, &rng, &out[i]);
             }

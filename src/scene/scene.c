@@ -243,3 +243,16 @@ void scene_destroy(struct scene *s)
         alias_table_fini(&s->emitter_table);
     memset(s, 0, sizeof(*s));
 }
+
+float scene_diagonal(const struct scene *s)
+{
+    if (s->num_verts == 0)
+        return 0.0f;
+    vec3 lo = s->verts[0], hi = s->verts[0];
+    for (int i = 1; i < s->num_verts; i++) {
+        vec3 v = s->verts[i];
+        lo = v3(fminf(lo.x, v.x), fminf(lo.y, v.y), fminf(lo.z, v.z));
+        hi = v3(fmaxf(hi.x, v.x), fmaxf(hi.y, v.y), fmaxf(hi.z, v.z));
+    }
+    return v3_length(v3_sub(hi, lo));
+}

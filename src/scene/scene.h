@@ -115,6 +115,9 @@ int scene_builder_end(struct scene_builder *b, char *msg);
 
 void scene_destroy(struct scene *s);
 
+/* Length of the diagonal of the scene's bounding box (scale for distance thresholds). */
+float scene_diagonal(const struct scene *s);
+
 /* Camera at a frame of the default path (or the static camera when path is 0). */
 struct camera scene_camera_at(const struct scene *s, int use_path, float frame);
 

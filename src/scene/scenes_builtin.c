@@ -1,4 +1,4 @@
-/* scenes_builtin.c: the scenes made in code (cornell, many-lights, foliage, pillars, furnace),
+/* scenes_builtin.c: the scenes made in code (cornell, ajar, many-lights, foliage, pillars, furnace),
  * each with a default static camera and camera path. Must never read files. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -8,10 +8,12 @@
 #include "../core/rng.h"
 #include "scene.h"
 
-const char *const scene_builtin_names[] = {"many-lights", "cornell", "foliage", "pillars", "furnace", NULL};
+const char *const scene_builtin_names[] = {"many-lights", "cornell", "ajar", "foliage", "pillars", "furnace",
+                                            NULL};
 const char *const scene_builtin_descriptions[] = {
     "floor and occluders lit by 1200 small emissive triangles of varied colour and power (default)",
     "Cornell box with a ceiling light, a diffuse block and a glossy metal block",
+    "closed room lit only through the narrow gap of a door left ajar: glossy floor, rough metal, indirect light",
     "thousands of thin leaf quads on a few stems over a ground, lit by two area lights (hard pixels)",
     "a row of pillars before a lit wall; the camera path strafes sideways (disocclusion)",
     "closed sphere of albedo 0.5 and emission 0.5 seen from inside: radiance is exactly 1 (test)",
@@ -77,6 +79,86 @@ static void build_cornell(struct scene_builder *b)
     struct camera_key keys[2] = {{0, {v3(-0.3f, 1.0f, 3.4f), v3(0, 1, 0), v3(0, 1, 0), 40.0f}},
                                  {64, {v3(0.3f, 1.1f, 3.2f), v3(0, 1, 0), v3(0, 1, 0), 40.0f}}};
     set_path(b->s, 2, keys);
+}
+
+/* A closed room lit only through a door left ajar. The room spans x in [-2.5, 2.5], y in [0, 2.6],
+ * z in [-3, 3]; its +x wall (0.15 thick) has a 0.9 x 2.1 opening, z in [-1.5, -0.6], whose door
+ * panel is hinged at z = -1.5 and swung 18 degrees into the room, leaving a narrow slit at the
+ * z = -0.6 jamb. Behind it a closed vestibule (x in [2.65, 4.65]) has an emissive panel on its far
+ * wall aimed at the slit: only a thin wedge of direct light enters, so most of the room is lit by
+ * two or more bounces. The emitter sits on the side of the vestibule the camera cannot see
+ * through the slit. Glossy floor, two rough metal objects, two diffuse boxes. */
+static void build_ajar(struct scene_builder *b)
+{
+    const float rx = 2.5f, rz = 3.0f, h = 2.6f, wt = 0.15f; /* room half widths, height; wall thickness */
+    const float dz0 = -1.5f, dz1 = -0.6f, dh = 2.1f;        /* door opening */
+    const float vx1 = 4.65f, vz0 = -2.5f, vz1 = 0.5f;       /* vestibule far wall and sides */
+    const float ox = rx + wt, dcz = 0.5f * (dz0 + dz1), dhw = 0.5f * (dz1 - dz0);
+    int wall_warm = scene_add_material(b, diffuse(0.72f, 0.67f, 0.6f));
+    int wall_cool = scene_add_material(b, diffuse(0.62f, 0.66f, 0.72f));
+    int ceiling = scene_add_material(b, diffuse(0.74f, 0.74f, 0.72f));
+    int floor_mat = scene_add_material(b, (struct material){v3(0.62f, 0.56f, 0.5f), 0.0f, 0.2f, v3s(0.0f), 0});
+    int outside = scene_add_material(b, diffuse(0.75f, 0.75f, 0.75f));
+    int door_mat = scene_add_material(b, diffuse(0.6f, 0.45f, 0.32f));
+    int steel = scene_add_material(b, (struct material){v3(0.86f, 0.87f, 0.9f), 1.0f, 0.35f, v3s(0.0f), 0});
+    int gold = scene_add_material(b, (struct material){v3(0.95f, 0.78f, 0.45f), 1.0f, 0.4f, v3s(0.0f), 0});
+    int red = scene_add_material(b, diffuse(0.65f, 0.2f, 0.15f));
+    int blue = scene_add_material(b, diffuse(0.2f, 0.35f, 0.6f));
+    int light = scene_add_material(b, emitter(v3(120.0f, 110.0f, 95.0f)));
+    /* Room, all faces inward. */
+    int room = scene_new_object(b);
+    add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), rx, rz, floor_mat, room);
+    add_rect(b, v3(0, h, 0), v3(0, -1, 0), v3(1, 0, 0), rx, rz, ceiling, room);
+    add_rect(b, v3(0, h / 2, -rz), v3(0, 0, 1), v3(1, 0, 0), rx, h / 2, wall_warm, room);  /* back */
+    add_rect(b, v3(0, h / 2, rz), v3(0, 0, -1), v3(1, 0, 0), rx, h / 2, wall_warm, room);  /* front */
+    add_rect(b, v3(-rx, h / 2, 0), v3(1, 0, 0), v3(0, 0, 1), rz, h / 2, wall_cool, room); /* left */
+    /* Door wall: inner face (x = rx, facing -x) and outer face (x = ox, facing +x) around the
+     * opening, the jambs, the lintel's underside and the threshold. */
+    for (int side = 0; side < 2; side++) {
+        float x = side ? ox : rx, z0 = side ? vz0 : -rz, z1 = side ? vz1 : rz;
+        vec3 n = v3(side ? 1.0f : -1.0f, 0, 0);
+        int m = side ? outside : wall_warm;
+        add_rect(b, v3(x, h / 2, 0.5f * (z0 + dz0)), n, v3(0, 0, 1), 0.5f * (dz0 - z0), h / 2, m, room);
+        add_rect(b, v3(x, h / 2, 0.5f * (dz1 + z1)), n, v3(0, 0, 1), 0.5f * (z1 - dz1), h / 2, m, room);
+        add_rect(b, v3(x, 0.5f * (dh + h), dcz), n, v3(0, 0, 1), dhw, 0.5f * (h - dh), m, room);
+    }
+    add_rect(b, v3(rx + wt / 2, dh / 2, dz0), v3(0, 0, 1), v3(1, 0, 0), wt / 2, dh / 2, wall_warm, room);
+    add_rect(b, v3(rx + wt / 2, dh / 2, dz1), v3(0, 0, -1), v3(1, 0, 0), wt / 2, dh / 2, wall_warm, room);
+    add_rect(b, v3(rx + wt / 2, dh, dcz), v3(0, -1, 0), v3(1, 0, 0), wt / 2, dhw, wall_warm, room);
+    add_rect(b, v3(rx + wt / 2, 0, dcz), v3(0, 1, 0), v3(1, 0, 0), wt / 2, dhw, floor_mat, room);
+    /* Vestibule beyond the door, faces inward, with the emitter just in front of its far wall. */
+    int vest = scene_new_object(b);
+    float vcx = 0.5f * (ox + vx1), vhx = 0.5f * (vx1 - ox), vcz = 0.5f * (vz0 + vz1), vhz = 0.5f * (vz1 - vz0);
+    add_rect(b, v3(vcx, 0, vcz), v3(0, 1, 0), v3(1, 0, 0), vhx, vhz, outside, vest);
+    add_rect(b, v3(vcx, h, vcz), v3(0, -1, 0), v3(1, 0, 0), vhx, vhz, outside, vest);
+    add_rect(b, v3(vcx, h / 2, vz0), v3(0, 0, 1), v3(1, 0, 0), vhx, h / 2, outside, vest);
+    add_rect(b, v3(vcx, h / 2, vz1), v3(0, 0, -1), v3(1, 0, 0), vhx, h / 2, outside, vest);
+    add_rect(b, v3(vx1, h / 2, vcz), v3(-1, 0, 0), v3(0, 0, 1), vhz, h / 2, outside, vest);
+    /* Emitter z in [-1.3, 0]: its light reaches the slit at shallow angles, while the camera's view
+     * through the slit lands on the plain wall further toward -z. */
+    add_rect(b, v3(vx1 - 0.01f, 1.3f, -0.65f), v3(-1, 0, 0), v3(0, 0, 1), 0.65f, 1.0f, light,
+             scene_new_object(b));
+    /* Door panel: closed it would fill x in [rx - dt, rx]; rotated about its center so that the
+     * hinge corner (rx, dz0) stays put while the free edge swings 18 degrees into the room. */
+    const float dt = 0.04f, dw = 0.88f, open = -18.0f * RESTIR_PI / 180.0f;
+    float cs = cosf(open), sn = sinf(open);
+    vec3 hinge_local = v3(dt / 2, 0, -dw / 2); /* hinge corner relative to the panel's center */
+    vec3 hinge_rot = v3(cs * hinge_local.x + sn * hinge_local.z, 0, -sn * hinge_local.x + cs * hinge_local.z);
+    vec3 dc = v3(rx - hinge_rot.x, 0, dz0 + 0.01f - hinge_rot.z);
+    scene_add_box_rotated_y(b, v3(dc.x - dt / 2, 0.005f, dc.z - dw / 2), v3(dc.x + dt / 2, dh - 0.01f, dc.z + dw / 2),
+                            open, door_mat, scene_new_object(b));
+    /* Furniture: the steel box stands in the wedge of direct light, the gold sphere just beside it. */
+    scene_add_sphere(b, v3(0.9f, 0.4f, -1.35f), 0.4f, 32, 0, gold, scene_new_object(b));
+    scene_add_box_rotated_y(b, v3(-1.6f, 0, -0.8f), v3(-1.0f, 0.6f, -0.2f), 0.3f, steel, scene_new_object(b));
+    scene_add_box_rotated_y(b, v3(1.5f, 0, -2.9f), v3(2.2f, 1.2f, -2.3f), -0.2f, blue, scene_new_object(b));
+    scene_add_box_rotated_y(b, v3(-0.8f, 0, -2.4f), v3(-0.2f, 0.7f, -1.8f), 0.5f, red, scene_new_object(b));
+    /* The camera looks at the slit from the side the wedge of light does not reach, so the emitter
+     * stays hidden; the path is a slow dolly of about 0.25 m over 120 frames. */
+    b->s->camera = (struct camera){v3(-1.8f, 1.5f, 2.4f), v3(1.2f, 0.6f, -1.2f), v3(0, 1, 0), 55.0f};
+    struct camera_key keys[3] = {{0, {v3(-1.85f, 1.5f, 2.45f), v3(1.2f, 0.6f, -1.25f), v3(0, 1, 0), 55.0f}},
+                                 {60, {v3(-1.75f, 1.47f, 2.37f), v3(1.2f, 0.6f, -1.2f), v3(0, 1, 0), 55.0f}},
+                                 {120, {v3(-1.65f, 1.45f, 2.3f), v3(1.2f, 0.6f, -1.15f), v3(0, 1, 0), 55.0f}}};
+    set_path(b->s, 3, keys);
 }
 
 static void build_many_lights(struct scene_builder *b)
@@ -194,8 +276,8 @@ static void build_furnace(struct scene_builder *b)
 
 int scene_create_builtin(const char *name, struct scene *s, char *msg)
 {
-    static void (*const builders[])(struct scene_builder *) = {build_many_lights, build_cornell, build_foliage,
-                                                               build_pillars, build_furnace};
+    static void (*const builders[])(struct scene_builder *) = {build_many_lights, build_cornell, build_ajar,
+                                                               build_foliage, build_pillars, build_furnace};
     for (int i = 0; scene_builtin_names[i]; i++) {
         if (strcmp(name, scene_builtin_names[i]) == 0) {
             struct scene_builder b;

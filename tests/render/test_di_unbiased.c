@@ -6,7 +6,7 @@
 
 #include "render/renderer.h"
 #include "test_util.h"
-#include "unbiased_util.h"
+#include "unbiased_runs.h"
 
 #define RUNS 1024
 #define FRAMES 4
@@ -16,24 +16,6 @@
  * seeds below are fixed, so the outcome is deterministic. */
 #define ALPHA 0.01
 #define POOLED_Z_MAX 4.5
-
-static void run_method(const struct scene *s, enum method_id m, const struct render_params *base, uint64_t seed0,
-                       struct pixel_stats *st)
-{
-    for (int k = 0; k < RUNS; k++) {
-        struct render_params p = *base;
-        p.seed = seed0 + (uint64_t)k;
-        struct renderer r;
-        renderer_init(&r, s, m, &p);
-        for (int f = 0; f < FRAMES; f++) {
-            struct frame_stats fs;
-            struct camera cam = scene_camera_at(s, 1, (float)(f * 6));
-            renderer_render(&r, f, &cam, &fs);
-        }
-        pixel_stats_add(st, r.image);
-        renderer_fini(&r);
-    }
-}
 
 static void check_scene(const char *scene_name, int w, int h, const char *const *sets, int nsets, int expect_unbiased)
 {
@@ -49,24 +31,11 @@ static void check_scene(const char *scene_name, int w, int h, const char *const 
         EXPECT(render_params_set(&p, sets[k], msg) == 0, "%s", msg);
 
     /* Reference: the path tracer over the same integrand, seen from the last frame's camera. */
-    struct render_params rp = p;
-    renderer_reference_params(METHOD_RESTIR_DI, &rp);
-    rp.spp = 16;
     struct pixel_stats ref, di;
     pixel_stats_init(&ref, w * h);
     pixel_stats_init(&di, w * h);
-    for (int k = 0; k < RUNS; k++) {
-        struct render_params q = rp;
-        q.seed = 900000 + (uint64_t)k;
-        struct renderer r;
-        renderer_init(&r, &s, METHOD_PT, &q);
-        struct frame_stats fs;
-        struct camera cam = scene_camera_at(&s, 1, (float)((FRAMES - 1) * 6));
-        renderer_render(&r, 0, &cam, &fs);
-        pixel_stats_add(&ref, r.image);
-        renderer_fini(&r);
-    }
-    run_method(&s, METHOD_RESTIR_DI, &p, 1000, &di);
+    unbiased_run_reference(&s, METHOD_RESTIR_DI, &p, RUNS, 16, (float)((FRAMES - 1) * 6), &ref);
+    unbiased_run_method(&s, METHOD_RESTIR_DI, &p, 1000, RUNS, FRAMES, 6, &di);
     printf("%s %dx%d restir-di", scene_name, w, h);
     for (int k = 0; k < nsets; k++)
         printf(" %s", sets[k]);

@@ -1,0 +1,179 @@
+/* path_shift.c: reconnection, random replay and hybrid shift mappings between pixel domains, with
+ * their Jacobian determinants (see path_shift.h; 000 Eq. 1 and 6, Lin et al. 2022 Sec. 7).
+ * Shading normals equal geometric normals in this renderer (flat shading), so x_k's BSDF is
+ * evaluated with its stored geometric normal. Must never depend on reservoirs. */
+#include "path_shift.h"
+
+#include <string.h>
+
+#include "shading/bsdf.h"
+
+static const char *const kind_names[] = {"reconnection", "replay", "hybrid"};
+
+int shift_kind_parse(const char *name, enum shift_kind *out)
+{
+    for (int k = 0; k < 3; k++) {
+        if (strcmp(name, kind_names[k]) == 0) {
+            *out = (enum shift_kind)k;
+            return 0;
+        }
+    }
+    return -1;
+}
+
+const char *shift_kind_name(enum shift_kind k) { return kind_names[k]; }
+
+static int material_rough(const struct scene *s, const struct shift_params *sp, int material)
+{
+    struct bsdf b;
+    bsdf_from_material(&s->materials[material], &b);
+    return bsdf_roughness(&b) >= sp->min_roughness;
+}
+
+/* Hybrid rule: may the path reconnect at b, coming from a? light_b marks b as a light vertex,
+ * which has no BSDF and always counts as rough. */
+static int connectable(const struct scene *s, const struct shift_params *sp, vec3 pa, int mat_a, vec3 pb,
+                       int mat_b, int light_b)
+{
+    if (!material_rough(s, sp, mat_a) || (!light_b && !material_rough(s, sp, mat_b)))
+        return 0;
+    return v3_length2(v3_sub(pb, pa)) > sp->min_distance * sp->min_distance;
+}
+
+/* Reconnection vertex index k of a walked path of length D (vertices x_j = w->v[j-1]). */
+static int choose_rc(const struct scene *s, const struct shift_params *sp, const struct path_walk *w, int D)
+{
+    if (sp->kind == SHIFT_RECONNECTION)
+        return 2;
+    if (sp->kind == SHIFT_HYBRID)
+        for (int j = 2; j <= D - 1; j++)
+            if (connectable(s, sp, w->v[j - 2].p, w->v[j - 2].material, w->v[j - 1].p, w->v[j - 1].material, 0))
+                return j;
+    return D;
+}
+
+void path_sample_from_candidate(const struct scene *s, const struct shift_params *sp, const struct path_walk *w,
+                                const struct path_candidate *c, struct path_sample *out)
+{
+    const int D = c->length, k = choose_rc(s, sp, w, D);
+    out->length = D;
+    out->rc = k;
+    if (k == D) {
+        out->rc_p = c->light_p;
+        out->rc_n = c->light_n;
+        out->rc_L = c->Le;
+        out->rc_w = v3s(0.0f);
+        out->rc_material = -1;
+    } else {
+        const struct path_vertex *xk = &w->v[k - 1];
+        out->rc_p = xk->p;
+        out->rc_n = xk->ng;
+        out->rc_material = xk->material;
+        out->rc_w = k == D - 1 ? c->w_last : xk->w_next;
+        /* Radiance arriving at x_k: the suffix throughput after x_k times the emission. */
+        vec3 L = c->Le;
+        for (int j = D - 1; j > k; j--)
+            L = v3_mul(L, j == D - 1 ? c->fcos_last : w->v[j - 1].fcos);
+        out->rc_L = L;
+    }
+    vec3 d = v3_sub(out->rc_p, w->v[k - 2].p);
+    out->rc_dist2 = v3_length2(d);
+    out->rc_cos = fabsf(v3_dot(out->rc_n, d)) / sqrtf(out->rc_dist2);
+    float pdf = 1.0f;
+    for (int j = 1; j <= k - 2; j++)
+        pdf *= w->v[j - 1].pdf_dir;
+    out->prefix_pdf = pdf;
+    out->f = c->f;
+}
+
+static float wrap01(float v)
+{
+    float w = v - floorf(v);
+    return w < 1.0f ? w : 0x1.fffffep-1f;
+}
+
+static int fail(struct path_sample *y)
+{
+    y->length = 0;
+    return 0;
+}
+
+int path_shift(const struct scene *s, const struct shift_params *sp, const struct path_sample *x,
+               const struct pt_domain *from, const struct pt_domain *to, struct path_sample *y, float *jacobian,
+               long long *rays)
+{
+    *y = *x;
+    *jacobian = 0.0f;
+    if (x->length < 2)
+        return fail(y);
+    const int D = x->length, k = x->rc;
+    const int hybrid = sp->kind == SHIFT_HYBRID;
+    y->u[0] = wrap01(x->u[0] + from->origin[0] - to->origin[0]);
+    y->u[1] = wrap01(x->u[1] + from->origin[1] - to->origin[1]);
+    float px, py;
+    path_image_position(to->x, to->y, y->u, &px, &py);
+    vec3 dir = camera_view_ray(to->view, px, py);
+    struct surface_hit h;
+    (*rays)++;
+    if (!scene_intersect(s, to->view->position, dir, 0.0f, INFINITY, &h))
+        return fail(y);
+    struct path_vertex v = path_vertex_from_hit(&h, dir);
+    struct bsdf b;
+    bsdf_from_material(&s->materials[v.material], &b);
+    vec3 F = v3s(1.0f);
+    float prefix_pdf = 1.0f;
+    /* Random replay of the directions sampled at y_1 .. y_{k-2}. */
+    for (int j = 1; j <= k - 2; j++) {
+        pcg32 rng = path_rng(x->seed, j);
+        float u0 = pcg32_float(&rng), u1 = pcg32_float(&rng), u2 = pcg32_float(&rng);
+        vec3 wi, f;
+        float pdf;
+        if (!bsdf_sample(&b, v.ns, v.wo, u0, u1, u2, &wi, &pdf, &f) || v3_dot(wi, v.ng) <= 0.0f)
+            return fail(y);
+        F = v3_mul(F, v3_scale(f, v3_dot(v.ns, wi)));
+        prefix_pdf *= pdf;
+        (*rays)++;
+        if (!scene_intersect(s, scene_offset_point(v.p, v.ng, wi), wi, 0.0f, INFINITY, &h))
+            return fail(y);
+        struct path_vertex next = path_vertex_from_hit(&h, wi);
+        /* The shifted path must pick the same reconnection vertex, or T would not be invertible. */
+        if (hybrid && connectable(s, sp, v.p, v.material, next.p, next.material, 0))
+            return fail(y);
+        v = next;
+        bsdf_from_material(&s->materials[v.material], &b);
+    }
+    /* Reconnect y_{k-1} = v to x_k. */
+    if (hybrid && k < D && !connectable(s, sp, v.p, v.material, x->rc_p, x->rc_material, 0))
+        return fail(y);
+    vec3 to_k = v3_sub(x->rc_p, v.p);
+    float d2 = v3_length2(to_k);
+    if (!(d2 > 0.0f))
+        return fail(y);
+    vec3 wk = v3_scale(to_k, 1.0f / sqrtf(d2));
+    float cos_y = v3_dot(v.ns, wk), cos_k = -v3_dot(x->rc_n, wk);
+    if (cos_y <= 0.0f || v3_dot(v.ng, wk) <= 0.0f || cos_k <= 0.0f)
+        return fail(y);
+    vec3 at_k = x->rc_L;
+    if (k < D) {
+        struct bsdf bk;
+        bsdf_from_material(&s->materials[x->rc_material], &bk);
+        vec3 fk = bsdf_eval(&bk, x->rc_n, v3_neg(wk), x->rc_w);
+        at_k = v3_mul(at_k, v3_scale(fk, fabsf(v3_dot(x->rc_n, x->rc_w))));
+    }
+    vec3 f = v3_mul(v3_mul(F, v3_scale(bsdf_eval(&b, v.ns, v.wo, wk), cos_y)), at_k);
+    if (!(v3_max_component(f) > 0.0f) || !v3_is_finite(f))
+        return fail(y);
+    (*rays)++;
+    if (!scene_visible(s, v.p, v.ng, x->rc_p, x->rc_n))
+        return fail(y);
+    y->rc_cos = cos_k;
+    y->rc_dist2 = d2;
+    y->prefix_pdf = prefix_pdf;
+    y->f = f;
+    /* |T'| = replayed density ratio * solid-angle change of the reconnection (path_shift.h). */
+    float J = (x->prefix_pdf / prefix_pdf) * (cos_k / d2) * (x->rc_dist2 / x->rc_cos);
+    if (!(J > 0.0f) || !isfinite(J))
+        return fail(y);
+    *jacobian = J;
+    return 1;
+}

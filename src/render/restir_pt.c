@@ -1,0 +1,272 @@
+/* restir_pt.c: ReSTIR PT passes (see restir_pt.h): initial path resampling over the candidates of
+ * the shared path walk, GRIS merges with shift mappings and Jacobians (004 Eq. 5-7) and
+ * selectable resampling MIS (004 Eq. 9-12), temporal and spatial reuse, shading.
+ * Must never allocate per pixel. */
+#include "restir_pt.h"
+
+#include "restir/mis.h"
+#include "restir/reservoir.h"
+#include "shading/lights.h"
+#include "spatial_select.h"
+#include "tiles.h"
+
+/* Canonical domain + at most 5 spatial neighbors. */
+#define PT_MAX_DOMAINS 6
+
+void pt_shift_params(const struct render_params *p, float scene_diagonal, struct shift_params *out)
+{
+    out->kind = (enum shift_kind)p->shift;
+    out->min_roughness = p->shift_roughness;
+    out->min_distance = p->shift_distance * scene_diagonal;
+    out->max_bounces = p->max_bounces;
+}
+
+static void reservoir_clear(struct pt_reservoir *r, float c)
+{
+    r->y.length = 0;
+    r->W = 0.0f;
+    r->c = c;
+    r->target = 0.0f;
+}
+
+static int reservoir_has_sample(const struct pt_reservoir *r) { return r->y.length >= 2 && r->W > 0.0f; }
+
+/* ---- initial sampling ---------------------------------------------------------------------- */
+
+struct initial_ctx {
+    const struct scene *s;
+    const struct shift_params *shift;
+    struct restir_wrs wrs;
+    pcg32 *rng;
+    float inv_paths;          /* 1 / number of initial paths: the MIS weight between paths */
+    struct path_sample trial; /* u and seed of the path being walked */
+    struct pt_reservoir *r;
+};
+
+/* Resampling weight m f / p of one candidate (Lin et al. 2022 Sec. 7: resampling along the path,
+ * target p_hat = luminance(f)). */
+static void offer_candidate(void *vctx, const struct path_walk *w, const struct path_candidate *c)
+{
+    struct initial_ctx *ctx = vctx;
+    float target = v3_luminance(c->f);
+    float weight = c->pdf > 0.0f ? c->mis * target / c->pdf * ctx->inv_paths : 0.0f;
+    if (restir_wrs_offer(&ctx->wrs, weight, pcg32_float(ctx->rng))) {
+        ctx->r->y = ctx->trial;
+        path_sample_from_candidate(ctx->s, ctx->shift, w, c, &ctx->r->y);
+        ctx->r->target = target;
+    }
+}
+
+long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, struct pt_reservoir *out,
+                          vec3 *emission)
+{
+    const struct scene *s = fr->s;
+    const struct render_params *p = fr->p;
+    long long rays = 0;
+    const int w = g->width, h = g->height, ntiles = tile_count(w, h);
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
+    for (int t = 0; t < ntiles; t++) {
+        struct tile_range r = tile_get(w, h, t);
+        struct path_walk walk;
+        for (int y = r.y0; y < r.y1; y++) {
+            for (int x = r.x0; x < r.x1; x++) {
+                int i = y * w + x;
+                struct pt_reservoir *res = &out[i];
+                reservoir_clear(res, 0.0f);
+                emission[i] = v3s(0.0f); /* every pixel samples paths, even where the centre ray misses */
+                pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_INITIAL);
+                struct initial_ctx ctx;
+                ctx.s = s;
+                ctx.shift = &fr->shift;
+                restir_wrs_init(&ctx.wrs);
+                ctx.rng = &rng;
+                ctx.inv_paths = 1.0f / (float)p->pt_candidates;
+                ctx.r = res;
+                vec3 Le = v3s(0.0f);
+                for (int n = 0; n < p->pt_candidates; n++) {
+                    ctx.trial.u[0] = p->jitter ? pcg32_float(&rng) : 0.5f;
+                    ctx.trial.u[1] = p->jitter ? pcg32_float(&rng) : 0.5f;
+                    float px, py;
+                    path_image_position(x, y, ctx.trial.u, &px, &py);
+                    vec3 d = camera_view_ray(fr->view, px, py);
+                    struct surface_hit hit;
+                    rays++;
+                    if (!scene_intersect(s, fr->view->position, d, 0.0f, INFINITY, &hit))
+                        continue;
+                    if (s->tri_emitter[hit.tri] >= 0 && hit.front)
+                        Le = v3_add(Le, lights_radiance(s, hit.tri, v3_neg(d)));
+                    struct path_vertex x1 = path_vertex_from_hit(&hit, d);
+                    ctx.trial.seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
+                    rays += path_walk_run(s, &x1, ctx.trial.seed, p->max_bounces, p->rr_bounces, &walk,
+                                          offer_candidate, &ctx);
+                }
+                emission[i] = v3_scale(Le, ctx.inv_paths);
+                res->c = (float)p->pt_candidates;
+                if (ctx.wrs.selected >= 0)
+                    res->W = restir_gris_contribution_weight(&ctx.wrs, res->target);
+                if (!(res->W > 0.0f))
+                    reservoir_clear(res, res->c);
+            }
+        }
+    }
+    return rays;
+}
+
+/* ---- GRIS merge ------------------------------------------------------------------------------ */
+
+/* One GRIS merge into domain dom[0] (canonical, identity shift) of n reservoirs living in the
+ * domains dom[j] (004 Eq. 5-7). P[k * n + j] = p_hat_{<-k}(Y_j) (004 Eq. 10): row 0 from the
+ * forward shifts, the diagonal from the cached target over the forward Jacobian, the rest by
+ * shifting Y_j back into domain k. */
+static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_domain *dom,
+                            const struct pt_reservoir *const *in, pcg32 *rng, struct pt_reservoir *out)
+{
+    const struct render_params *p = fr->p;
+    long long rays = 0;
+    float c[PT_MAX_DOMAINS], J[PT_MAX_DOMAINS], m[PT_MAX_DOMAINS];
+    float P[PT_MAX_DOMAINS * PT_MAX_DOMAINS] = {0};
+    struct path_sample Y[PT_MAX_DOMAINS];
+    float c_sum = 0.0f;
+    for (int j = 0; j < n; j++) {
+        c[j] = fminf(in[j]->c, p->confidence_cap);
+        c_sum += c[j];
+        J[j] = 0.0f;
+        Y[j].length = 0;
+        if (!reservoir_has_sample(in[j]))
+            continue;
+        if (j == 0) {
+            Y[0] = in[0]->y;
+            J[0] = 1.0f;
+            P[0] = in[0]->target;
+        } else if (path_shift(fr->s, &fr->shift, &in[j]->y, &dom[j], &dom[0], &Y[j], &J[j], &rays)) {
+            P[j] = v3_luminance(Y[j].f);
+        }
+    }
+    for (int k = 1; k < n; k++) {
+        for (int j = 0; j < n; j++) {
+            if (!restir_mis_needs(p->mis, k, j) || Y[j].length == 0)
+                continue;
+            if (k == j) {
+                P[k * n + j] = in[j]->target / J[j]; /* p_hat_j(X_j) |dT^-1/dy| */
+            } else {
+                struct path_sample z;
+                float Jb;
+                if (path_shift(fr->s, &fr->shift, &Y[j], &dom[0], &dom[k], &z, &Jb, &rays))
+                    P[k * n + j] = v3_luminance(z.f) * Jb;
+            }
+        }
+    }
+    restir_mis_weights(p->mis, n, c, P, m);
+    struct restir_wrs wrs;
+    restir_wrs_init(&wrs);
+    int chosen = -1;
+    for (int j = 0; j < n; j++) {
+        /* 004 Eq. 6 */
+        float wj = Y[j].length ? m[j] * P[j] * in[j]->W * J[j] : 0.0f;
+        if (restir_wrs_offer(&wrs, wj, pcg32_float(rng)))
+            chosen = j;
+    }
+    struct pt_reservoir result;
+    reservoir_clear(&result, restir_confidence_merge(c_sum, p->confidence_cap));
+    if (chosen >= 0) {
+        result.y = Y[chosen];
+        result.target = P[chosen];
+        result.W = restir_gris_contribution_weight(&wrs, result.target); /* 004 Eq. 7 */
+        if (!(result.W > 0.0f))
+            reservoir_clear(&result, result.c);
+    }
+    *out = result;
+    return rays;
+}
+
+static struct pt_domain pixel_domain(const struct camera_view *view, int x, int y)
+{
+    struct pt_domain d = {view, x, y, {(float)x, (float)y}};
+    return d;
+}
+
+/* ---- temporal and spatial reuse ---------------------------------------------------------------- */
+
+long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct gbuffer *prev_g,
+                           const struct pt_reservoir *prev_res, struct pt_reservoir *io, long long *accepted)
+{
+    const struct render_params *p = fr->p;
+    long long rays = 0, acc = 0;
+    const int w = g->width, h = g->height, ntiles = tile_count(w, h);
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays, acc)
+    for (int t = 0; t < ntiles; t++) {
+        struct tile_range r = tile_get(w, h, t);
+        for (int y = r.y0; y < r.y1; y++) {
+            for (int x = r.x0; x < r.x1; x++) {
+                int i = y * w + x;
+                int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
+                if (q < 0)
+                    continue;
+                struct pt_domain dom[2];
+                dom[0] = pixel_domain(fr->view, x, y);
+                dom[1] = pixel_domain(fr->prev_view, q % w, q / w);
+                if (p->jitter) {
+                    /* Area ReSTIR: a previous-frame offset moves with the fractional backward
+                     * motion, a translation of the sub-pixel square (|T'| = 1). */
+                    dom[1].origin[0] -= g->motion[2 * i];
+                    dom[1].origin[1] -= g->motion[2 * i + 1];
+                }
+                pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_TEMPORAL);
+                const struct pt_reservoir *in[2] = {&io[i], &prev_res[q]};
+                rays += gris_merge(fr, 2, dom, in, &rng, &io[i]);
+                acc++;
+            }
+        }
+    }
+    *accepted = acc;
+    return rays;
+}
+
+long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct pt_reservoir *in,
+                          struct pt_reservoir *out)
+{
+    const struct render_params *p = fr->p;
+    long long rays = 0;
+    const int w = g->width, h = g->height, ntiles = tile_count(w, h);
+    const int tries = render_params_spatial_neighbors(p, 1); /* at most 5 = PT_MAX_DOMAINS - 1 (params.c) */
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
+    for (int t = 0; t < ntiles; t++) {
+        struct tile_range r = tile_get(w, h, t);
+        for (int y = r.y0; y < r.y1; y++) {
+            for (int x = r.x0; x < r.x1; x++) {
+                int i = y * w + x;
+                if (!g->valid[i]) {
+                    out[i] = in[i];
+                    continue;
+                }
+                pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_SPATIAL);
+                int idx[PT_MAX_DOMAINS - 1];
+                int n = 1 + spatial_select_bitterli(p, g, x, y, tries, &rng, idx);
+                struct pt_domain dom[PT_MAX_DOMAINS];
+                const struct pt_reservoir *src[PT_MAX_DOMAINS];
+                dom[0] = pixel_domain(fr->view, x, y);
+                src[0] = &in[i];
+                for (int k = 1; k < n; k++) {
+                    dom[k] = pixel_domain(fr->view, idx[k - 1] % w, idx[k - 1] / w);
+                    src[k] = &in[idx[k - 1]];
+                }
+                rays += gris_merge(fr, n, dom, src, &rng, &out[i]);
+            }
+        }
+    }
+    return rays;
+}
+
+void pt_shade_pass(const struct gbuffer *g, const struct pt_reservoir *res, const vec3 *emission, float *rgb)
+{
+    const int n = g->width * g->height;
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; i++) {
+        vec3 L = emission[i];
+        if (reservoir_has_sample(&res[i]))
+            L = v3_add(L, v3_scale(res[i].y.f, res[i].W)); /* f(Y) W_Y */
+        rgb[3 * i] = L.x;
+        rgb[3 * i + 1] = L.y;
+        rgb[3 * i + 2] = L.z;
+    }
+}

@@ -1,0 +1,59 @@
+/* restir_pt.h: the passes of ReSTIR PT (Lin et al. 2022; 004 Sec. 2; 000 Sec. 3) with sub-pixel
+ * (area) reservoirs (Zhang et al. 2024): initial path resampling, temporal reuse along the
+ * fractional backward motion vector, spatial reuse, and shading by f(Y) W_Y.
+ * Must never allocate per pixel or read files. */
+#ifndef RESTIR_RENDER_RESTIR_PT_H
+#define RESTIR_RENDER_RESTIR_PT_H
+
+#include "gbuffer.h"
+#include "params.h"
+#include "path_shift.h"
+
+/* A path reservoir (004 Sec. 2.6): the path, its unbiased contribution weight W, confidence c and
+ * the cached target p_hat = luminance(f) in the pixel that owns it. */
+struct pt_reservoir {
+    struct path_sample y;
+    float W;
+    float c;
+    float target;
+};
+
+/* What every pass of one frame reads. */
+struct pt_frame {
+    const struct scene *s;
+    const struct render_params *p;
+    struct shift_params shift;
+    const struct camera_view *view;      /* this frame */
+    const struct camera_view *prev_view; /* the previous frame (temporal reuse) */
+    int frame;
+};
+
+/* The shift parameters the render parameters ask for; scene_diagonal scales shift.distance. */
+void pt_shift_params(const struct render_params *p, float scene_diagonal, struct shift_params *out);
+
+/* Initial sampling: p->pt_candidates paths per pixel by the shared path walk, each from its own
+ * jittered primary ray, every NEE/BSDF candidate resampled with weight m f / p into one
+ * reservoir, c = number of paths; emission seen directly goes to `emission` (paths of length 1
+ * are not resampled). The primary rays must not share random numbers with the G-buffer: neighbor
+ * and history selection read the G-buffer, and the sub-pixel position is part of the sample, so
+ * a shared jitter would make the selected domains depend on the sample and bias GRIS. The
+ * G-buffer of restir-pt is therefore traced through pixel centres. Returns rays traced. */
+long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, struct pt_reservoir *out,
+                          vec3 *emission);
+
+/* Temporal reuse: the previous pixel under the sub-pixel position plus backward motion
+ * (validated on G-buffers as 001) is merged by GRIS with shifts between the two frames. io holds
+ * the initial reservoirs on entry and the outputs on return. Returns rays traced; *accepted
+ * counts pixels that reused history. */
+long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct gbuffer *prev_g,
+                           const struct pt_reservoir *prev_res, struct pt_reservoir *io, long long *accepted);
+
+/* Spatial reuse: Bitterli selection, GRIS merge with shifts. Returns rays traced. */
+long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct pt_reservoir *in,
+                          struct pt_reservoir *out);
+
+/* Final shading: emission seen directly + f(Y) W_Y (f cached by the last shift into the pixel,
+ * visibility included, so no ray is traced). */
+void pt_shade_pass(const struct gbuffer *g, const struct pt_reservoir *res, const vec3 *emission, float *rgb);
+
+#endif

@@ -1,0 +1,12 @@
+/* shift_kind.h: the names of the ReSTIR PT shift mappings (path_shift.h), apart so that the
+ * parameter table can parse them without seeing paths. Must never depend on the scene. */
+#ifndef RESTIR_RENDER_SHIFT_KIND_H
+#define RESTIR_RENDER_SHIFT_KIND_H
+
+enum shift_kind { SHIFT_RECONNECTION = 0, SHIFT_REPLAY, SHIFT_HYBRID };
+
+/* Parses "reconnection", "replay", "hybrid". Returns 0, or -1 for an unknown name. */
+int shift_kind_parse(const char *name, enum shift_kind *out);
+const char *shift_kind_name(enum shift_kind k);
+
+#endif
