@@ -1,6 +1,7 @@
 /* bench_main.c: `restir_bench`: per-pass timings with rays per second and the Embree-only replay
- * ratio, equal-time error of pt against restir-di, and the temporal-reuse experiment of 001
- * Sec. 6. Prints Markdown tables for docs/BENCHMARKS.md. Must never be run by the tests. */
+ * ratio, equal-time error of pt against restir-di and restir-pt (static camera and camera path),
+ * the temporal-reuse experiment of 001 Sec. 6, and the bias of the 1/M weights. Prints Markdown
+ * tables for docs/BENCHMARKS.md. Must never be run by the tests. */
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -40,10 +41,11 @@ static struct render_params base_params(const struct bench_config *c)
     return p;
 }
 
-static float *reference(const struct scene *s, const struct render_params *p, float frame, int use_path, int spp)
+static float *reference(const struct scene *s, enum method_id method, const struct render_params *p, float frame,
+                        int use_path, int spp)
 {
     struct render_params rp = *p;
-    renderer_reference_params(METHOD_RESTIR_DI, &rp);
+    renderer_reference_params(method, &rp);
     rp.seed = 0xbe4c4ull;
     struct camera cam = scene_camera_at(s, use_path, frame);
     struct camera_view view;
@@ -63,18 +65,17 @@ static float *reference(const struct scene *s, const struct render_params *p, fl
 
 /* Per-pass timing over frames 1..N-1 (frame 0 has no history), rays per second, and the last
  * frame's rays replayed through Embree alone. */
-static void bench_passes(const struct bench_config *c)
+static void bench_passes(const struct bench_config *c, const enum method_id *methods, int nmethods)
 {
     struct scene s = load_scene(c->scene);
     printf("\n### Per-pass time, %s %dx%d, static camera, mean of frames 1-%d (%d threads)\n\n", c->scene,
            c->width, c->height, c->frames - 1, omp_get_max_threads());
     printf("| method | gbuffer | initial | temporal | spatial | shade | pt | frame ms | Mrays/s | rays/px | "
            "Embree-only ms | frame / Embree-only |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-    const enum method_id methods[] = {METHOD_RESTIR_DI, METHOD_RIS_DI, METHOD_PT};
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < nmethods; k++) {
         struct render_params p = base_params(c);
         if (methods[k] == METHOD_PT)
-            renderer_reference_params(METHOD_RESTIR_DI, &p); /* pt over the DI integrand, 1 spp */
+            renderer_reference_params(methods[0], &p); /* pt over the first method's integrand, 1 spp */
         struct renderer r;
         renderer_init(&r, &s, methods[k], &p);
         double ms[PASS_COUNT] = {0}, total = 0.0, rays = 0.0;
@@ -108,31 +109,34 @@ static void bench_passes(const struct bench_config *c)
     scene_destroy(&s);
 }
 
-/* Equal time: restir-di's mean frame time buys pt as many paths per pixel as fit. */
-static void bench_equal_time(const struct bench_config *c)
+/* Equal time: the method's mean frame time buys pt as many paths per pixel as fit; errors at the
+ * last frame against a reference from that frame's camera (static camera or the camera path). */
+static void bench_equal_time(const struct bench_config *c, enum method_id method, int use_path)
 {
     struct scene s = load_scene(c->scene);
     struct render_params p = base_params(c);
-    float *ref = reference(&s, &p, 0.0f, 0, c->ref_spp);
+    const int last = c->frames - 1;
+    float *ref = reference(&s, method, &p, (float)last, use_path, c->ref_spp);
     size_t npix = (size_t)c->width * c->height;
-    struct camera cam = scene_camera_at(&s, 0, 0.0f);
     struct frame_stats st;
 
     struct renderer r;
-    renderer_init(&r, &s, METHOD_RESTIR_DI, &p);
+    renderer_init(&r, &s, method, &p);
     double total = 0.0;
     for (int f = 0; f < c->frames; f++) {
+        struct camera cam = scene_camera_at(&s, use_path, (float)f);
         renderer_render(&r, f, &cam, &st);
         total += st.ms_total;
     }
     double budget = total / c->frames;
-    struct restir_error e_di;
-    restir_error_compute(r.image, ref, npix, NULL, &e_di);
+    struct restir_error e_m;
+    restir_error_compute(r.image, ref, npix, NULL, &e_m);
     renderer_fini(&r);
 
     /* pt cost per path: time 1 and 4 spp (the difference removes per-frame overhead). */
+    struct camera cam = scene_camera_at(&s, use_path, (float)last);
     struct render_params q = p;
-    renderer_reference_params(METHOD_RESTIR_DI, &q);
+    renderer_reference_params(method, &q);
     double t[2];
     for (int k = 0; k < 2; k++) {
         q.spp = k ? 4 : 1;
@@ -147,19 +151,20 @@ static void bench_equal_time(const struct bench_config *c)
     if (q.spp < 1)
         q.spp = 1;
     renderer_init(&r, &s, METHOD_PT, &q);
-    renderer_render(&r, c->frames - 1, &cam, &st);
+    renderer_render(&r, last, &cam, &st);
     struct restir_error e_pt;
     restir_error_compute(r.image, ref, npix, NULL, &e_pt);
     double pt_ms = st.ms_total;
     renderer_fini(&r);
 
-    printf("\n### Equal time, %s %dx%d, static camera, error at frame %d (reference: %d spp)\n\n", c->scene,
-           c->width, c->height, c->frames - 1, c->ref_spp);
+    const char *name = method_table[method].name;
+    printf("\n### Equal time, %s, %s %dx%d, %s, error at frame %d (reference: %d spp)\n\n", name, c->scene,
+           c->width, c->height, use_path ? "camera path" : "static camera", last, c->ref_spp);
     printf("| method | ms/frame | spp | relMSE | MAPE | SMAPE |\n|---|---|---|---|---|---|\n");
-    printf("| restir-di | %.1f | 1 | %.5g | %.4f | %.2f |\n", budget, e_di.relmse, e_di.mape, e_di.smape);
+    printf("| %s | %.1f | 1 | %.5g | %.4f | %.2f |\n", name, budget, e_m.relmse, e_m.mape, e_m.smape);
     printf("| pt | %.1f | %d | %.5g | %.4f | %.2f |\n", pt_ms, q.spp, e_pt.relmse, e_pt.mape, e_pt.smape);
-    printf("\nrelMSE(pt) / relMSE(restir-di) = **%.2f**; MAPE ratio %.2f; SMAPE ratio %.2f\n",
-           e_pt.relmse / e_di.relmse, e_pt.mape / e_di.mape, e_pt.smape / e_di.smape);
+    printf("\nrelMSE(pt) / relMSE(%s) = **%.2f**; MAPE ratio %.2f; SMAPE ratio %.2f\n", name,
+           e_pt.relmse / e_m.relmse, e_pt.mape / e_m.mape, e_pt.smape / e_m.smape);
     free(ref);
     scene_destroy(&s);
 }
@@ -184,10 +189,10 @@ static void bench_temporal(const struct bench_config *c)
     struct render_params p = base_params(c);
     size_t npix = (size_t)c->width * c->height, n3 = 3 * npix;
     const int nf = c->temporal_frames, moving_frames = 16;
-    float *ref_static = reference(&s, &p, 0.0f, 0, c->ref_spp);
+    float *ref_static = reference(&s, METHOD_RESTIR_DI, &p, 0.0f, 0, c->ref_spp);
     float **ref_moving = xmalloc(sizeof(float *) * moving_frames);
     for (int f = 0; f < moving_frames; f++)
-        ref_moving[f] = reference(&s, &p, (float)f, 1, c->ref_spp / 4);
+        ref_moving[f] = reference(&s, METHOD_RESTIR_DI, &p, (float)f, 1, c->ref_spp / 4);
     printf("\n### Temporal reuse (001 Sec. 6), %s %dx%d, spatial reuse off; static: %d frames, moving: %d "
            "frames of the camera path; references %d / %d spp\n\n",
            c->scene, c->width, c->height, nf, moving_frames, c->ref_spp, c->ref_spp / 4);
@@ -252,10 +257,101 @@ static void bench_temporal(const struct bench_config *c)
     scene_destroy(&s);
 }
 
+/* 000 Table 1 layout: rows are passes, columns are scenes; restir-pt, static camera, mean of
+ * frames 1..N-1. */
+static void bench_table1(const struct bench_config *c, const char *const *scenes, int nscenes)
+{
+    enum { ROWS = 6 };
+    static const char *const rows[ROWS] = {"G-buffer", "Initial Sampling", "Temporal Resampling", "Spatial Reuse",
+                                           "Shading", "Full Frame"};
+    double ms[8][ROWS] = {{0}};
+    for (int sc = 0; sc < nscenes; sc++) {
+        struct scene s = load_scene(scenes[sc]);
+        struct render_params p = base_params(c);
+        struct renderer r;
+        renderer_init(&r, &s, METHOD_RESTIR_PT, &p);
+        struct camera cam = scene_camera_at(&s, 0, 0.0f);
+        for (int f = 0; f < c->frames; f++) {
+            struct frame_stats st;
+            renderer_render(&r, f, &cam, &st);
+            if (f == 0)
+                continue;
+            const double v[ROWS] = {st.ms[PASS_GBUFFER], st.ms[PASS_INITIAL], st.ms[PASS_TEMPORAL],
+                                    st.ms[PASS_SPATIAL], st.ms[PASS_SHADE], st.ms_total};
+            for (int q = 0; q < ROWS; q++)
+                ms[sc][q] += v[q] / (c->frames - 1);
+        }
+        renderer_fini(&r);
+        scene_destroy(&s);
+    }
+    printf("\n### restir-pt per-pass CPU time (ms), layout of 000 Table 1, %dx%d, %d threads, mean of frames 1-%d\n\n|",
+           c->width, c->height, omp_get_max_threads(), c->frames - 1);
+    for (int sc = 0; sc < nscenes; sc++)
+        printf(" | %s", scenes[sc]);
+    printf(" |\n|---");
+    for (int sc = 0; sc < nscenes; sc++)
+        printf("|---");
+    printf("|\n");
+    for (int q = 0; q < ROWS; q++) {
+        printf("| %s", rows[q]);
+        for (int sc = 0; sc < nscenes; sc++)
+            printf(" | %.1f", ms[sc][q]);
+        printf(" |\n");
+    }
+}
+
+/* Bias of a MIS choice: the image mean of `runs` independent sequences (last frame) against the
+ * reference, with the standard error from the spread of per-run image means. */
+static void bench_bias(const char *scene, enum method_id method, int w, int h, int runs, int frames, int ref_spp)
+{
+    struct scene s = load_scene(scene);
+    struct render_params p;
+    render_params_defaults(&p);
+    p.width = w;
+    p.height = h;
+    float *ref = reference(&s, method, &p, 0.0f, 0, ref_spp);
+    size_t npix = (size_t)w * h;
+    double ref_mean = 0.0;
+    for (size_t i = 0; i < npix; i++)
+        ref_mean += v3_luminance(v3(ref[3 * i], ref[3 * i + 1], ref[3 * i + 2])) / (double)npix;
+    printf("\n### Bias of the resampling MIS, %s on %s %dx%d: image mean of frame %d over %d runs vs a %d-spp "
+           "reference (mean %.5f)\n\n| mis | image mean | relative bias | z |\n|---|---|---|---|\n",
+           method_table[method].name, scene, w, h, frames - 1, runs, ref_spp, ref_mean);
+    const char *mis[3] = {"pairwise", "balance", "1/M"};
+    for (int m = 0; m < 3; m++) {
+        char set[32], msg[RESTIR_MSG_LEN];
+        snprintf(set, sizeof(set), "mis=%s", mis[m]);
+        struct render_params q = p;
+        render_params_set(&q, set, msg);
+        double sum = 0.0, sum2 = 0.0;
+        struct camera cam = scene_camera_at(&s, 0, 0.0f);
+        for (int k = 0; k < runs; k++) {
+            q.seed = 7000 + (uint64_t)k;
+            struct renderer r;
+            struct frame_stats st;
+            renderer_init(&r, &s, method, &q);
+            for (int f = 0; f < frames; f++)
+                renderer_render(&r, f, &cam, &st);
+            double mean = 0.0;
+            for (size_t i = 0; i < npix; i++)
+                mean += v3_luminance(v3(r.image[3 * i], r.image[3 * i + 1], r.image[3 * i + 2])) / (double)npix;
+            sum += mean;
+            sum2 += mean * mean;
+            renderer_fini(&r);
+        }
+        double mu = sum / runs, var = (sum2 / runs - mu * mu) * runs / (runs - 1);
+        double se = sqrt(var / runs + 0.0);
+        printf("| %s | %.5f | %+.2f%% | %.1f |\n", mis[m], mu, 100.0 * (mu - ref_mean) / ref_mean,
+               se > 0.0 ? (mu - ref_mean) / se : 0.0);
+    }
+    free(ref);
+    scene_destroy(&s);
+}
+
 int main(int argc, char **argv)
 {
     struct bench_config c = {"many-lights", 640, 360, 17, 1024, 64};
-    int run_passes = 0, run_equal = 0, run_temporal = 0;
+    int run_passes = 0, run_equal = 0, run_temporal = 0, run_pt = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "passes"))
             run_passes = 1;
@@ -263,22 +359,38 @@ int main(int argc, char **argv)
             run_equal = 1;
         else if (!strcmp(argv[i], "temporal"))
             run_temporal = 1;
+        else if (!strcmp(argv[i], "pt"))
+            run_pt = 1;
         else if (!strcmp(argv[i], "--quick")) {
             c.width = 320;
             c.height = 180;
             c.ref_spp = 256;
             c.temporal_frames = 16;
         } else {
-            fprintf(stderr, "usage: restir_bench [passes] [equal-time] [temporal] [--quick]\n");
+            fprintf(stderr, "usage: restir_bench [passes] [equal-time] [temporal] [pt] [--quick]\n");
             return 2;
         }
     }
-    if (!run_passes && !run_equal && !run_temporal)
-        run_passes = run_equal = run_temporal = 1;
+    if (!run_passes && !run_equal && !run_temporal && !run_pt)
+        run_passes = run_equal = run_temporal = run_pt = 1;
+    const enum method_id di_methods[] = {METHOD_RESTIR_DI, METHOD_RIS_DI, METHOD_PT};
     if (run_passes)
-        bench_passes(&c);
+        bench_passes(&c, di_methods, 3);
     if (run_equal)
-        bench_equal_time(&c);
+        bench_equal_time(&c, METHOD_RESTIR_DI, 0);
+    if (run_pt) {
+        const char *const pt_scenes[] = {"ajar", "cornell"};
+        const enum method_id pt_methods[] = {METHOD_RESTIR_PT, METHOD_PT};
+        bench_table1(&c, pt_scenes, 2);
+        for (int sc = 0; sc < 2; sc++) {
+            struct bench_config pc = c;
+            pc.scene = pt_scenes[sc];
+            bench_passes(&pc, pt_methods, 2);
+            bench_equal_time(&pc, METHOD_RESTIR_PT, 0);
+            bench_equal_time(&pc, METHOD_RESTIR_PT, 1);
+            bench_bias(pt_scenes[sc], METHOD_RESTIR_PT, 64, 36, c.width < 640 ? 64 : 256, 8, 4096);
+        }
+    }
     if (run_temporal) {
         struct bench_config t = c;
         t.width = c.width / 2;

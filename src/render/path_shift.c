@@ -23,11 +23,22 @@ int shift_kind_parse(const char *name, enum shift_kind *out)
 
 const char *shift_kind_name(enum shift_kind k) { return kind_names[k]; }
 
-static int material_rough(const struct scene *s, const struct shift_params *sp, int material)
+static int material_rough_eval(const struct scene *s, const struct shift_params *sp, int material)
 {
     struct bsdf b;
     bsdf_from_material(&s->materials[material], &b);
     return bsdf_roughness(&b) >= sp->min_roughness;
+}
+
+void path_shift_rough_table(const struct scene *s, const struct shift_params *sp, unsigned char *rough)
+{
+    for (int m = 0; m < s->num_materials; m++)
+        rough[m] = (unsigned char)material_rough_eval(s, sp, m);
+}
+
+static int material_rough(const struct scene *s, const struct shift_params *sp, int material)
+{
+    return sp->rough ? sp->rough[material] : material_rough_eval(s, sp, material);
 }
 
 /* Hybrid rule: may the path reconnect at b, coming from a? light_b marks b as a light vertex,

@@ -25,7 +25,12 @@ struct shift_params {
     float min_roughness; /* hybrid: a vertex is rough when its GGX alpha is at least this */
     float min_distance;  /* hybrid: reconnection segments must be longer (scene units) */
     int max_bounces;     /* path length bound of the sampler */
+    const unsigned char *rough; /* per material: 1 when rough (path_shift_rough_table); NULL: computed
+                                   on every query */
 };
+
+/* Fills rough[m] for every material of s (s->num_materials entries) from sp->min_roughness. */
+void path_shift_rough_table(const struct scene *s, const struct shift_params *sp, unsigned char *rough);
 
 struct path_sample {
     int length;          /* D; 0 = no sample */

@@ -62,6 +62,10 @@ void renderer_init(struct renderer *r, const struct scene *s, enum method_id met
         r->pt_hist[1] = xcalloc(n, sizeof(struct pt_reservoir));
         r->pt_emission = xcalloc(n, sizeof(vec3));
         r->scene_diagonal = scene_diagonal(s);
+        struct shift_params sp;
+        pt_shift_params(p, r->scene_diagonal, &sp);
+        r->material_rough = xcalloc((size_t)s->num_materials + 1, 1);
+        path_shift_rough_table(s, &sp, r->material_rough);
     }
     if (p->threads > 0)
         omp_set_num_threads(p->threads);
@@ -80,6 +84,7 @@ void renderer_fini(struct renderer *r)
     free(r->pt_hist[0]);
     free(r->pt_hist[1]);
     free(r->pt_emission);
+    free(r->material_rough);
     free(r->image);
     memset(r, 0, sizeof(*r));
 }
@@ -124,6 +129,7 @@ static void render_restir_pt(struct renderer *r, const struct camera_view *view,
     struct pt_reservoir *out = r->pt_hist[r->cur], *prev_res = r->pt_hist[1 - r->cur];
     struct pt_frame fr = {r->scene, p, {0}, view, &r->prev_view, r->frame};
     pt_shift_params(p, r->scene_diagonal, &fr.shift);
+    fr.shift.rough = r->material_rough;
     TIMED(st, PASS_GBUFFER,
           st->rays += gbuffer_pass(g, r->scene, view, r->has_history ? &r->prev_view : NULL, 0, p->seed,
                                    r->frame)); /* pixel centres: see pt_initial_pass */

@@ -46,6 +46,7 @@ struct renderer {
     struct pt_reservoir *pt_hist[2]; /* restir-pt: as hist */
     vec3 *pt_emission;               /* restir-pt: emission seen directly by the initial paths */
     float scene_diagonal;            /* scales shift.distance */
+    unsigned char *material_rough;   /* restir-pt: hybrid shift's roughness class per material */
     float *image;                 /* this frame's radiance, RGB */
 };
 

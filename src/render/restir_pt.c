@@ -19,6 +19,7 @@ void pt_shift_params(const struct render_params *p, float scene_diagonal, struct
     out->min_roughness = p->shift_roughness;
     out->min_distance = p->shift_distance * scene_diagonal;
     out->max_bounces = p->max_bounces;
+    out->rough = NULL;
 }
 
 static void reservoir_clear(struct pt_reservoir *r, float c)
