@@ -1,5 +1,5 @@
 /* test_determinism.c: same seed, same bytes: `restir render` writes identical EXR frames with 1 and 2 threads
- * for pt, ris-di and restir-di, and another seed changes them. Must never call the renderer directly (CLI only). */
+ * for pt, ris-di, restir-di and restir-pt, and another seed changes them. Must never call the renderer directly (CLI only). */
 #include "cli_util.h"
 #include "test_util.h"
 
@@ -57,6 +57,7 @@ int main(void)
     check_method(tmp, "pt");
     check_method(tmp, "ris-di");
     check_method(tmp, "restir-di");
+    check_method(tmp, "restir-pt");
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
     return test_finish();
 }
