@@ -63,6 +63,36 @@ static int choose_rc(const struct scene *s, const struct shift_params *sp, const
     return D;
 }
 
+/* The factors of f from y_{k-1} = v (BSDF b) onward when it is connected to x's reconnection
+ * vertex x_k: f_s(v) |n_v . w| * [f_s(x_k) |n_k . w_k|] * L, with w the unit direction v -> x_k
+ * (no visibility). Writes |cos| at x_k and the squared distance; returns 0 where the connection
+ * leaves either surface on the wrong side. The initial sample and every shift evaluate their
+ * target through this one function, so an identity shift reproduces the cached target exactly. */
+static vec3 reconnection_eval(const struct scene *s, const struct path_vertex *v, const struct bsdf *b,
+                              const struct path_sample *x, float *cos_k, float *d2)
+{
+    *cos_k = 0.0f;
+    *d2 = 0.0f;
+    vec3 to_k = v3_sub(x->rc_p, v->p);
+    float dist2 = v3_length2(to_k);
+    if (!(dist2 > 0.0f))
+        return v3s(0.0f);
+    vec3 wk = v3_scale(to_k, 1.0f / sqrtf(dist2));
+    float cos_y = v3_dot(v->ns, wk), ck = -v3_dot(x->rc_n, wk);
+    if (cos_y <= 0.0f || v3_dot(v->ng, wk) <= 0.0f || ck <= 0.0f)
+        return v3s(0.0f);
+    vec3 at_k = x->rc_L;
+    if (x->rc < x->length) {
+        struct bsdf bk;
+        bsdf_from_material(&s->materials[x->rc_material], &bk);
+        vec3 fk = bsdf_eval(&bk, x->rc_n, v3_neg(wk), x->rc_w);
+        at_k = v3_mul(at_k, v3_scale(fk, fabsf(v3_dot(x->rc_n, x->rc_w))));
+    }
+    *cos_k = ck;
+    *d2 = dist2;
+    return v3_mul(v3_scale(bsdf_eval(b, v->ns, v->wo, wk), cos_y), at_k);
+}
+
 void path_sample_from_candidate(const struct scene *s, const struct shift_params *sp, const struct path_walk *w,
                                 const struct path_candidate *c, struct path_sample *out)
 {
@@ -87,20 +117,33 @@ void path_sample_from_candidate(const struct scene *s, const struct shift_params
             L = v3_mul(L, j == D - 1 ? c->fcos_last : w->v[j - 1].fcos);
         out->rc_L = L;
     }
-    vec3 d = v3_sub(out->rc_p, w->v[k - 2].p);
-    out->rc_dist2 = v3_length2(d);
-    out->rc_cos = fabsf(v3_dot(out->rc_n, d)) / sqrtf(out->rc_dist2);
+    /* The walk's f follows its rays, which leave offset origins; shifts evaluate the straight
+     * segment x_{k-1} -> x_k. Cache f as the shifts define it (same prefix, reconnection_eval). */
     float pdf = 1.0f;
-    for (int j = 1; j <= k - 2; j++)
+    vec3 F = v3s(1.0f);
+    for (int j = 1; j <= k - 2; j++) {
         pdf *= w->v[j - 1].pdf_dir;
+        F = v3_mul(F, w->v[j - 1].fcos);
+    }
     out->prefix_pdf = pdf;
-    out->f = c->f;
+    const struct path_vertex *xk1 = &w->v[k - 2];
+    struct bsdf b;
+    bsdf_from_material(&s->materials[xk1->material], &b);
+    out->f = v3_mul(F, reconnection_eval(s, xk1, &b, out, &out->rc_cos, &out->rc_dist2));
+    if (!(out->rc_dist2 > 0.0f)) { /* the connection failed: keep finite Jacobian terms */
+        out->rc_dist2 = 1.0f;
+        out->rc_cos = 1.0f;
+    }
 }
 
-static float wrap01(float v)
+/* u (in [0,1)) translated by delta on the unit torus. Only the fractional part of delta is added,
+ * so identity and whole-pixel shifts leave u bit-identical. */
+static float translate_offset(float u, float delta)
 {
-    float w = v - floorf(v);
-    return w < 1.0f ? w : 0x1.fffffep-1f;
+    float t = u + (delta - floorf(delta));
+    if (t >= 1.0f)
+        t -= 1.0f; /* exact: t in [1, 2) */
+    return t < 1.0f ? t : 0x1.fffffep-1f;
 }
 
 static int fail(struct path_sample *y)
@@ -119,8 +162,8 @@ int path_shift(const struct scene *s, const struct shift_params *sp, const struc
         return fail(y);
     const int D = x->length, k = x->rc;
     const int hybrid = sp->kind == SHIFT_HYBRID;
-    y->u[0] = wrap01(x->u[0] + from->origin[0] - to->origin[0]);
-    y->u[1] = wrap01(x->u[1] + from->origin[1] - to->origin[1]);
+    y->u[0] = translate_offset(x->u[0], from->origin[0] - to->origin[0]);
+    y->u[1] = translate_offset(x->u[1], from->origin[1] - to->origin[1]);
     float px, py;
     path_image_position(to->x, to->y, y->u, &px, &py);
     vec3 dir = camera_view_ray(to->view, px, py);
@@ -156,22 +199,8 @@ int path_shift(const struct scene *s, const struct shift_params *sp, const struc
     /* Reconnect y_{k-1} = v to x_k. */
     if (hybrid && k < D && !connectable(s, sp, v.p, v.material, x->rc_p, x->rc_material, 0))
         return fail(y);
-    vec3 to_k = v3_sub(x->rc_p, v.p);
-    float d2 = v3_length2(to_k);
-    if (!(d2 > 0.0f))
-        return fail(y);
-    vec3 wk = v3_scale(to_k, 1.0f / sqrtf(d2));
-    float cos_y = v3_dot(v.ns, wk), cos_k = -v3_dot(x->rc_n, wk);
-    if (cos_y <= 0.0f || v3_dot(v.ng, wk) <= 0.0f || cos_k <= 0.0f)
-        return fail(y);
-    vec3 at_k = x->rc_L;
-    if (k < D) {
-        struct bsdf bk;
-        bsdf_from_material(&s->materials[x->rc_material], &bk);
-        vec3 fk = bsdf_eval(&bk, x->rc_n, v3_neg(wk), x->rc_w);
-        at_k = v3_mul(at_k, v3_scale(fk, fabsf(v3_dot(x->rc_n, x->rc_w))));
-    }
-    vec3 f = v3_mul(v3_mul(F, v3_scale(bsdf_eval(&b, v.ns, v.wo, wk), cos_y)), at_k);
+    float cos_k, d2;
+    vec3 f = v3_mul(F, reconnection_eval(s, &v, &b, x, &cos_k, &d2));
     if (!(v3_max_component(f) > 0.0f) || !v3_is_finite(f))
         return fail(y);
     (*rays)++;

@@ -42,6 +42,7 @@ struct initial_ctx {
     float inv_paths;          /* 1 / number of initial paths: the MIS weight between paths */
     struct path_sample trial; /* u and seed of the path being walked */
     struct pt_reservoir *r;
+    float resampling_target; /* p_hat of the selection as the resampling weights saw it */
 };
 
 /* Resampling weight m f / p of one candidate (Lin et al. 2022 Sec. 7: resampling along the path,
@@ -54,7 +55,7 @@ static void offer_candidate(void *vctx, const struct path_walk *w, const struct 
     if (restir_wrs_offer(&ctx->wrs, weight, pcg32_float(ctx->rng))) {
         ctx->r->y = ctx->trial;
         path_sample_from_candidate(ctx->s, ctx->shift, w, c, &ctx->r->y);
-        ctx->r->target = target;
+        ctx->resampling_target = target;
     }
 }
 
@@ -103,8 +104,13 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
                 }
                 emission[i] = v3_scale(Le, ctx.inv_paths);
                 res->c = (float)p->pt_candidates;
-                if (ctx.wrs.selected >= 0)
-                    res->W = restir_gris_contribution_weight(&ctx.wrs, res->target);
+                if (ctx.wrs.selected >= 0) {
+                    /* W must divide by the p_hat the weights used (the walk's f); it is then a
+                     * UCW for any integrand, and the reservoir caches the target as shifts
+                     * evaluate it (path_sample_from_candidate), so reuse sees one definition. */
+                    res->W = restir_gris_contribution_weight(&ctx.wrs, ctx.resampling_target);
+                    res->target = v3_luminance(res->y.f);
+                }
                 if (!(res->W > 0.0f))
                     reservoir_clear(res, res->c);
             }
