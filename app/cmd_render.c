@@ -63,11 +63,18 @@ static cJSON *params_json(const struct cli_options *o)
     cJSON_AddNumberToObject(j, "bsdf_candidates", p->bsdf_candidates);
     cJSON_AddBoolToObject(j, "temporal", p->temporal);
     cJSON_AddBoolToObject(j, "spatial", p->spatial);
-    cJSON_AddNumberToObject(j, "spatial_neighbors", p->spatial_neighbors);
+    cJSON_AddNumberToObject(j, "spatial_neighbors",
+                            render_params_spatial_neighbors(p, strcmp(o->method, "restir-pt") == 0));
     cJSON_AddNumberToObject(j, "spatial_radius", p->spatial_radius);
     cJSON_AddNumberToObject(j, "confidence_cap", p->confidence_cap);
     cJSON_AddStringToObject(j, "mis", restir_mis_name(p->mis));
     cJSON_AddBoolToObject(j, "temporal_ratio_guard", p->temporal_ratio_guard);
+    if (strcmp(o->method, "restir-pt") == 0) {
+        cJSON_AddNumberToObject(j, "pt_candidates", p->pt_candidates);
+        cJSON_AddStringToObject(j, "shift", shift_kind_name(p->shift));
+        cJSON_AddNumberToObject(j, "shift_roughness", p->shift_roughness);
+        cJSON_AddNumberToObject(j, "shift_distance", p->shift_distance);
+    }
     return j;
 }
 
