@@ -53,5 +53,6 @@ float *cli_render_reference(const struct scene *s, enum method_id method, const 
 int cmd_render(int argc, char **argv);
 int cmd_reference(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
+int cmd_study(int argc, char **argv);
 
 #endif

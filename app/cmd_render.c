@@ -117,7 +117,7 @@ int cmd_render(int argc, char **argv)
     snprintf(json_path, sizeof(json_path), "%s/summary.json", out_dir);
     struct csv_writer csv;
     if (csv_open(&csv, csv_path,
-                 "frame,ms_total,ms_gbuffer,ms_initial,ms_temporal,ms_spatial,ms_shade,ms_pt,rays,mrays_per_s,"
+                 "frame,ms_total,ms_gbuffer,ms_initial,ms_temporal,ms_select,ms_spatial,ms_shade,ms_pt,rays,mrays_per_s,"
                  "temporal_accept,relmse,mape,smape,luma_rmse",
                  msg) != 0) {
         cli_error("%s", msg);
@@ -147,8 +147,8 @@ int cmd_render(int argc, char **argv)
             err_sum.luma_rmse += err.luma_rmse;
         }
         double accept = st.valid_pixels > 0 ? (double)st.temporal_accepted / (double)st.valid_pixels : 0.0;
-        csv_row(&csv, "%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%lld,%.3f,%.4f,%.6g,%.6g,%.6g,%.6g", f, st.ms_total,
-                st.ms[PASS_GBUFFER], st.ms[PASS_INITIAL], st.ms[PASS_TEMPORAL], st.ms[PASS_SPATIAL],
+        csv_row(&csv, "%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%lld,%.3f,%.4f,%.6g,%.6g,%.6g,%.6g", f, st.ms_total,
+                st.ms[PASS_GBUFFER], st.ms[PASS_INITIAL], st.ms[PASS_TEMPORAL], st.ms[PASS_SELECT], st.ms[PASS_SPATIAL],
                 st.ms[PASS_SHADE], st.ms[PASS_PT], st.rays, (double)st.rays / (st.ms_total * 1e3), accept,
                 ref ? err.relmse : 0.0, ref ? err.mape : 0.0, ref ? err.smape : 0.0, ref ? err.luma_rmse : 0.0);
         if ((o.save_all || f == o.frames - 1) &&

@@ -1,4 +1,4 @@
-/* main.c: the `restir` command: dispatches to list, render, reference and compare.
+/* main.c: the `restir` command: dispatches to list, render, reference, compare and study.
  * Must never parse method parameters itself (options.c and params.c do). */
 #include <stdio.h>
 #include <string.h>
@@ -13,7 +13,8 @@ static void usage(FILE *out)
             "  list        scenes and methods, one per line\n"
             "  render      render frames of one method (restir render --help)\n"
             "  reference   render a converged reference of what a method estimates\n"
-            "  compare     run several methods on the same frames, optionally at equal time\n");
+            "  compare     run several methods on the same frames, optionally at equal time\n"
+            "  study       the error-correlation study of neighbor selection (000 Sec. 6-7)\n");
 }
 
 static int cmd_list(void)
@@ -40,6 +41,8 @@ int main(int argc, char **argv)
         return cmd_reference(argc - 2, argv + 2);
     if (!strcmp(cmd, "compare"))
         return cmd_compare(argc - 2, argv + 2);
+    if (!strcmp(cmd, "study"))
+        return cmd_study(argc - 2, argv + 2);
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         usage(stdout);
         return 0;

@@ -24,6 +24,9 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
     o->frames = 1;
     o->ref_spp = 1024;
     o->save_all = 1;
+    o->runs = 8;
+    o->warmup = 40; /* 000 Sec. 7 */
+    int frames_given = 0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         long long v;
@@ -55,10 +58,12 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
         else if (!strcmp(a, "--res")) {
             if (cli_parse_res(val, &o->params.width, &o->params.height, msg) != 0)
                 return -1;
+            o->res_given = 1;
         } else if (!strcmp(a, "--frames")) {
             if (cli_parse_int(a, val, 1, 100000, &v, msg) != 0)
                 return -1;
             o->frames = (int)v;
+            frames_given = 1;
         } else if (!strcmp(a, "--frame")) {
             if (cli_parse_int(a, val, 0, 100000, &v, msg) != 0)
                 return -1;
@@ -98,6 +103,18 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
                 snprintf(msg, RESTIR_MSG_LEN, "--save expects all or last, got '%s'", val);
                 return -1;
             }
+        } else if (!strcmp(a, "--configs")) {
+            o->configs = val;
+        } else if (!strcmp(a, "--radii")) {
+            o->radii = val;
+        } else if (!strcmp(a, "--runs")) {
+            if (cli_parse_int(a, val, 2, 100000, &v, msg) != 0)
+                return -1;
+            o->runs = (int)v;
+        } else if (!strcmp(a, "--warmup")) {
+            if (cli_parse_int(a, val, 0, 100000, &v, msg) != 0)
+                return -1;
+            o->warmup = (int)v;
         } else if (!strcmp(a, "--set")) {
             if (render_params_set(&o->params, val, msg) != 0)
                 return -1;
@@ -106,5 +123,7 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
             return -1;
         }
     }
+    if (!frames_given && !strcmp(command, "study"))
+        o->frames = 16;
     return render_params_validate(&o->params, msg);
 }

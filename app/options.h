@@ -18,6 +18,11 @@ struct cli_options {
     int save_all;        /* render: write every frame (1) or only the last (0) */
     int help;
     int spp_given;
+    int res_given;
+    const char *configs; /* study: comma-separated configurations */
+    const char *radii;   /* study: comma-separated radii */
+    int runs;            /* study: independent sequences per configuration */
+    int warmup;          /* study: frames before measuring */
     struct render_params params;
 };
 

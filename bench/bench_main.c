@@ -70,8 +70,8 @@ static void bench_passes(const struct bench_config *c, const enum method_id *met
     struct scene s = load_scene(c->scene);
     printf("\n### Per-pass time, %s %dx%d, static camera, mean of frames 1-%d (%d threads)\n\n", c->scene,
            c->width, c->height, c->frames - 1, omp_get_max_threads());
-    printf("| method | gbuffer | initial | temporal | spatial | shade | pt | frame ms | Mrays/s | rays/px | "
-           "Embree-only ms | frame / Embree-only |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    printf("| method | gbuffer | initial | temporal | select | spatial | shade | pt | frame ms | Mrays/s | rays/px | "
+           "Embree-only ms | frame / Embree-only |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < nmethods; k++) {
         struct render_params p = base_params(c);
         if (methods[k] == METHOD_PT)
@@ -261,9 +261,9 @@ static void bench_temporal(const struct bench_config *c)
  * frames 1..N-1. */
 static void bench_table1(const struct bench_config *c, const char *const *scenes, int nscenes)
 {
-    enum { ROWS = 6 };
-    static const char *const rows[ROWS] = {"G-buffer", "Initial Sampling", "Temporal Resampling", "Spatial Reuse",
-                                           "Shading", "Full Frame"};
+    enum { ROWS = 7 };
+    static const char *const rows[ROWS] = {"G-buffer",      "Initial Sampling", "Temporal Resampling",
+                                           "Neighbor Selection", "Spatial Reuse", "Shading", "Full Frame"};
     double ms[8][ROWS] = {{0}};
     for (int sc = 0; sc < nscenes; sc++) {
         struct scene s = load_scene(scenes[sc]);
@@ -276,7 +276,7 @@ static void bench_table1(const struct bench_config *c, const char *const *scenes
             renderer_render(&r, f, &cam, &st);
             if (f == 0)
                 continue;
-            const double v[ROWS] = {st.ms[PASS_GBUFFER], st.ms[PASS_INITIAL], st.ms[PASS_TEMPORAL],
+            const double v[ROWS] = {st.ms[PASS_GBUFFER], st.ms[PASS_INITIAL], st.ms[PASS_TEMPORAL], st.ms[PASS_SELECT],
                                     st.ms[PASS_SPATIAL], st.ms[PASS_SHADE], st.ms_total};
             for (int q = 0; q < ROWS; q++)
                 ms[sc][q] += v[q] / (c->frames - 1);

@@ -25,6 +25,39 @@ int restir_error_compute(const float *image, const float *reference, size_t n_pi
 /* Text with the definitions above, for --help. */
 const char *restir_metrics_help(void);
 
+/* Correlation metrics (000 Appendix A) and hard pixels (000 Sec. 7). Images here are scalar
+ * luminance, one float per pixel, row-major; sums in double precision. The undefined cases
+ * (fewer than 2 runs, bad sizes, no pixel to average) return NaN. */
+
+/* 000 Eq. 16 and Appendix A: average relative covariance. runs holds n_runs >= 2 independent
+ * luminance images, run-major (runs[n * w * h + i]). With z_ni = (I_ni - mean_i) / (mean_i + eps)
+ * and mean_i the sample mean over the runs, r_ij = 1/(N-1) sum_n z_ni z_nj is averaged over the
+ * in-image pixels j != i with |j - i|^2 <= radius^2 (the "radial relative covariance"; j is not
+ * masked), then over the pixels i with mask[i] != 0 (mask may be NULL: all pixels) that have at
+ * least one such j. Returns that mean; the paper uses radius 8 and eps = 1e-4. */
+double restir_spatial_covariance(const float *runs, int n_runs, int width, int height, int radius, float eps,
+                                 const unsigned char *mask);
+
+/* 000 Eq. 17: relative autocovariance at lag T. seq holds n_runs >= 2 independent sequences of
+ * `frames` luminance images: seq[((size_t)n * frames + t) * w * h + i]. a_i^(t) = 1/(N-1)
+ * sum_n z_ni^(t) z_ni^(t+lag), z as above per frame, averaged over the masked pixels (mask may be
+ * NULL) and over t = 0 .. frames - 1 - lag (0 <= lag < frames; lag 0 gives the mean relative
+ * variance). The paper uses lag 3. */
+double restir_temporal_autocovariance(const float *seq, int n_runs, int frames, int width, int height, int lag,
+                                      float eps, const unsigned char *mask);
+
+/* 000 Sec. 7 hard pixels. A valid pixel's ratio is the fraction of the valid pixels j != i with
+ * |j - i|^2 <= radius^2 that pass restir_bitterli_compatible (000 Eq. 7) with the pixel as center
+ * (0 if it has no valid neighbor). The round(fraction * valid) valid pixels (halves rounded up)
+ * with the lowest ratios, ties broken by lower pixel index, are marked 1 in mask_out; all others
+ * and invalid pixels 0. normals: 3 floats per pixel; depth: 1 per pixel; valid: 1 byte per pixel
+ * (NULL = all valid). ratio_out (may be NULL) receives each pixel's ratio (-1 for invalid pixels).
+ * The paper uses radius 30, normal_min 0.5, depth_max 0.1, fraction 0.1. Returns the number of
+ * hard pixels, or -1 for NULL normals/depth/mask_out, sizes <= 0, radius < 0 or no memory. */
+int restir_hard_pixels(const float *normals, const float *depth, const unsigned char *valid, int width, int height,
+                       float radius, float normal_min, float depth_max, float fraction, unsigned char *mask_out,
+                       float *ratio_out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -10,7 +10,7 @@
 
 #include "core/check.h"
 
-enum param_type { P_INT, P_FLOAT, P_BOOL, P_MIS, P_SHIFT };
+enum param_type { P_INT, P_FLOAT, P_BOOL, P_MIS, P_SHIFT, P_SELECT, P_PRESET };
 
 struct param_def {
     const char *key;
@@ -19,6 +19,8 @@ struct param_def {
     double lo, hi; /* accepted range for numbers */
     const char *help;
 };
+
+static const char *const select_names[] = {"bitterli", "compat", "compat-binary"};
 
 #define F(field) offsetof(struct render_params, field)
 static const struct param_def params[] = {
@@ -34,6 +36,16 @@ static const struct param_def params[] = {
     {"spatial.neighbors", P_INT, F(spatial_neighbors), 0, 5,
      "spatial neighbors tried per pixel (0: method default, 1 for restir-di, 3 for restir-pt)"},
     {"spatial.radius", P_FLOAT, F(spatial_radius), 1, 512, "spatial reuse disk radius in pixels"},
+    {"spatial.select", P_SELECT, F(spatial_select), 0, 0,
+     "neighbor selection: bitterli (uniform tries, 000 Eq. 7), compat (000 Algorithm 1, Eq. 14 scores), "
+     "compat-binary (Algorithm 1 with Eq. 7 as score); all read only the G-buffer (unbiased)"},
+    {"spatial.preset", P_PRESET, 0, 0, 0,
+     "000 presets: fast (compat, R 30, K 32), balanced (R 50), conservative (R 100)"},
+    {"spatial.candidates", P_INT, F(spatial_candidates), 1, 4096, "compat: candidates K per pixel"},
+    {"spatial.omega", P_FLOAT, F(spatial_omega), 1e-9, 12.57, "compat: solid angle Omega of the position scale (Eq. 15)"},
+    {"spatial.beta", P_FLOAT, F(spatial_beta), 0, 1e3, "compat: normal exponent beta (Eq. 15)"},
+    {"spatial.early_stop", P_BOOL, F(spatial_early_stop), 0, 1,
+     "compat: stop once more than M candidates score above 0.5 (000 Sec. 5)"},
     {"spatial.normal", P_FLOAT, F(spatial_normal), -1, 1, "Bitterli test (000 Eq. 7): minimum n . n_i"},
     {"spatial.depth", P_FLOAT, F(spatial_depth), 0, 1e30, "Bitterli test (000 Eq. 7): max |d_i - d| / d"},
     {"confidence_cap", P_FLOAT, F(confidence_cap), 1, 1e9, "cap on confidence weights c (M cap)"},
@@ -75,6 +87,11 @@ void render_params_defaults(struct render_params *p)
     p->temporal = 1;
     p->spatial = 1;
     p->spatial_neighbors = 0;
+    p->spatial_select = SELECT_BITTERLI;
+    p->spatial_candidates = 32;
+    p->spatial_omega = 0.05f;
+    p->spatial_beta = 8.0f;
+    p->spatial_early_stop = 1;
     p->spatial_radius = 30.0f;
     p->spatial_normal = 0.5f;
     p->spatial_depth = 0.1f;
@@ -107,6 +124,32 @@ static int parse_value(const struct param_def *d, const char *val, struct render
             return -1;
         }
         return 0;
+    }
+    if (d->type == P_SELECT) {
+        for (int k = 0; k < 3; k++) {
+            if (!strcmp(val, select_names[k])) {
+                *(enum spatial_select_mode *)(void *)base = (enum spatial_select_mode)k;
+                return 0;
+            }
+        }
+        snprintf(msg, RESTIR_MSG_LEN, "--set %s: unknown selection '%s' (bitterli, compat, compat-binary)", d->key,
+                 val);
+        return -1;
+    }
+    if (d->type == P_PRESET) {
+        /* 000 Table 1: FAST (K 32, R 30), BALANCED (K 32, R 50), CONSERVATIVE (K 32, R 100). */
+        static const char *const names[] = {"fast", "balanced", "conservative"};
+        static const float radii[] = {30.0f, 50.0f, 100.0f};
+        for (int k = 0; k < 3; k++) {
+            if (!strcmp(val, names[k])) {
+                p->spatial_select = SELECT_COMPAT;
+                p->spatial_candidates = 32;
+                p->spatial_radius = radii[k];
+                return 0;
+            }
+        }
+        snprintf(msg, RESTIR_MSG_LEN, "--set %s: unknown preset '%s' (fast, balanced, conservative)", d->key, val);
+        return -1;
     }
     if (d->type == P_BOOL) {
         int v;
@@ -190,6 +233,11 @@ void render_params_help(FILE *out)
         case P_BOOL: snprintf(val, sizeof(val), "%s", *(const int *)(const void *)base ? "on" : "off"); break;
         case P_MIS: snprintf(val, sizeof(val), "%s", restir_mis_name(*(const enum restir_mis *)(const void *)base)); break;
         case P_SHIFT: snprintf(val, sizeof(val), "%s", shift_kind_name(*(const enum shift_kind *)(const void *)base)); break;
+        case P_SELECT: {
+            snprintf(val, sizeof(val), "%s", select_names[*(const enum spatial_select_mode *)(const void *)base]);
+            break;
+        }
+        case P_PRESET: snprintf(val, sizeof(val), "-"); break;
         }
         fprintf(out, "  %-22s %-9s %s\n", pd->key, val, pd->help);
     }

@@ -9,6 +9,9 @@
 #include "restir/mis.h"
 #include "shift_kind.h"
 
+/* Spatial neighbor selection (spatial_select.h). */
+enum spatial_select_mode { SELECT_BITTERLI = 0, SELECT_COMPAT, SELECT_COMPAT_BINARY };
+
 struct render_params {
     int width, height;
     int spp;          /* pt: paths per pixel per frame */
@@ -27,6 +30,11 @@ struct render_params {
     int temporal;
     int spatial;
     int spatial_neighbors;  /* 0: the method's default (render_params_spatial_neighbors) */
+    enum spatial_select_mode spatial_select;
+    int spatial_candidates; /* compat: K candidates tried (000 Algorithm 1) */
+    float spatial_omega;    /* compat: solid angle of the position scale s (000 Eq. 15) */
+    float spatial_beta;     /* compat: normal exponent (000 Eq. 15) */
+    int spatial_early_stop; /* compat: stop once more than M candidates score above 0.5 */
     float spatial_radius;
     float spatial_normal;   /* Bitterli test, 000 Eq. 7: n . n_i >= spatial_normal */
     float spatial_depth;    /* Bitterli test, 000 Eq. 7: |d_i - d| / d < spatial_depth */

@@ -10,6 +10,8 @@
 #include "pt.h"
 #include "restir_di.h"
 #include "restir_pt.h"
+#include "spatial_select.h"
+#include "core/lowdisc.h"
 
 const struct method_info method_table[METHOD_COUNT] = {
     {"pt", "path tracing: NEE + BSDF sampling with MIS, Russian roulette (the reference method)", 0},
@@ -19,7 +21,7 @@ const struct method_info method_table[METHOD_COUNT] = {
                   "(hybrid default) and sub-pixel reservoirs", 0},
 };
 
-const char *const pass_names[PASS_COUNT] = {"gbuffer", "initial", "temporal", "spatial", "shade", "pt"};
+const char *const pass_names[PASS_COUNT] = {"gbuffer", "initial", "temporal", "select", "spatial", "shade", "pt"};
 
 int method_find(const char *name)
 {
@@ -50,6 +52,9 @@ void renderer_init(struct renderer *r, const struct scene *s, enum method_id met
     if (method != METHOD_PT) {
         gbuffer_init(&r->gb[0], p->width, p->height);
         gbuffer_init(&r->gb[1], p->width, p->height);
+        r->neighbors = xcalloc(n * SPATIAL_MAX_NEIGHBORS, sizeof(int));
+        r->disk_offsets = xmalloc(sizeof(float) * 2 * R2_DISK_OFFSETS);
+        r2_disk_offsets(R2_DISK_OFFSETS, r->disk_offsets);
     }
     if (method == METHOD_RIS_DI || method == METHOD_RESTIR_DI) {
         r->work = xcalloc(n, sizeof(struct di_reservoir));
@@ -85,6 +90,8 @@ void renderer_fini(struct renderer *r)
     free(r->pt_hist[1]);
     free(r->pt_emission);
     free(r->material_rough);
+    free(r->neighbors);
+    free(r->disk_offsets);
     free(r->image);
     memset(r, 0, sizeof(*r));
 }
@@ -112,7 +119,10 @@ static void render_restir_di(struct renderer *r, const struct camera_view *view,
         TIMED(st, PASS_TEMPORAL,
               st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, r->work));
     if (p->spatial)
-        TIMED(st, PASS_SPATIAL, di_spatial_pass(s, p, frame, g, r->work, out));
+    {
+        TIMED(st, PASS_SELECT, st->neighbors_selected = spatial_select_pass(p, 0, g, frame, r->disk_offsets, r->neighbors));
+        TIMED(st, PASS_SPATIAL, di_spatial_pass(s, p, frame, g, r->neighbors, r->work, out));
+    }
     else
         memcpy(out, r->work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     TIMED(st, PASS_SHADE, st->rays += di_shade_pass(s, g, out, r->image));
@@ -138,7 +148,11 @@ static void render_restir_pt(struct renderer *r, const struct camera_view *view,
         TIMED(st, PASS_TEMPORAL,
               st->rays += pt_temporal_pass(&fr, g, prev_g, prev_res, r->pt_work, &st->temporal_accepted));
     if (p->spatial)
-        TIMED(st, PASS_SPATIAL, st->rays += pt_spatial_pass(&fr, g, r->pt_work, out));
+    {
+        TIMED(st, PASS_SELECT,
+              st->neighbors_selected = spatial_select_pass(p, 1, g, r->frame, r->disk_offsets, r->neighbors));
+        TIMED(st, PASS_SPATIAL, st->rays += pt_spatial_pass(&fr, g, r->neighbors, r->pt_work, out));
+    }
     else
         memcpy(out, r->pt_work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     TIMED(st, PASS_SHADE, pt_shade_pass(g, out, r->pt_emission, r->image));

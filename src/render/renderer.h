@@ -20,7 +20,7 @@ extern const struct method_info method_table[METHOD_COUNT];
 /* Returns the method id, or -1 for an unknown name. */
 int method_find(const char *name);
 
-enum pass_id { PASS_GBUFFER, PASS_INITIAL, PASS_TEMPORAL, PASS_SPATIAL, PASS_SHADE, PASS_PT, PASS_COUNT };
+enum pass_id { PASS_GBUFFER, PASS_INITIAL, PASS_TEMPORAL, PASS_SELECT, PASS_SPATIAL, PASS_SHADE, PASS_PT, PASS_COUNT };
 extern const char *const pass_names[PASS_COUNT];
 
 struct frame_stats {
@@ -28,6 +28,7 @@ struct frame_stats {
     double ms_total;
     long long rays;
     long long temporal_accepted; /* pixels whose history passed validation */
+    long long neighbors_selected; /* spatial neighbors the selection pass found */
     long long valid_pixels;
 };
 
@@ -47,6 +48,8 @@ struct renderer {
     vec3 *pt_emission;               /* restir-pt: emission seen directly by the initial paths */
     float scene_diagonal;            /* scales shift.distance */
     unsigned char *material_rough;   /* restir-pt: hybrid shift's roughness class per material */
+    int *neighbors;                  /* selection pass output: spatial neighbors per pixel */
+    float *disk_offsets;             /* R2 disk offsets of compat selection (R2_DISK_OFFSETS x 2) */
     float *image;                 /* this frame's radiance, RGB */
 };
 

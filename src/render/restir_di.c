@@ -7,7 +7,6 @@
 #include "core/rng.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
-#include "spatial_select.h"
 #include "tiles.h"
 
 /* Canonical domain + at most 5 spatial neighbors. */
@@ -96,10 +95,10 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
 }
 
 void di_spatial_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
-                     const struct di_reservoir *in, struct di_reservoir *out)
+                     const int *neighbors, const struct di_reservoir *in, struct di_reservoir *out)
 {
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
-    const int nmax = render_params_spatial_neighbors(p, 0); /* at most 5 = DI_MAX_DOMAINS - 1 (params.c) */
+    const int m = render_params_spatial_neighbors(p, 0); /* at most 5 = DI_MAX_DOMAINS - 1 */
 #pragma omp parallel for schedule(dynamic, 1)
     for (int t = 0; t < ntiles; t++) {
         struct tile_range r = tile_get(w, h, t);
@@ -115,11 +114,13 @@ void di_spatial_pass(const struct scene *s, const struct render_params *p, int f
                 const struct di_reservoir *src[DI_MAX_DOMAINS];
                 gbuffer_shading_point(g, s, i, &sp[0]);
                 src[0] = &in[i];
-                int idx[DI_MAX_DOMAINS - 1];
-                int n = 1 + spatial_select_bitterli(p, g, x, y, nmax, &rng, idx);
-                for (int k = 1; k < n; k++) {
-                    gbuffer_shading_point(g, s, idx[k - 1], &sp[k]);
-                    src[k] = &in[idx[k - 1]];
+                int n = 1;
+                for (int k = 0; k < m; k++) {
+                    int j = neighbors[(size_t)i * m + k];
+                    if (j < 0)
+                        continue;
+                    gbuffer_shading_point(g, s, j, &sp[n]);
+                    src[n++] = &in[j];
                 }
                 gris_merge(p, n, sp, src, &rng, &out[i]);
             }

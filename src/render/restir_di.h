@@ -20,9 +20,10 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
                            const struct gbuffer *g, const struct gbuffer *prev_g,
                            const struct di_reservoir *prev_res, struct di_reservoir *io);
 
-/* Spatial reuse: Bitterli selection in a disk, GRIS merge of the neighbors' reservoirs. */
+/* Spatial reuse: GRIS merge of the neighbors' reservoirs; neighbors holds the selection pass's
+ * lists (render_params_spatial_neighbors(p, 0) per pixel, -1 for none). */
 void di_spatial_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
-                     const struct di_reservoir *in, struct di_reservoir *out);
+                     const int *neighbors, const struct di_reservoir *in, struct di_reservoir *out);
 
 /* Final shading: primary emission + f(Y) W_Y with one shadow ray. Returns rays traced. */
 long long di_shade_pass(const struct scene *s, const struct gbuffer *g, const struct di_reservoir *res,

@@ -7,7 +7,6 @@
 #include "restir/mis.h"
 #include "restir/reservoir.h"
 #include "shading/lights.h"
-#include "spatial_select.h"
 #include "tiles.h"
 
 /* Canonical domain + at most 5 spatial neighbors. */
@@ -229,13 +228,13 @@ long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, c
     return rays;
 }
 
-long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct pt_reservoir *in,
-                          struct pt_reservoir *out)
+long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, const int *neighbors,
+                          const struct pt_reservoir *in, struct pt_reservoir *out)
 {
     const struct render_params *p = fr->p;
     long long rays = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
-    const int tries = render_params_spatial_neighbors(p, 1); /* at most 5 = PT_MAX_DOMAINS - 1 (params.c) */
+    const int m = render_params_spatial_neighbors(p, 1); /* at most 5 = PT_MAX_DOMAINS - 1 (params.c) */
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
         struct tile_range r = tile_get(w, h, t);
@@ -247,15 +246,17 @@ long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, co
                     continue;
                 }
                 pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_SPATIAL);
-                int idx[PT_MAX_DOMAINS - 1];
-                int n = 1 + spatial_select_bitterli(p, g, x, y, tries, &rng, idx);
                 struct pt_domain dom[PT_MAX_DOMAINS];
                 const struct pt_reservoir *src[PT_MAX_DOMAINS];
                 dom[0] = pixel_domain(fr->view, x, y);
                 src[0] = &in[i];
-                for (int k = 1; k < n; k++) {
-                    dom[k] = pixel_domain(fr->view, idx[k - 1] % w, idx[k - 1] / w);
-                    src[k] = &in[idx[k - 1]];
+                int n = 1;
+                for (int k = 0; k < m; k++) {
+                    int j = neighbors[(size_t)i * m + k];
+                    if (j < 0)
+                        continue;
+                    dom[n] = pixel_domain(fr->view, j % w, j / w);
+                    src[n++] = &in[j];
                 }
                 rays += gris_merge(fr, n, dom, src, &rng, &out[i]);
             }

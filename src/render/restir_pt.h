@@ -48,9 +48,10 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
 long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct gbuffer *prev_g,
                            const struct pt_reservoir *prev_res, struct pt_reservoir *io, long long *accepted);
 
-/* Spatial reuse: Bitterli selection, GRIS merge with shifts. Returns rays traced. */
-long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct pt_reservoir *in,
-                          struct pt_reservoir *out);
+/* Spatial reuse: GRIS merge with shifts of the neighbors listed by the selection pass
+ * (render_params_spatial_neighbors(p, 1) per pixel, -1 for none). Returns rays traced. */
+long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, const int *neighbors,
+                          const struct pt_reservoir *in, struct pt_reservoir *out);
 
 /* Final shading: emission seen directly + f(Y) W_Y (f cached by the last shift into the pixel,
  * visibility included, so no ray is traced). */

@@ -35,7 +35,8 @@ enum rng_pass {
     RNG_PASS_DI_SHADE,
     RNG_PASS_PT_INITIAL,
     RNG_PASS_PT_TEMPORAL,
-    RNG_PASS_PT_SPATIAL
+    RNG_PASS_PT_SPATIAL,
+    RNG_PASS_SELECT
 };
 
 #endif

@@ -156,6 +156,25 @@ static void check_compare(void)
     EXPECT(cli_count_entries(out, ".tmp-") == 0, "temporary files left in %s", out);
 }
 
+static void check_study(void)
+{
+    expect_failure("study with an unknown configuration",
+                   "study --scene cornell --method restir-pt --configs bitterli,no-such-config --res 16x16 "
+                   "--out '%1$s'",
+                   2, "no-such-config", NULL);
+    expect_failure("study of a method without spatial reuse",
+                   "study --scene cornell --method pt --configs bitterli --res 16x16 --out '%1$s'", 2, "restir-di",
+                   NULL);
+    expect_failure("study with a bad radius",
+                   "study --scene cornell --method restir-di --radii 10,abc --res 16x16 --out '%1$s'", 2, "abc", NULL);
+    expect_failure("study with too few frames",
+                   "study --scene cornell --method restir-di --configs fast --frames 2 --res 16x16 --out '%1$s'", 2,
+                   "--frames", NULL);
+    expect_failure("unknown neighbor selection",
+                   "render --scene cornell --method restir-di --set spatial.select=magic --res 16x16 --out '%1$s'", 2,
+                   "magic", NULL);
+}
+
 static void check_list_and_help(void)
 {
     char out[CLI_ERR_MAX], err[CLI_ERR_MAX], line[512], want[128];
@@ -194,6 +213,7 @@ int main(void)
     check_bad_render_input();
     check_failed_write();
     check_compare();
+    check_study();
     check_list_and_help();
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
     return test_finish();

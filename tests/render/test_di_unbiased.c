@@ -59,6 +59,10 @@ int main(void)
     const char *balance[] = {"mis=balance"};
     check_scene("cornell", 24, 16, pairwise, 1, 1);
     check_scene("cornell", 24, 16, balance, 1, 1);
+    /* Compatibility-guided selection (000 Algorithm 1) with M = 1 (A-Chao); restir-pt's test covers
+     * M = 3 (A-ES). */
+    const char *compat[] = {"mis=pairwise", "spatial.select=compat", "spatial.radius=8", "spatial.neighbors=1"};
+    check_scene("cornell", 24, 16, compat, 4, 1);
     const char *ml_pairwise[] = {"mis=pairwise", "jitter=off"};
     check_scene("many-lights", 24, 16, ml_pairwise, 2, 1);
     const char *ml_uniform[] = {"mis=1/M", "jitter=off"};

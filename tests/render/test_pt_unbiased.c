@@ -70,6 +70,10 @@ int main(int argc, char **argv)
     }
     const char *balance[] = {"shift=hybrid", "mis=balance"};
     check("cornell", RUNS, balance, 2, 1);
+    /* Compatibility-guided selection reads only the G-buffer, so reuse stays unbiased (000 Sec. 4.3). */
+    const char *compat[] = {"shift=hybrid", "spatial.select=compat", "spatial.radius=8"};
+    for (int sc = 0; sc < 2; sc++)
+        check(scenes[sc], RUNS, compat, 3, 1);
     /* The test has power: the BIASED 1/M weights are caught on the same setup. */
     const char *uniform[] = {"shift=hybrid", "mis=1/M"};
     EXPECT(check("cornell", RUNS, uniform, 2, 0) > 0, "1/M weights were not detected as biased");

@@ -1,0 +1,98 @@
+/* test_study.c: `restir study` runs end to end on a tiny image and writes what 000's study needs:
+ * study.csv with the documented header and one row per configuration (named ones plus bitterli
+ * and compat per radius) holding finite, sensible values, study.md, pareto.svg with both curves,
+ * hard_pixels.png and strip.png. Must never call the renderer directly (CLI only). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_util.h"
+#include "test_util.h"
+
+static long file_size(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return -1;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fclose(f);
+    return n;
+}
+
+static char *read_text(const char *path)
+{
+    long n = file_size(path);
+    if (n < 0)
+        return NULL;
+    FILE *f = fopen(path, "rb");
+    char *buf = calloc((size_t)n + 1, 1);
+    if (f && buf && fread(buf, 1, (size_t)n, f) != (size_t)n)
+        buf[0] = '\0';
+    if (f)
+        fclose(f);
+    return buf;
+}
+
+int main(void)
+{
+    char tmp[CLI_PATH_MAX], out[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX], err[CLI_ERR_MAX], path[3 * CLI_PATH_MAX];
+    if (!cli_bin() || cli_make_temp_dir(tmp) != 0) {
+        EXPECT(0, "cannot set up (RESTIR_BIN or temporary folder)");
+        return test_finish();
+    }
+    snprintf(out, sizeof(out), "%s/study", tmp);
+    snprintf(args, sizeof(args),
+             "study --scene cornell --method restir-pt --configs bitterli,fast,compat-binary --radii 4,8 --runs 3 "
+             "--warmup 2 --frames 5 --res 32x18 --ref-spp 16 --set pt.max_bounces=2 --out '%s'",
+             out);
+    int rc = cli_run(tmp, args, err);
+    EXPECT(rc == 0, "restir %s exited %d: %s", args, rc, err);
+
+    snprintf(path, sizeof(path), "%s/study.csv", out);
+    char *csv = read_text(path);
+    EXPECT(csv != NULL, "no %s", path);
+    if (csv) {
+        const char *header = "config,radius,K,M,smape_all,smape_hard,temporal_cov,spatial_cov,ms_select,ms_spatial,"
+                             "ms_frame\n";
+        EXPECT(strncmp(csv, header, strlen(header)) == 0, "study.csv header: %.120s", csv);
+        const char *names[] = {"bitterli,", "fast,", "compat-binary,", "bitterli@4,", "compat@4,", "bitterli@8,",
+                               "compat@8,"};
+        int rows = 0;
+        for (char *line = strchr(csv, '\n'); line && line[1]; line = strchr(line + 1, '\n')) {
+            const char *row = line + 1;
+            EXPECT(rows < 7 && strncmp(row, names[rows], strlen(names[rows])) == 0, "row %d: %.60s", rows, row);
+            /* radius, K, M, then 7 metrics: all finite and not negative except the covariances */
+            const char *p = strchr(row, ',');
+            double v[10];
+            int nv = 0;
+            while (p && nv < 10) {
+                v[nv++] = strtod(p + 1, NULL);
+                p = strchr(p + 1, ',');
+            }
+            EXPECT(nv == 10, "row %d has %d numbers", rows, nv);
+            EXPECT(v[2] == 3.0, "row %d: M = %g, want restir-pt's default 3", rows, v[2]);
+            EXPECT(v[3] > 0.0 && v[3] < 100.0 && v[4] > 0.0 && v[4] < 100.0, "row %d: SMAPE %g / %g", rows, v[3],
+                   v[4]);
+            for (int k = 0; k < nv; k++)
+                EXPECT(isfinite(v[k]), "row %d value %d not finite", rows, k);
+            EXPECT(v[9] > 0.0 && v[7] >= 0.0 && v[8] >= 0.0, "row %d: times %g %g %g", rows, v[7], v[8], v[9]);
+            rows++;
+        }
+        EXPECT(rows == 7, "study.csv has %d rows, want 7", rows);
+        free(csv);
+    }
+    snprintf(path, sizeof(path), "%s/pareto.svg", out);
+    char *svg = read_text(path);
+    EXPECT(svg && strstr(svg, "<svg") && strstr(svg, "bitterli") && strstr(svg, "compat"),
+           "pareto.svg missing or without both curves");
+    free(svg);
+    const char *files[] = {"study.md", "hard_pixels.png", "strip.png"};
+    for (int k = 0; k < 3; k++) {
+        snprintf(path, sizeof(path), "%s/%s", out, files[k]);
+        EXPECT(file_size(path) > 100, "%s missing or empty", path);
+    }
+    EXPECT(cli_count_entries(out, ".tmp-") == 0, "temporary files left in %s", out);
+    EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
+    return test_finish();
+}
