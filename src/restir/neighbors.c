@@ -23,7 +23,20 @@ float restir_compat_score(const float x[3], const float n_x[3], float d, const f
     float cos_n = n_x[0] * n_y[0] + n_x[1] * n_y[1] + n_x[2] * n_y[2];
     if (!(cos_n > 0.0f) || !(s > 0.0f))
         return 0.0f;
-    return expf(-dist / s) * powf(cos_n, beta); /* 000 Eq. 14 */
+    float t = dist / s;
+    if (t > 80.0f) /* exp(-80) ~ 2e-35: below any other candidate's score that matters */
+        return 0.0f;
+    float hn;
+    int ib = (int)beta;
+    if ((float)ib == beta && ib >= 0 && ib <= 64) { /* integer beta (the paper's 8): by squaring */
+        hn = 1.0f;
+        for (float b = cos_n; ib; ib >>= 1, b *= b)
+            if (ib & 1)
+                hn *= b;
+    } else {
+        hn = powf(cos_n, beta);
+    }
+    return expf(-t) * hn; /* 000 Eq. 14 */
 }
 
 void restir_select_init(struct restir_select *s, int m)

@@ -4,8 +4,6 @@
  * temporal reuse merges history from other shading points. */
 #include <string.h>
 
-#include "render/renderer.h"
-#include "test_util.h"
 #include "unbiased_runs.h"
 
 #define RUNS 1024
@@ -19,36 +17,11 @@
 
 static void check_scene(const char *scene_name, int w, int h, const char *const *sets, int nsets, int expect_unbiased)
 {
-    struct scene s;
-    char msg[512];
-    EXPECT(scene_create_builtin(scene_name, &s, msg) == 0, "%s", msg);
-    struct render_params p;
-    render_params_defaults(&p);
-    p.width = w;
-    p.height = h;
-    p.spatial_neighbors = 3;
-    for (int k = 0; k < nsets; k++)
-        EXPECT(render_params_set(&p, sets[k], msg) == 0, "%s", msg);
-
-    /* Reference: the path tracer over the same integrand, seen from the last frame's camera. */
-    struct pixel_stats ref, di;
-    pixel_stats_init(&ref, w * h);
-    pixel_stats_init(&di, w * h);
-    unbiased_run_reference(&s, METHOD_RESTIR_DI, &p, RUNS, 16, (float)((FRAMES - 1) * 6), &ref);
-    unbiased_run_method(&s, METHOD_RESTIR_DI, &p, 1000, RUNS, FRAMES, 6, &di);
-    printf("%s %dx%d restir-di", scene_name, w, h);
-    for (int k = 0; k < nsets; k++)
-        printf(" %s", sets[k]);
-    printf(":\n");
-    struct unbiased_report rep = unbiased_compare(&di, &ref, ALPHA);
-    if (expect_unbiased) {
-        EXPECT(rep.pixels_failed == 0, "%s: %d pixels fail the Sidak-corrected Welch test", scene_name,
-               rep.pixels_failed);
-        EXPECT(fabs(rep.pooled_z) < POOLED_Z_MAX, "%s: pooled z = %.2f", scene_name, rep.pooled_z);
-    }
-    pixel_stats_free(&ref);
-    pixel_stats_free(&di);
-    scene_destroy(&s);
+    const struct unbiased_case c = {scene_name, METHOD_RESTIR_DI, w, h, RUNS, FRAMES, 6, 16, ALPHA, POOLED_Z_MAX};
+    const char *all[8] = {"spatial.neighbors=3"};
+    for (int k = 0; k < nsets && k < 7; k++)
+        all[k + 1] = sets[k];
+    unbiased_check(&c, all, nsets + 1, expect_unbiased);
 }
 
 int main(void)

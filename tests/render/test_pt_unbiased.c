@@ -6,7 +6,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "test_util.h"
 #include "unbiased_runs.h"
 
 #define RUNS 2048
@@ -22,36 +21,12 @@
 /* Returns the number of pixels that fail the per-pixel test. */
 static int check(const char *scene_name, int runs, const char *const *sets, int nsets, int expect_unbiased)
 {
-    const int w = 20, h = 12;
-    struct scene s;
-    char msg[512];
-    EXPECT(scene_create_builtin(scene_name, &s, msg) == 0, "%s", msg);
-    struct render_params p;
-    render_params_defaults(&p);
-    p.width = w;
-    p.height = h;
-    p.max_bounces = 4;
-    for (int k = 0; k < nsets; k++)
-        EXPECT(render_params_set(&p, sets[k], msg) == 0, "%s", msg);
-    struct pixel_stats ref, pt;
-    pixel_stats_init(&ref, w * h);
-    pixel_stats_init(&pt, w * h);
-    unbiased_run_reference(&s, METHOD_RESTIR_PT, &p, runs, REF_SPP, (float)((FRAMES - 1) * FRAME_STEP), &ref);
-    unbiased_run_method(&s, METHOD_RESTIR_PT, &p, 1000, runs, FRAMES, FRAME_STEP, &pt);
-    printf("%s %dx%d restir-pt, %d runs of %d frames", scene_name, w, h, runs, FRAMES);
-    for (int k = 0; k < nsets; k++)
-        printf(" %s", sets[k]);
-    printf(":\n");
-    struct unbiased_report rep = unbiased_compare(&pt, &ref, ALPHA);
-    if (expect_unbiased) {
-        EXPECT(rep.pixels_failed == 0, "%s: %d pixels fail the Sidak-corrected Welch test", scene_name,
-               rep.pixels_failed);
-        EXPECT(fabs(rep.pooled_z) < POOLED_Z_MAX, "%s: pooled z = %.2f", scene_name, rep.pooled_z);
-    }
-    pixel_stats_free(&ref);
-    pixel_stats_free(&pt);
-    scene_destroy(&s);
-    return rep.pixels_failed;
+    const struct unbiased_case c = {scene_name, METHOD_RESTIR_PT, 20, 12, runs, FRAMES, FRAME_STEP, REF_SPP,
+                                    ALPHA, POOLED_Z_MAX};
+    const char *all[16] = {"pt.max_bounces=4"};
+    for (int k = 0; k < nsets && k < 15; k++)
+        all[k + 1] = sets[k];
+    return unbiased_check(&c, all, nsets + 1, expect_unbiased);
 }
 
 int main(int argc, char **argv)

@@ -4,7 +4,10 @@
 #ifndef RESTIR_TEST_UNBIASED_RUNS_H
 #define RESTIR_TEST_UNBIASED_RUNS_H
 
+#include <string.h>
+
 #include "render/renderer.h"
+#include "test_util.h"
 #include "unbiased_util.h"
 
 /* Frame f of a run is seen from camera-path frame f * frame_step. */
@@ -44,6 +47,53 @@ static inline void unbiased_run_reference(const struct scene *s, enum method_id 
         pixel_stats_add(st, r.image);
         renderer_fini(&r);
     }
+}
+
+/* One unbiasedness case: `runs` seeded sequences of `frames` camera-path frames (frame_step apart)
+ * against `runs` x ref_spp paths of pt from the last camera. */
+struct unbiased_case {
+    const char *scene;
+    enum method_id method;
+    int width, height;
+    int runs, frames, frame_step, ref_spp;
+    double alpha;        /* family-wise level of the per-pixel Welch tests (Sidak) */
+    double pooled_z_max; /* bound on the pooled whole-image z */
+};
+
+/* Runs case c with the `--set` assignments sets; when expect_unbiased, expects no pixel to fail
+ * and |pooled z| < c->pooled_z_max. Returns the number of pixels that fail. */
+static inline int unbiased_check(const struct unbiased_case *c, const char *const *sets, int nsets,
+                                 int expect_unbiased)
+{
+    struct scene s;
+    char msg[512];
+    EXPECT(scene_create_builtin(c->scene, &s, msg) == 0, "%s", msg);
+    struct render_params p;
+    render_params_defaults(&p);
+    p.width = c->width;
+    p.height = c->height;
+    for (int k = 0; k < nsets; k++)
+        EXPECT(render_params_set(&p, sets[k], msg) == 0, "%s", msg);
+    struct pixel_stats ref, m;
+    pixel_stats_init(&ref, c->width * c->height);
+    pixel_stats_init(&m, c->width * c->height);
+    unbiased_run_reference(&s, c->method, &p, c->runs, c->ref_spp, (float)((c->frames - 1) * c->frame_step), &ref);
+    unbiased_run_method(&s, c->method, &p, 1000, c->runs, c->frames, c->frame_step, &m);
+    printf("%s %dx%d %s, %d runs of %d frames:", c->scene, c->width, c->height, method_table[c->method].name,
+           c->runs, c->frames);
+    for (int k = 0; k < nsets; k++)
+        printf(" %s", sets[k]);
+    printf("\n");
+    struct unbiased_report rep = unbiased_compare(&m, &ref, c->alpha);
+    if (expect_unbiased) {
+        EXPECT(rep.pixels_failed == 0, "%s: %d pixels fail the Sidak-corrected Welch test", c->scene,
+               rep.pixels_failed);
+        EXPECT(fabs(rep.pooled_z) < c->pooled_z_max, "%s: pooled z = %.2f", c->scene, rep.pooled_z);
+    }
+    pixel_stats_free(&ref);
+    pixel_stats_free(&m);
+    scene_destroy(&s);
+    return rep.pixels_failed;
 }
 
 #endif
