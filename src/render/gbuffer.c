@@ -28,6 +28,7 @@ void gbuffer_init(struct gbuffer *g, int width, int height)
     g->emission = xcalloc(n, sizeof(vec3));
     g->sub_pixel = xcalloc(n, sizeof(vec3));
     g->valid = xcalloc(n, 1);
+    g->select_key = xcalloc(n * GBUFFER_KEY, sizeof(float));
 }
 
 void gbuffer_fini(struct gbuffer *g)
@@ -44,6 +45,7 @@ void gbuffer_fini(struct gbuffer *g)
     free(g->emission);
     free(g->sub_pixel);
     free(g->valid);
+    free(g->select_key);
     memset(g, 0, sizeof(*g));
 }
 
@@ -67,7 +69,9 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
                 rays++;
                 g->sub_pixel[i] = v3(px, py, 0.0f);
                 g->motion[2 * i] = g->motion[2 * i + 1] = prev_view ? GBUFFER_NO_MOTION : 0.0f;
+                float *key = &g->select_key[(size_t)i * GBUFFER_KEY];
                 if (!scene_intersect(s, view->position, dir, 0.0f, INFINITY, &h)) {
+                    memset(key, 0, sizeof(float) * GBUFFER_KEY);
                     g->valid[i] = 0;
                     g->emission[i] = v3s(0.0f);
                     g->material[i] = g->object[i] = -1;
@@ -80,6 +84,8 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
                 g->normal[i] = h.ns;
                 g->geo_normal[i] = h.ng;
                 g->depth[i] = h.t;
+                const float packed[GBUFFER_KEY] = {h.p.x, h.p.y, h.p.z, h.ns.x, h.ns.y, h.ns.z, h.t, 1.0f};
+                memcpy(key, packed, sizeof(packed));
                 g->albedo[i] = m->base_color;
                 g->roughness[i] = m->roughness;
                 g->material[i] = h.material;

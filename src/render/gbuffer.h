@@ -26,7 +26,12 @@ struct gbuffer {
     vec3 *emission;       /* radiance emitted toward the camera by the primary hit */
     vec3 *sub_pixel;      /* x, y: image position of the primary ray (pixel units); z unused */
     unsigned char *valid; /* 1 when the primary ray hit geometry */
+    float *select_key;    /* GBUFFER_KEY floats per pixel: position xyz, normal xyz, depth, valid;
+                             what neighbor selection reads, packed so that each of its random taps
+                             touches one cache line instead of four */
 };
+
+#define GBUFFER_KEY 8
 
 void gbuffer_init(struct gbuffer *g, int width, int height);
 void gbuffer_fini(struct gbuffer *g);

@@ -7,43 +7,36 @@
 #include "restir/neighbors.h"
 #include "tiles.h"
 
-static void as_array(vec3 v, float a[3])
-{
-    a[0] = v.x;
-    a[1] = v.y;
-    a[2] = v.z;
-}
+static const float *key_of(const struct gbuffer *g, int i) { return &g->select_key[(size_t)i * GBUFFER_KEY]; }
 
-/* Pixel at offset (dx, dy) in the unit disk scaled by the radius; -1 when outside the image, the
- * pixel itself, or without a primary hit. */
+/* Pixel at offset (dx, dy) in the unit disk scaled by the radius; -1 when outside the image or the
+ * pixel itself. */
 static int disk_pixel(const struct render_params *p, const struct gbuffer *g, int x, int y, float dx, float dy)
 {
     int nx = x + (int)lrintf(dx * p->spatial_radius), ny = y + (int)lrintf(dy * p->spatial_radius);
     if (nx < 0 || ny < 0 || nx >= g->width || ny >= g->height || (nx == x && ny == y))
         return -1;
-    int j = ny * g->width + nx;
-    return g->valid[j] ? j : -1;
+    return ny * g->width + nx;
 }
 
-static int bitterli_ok(const struct render_params *p, const struct gbuffer *g, int i, int j)
+/* 000 Eq. 7 on packed keys (position, normal, depth, valid). */
+static int bitterli_ok(const struct render_params *p, const float *ki, const float *kj)
 {
-    float ni[3], nj[3];
-    as_array(g->normal[i], ni);
-    as_array(g->normal[j], nj);
-    return restir_bitterli_compatible(ni, nj, g->depth[i], g->depth[j], p->spatial_normal, p->spatial_depth);
+    return kj[7] != 0.0f &&
+           restir_bitterli_compatible(&ki[3], &kj[3], ki[6], kj[6], p->spatial_normal, p->spatial_depth);
 }
 
 /* Bitterli et al. 2020: m uniform tries, each kept when 000 Eq. 7 holds. */
 static int select_bitterli(const struct render_params *p, const struct gbuffer *g, int x, int y, int m,
                            pcg32 *rng, int *out)
 {
-    const int i = y * g->width + x;
+    const float *ki = key_of(g, y * g->width + x);
     int n = 0;
     for (int k = 0; k < m; k++) {
         float dx, dy;
         warp_concentric_disk(pcg32_float(rng), pcg32_float(rng), &dx, &dy);
         int j = disk_pixel(p, g, x, y, dx, dy);
-        if (j >= 0 && bitterli_ok(p, g, i, j))
+        if (j >= 0 && bitterli_ok(p, ki, key_of(g, j)))
             out[n++] = j;
     }
     return n;
@@ -53,10 +46,7 @@ static int select_bitterli(const struct render_params *p, const struct gbuffer *
 static int select_compat(const struct render_params *p, const struct gbuffer *g, int x, int y, int m, int binary,
                          const float *offsets, pcg32 *rng, int *out)
 {
-    const int i = y * g->width + x;
-    float xi[3], ni[3];
-    as_array(g->position[i], xi);
-    as_array(g->normal[i], ni);
+    const float *ki = key_of(g, y * g->width + x);
     struct restir_select sel;
     restir_select_init(&sel, m);
     int start = (int)(pcg32_next(rng) % R2_DISK_OFFSETS), good = 0;
@@ -65,15 +55,13 @@ static int select_compat(const struct render_params *p, const struct gbuffer *g,
         int j = disk_pixel(p, g, x, y, o[0], o[1]);
         if (j < 0)
             continue;
-        float h;
-        if (binary) {
-            h = bitterli_ok(p, g, i, j) ? 1.0f : 0.0f;
-        } else {
-            float xj[3], nj[3];
-            as_array(g->position[j], xj);
-            as_array(g->normal[j], nj);
-            h = restir_compat_score(xi, ni, g->depth[i], xj, nj, p->spatial_omega, p->spatial_beta);
-        }
+        const float *kj = key_of(g, j);
+        if (kj[7] == 0.0f)
+            continue; /* no primary hit */
+        float h = binary ? (bitterli_ok(p, ki, kj) ? 1.0f : 0.0f)
+                         : restir_compat_score(ki, &ki[3], ki[6], kj, &kj[3], p->spatial_omega, p->spatial_beta);
+        if (!(h > 0.0f))
+            continue;
         restir_select_offer(&sel, j, h, pcg32_float(rng));
         if (p->spatial_early_stop && h > 0.5f && ++good > m)
             break;
