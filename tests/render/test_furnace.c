@@ -1,6 +1,6 @@
 /* test_furnace.c: the analytic furnace: inside a closed sphere of a Lambertian of albedo a = 0.5
- * emitting Le = 0.5, L = Le / (1 - a) = 1, and with one bounce L = Le (1 + a) = 0.75. pt must
- * match per pixel and over the image. Must never use pt internals: a bsdf_eval quadrature checks
+ * emitting Le = 0.5, L = Le / (1 - a) = 1, and with one bounce L = Le (1 + a) = 0.75. pt and
+ * restir-pt (all bounces), pt and restir-di (one bounce) must match per pixel and over the image. Must never use pt internals: a bsdf_eval quadrature checks
  * the material independently. */
 #include <string.h>
 
@@ -14,6 +14,8 @@
 #define H 32
 #define RUNS 8   /* independent seeds: their spread gives each pixel's standard error */
 #define SPP 128  /* paths per pixel per run */
+#define RESTIR_RUNS 256 /* ReSTIR: independent sequences ... */
+#define RESTIR_FRAMES 4 /* ... of this many frames, the last one measured */
 
 /* Family-wise level of the per-pixel test (Sidak over W*H pixels) and the |z| bound of the image
  * mean: an unbiased renderer fails either with probability ~1e-3 (seeds are fixed, so the
@@ -89,10 +91,14 @@ struct furnace_result {
     double worst_z;
 };
 
-/* RUNS independently seeded renders; each pixel's mean over runs is tested against `expect`
- * with the standard error from the pooled per-pixel variance across runs (every pixel sees the
- * same radiance distribution, so pooling over pixels is exact up to facet effects). */
-static struct furnace_result render_furnace(const struct scene *s, int max_bounces, double expect)
+/* `runs` independently seeded renders of `frames` frames (the last one is measured); each pixel's
+ * mean over runs is tested against `expect` with the standard error from the pooled per-pixel
+ * variance across runs (every pixel sees the same radiance distribution, so pooling over pixels
+ * is exact up to facet effects). pt's pixels are independent, so its image mean's standard error
+ * follows from that variance; ReSTIR's pixels share samples, so theirs comes from the spread of
+ * the per-run image means. */
+static struct furnace_result render_furnace(const struct scene *s, enum method_id method, int runs, int frames,
+                                            int max_bounces, double expect)
 {
     struct render_params p;
     render_params_defaults(&p);
@@ -102,40 +108,55 @@ static struct furnace_result render_furnace(const struct scene *s, int max_bounc
     p.max_bounces = max_bounces; /* Russian roulette: default (pt.rr_bounces = 3) */
     struct pixel_stats st;
     pixel_stats_init(&st, W * H);
-    for (int k = 0; k < RUNS; k++) {
+    double run_sum = 0.0, run_sum2 = 0.0;
+    for (int k = 0; k < runs; k++) {
         p.seed = 4242 + 17 * (uint64_t)k;
         struct renderer r;
-        renderer_init(&r, s, METHOD_PT, &p);
+        renderer_init(&r, s, method, &p);
         struct frame_stats fs;
         struct camera cam = scene_camera_at(s, 0, 0.0f);
-        renderer_render(&r, 0, &cam, &fs);
+        for (int f = 0; f < frames; f++)
+            renderer_render(&r, f, &cam, &fs);
         pixel_stats_add(&st, r.image);
+        double m = 0.0;
+        for (int i = 0; i < W * H; i++)
+            m += v3_luminance(v3(r.image[3 * i], r.image[3 * i + 1], r.image[3 * i + 2])) / (W * H);
+        run_sum += m;
+        run_sum2 += m * m;
         renderer_fini(&r);
     }
     double sum = 0.0, var_sum = 0.0;
     for (int i = 0; i < W * H; i++) {
         sum += st.mean[i];
-        var_sum += st.m2[i] / (RUNS - 1);
+        var_sum += st.m2[i] / (runs - 1);
     }
     double var_run = var_sum / (W * H); /* variance of one run's pixel value */
     struct furnace_result res;
     res.image_mean = sum / (W * H);
-    res.image_se = sqrt(var_run / ((double)RUNS * W * H));
-    double se_pixel = sqrt(var_run / RUNS);
+    if (method == METHOD_PT) {
+        res.image_se = sqrt(var_run / ((double)runs * W * H));
+    } else {
+        double mu = run_sum / runs, var_means = (run_sum2 / runs - mu * mu) * runs / (runs - 1);
+        res.image_se = sqrt(fmax(var_means, 0.0) / runs);
+    }
+    double se_pixel = sqrt(var_run / runs);
     double z_crit = normal_two_sided_quantile(1.0 - pow(1.0 - ALPHA, 1.0 / (W * H)));
     res.pixels_failed = 0;
     res.worst_z = 0.0;
     for (int i = 0; i < W * H; i++) {
-        double z = fabs(st.mean[i] - expect) / se_pixel;
+        /* ReSTIR pixels differ in variance (less spatial reuse near the image border): each pixel
+         * gets its own standard error from its spread over the independent runs. */
+        double se = method == METHOD_PT ? se_pixel : sqrt(st.m2[i] / (runs - 1) / runs);
+        double z = se > 0.0 ? fabs(st.mean[i] - expect) / se : INFINITY;
         if (z > res.worst_z)
             res.worst_z = z;
         if (z > z_crit)
             res.pixels_failed++;
     }
-    printf("max_bounces %d: image mean %.5f (se %.5f), expected %.5f, pixel se %.4f, worst |z| %.2f "
+    printf("%s, max_bounces %d: image mean %.5f (se %.5f), expected %.5f, pixel se %.4f, worst |z| %.2f "
            "(crit %.2f), %d pixels fail\n",
-           max_bounces, res.image_mean, res.image_se, expect, se_pixel, res.worst_z, z_crit, res.pixels_failed);
-    EXPECT(var_run > 0.0, "a path tracer with jitter and random bounces must show noise");
+           method_table[method].name, max_bounces, res.image_mean, res.image_se, expect, se_pixel, res.worst_z, z_crit, res.pixels_failed);
+    EXPECT(var_run > 0.0, "%s with jitter and random bounces must show noise", method_table[method].name);
     pixel_stats_free(&st);
     return res;
 }
@@ -176,16 +197,27 @@ int main(void)
     l_center = 1.0;                          /* analytic: Le / (1 - a) */
     const double l_one_bounce = le * (1.0 + 0.5); /* analytic: Le + a Le */
 
-    /* All bounces: the path tracer solves the same equation. */
-    struct furnace_result all = render_furnace(&s, 64, l_center);
-    EXPECT(fabs(all.image_mean - l_center) <= IMAGE_Z_MAX * all.image_se + GEOMETRY_ALLOWANCE,
-           "image mean %.5f vs %.5f (se %.5f)", all.image_mean, l_center, all.image_se);
-    EXPECT(all.pixels_failed == 0, "%d pixels off (worst |z| %.2f)", all.pixels_failed, all.worst_z);
-    /* One bounce: Le seen directly plus one scattering of Le: 0.75. */
-    struct furnace_result one = render_furnace(&s, 1, l_one_bounce);
-    EXPECT(fabs(one.image_mean - l_one_bounce) <= IMAGE_Z_MAX * one.image_se + GEOMETRY_ALLOWANCE,
-           "image mean %.5f vs %.5f (se %.5f)", one.image_mean, l_one_bounce, one.image_se);
-    EXPECT(one.pixels_failed == 0, "%d pixels off (worst |z| %.2f)", one.pixels_failed, one.worst_z);
+    /* All bounces: pt and restir-pt (path reuse through every shift) solve the same equation;
+     * one bounce: Le seen directly plus one scattering of Le = 0.75, for pt and restir-di. */
+    const struct {
+        enum method_id method;
+        int runs, frames, max_bounces;
+        double expect;
+    } cases[] = {
+        {METHOD_PT, RUNS, 1, 64, l_center},
+        {METHOD_PT, RUNS, 1, 1, l_one_bounce},
+        {METHOD_RESTIR_PT, RESTIR_RUNS, RESTIR_FRAMES, 64, l_center},
+        {METHOD_RESTIR_DI, RESTIR_RUNS, RESTIR_FRAMES, 1, l_one_bounce},
+    };
+    for (size_t k = 0; k < sizeof(cases) / sizeof(cases[0]); k++) {
+        struct furnace_result r = render_furnace(&s, cases[k].method, cases[k].runs, cases[k].frames,
+                                                 cases[k].max_bounces, cases[k].expect);
+        EXPECT(fabs(r.image_mean - cases[k].expect) <= IMAGE_Z_MAX * r.image_se + GEOMETRY_ALLOWANCE,
+               "%s: image mean %.5f vs %.5f (se %.5f)", method_table[cases[k].method].name, r.image_mean,
+               cases[k].expect, r.image_se);
+        EXPECT(r.pixels_failed == 0, "%s: %d pixels off (worst |z| %.2f)", method_table[cases[k].method].name,
+               r.pixels_failed, r.worst_z);
+    }
 
     scene_destroy(&s);
     return test_finish();
