@@ -46,6 +46,14 @@ static void corr_disk_rows(int radius, int rows, int width, int *half)
     }
 }
 
+/* Columns [x0, x1] of row yy inside the disk around (x, y), clipped to the image. */
+static void disk_row_span(const int *half, int x, int y, int yy, int width, int *x0, int *x1)
+{
+    int h = half[yy > y ? yy - y : y - yy];
+    *x0 = x - h < 0 ? 0 : x - h;
+    *x1 = x + h > width - 1 ? width - 1 : x + h;
+}
+
 double restir_spatial_covariance(const float *runs, int n_runs, int width, int height, int radius, float eps,
                                  const unsigned char *mask)
 {
@@ -94,9 +102,8 @@ double restir_spatial_covariance(const float *runs, int n_runs, int width, int h
                     continue;
                 double s = 0.0;
                 for (int yy = y0; yy <= y1; yy++) {
-                    int h = half[yy > y ? yy - y : y - yy];
-                    int x0 = x - h < 0 ? 0 : x - h;
-                    int x1 = x + h > width - 1 ? width - 1 : x + h;
+                    int x0, x1;
+                    disk_row_span(half, x, y, yy, width, &x0, &x1);
                     const double *p = prefix + (size_t)yy * row_len;
                     s += p[x1 + 1] - p[x0];
                 }
@@ -116,9 +123,8 @@ double restir_spatial_covariance(const float *runs, int n_runs, int width, int h
                 continue;
             long long neighbors = -1; /* the disk includes i itself */
             for (int yy = y0; yy <= y1; yy++) {
-                int h = half[yy > y ? yy - y : y - yy];
-                int x0 = x - h < 0 ? 0 : x - h;
-                int x1 = x + h > width - 1 ? width - 1 : x + h;
+                int x0, x1;
+                disk_row_span(half, x, y, yy, width, &x0, &x1);
                 neighbors += x1 - x0 + 1;
             }
             if (neighbors <= 0)

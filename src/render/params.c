@@ -21,6 +21,16 @@ struct param_def {
 };
 
 static const char *const select_names[] = {"bitterli", "compat", "compat-binary"};
+static const char *const preset_names[] = {"fast", "balanced", "conservative"};
+
+/* Index of val among the n names, or -1. */
+static int name_index(const char *const *names, int n, const char *val)
+{
+    for (int k = 0; k < n; k++)
+        if (!strcmp(val, names[k]))
+            return k;
+    return -1;
+}
 
 #define F(field) offsetof(struct render_params, field)
 static const struct param_def params[] = {
@@ -126,30 +136,28 @@ static int parse_value(const struct param_def *d, const char *val, struct render
         return 0;
     }
     if (d->type == P_SELECT) {
-        for (int k = 0; k < 3; k++) {
-            if (!strcmp(val, select_names[k])) {
-                *(enum spatial_select_mode *)(void *)base = (enum spatial_select_mode)k;
-                return 0;
-            }
+        int k = name_index(select_names, 3, val);
+        if (k < 0) {
+            snprintf(msg, RESTIR_MSG_LEN, "--set %s: unknown selection '%s' (bitterli, compat, compat-binary)",
+                     d->key, val);
+            return -1;
         }
-        snprintf(msg, RESTIR_MSG_LEN, "--set %s: unknown selection '%s' (bitterli, compat, compat-binary)", d->key,
-                 val);
-        return -1;
+        *(enum spatial_select_mode *)(void *)base = (enum spatial_select_mode)k;
+        return 0;
     }
     if (d->type == P_PRESET) {
         /* 000 Table 1: FAST (K 32, R 30), BALANCED (K 32, R 50), CONSERVATIVE (K 32, R 100). */
-        static const char *const names[] = {"fast", "balanced", "conservative"};
         static const float radii[] = {30.0f, 50.0f, 100.0f};
-        for (int k = 0; k < 3; k++) {
-            if (!strcmp(val, names[k])) {
-                p->spatial_select = SELECT_COMPAT;
-                p->spatial_candidates = 32;
-                p->spatial_radius = radii[k];
-                return 0;
-            }
+        int k = name_index(preset_names, 3, val);
+        if (k < 0) {
+            snprintf(msg, RESTIR_MSG_LEN, "--set %s: unknown preset '%s' (fast, balanced, conservative)", d->key,
+                     val);
+            return -1;
         }
-        snprintf(msg, RESTIR_MSG_LEN, "--set %s: unknown preset '%s' (fast, balanced, conservative)", d->key, val);
-        return -1;
+        p->spatial_select = SELECT_COMPAT;
+        p->spatial_candidates = 32;
+        p->spatial_radius = radii[k];
+        return 0;
     }
     if (d->type == P_BOOL) {
         int v;

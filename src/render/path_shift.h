@@ -24,7 +24,6 @@ struct shift_params {
     enum shift_kind kind;
     float min_roughness; /* hybrid: a vertex is rough when its GGX alpha is at least this */
     float min_distance;  /* hybrid: reconnection segments must be longer (scene units) */
-    int max_bounces;     /* path length bound of the sampler */
     const unsigned char *rough; /* per material: 1 when rough (path_shift_rough_table); NULL: computed
                                    on every query */
 };

@@ -105,6 +105,14 @@ void renderer_reset(struct renderer *r) { r->has_history = 0; }
         (st)->ms[pass] += 1e3 * (omp_get_wtime() - t0_);                                       \
     } while (0)
 
+static long long count_valid(const struct gbuffer *g)
+{
+    long long valid = 0;
+    for (int i = 0; i < g->width * g->height; i++)
+        valid += g->valid[i];
+    return valid;
+}
+
 static void render_restir_di(struct renderer *r, const struct camera_view *view, struct frame_stats *st)
 {
     const struct scene *s = r->scene;
@@ -118,18 +126,15 @@ static void render_restir_di(struct renderer *r, const struct camera_view *view,
     if (p->temporal && r->has_history)
         TIMED(st, PASS_TEMPORAL,
               st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, r->work));
-    if (p->spatial)
-    {
-        TIMED(st, PASS_SELECT, st->neighbors_selected = spatial_select_pass(p, 0, g, frame, r->disk_offsets, r->neighbors));
+    if (p->spatial) {
+        TIMED(st, PASS_SELECT,
+              st->neighbors_selected = spatial_select_pass(p, 0, g, frame, r->disk_offsets, r->neighbors));
         TIMED(st, PASS_SPATIAL, di_spatial_pass(s, p, frame, g, r->neighbors, r->work, out));
-    }
-    else
+    } else {
         memcpy(out, r->work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
+    }
     TIMED(st, PASS_SHADE, st->rays += di_shade_pass(s, g, out, r->image));
-    long long valid = 0;
-    for (int i = 0; i < g->width * g->height; i++)
-        valid += g->valid[i];
-    st->valid_pixels = valid;
+    st->valid_pixels = count_valid(g);
 }
 
 static void render_restir_pt(struct renderer *r, const struct camera_view *view, struct frame_stats *st)
@@ -147,19 +152,15 @@ static void render_restir_pt(struct renderer *r, const struct camera_view *view,
     if (p->temporal && r->has_history)
         TIMED(st, PASS_TEMPORAL,
               st->rays += pt_temporal_pass(&fr, g, prev_g, prev_res, r->pt_work, &st->temporal_accepted));
-    if (p->spatial)
-    {
+    if (p->spatial) {
         TIMED(st, PASS_SELECT,
               st->neighbors_selected = spatial_select_pass(p, 1, g, r->frame, r->disk_offsets, r->neighbors));
         TIMED(st, PASS_SPATIAL, st->rays += pt_spatial_pass(&fr, g, r->neighbors, r->pt_work, out));
-    }
-    else
+    } else {
         memcpy(out, r->pt_work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
+    }
     TIMED(st, PASS_SHADE, pt_shade_pass(g, out, r->pt_emission, r->image));
-    long long valid = 0;
-    for (int i = 0; i < g->width * g->height; i++)
-        valid += g->valid[i];
-    st->valid_pixels = valid;
+    st->valid_pixels = count_valid(g);
 }
 
 void renderer_render(struct renderer *r, int frame, const struct camera *cam, struct frame_stats *st)

@@ -17,7 +17,6 @@ void pt_shift_params(const struct render_params *p, float scene_diagonal, struct
     out->kind = (enum shift_kind)p->shift;
     out->min_roughness = p->shift_roughness;
     out->min_distance = p->shift_distance * scene_diagonal;
-    out->max_bounces = p->max_bounces;
     out->rough = NULL;
 }
 
@@ -73,8 +72,7 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
             for (int x = r.x0; x < r.x1; x++) {
                 int i = y * w + x;
                 struct pt_reservoir *res = &out[i];
-                reservoir_clear(res, 0.0f);
-                emission[i] = v3s(0.0f); /* every pixel samples paths, even where the centre ray misses */
+                reservoir_clear(res, 0.0f); /* every pixel samples paths, even where the centre ray misses */
                 pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_INITIAL);
                 struct initial_ctx ctx;
                 ctx.s = s;

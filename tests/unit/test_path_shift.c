@@ -320,7 +320,6 @@ static void test_scene(const char *name, int paths)
         sp[k].kind = configs[k].kind;
         sp[k].min_roughness = configs[k].min_roughness;
         sp[k].min_distance = configs[k].distance_frac * scene_diagonal(&s);
-        sp[k].max_bounces = MAX_BOUNCES;
         sp[k].rough = NULL; /* roughness computed per query */
     }
 
