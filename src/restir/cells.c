@@ -1,0 +1,291 @@
+/* restir/cells.c: screen-space reuse cells (004 Sec. 5, Algorithm 1), draws from a cell (uniform and
+ * Eq. 17) and the cell search (Sec. 5.1). Must never depend on a ray tracer, files or the renderer. */
+#include "restir/cells.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+uint32_t restir_pcg_hash(uint32_t v)
+{
+    uint32_t state = v * 747796405u + 2891336453u;
+    uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+static int quantize(float n, int bins)
+{
+    /* floor((n + 1) bins / 2), clamped to [0, bins - 1]: a negative component must not wrap
+     * around when cast (the pitfall of one public implementation, shared/notes). */
+    float q = floorf((n + 1.0f) * 0.5f * (float)bins);
+    if (!(q >= 0.0f))
+        return 0;
+    return q >= (float)bins ? bins - 1 : (int)q;
+}
+
+uint32_t restir_cell_key(uint32_t tile, int32_t object, const float normal[3], int bins)
+{
+    if (bins < 1)
+        bins = 1;
+    uint32_t h = restir_pcg_hash(tile);
+    h = restir_pcg_hash(h ^ (uint32_t)object);
+    uint32_t nq = (uint32_t)(quantize(normal[0], bins) + bins * (quantize(normal[1], bins) + bins * quantize(normal[2], bins)));
+    return restir_pcg_hash(h ^ nq);
+}
+
+int restir_cells_init(struct restir_cells *c, int width, int height, int tile)
+{
+    memset(c, 0, sizeof(*c));
+    if (width < 1 || height < 1 || tile < 1 || tile > RESTIR_CELL_MAX_TILE)
+        return -1;
+    size_t n = (size_t)width * (size_t)height;
+    c->width = width;
+    c->height = height;
+    c->tile = tile;
+    c->tiles_x = (width + tile - 1) / tile;
+    c->tiles_y = (height + tile - 1) / tile;
+    size_t ntiles = (size_t)c->tiles_x * (size_t)c->tiles_y;
+    c->tile_base = malloc(sizeof(int) * ntiles);
+    c->entry = malloc(sizeof(int) * n);
+    c->cell_of = malloc(sizeof(int) * n);
+    c->slot_of = malloc(sizeof(int) * n);
+    c->count = malloc(sizeof(int) * n);
+    c->contributing = malloc(sizeof(int) * n);
+    c->conf_sum = malloc(sizeof(float) * n);
+    c->cdf = malloc(sizeof(double) * n);
+    c->conf_cdf = malloc(sizeof(double) * n);
+    c->key = malloc(sizeof(uint32_t) * n);
+    if (!c->tile_base || !c->entry || !c->cell_of || !c->slot_of || !c->count || !c->contributing ||
+        !c->conf_sum || !c->cdf || !c->conf_cdf || !c->key) {
+        restir_cells_fini(c);
+        return -1;
+    }
+    /* A tile's entries start after all pixels of the tiles before it (row-major tile order). */
+    int base = 0;
+    for (int ty = 0; ty < c->tiles_y; ty++) {
+        int h = (ty + 1) * tile <= height ? tile : height - ty * tile;
+        for (int tx = 0; tx < c->tiles_x; tx++) {
+            int w = (tx + 1) * tile <= width ? tile : width - tx * tile;
+            c->tile_base[ty * c->tiles_x + tx] = base;
+            base += w * h;
+        }
+    }
+    return 0;
+}
+
+void restir_cells_fini(struct restir_cells *c)
+{
+    free(c->tile_base);
+    free(c->entry);
+    free(c->cell_of);
+    free(c->slot_of);
+    free(c->count);
+    free(c->contributing);
+    free(c->conf_sum);
+    free(c->cdf);
+    free(c->conf_cdf);
+    free(c->key);
+    memset(c, 0, sizeof(*c));
+}
+
+/* Order inside a tile: by key, then contributing before not, then pixel index. */
+struct tile_item {
+    uint32_t key;
+    int contributing;
+    int pixel;
+};
+
+static int item_before(const struct tile_item *a, const struct tile_item *b)
+{
+    if (a->key != b->key)
+        return a->key < b->key;
+    if (a->contributing != b->contributing)
+        return a->contributing > b->contributing;
+    return a->pixel < b->pixel;
+}
+
+/* Algorithm 1 for one tile: the tile's valid pixels sorted by (key, contributing, pixel) into its
+ * range of `entry` (insertion sort: at most 256 items, mostly already in order), then one sweep
+ * that writes each cell's count, contributing count, confidence sum and prefix sums. */
+static int build_tile(struct restir_cells *c, int t, const uint32_t *key, const unsigned char *valid,
+                      const float *conf, const float *weight)
+{
+    struct tile_item items[RESTIR_CELL_MAX_TILE * RESTIR_CELL_MAX_TILE];
+    int tx = t % c->tiles_x, ty = t / c->tiles_x, n = 0;
+    int x0 = tx * c->tile, y0 = ty * c->tile;
+    int x1 = x0 + c->tile < c->width ? x0 + c->tile : c->width;
+    int y1 = y0 + c->tile < c->height ? y0 + c->tile : c->height;
+    for (int y = y0; y < y1; y++) {
+        for (int x = x0; x < x1; x++) {
+            int i = y * c->width + x;
+            c->cell_of[i] = -1;
+            c->slot_of[i] = -1;
+            if (!valid[i])
+                continue;
+            struct tile_item it = {key[i], weight[i] > 0.0f, i};
+            int k = n++;
+            while (k > 0 && item_before(&it, &items[k - 1])) {
+                items[k] = items[k - 1];
+                k--;
+            }
+            items[k] = it;
+        }
+    }
+    int base = c->tile_base[t], cells = 0;
+    for (int k = 0; k < n;) {
+        int cell = base + k, end = k;
+        int contributing = 0;
+        float conf_sum = 0.0f;
+        double prefix = 0.0, conf_prefix = 0.0;
+        while (end < n && items[end].key == items[k].key) {
+            int i = items[end].pixel, slot = base + end;
+            c->entry[slot] = i;
+            c->cell_of[i] = cell;
+            c->slot_of[i] = slot;
+            conf_sum += conf[i];
+            conf_prefix += (double)conf[i];
+            c->conf_cdf[slot] = conf_prefix;
+            if (items[end].contributing) {
+                contributing++;
+                prefix += (double)weight[i];
+            }
+            c->cdf[slot] = prefix;
+            end++;
+        }
+        c->count[cell] = end - k;
+        c->contributing[cell] = contributing;
+        c->conf_sum[cell] = conf_sum;
+        c->key[cell] = items[k].key;
+        cells++;
+        k = end;
+    }
+    return cells;
+}
+
+void restir_cells_build(struct restir_cells *c, const uint32_t *key, const unsigned char *valid, const float *conf,
+                        const float *weight)
+{
+    const int ntiles = c->tiles_x * c->tiles_y;
+    int cells = 0;
+#pragma omp parallel for schedule(static) reduction(+ : cells)
+    for (int t = 0; t < ntiles; t++)
+        cells += build_tile(c, t, key, valid, conf, weight);
+    c->n_cells = cells;
+}
+
+static int in_cell(const struct restir_cells *c, int cell, int pixel)
+{
+    return pixel >= 0 && pixel < c->width * c->height && c->cell_of[pixel] == cell;
+}
+
+int restir_cells_others(const struct restir_cells *c, int cell, int exclude)
+{
+    if (cell < 0)
+        return 0;
+    return c->count[cell] - in_cell(c, cell, exclude);
+}
+
+float restir_cells_confidence_others(const struct restir_cells *c, int cell, int exclude, const float *conf)
+{
+    if (cell < 0)
+        return 0.0f;
+    float s = c->conf_sum[cell] - (in_cell(c, cell, exclude) ? conf[exclude] : 0.0f);
+    return s > 0.0f ? s : 0.0f;
+}
+
+int restir_cells_pick_uniform(const struct restir_cells *c, int cell, int exclude, float u)
+{
+    int m = restir_cells_others(c, cell, exclude);
+    if (m <= 0)
+        return -1;
+    int k = (int)(u * (float)m);
+    if (k >= m)
+        k = m - 1;
+    /* Skip the excluded pixel's slot: the M others stay equally likely. */
+    if (in_cell(c, cell, exclude) && cell + k >= c->slot_of[exclude])
+        k++;
+    return c->entry[cell + k];
+}
+
+/* Draws slot s in [cell, cell + len) with probability (cdf[s] - cdf[s - 1]) / total, the slot of
+ * `exclude` cut out, by inverting the inclusive prefix sums cdf of the cell with u. */
+static int pick_from_cdf(const struct restir_cells *c, const double *cdf, int cell, int len, int exclude, float u,
+                         double *prob)
+{
+    *prob = 0.0;
+    if (cell < 0 || len <= 0)
+        return -1;
+    int last = cell + len - 1;
+    double total = cdf[last];
+    int xs = -1; /* slot of the excluded pixel when it lies in the range */
+    double w_x = 0.0;
+    if (in_cell(c, cell, exclude) && c->slot_of[exclude] <= last) {
+        xs = c->slot_of[exclude];
+        w_x = cdf[xs] - (xs > cell ? cdf[xs - 1] : 0.0);
+    }
+    double others = total - w_x;
+    if (!(others > 0.0) || (xs >= 0 && len == 1))
+        return -1;
+    double t = (double)u * others;
+    if (xs >= 0 && t >= (xs > cell ? cdf[xs - 1] : 0.0))
+        t += w_x; /* skip the excluded interval */
+    int lo = cell, hi = last;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (cdf[mid] > t)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    if (lo == xs) /* t on the rounding edge of the cut: take the slot it borders */
+        lo = xs < last ? xs + 1 : xs - 1;
+    double w = cdf[lo] - (lo > cell ? cdf[lo - 1] : 0.0);
+    if (!(w > 0.0))
+        return -1;
+    *prob = w / others;
+    return c->entry[lo];
+}
+
+int restir_cells_pick_weighted(const struct restir_cells *c, int cell, int exclude, float u, double *prob)
+{
+    /* the contributing pixels come first in the cell, so the Eq. 17 prefix sums cover them */
+    return pick_from_cdf(c, c->cdf, cell, cell >= 0 ? c->contributing[cell] : 0, exclude, u, prob);
+}
+
+int restir_cells_pick_confidence(const struct restir_cells *c, int cell, int exclude, float u, double *prob)
+{
+    return pick_from_cdf(c, c->conf_cdf, cell, cell >= 0 ? c->count[cell] : 0, exclude, u, prob);
+}
+
+int restir_cell_search(const struct restir_cells *c, const struct restir_cell_search *s, int pixel,
+                       const float *normal, const int *object, const float *u)
+{
+    if (pixel < 0 || pixel >= c->width * c->height || c->cell_of[pixel] < 0)
+        return -1;
+    const int x = pixel % c->width, y = pixel / c->width;
+    const float *n = &normal[3 * (size_t)pixel];
+    double w_sum = 0.0;
+    int chosen = -1;
+    float radius = s->radius;
+    for (int t = 0; t < s->steps; t++, radius *= s->growth) {
+        /* A uniform point in the disk (polar map: r = R sqrt(u), area-uniform). */
+        float r = radius * sqrtf(u[3 * t]), phi = 6.28318530717958647f * u[3 * t + 1];
+        int qx = x + (int)lrintf(r * cosf(phi)), qy = y + (int)lrintf(r * sinf(phi));
+        if (qx < 0 || qy < 0 || qx >= c->width || qy >= c->height)
+            continue;
+        int q = qy * c->width + qx;
+        int cell = c->cell_of[q];
+        if (cell < 0 || object[q] != object[pixel])
+            continue;
+        const float *nq = &normal[3 * (size_t)q];
+        if (n[0] * nq[0] + n[1] * nq[1] + n[2] * nq[2] < s->normal_min)
+            continue;
+        double w = c->conf_sum[cell];
+        if (!(w > 0.0))
+            continue;
+        w_sum += w;
+        if ((double)u[3 * t + 2] * w_sum < w) /* Chao 1982 streaming WRS */
+            chosen = cell;
+    }
+    return chosen >= 0 ? chosen : c->cell_of[pixel];
+}
