@@ -1,5 +1,5 @@
-/* cmd_compare.c: `restir compare`: runs several methods on the same frames against one
- * reference, optionally at equal time, and writes a table and compare.csv.
+/* cmd_compare.c: `restir compare`: runs several method specifications (NAME[:key=value]...) on the
+ * same frames against one reference, optionally at equal time, and writes a table and compare.csv.
  * Must never implement a method: it drives the renderer. */
 #include <omp.h>
 #include <stdlib.h>
@@ -11,7 +11,17 @@
 #include "io/report.h"
 #include "options.h"
 
-#define MAX_METHODS 8
+#define MAX_METHODS 16
+#define SPEC_MAX 200 /* characters of one spec; its folder name stays under NAME_MAX */
+
+/* One row of the comparison: a method with the command's parameters and then the spec's own
+ * key=value settings. The spec text labels the row; dir is its folder name under DIR. */
+struct compare_spec {
+    char label[SPEC_MAX + 1];
+    char dir[SPEC_MAX + 16];
+    enum method_id method;
+    struct render_params p;
+};
 
 struct compare_result {
     enum method_id method;
@@ -20,16 +30,110 @@ struct compare_result {
     struct restir_error err; /* of the last frame */
 };
 
-/* Runs `frames` frames of a method and measures the last frame against ref. Returns 0, or -1
- * with msg when its last frame cannot be written to out_dir/METHOD. */
-static int run_method(const struct scene *s, enum method_id m, const struct render_params *p, int frames,
+/* msg of render_params_set without its "--set" prefix, which
+ * would name an option the user did not give. */
+static const char *strip_set_prefix(const char *m)
+{
+    if (!strncmp(m, "--set: ", 7))
+        return m + 7;
+    if (!strncmp(m, "--set ", 6))
+        return m + 6;
+    return m;
+}
+
+/* Parses spec "NAME[:key=value]..." onto common parameters. Returns 0, or -1 with msg naming the
+ * spec and the problem (an unknown method, key or value). */
+static int parse_spec(const char *spec, const struct render_params *common, struct compare_spec *c, char *msg)
+{
+    char sub[RESTIR_MSG_LEN];
+    if (strlen(spec) > SPEC_MAX) {
+        snprintf(msg, RESTIR_MSG_LEN, "--methods spec '%.40s...' is longer than %d characters", spec, SPEC_MAX);
+        return -1;
+    }
+    snprintf(c->label, sizeof(c->label), "%s", spec);
+    char buf[SPEC_MAX + 1];
+    snprintf(buf, sizeof(buf), "%s", spec);
+    char *rest = strchr(buf, ':');
+    if (rest)
+        *rest++ = '\0';
+    int m = method_find(buf);
+    if (m < 0) {
+        if (rest)
+            snprintf(msg, RESTIR_MSG_LEN, "unknown method '%s' in --methods spec '%s' (see restir list)", buf, spec);
+        else
+            snprintf(msg, RESTIR_MSG_LEN, "unknown method '%s' in --methods (see restir list)", buf);
+        return -1;
+    }
+    c->method = (enum method_id)m;
+    c->p = *common;
+    while (rest) {
+        char *next = strchr(rest, ':');
+        if (next)
+            *next++ = '\0';
+        if (render_params_set(&c->p, rest, sub) != 0) {
+            snprintf(msg, RESTIR_MSG_LEN, "--methods spec '%.200s': %.280s", spec, strip_set_prefix(sub));
+            return -1;
+        }
+        rest = next;
+    }
+    return 0;
+}
+
+/* Folder names from labels: every character outside [A-Za-z0-9._-] becomes '_', and a name an
+ * earlier spec already took gets _2, _3, ... appended. */
+static void assign_dirs(struct compare_spec *c, int n)
+{
+    for (int k = 0; k < n; k++) {
+        char base[SPEC_MAX + 1];
+        size_t len = strlen(c[k].label);
+        for (size_t i = 0; i <= len; i++) {
+            char ch = c[k].label[i];
+            int ok = ch == '\0' || (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') ||
+                     ch == '.' || ch == '_' || ch == '-';
+            base[i] = ok ? ch : '_';
+        }
+        snprintf(c[k].dir, sizeof(c[k].dir), "%s", base);
+        for (int suffix = 2;; suffix++) {
+            int taken = 0;
+            for (int j = 0; j < k && !taken; j++)
+                taken = !strcmp(c[j].dir, c[k].dir);
+            if (!taken)
+                break;
+            snprintf(c[k].dir, sizeof(c[k].dir), "%s_%d", base, suffix);
+        }
+    }
+}
+
+/* Writes s as one CSV field: verbatim, or quoted (quotes doubled) when it holds a comma, a quote
+ * or a line break. */
+static void csv_field(char *out, size_t n, const char *s)
+{
+    int quote = strpbrk(s, ",\"\r\n") != NULL;
+    size_t o = 0;
+    if (quote)
+        out[o++] = '"';
+    for (; *s && o + 3 < n; s++) {
+        if (*s == '"')
+            out[o++] = '"';
+        out[o++] = *s;
+    }
+    if (quote)
+        out[o++] = '"';
+    out[o] = '\0';
+}
+
+/* Runs `frames` frames of spec c with parameters p (c->p, or with pt's equal-time spp) and measures
+ * the last frame against ref. Returns 0, or -1 with msg when its last frame cannot be written to
+ * out_dir/c->dir. */
+static int run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
                       const float *ref, const char *out_dir, struct compare_result *res, char *msg)
 {
+    enum method_id m = c->method;
     struct renderer r;
     renderer_init(&r, s, m, p);
     double ms = 0.0;
     struct progress pg;
-    progress_begin(&pg, method_table[m].name, frames);
+    progress_begin(&pg, c->label, frames);
     for (int f = 0; f < frames; f++) {
         struct frame_stats st;
         struct camera cam = scene_camera_at(s, p->camera_path, (float)f);
@@ -42,8 +146,8 @@ static int run_method(const struct scene *s, enum method_id m, const struct rend
     res->ms_per_frame = ms / frames;
     res->spp = m == METHOD_PT ? p->spp : 1;
     restir_error_compute(r.image, ref, (size_t)p->width * (size_t)p->height, NULL, &res->err);
-    char path[4300];
-    snprintf(path, sizeof(path), "%s/%s", out_dir, method_table[m].name);
+    char path[4400];
+    snprintf(path, sizeof(path), "%s/%s", out_dir, c->dir);
     int rc = cli_make_dir(path, msg);
     if (rc == 0)
         rc = cli_write_frame(path, frames - 1, r.image, p->width, p->height, msg);
@@ -85,42 +189,63 @@ int cmd_compare(int argc, char **argv)
         return EXIT_USAGE;
     }
     if (o.help) {
-        printf("usage: restir compare --scene NAME --methods a,b,... [--equal-time] [--frames N] [--res WxH]\n"
+        printf("usage: restir compare --scene NAME --methods SPEC,SPEC,... [--equal-time] [--frames N] [--res WxH]\n"
                "                      [--ref FILE.exr | --ref-spp N] [--camera static|path] [--out DIR]\n"
                "                      [--seed N] [--threads N] [--set key=value]...\n"
-               "Runs each method for N frames (default 1) and measures the last frame against the reference\n"
-               "(rendered with --ref-spp paths, default 1024, when --ref is absent). With --equal-time every\n"
-               "method gets the frame time of the first ReSTIR method: pt gets as many paths per pixel as fit.\n"
-               "When DI methods are compared, pt estimates direct lighting only (1 bounce), like them.\n"
-               "Writes DIR/compare.csv (method, ms per frame, spp, relmse, mape, smape, luma_rmse) and each\n"
-               "method's last frame to DIR/METHOD/. Default DIR: out/compare-SCENE.\n");
+               "Each SPEC is NAME[:key=value]...: method NAME (see restir list) with the command's parameters,\n"
+               "then each key=value applied as by --set (see restir render --help) for that row only, e.g.\n"
+               "  --methods 'restir-pt,restir-pt:mis=balance:spatial.neighbors=5,pt'\n"
+               "The whole SPEC labels its row. Runs each SPEC for N frames (default 1) and measures the last\n"
+               "frame against the reference, rendered from the common parameters with --ref-spp paths\n"
+               "(default 1024) when --ref is absent. With --equal-time every row gets the frame time of the\n"
+               "first ReSTIR SPEC: pt gets as many paths per pixel as fit. When DI methods are compared, pt\n"
+               "estimates direct lighting only (1 bounce), like them.\n"
+               "Writes DIR/compare.csv (method = the SPEC, ms per frame, spp, relmse, mape, smape, luma_rmse)\n"
+               "and each row's last frame to DIR/FOLDER/, where FOLDER is the SPEC with every character other\n"
+               "than A-Z a-z 0-9 . _ - replaced by _ (and _2, _3, ... appended when two SPECs give the same\n"
+               "name). Default DIR: out/compare-SCENE.\n");
         return 0;
     }
     if (!o.methods) {
-        cli_error("--methods a,b,... is required (see restir list)");
+        cli_error("--methods SPEC,SPEC,... is required (see restir list)");
         return EXIT_USAGE;
     }
-    enum method_id methods[MAX_METHODS];
-    int n = 0, any_direct = 0;
-    char list[1024];
+    char list[MAX_METHODS * (SPEC_MAX + 1) + 64];
+    if (strlen(o.methods) >= sizeof(list)) {
+        cli_error("--methods is longer than %zu characters", sizeof(list) - 1);
+        return EXIT_USAGE;
+    }
     snprintf(list, sizeof(list), "%s", o.methods);
+    struct compare_spec specs[MAX_METHODS];
+    int n = 0, any_direct = 0;
     for (char *tok = strtok(list, ","); tok; tok = strtok(NULL, ",")) {
-        int m = method_find(tok);
-        if (m < 0) {
-            cli_error("unknown method '%s' in --methods (see restir list)", tok);
-            return EXIT_USAGE;
-        }
         if (n == MAX_METHODS) {
             cli_error("--methods lists more than %d methods", MAX_METHODS);
             return EXIT_USAGE;
         }
-        methods[n++] = (enum method_id)m;
-        any_direct |= method_table[m].direct_only;
+        if (parse_spec(tok, &o.params, &specs[n], msg) != 0) {
+            cli_error("%s", msg);
+            return EXIT_USAGE;
+        }
+        any_direct |= method_table[specs[n].method].direct_only;
+        n++;
     }
     if (n == 0) {
         cli_error("--methods lists no method (see restir list)");
         return EXIT_USAGE;
     }
+    struct render_params p = o.params;
+    if (any_direct)
+        renderer_reference_params(METHOD_RESTIR_DI, &p); /* pt estimates the same integral */
+    for (int k = 0; k < n; k++) {
+        if (any_direct)
+            renderer_reference_params(METHOD_RESTIR_DI, &specs[k].p); /* as for --set */
+        if (render_params_validate(&specs[k].p, msg) != 0) {
+            cli_error("--methods spec '%s': %s", specs[k].label, msg);
+            return EXIT_USAGE;
+        }
+    }
+    assign_dirs(specs, n);
     struct scene s;
     if (scene_create_builtin(o.scene, &s, msg) != 0) {
         cli_error("%s", msg);
@@ -128,9 +253,6 @@ int cmd_compare(int argc, char **argv)
     }
     if (o.params.threads > 0)
         omp_set_num_threads(o.params.threads);
-    struct render_params p = o.params;
-    if (any_direct)
-        renderer_reference_params(METHOD_RESTIR_DI, &p); /* pt estimates the same integral */
     char out_dir[4096];
     snprintf(out_dir, sizeof(out_dir), "%s", o.out ? o.out : "");
     if (!o.out)
@@ -163,9 +285,9 @@ int cmd_compare(int argc, char **argv)
     struct compare_result res[MAX_METHODS];
     double budget = -1.0;
     for (int k = 0; k < n; k++) {
-        if (methods[k] == METHOD_PT)
+        if (specs[k].method == METHOD_PT)
             continue;
-        if (run_method(&s, methods[k], &p, o.frames, ref, out_dir, &res[k], msg) != 0) {
+        if (run_method(&s, &specs[k], &specs[k].p, o.frames, ref, out_dir, &res[k], msg) != 0) {
             rc = EXIT_RUNTIME;
             break;
         }
@@ -173,12 +295,12 @@ int cmd_compare(int argc, char **argv)
             budget = res[k].ms_per_frame;
     }
     for (int k = 0; k < n && rc == 0; k++) {
-        if (methods[k] != METHOD_PT)
+        if (specs[k].method != METHOD_PT)
             continue;
-        struct render_params q = p;
+        struct render_params q = specs[k].p;
         if (o.equal_time && budget > 0.0)
-            q.spp = pt_spp_for_budget(&s, &p, budget);
-        if (run_method(&s, methods[k], &q, o.frames, ref, out_dir, &res[k], msg) != 0)
+            q.spp = pt_spp_for_budget(&s, &specs[k].p, budget);
+        if (run_method(&s, &specs[k], &q, o.frames, ref, out_dir, &res[k], msg) != 0)
             rc = EXIT_RUNTIME;
     }
     if (rc != 0) {
@@ -195,18 +317,25 @@ int cmd_compare(int argc, char **argv)
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }
+    int w = 12;
+    for (int k = 0; k < n; k++)
+        if ((int)strlen(specs[k].label) > w)
+            w = (int)strlen(specs[k].label);
     printf("%s, %dx%d, %s camera, error at frame %d%s:\n", o.scene, p.width, p.height,
            p.camera_path ? "moving" : "static", o.frames - 1, o.equal_time ? ", equal time" : "");
-    printf("%-12s %10s %6s %12s %10s %8s %12s\n", "method", "ms/frame", "spp", "relMSE", "MAPE", "SMAPE",
+    printf("%-*s %10s %6s %12s %10s %8s %12s\n", w, "method", "ms/frame", "spp", "relMSE", "MAPE", "SMAPE",
            "relMSE/first");
     for (int k = 0; k < n; k++) {
         const struct compare_result *c = &res[k];
-        printf("%-12s %10.2f %6d %12.5g %10.5g %8.3f %12.3f\n", method_table[c->method].name, c->ms_per_frame,
-               c->spp, c->err.relmse, c->err.mape, c->err.smape,
+        printf("%-*s %10.2f %6d %12.5g %10.5g %8.3f %12.3f\n", w, specs[k].label, c->ms_per_frame, c->spp,
+               c->err.relmse, c->err.mape, c->err.smape,
                res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0);
-        if (rc == 0)
-            csv_row(&csv, "%s,%.3f,%d,%.6g,%.6g,%.6g,%.6g", method_table[c->method].name, c->ms_per_frame, c->spp,
-                    c->err.relmse, c->err.mape, c->err.smape, c->err.luma_rmse);
+        if (rc == 0) {
+            char field[2 * SPEC_MAX + 4];
+            csv_field(field, sizeof(field), specs[k].label);
+            csv_row(&csv, "%s,%.3f,%d,%.6g,%.6g,%.6g,%.6g", field, c->ms_per_frame, c->spp, c->err.relmse,
+                    c->err.mape, c->err.smape, c->err.luma_rmse);
+        }
     }
     if (rc == 0 && csv_close(&csv, msg) != 0) {
         cli_error("%s", msg);

@@ -142,6 +142,15 @@ static void check_compare(void)
     expect_failure("compare with an unknown method",
                    "compare --scene cornell --methods pt,no-such-method --res 16x16 --out '%1$s'", 2,
                    "no-such-method", NULL);
+    expect_failure("compare spec with an unknown key",
+                   "compare --scene cornell --methods 'restir-pt,restir-pt:nosuchkey=1' --res 16x16 --out '%1$s'", 2,
+                   "restir-pt:nosuchkey=1", "'nosuchkey'");
+    expect_failure("compare spec with a bad value",
+                   "compare --scene cornell --methods 'restir-pt:mis=foo' --res 16x16 --out '%1$s'", 2,
+                   "restir-pt:mis=foo", "'foo'");
+    expect_failure("compare spec with an unknown method",
+                   "compare --scene cornell --methods 'pt,no-such-method:mis=balance' --res 16x16 --out '%1$s'", 2,
+                   "no-such-method", NULL);
     snprintf(out, sizeof(out), "%s/compare-blocked", tmp);
     snprintf(blocker, sizeof(blocker), "%s/pt", out);
     EXPECT(mkdir(out, 0777) == 0, "cannot create %s", out);
@@ -154,6 +163,51 @@ static void check_compare(void)
     EXPECT(rc == 1, "compare could not write %s but exited %d", blocker, rc);
     EXPECT(strstr(err, blocker) != NULL, "message does not name %s: %s", blocker, err);
     EXPECT(cli_count_entries(out, ".tmp-") == 0, "temporary files left in %s", out);
+}
+
+/* Reads path into buf (NUL terminated, truncated to n - 1 bytes); empty when it cannot be read. */
+static void read_text(const char *path, char *buf, size_t n)
+{
+    buf[0] = '\0';
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return;
+    size_t k = fread(buf, 1, n - 1, f);
+    buf[k] = '\0';
+    fclose(f);
+}
+
+/* `restir compare` with method specs NAME[:key=value]...: each spec labels its row of the table and
+ * of compare.csv, and gets its own folder (the label with [^A-Za-z0-9._-] as '_', then _2, _3). */
+static void check_compare_specs(void)
+{
+    static char out_text[CLI_ERR_MAX], csv[CLI_ERR_MAX];
+    char dir[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX], path[3 * CLI_PATH_MAX], err[CLI_ERR_MAX], line[512];
+    snprintf(dir, sizeof(dir), "%s/compare-specs", tmp);
+    snprintf(args, sizeof(args),
+             "compare --scene cornell --res 16x12 --frames 2 --ref-spp 4 --threads 2 "
+             "--methods 'restir-pt,restir-pt:mis=balance,restir-pt:mis=balance' --out '%s'",
+             dir);
+    int rc = cli_run_capture(tmp, args, out_text, err);
+    printf("[compare with specs] exit %d: %s", rc, err[0] ? err : "(no message)\n");
+    EXPECT(rc == 0, "compare with specs exited %d: %s", rc, err);
+    line_with(out_text, "restir-pt:mis=balance ", line, sizeof(line));
+    EXPECT(line[0] != '\0', "the table has no row labelled restir-pt:mis=balance:\n%s", out_text);
+    snprintf(path, sizeof(path), "%s/compare.csv", dir);
+    read_text(path, csv, sizeof(csv));
+    EXPECT(strncmp(csv, "method,", 7) == 0, "%s has no header: %s", path, csv);
+    EXPECT(strstr(csv, "\nrestir-pt,") != NULL, "%s has no row labelled restir-pt:\n%s", path, csv);
+    const char *first = strstr(csv, "\nrestir-pt:mis=balance,");
+    EXPECT(first != NULL && strstr(first + 1, "\nrestir-pt:mis=balance,") != NULL,
+           "%s has not two rows labelled restir-pt:mis=balance:\n%s", path, csv);
+    const char *folders[] = {"restir-pt", "restir-pt_mis_balance", "restir-pt_mis_balance_2"};
+    for (int k = 0; k < 3; k++) {
+        snprintf(path, sizeof(path), "%s/%s", dir, folders[k]);
+        int frames = cli_count_entries(path, "frame_0001.exr");
+        EXPECT(frames == 1, "no last frame in %s (%d)", path, frames);
+    }
+    EXPECT(cli_count_entries(dir, "") == 5, "%s holds %d entries, want compare.csv, reference.exr and 3 folders", dir,
+           cli_count_entries(dir, ""));
 }
 
 static void check_study(void)
@@ -213,6 +267,7 @@ int main(void)
     check_bad_render_input();
     check_failed_write();
     check_compare();
+    check_compare_specs();
     check_study();
     check_list_and_help();
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
