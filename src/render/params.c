@@ -10,7 +10,9 @@
 
 #include "core/check.h"
 
-enum param_type { P_INT, P_FLOAT, P_BOOL, P_MIS, P_SHIFT, P_SELECT, P_PRESET };
+/* P_NAMES: an enum stored as int, spelled by the def's names; P_COUNT: an int where "M" means 0
+ * (all M pixels of a reuse cell). */
+enum param_type { P_INT, P_COUNT, P_FLOAT, P_BOOL, P_MIS, P_SHIFT, P_NAMES, P_PRESET };
 
 struct param_def {
     const char *key;
@@ -18,15 +20,19 @@ struct param_def {
     size_t offset;
     double lo, hi; /* accepted range for numbers */
     const char *help;
+    const char *const *names; /* P_NAMES: the spellings of values 0, 1, ..., NULL-terminated */
 };
 
-static const char *const select_names[] = {"bitterli", "compat", "compat-binary"};
-static const char *const preset_names[] = {"fast", "balanced", "conservative"};
+static const char *const select_names[] = {"bitterli", "compat", "compat-binary", NULL};
+static const char *const reuse_names[] = {"standard", "spmis", NULL};
+static const char *const search_names[] = {"always", "sparse", NULL};
+static const char *const pick_names[] = {"uniform", "confidence", NULL};
+static const char *const preset_names[] = {"fast", "balanced", "conservative", NULL};
 
-/* Index of val among the n names, or -1. */
-static int name_index(const char *const *names, int n, const char *val)
+/* Index of val among the NULL-terminated names, or -1. */
+static int name_index(const char *const *names, const char *val)
 {
-    for (int k = 0; k < n; k++)
+    for (int k = 0; names[k]; k++)
         if (!strcmp(val, names[k]))
             return k;
     return -1;
@@ -34,48 +40,75 @@ static int name_index(const char *const *names, int n, const char *val)
 
 #define F(field) offsetof(struct render_params, field)
 static const struct param_def params[] = {
-    {"spp", P_INT, F(spp), 1, 1 << 20, "pt: paths per pixel per frame"},
-    {"jitter", P_BOOL, F(jitter), 0, 1, "jitter primary rays over the pixel (integrates the box filter)"},
+    {"spp", P_INT, F(spp), 1, 1 << 20, "pt: paths per pixel per frame", NULL},
+    {"jitter", P_BOOL, F(jitter), 0, 1, "jitter primary rays over the pixel (integrates the box filter)", NULL},
     {"pt.max_bounces", P_INT, F(max_bounces), 1, 64,
-     "pt: maximum scattering events (1 = direct lighting; set for you when comparing DI methods)"},
-    {"pt.rr_bounces", P_INT, F(rr_bounces), 0, 1024, "pt: Russian roulette after this many bounces"},
-    {"di.light_candidates", P_INT, F(light_candidates), 0, 4096, "initial RIS: light-sampled candidates"},
-    {"di.bsdf_candidates", P_INT, F(bsdf_candidates), 0, 64, "initial RIS: BSDF-sampled candidates"},
-    {"temporal", P_BOOL, F(temporal), 0, 1, "temporal reuse on/off"},
-    {"spatial", P_BOOL, F(spatial), 0, 1, "spatial reuse on/off"},
+     "pt: maximum scattering events (1 = direct lighting; set for you when comparing DI methods)", NULL},
+    {"pt.rr_bounces", P_INT, F(rr_bounces), 0, 1024, "pt: Russian roulette after this many bounces", NULL},
+    {"di.light_candidates", P_INT, F(light_candidates), 0, 4096, "initial RIS: light-sampled candidates", NULL},
+    {"di.bsdf_candidates", P_INT, F(bsdf_candidates), 0, 64, "initial RIS: BSDF-sampled candidates", NULL},
+    {"temporal", P_BOOL, F(temporal), 0, 1, "temporal reuse on/off", NULL},
+    {"spatial", P_BOOL, F(spatial), 0, 1, "spatial reuse on/off", NULL},
     {"spatial.neighbors", P_INT, F(spatial_neighbors), 0, 5,
-     "spatial neighbors tried per pixel (0: method default, 1 for restir-di, 3 for restir-pt)"},
-    {"spatial.radius", P_FLOAT, F(spatial_radius), 1, 512, "spatial reuse disk radius in pixels"},
-    {"spatial.select", P_SELECT, F(spatial_select), 0, 0,
+     "spatial neighbors tried per pixel (0: method default, 1 for restir-di, 3 for restir-pt)", NULL},
+    {"spatial.radius", P_FLOAT, F(spatial_radius), 1, 512, "spatial reuse disk radius in pixels", NULL},
+    {"spatial.select", P_NAMES, F(spatial_select), 0, 0,
      "neighbor selection: bitterli (uniform tries, 000 Eq. 7), compat (000 Algorithm 1, Eq. 14 scores), "
-     "compat-binary (Algorithm 1 with Eq. 7 as score); all read only the G-buffer (unbiased)"},
+     "compat-binary (Algorithm 1 with Eq. 7 as score); all read only the G-buffer (unbiased)",
+     select_names},
     {"spatial.preset", P_PRESET, 0, 0, 0,
-     "000 presets: fast (compat, R 30, K 32), balanced (R 50), conservative (R 100)"},
-    {"spatial.candidates", P_INT, F(spatial_candidates), 1, 4096, "compat: candidates K per pixel"},
-    {"spatial.omega", P_FLOAT, F(spatial_omega), 1e-9, 12.57, "compat: solid angle Omega of the position scale (Eq. 15)"},
-    {"spatial.beta", P_FLOAT, F(spatial_beta), 0, 1e3, "compat: normal exponent beta (Eq. 15)"},
+     "000 presets: fast (compat, R 30, K 32), balanced (R 50), conservative (R 100)", NULL},
+    {"spatial.candidates", P_INT, F(spatial_candidates), 1, 4096, "compat: candidates K per pixel", NULL},
+    {"spatial.omega", P_FLOAT, F(spatial_omega), 1e-9, 12.57, "compat: solid angle Omega of the position scale (Eq. 15)", NULL},
+    {"spatial.beta", P_FLOAT, F(spatial_beta), 0, 1e3, "compat: normal exponent beta (Eq. 15)", NULL},
     {"spatial.early_stop", P_BOOL, F(spatial_early_stop), 0, 1,
-     "compat: stop once more than M candidates score above 0.5 (000 Sec. 5)"},
-    {"spatial.normal", P_FLOAT, F(spatial_normal), -1, 1, "Bitterli test (000 Eq. 7): minimum n . n_i"},
-    {"spatial.depth", P_FLOAT, F(spatial_depth), 0, 1e30, "Bitterli test (000 Eq. 7): max |d_i - d| / d"},
-    {"confidence_cap", P_FLOAT, F(confidence_cap), 1, 1e9, "cap on confidence weights c (M cap)"},
+     "compat: stop once more than M candidates score above 0.5 (000 Sec. 5)", NULL},
+    {"spatial.normal", P_FLOAT, F(spatial_normal), -1, 1, "Bitterli test (000 Eq. 7): minimum n . n_i", NULL},
+    {"spatial.depth", P_FLOAT, F(spatial_depth), 0, 1e30, "Bitterli test (000 Eq. 7): max |d_i - d| / d", NULL},
+    {"confidence_cap", P_FLOAT, F(confidence_cap), 1, 1e9, "cap on confidence weights c (M cap)", NULL},
     {"mis", P_MIS, F(mis), 0, 0,
      "resampling MIS: pairwise (defensive, unbiased), balance (unbiased), 1/M (BIASED: ignores that "
-     "domains cannot all produce every sample)"},
-    {"temporal.normal", P_FLOAT, F(temporal_normal), -1, 1, "history rejected when n . n_prev is below"},
+     "domains cannot all produce every sample)", NULL},
+    {"temporal.normal", P_FLOAT, F(temporal_normal), -1, 1, "history rejected when n . n_prev is below", NULL},
     {"temporal.plane", P_FLOAT, F(temporal_plane), 0, 1e30,
-     "history rejected when the plane distance / depth is above"},
+     "history rejected when the plane distance / depth is above", NULL},
     {"temporal.ratio_guard", P_BOOL, F(temporal_ratio_guard), 0, 1,
-     "BIASED: reject history whose target ratio leaves [ratio_lo, ratio_hi] (001 Sec. 5)"},
-    {"temporal.ratio_lo", P_FLOAT, F(ratio_lo), 0, 1e30, "target-ratio guard lower bound"},
-    {"temporal.ratio_hi", P_FLOAT, F(ratio_hi), 0, 1e30, "target-ratio guard upper bound"},
-    {"pt.candidates", P_INT, F(pt_candidates), 1, 64, "restir-pt: initial paths resampled per pixel"},
+     "BIASED: reject history whose target ratio leaves [ratio_lo, ratio_hi] (001 Sec. 5)", NULL},
+    {"temporal.ratio_lo", P_FLOAT, F(ratio_lo), 0, 1e30, "target-ratio guard lower bound", NULL},
+    {"temporal.ratio_hi", P_FLOAT, F(ratio_hi), 0, 1e30, "target-ratio guard upper bound", NULL},
+    {"spatial.reuse", P_NAMES, F(spatial_reuse), 0, 0,
+     "spatial reuse: standard (GRIS over the selected neighbors) or spmis (004 Algorithm 2: stochastic "
+     "pairwise MIS over one reuse cell; unbiased)",
+     reuse_names},
+    {"spmis.candidates", P_COUNT, F(spmis_candidates), 0, 256,
+     "spmis: neighbor draws N (004 Eq. 15-17); M = deterministic pairwise over the whole cell", NULL},
+    {"spmis.canonical_candidates", P_COUNT, F(spmis_canonical_candidates), 0, 256,
+     "spmis: canonical-weight draws N_c (004 Eq. 18); M = the exact Eq. 11b sum", NULL},
+    {"spmis.tile", P_INT, F(spmis_tile), 1, 16, "spmis: reuse-cell tile edge in pixels (004 Sec. 5)", NULL},
+    {"spmis.normal_bins", P_INT, F(spmis_normal_bins), 1, 64,
+     "spmis: cell key quantizes each normal component into this many buckets", NULL},
+    {"spmis.search_steps", P_INT, F(spmis_search_steps), 0, 256,
+     "spmis: cell-search taps (004 Sec. 5.1; 0 = always the pixel's own cell)", NULL},
+    {"spmis.search_radius", P_FLOAT, F(spmis_search_radius), 0, 4096, "spmis: initial cell-search radius, pixels", NULL},
+    {"spmis.search_growth", P_FLOAT, F(spmis_search_growth), 1, 16, "spmis: cell-search radius factor per tap", NULL},
+    {"spmis.search_normal", P_FLOAT, F(spmis_search_normal), -1, 1,
+     "spmis: a search tap is rejected when n . n_tap is below this (or on another object)", NULL},
+    {"spmis.search", P_NAMES, F(spmis_search), 0, 0,
+     "spmis: always (search for every pixel, 004 Sec. 5.1) or sparse (BIASED: search only where the own "
+     "cell has at most spmis.sparse_count contributing pixels, a count that depends on the samples)",
+     search_names},
+    {"spmis.sparse_count", P_INT, F(spmis_sparse_count), 0, 256, "spmis: threshold of the sparse search", NULL},
+    {"spmis.confidence_adjust", P_BOOL, F(spmis_confidence_adjust), 0, 1,
+     "spmis: scale non-canonical confidences by N / M (004 Sec. 4.3)", NULL},
+    {"spmis.canonical_pick", P_NAMES, F(spmis_canonical_pick), 0, 0,
+     "spmis: canonical draws P_c uniform (004) or proportional to confidence", pick_names},
+    {"pt.candidates", P_INT, F(pt_candidates), 1, 64, "restir-pt: initial paths resampled per pixel", NULL},
     {"shift", P_SHIFT, F(shift), 0, 0,
      "restir-pt shift mapping: hybrid (replay until two rough, distant vertices, then reconnect), "
-     "reconnection (at the secondary vertex), replay (whole prefix; reconnects only at the light)"},
-    {"shift.roughness", P_FLOAT, F(shift_roughness), 0, 1, "hybrid shift: GGX alpha at or above which a vertex is rough"},
+     "reconnection (at the secondary vertex), replay (whole prefix; reconnects only at the light)", NULL},
+    {"shift.roughness", P_FLOAT, F(shift_roughness), 0, 1, "hybrid shift: GGX alpha at or above which a vertex is rough", NULL},
     {"shift.distance", P_FLOAT, F(shift_distance), 0, 1,
-     "hybrid shift: minimum reconnection length as a fraction of the scene diagonal"},
+     "hybrid shift: minimum reconnection length as a fraction of the scene diagonal", NULL},
 };
 #undef F
 #define NUM_PARAMS (sizeof(params) / sizeof(params[0]))
@@ -112,6 +145,19 @@ void render_params_defaults(struct render_params *p)
     p->temporal_ratio_guard = 0;
     p->ratio_lo = 0.1f;
     p->ratio_hi = 10.0f;
+    p->spatial_reuse = REUSE_STANDARD;
+    p->spmis_candidates = 3;
+    p->spmis_canonical_candidates = 1;
+    p->spmis_tile = 8;
+    p->spmis_normal_bins = 4;
+    p->spmis_search_steps = 12;
+    p->spmis_search_radius = 30.0f;
+    p->spmis_search_growth = 1.25f;
+    p->spmis_search_normal = 0.9f;
+    p->spmis_search = SPMIS_SEARCH_ALWAYS;
+    p->spmis_sparse_count = 2;
+    p->spmis_confidence_adjust = 1;
+    p->spmis_canonical_pick = 0;
     p->pt_candidates = 1;
     p->shift = SHIFT_HYBRID;
     p->shift_roughness = 0.2f;
@@ -135,20 +181,26 @@ static int parse_value(const struct param_def *d, const char *val, struct render
         }
         return 0;
     }
-    if (d->type == P_SELECT) {
-        int k = name_index(select_names, 3, val);
+    if (d->type == P_NAMES) {
+        int k = name_index(d->names, val);
         if (k < 0) {
-            snprintf(msg, RESTIR_MSG_LEN, "--set %s: unknown selection '%s' (bitterli, compat, compat-binary)",
-                     d->key, val);
+            char list[128] = "";
+            for (int j = 0; d->names[j]; j++)
+                snprintf(list + strlen(list), sizeof(list) - strlen(list), "%s%s", j ? ", " : "", d->names[j]);
+            snprintf(msg, RESTIR_MSG_LEN, "--set %s: unknown value '%s' (%s)", d->key, val, list);
             return -1;
         }
-        *(enum spatial_select_mode *)(void *)base = (enum spatial_select_mode)k;
+        *(int *)(void *)base = k; /* the enums of P_NAMES fields are int-sized, values 0, 1, ... */
+        return 0;
+    }
+    if (d->type == P_COUNT && (!strcmp(val, "M") || !strcmp(val, "all"))) {
+        *(int *)(void *)base = 0;
         return 0;
     }
     if (d->type == P_PRESET) {
         /* 000 Table 1: FAST (K 32, R 30), BALANCED (K 32, R 50), CONSERVATIVE (K 32, R 100). */
         static const float radii[] = {30.0f, 50.0f, 100.0f};
-        int k = name_index(preset_names, 3, val);
+        int k = name_index(preset_names, val);
         if (k < 0) {
             snprintf(msg, RESTIR_MSG_LEN, "--set %s: unknown preset '%s' (fast, balanced, conservative)", d->key,
                      val);
@@ -179,12 +231,12 @@ static int parse_value(const struct param_def *d, const char *val, struct render
         snprintf(msg, RESTIR_MSG_LEN, "--set %s: '%s' is not a number", d->key, val);
         return -1;
     }
-    if (v < d->lo || v > d->hi || (d->type == P_INT && v != floor(v))) {
-        snprintf(msg, RESTIR_MSG_LEN, "--set %s: %s is out of range (%s in [%g, %g])", d->key, val,
-                 d->type == P_INT ? "integer" : "number", d->lo, d->hi);
+    if (v < d->lo || v > d->hi || (d->type != P_FLOAT && v != floor(v))) {
+        snprintf(msg, RESTIR_MSG_LEN, "--set %s: %s is out of range (%s in [%g, %g]%s)", d->key, val,
+                 d->type == P_FLOAT ? "number" : "integer", d->lo, d->hi, d->type == P_COUNT ? " or M" : "");
         return -1;
     }
-    if (d->type == P_INT)
+    if (d->type == P_INT || d->type == P_COUNT)
         *(int *)(void *)base = (int)v;
     else
         *(float *)(void *)base = (float)v;
@@ -241,12 +293,14 @@ void render_params_help(FILE *out)
         case P_BOOL: snprintf(val, sizeof(val), "%s", *(const int *)(const void *)base ? "on" : "off"); break;
         case P_MIS: snprintf(val, sizeof(val), "%s", restir_mis_name(*(const enum restir_mis *)(const void *)base)); break;
         case P_SHIFT: snprintf(val, sizeof(val), "%s", shift_kind_name(*(const enum shift_kind *)(const void *)base)); break;
-        case P_SELECT: {
-            snprintf(val, sizeof(val), "%s", select_names[*(const enum spatial_select_mode *)(const void *)base]);
+        case P_COUNT: {
+            int v = *(const int *)(const void *)base;
+            snprintf(val, sizeof(val), v ? "%d" : "M", v);
             break;
         }
+        case P_NAMES: snprintf(val, sizeof(val), "%s", pd->names[*(const int *)(const void *)base]); break;
         case P_PRESET: snprintf(val, sizeof(val), "-"); break;
         }
-        fprintf(out, "  %-22s %-9s %s\n", pd->key, val, pd->help);
+        fprintf(out, "  %-26s %-9s %s\n", pd->key, val, pd->help);
     }
 }

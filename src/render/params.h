@@ -11,6 +11,11 @@
 
 /* Spatial neighbor selection (spatial_select.h). */
 enum spatial_select_mode { SELECT_BITTERLI = 0, SELECT_COMPAT, SELECT_COMPAT_BINARY };
+/* Spatial reuse: from the selected neighbors, or stochastic pairwise MIS over a reuse cell (004). */
+enum spatial_reuse_mode { REUSE_STANDARD = 0, REUSE_SPMIS };
+/* When the SPMIS cell search runs: for every pixel (004 Sec. 5.1), or only where the pixel's own
+ * cell has few contributing pixels (BIASED: that count depends on the samples). */
+enum spmis_search_mode { SPMIS_SEARCH_ALWAYS = 0, SPMIS_SEARCH_SPARSE };
 
 struct render_params {
     int width, height;
@@ -44,6 +49,21 @@ struct render_params {
     float temporal_plane;   /* ... or when the plane distance exceeds temporal_plane * depth */
     int temporal_ratio_guard; /* 001 Sec. 5 target-ratio guard (biased) */
     float ratio_lo, ratio_hi;
+
+    /* stochastic pairwise MIS with reuse cells (004) */
+    enum spatial_reuse_mode spatial_reuse;
+    int spmis_candidates;           /* N: neighbor draws (Eq. 15-17); 0 = M, deterministic pairwise over the cell */
+    int spmis_canonical_candidates; /* N_c: canonical-weight draws (Eq. 18); 0 = M, the exact Eq. 11b */
+    int spmis_tile;                 /* cell tiles are spmis_tile x spmis_tile pixels */
+    int spmis_normal_bins;          /* cell key: buckets per normal component */
+    int spmis_search_steps;         /* cell search (Sec. 5.1): taps */
+    float spmis_search_radius;      /* ... initial radius in pixels */
+    float spmis_search_growth;      /* ... radius factor per tap */
+    float spmis_search_normal;      /* ... a tap is rejected when n . n_tap is below */
+    enum spmis_search_mode spmis_search;
+    int spmis_sparse_count;         /* sparse search: own cell used when it has more contributing pixels */
+    int spmis_confidence_adjust;    /* scale non-canonical confidences by N / M (Sec. 4.3) */
+    int spmis_canonical_pick;       /* enum restir_spmis_pick: P_c uniform or proportional to c */
 
     /* ReSTIR PT */
     int pt_candidates;      /* initial paths per pixel */

@@ -10,6 +10,7 @@
 #include "pt.h"
 #include "restir_di.h"
 #include "restir_pt.h"
+#include "reuse_cells.h"
 #include "spatial_select.h"
 #include "core/lowdisc.h"
 
@@ -21,7 +22,9 @@ const struct method_info method_table[METHOD_COUNT] = {
                   "(hybrid default) and sub-pixel reservoirs", 0},
 };
 
-const char *const pass_names[PASS_COUNT] = {"gbuffer", "initial", "temporal", "select", "spatial", "shade", "pt"};
+const char *const pass_names[PASS_COUNT] = {"gbuffer", "initial",         "temporal",    "select",
+                                            "spatial", "cells",           "cell_search", "spmis_canonical",
+                                            "spmis_reuse", "shade", "pt"};
 
 int method_find(const char *name)
 {
@@ -55,6 +58,12 @@ void renderer_init(struct renderer *r, const struct scene *s, enum method_id met
         r->neighbors = xcalloc(n * SPATIAL_MAX_NEIGHBORS, sizeof(int));
         r->disk_offsets = xmalloc(sizeof(float) * 2 * R2_DISK_OFFSETS);
         r2_disk_offsets(R2_DISK_OFFSETS, r->disk_offsets);
+        r->age[0] = xcalloc(n, 1);
+        r->age[1] = xcalloc(n, 1);
+        if (p->spatial_reuse == REUSE_SPMIS) {
+            r->spmis = xmalloc(sizeof(*r->spmis));
+            spmis_frame_init(r->spmis, p);
+        }
     }
     if (method == METHOD_RIS_DI || method == METHOD_RESTIR_DI) {
         r->work = xcalloc(n, sizeof(struct di_reservoir));
@@ -92,6 +101,12 @@ void renderer_fini(struct renderer *r)
     free(r->material_rough);
     free(r->neighbors);
     free(r->disk_offsets);
+    if (r->spmis) {
+        spmis_frame_fini(r->spmis);
+        free(r->spmis);
+    }
+    free(r->age[0]);
+    free(r->age[1]);
     free(r->image);
     memset(r, 0, sizeof(*r));
 }
@@ -126,7 +141,16 @@ static void render_restir_di(struct renderer *r, const struct camera_view *view,
     if (p->temporal && r->has_history)
         TIMED(st, PASS_TEMPORAL,
               st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, r->work));
-    if (p->spatial) {
+    if (p->spatial && r->spmis) {
+        struct spmis_frame *f = r->spmis;
+        TIMED(st, PASS_CELLS, {
+            di_spmis_weights(p, g, r->work, f);
+            spmis_cells_pass(f, p, g);
+        });
+        TIMED(st, PASS_CELL_SEARCH, spmis_search_pass(f, p, g, frame));
+        TIMED(st, PASS_SPMIS_CANONICAL, di_spmis_canonical_pass(s, p, frame, g, r->work, f));
+        TIMED(st, PASS_SPMIS_REUSE, di_spmis_reuse_pass(s, p, frame, g, r->work, f, out));
+    } else if (p->spatial) {
         TIMED(st, PASS_SELECT,
               st->neighbors_selected = spatial_select_pass(p, 0, g, frame, r->disk_offsets, r->neighbors));
         TIMED(st, PASS_SPATIAL, di_spatial_pass(s, p, frame, g, r->neighbors, r->work, out));
@@ -152,7 +176,16 @@ static void render_restir_pt(struct renderer *r, const struct camera_view *view,
     if (p->temporal && r->has_history)
         TIMED(st, PASS_TEMPORAL,
               st->rays += pt_temporal_pass(&fr, g, prev_g, prev_res, r->pt_work, &st->temporal_accepted));
-    if (p->spatial) {
+    if (p->spatial && r->spmis) {
+        struct spmis_frame *f = r->spmis;
+        TIMED(st, PASS_CELLS, {
+            pt_spmis_weights(&fr, g, r->pt_work, f);
+            spmis_cells_pass(f, p, g);
+        });
+        TIMED(st, PASS_CELL_SEARCH, spmis_search_pass(f, p, g, r->frame));
+        TIMED(st, PASS_SPMIS_CANONICAL, st->rays += pt_spmis_canonical_pass(&fr, g, r->pt_work, f));
+        TIMED(st, PASS_SPMIS_REUSE, st->rays += pt_spmis_reuse_pass(&fr, g, r->pt_work, f, out));
+    } else if (p->spatial) {
         TIMED(st, PASS_SELECT,
               st->neighbors_selected = spatial_select_pass(p, 1, g, r->frame, r->disk_offsets, r->neighbors));
         TIMED(st, PASS_SPATIAL, st->rays += pt_spatial_pass(&fr, g, r->neighbors, r->pt_work, out));
@@ -161,6 +194,32 @@ static void render_restir_pt(struct renderer *r, const struct camera_view *view,
     }
     TIMED(st, PASS_SHADE, pt_shade_pass(g, out, r->pt_emission, r->image));
     st->valid_pixels = count_valid(g);
+}
+
+/* Follows each pixel's history chain by the same G-buffer validation as temporal reuse. */
+static void update_age(struct renderer *r)
+{
+    const struct gbuffer *g = &r->gb[r->cur], *prev_g = &r->gb[1 - r->cur];
+    const unsigned char *prev = r->age[1 - r->cur];
+    unsigned char *age = r->age[r->cur];
+    const int n = g->width * g->height;
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; i++) {
+        int q = r->has_history ? gbuffer_history_pixel(g, i, prev_g, r->p.temporal_normal, r->p.temporal_plane) : -1;
+        age[i] = q < 0 ? 0 : (unsigned char)(prev[q] < 255 ? prev[q] + 1 : 255);
+    }
+}
+
+long long renderer_disoccluded(const struct renderer *r, int frames, unsigned char *mask)
+{
+    const struct gbuffer *g = &r->gb[1 - r->cur]; /* the last frame's (cur was flipped after it) */
+    const unsigned char *age = r->age[1 - r->cur];
+    long long marked = 0;
+    for (int i = 0; i < g->width * g->height; i++) {
+        mask[i] = g->valid[i] && age[i] < frames;
+        marked += mask[i];
+    }
+    return marked;
 }
 
 void renderer_render(struct renderer *r, int frame, const struct camera *cam, struct frame_stats *st)
@@ -177,6 +236,7 @@ void renderer_render(struct renderer *r, int frame, const struct camera *cam, st
             render_restir_pt(r, &view, st);
         else
             render_restir_di(r, &view, st);
+        update_age(r);
         r->cur = 1 - r->cur;
         r->has_history = 1;
     }

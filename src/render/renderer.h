@@ -20,7 +20,23 @@ extern const struct method_info method_table[METHOD_COUNT];
 /* Returns the method id, or -1 for an unknown name. */
 int method_find(const char *name);
 
-enum pass_id { PASS_GBUFFER, PASS_INITIAL, PASS_TEMPORAL, PASS_SELECT, PASS_SPATIAL, PASS_SHADE, PASS_PT, PASS_COUNT };
+/* PASS_CELLS .. PASS_SPMIS_REUSE are spatial.reuse=spmis's passes, split as 004 Table 2: create
+ * reuse cells (Algorithm 1), cell search (Algorithm 2 line 2, Sec. 5.1), the canonical weight
+ * (lines 6-12) and stochastic neighbor reuse (lines 13-20). */
+enum pass_id {
+    PASS_GBUFFER,
+    PASS_INITIAL,
+    PASS_TEMPORAL,
+    PASS_SELECT,
+    PASS_SPATIAL,
+    PASS_CELLS,
+    PASS_CELL_SEARCH,
+    PASS_SPMIS_CANONICAL,
+    PASS_SPMIS_REUSE,
+    PASS_SHADE,
+    PASS_PT,
+    PASS_COUNT
+};
 extern const char *const pass_names[PASS_COUNT];
 
 struct frame_stats {
@@ -50,6 +66,9 @@ struct renderer {
     unsigned char *material_rough;   /* restir-pt: hybrid shift's roughness class per material */
     int *neighbors;                  /* selection pass output: spatial neighbors per pixel */
     float *disk_offsets;             /* R2 disk offsets of compat selection (R2_DISK_OFFSETS x 2) */
+    struct spmis_frame *spmis;    /* spatial.reuse=spmis: cells and per-pixel scratch */
+    unsigned char *age[2];        /* per pixel: frames its surface has been in view (history chain
+                                     length by G-buffer validation, capped at 255); ping-pong */
     float *image;                 /* this frame's radiance, RGB */
 };
 
@@ -60,6 +79,12 @@ void renderer_fini(struct renderer *r);
 void renderer_render(struct renderer *r, int frame, const struct camera *cam, struct frame_stats *st);
 /* Forgets history (the next frame starts without temporal reuse). */
 void renderer_reset(struct renderer *r);
+
+/* After a ReSTIR frame: mask[i] = 1 for the valid pixels of the last frame whose temporal
+ * history was rejected (G-buffer validation, 001) in any of its last `frames` frames, i.e. the
+ * disoccluded pixels of 004 Sec. 6.2; 0 elsewhere. Returns the number of pixels marked. */
+#define DISOCCLUSION_FRAMES 4 /* the window of the and 004 Sec. 6.2's disocclusion masks */
+long long renderer_disoccluded(const struct renderer *r, int frames, unsigned char *mask);
 
 /* The parameters a method's reference integrates with: pt with max_bounces = 1 for DI methods. */
 void renderer_reference_params(enum method_id method, struct render_params *p);

@@ -25,6 +25,19 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
 void di_spatial_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
                      const int *neighbors, const struct di_reservoir *in, struct di_reservoir *out);
 
+/* Stochastic pairwise MIS spatial reuse (004 Algorithm 2) from the cells and chosen cells in f
+ * (reuse_cells.h): di_spmis_weights fills f->conf and f->weight (Eq. 17) from the temporal
+ * outputs; di_spmis_canonical_pass computes m~_c (lines 6-12, Eq. 18-19) into f->m_c;
+ * di_spmis_reuse_pass merges the canonical and N drawn neighbors (lines 13-20, Eq. 14-16). Light
+ * samples live in one space for every pixel: each shift is the identity with Jacobian 1. */
+struct spmis_frame;
+void di_spmis_weights(const struct render_params *p, const struct gbuffer *g, const struct di_reservoir *in,
+                      struct spmis_frame *f);
+void di_spmis_canonical_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
+                             const struct di_reservoir *in, struct spmis_frame *f);
+void di_spmis_reuse_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
+                         const struct di_reservoir *in, const struct spmis_frame *f, struct di_reservoir *out);
+
 /* Final shading: primary emission + f(Y) W_Y with one shadow ray. Returns rays traced. */
 long long di_shade_pass(const struct scene *s, const struct gbuffer *g, const struct di_reservoir *res,
                         float *rgb);

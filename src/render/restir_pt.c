@@ -20,15 +20,7 @@ void pt_shift_params(const struct render_params *p, float scene_diagonal, struct
     out->rough = NULL;
 }
 
-static void reservoir_clear(struct pt_reservoir *r, float c)
-{
-    r->y.length = 0;
-    r->W = 0.0f;
-    r->c = c;
-    r->target = 0.0f;
-}
 
-static int reservoir_has_sample(const struct pt_reservoir *r) { return r->y.length >= 2 && r->W > 0.0f; }
 
 /* ---- initial sampling ---------------------------------------------------------------------- */
 
@@ -72,7 +64,7 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
             for (int x = r.x0; x < r.x1; x++) {
                 int i = y * w + x;
                 struct pt_reservoir *res = &out[i];
-                reservoir_clear(res, 0.0f); /* every pixel samples paths, even where the centre ray misses */
+                pt_reservoir_clear(res, 0.0f); /* every pixel samples paths, even where the centre ray misses */
                 pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_INITIAL);
                 struct initial_ctx ctx;
                 ctx.s = s;
@@ -109,7 +101,7 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
                     res->target = v3_luminance(res->y.f);
                 }
                 if (!(res->W > 0.0f))
-                    reservoir_clear(res, res->c);
+                    pt_reservoir_clear(res, res->c);
             }
         }
     }
@@ -136,7 +128,7 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
         c_sum += c[j];
         J[j] = 0.0f;
         Y[j].length = 0;
-        if (!reservoir_has_sample(in[j]))
+        if (!pt_reservoir_has_sample(in[j]))
             continue;
         if (j == 0) {
             Y[0] = in[0]->y;
@@ -171,22 +163,16 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
             chosen = j;
     }
     struct pt_reservoir result;
-    reservoir_clear(&result, restir_confidence_merge(c_sum, p->confidence_cap));
+    pt_reservoir_clear(&result, restir_confidence_merge(c_sum, p->confidence_cap));
     if (chosen >= 0) {
         result.y = Y[chosen];
         result.target = P[chosen];
         result.W = restir_gris_contribution_weight(&wrs, result.target); /* 004 Eq. 7 */
         if (!(result.W > 0.0f))
-            reservoir_clear(&result, result.c);
+            pt_reservoir_clear(&result, result.c);
     }
     *out = result;
     return rays;
-}
-
-static struct pt_domain pixel_domain(const struct camera_view *view, int x, int y)
-{
-    struct pt_domain d = {view, x, y, {(float)x, (float)y}};
-    return d;
 }
 
 /* ---- temporal and spatial reuse ---------------------------------------------------------------- */
@@ -207,8 +193,8 @@ long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, c
                 if (q < 0)
                     continue;
                 struct pt_domain dom[2];
-                dom[0] = pixel_domain(fr->view, x, y);
-                dom[1] = pixel_domain(fr->prev_view, q % w, q / w);
+                dom[0] = pt_pixel_domain(fr->view, x, y);
+                dom[1] = pt_pixel_domain(fr->prev_view, q % w, q / w);
                 if (p->jitter) {
                     /* Area ReSTIR: a previous-frame offset moves with the fractional backward
                      * motion, a translation of the sub-pixel square (|T'| = 1). */
@@ -246,14 +232,14 @@ long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, co
                 pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_SPATIAL);
                 struct pt_domain dom[PT_MAX_DOMAINS];
                 const struct pt_reservoir *src[PT_MAX_DOMAINS];
-                dom[0] = pixel_domain(fr->view, x, y);
+                dom[0] = pt_pixel_domain(fr->view, x, y);
                 src[0] = &in[i];
                 int n = 1;
                 for (int k = 0; k < m; k++) {
                     int j = neighbors[(size_t)i * m + k];
                     if (j < 0)
                         continue;
-                    dom[n] = pixel_domain(fr->view, j % w, j / w);
+                    dom[n] = pt_pixel_domain(fr->view, j % w, j / w);
                     src[n++] = &in[j];
                 }
                 rays += gris_merge(fr, n, dom, src, &rng, &out[i]);
@@ -269,7 +255,7 @@ void pt_shade_pass(const struct gbuffer *g, const struct pt_reservoir *res, cons
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < n; i++) {
         vec3 L = emission[i];
-        if (reservoir_has_sample(&res[i]))
+        if (pt_reservoir_has_sample(&res[i]))
             L = v3_add(L, v3_scale(res[i].y.f, res[i].W)); /* f(Y) W_Y */
         rgb[3 * i] = L.x;
         rgb[3 * i + 1] = L.y;

@@ -18,6 +18,23 @@ struct pt_reservoir {
     float target;
 };
 
+static inline void pt_reservoir_clear(struct pt_reservoir *r, float c)
+{
+    r->y.length = 0;
+    r->W = 0.0f;
+    r->c = c;
+    r->target = 0.0f;
+}
+
+static inline int pt_reservoir_has_sample(const struct pt_reservoir *r) { return r->y.length >= 2 && r->W > 0.0f; }
+
+/* The domain of pixel (x, y) of the current frame: spatial shifts keep the sub-pixel offset. */
+static inline struct pt_domain pt_pixel_domain(const struct camera_view *view, int x, int y)
+{
+    struct pt_domain d = {view, x, y, {(float)x, (float)y}};
+    return d;
+}
+
 /* What every pass of one frame reads. */
 struct pt_frame {
     const struct scene *s;
@@ -52,6 +69,19 @@ long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, c
  * (render_params_spatial_neighbors(p, 1) per pixel, -1 for none). Returns rays traced. */
 long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, const int *neighbors,
                           const struct pt_reservoir *in, struct pt_reservoir *out);
+
+/* Stochastic pairwise MIS spatial reuse (004 Algorithm 2) from the cells and chosen cells in f
+ * (reuse_cells.h). pt_spmis_weights fills f->conf and f->weight (Eq. 17) from the temporal
+ * outputs; pt_spmis_canonical_pass computes m~_c (Algorithm 2 lines 6-12, Eq. 18-19) into f->m_c;
+ * pt_spmis_reuse_pass merges the canonical and N drawn neighbors (lines 13-20, Eq. 14-16) into
+ * out. Return rays traced. */
+struct spmis_frame;
+void pt_spmis_weights(const struct pt_frame *fr, const struct gbuffer *g, const struct pt_reservoir *in,
+                      struct spmis_frame *f);
+long long pt_spmis_canonical_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct pt_reservoir *in,
+                                  struct spmis_frame *f);
+long long pt_spmis_reuse_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct pt_reservoir *in,
+                              const struct spmis_frame *f, struct pt_reservoir *out);
 
 /* Final shading: emission seen directly + f(Y) W_Y (f cached by the last shift into the pixel,
  * visibility included, so no ray is traced). */

@@ -1,0 +1,111 @@
+/* restir_di_spmis.c: stochastic pairwise MIS spatial reuse for ReSTIR DI (004 Algorithm 2): the
+ * canonical weight m~_c from N_c cell pixels (Eq. 18-19), then a GRIS merge of the canonical light
+ * sample and N samples drawn by Eq. 17 (Eq. 14-16). Light samples need no shift (identity, |J| = 1).
+ * Must never allocate per pixel. */
+#include "restir_di.h"
+
+#include "restir/reservoir.h"
+#include "reuse_cells.h"
+#include "tiles.h"
+
+static int has_sample(const struct di_reservoir *r) { return r->y.tri >= 0 && r->W > 0.0f; }
+
+void di_spmis_weights(const struct render_params *p, const struct gbuffer *g, const struct di_reservoir *in,
+                      struct spmis_frame *f)
+{
+    const int n = g->width * g->height;
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; i++) {
+        f->conf[i] = fminf(in[i].c, p->confidence_cap);
+        /* 004 Eq. 17: c_i p_hat(X_i) W_i with the target cached in pixel i */
+        f->weight[i] = has_sample(&in[i]) ? f->conf[i] * in[i].target * in[i].W : 0.0f;
+    }
+}
+
+void di_spmis_canonical_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
+                             const struct di_reservoir *in, struct spmis_frame *f)
+{
+    const int w = g->width, h = g->height, ntiles = tile_count(w, h);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int t = 0; t < ntiles; t++) {
+        struct tile_range r = tile_get(w, h, t);
+        struct restir_spmis_draws draws;
+        for (int y = r.y0; y < r.y1; y++) {
+            for (int x = r.x0; x < r.x1; x++) {
+                int c = y * w + x;
+                f->m_c[c] = 1.0f;
+                if (!g->valid[c] || !has_sample(&in[c]))
+                    continue; /* Algorithm 2 line 6 */
+                struct restir_spmis_conf k;
+                spmis_pixel_conf(f, p, c, &k);
+                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)c, RNG_PASS_SPMIS_CANONICAL);
+                float u[RESTIR_SPMIS_MAX_DRAWS];
+                spmis_uniforms(&rng, p->spmis_canonical_candidates, u);
+                restir_spmis_canonical_draws(&f->cells, f->cell[c], c, p->spmis_canonical_candidates,
+                                             (enum restir_spmis_pick)p->spmis_canonical_pick, u, &draws);
+                double m_c = restir_spmis_canonical_share(&k);
+                for (int d = 0; d < draws.count; d++) {
+                    int i = draws.pixel[d];
+                    struct shading_point sp;
+                    gbuffer_shading_point(g, s, i, &sp);
+                    /* Eq. 19 with p_hat_{<-i}(Y_c) = pixel i's target at the same light point */
+                    m_c += restir_spmis_canonical_term(&k, f->conf[i], di_target(&sp, &in[c].y), in[c].target,
+                                                       draws.factor[d]);
+                }
+                f->m_c[c] = (float)m_c;
+            }
+        }
+    }
+}
+
+void di_spmis_reuse_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
+                         const struct di_reservoir *in, const struct spmis_frame *f, struct di_reservoir *out)
+{
+    const int w = g->width, h = g->height, ntiles = tile_count(w, h);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int t = 0; t < ntiles; t++) {
+        struct tile_range r = tile_get(w, h, t);
+        struct restir_spmis_draws draws;
+        for (int y = r.y0; y < r.y1; y++) {
+            for (int x = r.x0; x < r.x1; x++) {
+                int c = y * w + x;
+                if (!g->valid[c]) {
+                    out[c] = in[c];
+                    continue;
+                }
+                struct restir_spmis_conf k;
+                spmis_pixel_conf(f, p, c, &k);
+                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)c, RNG_PASS_SPMIS_REUSE);
+                struct restir_wrs wrs;
+                restir_wrs_init(&wrs);
+                struct di_reservoir result;
+                di_reservoir_clear(&result, spmis_merged_confidence(&k, p));
+                /* Lines 6-12: w~_c = m~_c p_hat(X_c) W_c (Eq. 14) */
+                if (has_sample(&in[c]) && restir_wrs_offer(&wrs, f->m_c[c] * in[c].target * in[c].W, pcg32_float(&rng))) {
+                    result.y = in[c].y;
+                    result.target = in[c].target;
+                }
+                float u[RESTIR_SPMIS_MAX_DRAWS];
+                spmis_uniforms(&rng, p->spmis_candidates, u);
+                restir_spmis_neighbor_draws(&f->cells, f->cell[c], c, p->spmis_candidates, u, &draws);
+                struct shading_point sp;
+                gbuffer_shading_point(g, s, c, &sp);
+                for (int d = 0; d < draws.count; d++) {
+                    /* Lines 13-18 (line 15: the drawn neighbor's own sample X_z comes to pixel c) */
+                    int z = draws.pixel[d];
+                    float p_c = di_target(&sp, &in[z].y); /* p_hat(y) */
+                    float wz = (float)(restir_spmis_noncanonical(&k, f->conf[z], in[z].target, p_c, draws.factor[d]) *
+                                       p_c * in[z].W);
+                    if (restir_wrs_offer(&wrs, wz, pcg32_float(&rng))) {
+                        result.y = in[z].y;
+                        result.target = p_c;
+                    }
+                }
+                result.W = restir_gris_contribution_weight(&wrs, result.target); /* line 19, Eq. 7 */
+                if (!(result.W > 0.0f))
+                    di_reservoir_clear(&result, result.c);
+                out[c] = result;
+            }
+        }
+    }
+}

@@ -1,0 +1,91 @@
+/* reuse_cells.c: SPMIS reuse cells and cell search over the G-buffer (see reuse_cells.h; 004
+ * Sec. 5, Algorithm 1, Sec. 5.1). Must never allocate per frame or read samples. */
+#include "reuse_cells.h"
+
+#include <stdlib.h>
+
+#include "core/check.h"
+#include "restir/reservoir.h"
+#include "tiles.h"
+
+void spmis_frame_init(struct spmis_frame *f, const struct render_params *p)
+{
+    size_t n = (size_t)p->width * (size_t)p->height;
+    RESTIR_CHECK(restir_cells_init(&f->cells, p->width, p->height, p->spmis_tile) == 0);
+    f->key = xcalloc(n, sizeof(uint32_t));
+    f->conf = xcalloc(n, sizeof(float));
+    f->weight = xcalloc(n, sizeof(float));
+    f->cell = xcalloc(n, sizeof(int));
+    f->m_c = xcalloc(n, sizeof(float));
+}
+
+void spmis_frame_fini(struct spmis_frame *f)
+{
+    restir_cells_fini(&f->cells);
+    free(f->key);
+    free(f->conf);
+    free(f->weight);
+    free(f->cell);
+    free(f->m_c);
+}
+
+void spmis_cells_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g)
+{
+    const int w = g->width, n = g->width * g->height, tile = p->spmis_tile;
+    const int tiles_x = f->cells.tiles_x;
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; i++) {
+        if (!g->valid[i])
+            continue;
+        int x = i % w, y = i / w;
+        uint32_t t = (uint32_t)((y / tile) * tiles_x + x / tile);
+        const float n3[3] = {g->normal[i].x, g->normal[i].y, g->normal[i].z};
+        f->key[i] = restir_cell_key(t, g->object[i], n3, p->spmis_normal_bins);
+    }
+    restir_cells_build(&f->cells, f->key, g->valid, f->conf, f->weight);
+}
+
+void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g, int frame)
+{
+    const struct restir_cells *cells = &f->cells;
+    const struct restir_cell_search s = {p->spmis_search_steps, p->spmis_search_radius, p->spmis_search_growth,
+                                         p->spmis_search_normal};
+    const int n = g->width * g->height;
+    const float *normals = (const float *)(const void *)g->normal; /* vec3 is three packed floats */
+#pragma omp parallel for schedule(dynamic, 64)
+    for (int i = 0; i < n; i++) {
+        int own = cells->cell_of[i];
+        if (own < 0 || s.steps == 0) {
+            f->cell[i] = own;
+            continue;
+        }
+        if (p->spmis_search == SPMIS_SEARCH_SPARSE && cells->contributing[own] > p->spmis_sparse_count) {
+            f->cell[i] = own; /* BIASED: the count depends on the samples (params help) */
+            continue;
+        }
+        float u[3 * 256];
+        pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_CELL_SEARCH);
+        spmis_uniforms(&rng, 3 * s.steps, u);
+        f->cell[i] = restir_cell_search(cells, &s, i, normals, g->object, u);
+    }
+}
+
+int spmis_pixel_conf(const struct spmis_frame *f, const struct render_params *p, int c, struct restir_spmis_conf *k)
+{
+    int cell = f->cell[c];
+    int m = restir_cells_others(&f->cells, cell, c);
+    float scale = restir_spmis_confidence_scale(p->spmis_candidates, m, p->spmis_confidence_adjust);
+    restir_spmis_conf_set(k, f->conf[c], restir_cells_confidence_others(&f->cells, cell, c, f->conf), scale);
+    return m;
+}
+
+float spmis_merged_confidence(const struct restir_spmis_conf *k, const struct render_params *p)
+{
+    return restir_confidence_merge(k->c_c + k->c_sigma, p->confidence_cap);
+}
+
+void spmis_uniforms(pcg32 *rng, int n, float *u)
+{
+    for (int j = 0; j < n; j++)
+        u[j] = pcg32_float(rng);
+}

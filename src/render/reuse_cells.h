@@ -1,0 +1,45 @@
+/* reuse_cells.h: the method-independent passes of stochastic pairwise MIS (004 Sec. 5): reuse
+ * cells built from the G-buffer with each pixel's confidence and Eq. 17 weight (Algorithm 1), and
+ * the per-pixel cell search (Sec. 5.1). Must never depend on a sample type: methods fill conf and
+ * weight, then run their own canonical and reuse passes (restir_di_spmis.c, restir_pt_spmis.c). */
+#ifndef RESTIR_RENDER_REUSE_CELLS_H
+#define RESTIR_RENDER_REUSE_CELLS_H
+
+#include "core/rng.h"
+#include "gbuffer.h"
+#include "params.h"
+#include "restir/spmis.h"
+
+/* What SPMIS keeps per frame; made once per resolution. */
+struct spmis_frame {
+    struct restir_cells cells;
+    uint32_t *key; /* per pixel: cell key (tile, object, quantized normal) */
+    float *conf;   /* per pixel: capped confidence c_i (filled by the method) */
+    float *weight; /* per pixel: Eq. 17 weight c_i p_hat(X_i) W_i (filled by the method) */
+    int *cell;     /* per pixel: the cell it reuses from (search output), -1 for invalid pixels */
+    float *m_c;    /* per pixel: stochastic canonical MIS weight m~_c (Eq. 18) */
+};
+
+void spmis_frame_init(struct spmis_frame *f, const struct render_params *p);
+void spmis_frame_fini(struct spmis_frame *f);
+
+/* 004 Algorithm 1: cell keys from the G-buffer, then the cells over f->conf and f->weight. */
+void spmis_cells_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g);
+
+/* 004 Sec. 5.1 for every valid pixel into f->cell (spmis.search: always, or sparse). */
+void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g, int frame);
+
+/* The confidences of pixel c's merge from its chosen cell (004 Eq. 12 over the other pixels,
+ * Sec. 4.3 scale by spmis.candidates / M when spmis.confidence_adjust). Returns M. */
+int spmis_pixel_conf(const struct spmis_frame *f, const struct render_params *p, int c, struct restir_spmis_conf *k);
+
+/* Confidence stored with pixel c's merged reservoir: the confidences the MIS weights used,
+ * c_c + c_sigma (scaled), capped. It is not specified by 004; this keeps "the sum of the
+ * confidences merged" of GRIS (Sec. 2.5) with the adjusted ones, so a merge that really looked at
+ * N neighbors of a 64-pixel cell counts about N of them. */
+float spmis_merged_confidence(const struct restir_spmis_conf *k, const struct render_params *p);
+
+/* Uniform random numbers for up to RESTIR_SPMIS_MAX_DRAWS draws. */
+void spmis_uniforms(pcg32 *rng, int n, float *u);
+
+#endif
