@@ -12,6 +12,7 @@
 #include "render/pt.h"
 #include "render/renderer.h"
 #include "restir/metrics.h"
+#include "bench_common.h"
 
 struct bench_config {
     const char *scene;
@@ -20,17 +21,6 @@ struct bench_config {
     int ref_spp;
     int temporal_frames;
 };
-
-static struct scene load_scene(const char *name)
-{
-    struct scene s;
-    char msg[RESTIR_MSG_LEN];
-    if (scene_create_builtin(name, &s, msg) != 0) {
-        fprintf(stderr, "restir_bench: %s\n", msg);
-        exit(1);
-    }
-    return s;
-}
 
 static struct render_params base_params(const struct bench_config *c)
 {
@@ -41,33 +31,11 @@ static struct render_params base_params(const struct bench_config *c)
     return p;
 }
 
-static float *reference(const struct scene *s, enum method_id method, const struct render_params *p, float frame,
-                        int use_path, int spp)
-{
-    struct render_params rp = *p;
-    renderer_reference_params(method, &rp);
-    rp.seed = 0xbe4c4ull;
-    struct camera cam = scene_camera_at(s, use_path, frame);
-    struct camera_view view;
-    camera_view_init(&view, &cam, rp.width, rp.height);
-    size_t n = 3 * (size_t)rp.width * (size_t)rp.height;
-    float *sum = xcalloc(n, sizeof(float)), *chunk = xcalloc(n, sizeof(float));
-    for (int done = 0, c = 0; done < spp; c++) {
-        int k = spp - done < 32 ? spp - done : 32;
-        pt_pass(s, &view, &rp, 2000000 + c, k, chunk);
-        for (size_t i = 0; i < n; i++)
-            sum[i] += chunk[i] * (float)k / (float)spp;
-        done += k;
-    }
-    free(chunk);
-    return sum;
-}
-
 /* Per-pass timing over frames 1..N-1 (frame 0 has no history), rays per second, and the last
  * frame's rays replayed through Embree alone. */
 static void bench_passes(const struct bench_config *c, const enum method_id *methods, int nmethods)
 {
-    struct scene s = load_scene(c->scene);
+    struct scene s = bench_load_scene(c->scene);
     printf("\n### Per-pass time, %s %dx%d, static camera, mean of frames 1-%d (%d threads)\n\n", c->scene,
            c->width, c->height, c->frames - 1, omp_get_max_threads());
     printf("| method | gbuffer | initial | temporal | select | spatial | shade | pt | frame ms | Mrays/s | rays/px | "
@@ -113,10 +81,10 @@ static void bench_passes(const struct bench_config *c, const enum method_id *met
  * last frame against a reference from that frame's camera (static camera or the camera path). */
 static void bench_equal_time(const struct bench_config *c, enum method_id method, int use_path)
 {
-    struct scene s = load_scene(c->scene);
+    struct scene s = bench_load_scene(c->scene);
     struct render_params p = base_params(c);
     const int last = c->frames - 1;
-    float *ref = reference(&s, method, &p, (float)last, use_path, c->ref_spp);
+    float *ref = bench_reference(&s, method, &p, (float)last, use_path, c->ref_spp);
     size_t npix = (size_t)c->width * c->height;
     struct frame_stats st;
 
@@ -185,14 +153,14 @@ static double luma_rmse(const float *a, const float *b, size_t npix)
  * the note), for mis=1/M (the note's biased MVP) and mis=pairwise. */
 static void bench_temporal(const struct bench_config *c)
 {
-    struct scene s = load_scene(c->scene);
+    struct scene s = bench_load_scene(c->scene);
     struct render_params p = base_params(c);
     size_t npix = (size_t)c->width * c->height, n3 = 3 * npix;
     const int nf = c->temporal_frames, moving_frames = 16;
-    float *ref_static = reference(&s, METHOD_RESTIR_DI, &p, 0.0f, 0, c->ref_spp);
+    float *ref_static = bench_reference(&s, METHOD_RESTIR_DI, &p, 0.0f, 0, c->ref_spp);
     float **ref_moving = xmalloc(sizeof(float *) * moving_frames);
     for (int f = 0; f < moving_frames; f++)
-        ref_moving[f] = reference(&s, METHOD_RESTIR_DI, &p, (float)f, 1, c->ref_spp / 4);
+        ref_moving[f] = bench_reference(&s, METHOD_RESTIR_DI, &p, (float)f, 1, c->ref_spp / 4);
     printf("\n### Temporal reuse (001 Sec. 6), %s %dx%d, spatial reuse off; static: %d frames, moving: %d "
            "frames of the camera path; references %d / %d spp\n\n",
            c->scene, c->width, c->height, nf, moving_frames, c->ref_spp, c->ref_spp / 4);
@@ -266,7 +234,7 @@ static void bench_table1(const struct bench_config *c, const char *const *scenes
                                            "Neighbor Selection", "Spatial Reuse", "Shading", "Full Frame"};
     double ms[8][ROWS] = {{0}};
     for (int sc = 0; sc < nscenes; sc++) {
-        struct scene s = load_scene(scenes[sc]);
+        struct scene s = bench_load_scene(scenes[sc]);
         struct render_params p = base_params(c);
         struct renderer r;
         renderer_init(&r, &s, METHOD_RESTIR_PT, &p);
@@ -304,12 +272,12 @@ static void bench_table1(const struct bench_config *c, const char *const *scenes
  * reference, with the standard error from the spread of per-run image means. */
 static void bench_bias(const char *scene, enum method_id method, int w, int h, int runs, int frames, int ref_spp)
 {
-    struct scene s = load_scene(scene);
+    struct scene s = bench_load_scene(scene);
     struct render_params p;
     render_params_defaults(&p);
     p.width = w;
     p.height = h;
-    float *ref = reference(&s, method, &p, 0.0f, 0, ref_spp);
+    float *ref = bench_reference(&s, method, &p, 0.0f, 0, ref_spp);
     size_t npix = (size_t)w * h;
     double ref_mean = 0.0;
     for (size_t i = 0; i < npix; i++)
@@ -351,7 +319,7 @@ static void bench_bias(const char *scene, enum method_id method, int w, int h, i
 int main(int argc, char **argv)
 {
     struct bench_config c = {"many-lights", 640, 360, 17, 1024, 64};
-    int run_passes = 0, run_equal = 0, run_temporal = 0, run_pt = 0;
+    int run_passes = 0, run_equal = 0, run_temporal = 0, run_pt = 0, run_spmis = 0, quick = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "passes"))
             run_passes = 1;
@@ -361,18 +329,21 @@ int main(int argc, char **argv)
             run_temporal = 1;
         else if (!strcmp(argv[i], "pt"))
             run_pt = 1;
+        else if (!strcmp(argv[i], "spmis"))
+            run_spmis = 1;
         else if (!strcmp(argv[i], "--quick")) {
+            quick = 1;
             c.width = 320;
             c.height = 180;
             c.ref_spp = 256;
             c.temporal_frames = 16;
         } else {
-            fprintf(stderr, "usage: restir_bench [passes] [equal-time] [temporal] [pt] [--quick]\n");
+            fprintf(stderr, "usage: restir_bench [passes] [equal-time] [temporal] [pt] [spmis] [--quick]\n");
             return 2;
         }
     }
-    if (!run_passes && !run_equal && !run_temporal && !run_pt)
-        run_passes = run_equal = run_temporal = run_pt = 1;
+    if (!run_passes && !run_equal && !run_temporal && !run_pt && !run_spmis)
+        run_passes = run_equal = run_temporal = run_pt = run_spmis = 1;
     const enum method_id di_methods[] = {METHOD_RESTIR_DI, METHOD_RIS_DI, METHOD_PT};
     if (run_passes)
         bench_passes(&c, di_methods, 3);
@@ -397,5 +368,7 @@ int main(int argc, char **argv)
         t.height = c.height / 2;
         bench_temporal(&t);
     }
+    if (run_spmis)
+        bench_spmis(quick);
     return 0;
 }

@@ -1,0 +1,17 @@
+/* bench_common.h: helpers shared by the benchmark sections of restir_bench.
+ * Must never be run by the tests. */
+#ifndef RESTIR_BENCH_COMMON_H
+#define RESTIR_BENCH_COMMON_H
+
+#include "render/renderer.h"
+
+/* A built-in scene; exits with a message when the name is unknown. */
+struct scene bench_load_scene(const char *name);
+/* pt reference of what `method` estimates, seen from camera frame `frame` (camera path when
+ * use_path), spp paths per pixel, as a new malloc'ed RGB buffer. */
+float *bench_reference(const struct scene *s, enum method_id method, const struct render_params *p, float frame,
+                       int use_path, int spp);
+/* Runs the `spmis` section (bench_spmis.c); quick halves the work. */
+void bench_spmis(int quick);
+
+#endif

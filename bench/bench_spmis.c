@@ -1,0 +1,319 @@
+/* bench_spmis.c: the evaluation of 004 Sec. 6 on our scenes: standard spatial reuse (3 neighbors in
+ * 30 px, defensive pairwise) against stochastic pairwise MIS (N = 3 from one cell of at most 64
+ * pixels, N_c = 1, 12-step search), same code otherwise, confidence cap 20, the last frame of a
+ * 50-frame camera path: MAPE over all and over disoccluded pixels, per-pass times in the layout of
+ * 004 Table 2, the ablations of Fig. 2, 6 and 7, and a crop of pillars' disoccluded region.
+ * Prints Markdown for docs/BENCHMARKS.md and writes images to docs/spmis/. Never run by tests. */
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench_common.h"
+#include "core/check.h"
+#include "io/image_io.h"
+#include "restir/metrics.h"
+
+#define SPMIS_FRAMES 50
+#define IMAGE_DIR "docs/spmis"
+
+struct bench_spmis_cfg {
+    int width, height, runs, ref_spp;
+};
+
+struct config_result {
+    double ms[PASS_COUNT], ms_total; /* mean over frames 1.. and runs */
+    double mape, mape_dis;           /* last frame, mean over runs */
+    double dis_fraction;             /* disoccluded share of the valid pixels */
+    float *image;                    /* last frame of the first run (caller frees) */
+    unsigned char *mask;             /* its disocclusion mask (caller frees) */
+};
+
+/* Applies "key=value:key=value..." to p. */
+static void apply_sets(struct render_params *p, const char *sets)
+{
+    char buf[512], msg[RESTIR_MSG_LEN];
+    snprintf(buf, sizeof(buf), "%s", sets);
+    for (char *tok = strtok(buf, ":"); tok; tok = strtok(NULL, ":")) {
+        if (render_params_set(p, tok, msg) != 0) {
+            fprintf(stderr, "restir_bench: %s\n", msg);
+            exit(2);
+        }
+    }
+}
+
+static void run_config(const struct scene *s, enum method_id m, const struct bench_spmis_cfg *c, const char *sets,
+                       const float *ref, struct config_result *res)
+{
+    memset(res, 0, sizeof(*res));
+    size_t npix = (size_t)c->width * c->height;
+    res->image = xcalloc(3 * npix, sizeof(float));
+    res->mask = xcalloc(npix, 1);
+    unsigned char *mask = xcalloc(npix, 1);
+    double timed = 0.0;
+    for (int k = 0; k < c->runs; k++) {
+        struct render_params p;
+        render_params_defaults(&p);
+        p.width = c->width;
+        p.height = c->height;
+        p.camera_path = 1;
+        p.seed = 31 + (uint64_t)k;
+        apply_sets(&p, sets);
+        struct renderer r;
+        renderer_init(&r, s, m, &p);
+        for (int f = 0; f < SPMIS_FRAMES; f++) {
+            struct frame_stats st;
+            struct camera cam = scene_camera_at(s, 1, (float)f);
+            renderer_render(&r, f, &cam, &st);
+            if (f == 0)
+                continue;
+            for (int q = 0; q < PASS_COUNT; q++)
+                res->ms[q] += st.ms[q];
+            res->ms_total += st.ms_total;
+            timed += 1.0;
+        }
+        long long marked = renderer_disoccluded(&r, DISOCCLUSION_FRAMES, mask);
+        long long valid = 0;
+        for (size_t i = 0; i < npix; i++)
+            valid += r.gb[1 - r.cur].valid[i];
+        struct restir_error e;
+        restir_error_compute(r.image, ref, npix, NULL, &e);
+        res->mape += e.mape / c->runs;
+        if (marked > 0 && restir_error_compute(r.image, ref, npix, mask, &e) == 0)
+            res->mape_dis += e.mape / c->runs;
+        res->dis_fraction += (double)marked / (double)(valid > 0 ? valid : 1) / c->runs;
+        if (k == 0) {
+            memcpy(res->image, r.image, 3 * npix * sizeof(float));
+            memcpy(res->mask, mask, npix);
+        }
+        renderer_fini(&r);
+    }
+    for (int q = 0; q < PASS_COUNT; q++)
+        res->ms[q] /= timed;
+    res->ms_total /= timed;
+    free(mask);
+}
+
+static void free_result(struct config_result *r)
+{
+    free(r->image);
+    free(r->mask);
+}
+
+static double spatial_ms(const struct config_result *r)
+{
+    return r->ms[PASS_SELECT] + r->ms[PASS_SPATIAL] + r->ms[PASS_CELLS] + r->ms[PASS_CELL_SEARCH] +
+           r->ms[PASS_SPMIS_CANONICAL] + r->ms[PASS_SPMIS_REUSE];
+}
+
+static void print_row(const char *label, const struct config_result *r, const struct config_result *base)
+{
+    printf("| %s | %.1f | %.1f | %.4f | %.4f | %+.1f%% | %+.1f%% |\n", label, r->ms_total, spatial_ms(r), r->mape,
+           r->mape_dis, 100.0 * (r->mape / base->mape - 1.0), 100.0 * (r->mape_dis / base->mape_dis - 1.0));
+}
+
+static void table_header(const char *title)
+{
+    printf("\n%s\n\n| configuration | ms/frame | ms spatial | MAPE | MAPE disoccluded | vs standard | "
+           "disoccluded vs standard |\n|---|---|---|---|---|---|---|\n",
+           title);
+}
+
+/* pillars: a crop around the disoccluded region: standard | spmis | reference | mask, 4x enlarged. */
+static void write_crop(const struct bench_spmis_cfg *c, const float *a, const float *b, const float *ref,
+                       const unsigned char *mask, const char *name)
+{
+    const int cw = c->width / 3, ch = c->height / 2, x0 = c->width / 3, y0 = c->height / 4, zoom = 2;
+    const int W = 4 * cw * zoom, H = ch * zoom;
+    float *out = xcalloc(3 * (size_t)W * H, sizeof(float));
+    const float *src[3] = {a, b, ref};
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            int panel = x / (cw * zoom), sx = x0 + (x % (cw * zoom)) / zoom, sy = y0 + y / zoom;
+            size_t i = (size_t)sy * c->width + sx;
+            for (int k = 0; k < 3; k++)
+                out[3 * ((size_t)y * W + x) + k] = panel < 3 ? src[panel][3 * i + k] : (mask[i] ? 1.0f : 0.0f);
+        }
+    char path[256], msg[RESTIR_MSG_LEN];
+    snprintf(path, sizeof(path), "%s/%s", IMAGE_DIR, name);
+    if (png_write_srgb(path, out, W, H, 1.0f, msg) != 0)
+        fprintf(stderr, "restir_bench: %s\n", msg);
+    free(out);
+}
+
+static void write_image(const char *name, const float *rgb, int w, int h)
+{
+    char path[256], msg[RESTIR_MSG_LEN];
+    snprintf(path, sizeof(path), "%s/%s", IMAGE_DIR, name);
+    if (png_write_srgb(path, rgb, w, h, 1.0f, msg) != 0)
+        fprintf(stderr, "restir_bench: %s\n", msg);
+}
+
+static void write_mask(const char *name, const unsigned char *mask, int w, int h)
+{
+    float *rgb = xcalloc(3 * (size_t)w * h, sizeof(float));
+    for (size_t i = 0; i < (size_t)w * h; i++)
+        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = mask[i] ? 1.0f : 0.0f;
+    write_image(name, rgb, w, h);
+    free(rgb);
+}
+
+#define STANDARD "spatial.reuse=standard"
+#define SPMIS "spatial.reuse=spmis"
+
+/* The main comparison of one method on the given scenes, with the per-pass table. */
+static void compare_scenes(const struct bench_spmis_cfg *c, enum method_id m, const char *const *scenes, int n)
+{
+    const char *name = method_table[m].name;
+    double table[8][PASS_COUNT + 2];
+    const char *pass_scene[8];
+    for (int sc = 0; sc < n; sc++) {
+        struct scene s = bench_load_scene(scenes[sc]);
+        struct render_params p;
+        render_params_defaults(&p);
+        p.width = c->width;
+        p.height = c->height;
+        float *ref = bench_reference(&s, m, &p, (float)(SPMIS_FRAMES - 1), 1, c->ref_spp);
+        struct config_result std_r, sp_r, eq_r;
+        run_config(&s, m, c, STANDARD, ref, &std_r);
+        run_config(&s, m, c, SPMIS, ref, &sp_r);
+        /* Equal time: the faster of the two gets more reuse, in proportion to its spatial cost. */
+        char eq[128];
+        const char *eq_label;
+        double ratio = spatial_ms(&sp_r) / spatial_ms(&std_r);
+        if (ratio > 1.0) {
+            int k = (int)lrint(3.0 * ratio);
+            snprintf(eq, sizeof(eq), STANDARD ":spatial.neighbors=%d", k < 5 ? (k > 3 ? k : 4) : 5);
+            eq_label = "standard, equal time";
+        } else {
+            int k = (int)lrint(3.0 / ratio);
+            snprintf(eq, sizeof(eq), SPMIS ":spmis.candidates=%d", k > 3 ? k : 4);
+            eq_label = "spmis, equal time";
+        }
+        run_config(&s, m, c, eq, ref, &eq_r);
+        char title[256];
+        snprintf(title, sizeof(title),
+                 "### %s on %s, %dx%d, camera path frame %d (%.1f%% of pixels disoccluded), %d runs, %d-spp "
+                 "reference",
+                 name, scenes[sc], c->width, c->height, SPMIS_FRAMES - 1, 100.0 * sp_r.dis_fraction, c->runs,
+                 c->ref_spp);
+        table_header(title);
+        print_row("standard (3 neighbors, 30 px)", &std_r, &std_r);
+        print_row("spmis (N 3, N_c 1, 12-step search)", &sp_r, &std_r);
+        char label[192];
+        snprintf(label, sizeof(label), "%s (`%s`)", eq_label, strchr(eq, ':') + 1);
+        print_row(label, &eq_r, &std_r);
+        char file[128];
+        snprintf(file, sizeof(file), "%s_%s_mask.png", name, scenes[sc]);
+        write_mask(file, sp_r.mask, c->width, c->height);
+        if (!strcmp(scenes[sc], "pillars")) {
+            snprintf(file, sizeof(file), "%s_pillars_crop.png", name);
+            write_crop(c, std_r.image, sp_r.image, ref, sp_r.mask, file);
+        }
+        pass_scene[sc] = scenes[sc];
+        for (int q = 0; q < PASS_COUNT; q++)
+            table[sc][q] = sp_r.ms[q];
+        table[sc][PASS_COUNT] = sp_r.ms_total;
+        table[sc][PASS_COUNT + 1] = std_r.ms[PASS_SELECT] + std_r.ms[PASS_SPATIAL];
+        free_result(&std_r);
+        free_result(&sp_r);
+        free_result(&eq_r);
+        free(ref);
+        scene_destroy(&s);
+    }
+    /* 004 Table 2 layout: rows are passes, then the mean and spread over the scenes. */
+    static const struct {
+        const char *label;
+        int pass;
+    } rows[] = {{"Initial Sampling", PASS_INITIAL},
+                {"Temporal Reuse", PASS_TEMPORAL},
+                {"Ours: Create Reuse Cells (Alg. 1)", PASS_CELLS},
+                {"Ours: Cell Search (Alg. 2 line 2)", PASS_CELL_SEARCH},
+                {"Ours: Compute m~_c (Alg. 2 lines 6-12)", PASS_SPMIS_CANONICAL},
+                {"Ours: Stochastic Neighbor Reuse (lines 13-20)", PASS_SPMIS_REUSE},
+                {"Full frame (spmis)", PASS_COUNT},
+                {"Standard: selection + spatial reuse", PASS_COUNT + 1}};
+    printf("\n### %s per-pass CPU time (ms), layout of 004 Table 2, %dx%d, %d threads, mean of frames 1-%d\n\n|"
+           " pass",
+           name, c->width, c->height, omp_get_max_threads(), SPMIS_FRAMES - 1);
+    for (int sc = 0; sc < n; sc++)
+        printf(" | %s", pass_scene[sc]);
+    printf(" | mean +- sd |\n|---");
+    for (int sc = 0; sc <= n; sc++)
+        printf("|---");
+    printf("|\n");
+    for (size_t q = 0; q < sizeof(rows) / sizeof(rows[0]); q++) {
+        double sum = 0.0, sum2 = 0.0;
+        printf("| %s", rows[q].label);
+        for (int sc = 0; sc < n; sc++) {
+            double v = table[sc][rows[q].pass];
+            printf(" | %.2f", v);
+            sum += v;
+            sum2 += v * v;
+        }
+        double mu = sum / n, sd = n > 1 ? sqrt(fmax(0.0, (sum2 - n * mu * mu) / (n - 1))) : 0.0;
+        printf(" | %.2f +- %.2f |\n", mu, sd);
+    }
+}
+
+/* The ablations of 004 Fig. 2 (confidence adjustment), Fig. 6 (N_c), Fig. 7 (N, N = M), and the
+ * search modes, on one scene. */
+static void ablations(const struct bench_spmis_cfg *c, enum method_id m, const char *scene)
+{
+    struct scene s = bench_load_scene(scene);
+    struct render_params p;
+    render_params_defaults(&p);
+    p.width = c->width;
+    p.height = c->height;
+    float *ref = bench_reference(&s, m, &p, (float)(SPMIS_FRAMES - 1), 1, c->ref_spp);
+    struct config_result base;
+    run_config(&s, m, c, STANDARD, ref, &base);
+    static const char *const groups[][6] = {
+        {"Confidence adjustment N / M (004 Fig. 2)", SPMIS ":spmis.candidates=1",
+         SPMIS ":spmis.candidates=1:spmis.confidence_adjust=off", SPMIS ":spmis.candidates=3",
+         SPMIS ":spmis.candidates=3:spmis.confidence_adjust=off", SPMIS ":spmis.candidates=8"},
+        {"", SPMIS ":spmis.candidates=8:spmis.confidence_adjust=off", NULL, NULL, NULL, NULL},
+        {"Canonical draws N_c (004 Fig. 6)", SPMIS ":spmis.canonical_candidates=1",
+         SPMIS ":spmis.canonical_candidates=4", SPMIS ":spmis.canonical_candidates=M",
+         SPMIS ":spmis.canonical_pick=confidence", NULL},
+        {"Neighbor draws N, N = M deterministic over the cell (004 Fig. 7)", SPMIS ":spmis.candidates=1",
+         SPMIS ":spmis.candidates=3", SPMIS ":spmis.candidates=8",
+         SPMIS ":spmis.candidates=M:spmis.canonical_candidates=M", NULL},
+        {"Cell search (004 Sec. 5.1; sparse is BIASED)", SPMIS ":spmis.search=always", SPMIS ":spmis.search=sparse",
+         SPMIS ":spmis.search_steps=0", NULL, NULL},
+    };
+    for (size_t g = 0; g < sizeof(groups) / sizeof(groups[0]); g++) {
+        if (groups[g][0][0]) {
+            char title[256];
+            snprintf(title, sizeof(title), "### Ablation, %s on %s: %s", method_table[m].name, scene, groups[g][0]);
+            table_header(title);
+            print_row("standard", &base, &base);
+        }
+        for (int k = 1; k < 6 && groups[g][k]; k++) {
+            struct config_result r;
+            run_config(&s, m, c, groups[g][k], ref, &r);
+            print_row(groups[g][k] + strlen(SPMIS) + 1, &r, &base);
+            free_result(&r);
+        }
+    }
+    free_result(&base);
+    free(ref);
+    scene_destroy(&s);
+}
+
+void bench_spmis(int quick)
+{
+    struct bench_spmis_cfg c = {320, 180, quick ? 1 : 2, quick ? 256 : 1024};
+    printf("\n## Stochastic pairwise MIS (004), %dx%d, paper pixel parameters kept (8x8 tiles, 30 px radii), "
+           "confidence cap 20\n",
+           c.width, c.height);
+    const char *const pt_scenes[] = {"pillars", "ajar", "foliage", "cornell"};
+    compare_scenes(&c, METHOD_RESTIR_PT, pt_scenes, 4);
+    const char *const di_scenes[] = {"pillars", "many-lights"};
+    compare_scenes(&c, METHOD_RESTIR_DI, di_scenes, 2);
+    struct bench_spmis_cfg a = c;
+    a.runs = 1;
+    ablations(&a, METHOD_RESTIR_PT, "pillars");
+    ablations(&a, METHOD_RESTIR_DI, "pillars");
+}
