@@ -227,6 +227,15 @@ static void check_study(void)
     expect_failure("unknown neighbor selection",
                    "render --scene cornell --method restir-di --set spatial.select=magic --res 16x16 --out '%1$s'", 2,
                    "magic", NULL);
+    expect_failure("unknown spatial reuse",
+                   "render --scene cornell --method restir-pt --set spatial.reuse=cells --res 16x16 --out '%1$s'", 2,
+                   "spatial.reuse", NULL);
+    expect_failure("spmis candidates out of range",
+                   "render --scene cornell --method restir-pt --set spmis.candidates=-2 --res 16x16 --out '%1$s'", 2,
+                   "or M", NULL);
+    expect_failure("spmis tile too large",
+                   "render --scene cornell --method restir-di --set spmis.tile=64 --res 16x16 --out '%1$s'", 2,
+                   "spmis.tile", NULL);
 }
 
 static void check_list_and_help(void)

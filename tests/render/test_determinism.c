@@ -1,5 +1,6 @@
-/* test_determinism.c: same seed, same bytes: `restir render` writes identical EXR frames with 1 and 2 threads
- * for pt, ris-di, restir-di and restir-pt, and another seed changes them. Must never call the renderer directly (CLI only). */
+/* test_determinism.c: same seed, same bytes: `restir render` writes identical EXR frames with 1 and 2
+ * threads for pt, ris-di, restir-di and restir-pt (standard and spmis spatial reuse), and another
+ * seed changes them. Must never call the renderer directly (CLI only). */
 #include "cli_util.h"
 #include "test_util.h"
 
@@ -58,6 +59,9 @@ int main(void)
     check_method(tmp, "ris-di");
     check_method(tmp, "restir-di");
     check_method(tmp, "restir-pt");
+    /* spmis builds cells in parallel over tiles and searches per pixel: still thread-count free */
+    check_method(tmp, "restir-di --set spatial.reuse=spmis");
+    check_method(tmp, "restir-pt --set spatial.reuse=spmis");
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
     return test_finish();
 }
