@@ -11,7 +11,12 @@ struct scene bench_load_scene(const char *name);
  * use_path), spp paths per pixel, as a new malloc'ed RGB buffer. */
 float *bench_reference(const struct scene *s, enum method_id method, const struct render_params *p, float frame,
                        int use_path, int spp);
-/* Runs the `spmis` section (bench_spmis.c); quick halves the work. */
-void bench_spmis(int quick);
+/* The `spmis` section (bench_spmis.c). */
+struct bench_spmis_options {
+    int width, height, runs, ref_spp;
+    int scale_radii;    /* scale 004's 30 px radii by height / 1080 */
+    int main, ablations; /* which tables */
+};
+void bench_spmis(const struct bench_spmis_options *o);
 
 #endif

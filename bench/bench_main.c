@@ -320,6 +320,7 @@ int main(int argc, char **argv)
 {
     struct bench_config c = {"many-lights", 640, 360, 17, 1024, 64};
     int run_passes = 0, run_equal = 0, run_temporal = 0, run_pt = 0, run_spmis = 0, quick = 0;
+    struct bench_spmis_options so = {320, 180, 2, 1024, 0, 1, 1};
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "passes"))
             run_passes = 1;
@@ -331,6 +332,15 @@ int main(int argc, char **argv)
             run_pt = 1;
         else if (!strcmp(argv[i], "spmis"))
             run_spmis = 1;
+        else if (!strcmp(argv[i], "--spmis-res") && i + 1 < argc &&
+                 sscanf(argv[i + 1], "%dx%d", &so.width, &so.height) == 2 && so.width > 0 && so.height > 0)
+            i++;
+        else if (!strcmp(argv[i], "--spmis-scaled"))
+            so.scale_radii = 1;
+        else if (!strcmp(argv[i], "--spmis-main"))
+            so.ablations = 0;
+        else if (!strcmp(argv[i], "--spmis-ablations"))
+            so.main = 0;
         else if (!strcmp(argv[i], "--quick")) {
             quick = 1;
             c.width = 320;
@@ -338,7 +348,8 @@ int main(int argc, char **argv)
             c.ref_spp = 256;
             c.temporal_frames = 16;
         } else {
-            fprintf(stderr, "usage: restir_bench [passes] [equal-time] [temporal] [pt] [spmis] [--quick]\n");
+            fprintf(stderr, "usage: restir_bench [passes] [equal-time] [temporal] [pt] [spmis] [--quick]\n"
+                    "       spmis options: [--spmis-res WxH] [--spmis-scaled] [--spmis-main | --spmis-ablations]\n");
             return 2;
         }
     }
@@ -368,7 +379,12 @@ int main(int argc, char **argv)
         t.height = c.height / 2;
         bench_temporal(&t);
     }
-    if (run_spmis)
-        bench_spmis(quick);
+    if (run_spmis) {
+        if (quick) {
+            so.runs = 1;
+            so.ref_spp = 256;
+        }
+        bench_spmis(&so);
+    }
     return 0;
 }

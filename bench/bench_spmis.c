@@ -20,6 +20,7 @@
 
 struct bench_spmis_cfg {
     int width, height, runs, ref_spp;
+    char radii[96]; /* settings appended to every configuration: the pixel radii used */
 };
 
 struct config_result {
@@ -59,6 +60,7 @@ static void run_config(const struct scene *s, enum method_id m, const struct ben
         p.height = c->height;
         p.camera_path = 1;
         p.seed = 31 + (uint64_t)k;
+        apply_sets(&p, c->radii);
         apply_sets(&p, sets);
         struct renderer r;
         renderer_init(&r, s, m, &p);
@@ -159,7 +161,8 @@ static void write_mask(const char *name, const unsigned char *mask, int w, int h
     free(rgb);
 }
 
-#define STANDARD "spatial.reuse=standard"
+/* Standard reuse with 3 neighbors for both methods (004 Sec. 6: M = 3 in a 30 px radius). */
+#define STANDARD "spatial.reuse=standard:spatial.neighbors=3"
 #define SPMIS "spatial.reuse=spmis"
 
 /* The main comparison of one method on the given scenes, with the per-pass table. */
@@ -202,7 +205,7 @@ static void compare_scenes(const struct bench_spmis_cfg *c, enum method_id m, co
         print_row("standard (3 neighbors, 30 px)", &std_r, &std_r);
         print_row("spmis (N 3, N_c 1, 12-step search)", &sp_r, &std_r);
         char label[192];
-        snprintf(label, sizeof(label), "%s (`%s`)", eq_label, strchr(eq, ':') + 1);
+        snprintf(label, sizeof(label), "%s (`%s`)", eq_label, strrchr(eq, ':') + 1);
         print_row(label, &eq_r, &std_r);
         char file[128];
         snprintf(file, sizeof(file), "%s_%s_mask.png", name, scenes[sc]);
@@ -281,7 +284,7 @@ static void ablations(const struct bench_spmis_cfg *c, enum method_id m, const c
          SPMIS ":spmis.candidates=3", SPMIS ":spmis.candidates=8",
          SPMIS ":spmis.candidates=M:spmis.canonical_candidates=M", NULL},
         {"Cell search (004 Sec. 5.1; sparse is BIASED)", SPMIS ":spmis.search=always", SPMIS ":spmis.search=sparse",
-         SPMIS ":spmis.search_steps=0", NULL, NULL},
+         SPMIS ":spmis.search=low-confidence", SPMIS ":spmis.search_steps=0", NULL},
     };
     for (size_t g = 0; g < sizeof(groups) / sizeof(groups[0]); g++) {
         if (groups[g][0][0]) {
@@ -302,18 +305,25 @@ static void ablations(const struct bench_spmis_cfg *c, enum method_id m, const c
     scene_destroy(&s);
 }
 
-void bench_spmis(int quick)
+void bench_spmis(const struct bench_spmis_options *o)
 {
-    struct bench_spmis_cfg c = {320, 180, quick ? 1 : 2, quick ? 256 : 1024};
-    printf("\n## Stochastic pairwise MIS (004), %dx%d, paper pixel parameters kept (8x8 tiles, 30 px radii), "
-           "confidence cap 20\n",
-           c.width, c.height);
-    const char *const pt_scenes[] = {"pillars", "ajar", "foliage", "cornell"};
-    compare_scenes(&c, METHOD_RESTIR_PT, pt_scenes, 4);
-    const char *const di_scenes[] = {"pillars", "many-lights"};
-    compare_scenes(&c, METHOD_RESTIR_DI, di_scenes, 2);
-    struct bench_spmis_cfg a = c;
-    a.runs = 1;
-    ablations(&a, METHOD_RESTIR_PT, "pillars");
-    ablations(&a, METHOD_RESTIR_DI, "pillars");
+    struct bench_spmis_cfg c = {o->width, o->height, o->runs, o->ref_spp, ""};
+    /* Pixel radii are tuned in 004 for 1080p: keep them, or scale them by height / 1080. Tiles stay
+     * 8x8 either way (a cell needs pixels to reuse from). */
+    float radius = o->scale_radii ? 30.0f * (float)o->height / 1080.0f : 30.0f;
+    snprintf(c.radii, sizeof(c.radii), "spatial.radius=%g:spmis.search_radius=%g", radius, radius);
+    printf("\n## Stochastic pairwise MIS (004), %dx%d, %s (8x8 tiles, %g px radii), confidence cap 20\n", c.width,
+           c.height, o->scale_radii ? "pixel radii scaled by height / 1080" : "paper pixel parameters kept", radius);
+    if (o->main) {
+        const char *const pt_scenes[] = {"pillars", "ajar", "foliage", "cornell"};
+        compare_scenes(&c, METHOD_RESTIR_PT, pt_scenes, 4);
+        const char *const di_scenes[] = {"pillars", "many-lights"};
+        compare_scenes(&c, METHOD_RESTIR_DI, di_scenes, 2);
+    }
+    if (o->ablations) {
+        struct bench_spmis_cfg a = c;
+        a.runs = 1;
+        ablations(&a, METHOD_RESTIR_PT, "pillars");
+        ablations(&a, METHOD_RESTIR_DI, "pillars");
+    }
 }

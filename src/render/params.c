@@ -25,7 +25,7 @@ struct param_def {
 
 static const char *const select_names[] = {"bitterli", "compat", "compat-binary", NULL};
 static const char *const reuse_names[] = {"standard", "spmis", NULL};
-static const char *const search_names[] = {"always", "sparse", NULL};
+static const char *const search_names[] = {"always", "sparse", "low-confidence", NULL};
 static const char *const pick_names[] = {"uniform", "confidence", NULL};
 static const char *const preset_names[] = {"fast", "balanced", "conservative", NULL};
 
@@ -80,9 +80,9 @@ static const struct param_def params[] = {
      "spatial reuse: standard (GRIS over the selected neighbors) or spmis (004 Algorithm 2: stochastic "
      "pairwise MIS over one reuse cell; unbiased)",
      reuse_names},
-    {"spmis.candidates", P_COUNT, F(spmis_candidates), 0, 256,
+    {"spmis.candidates", P_COUNT, F(spmis_candidates), 1, 256,
      "spmis: neighbor draws N (004 Eq. 15-17); M = deterministic pairwise over the whole cell", NULL},
-    {"spmis.canonical_candidates", P_COUNT, F(spmis_canonical_candidates), 0, 256,
+    {"spmis.canonical_candidates", P_COUNT, F(spmis_canonical_candidates), 1, 256,
      "spmis: canonical-weight draws N_c (004 Eq. 18); M = the exact Eq. 11b sum", NULL},
     {"spmis.tile", P_INT, F(spmis_tile), 1, 16, "spmis: reuse-cell tile edge in pixels (004 Sec. 5)", NULL},
     {"spmis.normal_bins", P_INT, F(spmis_normal_bins), 1, 64,
@@ -94,10 +94,14 @@ static const struct param_def params[] = {
     {"spmis.search_normal", P_FLOAT, F(spmis_search_normal), -1, 1,
      "spmis: a search tap is rejected when n . n_tap is below this (or on another object)", NULL},
     {"spmis.search", P_NAMES, F(spmis_search), 0, 0,
-     "spmis: always (search for every pixel, 004 Sec. 5.1) or sparse (BIASED: search only where the own "
-     "cell has at most spmis.sparse_count contributing pixels, a count that depends on the samples)",
+     "spmis: always (search for every pixel, 004 Sec. 5.1), sparse (BIASED: search only where the own "
+     "cell has at most spmis.sparse_count contributing pixels, a count that depends on the samples) or "
+     "low-confidence (unbiased: search only where the own cell's mean confidence is below "
+     "spmis.search_confidence, e.g. after a disocclusion)",
      search_names},
     {"spmis.sparse_count", P_INT, F(spmis_sparse_count), 0, 256, "spmis: threshold of the sparse search", NULL},
+    {"spmis.search_confidence", P_FLOAT, F(spmis_search_confidence), 0, 1e9,
+     "spmis: threshold of the low-confidence search (mean c of the own cell)", NULL},
     {"spmis.confidence_adjust", P_BOOL, F(spmis_confidence_adjust), 0, 1,
      "spmis: scale non-canonical confidences by N / M (004 Sec. 4.3)", NULL},
     {"spmis.canonical_pick", P_NAMES, F(spmis_canonical_pick), 0, 0,
@@ -156,6 +160,7 @@ void render_params_defaults(struct render_params *p)
     p->spmis_search_normal = 0.9f;
     p->spmis_search = SPMIS_SEARCH_ALWAYS;
     p->spmis_sparse_count = 2;
+    p->spmis_search_confidence = 4.0f;
     p->spmis_confidence_adjust = 1;
     p->spmis_canonical_pick = 0;
     p->pt_candidates = 1;

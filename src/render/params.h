@@ -13,9 +13,10 @@
 enum spatial_select_mode { SELECT_BITTERLI = 0, SELECT_COMPAT, SELECT_COMPAT_BINARY };
 /* Spatial reuse: from the selected neighbors, or stochastic pairwise MIS over a reuse cell (004). */
 enum spatial_reuse_mode { REUSE_STANDARD = 0, REUSE_SPMIS };
-/* When the SPMIS cell search runs: for every pixel (004 Sec. 5.1), or only where the pixel's own
- * cell has few contributing pixels (BIASED: that count depends on the samples). */
-enum spmis_search_mode { SPMIS_SEARCH_ALWAYS = 0, SPMIS_SEARCH_SPARSE };
+/* When the SPMIS cell search runs: for every pixel (004 Sec. 5.1); only where the pixel's own cell
+ * has few contributing pixels (BIASED: that count depends on the samples); or only where the own
+ * cell's mean confidence is low (unbiased: confidences depend on history, not on samples). */
+enum spmis_search_mode { SPMIS_SEARCH_ALWAYS = 0, SPMIS_SEARCH_SPARSE, SPMIS_SEARCH_LOW_CONFIDENCE };
 
 struct render_params {
     int width, height;
@@ -62,6 +63,7 @@ struct render_params {
     float spmis_search_normal;      /* ... a tap is rejected when n . n_tap is below */
     enum spmis_search_mode spmis_search;
     int spmis_sparse_count;         /* sparse search: own cell used when it has more contributing pixels */
+    float spmis_search_confidence;  /* low-confidence search: own cell used when its mean c reaches this */
     int spmis_confidence_adjust;    /* scale non-canonical confidences by N / M (Sec. 4.3) */
     int spmis_canonical_pick;       /* enum restir_spmis_pick: P_c uniform or proportional to c */
 

@@ -63,6 +63,11 @@ void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, con
             f->cell[i] = own; /* BIASED: the count depends on the samples (params help) */
             continue;
         }
+        if (p->spmis_search == SPMIS_SEARCH_LOW_CONFIDENCE &&
+            cells->conf_sum[own] >= p->spmis_search_confidence * (float)cells->count[own]) {
+            f->cell[i] = own; /* the own cell holds history: no need to look farther (reads c only) */
+            continue;
+        }
         float u[3 * 256];
         pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_CELL_SEARCH);
         spmis_uniforms(&rng, 3 * s.steps, u);

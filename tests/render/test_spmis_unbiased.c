@@ -41,6 +41,7 @@ int main(int argc, char **argv)
     const char *all_cell[] = {"spmis.candidates=M", "spmis.canonical_candidates=M"};
     const char *by_conf[] = {"spmis.canonical_pick=confidence", "spmis.canonical_candidates=2"};
     const char *sparse[] = {"spmis.search=sparse"};
+    const char *low_conf[] = {"spmis.search=low-confidence", "spmis.search_confidence=3"};
 
     check(METHOD_RESTIR_PT, "pillars", 2048, none, 1, 1);
     check(METHOD_RESTIR_PT, "cornell", 1024, none, 1, 1);
@@ -53,6 +54,7 @@ int main(int argc, char **argv)
     check(METHOD_RESTIR_DI, "pillars", 1024, one, 1, 1);
     check(METHOD_RESTIR_DI, "pillars", 1024, all_cell, 2, 1);
     check(METHOD_RESTIR_DI, "cornell", 1024, by_conf, 2, 1);
+    check(METHOD_RESTIR_PT, "pillars", 1024, low_conf, 2, 1);
     /* BIASED option: its bias is printed (pooled z, relative bias of the image mean), not asserted. */
     check(METHOD_RESTIR_DI, "pillars", 1024, sparse, 1, 0);
     return test_finish();
