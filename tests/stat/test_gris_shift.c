@@ -19,9 +19,11 @@
  * so |dT/dx| is 0.6, 3 x and 1.6 (never 1) and every T_i covers only part of Omega_0.
  * No neighbour reaches the spike, neighbour 1 never reaches [0, 0.4) and, with RIS inputs,
  * neighbour 2 never reaches T_2([0.55, 0.65)): 1/M loses mass there (violates 004 Eq. 8). */
+#include "accum.h"
 #include "core/rng.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
+#include "synthetic_domains.h"
 #include "test_util.h"
 
 #include <math.h>
@@ -84,17 +86,7 @@ static double phat0(enum target t, double y)
 
 /* ---------------- domains: densities, source targets, shift maps ------------------------------ */
 
-enum shift_kind { SHIFT_IDENTITY, SHIFT_AFFINE, SHIFT_QUADRATIC };
-
-struct domain {
-    enum shift_kind kind;
-    double a, b;             /* T(x) = a x + b (affine) or a x^2 + b (quadratic), a > 0 */
-    double fail_lo, fail_hi; /* T undefined for x in [fail_lo, fail_hi) */
-    double zero_lo, zero_hi; /* the source target f_i vanishes on [zero_lo, zero_hi) */
-    double pdf_a, pdf_b;     /* density p(x) = pdf_a + pdf_b x on [0,1), pdf_a + pdf_b / 2 = 1 */
-};
-
-static const struct domain dom[NDOM] = {
+static const struct synthetic_domain dom[NDOM] = {
     {SHIFT_IDENTITY, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.5, -1.0},
     {SHIFT_AFFINE, 0.6, 0.4, 0.6, 0.75, 0.0, 0.0, 0.5, 1.0},
     {SHIFT_QUADRATIC, 1.5, -0.2, 0.8, 0.84, 0.55, 0.65, 1.2, -0.4},
@@ -104,7 +96,7 @@ static const struct domain dom[NDOM] = {
 /* Source integrands f_i = source targets p_hat_i, i >= 1 (different shapes per domain). */
 static double f_src(int k, double x)
 {
-    if (x < 0.0 || x >= 1.0 || (x >= dom[k].zero_lo && x < dom[k].zero_hi))
+    if (synthetic_target_vanishes(&dom[k], x))
         return 0.0;
     switch (k) {
     case 1:
@@ -124,66 +116,13 @@ static double target_of(int k, enum target t, double x)
     return k == 0 ? phat0(t, x) : f_src(k, x);
 }
 
-static double pdf(int k, double x) { return dom[k].pdf_a + dom[k].pdf_b * x; }
-/* Inverse CDF of a + b x on [0,1): solves a x + b x^2 / 2 = u in the cancellation-free form. */
-static double pdf_sample(int k, float u)
-{
-    double a = dom[k].pdf_a, b = dom[k].pdf_b, uu = (double)u;
-    double x = 2.0 * uu / (a + sqrt(a * a + 2.0 * b * uu));
-    return x < 1.0 ? x : nextafter(1.0, 0.0);
-}
-
-/* T_k (004 Eq. 5). Returns 0 where T_k is undefined, else 1 with y and |dT_k/dx|. */
-static int shift_fwd(int k, double x, double *y, double *jac)
-{
-    const struct domain *d = &dom[k];
-    if (d->kind == SHIFT_IDENTITY) {
-        *y = x;
-        *jac = 1.0;
-        return 1;
-    }
-    if (x < 0.0 || x >= 1.0 || (x >= d->fail_lo && x < d->fail_hi))
-        return 0;
-    double v = d->kind == SHIFT_AFFINE ? d->a * x + d->b : d->a * x * x + d->b;
-    if (v < 0.0 || v >= 1.0)
-        return 0;
-    *y = v;
-    *jac = d->kind == SHIFT_AFFINE ? d->a : 2.0 * d->a * x;
-    return 1;
-}
-
-/* T_k^{-1}: returns 0 where y is not in the image of T_k, else 1 with x = T_k^{-1}(y) and
- * |dT_k/dx| at x (so |dT_k^{-1}/dy| = 1 / jac). */
-static int shift_inv(int k, double y, double *x, double *jac)
-{
-    const struct domain *d = &dom[k];
-    if (y < 0.0 || y >= 1.0)
-        return 0;
-    if (d->kind == SHIFT_IDENTITY) {
-        *x = y;
-        *jac = 1.0;
-        return 1;
-    }
-    double v = (y - d->b) / d->a;
-    if (d->kind == SHIFT_QUADRATIC) {
-        if (v < 0.0)
-            return 0;
-        v = sqrt(v);
-    }
-    if (v < 0.0 || v >= 1.0 || (v >= d->fail_lo && v < d->fail_hi))
-        return 0;
-    *x = v;
-    *jac = d->kind == SHIFT_AFFINE ? d->a : 2.0 * d->a * v;
-    return 1;
-}
-
 /* 004 Eq. 10: p_hat_{<-k}(y) = [y in T_k(supp X_k)] p_hat_k(T_k^{-1}(y)) |dT_k^{-1}/dy|.
  * Here supp p_hat_k is inside supp X_k for both input kinds, so the bracket reduces to "y is in
  * the image of T_k"; outside it, or where p_hat_k vanishes, the value is 0. */
 static double phat_from(int k, enum target t, double y)
 {
     double x, jac;
-    if (!shift_inv(k, y, &x, &jac))
+    if (!synthetic_shift_inv(&dom[k], y, &x, &jac))
         return 0.0;
     return target_of(k, t, x) / jac;
 }
@@ -198,16 +137,16 @@ enum inputs { INPUT_PDF, INPUT_RIS };
 static void domain_input(pcg32 *rng, int k, enum target t, enum inputs in, double *x, double *W)
 {
     if (in == INPUT_PDF) {
-        *x = pdf_sample(k, pcg32_float(rng));
-        *W = 1.0 / pdf(k, *x);
+        *x = synthetic_pdf_sample(&dom[k], pcg32_float(rng));
+        *W = 1.0 / synthetic_pdf(&dom[k], *x);
         return;
     }
     struct restir_wrs r;
     restir_wrs_init(&r);
     double sel = 0.0;
     for (int i = 0; i < RIS_K; i++) {
-        double cand = pdf_sample(k, pcg32_float(rng));
-        float w = (float)(target_of(k, t, cand) / ((double)RIS_K * pdf(k, cand)));
+        double cand = synthetic_pdf_sample(&dom[k], pcg32_float(rng));
+        float w = (float)(target_of(k, t, cand) / ((double)RIS_K * synthetic_pdf(&dom[k], cand)));
         if (restir_wrs_offer(&r, w, pcg32_float(rng)))
             sel = cand;
     }
@@ -225,7 +164,7 @@ static double gris_once(pcg32 *rng, enum restir_mis mode, enum target t, enum in
     for (int k = 0; k < NDOM; k++) {
         double x;
         domain_input(rng, k, t, in, &x, &W[k]);
-        ok[k] = W[k] > 0.0 && shift_fwd(k, x, &y[k], &jac[k]); /* Eq. 5 */
+        ok[k] = W[k] > 0.0 && synthetic_shift_fwd(&dom[k], x, &y[k], &jac[k]); /* Eq. 5 */
     }
     /* p[k*n+j] = p_hat_{<-k}(Y_j) (Eq. 10); entries of failed columns stay unused */
     float p[NDOM * NDOM], m[NDOM];
@@ -255,7 +194,7 @@ static double gris_once(pcg32 *rng, enum restir_mis mode, enum target t, enum in
 static double reach_integral(int k, double lo, double hi)
 {
     /* integral of f_0 over T_k([lo,hi) minus the failure interval) */
-    const struct domain *d = &dom[k];
+    const struct synthetic_domain *d = &dom[k];
     double cuts[2][2] = {{lo, hi}, {0.0, 0.0}};
     int n = 1;
     if (d->kind != SHIFT_IDENTITY && d->fail_hi > d->fail_lo) {
@@ -272,8 +211,7 @@ static double reach_integral(int k, double lo, double hi)
         double a = cuts[i][0], b = cuts[i][1];
         if (!(b > a))
             continue;
-        double ya = d->kind == SHIFT_QUADRATIC ? d->a * a * a + d->b : d->a * a + d->b;
-        double yb = d->kind == SHIFT_QUADRATIC ? d->a * b * b + d->b : d->a * b + d->b;
+        double ya = synthetic_shift_map(d, a), yb = synthetic_shift_map(d, b);
         ya = fmin(fmax(ya, 0.0), 1.0);
         yb = fmin(fmax(yb, 0.0), 1.0);
         if (yb > ya)
@@ -300,11 +238,6 @@ static double uniform_expectation(enum inputs in)
 
 /* ---------------- statistics and driver ------------------------------------------------------- */
 
-struct accum {
-    double sum, sum2;
-    long n;
-};
-
 /* trials independent merges split over CHUNKS fixed RNG streams, summed in chunk order. */
 static struct accum run(unsigned seed, enum restir_mis mode, enum target t, enum inputs in,
                         long trials)
@@ -316,29 +249,14 @@ static struct accum run(unsigned seed, enum restir_mis mode, enum target t, enum
     for (int c = 0; c < CHUNKS; c++) {
         pcg32 rng = rng_for(seed, (uint64_t)c, (uint64_t)mode, 2u * (uint64_t)t + (uint64_t)in);
         struct accum a = {0.0, 0.0, 0};
-        for (long i = 0; i < trials / CHUNKS; i++) {
-            double v = gris_once(&rng, mode, t, in);
-            a.sum += v;
-            a.sum2 += v * v;
-            a.n++;
-        }
+        for (long i = 0; i < trials / CHUNKS; i++)
+            acc_add(&a, gris_once(&rng, mode, t, in));
         part[c] = a;
     }
     struct accum total = {0.0, 0.0, 0};
-    for (int c = 0; c < CHUNKS; c++) {
-        total.sum += part[c].sum;
-        total.sum2 += part[c].sum2;
-        total.n += part[c].n;
-    }
+    for (int c = 0; c < CHUNKS; c++)
+        acc_merge(&total, &part[c]);
     return total;
-}
-
-static double acc_mean(const struct accum *a) { return a->sum / (double)a->n; }
-static double acc_sigma(const struct accum *a)
-{
-    double m = acc_mean(a);
-    double var = (a->sum2 / (double)a->n - m * m) * (double)a->n / (double)(a->n - 1);
-    return sqrt(var > 0.0 ? var / (double)a->n : 0.0);
 }
 
 static const char *target_name(enum target t) { return t == TARGET_F ? "f0" : "smooth"; }

@@ -1,5 +1,6 @@
 /* test_gris_unbiased.c: RIS and GRIS unbiasedness on 1-D integrands with known integrals, and the
  * measurable bias of 1/M weights (004 Eq. 5-12). Must never depend on Embree, files or renderer. */
+#include "accum.h"
 #include "core/rng.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
@@ -15,25 +16,6 @@
 static double g(double t) { return t * t + 0.1 * sin(20.0 * t) + 0.2; }
 static double g_int(double t) { return t * t * t / 3.0 - 0.005 * cos(20.0 * t) + 0.2 * t; }
 static double g_hat(double t) { return t * t + 0.2; }
-
-struct accum {
-    double sum, sum2;
-    long n;
-};
-
-static void acc_add(struct accum *a, double v)
-{
-    a->sum += v;
-    a->sum2 += v * v;
-    a->n++;
-}
-static double acc_mean(const struct accum *a) { return a->sum / (double)a->n; }
-static double acc_sigma(const struct accum *a)
-{
-    double m = acc_mean(a);
-    double var = (a->sum2 / (double)a->n - m * m) * (double)a->n / (double)(a->n - 1);
-    return sqrt(var > 0.0 ? var / (double)a->n : 0.0);
-}
 
 /* Unbiased check: within Z_MAX sigma of the mean AND within 1% relative. */
 static void expect_unbiased(const struct accum *a, double exact, const char *what)

@@ -45,10 +45,12 @@
  * y = 0.5 (reached by all), 0.8 and 0.02, for scales 1, 3/8, 1/8. The canonical sits at pixel 0,
  * 4 or 8 of the cell (first, middle, last Eq. 17 slot) or holds W_0 = 0, so the exclusion of the
  * canonical from the draws is exercised at every position. */
+#include "accum.h"
 #include "core/rng.h"
 #include "restir/cells.h"
 #include "restir/reservoir.h"
 #include "restir/spmis.h"
+#include "synthetic_domains.h"
 #include "test_util.h"
 
 #include <math.h>
@@ -100,17 +102,7 @@ static double phat0(double y) { return (y < 0.0 || y >= 1.0) ? 0.0 : 0.35 + sin2
 
 /* ---------------- domains -------------------------------------------------------------------- */
 
-enum shift_kind { SHIFT_IDENTITY, SHIFT_AFFINE, SHIFT_QUADRATIC };
-
-struct domain {
-    enum shift_kind kind;
-    double a, b;             /* T(x) = a x + b (affine) or a x^2 + b (quadratic), a > 0 */
-    double fail_lo, fail_hi; /* T undefined for x in [fail_lo, fail_hi) */
-    double zero_lo, zero_hi; /* p_hat_i vanishes on [zero_lo, zero_hi) */
-    double pdf_a, pdf_b;     /* density p(x) = pdf_a + pdf_b x on [0,1), pdf_a + pdf_b / 2 = 1 */
-};
-
-static const struct domain dom[NDOM] = {
+static const struct synthetic_domain dom[NDOM] = {
     {SHIFT_IDENTITY, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.5, -1.0},
     {SHIFT_AFFINE, 0.6, 0.4, 0.6, 0.75, 0.0, 0.0, 0.5, 1.0},
     {SHIFT_QUADRATIC, 1.5, -0.2, 0.8, 0.84, 0.55, 0.65, 1.2, -0.4},
@@ -130,7 +122,7 @@ static double target_of(int k, double x)
 {
     if (k == 0)
         return phat0(x);
-    if (x < 0.0 || x >= 1.0 || (x >= dom[k].zero_lo && x < dom[k].zero_hi))
+    if (synthetic_target_vanishes(&dom[k], x))
         return 0.0;
     switch (k) {
     case 1:
@@ -156,64 +148,12 @@ static double target_of(int k, double x)
     }
 }
 
-static double pdf(int k, double x) { return dom[k].pdf_a + dom[k].pdf_b * x; }
-/* Inverse CDF of a + b x on [0,1): solves a x + b x^2 / 2 = u in the cancellation-free form. */
-static double pdf_sample(int k, float u)
-{
-    double a = dom[k].pdf_a, b = dom[k].pdf_b, uu = (double)u;
-    double x = 2.0 * uu / (a + sqrt(a * a + 2.0 * b * uu));
-    return x < 1.0 ? x : nextafter(1.0, 0.0);
-}
-
-/* T_k (004 Eq. 5). Returns 0 where T_k is undefined, else 1 with y and |dT_k/dx|. */
-static int shift_fwd(int k, double x, double *y, double *jac)
-{
-    const struct domain *d = &dom[k];
-    if (d->kind == SHIFT_IDENTITY) {
-        *y = x;
-        *jac = 1.0;
-        return 1;
-    }
-    if (x < 0.0 || x >= 1.0 || (x >= d->fail_lo && x < d->fail_hi))
-        return 0;
-    double v = d->kind == SHIFT_AFFINE ? d->a * x + d->b : d->a * x * x + d->b;
-    if (v < 0.0 || v >= 1.0)
-        return 0;
-    *y = v;
-    *jac = d->kind == SHIFT_AFFINE ? d->a : 2.0 * d->a * x;
-    return 1;
-}
-
-/* T_k^{-1}: 0 where y is not in the image of T_k, else 1 with x = T_k^{-1}(y) and |dT_k/dx| at x. */
-static int shift_inv(int k, double y, double *x, double *jac)
-{
-    const struct domain *d = &dom[k];
-    if (y < 0.0 || y >= 1.0)
-        return 0;
-    if (d->kind == SHIFT_IDENTITY) {
-        *x = y;
-        *jac = 1.0;
-        return 1;
-    }
-    double v = (y - d->b) / d->a;
-    if (d->kind == SHIFT_QUADRATIC) {
-        if (v < 0.0)
-            return 0;
-        v = sqrt(v);
-    }
-    if (v < 0.0 || v >= 1.0 || (v >= d->fail_lo && v < d->fail_hi))
-        return 0;
-    *x = v;
-    *jac = d->kind == SHIFT_AFFINE ? d->a : 2.0 * d->a * v;
-    return 1;
-}
-
 /* 004 Eq. 10: p_hat_{<-k}(y) = [y in T_k(supp X_k)] p_hat_k(T_k^{-1}(y)) |dT_k^{-1}/dy|. With RIS
  * inputs supp X_k = supp p_hat_k, so the bracket is "y in the image of T_k" times p_hat_k > 0. */
 static double phat_from(int k, double y)
 {
     double x, jac;
-    if (!shift_inv(k, y, &x, &jac))
+    if (!synthetic_shift_inv(&dom[k], y, &x, &jac))
         return 0.0;
     return target_of(k, x) / jac;
 }
@@ -226,8 +166,8 @@ static void domain_input(pcg32 *rng, int k, double *x, double *W)
     restir_wrs_init(&r);
     double sel = 0.0;
     for (int i = 0; i < RIS_K; i++) {
-        double cand = pdf_sample(k, pcg32_float(rng));
-        float w = (float)(target_of(k, cand) / ((double)RIS_K * pdf(k, cand)));
+        double cand = synthetic_pdf_sample(&dom[k], pcg32_float(rng));
+        float w = (float)(target_of(k, cand) / ((double)RIS_K * synthetic_pdf(&dom[k], cand)));
         if (restir_wrs_offer(&r, w, pcg32_float(rng)))
             sel = cand;
     }
@@ -335,7 +275,7 @@ static double spmis_once(pcg32 *rng, struct restir_cells *cells, const struct co
         int z = d.pixel[j];
         double y, jac;
         cnt->draws++;
-        if (!shift_fwd(z, x[z], &y, &jac)) {
+        if (!synthetic_shift_fwd(&dom[z], x[z], &y, &jac)) {
             cnt->failed++;
             continue;
         }
@@ -354,27 +294,6 @@ static double spmis_once(pcg32 *rng, struct restir_cells *cells, const struct co
 }
 
 /* ---------------- statistics and driver ------------------------------------------------------- */
-
-struct accum {
-    double sum, sum2;
-    long n;
-};
-
-static void acc_add(struct accum *a, double v)
-{
-    a->sum += v;
-    a->sum2 += v * v;
-    a->n++;
-}
-static double acc_mean(const struct accum *a) { return a->n > 0 ? a->sum / (double)a->n : 0.0; }
-static double acc_sigma(const struct accum *a)
-{
-    if (a->n < 2)
-        return 0.0;
-    double m = acc_mean(a);
-    double var = (a->sum2 / (double)a->n - m * m) * (double)a->n / (double)(a->n - 1);
-    return sqrt(var > 0.0 ? var / (double)a->n : 0.0);
-}
 
 /* trials independent merges over CHUNKS fixed RNG streams (each with its own cells), summed in
  * chunk order, so the result is the same for any thread count. */
@@ -403,9 +322,7 @@ static struct accum run(unsigned seed, const struct config *g, long trials, stru
     struct accum total = {0.0, 0.0, 0};
     memset(cnt, 0, sizeof(*cnt));
     for (int c = 0; c < CHUNKS; c++) {
-        total.sum += part[c].sum;
-        total.sum2 += part[c].sum2;
-        total.n += part[c].n;
+        acc_merge(&total, &part[c]);
         cnt->inputs += pc[c].inputs;
         cnt->noncontributing += pc[c].noncontributing;
         cnt->draws += pc[c].draws;
@@ -493,7 +410,7 @@ static void fixed_inputs(double *x, double *W)
 {
     for (int k = 0; k < NDOM; k++) {
         x[k] = fixed_x[k];
-        W[k] = target_of(k, x[k]) > 0.0 ? 1.0 / pdf(k, x[k]) : 0.0;
+        W[k] = target_of(k, x[k]) > 0.0 ? 1.0 / synthetic_pdf(&dom[k], x[k]) : 0.0;
     }
 }
 
@@ -558,7 +475,7 @@ static void check_fixed(const struct layout *lay, int n, int n_c, enum restir_sp
     for (int i = 1; i < NDOM; i++)
         wsum += wdom[i];
     for (int i = 0; i < NDOM; i++) {
-        ok[i] = i != 0 && W[i] > 0.0 && shift_fwd(i, x[i], &y[i], &jac[i]);
+        ok[i] = i != 0 && W[i] > 0.0 && synthetic_shift_fwd(&dom[i], x[i], &y[i], &jac[i]);
         mi_pw[i] = ok[i] ? restir_spmis_pairwise(&k, conf[i], (float)phat_from(i, y[i]), (float)phat0(y[i])) : 0.0;
         prob[i] = i != 0 ? (double)wdom[i] / wsum : 0.0;
     }
@@ -675,7 +592,8 @@ static void fixed_input_checks(void)
     eq17_weights(x, W, weight);
     EXPECT(weight[2] == 0.0f && weight[4] == 0.0f, "fixed inputs 2 and 4 must be non-contributing");
     double yy, jj;
-    EXPECT(weight[3] > 0.0f && !shift_fwd(3, x[3], &yy, &jj), "fixed input 3 must contribute and fail to shift");
+    EXPECT(weight[3] > 0.0f && !synthetic_shift_fwd(&dom[3], x[3], &yy, &jj),
+           "fixed input 3 must contribute and fail to shift");
 
     /* The same cell built outside any parallel region and inside one (where the build's own
      * omp for is a nested, by default inactive region) must be identical. */
