@@ -21,6 +21,7 @@
 struct bench_spmis_cfg {
     int width, height, runs, ref_spp;
     char radii[96]; /* settings appended to every configuration: the pixel radii used */
+    char tag[32];   /* image file suffix: resolution and radius mode */
 };
 
 struct config_result {
@@ -208,10 +209,10 @@ static void compare_scenes(const struct bench_spmis_cfg *c, enum method_id m, co
         snprintf(label, sizeof(label), "%s (`%s`)", eq_label, strrchr(eq, ':') + 1);
         print_row(label, &eq_r, &std_r);
         char file[128];
-        snprintf(file, sizeof(file), "%s_%s_mask.png", name, scenes[sc]);
+        snprintf(file, sizeof(file), "%s_%s_mask_%s.png", name, scenes[sc], c->tag);
         write_mask(file, sp_r.mask, c->width, c->height);
         if (!strcmp(scenes[sc], "pillars")) {
-            snprintf(file, sizeof(file), "%s_pillars_crop.png", name);
+            snprintf(file, sizeof(file), "%s_pillars_crop_%s.png", name, c->tag);
             write_crop(c, std_r.image, sp_r.image, ref, sp_r.mask, file);
         }
         pass_scene[sc] = scenes[sc];
@@ -307,7 +308,8 @@ static void ablations(const struct bench_spmis_cfg *c, enum method_id m, const c
 
 void bench_spmis(const struct bench_spmis_options *o)
 {
-    struct bench_spmis_cfg c = {o->width, o->height, o->runs, o->ref_spp, ""};
+    struct bench_spmis_cfg c = {o->width, o->height, o->runs, o->ref_spp, "", ""};
+    snprintf(c.tag, sizeof(c.tag), "%dx%d%s", o->width, o->height, o->scale_radii ? "_scaled" : "");
     /* Pixel radii are tuned in 004 for 1080p: keep them, or scale them by height / 1080. Tiles stay
      * 8x8 either way (a cell needs pixels to reuse from). */
     float radius = o->scale_radii ? 30.0f * (float)o->height / 1080.0f : 30.0f;

@@ -37,12 +37,7 @@ void di_spmis_canonical_pass(const struct scene *s, const struct render_params *
                 if (!g->valid[c] || !has_sample(&in[c]))
                     continue; /* Algorithm 2 line 6 */
                 struct restir_spmis_conf k;
-                spmis_pixel_conf(f, p, c, &k);
-                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)c, RNG_PASS_SPMIS_CANONICAL);
-                float u[RESTIR_SPMIS_MAX_DRAWS];
-                spmis_uniforms(&rng, p->spmis_canonical_candidates, u);
-                restir_spmis_canonical_draws(&f->cells, f->cell[c], c, p->spmis_canonical_candidates,
-                                             (enum restir_spmis_pick)p->spmis_canonical_pick, u, &draws);
+                spmis_canonical_plan(f, p, frame, c, &k, &draws);
                 double m_c = restir_spmis_canonical_share(&k);
                 for (int d = 0; d < draws.count; d++) {
                     int i = draws.pixel[d];
@@ -74,8 +69,7 @@ void di_spmis_reuse_pass(const struct scene *s, const struct render_params *p, i
                     continue;
                 }
                 struct restir_spmis_conf k;
-                spmis_pixel_conf(f, p, c, &k);
-                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)c, RNG_PASS_SPMIS_REUSE);
+                pcg32 rng = spmis_neighbor_plan(f, p, frame, c, &k, &draws);
                 struct restir_wrs wrs;
                 restir_wrs_init(&wrs);
                 struct di_reservoir result;
@@ -85,9 +79,6 @@ void di_spmis_reuse_pass(const struct scene *s, const struct render_params *p, i
                     result.y = in[c].y;
                     result.target = in[c].target;
                 }
-                float u[RESTIR_SPMIS_MAX_DRAWS];
-                spmis_uniforms(&rng, p->spmis_candidates, u);
-                restir_spmis_neighbor_draws(&f->cells, f->cell[c], c, p->spmis_candidates, u, &draws);
                 struct shading_point sp;
                 gbuffer_shading_point(g, s, c, &sp);
                 for (int d = 0; d < draws.count; d++) {

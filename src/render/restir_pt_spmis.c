@@ -43,12 +43,7 @@ long long pt_spmis_canonical_pass(const struct pt_frame *fr, const struct gbuffe
                 if (!g->valid[c] || !pt_reservoir_has_sample(&in[c]))
                     continue; /* Algorithm 2 line 6: only a contributing canonical needs m~_c */
                 struct restir_spmis_conf k;
-                spmis_pixel_conf(f, p, c, &k);
-                pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)c, RNG_PASS_SPMIS_CANONICAL);
-                float u[RESTIR_SPMIS_MAX_DRAWS];
-                spmis_uniforms(&rng, p->spmis_canonical_candidates, u);
-                restir_spmis_canonical_draws(&f->cells, f->cell[c], c, p->spmis_canonical_candidates,
-                                             (enum restir_spmis_pick)p->spmis_canonical_pick, u, &draws);
+                spmis_canonical_plan(f, p, fr->frame, c, &k, &draws);
                 const struct pt_domain dc = pt_pixel_domain(fr->view, x, y);
                 const float p_c = in[c].target; /* p_hat(Y_c) */
                 double m_c = restir_spmis_canonical_share(&k);
@@ -87,8 +82,7 @@ long long pt_spmis_reuse_pass(const struct pt_frame *fr, const struct gbuffer *g
                     continue;
                 }
                 struct restir_spmis_conf k;
-                spmis_pixel_conf(f, p, c, &k);
-                pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)c, RNG_PASS_SPMIS_REUSE);
+                pcg32 rng = spmis_neighbor_plan(f, p, fr->frame, c, &k, &draws);
                 struct restir_wrs wrs;
                 restir_wrs_init(&wrs);
                 struct pt_reservoir result;
@@ -99,9 +93,6 @@ long long pt_spmis_reuse_pass(const struct pt_frame *fr, const struct gbuffer *g
                     result.y = in[c].y;
                     result.target = in[c].target;
                 }
-                float u[RESTIR_SPMIS_MAX_DRAWS];
-                spmis_uniforms(&rng, p->spmis_candidates, u);
-                restir_spmis_neighbor_draws(&f->cells, f->cell[c], c, p->spmis_candidates, u, &draws);
                 const struct pt_domain dc = pt_pixel_domain(fr->view, x, y);
                 for (int d = 0; d < draws.count; d++) {
                     /* Lines 13-18. Line 15 of the paper writes T_z(X_c); what is shifted is the drawn

@@ -8,6 +8,12 @@
 #include "restir/reservoir.h"
 #include "tiles.h"
 
+static void uniforms(pcg32 *rng, int n, float *u)
+{
+    for (int j = 0; j < n; j++)
+        u[j] = pcg32_float(rng);
+}
+
 void spmis_frame_init(struct spmis_frame *f, const struct render_params *p)
 {
     size_t n = (size_t)p->width * (size_t)p->height;
@@ -70,12 +76,14 @@ void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, con
         }
         float u[3 * 256];
         pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_CELL_SEARCH);
-        spmis_uniforms(&rng, 3 * s.steps, u);
+        uniforms(&rng, 3 * s.steps, u);
         f->cell[i] = restir_cell_search(cells, &s, i, normals, g->object, u);
     }
 }
 
-int spmis_pixel_conf(const struct spmis_frame *f, const struct render_params *p, int c, struct restir_spmis_conf *k)
+/* Returns M, the number of the cell's other pixels. */
+static int spmis_pixel_conf(const struct spmis_frame *f, const struct render_params *p, int c,
+                            struct restir_spmis_conf *k)
 {
     int cell = f->cell[c];
     int m = restir_cells_others(&f->cells, cell, c);
@@ -89,8 +97,24 @@ float spmis_merged_confidence(const struct restir_spmis_conf *k, const struct re
     return restir_confidence_merge(k->c_c + k->c_sigma, p->confidence_cap);
 }
 
-void spmis_uniforms(pcg32 *rng, int n, float *u)
+void spmis_canonical_plan(const struct spmis_frame *f, const struct render_params *p, int frame, int c,
+                          struct restir_spmis_conf *k, struct restir_spmis_draws *draws)
 {
-    for (int j = 0; j < n; j++)
-        u[j] = pcg32_float(rng);
+    spmis_pixel_conf(f, p, c, k);
+    pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)c, RNG_PASS_SPMIS_CANONICAL);
+    float u[RESTIR_SPMIS_MAX_DRAWS];
+    uniforms(&rng, p->spmis_canonical_candidates, u);
+    restir_spmis_canonical_draws(&f->cells, f->cell[c], c, p->spmis_canonical_candidates,
+                                 (enum restir_spmis_pick)p->spmis_canonical_pick, u, draws);
+}
+
+pcg32 spmis_neighbor_plan(const struct spmis_frame *f, const struct render_params *p, int frame, int c,
+                          struct restir_spmis_conf *k, struct restir_spmis_draws *draws)
+{
+    spmis_pixel_conf(f, p, c, k);
+    pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)c, RNG_PASS_SPMIS_REUSE);
+    float u[RESTIR_SPMIS_MAX_DRAWS];
+    uniforms(&rng, p->spmis_candidates, u);
+    restir_spmis_neighbor_draws(&f->cells, f->cell[c], c, p->spmis_candidates, u, draws);
+    return rng;
 }

@@ -29,17 +29,22 @@ void spmis_cells_pass(struct spmis_frame *f, const struct render_params *p, cons
 /* 004 Sec. 5.1 for every valid pixel into f->cell (spmis.search: always, or sparse). */
 void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g, int frame);
 
-/* The confidences of pixel c's merge from its chosen cell (004 Eq. 12 over the other pixels,
- * Sec. 4.3 scale by spmis.candidates / M when spmis.confidence_adjust). Returns M. */
-int spmis_pixel_conf(const struct spmis_frame *f, const struct render_params *p, int c, struct restir_spmis_conf *k);
-
 /* Confidence stored with pixel c's merged reservoir: the confidences the MIS weights used,
  * c_c + c_sigma (scaled), capped. It is not specified by 004; this keeps "the sum of the
  * confidences merged" of GRIS (Sec. 2.5) with the adjusted ones, so a merge that really looked at
  * N neighbors of a 64-pixel cell counts about N of them. */
 float spmis_merged_confidence(const struct restir_spmis_conf *k, const struct render_params *p);
 
-/* Uniform random numbers for up to RESTIR_SPMIS_MAX_DRAWS draws. */
-void spmis_uniforms(pcg32 *rng, int n, float *u);
+/* In both plans, k holds the confidences of pixel c's merge from its chosen cell: 004 Eq. 12 over
+ * the cell's other pixels, scaled by spmis.candidates / M when spmis.confidence_adjust (Sec. 4.3). */
+
+/* The canonical draws of pixel c (004 Algorithm 2 lines 8-10: spmis.canonical_candidates picks by
+ * spmis.canonical_pick from its chosen cell) and the confidences k of its merge. */
+void spmis_canonical_plan(const struct spmis_frame *f, const struct render_params *p, int frame, int c,
+                          struct restir_spmis_conf *k, struct restir_spmis_draws *draws);
+/* The neighbor draws of pixel c (lines 13-14: spmis.candidates picks by Eq. 17) and the
+ * confidences k of its merge. Returns the pixel's stream, to drive the merge's WRS. */
+pcg32 spmis_neighbor_plan(const struct spmis_frame *f, const struct render_params *p, int frame, int c,
+                          struct restir_spmis_conf *k, struct restir_spmis_draws *draws);
 
 #endif
