@@ -15,7 +15,7 @@ float *bench_reference(const struct scene *s, enum method_id method, const struc
 struct bench_spmis_options {
     int width, height, runs, ref_spp;
     int scale_radii;    /* scale 004's 30 px radii by height / 1080 */
-    int main, ablations; /* which tables */
+    int main, ablations, interplay; /* which tables */
 };
 void bench_spmis(const struct bench_spmis_options *o);
 

@@ -320,7 +320,7 @@ int main(int argc, char **argv)
 {
     struct bench_config c = {"many-lights", 640, 360, 17, 1024, 64};
     int run_passes = 0, run_equal = 0, run_temporal = 0, run_pt = 0, run_spmis = 0, quick = 0;
-    struct bench_spmis_options so = {320, 180, 2, 1024, 0, 1, 1};
+    struct bench_spmis_options so = {320, 180, 2, 1024, 0, 1, 1, 1};
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "passes"))
             run_passes = 1;
@@ -338,9 +338,11 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--spmis-scaled"))
             so.scale_radii = 1;
         else if (!strcmp(argv[i], "--spmis-main"))
-            so.ablations = 0;
+            so.ablations = so.interplay = 0;
         else if (!strcmp(argv[i], "--spmis-ablations"))
-            so.main = 0;
+            so.main = so.interplay = 0;
+        else if (!strcmp(argv[i], "--spmis-interplay"))
+            so.main = so.ablations = 0;
         else if (!strcmp(argv[i], "--quick")) {
             quick = 1;
             c.width = 320;
@@ -349,7 +351,7 @@ int main(int argc, char **argv)
             c.temporal_frames = 16;
         } else {
             fprintf(stderr, "usage: restir_bench [passes] [equal-time] [temporal] [pt] [spmis] [--quick]\n"
-                    "       spmis options: [--spmis-res WxH] [--spmis-scaled] [--spmis-main | --spmis-ablations]\n");
+                    "       spmis options: [--spmis-res WxH] [--spmis-scaled] [--spmis-main | --spmis-ablations | --spmis-interplay]\n");
             return 2;
         }
     }

@@ -123,11 +123,25 @@ static void table_header(const char *title)
            title);
 }
 
-/* pillars: a crop around the disoccluded region: standard | spmis | reference | mask, 4x enlarged. */
+/* pillars: the (width / 4) x (height / 3) window holding the most disoccluded pixels, 4x enlarged:
+ * standard | spmis | reference | disocclusion mask. */
 static void write_crop(const struct bench_spmis_cfg *c, const float *a, const float *b, const float *ref,
                        const unsigned char *mask, const char *name)
 {
-    const int cw = c->width / 3, ch = c->height / 2, x0 = c->width / 3, y0 = c->height / 4, zoom = 2;
+    const int cw = c->width / 4, ch = c->height / 3, zoom = 4;
+    int x0 = 0, y0 = 0, best = -1;
+    for (int wy = 0; wy + ch <= c->height; wy += 4)
+        for (int wx = 0; wx + cw <= c->width; wx += 4) {
+            int n = 0;
+            for (int y = wy; y < wy + ch; y++)
+                for (int x = wx; x < wx + cw; x++)
+                    n += mask[y * c->width + x];
+            if (n > best) {
+                best = n;
+                x0 = wx;
+                y0 = wy;
+            }
+        }
     const int W = 4 * cw * zoom, H = ch * zoom;
     float *out = xcalloc(3 * (size_t)W * H, sizeof(float));
     const float *src[3] = {a, b, ref};
@@ -142,6 +156,8 @@ static void write_crop(const struct bench_spmis_cfg *c, const float *a, const fl
     snprintf(path, sizeof(path), "%s/%s", IMAGE_DIR, name);
     if (png_write_srgb(path, out, W, H, 1.0f, msg) != 0)
         fprintf(stderr, "restir_bench: %s\n", msg);
+    else
+        printf("\n%s: window (%d, %d) %dx%d, %d disoccluded pixels\n", path, x0, y0, cw, ch, best);
     free(out);
 }
 
@@ -306,6 +322,43 @@ static void ablations(const struct bench_spmis_cfg *c, enum method_id m, const c
     scene_destroy(&s);
 }
 
+/* How spatial reuse meets temporal reuse: standard and spmis with temporal reuse on (history = the
+ * spatial output), with the history taken before spatial reuse (no feedback of spatial reuse into
+ * the next frame), and with temporal reuse off (every pixel as right after a disocclusion). Each
+ * spmis row is measured against the standard row of the same regime. */
+static void temporal_interplay(const struct bench_spmis_cfg *c, enum method_id m, const char *scene)
+{
+    struct scene s = bench_load_scene(scene);
+    struct render_params p;
+    render_params_defaults(&p);
+    p.width = c->width;
+    p.height = c->height;
+    float *ref = bench_reference(&s, m, &p, (float)(SPMIS_FRAMES - 1), 1, c->ref_spp);
+    static const char *const regimes[3][2] = {{"temporal on", ""},
+                                              {"history before spatial reuse", ":history=temporal"},
+                                              {"temporal off", ":temporal=off"}};
+    char title[256];
+    snprintf(title, sizeof(title), "### %s on %s: spatial reuse against temporal reuse (each spmis row vs the "
+             "standard row above it)", method_table[m].name, scene);
+    table_header(title);
+    for (int k = 0; k < 3; k++) {
+        char a[192], b[192], la[96], lb[96];
+        snprintf(a, sizeof(a), "%s%s", STANDARD, regimes[k][1]);
+        snprintf(b, sizeof(b), "%s%s", SPMIS, regimes[k][1]);
+        snprintf(la, sizeof(la), "standard, %s", regimes[k][0]);
+        snprintf(lb, sizeof(lb), "spmis, %s", regimes[k][0]);
+        struct config_result ra, rb;
+        run_config(&s, m, c, a, ref, &ra);
+        run_config(&s, m, c, b, ref, &rb);
+        print_row(la, &ra, &ra);
+        print_row(lb, &rb, &ra);
+        free_result(&ra);
+        free_result(&rb);
+    }
+    free(ref);
+    scene_destroy(&s);
+}
+
 void bench_spmis(const struct bench_spmis_options *o)
 {
     struct bench_spmis_cfg c = {o->width, o->height, o->runs, o->ref_spp, "", ""};
@@ -327,5 +380,11 @@ void bench_spmis(const struct bench_spmis_options *o)
         a.runs = 1;
         ablations(&a, METHOD_RESTIR_PT, "pillars");
         ablations(&a, METHOD_RESTIR_DI, "pillars");
+    }
+    if (o->interplay) {
+        struct bench_spmis_cfg a = c;
+        a.runs = 1;
+        temporal_interplay(&a, METHOD_RESTIR_PT, "pillars");
+        temporal_interplay(&a, METHOD_RESTIR_PT, "cornell");
     }
 }

@@ -27,6 +27,7 @@ static const char *const select_names[] = {"bitterli", "compat", "compat-binary"
 static const char *const reuse_names[] = {"standard", "spmis", NULL};
 static const char *const search_names[] = {"always", "sparse", "low-confidence", NULL};
 static const char *const pick_names[] = {"uniform", "confidence", NULL};
+static const char *const history_names[] = {"spatial", "temporal", NULL};
 static const char *const preset_names[] = {"fast", "balanced", "conservative", NULL};
 
 /* Index of val among the NULL-terminated names, or -1. */
@@ -65,6 +66,10 @@ static const struct param_def params[] = {
      "compat: stop once more than M candidates score above 0.5 (000 Sec. 5)", NULL},
     {"spatial.normal", P_FLOAT, F(spatial_normal), -1, 1, "Bitterli test (000 Eq. 7): minimum n . n_i", NULL},
     {"spatial.depth", P_FLOAT, F(spatial_depth), 0, 1e30, "Bitterli test (000 Eq. 7): max |d_i - d| / d", NULL},
+    {"history", P_NAMES, F(history_temporal), 0, 0,
+     "what the next frame reuses temporally: the spatial-reuse output (spatial, as Lin et al. 2022) or the "
+     "temporal output before spatial reuse (temporal: spatial reuse then cannot feed back; unbiased either way)",
+     history_names},
     {"confidence_cap", P_FLOAT, F(confidence_cap), 1, 1e9, "cap on confidence weights c (M cap)", NULL},
     {"mis", P_MIS, F(mis), 0, 0,
      "resampling MIS: pairwise (defensive, unbiased), balance (unbiased), 1/M (BIASED: ignores that "

@@ -45,6 +45,7 @@ struct render_params {
     float spatial_normal;   /* Bitterli test, 000 Eq. 7: n . n_i >= spatial_normal */
     float spatial_depth;    /* Bitterli test, 000 Eq. 7: |d_i - d| / d < spatial_depth */
     float confidence_cap;
+    int history_temporal;   /* next frame's history: the temporal output (1) or the spatial output (0) */
     enum restir_mis mis;
     float temporal_normal;  /* history rejected when n . n_prev < temporal_normal */
     float temporal_plane;   /* ... or when the plane distance exceeds temporal_plane * depth */

@@ -158,6 +158,8 @@ static void render_restir_di(struct renderer *r, const struct camera_view *view,
         memcpy(out, r->work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     }
     TIMED(st, PASS_SHADE, st->rays += di_shade_pass(s, g, out, r->image));
+    if (p->history_temporal && p->spatial)
+        memcpy(out, r->work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     st->valid_pixels = count_valid(g);
 }
 
@@ -193,6 +195,8 @@ static void render_restir_pt(struct renderer *r, const struct camera_view *view,
         memcpy(out, r->pt_work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     }
     TIMED(st, PASS_SHADE, pt_shade_pass(g, out, r->pt_emission, r->image));
+    if (p->history_temporal && p->spatial)
+        memcpy(out, r->pt_work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     st->valid_pixels = count_valid(g);
 }
 

@@ -1,9 +1,11 @@
 /* test_spmis_unbiased.c: spatial.reuse=spmis (004 Algorithm 2: stochastic pairwise MIS over one
  * reuse cell) is unbiased in restir-pt and restir-di with temporal and spatial reuse on: the mean
  * of K independently seeded camera-path runs matches K runs of the path tracer per pixel (Welch,
- * Sidak-corrected) and over the image (pooled z), with the confidence adjustment on and off and
- * with N = 1, on `pillars` (disocclusion) and `cornell`. The BIASED sparse search is measured and
- * reported, not asserted. Usage for experiments: render_test_spmis_unbiased pt|di SCENE RUNS key=value... */
+ * Sidak-corrected) and over the image (pooled z), with the confidence adjustment on and off, with
+ * N = 1, N = N_c = M, confidence-proportional canonical draws, the low-confidence search and the
+ * history taken before spatial reuse, on `pillars` (disocclusion) and `cornell`. The BIASED
+ * sparse search is measured and reported, not asserted.
+ * Usage for experiments: render_test_spmis_unbiased pt|di SCENE RUNS key=value... */
 #include <stdlib.h>
 #include <string.h>
 
@@ -42,6 +44,7 @@ int main(int argc, char **argv)
     const char *by_conf[] = {"spmis.canonical_pick=confidence", "spmis.canonical_candidates=2"};
     const char *sparse[] = {"spmis.search=sparse"};
     const char *low_conf[] = {"spmis.search=low-confidence", "spmis.search_confidence=3"};
+    const char *hist_temporal[] = {"history=temporal"};
 
     check(METHOD_RESTIR_PT, "pillars", 2048, none, 1, 1);
     check(METHOD_RESTIR_PT, "cornell", 1024, none, 1, 1);
@@ -55,6 +58,7 @@ int main(int argc, char **argv)
     check(METHOD_RESTIR_DI, "pillars", 1024, all_cell, 2, 1);
     check(METHOD_RESTIR_DI, "cornell", 1024, by_conf, 2, 1);
     check(METHOD_RESTIR_PT, "pillars", 1024, low_conf, 2, 1);
+    check(METHOD_RESTIR_DI, "pillars", 1024, hist_temporal, 1, 1);
     /* BIASED option: its bias is printed (pooled z, relative bias of the image mean), not asserted. */
     check(METHOD_RESTIR_DI, "pillars", 1024, sparse, 1, 0);
     return test_finish();
