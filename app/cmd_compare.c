@@ -66,15 +66,17 @@ static int parse_spec(const char *spec, const struct render_params *common, stru
     }
     c->method = (enum method_id)m;
     c->p = *common;
-    while (rest) {
-        char *next = strchr(rest, ':');
-        if (next)
-            *next++ = '\0';
-        if (render_params_set(&c->p, rest, sub) != 0) {
-            snprintf(msg, RESTIR_MSG_LEN, "--methods spec '%.200s': %.280s", spec, strip_set_prefix(sub));
-            return -1;
-        }
-        rest = next;
+    if (rest && render_params_set_list(&c->p, rest, sub) != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "--methods spec '%.200s': %.280s", spec, strip_set_prefix(sub));
+        return -1;
+    }
+    /* One reference serves every row, so no row may change the integral it is measured against. */
+    if (c->p.max_bounces != common->max_bounces || c->p.jitter != common->jitter) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "--methods spec '%.200s' changes the integrand (pt.max_bounces or jitter), which every row "
+                 "shares with the reference: give it to all rows with --set",
+                 spec);
+        return -1;
     }
     return 0;
 }

@@ -35,13 +35,10 @@ struct config_result {
 /* Applies "key=value:key=value..." to p. */
 static void apply_sets(struct render_params *p, const char *sets)
 {
-    char buf[512], msg[RESTIR_MSG_LEN];
-    snprintf(buf, sizeof(buf), "%s", sets);
-    for (char *tok = strtok(buf, ":"); tok; tok = strtok(NULL, ":")) {
-        if (render_params_set(p, tok, msg) != 0) {
-            fprintf(stderr, "restir_bench: %s\n", msg);
-            exit(2);
-        }
+    char msg[RESTIR_MSG_LEN];
+    if (render_params_set_list(p, sets, msg) != 0) {
+        fprintf(stderr, "restir_bench: %s\n", msg);
+        exit(2);
     }
 }
 
@@ -110,10 +107,21 @@ static double spatial_ms(const struct config_result *r)
            r->ms[PASS_SPMIS_CANONICAL] + r->ms[PASS_SPMIS_REUSE];
 }
 
+/* Relative change in percent, or "-" when the base is 0 (no disoccluded pixel). */
+static const char *change(double v, double base, char *buf, size_t n)
+{
+    if (base > 0.0)
+        snprintf(buf, n, "%+.1f%%", 100.0 * (v / base - 1.0));
+    else
+        snprintf(buf, n, "-");
+    return buf;
+}
+
 static void print_row(const char *label, const struct config_result *r, const struct config_result *base)
 {
-    printf("| %s | %.1f | %.1f | %.4f | %.4f | %+.1f%% | %+.1f%% |\n", label, r->ms_total, spatial_ms(r), r->mape,
-           r->mape_dis, 100.0 * (r->mape / base->mape - 1.0), 100.0 * (r->mape_dis / base->mape_dis - 1.0));
+    char a[32], b[32];
+    printf("| %s | %.1f | %.1f | %.4f | %.4f | %s | %s |\n", label, r->ms_total, spatial_ms(r), r->mape, r->mape_dis,
+           change(r->mape, base->mape, a, sizeof(a)), change(r->mape_dis, base->mape_dis, b, sizeof(b)));
 }
 
 static void table_header(const char *title)
@@ -208,7 +216,7 @@ static void compare_scenes(const struct bench_spmis_cfg *c, enum method_id m, co
             eq_label = "standard, equal time";
         } else {
             int k = (int)lrint(3.0 / ratio);
-            snprintf(eq, sizeof(eq), SPMIS ":spmis.candidates=%d", k > 3 ? k : 4);
+            snprintf(eq, sizeof(eq), SPMIS ":spmis.candidates=%d", k > 3 ? (k < 64 ? k : 64) : 4);
             eq_label = "spmis, equal time";
         }
         run_config(&s, m, c, eq, ref, &eq_r);

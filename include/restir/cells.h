@@ -51,7 +51,8 @@ void restir_cells_fini(struct restir_cells *c);
 
 /* 004 Algorithm 1: groups the pixels with valid[i] != 0 by (tile, key[i]); conf[i] >= 0 is the
  * confidence c_i, weight[i] >= 0 the Eq. 17 selection weight c_i p_hat(X_i) W_i (0 for a pixel
- * whose reservoir holds no contributing sample). Runs in parallel over tiles. */
+ * whose reservoir holds no contributing sample); negative, NaN or infinite values count as 0. Runs
+ * in parallel over tiles. */
 void restir_cells_build(struct restir_cells *c, const uint32_t *key, const unsigned char *valid, const float *conf,
                         const float *weight);
 

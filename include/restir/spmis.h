@@ -43,7 +43,7 @@ double restir_spmis_pairwise(const struct restir_spmis_conf *k, float c_i, float
  * (Algorithm 2 lines 13-18). `factor` is 1 / (N P(i)) from restir_spmis_draws (1 for an
  * enumerated, deterministic merge). */
 double restir_spmis_noncanonical(const struct restir_spmis_conf *k, float c_i, float p_from, float p_c,
-                                 float factor);
+                                 double factor);
 
 /* 004 Eq. 18, first term: the canonical's defensive share c_c / (c_S + c_c) (1 when both are 0). */
 double restir_spmis_canonical_share(const struct restir_spmis_conf *k);
@@ -52,7 +52,7 @@ double restir_spmis_canonical_share(const struct restir_spmis_conf *k);
  * factor * (c_i / (c_S + c_c)) c_c p_c / (c_S p_from + c_c p_c), where p_c = p_hat(Y_c) and
  * p_from = p_hat_{<-i}(Y_c), the canonical sample shifted into domain i (Eq. 10). c_i unscaled. */
 double restir_spmis_canonical_term(const struct restir_spmis_conf *k, float c_i, float p_from, float p_c,
-                                   float factor);
+                                   double factor);
 
 /* Most draws one merge makes (enumerating a whole cell of at most RESTIR_CELL_MAX_TILE^2 pixels). */
 #define RESTIR_SPMIS_MAX_DRAWS (RESTIR_CELL_MAX_TILE * RESTIR_CELL_MAX_TILE)
@@ -62,7 +62,7 @@ double restir_spmis_canonical_term(const struct restir_spmis_conf *k, float c_i,
 struct restir_spmis_draws {
     int count;
     int pixel[RESTIR_SPMIS_MAX_DRAWS];
-    float factor[RESTIR_SPMIS_MAX_DRAWS];
+    double factor[RESTIR_SPMIS_MAX_DRAWS]; /* double: 1 / P can exceed the float range */
 };
 
 /* How the canonical draws pick pixels (004 Sec. 4.2). */

@@ -9,6 +9,8 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "restir/spmis.h"
+#include "reuse_cells.h"
 
 /* P_NAMES: an enum stored as int, spelled by the def's names; P_COUNT: an int where "M" means 0
  * (all M pixels of a reuse cell). */
@@ -38,6 +40,11 @@ static int name_index(const char *const *names, const char *val)
             return k;
     return -1;
 }
+
+/* P_NAMES fields are written through int pointers. */
+_Static_assert(sizeof(enum spatial_select_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(enum spatial_reuse_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(enum spmis_search_mode) == sizeof(int), "enum size");
 
 #define F(field) offsetof(struct render_params, field)
 static const struct param_def params[] = {
@@ -85,14 +92,14 @@ static const struct param_def params[] = {
      "spatial reuse: standard (GRIS over the selected neighbors) or spmis (004 Algorithm 2: stochastic "
      "pairwise MIS over one reuse cell; unbiased)",
      reuse_names},
-    {"spmis.candidates", P_COUNT, F(spmis_candidates), 1, 256,
+    {"spmis.candidates", P_COUNT, F(spmis_candidates), 1, RESTIR_SPMIS_MAX_DRAWS,
      "spmis: neighbor draws N (004 Eq. 15-17); M = deterministic pairwise over the whole cell", NULL},
-    {"spmis.canonical_candidates", P_COUNT, F(spmis_canonical_candidates), 1, 256,
+    {"spmis.canonical_candidates", P_COUNT, F(spmis_canonical_candidates), 1, RESTIR_SPMIS_MAX_DRAWS,
      "spmis: canonical-weight draws N_c (004 Eq. 18); M = the exact Eq. 11b sum", NULL},
-    {"spmis.tile", P_INT, F(spmis_tile), 1, 16, "spmis: reuse-cell tile edge in pixels (004 Sec. 5)", NULL},
+    {"spmis.tile", P_INT, F(spmis_tile), 1, RESTIR_CELL_MAX_TILE, "spmis: reuse-cell tile edge in pixels (004 Sec. 5)", NULL},
     {"spmis.normal_bins", P_INT, F(spmis_normal_bins), 1, 64,
      "spmis: cell key quantizes each normal component into this many buckets", NULL},
-    {"spmis.search_steps", P_INT, F(spmis_search_steps), 0, 256,
+    {"spmis.search_steps", P_INT, F(spmis_search_steps), 0, SPMIS_MAX_SEARCH_STEPS,
      "spmis: cell-search taps (004 Sec. 5.1; 0 = always the pixel's own cell)", NULL},
     {"spmis.search_radius", P_FLOAT, F(spmis_search_radius), 0, 4096, "spmis: initial cell-search radius, pixels", NULL},
     {"spmis.search_growth", P_FLOAT, F(spmis_search_growth), 1, 16, "spmis: cell-search radius factor per tap", NULL},
@@ -200,7 +207,7 @@ static int parse_value(const struct param_def *d, const char *val, struct render
             snprintf(msg, RESTIR_MSG_LEN, "--set %s: unknown value '%s' (%s)", d->key, val, list);
             return -1;
         }
-        *(int *)(void *)base = k; /* the enums of P_NAMES fields are int-sized, values 0, 1, ... */
+        *(int *)(void *)base = k; /* P_NAMES fields are int-sized enums with values 0, 1, ... */
         return 0;
     }
     if (d->type == P_COUNT && (!strcmp(val, "M") || !strcmp(val, "all"))) {
@@ -267,6 +274,21 @@ int render_params_set(struct render_params *p, const char *assignment, char *msg
     }
     snprintf(msg, RESTIR_MSG_LEN, "--set: unknown key '%.*s' (see restir render --help)", (int)klen, assignment);
     return -1;
+}
+
+int render_params_set_list(struct render_params *p, const char *list, char *msg)
+{
+    char buf[1024];
+    if (strlen(list) >= sizeof(buf)) {
+        snprintf(msg, RESTIR_MSG_LEN, "settings '%.40s...' are longer than %zu characters", list, sizeof(buf) - 1);
+        return -1;
+    }
+    snprintf(buf, sizeof(buf), "%s", list);
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, ":", &save); tok; tok = strtok_r(NULL, ":", &save))
+        if (render_params_set(p, tok, msg) != 0)
+            return -1;
+    return 0;
 }
 
 int render_params_validate(const struct render_params *p, char *msg)

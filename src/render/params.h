@@ -85,6 +85,9 @@ static inline int render_params_spatial_neighbors(const struct render_params *p,
 void render_params_defaults(struct render_params *p);
 /* Applies one "key=value". Returns 0, or -1 with msg naming the key or the bad value. */
 int render_params_set(struct render_params *p, const char *assignment, char *msg);
+/* Applies "key=value:key=value..." in order (the settings part of a method spec such as
+ * `restir-pt:spatial.reuse=spmis:spmis.candidates=8`). Returns 0, or -1 with msg. */
+int render_params_set_list(struct render_params *p, const char *list, char *msg);
 /* Checks ranges (resolution, counts, ...). Returns 0, or -1 with msg naming the problem. */
 int render_params_validate(const struct render_params *p, char *msg);
 /* Prints every key with its default and meaning. */

@@ -60,7 +60,7 @@ void renderer_init(struct renderer *r, const struct scene *s, enum method_id met
         r2_disk_offsets(R2_DISK_OFFSETS, r->disk_offsets);
         r->age[0] = xcalloc(n, 1);
         r->age[1] = xcalloc(n, 1);
-        if (p->spatial_reuse == REUSE_SPMIS) {
+        if (r->p.spatial && r->p.spatial_reuse == REUSE_SPMIS) {
             r->spmis = xmalloc(sizeof(*r->spmis));
             spmis_frame_init(r->spmis, p);
         }

@@ -69,12 +69,13 @@ void di_spmis_reuse_pass(const struct scene *s, const struct render_params *p, i
                     continue;
                 }
                 struct restir_spmis_conf k;
-                pcg32 rng = spmis_neighbor_plan(f, p, frame, c, &k, &draws);
+                float merged_c;
+                pcg32 rng = spmis_neighbor_plan(f, p, frame, c, &k, &merged_c, &draws);
                 struct restir_wrs wrs;
                 restir_wrs_init(&wrs);
                 struct di_reservoir result;
-                di_reservoir_clear(&result, spmis_merged_confidence(&k, p));
-                /* Lines 6-12: w~_c = m~_c p_hat(X_c) W_c (Eq. 14) */
+                di_reservoir_clear(&result, merged_c);
+                /* Lines 11-12: w~_c = m~_c p_hat(X_c) W_c (Eq. 14) */
                 if (has_sample(&in[c]) && restir_wrs_offer(&wrs, f->m_c[c] * in[c].target * in[c].W, pcg32_float(&rng))) {
                     result.y = in[c].y;
                     result.target = in[c].target;

@@ -22,7 +22,7 @@ void pt_spmis_weights(const struct pt_frame *fr, const struct gbuffer *g, const 
     for (int i = 0; i < n; i++) {
         f->conf[i] = fminf(in[i].c, cap);
         /* 004 Eq. 17: c_i p_hat(X_i) W_i, with p_hat(X_i) the target cached in pixel i */
-        f->weight[i] = pt_reservoir_has_sample(&in[i]) ? f->conf[i] * in[i].target * in[i].W : 0.0f;
+        f->weight[i] = pt_reservoir_has_sample(&in[i]) ? f->conf[i] * in[i].target * in[i].W : 0.0f; /* non-finite: 0 in cells */
     }
 }
 
@@ -82,12 +82,13 @@ long long pt_spmis_reuse_pass(const struct pt_frame *fr, const struct gbuffer *g
                     continue;
                 }
                 struct restir_spmis_conf k;
-                pcg32 rng = spmis_neighbor_plan(f, p, fr->frame, c, &k, &draws);
+                float merged_c;
+                pcg32 rng = spmis_neighbor_plan(f, p, fr->frame, c, &k, &merged_c, &draws);
                 struct restir_wrs wrs;
                 restir_wrs_init(&wrs);
                 struct pt_reservoir result;
-                pt_reservoir_clear(&result, spmis_merged_confidence(&k, p));
-                /* Algorithm 2 lines 6-12: the canonical sample with w~_c = m~_c p_hat(X_c) W_c (Eq. 14) */
+                pt_reservoir_clear(&result, merged_c);
+                /* Algorithm 2 lines 11-12: the canonical sample with w~_c = m~_c p_hat(X_c) W_c (Eq. 14) */
                 if (pt_reservoir_has_sample(&in[c]) &&
                     restir_wrs_offer(&wrs, f->m_c[c] * in[c].target * in[c].W, pcg32_float(&rng))) {
                     result.y = in[c].y;

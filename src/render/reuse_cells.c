@@ -8,8 +8,11 @@
 #include "restir/reservoir.h"
 #include "tiles.h"
 
-static void uniforms(pcg32 *rng, int n, float *u)
+/* n uniforms into u, n clamped to cap (the size of u): params.c bounds every count by it already. */
+static void uniforms(pcg32 *rng, int n, float *u, int cap)
 {
+    if (n > cap)
+        n = cap;
     for (int j = 0; j < n; j++)
         u[j] = pcg32_float(rng);
 }
@@ -74,47 +77,48 @@ void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, con
             f->cell[i] = own; /* the own cell holds history: no need to look farther (reads c only) */
             continue;
         }
-        float u[3 * 256];
+        float u[3 * SPMIS_MAX_SEARCH_STEPS];
         pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_CELL_SEARCH);
-        uniforms(&rng, 3 * s.steps, u);
+        uniforms(&rng, 3 * s.steps, u, 3 * SPMIS_MAX_SEARCH_STEPS);
         f->cell[i] = restir_cell_search(cells, &s, i, normals, g->object, u);
     }
 }
 
 /* Returns M, the number of the cell's other pixels. */
-static int spmis_pixel_conf(const struct spmis_frame *f, const struct render_params *p, int c,
-                            struct restir_spmis_conf *k)
+/* The confidences of pixel c's merge; *merged (may be NULL) gets the confidence its output
+ * reservoir keeps (see spmis_neighbor_plan). */
+static void spmis_pixel_conf(const struct spmis_frame *f, const struct render_params *p, int c,
+                             struct restir_spmis_conf *k, float *merged)
 {
     int cell = f->cell[c];
     int m = restir_cells_others(&f->cells, cell, c);
+    float c_sigma = restir_cells_confidence_others(&f->cells, cell, c, f->conf);
     float scale = restir_spmis_confidence_scale(p->spmis_candidates, m, p->spmis_confidence_adjust);
-    restir_spmis_conf_set(k, f->conf[c], restir_cells_confidence_others(&f->cells, cell, c, f->conf), scale);
-    return m;
-}
-
-float spmis_merged_confidence(const struct restir_spmis_conf *k, const struct render_params *p)
-{
-    return restir_confidence_merge(k->c_c + k->c_sigma, p->confidence_cap);
+    restir_spmis_conf_set(k, f->conf[c], c_sigma, scale);
+    if (merged) {
+        float evaluated = restir_spmis_confidence_scale(p->spmis_candidates, m, 1); /* min(1, N / M) */
+        *merged = restir_confidence_merge(f->conf[c] + evaluated * c_sigma, p->confidence_cap);
+    }
 }
 
 void spmis_canonical_plan(const struct spmis_frame *f, const struct render_params *p, int frame, int c,
                           struct restir_spmis_conf *k, struct restir_spmis_draws *draws)
 {
-    spmis_pixel_conf(f, p, c, k);
+    spmis_pixel_conf(f, p, c, k, NULL);
     pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)c, RNG_PASS_SPMIS_CANONICAL);
     float u[RESTIR_SPMIS_MAX_DRAWS];
-    uniforms(&rng, p->spmis_canonical_candidates, u);
+    uniforms(&rng, p->spmis_canonical_candidates, u, RESTIR_SPMIS_MAX_DRAWS);
     restir_spmis_canonical_draws(&f->cells, f->cell[c], c, p->spmis_canonical_candidates,
                                  (enum restir_spmis_pick)p->spmis_canonical_pick, u, draws);
 }
 
 pcg32 spmis_neighbor_plan(const struct spmis_frame *f, const struct render_params *p, int frame, int c,
-                          struct restir_spmis_conf *k, struct restir_spmis_draws *draws)
+                          struct restir_spmis_conf *k, float *merged, struct restir_spmis_draws *draws)
 {
-    spmis_pixel_conf(f, p, c, k);
+    spmis_pixel_conf(f, p, c, k, merged);
     pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)c, RNG_PASS_SPMIS_REUSE);
     float u[RESTIR_SPMIS_MAX_DRAWS];
-    uniforms(&rng, p->spmis_candidates, u);
+    uniforms(&rng, p->spmis_candidates, u, RESTIR_SPMIS_MAX_DRAWS);
     restir_spmis_neighbor_draws(&f->cells, f->cell[c], c, p->spmis_candidates, u, draws);
     return rng;
 }

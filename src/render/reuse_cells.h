@@ -26,14 +26,11 @@ void spmis_frame_fini(struct spmis_frame *f);
 /* 004 Algorithm 1: cell keys from the G-buffer, then the cells over f->conf and f->weight. */
 void spmis_cells_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g);
 
-/* 004 Sec. 5.1 for every valid pixel into f->cell (spmis.search: always, or sparse). */
-void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g, int frame);
+/* Most cell-search taps (params.c bounds spmis.search_steps by it). */
+#define SPMIS_MAX_SEARCH_STEPS 256
 
-/* Confidence stored with pixel c's merged reservoir: the confidences the MIS weights used,
- * c_c + c_sigma (scaled), capped. It is not specified by 004; this keeps "the sum of the
- * confidences merged" of GRIS (Sec. 2.5) with the adjusted ones, so a merge that really looked at
- * N neighbors of a 64-pixel cell counts about N of them. */
-float spmis_merged_confidence(const struct restir_spmis_conf *k, const struct render_params *p);
+/* 004 Sec. 5.1 for every valid pixel into f->cell (spmis.search: always, sparse or low-confidence). */
+void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g, int frame);
 
 /* In both plans, k holds the confidences of pixel c's merge from its chosen cell: 004 Eq. 12 over
  * the cell's other pixels, scaled by spmis.candidates / M when spmis.confidence_adjust (Sec. 4.3). */
@@ -42,9 +39,12 @@ float spmis_merged_confidence(const struct restir_spmis_conf *k, const struct re
  * spmis.canonical_pick from its chosen cell) and the confidences k of its merge. */
 void spmis_canonical_plan(const struct spmis_frame *f, const struct render_params *p, int frame, int c,
                           struct restir_spmis_conf *k, struct restir_spmis_draws *draws);
-/* The neighbor draws of pixel c (lines 13-14: spmis.candidates picks by Eq. 17) and the
- * confidences k of its merge. Returns the pixel's stream, to drive the merge's WRS. */
+/* The neighbor draws of pixel c (lines 13-14: spmis.candidates picks by Eq. 17), the confidences
+ * k of its merge, and in *merged the confidence its output keeps: min(cap, c_c + min(1, N / M)
+ * c_sigma), the confidence of the reservoirs the merge actually evaluated (004 leaves it open).
+ * It does not depend on spmis.confidence_adjust, which changes only the MIS weights, so the
+ * Fig. 2 ablation changes one thing. Returns the pixel's stream, to drive the merge's WRS. */
 pcg32 spmis_neighbor_plan(const struct spmis_frame *f, const struct render_params *p, int frame, int c,
-                          struct restir_spmis_conf *k, struct restir_spmis_draws *draws);
+                          struct restir_spmis_conf *k, float *merged, struct restir_spmis_draws *draws);
 
 #endif

@@ -88,6 +88,10 @@ void restir_cells_fini(struct restir_cells *c)
     memset(c, 0, sizeof(*c));
 }
 
+/* A weight or confidence that is negative, NaN or infinite counts as 0: one inf would take every
+ * other pixel's probability to 0 and make 1 / (N P) overflow. */
+static float usable(float v) { return isfinite(v) && v > 0.0f ? v : 0.0f; }
+
 /* Order inside a tile: by key, then contributing before not, then pixel index. */
 struct tile_item {
     uint32_t key;
@@ -105,7 +109,7 @@ static int item_before(const struct tile_item *a, const struct tile_item *b)
 }
 
 /* Algorithm 1 for one tile: the tile's valid pixels sorted by (key, contributing, pixel) into its
- * range of `entry` (insertion sort: at most 256 items, mostly already in order), then one sweep
+ * range of `entry` (insertion sort of at most 256 items; a tile holds a few keys), then one sweep
  * that writes each cell's count, contributing count, confidence sum and prefix sums. */
 static int build_tile(struct restir_cells *c, int t, const uint32_t *key, const unsigned char *valid,
                       const float *conf, const float *weight)
@@ -122,7 +126,7 @@ static int build_tile(struct restir_cells *c, int t, const uint32_t *key, const 
             c->slot_of[i] = -1;
             if (!valid[i])
                 continue;
-            struct tile_item it = {key[i], weight[i] > 0.0f, i};
+            struct tile_item it = {key[i], usable(weight[i]) > 0.0f, i};
             int k = n++;
             while (k > 0 && item_before(&it, &items[k - 1])) {
                 items[k] = items[k - 1];
@@ -142,12 +146,12 @@ static int build_tile(struct restir_cells *c, int t, const uint32_t *key, const 
             c->entry[slot] = i;
             c->cell_of[i] = cell;
             c->slot_of[i] = slot;
-            conf_sum += conf[i];
-            conf_prefix += (double)conf[i];
+            conf_sum += usable(conf[i]);
+            conf_prefix += (double)usable(conf[i]);
             c->conf_cdf[slot] = conf_prefix;
             if (items[end].contributing) {
                 contributing++;
-                prefix += (double)weight[i];
+                prefix += (double)usable(weight[i]);
             }
             c->cdf[slot] = prefix;
             end++;
@@ -189,7 +193,7 @@ float restir_cells_confidence_others(const struct restir_cells *c, int cell, int
 {
     if (cell < 0)
         return 0.0f;
-    float s = c->conf_sum[cell] - (in_cell(c, cell, exclude) ? conf[exclude] : 0.0f);
+    float s = c->conf_sum[cell] - (in_cell(c, cell, exclude) ? usable(conf[exclude]) : 0.0f);
     return s > 0.0f ? s : 0.0f;
 }
 
@@ -237,9 +241,23 @@ static int pick_from_cdf(const struct restir_cells *c, const double *cdf, int ce
         else
             lo = mid + 1;
     }
-    if (lo == xs) /* t on the rounding edge of the cut: take the slot it borders */
-        lo = xs < last ? xs + 1 : xs - 1;
-    double w = cdf[lo] - (lo > cell ? cdf[lo - 1] : 0.0);
+    /* Rounding (t on the edge of the cut, or on a step too small for the running sum) can land on
+     * the excluded slot or on a zero-width one: take the nearest slot of positive width instead.
+     * One exists, since others > 0, so a draw never fails here and the N draws of a merge are
+     * always N (004 Appendix B needs E[K(i)] = N P(i)). */
+    double w = lo == xs ? 0.0 : cdf[lo] - (lo > cell ? cdf[lo - 1] : 0.0);
+    for (int d = 1; !(w > 0.0) && d <= len; d++) {
+        for (int sgn = -1; sgn <= 1 && !(w > 0.0); sgn += 2) {
+            int s2 = lo + sgn * d;
+            if (s2 < cell || s2 > last || s2 == xs)
+                continue;
+            double ws = cdf[s2] - (s2 > cell ? cdf[s2 - 1] : 0.0);
+            if (ws > 0.0) {
+                lo = s2;
+                w = ws;
+            }
+        }
+    }
     if (!(w > 0.0))
         return -1;
     *prob = w / others;
@@ -266,8 +284,11 @@ int restir_cell_search(const struct restir_cells *c, const struct restir_cell_se
     const float *n = &normal[3 * (size_t)pixel];
     double w_sum = 0.0;
     int chosen = -1;
-    float radius = s->radius;
-    for (int t = 0; t < s->steps; t++, radius *= s->growth) {
+    /* The radius stops growing at 1e7 px, far beyond any image, so the tap law is unchanged in
+     * practice while lrintf stays defined (growth^steps can overflow a float). */
+    const float r_max = 1e7f;
+    float radius = fminf(s->radius, r_max);
+    for (int t = 0; t < s->steps; t++, radius = fminf(radius * s->growth, r_max)) {
         /* A uniform point in the disk (polar map: r = R sqrt(u), area-uniform). */
         float r = radius * sqrtf(u[3 * t]), phi = 6.28318530717958647f * u[3 * t + 1];
         int qx = x + (int)lrintf(r * cosf(phi)), qy = y + (int)lrintf(r * sinf(phi));

@@ -28,10 +28,10 @@ double restir_spmis_pairwise(const struct restir_spmis_conf *k, float c_i, float
 }
 
 double restir_spmis_noncanonical(const struct restir_spmis_conf *k, float c_i, float p_from, float p_c,
-                                 float factor)
+                                 double factor)
 {
     /* 004 Eq. 16 = Eq. 15 applied to Eq. 11a, one draw at a time */
-    return (double)factor * restir_spmis_pairwise(k, c_i, p_from, p_c);
+    return factor * restir_spmis_pairwise(k, c_i, p_from, p_c);
 }
 
 double restir_spmis_canonical_share(const struct restir_spmis_conf *k)
@@ -41,14 +41,14 @@ double restir_spmis_canonical_share(const struct restir_spmis_conf *k)
 }
 
 double restir_spmis_canonical_term(const struct restir_spmis_conf *k, float c_i, float p_from, float p_c,
-                                   float factor)
+                                   double factor)
 {
     /* 004 Eq. 19, weighted by the Eq. 18 factor K(i) / (N_c P_c(i)) one draw at a time */
     double cs = k->c_sigma, cc = k->c_c, ci = (double)k->scale * c_i;
     double ctot = cs + cc, d = cs * p_from + cc * p_c;
     if (!(ctot > 0.0) || !(d > 0.0))
         return 0.0;
-    return (double)factor * (ci / ctot) * cc * p_c / d;
+    return factor * (ci / ctot) * cc * p_c / d;
 }
 
 void restir_spmis_canonical_draws(const struct restir_cells *cells, int cell, int canonical, int n_c,
@@ -63,7 +63,7 @@ void restir_spmis_canonical_draws(const struct restir_cells *cells, int cell, in
             if (cells->entry[s] == canonical)
                 continue;
             out->pixel[out->count] = cells->entry[s];
-            out->factor[out->count++] = 1.0f;
+            out->factor[out->count++] = 1.0;
         }
         return;
     }
@@ -76,10 +76,10 @@ void restir_spmis_canonical_draws(const struct restir_cells *cells, int cell, in
             if (i < 0)
                 return; /* the others have no confidence: every beta_i is 0 (004 Eq. 19) */
             out->pixel[out->count] = i;
-            out->factor[out->count++] = (float)(1.0 / ((double)n_c * prob));
+            out->factor[out->count++] = 1.0 / ((double)n_c * prob);
         } else {
             out->pixel[out->count] = restir_cells_pick_uniform(cells, cell, canonical, u[j]);
-            out->factor[out->count++] = (float)m / (float)n_c; /* P_c = 1 / M (004 Sec. 4.2) */
+            out->factor[out->count++] = (double)m / (double)n_c; /* P_c = 1 / M (004 Sec. 4.2) */
         }
     }
 }
@@ -95,7 +95,7 @@ void restir_spmis_neighbor_draws(const struct restir_cells *cells, int cell, int
             if (cells->entry[s] == canonical)
                 continue;
             out->pixel[out->count] = cells->entry[s];
-            out->factor[out->count++] = 1.0f;
+            out->factor[out->count++] = 1.0;
         }
         return;
     }
@@ -107,6 +107,6 @@ void restir_spmis_neighbor_draws(const struct restir_cells *cells, int cell, int
         if (z < 0)
             return; /* no other pixel contributes: no draw at all */
         out->pixel[out->count] = z;
-        out->factor[out->count++] = (float)(1.0 / ((double)n * prob)); /* 004 Eq. 15: 1 / (N P(z)) */
+        out->factor[out->count++] = 1.0 / ((double)n * prob); /* 004 Eq. 15: 1 / (N P(z)) */
     }
 }

@@ -233,6 +233,10 @@ static void check_study(void)
     expect_failure("spmis candidates out of range",
                    "render --scene cornell --method restir-pt --set spmis.candidates=-2 --res 16x16 --out '%1$s'", 2,
                    "or M", NULL);
+    expect_failure("compare spec that changes the integrand",
+                   "compare --scene cornell --res 16x12 --frames 1 --ref-spp 1 --methods 'pt,pt:pt.max_bounces=2' "
+                   "--out '%1$s'",
+                   2, "integrand", NULL);
     expect_failure("spmis tile too large",
                    "render --scene cornell --method restir-di --set spmis.tile=64 --res 16x16 --out '%1$s'", 2,
                    "spmis.tile", NULL);

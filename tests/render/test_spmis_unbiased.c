@@ -45,21 +45,29 @@ int main(int argc, char **argv)
     const char *sparse[] = {"spmis.search=sparse"};
     const char *low_conf[] = {"spmis.search=low-confidence", "spmis.search_confidence=3"};
     const char *hist_temporal[] = {"history=temporal"};
+    /* A 4 px start growing by 1.5 per tap keeps most taps inside 24 x 16, so pixels really move to
+     * other cells (with the paper's 30 px most taps fall outside and the own cell is the fallback). */
+    const char *far_cells[] = {"spmis.search_radius=4", "spmis.search_growth=1.5"};
 
-    check(METHOD_RESTIR_PT, "pillars", 2048, none, 1, 1);
+    check(METHOD_RESTIR_PT, "pillars", 4096, none, 1, 1); /* worst |t| 4.17 at 2048 runs: heavy tails */
     check(METHOD_RESTIR_PT, "cornell", 1024, none, 1, 1);
-    check(METHOD_RESTIR_PT, "pillars", 1024, no_adjust, 1, 1);
+    check(METHOD_RESTIR_PT, "pillars", 1024, far_cells, 2, 1);
+    check(METHOD_RESTIR_PT, "pillars", 4096, no_adjust, 1, 1); /* heavy tails: worst |t| 5.6 at 1024 runs, 4.0 at 4096 */
+    check(METHOD_RESTIR_PT, "cornell", 1024, no_adjust, 1, 1);
     check(METHOD_RESTIR_PT, "pillars", 1024, one, 1, 1);
+    check(METHOD_RESTIR_PT, "pillars", 1024, hist_temporal, 1, 1);
 
-    check(METHOD_RESTIR_DI, "pillars", 1024, none, 1, 1);
+    check(METHOD_RESTIR_DI, "pillars", 2048, none, 1, 1);
     check(METHOD_RESTIR_DI, "cornell", 2048, none, 1, 1);
-    check(METHOD_RESTIR_DI, "pillars", 1024, no_adjust, 1, 1);
-    check(METHOD_RESTIR_DI, "pillars", 1024, one, 1, 1);
-    check(METHOD_RESTIR_DI, "pillars", 1024, all_cell, 2, 1);
-    check(METHOD_RESTIR_DI, "cornell", 1024, by_conf, 2, 1);
+    check(METHOD_RESTIR_DI, "pillars", 2048, no_adjust, 1, 1);
+    check(METHOD_RESTIR_DI, "pillars", 2048, one, 1, 1);
+    check(METHOD_RESTIR_DI, "cornell", 2048, one, 1, 1);
+    check(METHOD_RESTIR_DI, "pillars", 2048, far_cells, 2, 1);
+    check(METHOD_RESTIR_DI, "pillars", 2048, all_cell, 2, 1);
+    check(METHOD_RESTIR_DI, "cornell", 4096, by_conf, 2, 1); /* worst |t| 5.5 at 1024 runs, 3.6 at 4096 */
     check(METHOD_RESTIR_PT, "pillars", 1024, low_conf, 2, 1);
-    check(METHOD_RESTIR_DI, "pillars", 1024, hist_temporal, 1, 1);
+    check(METHOD_RESTIR_DI, "pillars", 2048, hist_temporal, 1, 1);
     /* BIASED option: its bias is printed (pooled z, relative bias of the image mean), not asserted. */
-    check(METHOD_RESTIR_DI, "pillars", 1024, sparse, 1, 0);
+    check(METHOD_RESTIR_DI, "pillars", 2048, sparse, 1, 0);
     return test_finish();
 }
