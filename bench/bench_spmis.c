@@ -95,6 +95,16 @@ static void run_config(const struct scene *s, enum method_id m, const struct ben
     free(mask);
 }
 
+/* The reference of method m's integrand for the last frame of the camera path. */
+static float *last_frame_reference(const struct bench_spmis_cfg *c, enum method_id m, const struct scene *s)
+{
+    struct render_params p;
+    render_params_defaults(&p);
+    p.width = c->width;
+    p.height = c->height;
+    return bench_reference(s, m, &p, (float)(SPMIS_FRAMES - 1), 1, c->ref_spp);
+}
+
 static void free_result(struct config_result *r)
 {
     free(r->image);
@@ -198,11 +208,7 @@ static void compare_scenes(const struct bench_spmis_cfg *c, enum method_id m, co
     const char *pass_scene[8];
     for (int sc = 0; sc < n; sc++) {
         struct scene s = bench_load_scene(scenes[sc]);
-        struct render_params p;
-        render_params_defaults(&p);
-        p.width = c->width;
-        p.height = c->height;
-        float *ref = bench_reference(&s, m, &p, (float)(SPMIS_FRAMES - 1), 1, c->ref_spp);
+        float *ref = last_frame_reference(c, m, &s);
         struct config_result std_r, sp_r, eq_r;
         run_config(&s, m, c, STANDARD, ref, &std_r);
         run_config(&s, m, c, SPMIS, ref, &sp_r);
@@ -290,11 +296,7 @@ static void compare_scenes(const struct bench_spmis_cfg *c, enum method_id m, co
 static void ablations(const struct bench_spmis_cfg *c, enum method_id m, const char *scene)
 {
     struct scene s = bench_load_scene(scene);
-    struct render_params p;
-    render_params_defaults(&p);
-    p.width = c->width;
-    p.height = c->height;
-    float *ref = bench_reference(&s, m, &p, (float)(SPMIS_FRAMES - 1), 1, c->ref_spp);
+    float *ref = last_frame_reference(c, m, &s);
     struct config_result base;
     run_config(&s, m, c, STANDARD, ref, &base);
     static const char *const groups[][6] = {
@@ -337,11 +339,7 @@ static void ablations(const struct bench_spmis_cfg *c, enum method_id m, const c
 static void temporal_interplay(const struct bench_spmis_cfg *c, enum method_id m, const char *scene)
 {
     struct scene s = bench_load_scene(scene);
-    struct render_params p;
-    render_params_defaults(&p);
-    p.width = c->width;
-    p.height = c->height;
-    float *ref = bench_reference(&s, m, &p, (float)(SPMIS_FRAMES - 1), 1, c->ref_spp);
+    float *ref = last_frame_reference(c, m, &s);
     static const char *const regimes[3][2] = {{"temporal on", ""},
                                               {"history before spatial reuse", ":history=temporal"},
                                               {"temporal off", ":temporal=off"}};
