@@ -104,6 +104,17 @@ static inline double chi2_pooled(const double *observed, const double *expected,
 
 /* Sidak-corrected per-test significance so that the family of num_tests tests rejects a
  * correct implementation with probability alpha overall. */
+/* p-value of observed counts against probabilities prob[0..n) over `trials` draws (n <= 512),
+ * cells with expected count < 5 pooled. */
+static inline double chi2_counts(const double *observed, const double *prob, int n, double trials, int *dof)
+{
+    double expected[512];
+    for (int i = 0; i < n; i++)
+        expected[i] = prob[i] * trials;
+    double stat = chi2_pooled(observed, expected, n, dof);
+    return chi2_pvalue(stat, *dof);
+}
+
 static inline double chi2_sidak(double alpha, int num_tests) { return 1.0 - pow(1.0 - alpha, 1.0 / num_tests); }
 
 #endif

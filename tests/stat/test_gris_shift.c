@@ -24,6 +24,7 @@
 #include "restir/mis.h"
 #include "restir/reservoir.h"
 #include "synthetic_domains.h"
+#include "synthetic_integrand.h"
 #include "test_util.h"
 
 #include <math.h>
@@ -38,39 +39,8 @@
 #define REL_MAX 0.01          /* unbiased runs: relative error below 1% as a sanity bound */
 #define RIS_K 3               /* candidates of the inner RIS that makes W a genuine RIS UCW */
 
-static const double kPi = 3.14159265358979323846;
+/* ---------------- target domain: integrand (synthetic_integrand.h), the two targets ---------- */
 
-/* ---------------- target domain: integrand, its antiderivative, the two targets ------------- */
-
-#define SPIKE_C 0.8
-#define SPIKE_H 0.03
-#define SPIKE_A 6.0
-
-static double tent(double y)
-{
-    double d = fabs(y - SPIKE_C);
-    return d < SPIKE_H ? SPIKE_A * (1.0 - d / SPIKE_H) : 0.0;
-}
-static double tent_cdf(double y)
-{
-    double lo = SPIKE_C - SPIKE_H, hi = SPIKE_C + SPIKE_H;
-    if (y <= lo)
-        return 0.0;
-    if (y >= hi)
-        return SPIKE_A * SPIKE_H;
-    if (y <= SPIKE_C)
-        return SPIKE_A * (y - lo) * (y - lo) / (2.0 * SPIKE_H);
-    return SPIKE_A * SPIKE_H - SPIKE_A * (hi - y) * (hi - y) / (2.0 * SPIKE_H);
-}
-static double sin2(double y)
-{
-    double s = sin(kPi * y);
-    return s * s;
-}
-static double f0(double y) { return 0.25 + sin2(y) + tent(y); }
-/* Antiderivative of f_0: 0.25 y + y/2 - sin(2 pi y) / (4 pi) + tent CDF. */
-static double f0_cdf(double y) { return 0.75 * y - sin(2.0 * kPi * y) / (4.0 * kPi) + tent_cdf(y); }
-static double f0_int(double a, double b) { return f0_cdf(b) - f0_cdf(a); }
 
 /* Target of the target domain: TARGET_F uses p_hat_0 = f_0 (then f_0(Y) W_Y = sum w and the WRS
  * pick is irrelevant); TARGET_SMOOTH uses p_hat_0 = 0.35 + sin^2(pi y), which ignores the spike,
@@ -81,7 +51,7 @@ static double phat0(enum target t, double y)
 {
     if (y < 0.0 || y >= 1.0)
         return 0.0;
-    return t == TARGET_F ? f0(y) : 0.35 + sin2(y);
+    return t == TARGET_F ? synthetic_f0(y) : 0.35 + synthetic_sin2(y);
 }
 
 /* ---------------- domains: densities, source targets, shift maps ------------------------------ */
@@ -183,7 +153,7 @@ static double gris_once(pcg32 *rng, enum restir_mis mode, enum target t, enum in
             ysel = y[j];
     }
     double Wy = (double)restir_gris_contribution_weight(&r, (float)phat0(t, ysel)); /* Eq. 7 */
-    return f0(ysel) * Wy;
+    return synthetic_f0(ysel) * Wy;
 }
 
 /* ---------------- what 1/M converges to -------------------------------------------------------
@@ -215,7 +185,7 @@ static double reach_integral(int k, double lo, double hi)
         ya = fmin(fmax(ya, 0.0), 1.0);
         yb = fmin(fmax(yb, 0.0), 1.0);
         if (yb > ya)
-            sum += f0_int(ya, yb);
+            sum += synthetic_f0_int(ya, yb);
     }
     return sum;
 }
@@ -274,7 +244,7 @@ static double row(const char *mode, enum target t, enum inputs in, const struct 
 
 int main(void)
 {
-    const double exact = f0_int(0.0, 1.0);
+    const double exact = synthetic_f0_int(0.0, 1.0);
     EXPECT_NEAR(exact, 0.93, 1e-12, "closed-form integral of f_0");
     printf("GRIS with failing non-trivial shifts, %ld trials per row (1/M: %ld), c = (%g, %g, %g, "
            "%g)\n",

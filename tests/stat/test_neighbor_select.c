@@ -57,16 +57,6 @@ static double wsum(const float *w, int n)
     return s;
 }
 
-/* p-value of observed counts (total trials) against cell probabilities prob[0..n). */
-static double chi2_counts(const double *observed, const double *prob, int n, double trials, int *dof)
-{
-    double expected[512];
-    for (int i = 0; i < n; i++)
-        expected[i] = prob[i] * trials;
-    double stat = chi2_pooled(observed, expected, n, dof);
-    return chi2_pvalue(stat, *dof);
-}
-
 /* ---- 1. m = 1: A-Chao ---------------------------------------------------------------------- */
 
 static void test_chao(void)

@@ -51,6 +51,7 @@
 #include "restir/reservoir.h"
 #include "restir/spmis.h"
 #include "synthetic_domains.h"
+#include "synthetic_integrand.h"
 #include "test_util.h"
 
 #include <math.h>
@@ -75,30 +76,13 @@
 #define EXACT_TOL 1e-5        /* deterministic identities (enumeration, partition of unity) */
 #define CANONICAL 0           /* the canonical pixel of the cell */
 
-static const double kPi = 3.14159265358979323846;
+/* ---------------- target domain: integrand (synthetic_integrand.h), the canonical target ------ */
 
-/* ---------------- target domain: integrand, its integral, the canonical target ---------------- */
-
-#define SPIKE_C 0.8
-#define SPIKE_H 0.03
-#define SPIKE_A 6.0
-
-static double tent(double y)
-{
-    double d = fabs(y - SPIKE_C);
-    return d < SPIKE_H ? SPIKE_A * (1.0 - d / SPIKE_H) : 0.0;
-}
-static double sin2(double y)
-{
-    double s = sin(kPi * y);
-    return s * s;
-}
-static double f0(double y) { return (y < 0.0 || y >= 1.0) ? 0.0 : 0.25 + sin2(y) + tent(y); }
 /* int_0^1 f_0 = 0.25 + 1/2 + (area of the tent) */
 static double f0_integral(void) { return 0.25 + 0.5 + SPIKE_A * SPIKE_H; }
 
 /* p_hat = p_hat_0, the target of the canonical (and target) domain: ignores the spike. */
-static double phat0(double y) { return (y < 0.0 || y >= 1.0) ? 0.0 : 0.35 + sin2(y); }
+static double phat0(double y) { return (y < 0.0 || y >= 1.0) ? 0.0 : 0.35 + synthetic_sin2(y); }
 
 /* ---------------- domains -------------------------------------------------------------------- */
 
@@ -290,7 +274,7 @@ static double spmis_once(pcg32 *rng, struct restir_cells *cells, const struct co
             ysel = y;
     }
     double Wy = (double)restir_gris_contribution_weight(&r, (float)phat0(ysel)); /* Eq. 7 */
-    return f0(ysel) * Wy;
+    return synthetic_f0(ysel) * Wy;
 }
 
 /* ---------------- statistics and driver ------------------------------------------------------- */

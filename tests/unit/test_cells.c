@@ -22,16 +22,6 @@
 
 static double alpha_i;
 
-/* p-value of observed counts against probabilities prob[0..n) over `trials` draws. */
-static double chi2_counts(const double *observed, const double *prob, int n, double trials, int *dof)
-{
-    double expected[512];
-    for (int i = 0; i < n; i++)
-        expected[i] = prob[i] * trials;
-    double stat = chi2_pooled(observed, expected, n, dof);
-    return chi2_pvalue(stat, *dof);
-}
-
 /* ---- 1. PCG hash and cell keys -------------------------------------------------------------- */
 
 /* Bucket of a normal component by the header's rule: floor((n + 1) bins / 2), clamped. */
