@@ -64,43 +64,120 @@ static void exr_fail(char *msg, const char *path, const char *what, exr_result_t
         set_msg(msg, "%s: %s: %s", path, what, exr_get_default_error_message(rv));
 }
 
-/* Points the encoder's channels at the interleaved source rows of this chunk. */
-static int exr_bind_encode(exr_encode_pipeline_t *enc, const float *rgb, int w, int start_y)
+/* Longest layer name we accept and most layers per file; both far beyond any real use. The name
+ * limit keeps "name.R" within the library's long-name limit (255 bytes). */
+#define EXR_LAYER_NAME_MAX 200
+#define EXR_MAX_LAYERS 256
+
+/* The channel name of component c (0 = R, 1 = G, 2 = B) of a layer: "R" for the default
+ * layer (NULL or ""), otherwise "layer.R". out holds EXR_LAYER_NAME_MAX + 3 bytes. */
+static void exr_channel_name(char *out, size_t n, const char *layer, int c)
 {
+    static const char comp[3] = {'R', 'G', 'B'};
+    if (!layer || !layer[0])
+        snprintf(out, n, "%c", comp[c]);
+    else
+        snprintf(out, n, "%s.%c", layer, comp[c]);
+}
+
+static int exr_is_default_layer(const char *name)
+{
+    return !name || !name[0];
+}
+
+/* Checks the layer list before anything touches the disk: sources present, at most one default
+ * layer, names without '.' (which would make a nested or empty layer), not too long, unique. */
+static int exr_check_layers(const char *path, const struct exr_layer *layers, int n, char *msg)
+{
+    if (!layers || n < 1 || n > EXR_MAX_LAYERS) {
+        set_msg(msg, "%s: cannot write EXR with %d layers (1 to %d allowed)", path, n,
+                EXR_MAX_LAYERS);
+        return -1;
+    }
+    for (int i = 0; i < n; i++) {
+        const char *name = layers[i].name;
+        const char *shown = exr_is_default_layer(name) ? "(default)" : name;
+        if (!layers[i].rgb) {
+            set_msg(msg, "%s: EXR layer '%.200s' has no pixels", path, shown);
+            return -1;
+        }
+        if (!exr_is_default_layer(name)) {
+            size_t len = strlen(name);
+            if (len > EXR_LAYER_NAME_MAX) {
+                set_msg(msg, "%s: EXR layer name '%.40s...' is longer than %d bytes", path, name,
+                        EXR_LAYER_NAME_MAX);
+                return -1;
+            }
+            if (strchr(name, '.')) {
+                set_msg(msg, "%s: EXR layer name '%s' contains '.' (layer names must be plain "
+                             "words such as \"primal\" or \"dx\")",
+                        path, name);
+                return -1;
+            }
+        }
+        for (int j = 0; j < i; j++) {
+            const char *other = layers[j].name;
+            int same = exr_is_default_layer(name) ? exr_is_default_layer(other)
+                                                  : !exr_is_default_layer(other) &&
+                                                        strcmp(name, other) == 0;
+            if (same) {
+                set_msg(msg, "%s: EXR layer '%.200s' is given twice (layers %d and %d)", path,
+                        shown, j, i);
+                return -1;
+            }
+        }
+    }
+    return 0;
+}
+
+/* Points the encoder's channels at the interleaved source rows of this chunk: channel
+ * "layer.C" (or "C" for the default layer) reads component C of that layer's buffer. */
+static int exr_bind_encode(exr_encode_pipeline_t *enc, const struct exr_layer *layers, int n,
+                           int w, int start_y)
+{
+    char name[EXR_LAYER_NAME_MAX + 3];
     for (int c = 0; c < enc->channel_count; c++) {
         exr_coding_channel_info_t *ch = &enc->channels[c];
-        int off;
-        if (strcmp(ch->channel_name, "R") == 0)
-            off = 0;
-        else if (strcmp(ch->channel_name, "G") == 0)
-            off = 1;
-        else if (strcmp(ch->channel_name, "B") == 0)
-            off = 2;
-        else
+        const float *src = NULL;
+        for (int l = 0; l < n && !src; l++)
+            for (int k = 0; k < 3 && !src; k++) {
+                exr_channel_name(name, sizeof name, layers[l].name, k);
+                if (strcmp(ch->channel_name, name) == 0)
+                    src = layers[l].rgb + ((size_t)start_y * (size_t)w * 3 + (size_t)k);
+            }
+        if (!src)
             return -1;
         ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
         ch->user_line_stride = 3 * (int32_t)sizeof(float) * w;
         ch->user_data_type = EXR_PIXEL_FLOAT;
         ch->user_bytes_per_element = (int16_t)sizeof(float);
-        ch->encode_from_ptr = (const uint8_t *)(rgb + ((size_t)start_y * (size_t)w * 3 + (size_t)off));
+        ch->encode_from_ptr = (const uint8_t *)src;
     }
     return 0;
 }
 
-static int exr_write_body(exr_context_t ctxt, const char *path, const float *rgb, int w, int h,
-                          char *msg)
+static int exr_write_body(exr_context_t ctxt, const char *path, const struct exr_layer *layers,
+                          int n, int w, int h, char *msg)
 {
     int part = 0;
     exr_result_t rv = exr_add_part(ctxt, NULL, EXR_STORAGE_SCANLINE, &part);
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_initialize_required_attr_simple(ctxt, part, w, h, EXR_COMPRESSION_ZIP);
+    /* Names past 31 bytes need the file's long-name flag (OpenEXR 1.7+ readers); set it only
+     * then, so files with short names stay readable everywhere. */
+    int long_names = 0;
+    for (int l = 0; l < n; l++)
+        long_names |= !exr_is_default_layer(layers[l].name) && strlen(layers[l].name) + 2 > 31;
+    if (rv == EXR_ERR_SUCCESS && long_names)
+        rv = exr_set_longname_support(ctxt, 1);
     /* Channel order in the file is alphabetical; the library sorts the list itself. */
-    if (rv == EXR_ERR_SUCCESS)
-        rv = exr_add_channel(ctxt, part, "B", EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
-    if (rv == EXR_ERR_SUCCESS)
-        rv = exr_add_channel(ctxt, part, "G", EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
-    if (rv == EXR_ERR_SUCCESS)
-        rv = exr_add_channel(ctxt, part, "R", EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+    char name[EXR_LAYER_NAME_MAX + 3];
+    for (int l = 0; l < n && rv == EXR_ERR_SUCCESS; l++)
+        for (int k = 2; k >= 0 && rv == EXR_ERR_SUCCESS; k--) {
+            exr_channel_name(name, sizeof name, layers[l].name, k);
+            rv = exr_add_channel(ctxt, part, name, EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC,
+                                 1, 1);
+        }
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_write_header(ctxt);
     if (rv != EXR_ERR_SUCCESS) {
@@ -130,7 +207,7 @@ static int exr_write_body(exr_context_t ctxt, const char *path, const float *rgb
                 rv = exr_encoding_update(ctxt, part, &cinfo, &enc);
             }
         }
-        if (rv == EXR_ERR_SUCCESS && exr_bind_encode(&enc, rgb, w, cinfo.start_y) != 0) {
+        if (rv == EXR_ERR_SUCCESS && exr_bind_encode(&enc, layers, n, w, cinfo.start_y) != 0) {
             set_msg(msg, "%s: unexpected channel in EXR encoder", path);
             status = -1;
             break;
@@ -149,12 +226,15 @@ static int exr_write_body(exr_context_t ctxt, const char *path, const float *rgb
     return status;
 }
 
-int exr_write_rgb(const char *path, const float *rgb, int w, int h, char *msg)
+int exr_write_layers(const char *path, const struct exr_layer *layers, int n, int w, int h,
+                     char *msg)
 {
-    if (w <= 0 || h <= 0 || w > EXR_MAX_SIDE || h > EXR_MAX_SIDE || !rgb) {
+    if (w <= 0 || h <= 0 || w > EXR_MAX_SIDE || h > EXR_MAX_SIDE) {
         set_msg(msg, "%s: cannot write EXR of invalid size %dx%d", path, w, h);
         return -1;
     }
+    if (exr_check_layers(path, layers, n, msg) != 0)
+        return -1;
     char tmp[EXR_PATH_MAX + 32];
     if (strlen(path) >= EXR_PATH_MAX) {
         set_msg(msg, "%.200s...: output path is too long", path);
@@ -181,7 +261,7 @@ int exr_write_rgb(const char *path, const float *rgb, int w, int h, char *msg)
         remove(tmp);
         return -1;
     }
-    int status = exr_write_body(ctxt, path, rgb, w, h, msg);
+    int status = exr_write_body(ctxt, path, layers, n, w, h, msg);
     rv = exr_finish(&ctxt);
     if (status == 0 && rv != EXR_ERR_SUCCESS) {
         exr_fail(msg, path, "cannot finish EXR file", rv);
@@ -192,6 +272,16 @@ int exr_write_rgb(const char *path, const float *rgb, int w, int h, char *msg)
         return -1;
     }
     return io_commit(tmp, path, msg);
+}
+
+int exr_write_rgb(const char *path, const float *rgb, int w, int h, char *msg)
+{
+    if (!rgb) {
+        set_msg(msg, "%s: cannot write EXR of invalid size %dx%d (no pixels)", path, w, h);
+        return -1;
+    }
+    struct exr_layer layer = {NULL, rgb};
+    return exr_write_layers(path, &layer, 1, w, h, msg);
 }
 
 /* Checks the four magic bytes so that missing and foreign files get a precise message. */
@@ -213,7 +303,7 @@ static int exr_probe_file(const char *path, char *msg)
     return 0;
 }
 
-/* Finds channel index for R/G/B in the channel list; returns -1 where absent. */
+/* Finds a channel's index in the channel list; returns -1 where absent. */
 static int exr_find_channel(const exr_attr_chlist_t *chl, const char *name)
 {
     for (int i = 0; i < chl->num_channels; i++)
@@ -222,18 +312,47 @@ static int exr_find_channel(const exr_attr_chlist_t *chl, const char *name)
     return -1;
 }
 
-/* Points the decoder's R, G, B channels at this chunk's rows of the output; skips the others. */
-static void exr_bind_decode(exr_decode_pipeline_t *dec, float *out, int w, int row)
+/* Writes the file's layers ("default" for channels without a '.', else the part before the last
+ * '.') as a comma-separated list into out, each once, cut short with "..." when it does not fit. */
+static void exr_list_layers(const exr_attr_chlist_t *chl, char *out, size_t n)
+{
+    size_t used = 0;
+    out[0] = '\0';
+    for (int i = 0; i < chl->num_channels; i++) {
+        const char *name = chl->entries[i].name.str;
+        const char *dot = strrchr(name, '.');
+        int len = dot ? (int)(dot - name) : 7;
+        const char *shown = dot ? name : "default";
+        int seen = 0;
+        for (int j = 0; j < i && !seen; j++) {
+            const char *prev = chl->entries[j].name.str;
+            const char *pdot = strrchr(prev, '.');
+            seen = dot ? pdot && pdot - prev == len && strncmp(prev, name, (size_t)len) == 0
+                       : !pdot;
+        }
+        if (seen)
+            continue;
+        int wrote = snprintf(out + used, n - used, "%s%.*s", used ? ", " : "", len, shown);
+        if (wrote < 0 || (size_t)wrote >= n - used) {
+            if (n >= 4)
+                memcpy(out + n - 4, "...", 4);
+            return;
+        }
+        used += (size_t)wrote;
+    }
+}
+
+/* Points the decoder's channels names[0..2] at this chunk's rows of the output as R, G, B;
+ * skips all other channels. */
+static void exr_bind_decode(exr_decode_pipeline_t *dec, char names[3][EXR_LAYER_NAME_MAX + 56],
+                            float *out, int w, int row)
 {
     for (int c = 0; c < dec->channel_count; c++) {
         exr_coding_channel_info_t *ch = &dec->channels[c];
         int off = -1;
-        if (strcmp(ch->channel_name, "R") == 0)
-            off = 0;
-        else if (strcmp(ch->channel_name, "G") == 0)
-            off = 1;
-        else if (strcmp(ch->channel_name, "B") == 0)
-            off = 2;
+        for (int k = 0; k < 3 && off < 0; k++)
+            if (strcmp(ch->channel_name, names[k]) == 0)
+                off = k;
         if (off < 0) {
             ch->decode_to_ptr = NULL;
             continue;
@@ -246,8 +365,9 @@ static void exr_bind_decode(exr_decode_pipeline_t *dec, float *out, int w, int r
     }
 }
 
-static int exr_read_body(exr_context_t ctxt, const char *path, float **rgb, int *w_out, int *h_out,
-                         char *msg)
+/* Reads the R, G, B channels of layer (NULL or "" = the default layer's plain R, G, B). */
+static int exr_read_body(exr_context_t ctxt, const char *path, const char *layer, float **rgb,
+                         int *w_out, int *h_out, char *msg)
 {
     int parts = 0;
     exr_result_t rv = exr_get_count(ctxt, &parts);
@@ -262,11 +382,10 @@ static int exr_read_body(exr_context_t ctxt, const char *path, float **rgb, int 
         return -1;
     }
     if (storage != EXR_STORAGE_SCANLINE) {
-        snprintf(msg, RESTIR_MSG_LEN,
-                 "%s: unsupported EXR layout (%s); only scanline images can be read", path,
-                 storage == EXR_STORAGE_TILED           ? "tiled"
-                 : storage == EXR_STORAGE_DEEP_SCANLINE ? "deep scanline"
-                                                        : "deep tiled");
+        set_msg(msg, "%s: unsupported EXR layout (%s); only scanline images can be read", path,
+                storage == EXR_STORAGE_TILED           ? "tiled"
+                : storage == EXR_STORAGE_DEEP_SCANLINE ? "deep scanline"
+                                                       : "deep tiled");
         return -1;
     }
 
@@ -289,23 +408,32 @@ static int exr_read_body(exr_context_t ctxt, const char *path, float **rgb, int 
         exr_fail(msg, path, "cannot read EXR channel list", rv);
         return -1;
     }
-    static const char *const names[3] = {"R", "G", "B"};
+    /* Room for a name longer than any accepted layer, so an over-long request fails as missing. */
+    char names[3][EXR_LAYER_NAME_MAX + 56];
+    for (int c = 0; c < 3; c++)
+        exr_channel_name(names[c], sizeof names[c], layer, c);
     for (int c = 0; c < 3; c++) {
         int i = exr_find_channel(chl, names[c]);
         if (i < 0) {
-            set_msg(msg, "%s: EXR has no '%s' channel (R, G and B are required)",
-                     path, names[c]);
+            if (exr_is_default_layer(layer)) {
+                set_msg(msg, "%s: EXR has no '%s' channel (R, G and B are required)", path,
+                        names[c]);
+            } else {
+                char have[160];
+                exr_list_layers(chl, have, sizeof have);
+                set_msg(msg, "%s: EXR has no layer '%.200s' (channel '%s' is missing; layers "
+                             "in the file: %s)",
+                        path, layer, names[c], have[0] ? have : "none");
+            }
             return -1;
         }
         const exr_attr_chlist_entry_t *e = &chl->entries[i];
         if (e->pixel_type != EXR_PIXEL_HALF && e->pixel_type != EXR_PIXEL_FLOAT) {
-            set_msg(msg, "%s: EXR channel '%s' is not half or float", path,
-                     names[c]);
+            set_msg(msg, "%s: EXR channel '%s' is not half or float", path, names[c]);
             return -1;
         }
         if (e->x_sampling != 1 || e->y_sampling != 1) {
-            set_msg(msg, "%s: EXR channel '%s' is subsampled (unsupported)", path,
-                     names[c]);
+            set_msg(msg, "%s: EXR channel '%s' is subsampled (unsupported)", path, names[c]);
             return -1;
         }
     }
@@ -347,7 +475,7 @@ static int exr_read_body(exr_context_t ctxt, const char *path, float **rgb, int 
                 status = -1;
                 break;
             }
-            exr_bind_decode(&dec, out, (int)w, (int)row);
+            exr_bind_decode(&dec, names, out, (int)w, (int)row);
             rv = exr_decoding_choose_default_routines(ctxt, 0, &dec);
         }
         if (rv == EXR_ERR_SUCCESS)
@@ -373,10 +501,15 @@ static int exr_read_body(exr_context_t ctxt, const char *path, float **rgb, int 
     return 0;
 }
 
-int exr_read_rgb(const char *path, float **rgb, int *w, int *h, char *msg)
+int exr_read_layer(const char *path, const char *layer, float **rgb, int *w, int *h, char *msg)
 {
     *rgb = NULL;
     *w = *h = 0;
+    if (layer && strlen(layer) > EXR_LAYER_NAME_MAX) {
+        set_msg(msg, "%s: EXR layer name '%.40s...' is longer than %d bytes", path, layer,
+                EXR_LAYER_NAME_MAX);
+        return -1;
+    }
     if (exr_probe_file(path, msg) != 0)
         return -1;
 
@@ -390,7 +523,12 @@ int exr_read_rgb(const char *path, float **rgb, int *w, int *h, char *msg)
             exr_finish(&ctxt);
         return -1;
     }
-    int status = exr_read_body(ctxt, path, rgb, w, h, msg);
+    int status = exr_read_body(ctxt, path, layer, rgb, w, h, msg);
     exr_finish(&ctxt);
     return status;
+}
+
+int exr_read_rgb(const char *path, float **rgb, int *w, int *h, char *msg)
+{
+    return exr_read_layer(path, NULL, rgb, w, h, msg);
 }

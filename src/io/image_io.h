@@ -1,17 +1,46 @@
-/* image_io.h: reading and writing RGB float images as OpenEXR (half or float channels, via the
- * OpenEXR C API) and tone-mapped 8-bit sRGB PNG. Writers write a temporary file and rename it,
- * so a failure never leaves a half-written output. Must never depend on render code. */
+/* image_io.h: reading and writing RGB float images as OpenEXR (half or float channels, one or
+ * more layers, via the OpenEXR C API), tone-mapped 8-bit sRGB PNG and false-colour PNG of
+ * signed images. Writers write a temporary file and rename it, so a failure never leaves a
+ * half-written output. Must never depend on render code. */
 #ifndef RESTIR_IO_IMAGE_IO_H
 #define RESTIR_IO_IMAGE_IO_H
 
-/* Writes interleaved RGB floats (w*h*3) as a 32-bit float EXR with channels R, G, B.
- * Returns 0, or -1 with msg (RESTIR_MSG_LEN) naming the file and the problem. */
+/* One RGB image of a multi-layer EXR: interleaved floats (w*h*3). name NULL or "" is the default
+ * layer, stored as the plain channels R, G, B; any other name is stored as name.R, name.G,
+ * name.B, which tev and the OpenEXR tools show as a layer called name. */
+struct exr_layer {
+    const char *name;
+    const float *rgb;
+};
+
+/* Writes n layers (1 to 256) of a w x h image as one scanline EXR of 32-bit float channels
+ * (ZIP compressed; bit-exact). Layer names must not contain '.' (so neither nested nor empty
+ * after a dot), must be at most 200 bytes, and must be unique (at most one default layer);
+ * these are checked before any file is created. Returns 0, or -1 with msg (RESTIR_MSG_LEN)
+ * naming the file and the problem. */
+int exr_write_layers(const char *path, const struct exr_layer *layers, int n, int w, int h,
+                     char *msg);
+/* Writes interleaved RGB floats (w*h*3) as a 32-bit float EXR with channels R, G, B: the
+ * one-layer case of exr_write_layers. Returns 0, or -1 with msg naming the file and problem. */
 int exr_write_rgb(const char *path, const float *rgb, int w, int h, char *msg);
-/* Reads R, G, B channels (half or float) into a newly malloc'ed interleaved buffer.
- * Returns 0, or -1 with msg naming the file and the problem (missing, not EXR, no RGB, ...). */
+/* Reads the R, G, B channels (half or float) into a newly malloc'ed interleaved buffer; other
+ * channels (alpha, named layers such as dx.R) are ignored. Returns 0, or -1 with msg naming the
+ * file and the problem (missing, not EXR, no RGB, ...). */
 int exr_read_rgb(const char *path, float **rgb, int *w, int *h, char *msg);
+/* Reads channels layer.R, layer.G, layer.B (half or float; layer NULL or "" = the default R, G,
+ * B, exactly as exr_read_rgb) into a newly malloc'ed interleaved buffer. A missing layer gives
+ * -1 with msg naming the file, the layer and the layers the file does have. */
+int exr_read_layer(const char *path, const char *layer, float **rgb, int *w, int *h, char *msg);
 /* Writes an 8-bit sRGB PNG of rgb * 2^exposure, clamped. Returns 0 or -1 with msg. */
 int png_write_srgb(const char *path, const float *rgb, int w, int h, float exposure, char *msg);
+/* Writes a false-colour 8-bit PNG of a signed image (a gradient or a difference): each pixel's
+ * luminance lum = 0.2126 R + 0.7152 G + 0.0722 B is shown on a diverging map with black at zero,
+ * so sparse gradients stay readable. With t = clamp(|lum| * scale, 0, 1)^(1/2.2), a positive
+ * pixel is (t, t^2/2, 0) (dark red to orange at t = 1), a negative one (0, t^2/2, t) (dark blue
+ * to sky blue); NaN is black, +-infinity is full colour. scale <= 0 (or not finite) chooses
+ * scale = 1 / (99th percentile of the finite |lum|); where that percentile is 0 (fewer than 1%
+ * of pixels nonzero), 1 / (largest |lum|); where every lum is 0, 1. Returns 0 or -1 with msg. */
+int png_write_signed(const char *path, const float *rgb, int w, int h, float scale, char *msg);
 
 /* Temporary sibling name for atomic writes: "<path>.tmp-<pid>". */
 void io_temp_path(const char *path, char *tmp, unsigned long tmp_len);

@@ -1,4 +1,5 @@
-/* png.c: tone-mapped 8-bit sRGB PNG output (exposure, clamp, sRGB transfer) through libpng.
+/* png.c: 8-bit PNG output through libpng: tone-mapped sRGB (exposure, clamp, sRGB transfer) and
+ * false colour for signed images (diverging map of luminance).
  * Must never depend on scenes, render code or anything that aborts on bad input. */
 #include "io/image_io.h"
 
@@ -7,6 +8,7 @@
 #include <png.h>
 
 #include <errno.h>
+#include <float.h>
 #include <stdarg.h>
 #include <math.h>
 #include <setjmp.h>
@@ -101,26 +103,9 @@ static int png_write_stream(FILE *f, const unsigned char *pixels, int w, int h, 
     return 0;
 }
 
-int png_write_srgb(const char *path, const float *rgb, int w, int h, float exposure, char *msg)
+/* Writes 8-bit RGB pixels (freed here) to path through a temporary file and a rename. */
+static int png_write_pixels(const char *path, unsigned char *pixels, int w, int h, char *msg)
 {
-    if (!rgb || w <= 0 || h <= 0 || w > 65536 || h > 65536) {
-        set_msg(msg, "%s: cannot write PNG of invalid size %dx%d", path, w, h);
-        return -1;
-    }
-    if (strlen(path) >= PNG_PATH_MAX) {
-        set_msg(msg, "%.200s...: output path is too long", path);
-        return -1;
-    }
-    float scale = exp2f(isfinite(exposure) ? exposure : 0.0f);
-    size_t n = (size_t)w * (size_t)h * 3;
-    unsigned char *pixels = malloc(n);
-    if (!pixels) {
-        set_msg(msg, "%s: out of memory for %dx%d PNG", path, w, h);
-        return -1;
-    }
-    for (size_t i = 0; i < n; i++)
-        pixels[i] = png_encode_value(rgb[i], scale);
-
     char tmp[PNG_PATH_MAX + 32];
     io_temp_path(path, tmp, sizeof tmp);
     FILE *f = fopen(tmp, "wb");
@@ -144,4 +129,113 @@ int png_write_srgb(const char *path, const float *rgb, int w, int h, float expos
         return -1;
     }
     return io_commit(tmp, path, msg);
+}
+
+/* Checks the arguments every PNG writer shares; returns 0 or -1 with msg. */
+static int png_check_args(const char *path, const float *rgb, int w, int h, char *msg)
+{
+    if (!rgb || w <= 0 || h <= 0 || w > 65536 || h > 65536) {
+        set_msg(msg, "%s: cannot write PNG of invalid size %dx%d", path, w, h);
+        return -1;
+    }
+    if (strlen(path) >= PNG_PATH_MAX) {
+        set_msg(msg, "%.200s...: output path is too long", path);
+        return -1;
+    }
+    return 0;
+}
+
+int png_write_srgb(const char *path, const float *rgb, int w, int h, float exposure, char *msg)
+{
+    if (png_check_args(path, rgb, w, h, msg) != 0)
+        return -1;
+    float scale = exp2f(isfinite(exposure) ? exposure : 0.0f);
+    size_t n = (size_t)w * (size_t)h * 3;
+    unsigned char *pixels = malloc(n);
+    if (!pixels) {
+        set_msg(msg, "%s: out of memory for %dx%d PNG", path, w, h);
+        return -1;
+    }
+    for (size_t i = 0; i < n; i++)
+        pixels[i] = png_encode_value(rgb[i], scale);
+    return png_write_pixels(path, pixels, w, h, msg);
+}
+
+static float png_luminance(const float *p)
+{
+    return 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
+}
+
+static int png_cmp_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
+
+/* The automatic scale of png_write_signed (see image_io.h): 1 / the 99th percentile (nearest
+ * rank) of the finite |lum|, else 1 / their maximum, else 1. Returns -1 when out of memory. */
+static int png_signed_auto_scale(const float *rgb, size_t npix, float *scale)
+{
+    float *mag = malloc(npix * sizeof(float));
+    if (!mag)
+        return -1;
+    size_t m = 0;
+    for (size_t i = 0; i < npix; i++) {
+        float l = fabsf(png_luminance(rgb + 3 * i));
+        if (isfinite(l))
+            mag[m++] = l;
+    }
+    float ref = 0.0f;
+    if (m > 0) {
+        qsort(mag, m, sizeof(float), png_cmp_float);
+        size_t rank = (size_t)ceil(0.99 * (double)m); /* 1-based nearest rank, 1..m */
+        ref = mag[rank > 0 ? rank - 1 : 0];
+        if (!(ref > 0.0f))
+            ref = mag[m - 1];
+    }
+    free(mag);
+    double s = ref > 0.0f ? 1.0 / (double)ref : 1.0;
+    *scale = s > (double)FLT_MAX ? FLT_MAX : (float)s;
+    return 0;
+}
+
+/* Encodes one signed luminance on the diverging map: black at zero, red-orange above, blue
+ * below; t is the display value |lum| * scale clamped to [0, 1] and raised to 1/2.2. */
+static void png_encode_signed(float lum, float scale, unsigned char *out)
+{
+    out[0] = out[1] = out[2] = 0;
+    if (isnan(lum) || lum == 0.0f)
+        return;
+    float x = fabsf(lum) * scale;
+    float t = x >= 1.0f ? 1.0f : powf(x, 1.0f / 2.2f);
+    if (!(t > 0.0f))
+        return;
+    unsigned char hi = (unsigned char)lrintf(t * 255.0f);
+    unsigned char mid = (unsigned char)lrintf(0.5f * t * t * 255.0f);
+    out[1] = mid;
+    if (lum > 0.0f)
+        out[0] = hi;
+    else
+        out[2] = hi;
+}
+
+int png_write_signed(const char *path, const float *rgb, int w, int h, float scale, char *msg)
+{
+    if (png_check_args(path, rgb, w, h, msg) != 0)
+        return -1;
+    size_t npix = (size_t)w * (size_t)h;
+    if (!(scale > 0.0f) || !isfinite(scale)) {
+        if (png_signed_auto_scale(rgb, npix, &scale) != 0) {
+            set_msg(msg, "%s: out of memory for %dx%d PNG", path, w, h);
+            return -1;
+        }
+    }
+    unsigned char *pixels = malloc(npix * 3);
+    if (!pixels) {
+        set_msg(msg, "%s: out of memory for %dx%d PNG", path, w, h);
+        return -1;
+    }
+    for (size_t i = 0; i < npix; i++)
+        png_encode_signed(png_luminance(rgb + 3 * i), scale, pixels + 3 * i);
+    return png_write_pixels(path, pixels, w, h, msg);
 }

@@ -1,4 +1,5 @@
-/* test_image_io.c: unit tests for EXR/PNG image files, atomic commits and the CSV/JSON writers.
+/* test_image_io.c: unit tests for EXR (one and several layers) and PNG (sRGB and signed false
+ * colour) image files, atomic commits and the CSV/JSON writers.
  * Must never depend on render code or scenes; writes only under a fresh /tmp directory. */
 #include "core/check.h"
 #include "io/image_io.h"
@@ -6,6 +7,7 @@
 #include "test_util.h"
 
 #include <openexr.h>
+#include <png.h>
 
 #include <dirent.h>
 #include <stdio.h>
@@ -336,6 +338,307 @@ static void test_png(void)
     EXPECT(count_temp_files(dir) == 0, "temporary file left");
 }
 
+/* Fills a w x h interleaved RGB image whose values depend on seed, with negative values and
+ * floats beyond half range so only a bit-exact float path reproduces it. */
+static float *make_layer_image(int w, int h, float seed)
+{
+    float *img = make_image(w, h);
+    for (int i = 0; i < w * h * 3; i++)
+        img[i] = img[i] * seed - seed * 0.125f * (float)(i % 3);
+    return img;
+}
+
+static int same_floats(const float *a, const float *b, int w, int h)
+{
+    return memcmp(a, b, (size_t)w * (size_t)h * 3 * sizeof(float)) == 0;
+}
+
+/* Reads layer (NULL = default through exr_read_rgb) and compares it bit for bit with want. */
+static void expect_layer(const char *path, const char *layer, const float *want, int w, int h)
+{
+    char msg[RESTIR_MSG_LEN];
+    float *back = NULL;
+    int bw = 0, bh = 0;
+    msg[0] = '\0';
+    int rc = layer ? exr_read_layer(path, layer, &back, &bw, &bh, msg)
+                   : exr_read_rgb(path, &back, &bw, &bh, msg);
+    EXPECT(rc == 0, "read layer %s: %s", layer ? layer : "(default)", msg);
+    if (rc == 0) {
+        EXPECT(bw == w && bh == h, "layer %s size %dx%d vs %dx%d", layer ? layer : "(default)",
+               bw, bh, w, h);
+        if (bw == w && bh == h)
+            EXPECT(same_floats(back, want, w, h), "layer %s not bit-exact",
+                   layer ? layer : "(default)");
+    }
+    free(back);
+}
+
+/* Channel names of the file's only part, in file order, joined by spaces. */
+static void channel_names(const char *path, char *out, size_t n)
+{
+    out[0] = '\0';
+    exr_context_t ctxt = NULL;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    if (exr_start_read(&ctxt, path, &init) != EXR_ERR_SUCCESS) {
+        if (ctxt)
+            exr_finish(&ctxt);
+        return;
+    }
+    const exr_attr_chlist_t *chl = NULL;
+    if (exr_get_channels(ctxt, 0, &chl) == EXR_ERR_SUCCESS && chl) {
+        size_t used = 0;
+        for (int i = 0; i < chl->num_channels && used < n; i++) {
+            int wrote = snprintf(out + used, n - used, "%s%s", i ? " " : "",
+                                 chl->entries[i].name.str);
+            if (wrote < 0)
+                break;
+            used += (size_t)wrote;
+        }
+        EXPECT(chl->entries[0].pixel_type == EXR_PIXEL_FLOAT, "channels are not 32-bit float");
+    }
+    exr_finish(&ctxt);
+}
+
+static void test_exr_layers(void)
+{
+    char path[256], msg[RESTIR_MSG_LEN], names[512];
+    join(path, sizeof path, "layers.exr");
+    int w = 13, h = 21;
+    float *def = make_layer_image(w, h, 1.0f);
+    float *primal = make_layer_image(w, h, 3.5f);
+    float *dx = make_layer_image(w, h, -0.75f);
+    struct exr_layer layers[3] = {{NULL, def}, {"primal", primal}, {"dx", dx}};
+    msg[0] = '\0';
+    EXPECT(exr_write_layers(path, layers, 3, w, h, msg) == 0, "exr_write_layers: %s", msg);
+    EXPECT(count_temp_files(dir) == 0, "temporary file left after layered write");
+    channel_names(path, names, sizeof names);
+    EXPECT(strcmp(names, "B G R dx.B dx.G dx.R primal.B primal.G primal.R") == 0,
+           "channel list: %s", names);
+    expect_layer(path, NULL, def, w, h);
+    expect_layer(path, "", def, w, h);
+    expect_layer(path, "primal", primal, w, h);
+    expect_layer(path, "dx", dx, w, h);
+    float *back = NULL;
+    int bw = 0, bh = 0;
+    EXPECT(exr_read_layer(path, NULL, &back, &bw, &bh, msg) == 0 && same_floats(back, def, w, h),
+           "exr_read_layer(NULL) differs from the default layer: %s", msg);
+    free(back);
+    back = NULL;
+
+    /* A missing layer names itself and the layers the file has. */
+    msg[0] = '\0';
+    EXPECT(exr_read_layer(path, "dy", &back, &bw, &bh, msg) == -1, "missing layer accepted");
+    EXPECT(back == NULL, "buffer set on failure");
+    EXPECT(strstr(msg, path) && strstr(msg, "'dy'"), "missing-layer message: %s", msg);
+    EXPECT(strstr(msg, "default") && strstr(msg, "primal") && strstr(msg, "dx"),
+           "missing-layer message lacks the file's layers: %s", msg);
+    printf("missing layer message: %s\n", msg);
+    remove(path);
+
+    /* Named layers sorting before and after the default channels ("A.B" < "B" < "Z.R"), the
+     * default given last, and no default at all. */
+    struct exr_layer order[3] = {{"Z", dx}, {"A", primal}, {"", def}};
+    EXPECT(exr_write_layers(path, order, 3, w, h, msg) == 0, "write A/Z layers: %s", msg);
+    channel_names(path, names, sizeof names);
+    EXPECT(strcmp(names, "A.B A.G A.R B G R Z.B Z.G Z.R") == 0, "channel list: %s", names);
+    expect_layer(path, NULL, def, w, h);
+    expect_layer(path, "A", primal, w, h);
+    expect_layer(path, "Z", dx, w, h);
+    EXPECT(exr_write_layers(path, order, 2, w, h, msg) == 0, "write without default: %s", msg);
+    expect_layer(path, "A", primal, w, h);
+    msg[0] = '\0';
+    EXPECT(exr_read_rgb(path, &back, &bw, &bh, msg) == -1, "file without R, G, B read as RGB");
+    EXPECT(strstr(msg, "'R'") != NULL, "message: %s", msg);
+    remove(path);
+
+    /* A name longer than the 31-byte short-name limit of old EXR readers. */
+    static const char long_name[] = "a_layer_name_of_more_than_thirty_one_bytes";
+    struct exr_layer longl[2] = {{NULL, def}, {long_name, dx}};
+    EXPECT(exr_write_layers(path, longl, 2, w, h, msg) == 0, "long layer name: %s", msg);
+    expect_layer(path, long_name, dx, w, h);
+    expect_layer(path, NULL, def, w, h);
+    remove(path);
+
+    /* exr_write_rgb is the one-layer case: its file has exactly R, G, B. */
+    EXPECT(exr_write_rgb(path, def, w, h, msg) == 0, "exr_write_rgb: %s", msg);
+    channel_names(path, names, sizeof names);
+    EXPECT(strcmp(names, "B G R") == 0, "exr_write_rgb channels: %s", names);
+    remove(path);
+
+    /* Bad layer lists are refused before anything is created. */
+    struct bad_case {
+        struct exr_layer layers[3];
+        int n;
+        const char *needle;
+    } bad[] = {
+        {{{"dx.", dx}}, 1, "'dx.'"},
+        {{{"a.b", dx}}, 1, "'a.b'"},
+        {{{".", dx}}, 1, "'.'"},
+        {{{".R", dx}}, 1, "'.R'"},
+        {{{NULL, def}, {"dx", dx}, {"dx", primal}}, 3, "'dx'"},
+        {{{NULL, def}, {"", dx}}, 2, "twice"},
+        {{{NULL, def}, {"dx", NULL}}, 2, "'dx'"},
+        {{{NULL, def}}, 0, "layers"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        msg[0] = '\0';
+        EXPECT(exr_write_layers(path, bad[k].layers, bad[k].n, w, h, msg) == -1,
+               "bad layer list %zu accepted", k);
+        EXPECT(strstr(msg, path) && strstr(msg, bad[k].needle), "bad list %zu message: %s", k,
+               msg);
+        EXPECT(file_size(path) == -1, "file left behind by bad layer list %zu", k);
+        EXPECT(count_temp_files(dir) == 0, "temporary file left by bad layer list %zu", k);
+    }
+    /* 200 bytes is the longest layer name accepted, on writing and on reading. */
+    char too_long[202];
+    memset(too_long, 'x', sizeof too_long - 1);
+    too_long[sizeof too_long - 1] = '\0';
+    struct exr_layer tl = {too_long, dx};
+    EXPECT(exr_write_layers(path, &tl, 1, w, h, msg) == -1, "201-byte layer name accepted");
+    EXPECT(file_size(path) == -1, "file left behind by too long a layer name");
+    EXPECT(exr_read_layer(path, too_long, &back, &bw, &bh, msg) == -1 && strstr(msg, "longer"),
+           "201-byte layer name read: %s", msg);
+    too_long[200] = '\0';
+    EXPECT(exr_write_layers(path, &tl, 1, w, h, msg) == 0, "200-byte layer name: %s", msg);
+    expect_layer(path, too_long, dx, w, h);
+    remove(path);
+    EXPECT(exr_write_layers(path, layers, 3, 0, h, msg) == -1, "zero width accepted");
+    EXPECT(count_temp_files(dir) == 0, "temporary file left");
+    free(def);
+    free(primal);
+    free(dx);
+}
+
+/* Decodes an 8-bit RGB PNG with libpng; returns a malloc'ed w*h*3 buffer or NULL. */
+static unsigned char *read_png_rgb(const char *path, int *w, int *h)
+{
+    png_image img;
+    memset(&img, 0, sizeof img);
+    img.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&img, path))
+        return NULL;
+    img.format = PNG_FORMAT_RGB;
+    unsigned char *buf = xmalloc(PNG_IMAGE_SIZE(img));
+    if (!png_image_finish_read(&img, NULL, buf, 0, NULL)) {
+        png_image_free(&img);
+        free(buf);
+        return NULL;
+    }
+    *w = (int)img.width;
+    *h = (int)img.height;
+    return buf;
+}
+
+static int red_dominant(const unsigned char *p)
+{
+    return p[0] > 0 && p[0] > p[1] && p[0] > p[2];
+}
+
+static int blue_dominant(const unsigned char *p)
+{
+    return p[2] > 0 && p[2] > p[0] && p[2] > p[1];
+}
+
+static void test_png_signed(void)
+{
+    char path[256], msg[RESTIR_MSG_LEN];
+    join(path, sizeof path, "grad.png");
+    /* Pixels: 0, +1 (white), -1, +0.25 green, -0.5 in red only (lum < 0), -0.0, NaN, +inf. */
+    enum { W = 4, H = 2 };
+    float img[W * H * 3] = {
+        0.0f, 0.0f, 0.0f,   1.0f, 1.0f, 1.0f,   -1.0f, -1.0f, -1.0f,   0.0f, 0.25f, 0.0f,
+        -0.5f, 0.0f, 0.0f,  -0.0f, -0.0f, -0.0f, (float)NAN, 0.0f, 0.0f, (float)INFINITY, 0.0f, 0.0f,
+    };
+    msg[0] = '\0';
+    EXPECT(png_write_signed(path, img, W, H, 1.0f, msg) == 0, "png_write_signed: %s", msg);
+    EXPECT(count_temp_files(dir) == 0, "temporary file left after signed PNG");
+    int w = 0, h = 0;
+    unsigned char *px = read_png_rgb(path, &w, &h);
+    EXPECT(px != NULL, "signed PNG does not decode");
+    if (px) {
+        EXPECT(w == W && h == H, "signed PNG size %dx%d", w, h);
+        const unsigned char *p = px;
+        EXPECT(p[0] == 0 && p[1] == 0 && p[2] == 0, "zero is %d %d %d", p[0], p[1], p[2]);
+        p = px + 3;
+        EXPECT(red_dominant(p) && p[0] == 255, "+1 is %d %d %d", p[0], p[1], p[2]);
+        p = px + 6;
+        EXPECT(blue_dominant(p) && p[2] == 255, "-1 is %d %d %d", p[0], p[1], p[2]);
+        EXPECT(px[3 + 1] == px[6 + 1], "map not symmetric: %d vs %d", px[4], px[7]);
+        p = px + 9;
+        EXPECT(red_dominant(p) && p[0] < 255, "+0.18 is %d %d %d", p[0], p[1], p[2]);
+        p = px + 12;
+        EXPECT(blue_dominant(p) && p[2] < 255, "red -0.5 is %d %d %d", p[0], p[1], p[2]);
+        p = px + 15;
+        EXPECT(p[0] == 0 && p[1] == 0 && p[2] == 0, "-0 is %d %d %d", p[0], p[1], p[2]);
+        p = px + 18;
+        EXPECT(p[0] == 0 && p[1] == 0 && p[2] == 0, "NaN is %d %d %d", p[0], p[1], p[2]);
+        p = px + 21;
+        EXPECT(red_dominant(p) && p[0] == 255, "+inf is %d %d %d", p[0], p[1], p[2]);
+        free(px);
+    }
+
+    /* Automatic scale: the 99th percentile of |lum| maps to full colour. 200 pixels: 0.01 * i
+     * for i < 198 (negative at odd i), then two outliers of 1000; the nearest-rank 99th
+     * percentile is the 198th value, 1.97, so pixel 197 is full blue and 99 about half. */
+    enum { N = 200 };
+    float *ramp = xmalloc(N * 3 * sizeof(float));
+    for (int i = 0; i < N; i++) {
+        float v = i < 198 ? 0.01f * (float)i * (i % 2 ? -1.0f : 1.0f) : 1000.0f;
+        ramp[3 * i] = ramp[3 * i + 1] = ramp[3 * i + 2] = v;
+    }
+    EXPECT(png_write_signed(path, ramp, N, 1, 0.0f, msg) == 0, "auto-scale write: %s", msg);
+    px = read_png_rgb(path, &w, &h);
+    EXPECT(px != NULL, "auto-scale PNG does not decode");
+    if (px) {
+        EXPECT(px[0] == 0 && px[1] == 0 && px[2] == 0, "auto: zero not black");
+        EXPECT(blue_dominant(px + 3 * 197) && px[3 * 197 + 2] == 255, "auto: 99th pct is %d",
+               px[3 * 197 + 2]);
+        EXPECT(blue_dominant(px + 3 * 99) && px[3 * 99 + 2] > 150 && px[3 * 99 + 2] < 240,
+               "auto: half of 99th pct is %d", px[3 * 99 + 2]);
+        EXPECT(red_dominant(px + 3 * 198) && px[3 * 198] == 255, "auto: outlier not saturated");
+        EXPECT(red_dominant(px + 3 * 2) && px[3 * 2] < px[3 * 98], "auto: not monotone");
+        free(px);
+    }
+
+    /* Sparse gradient (one nonzero pixel in 200): the percentile is 0, so the largest |lum|
+     * sets the scale; an all-zero image is all black. */
+    memset(ramp, 0, N * 3 * sizeof(float));
+    ramp[3 * 50 + 1] = -1e-3f;
+    EXPECT(png_write_signed(path, ramp, N, 1, -1.0f, msg) == 0, "sparse write: %s", msg);
+    px = read_png_rgb(path, &w, &h);
+    if (px) {
+        EXPECT(blue_dominant(px + 150) && px[152] == 255, "sparse: spike is %d %d %d", px[150],
+               px[151], px[152]);
+        int nonblack = 0;
+        for (int i = 0; i < N * 3; i++)
+            nonblack += px[i] != 0;
+        EXPECT(nonblack == 2, "sparse: %d nonzero bytes", nonblack);
+        free(px);
+    }
+    ramp[3 * 50 + 1] = 0.0f;
+    EXPECT(png_write_signed(path, ramp, N, 1, 0.0f, msg) == 0, "all-zero write: %s", msg);
+    px = read_png_rgb(path, &w, &h);
+    if (px) {
+        int nonblack = 0;
+        for (int i = 0; i < N * 3; i++)
+            nonblack += px[i] != 0;
+        EXPECT(nonblack == 0, "all-zero: %d nonzero bytes", nonblack);
+        free(px);
+    }
+    free(ramp);
+    remove(path);
+
+    char bad[256];
+    snprintf(bad, sizeof bad, "%s/no_such_dir/grad.png", dir);
+    msg[0] = '\0';
+    EXPECT(png_write_signed(bad, img, W, H, 1.0f, msg) == -1, "signed PNG into missing dir");
+    EXPECT(strstr(msg, bad) != NULL, "message lacks path: %s", msg);
+    EXPECT(png_write_signed(path, img, 0, H, 1.0f, msg) == -1, "zero width accepted");
+    EXPECT(png_write_signed(path, NULL, W, H, 1.0f, msg) == -1, "NULL pixels accepted");
+    EXPECT(file_size(path) == -1, "file left behind by a failed signed PNG");
+    EXPECT(count_temp_files(dir) == 0, "temporary file left");
+}
+
 static char *slurp(const char *path)
 {
     FILE *f = fopen(path, "rb");
@@ -432,7 +735,9 @@ int main(void)
     test_exr_round_trip(64, 37);
     test_exr_errors();
     test_exr_foreign_layouts();
+    test_exr_layers();
     test_png();
+    test_png_signed();
     test_reports();
     test_commit();
     remove_all(dir);
