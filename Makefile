@@ -3,7 +3,7 @@
 
 BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
-DEB_PACKAGES = build-essential cmake pkg-config libembree-dev libopenexr-dev libpng-dev libcjson-dev
+DEB_PACKAGES = build-essential cmake pkg-config libembree-dev libopenexr-dev libpng-dev libcjson-dev libfftw3-dev
 SUDO = $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 .PHONY: all deps build demo test bench asan clean

@@ -18,5 +18,7 @@ struct bench_spmis_options {
     int main, ablations, interplay; /* which tables */
 };
 void bench_spmis(const struct bench_spmis_options *o);
+/* The `poisson` section (bench_poisson.c): argv[0] is "poisson", then its options. */
+int bench_poisson(int argc, char **argv);
 
 #endif

@@ -321,6 +321,8 @@ int main(int argc, char **argv)
     struct bench_config c = {"many-lights", 640, 360, 17, 1024, 64};
     int run_passes = 0, run_equal = 0, run_temporal = 0, run_pt = 0, run_spmis = 0, quick = 0;
     struct bench_spmis_options so = {320, 180, 2, 1024, 0, 1, 1, 1};
+    if (argc > 1 && !strcmp(argv[1], "poisson")) /* its own options; not part of the default run */
+        return bench_poisson(argc - 1, argv + 1);
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "passes"))
             run_passes = 1;
@@ -351,6 +353,7 @@ int main(int argc, char **argv)
             c.temporal_frames = 16;
         } else {
             fprintf(stderr, "usage: restir_bench [passes] [equal-time] [temporal] [pt] [spmis] [--quick]\n"
+                    "       restir_bench poisson [--runs N]\n"
                     "       spmis options: [--spmis-res WxH] [--spmis-scaled] [--spmis-main | --spmis-ablations | --spmis-interplay]\n");
             return 2;
         }

@@ -1,0 +1,88 @@
+/* restir/poisson.h: screened Poisson reconstruction for gradient-domain rendering (002 Sec. 5
+ * "Reconstruction"; the solver of Kettunen et al. 2015 G-PT). Must never depend on a ray tracer,
+ * files or the renderer.
+ *
+ * Images are interleaved RGB floats, row-major, w*h*3 values. The gradient images hold forward
+ * differences, the convention of restir/gradient.h:
+ *   dx[p] ~ I(x+1, y) - I(x, y)   (the last column of dx is ignored)
+ *   dy[p] ~ I(x, y+1) - I(x, y)   (the last row of dy is ignored)
+ * Per channel the reconstruction I minimizes, over the rows r of the stacked system
+ *   r = alpha (I - P)   (one per pixel),   Dx I - Gx,   Dy I - Gy   (one per pixel pair),
+ * the energy
+ *   L2:  E(I) = alpha^2 |I - P|^2 + sum |Dx I - Gx|^2 + sum |Dy I - Gy|^2
+ *   L1:  the same rows in the L1 norm (approximated by IRLS, below),
+ * with P the primal image, Gx = dx, Gy = dy. L2's minimizer solves the normal equations
+ *   A I = b,   A = alpha^2 Id + Dx^T Dx + Dy^T Dy,   b = alpha^2 P + Dx^T Gx + Dy^T Gy,
+ * where Dx^T Dx + Dy^T Dy is the grid Laplacian with Neumann (reflective) boundaries.
+ *
+ * Shared conventions: a non-finite primal or gradient value (NaN, +-inf) is read as 0, so it
+ * cannot spread through the solve. The solves run in double precision; per-pixel loops use
+ * OpenMP. Every function returns 0, or -1 on bad input (w or h < 1, w*h too large, alpha <= 0
+ * or not finite, a NULL image pointer, bad solver parameters) or allocation failure; out is then
+ * left untouched and st (optional, may be NULL) is not written. out may not alias the inputs.
+ *
+ * Threading: the DCT path (RESTIR_POISSON_DCT, and the start of restir_poisson_l1) creates its
+ * FFTW plans on the calling thread for every call (FFTW_ESTIMATE, no wisdom is kept). FFTW's
+ * planner is not thread-safe; planning is serialized by an OpenMP named critical section, which
+ * covers callers that are OpenMP threads. Callers on other threading systems must not run DCT
+ * solves concurrently. The CG solver does not use FFTW. */
+#ifndef RESTIR_POISSON_H
+#define RESTIR_POISSON_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define RESTIR_POISSON_ALPHA 0.2f   /* G-PT's primal weight */
+#define RESTIR_POISSON_TOL 1e-6     /* CG relative residual */
+#define RESTIR_POISSON_L1_ITERATIONS 20
+#define RESTIR_POISSON_L1_CG_STEPS 50
+
+struct restir_poisson_stats {
+    int iterations;  /* CG iterations (the maximum over channels); 0 for the DCT solve; for L1 the
+                        CG steps of all reweightings together */
+    double residual; /* relative residual |b - A x| / |b| of the (last, for L1 the reweighted)
+                        normal equations, in double before rounding to float, max over channels
+                        (|b - A x| itself where |b| = 0) */
+    double ms;       /* wall time of the call */
+};
+
+enum restir_poisson_solver {
+    /* Direct solve: A is diagonalized by the 2D DCT-II (the Neumann path-graph Laplacian's
+     * eigenvectors are cos(pi k (j + 1/2) / n), eigenvalues 2 - 2 cos(pi k / n)), so
+     * I = DCT-III(DCT-II(b) / (alpha^2 + lambda_x + lambda_y)) with FFTW's REDFT10 / REDFT01.
+     * Exact up to rounding; tol and max_iters are ignored. */
+    RESTIR_POISSON_DCT = 0,
+    /* Jacobi-preconditioned conjugate gradient from x0 = primal until every channel's relative
+     * residual is <= tol or max_iters iterations ran. */
+    RESTIR_POISSON_CG
+};
+
+/* L2 reconstruction (the energy above). tol > 0 and max_iters >= 1 are required for CG
+ * (RESTIR_POISSON_TOL, e.g. 1000). Writes w*h*3 floats to out. */
+int restir_poisson_l2(int w, int h, const float *primal, const float *dx, const float *dy, float alpha,
+                      enum restir_poisson_solver solver, double tol, int max_iters, float *out,
+                      struct restir_poisson_stats *st);
+
+/* L1 reconstruction by iteratively reweighted least squares, after the public G-PT solver
+ * (Kettunen et al. 2015, preset "L1D"): starting from the exact L2 solution (DCT), `iterations`
+ * reweightings k = 1..iterations; each sets on every row (primal and gradient rows) the weight
+ *   w_r = 1 / (|e_r| + reg_k),   reg_k = 0.05 * 0.5^(k-1),
+ * with e_r the row's current residual (the primal row's includes the factor alpha) and |e_r| its
+ * Euclidean length over RGB, so one weight is shared by the three channels; weights are then
+ * scaled to mean 1 over all rows. The weighted normal equations
+ *   (alpha^2 Wp + Dx^T Wx Dx + Dy^T Wy Dy) I = alpha^2 Wp P + Dx^T Wx Gx + Dy^T Wy Gy
+ * get cg_steps Jacobi-preconditioned CG steps warm-started from the previous solution.
+ * Differences from the public code: it counts its first, unweighted CG solve (50 steps from the
+ * primal) as IRLS iteration 1, so its 20 iterations are 19 reweightings, and it uses plain CG
+ * and averages the weights over its 3N rows including the ignored last-column / last-row ones.
+ * Defaults: RESTIR_POISSON_L1_ITERATIONS, RESTIR_POISSON_L1_CG_STEPS; iterations >= 0 (0 gives
+ * the L2 solution), cg_steps >= 1. */
+int restir_poisson_l1(int w, int h, const float *primal, const float *dx, const float *dy, float alpha,
+                      int iterations, int cg_steps, float *out, struct restir_poisson_stats *st);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

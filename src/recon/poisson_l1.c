@@ -1,0 +1,98 @@
+/* poisson_l1.c: L1 screened Poisson reconstruction by IRLS (restir/poisson.h), after the public
+ * G-PT solver's "L1D" preset (see the header for where it differs). */
+#include "restir/poisson.h"
+
+#include "poisson_ops.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+
+static inline double rp_len3(double a, double b, double c)
+{
+    return sqrt(a * a + b * b + c * c);
+}
+
+/* IRLS weights 1 / (|e| + reg) of every row at the current x, scaled to mean 1 over the
+ * n + (w-1) h + w (h-1) rows. The ignored last-column / last-row entries are set to 0. */
+static void rp_weights(const struct rp_sys *s, double alpha, const float *primal, const float *dx, const float *dy,
+                       const double *x, double reg, double *wp, double *wx, double *wy)
+{
+    const int w = s->w, h = s->h;
+    double sum = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : sum)
+    for (int j = 0; j < h; j++) {
+        for (int i = 0; i < w; i++) {
+            const size_t p = (size_t)j * (size_t)w + (size_t)i;
+            const double *xp = x + 3 * p;
+            const float *pp = primal + 3 * p;
+            double e = alpha * rp_len3(xp[0] - rp_in(pp[0]), xp[1] - rp_in(pp[1]), xp[2] - rp_in(pp[2]));
+            wp[p] = 1.0 / (e + reg);
+            sum += wp[p];
+            wx[p] = wy[p] = 0.0;
+            if (i + 1 < w) {
+                const double *xq = xp + 3;
+                const float *g = dx + 3 * p;
+                e = rp_len3(xq[0] - xp[0] - rp_in(g[0]), xq[1] - xp[1] - rp_in(g[1]), xq[2] - xp[2] - rp_in(g[2]));
+                wx[p] = 1.0 / (e + reg);
+                sum += wx[p];
+            }
+            if (j + 1 < h) {
+                const double *xq = xp + 3 * (size_t)w;
+                const float *g = dy + 3 * p;
+                e = rp_len3(xq[0] - xp[0] - rp_in(g[0]), xq[1] - xp[1] - rp_in(g[1]), xq[2] - xp[2] - rp_in(g[2]));
+                wy[p] = 1.0 / (e + reg);
+                sum += wy[p];
+            }
+        }
+    }
+    const double rows = (double)s->n + (double)(w - 1) * h + (double)w * (h - 1);
+    const double scale = rows / sum;
+    const long ln = (long)s->n;
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < ln; k++) {
+        wp[k] *= scale;
+        wx[k] *= scale;
+        wy[k] *= scale;
+    }
+}
+
+int restir_poisson_l1(int w, int h, const float *primal, const float *dx, const float *dy, float alpha,
+                      int iterations, int cg_steps, float *out, struct restir_poisson_stats *st)
+{
+    const double t0 = omp_get_wtime();
+    if (rp_check(w, h, primal, dx, dy, alpha, out) != 0 || iterations < 0 || cg_steps < 1)
+        return -1;
+    const size_t n = (size_t)w * (size_t)h;
+    struct rp_sys s = {w, h, n, (double)alpha * (double)alpha, NULL, NULL, NULL};
+    double *b = rp_alloc(3 * n), *x = rp_alloc(3 * n);
+    double *wp = rp_alloc(n), *wx = rp_alloc(n), *wy = rp_alloc(n);
+    int rc = -1, total = 0;
+    if (!b || !x || !wp || !wx || !wy)
+        goto done;
+    rp_rhs(&s, primal, dx, dy, b);
+    if (rp_dct_solve(w, h, s.a2, b, x) != 0)
+        goto done;
+    for (int k = 1; k <= iterations; k++) {
+        const double reg = 0.05 * pow(0.5, k - 1);
+        rp_weights(&s, alpha, primal, dx, dy, x, reg, wp, wx, wy);
+        s.wp = wp, s.wx = wx, s.wy = wy;
+        rp_rhs(&s, primal, dx, dy, b);
+        const int it = rp_cg(&s, b, x, 0.0, cg_steps);
+        if (it < 0)
+            goto done;
+        total += it;
+    }
+    double rel[3];
+    rp_residual(&s, b, x, rel);
+    rp_store(n, x, out);
+    if (st) {
+        st->iterations = total;
+        st->residual = fmax(rel[0], fmax(rel[1], rel[2]));
+        st->ms = 1e3 * (omp_get_wtime() - t0);
+    }
+    rc = 0;
+done:;
+    free(b), free(x), free(wp), free(wx), free(wy);
+    return rc;
+}
