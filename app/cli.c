@@ -2,6 +2,8 @@
  * Must never implement a rendering method. */
 #include "cli.h"
 
+#include "gradient/grad_frame.h"
+
 #include <errno.h>
 #include <omp.h>
 #include <stdarg.h>
@@ -143,14 +145,39 @@ void progress_end(struct progress *pg)
         fputc('\n', stderr);
 }
 
-int cli_write_frame(const char *dir, int frame, const float *rgb, int w, int h, char *msg)
+int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *msg)
 {
+    const int w = r->p.width, h = r->p.height;
+    const struct grad_frame *g = r->grad;
     char path[4200];
+    struct exr_layer layers[5] = {{NULL, r->image}};
+    int n = 1;
+    if (g) {
+        /* the reconstruction not in R, G, B, when it was computed; then what it was solved from */
+        if (r->p.recon == RECON_L1)
+            layers[n++] = (struct exr_layer){"L2", g->l2};
+        else if (r->p.recon == RECON_BOTH)
+            layers[n++] = (struct exr_layer){"L1", g->l1};
+        layers[n++] = (struct exr_layer){"primal", g->primal};
+        layers[n++] = (struct exr_layer){"dx", g->dx};
+        layers[n++] = (struct exr_layer){"dy", g->dy};
+    }
     snprintf(path, sizeof(path), "%s/frame_%04d.exr", dir, frame);
-    if (exr_write_rgb(path, rgb, w, h, msg) != 0)
+    if (exr_write_layers(path, layers, n, w, h, msg) != 0)
         return -1;
     snprintf(path, sizeof(path), "%s/frame_%04d.png", dir, frame);
-    return png_write_srgb(path, rgb, w, h, 0.0f, msg);
+    if (png_write_srgb(path, r->image, w, h, 0.0f, msg) != 0)
+        return -1;
+    if (!g)
+        return 0;
+    snprintf(path, sizeof(path), "%s/frame_%04d_primal.png", dir, frame);
+    if (png_write_srgb(path, g->primal, w, h, 0.0f, msg) != 0)
+        return -1;
+    snprintf(path, sizeof(path), "%s/frame_%04d_dx.png", dir, frame);
+    if (png_write_signed(path, g->dx, w, h, 0.0f, msg) != 0)
+        return -1;
+    snprintf(path, sizeof(path), "%s/frame_%04d_dy.png", dir, frame);
+    return png_write_signed(path, g->dy, w, h, 0.0f, msg);
 }
 
 float *cli_render_reference(const struct scene *s, enum method_id method, const struct render_params *p,

@@ -42,8 +42,10 @@ void progress_begin(struct progress *pg, const char *label, int total);
 void progress_update(struct progress *pg, int done);
 void progress_end(struct progress *pg);
 
-/* Writes DIR/frame_NNNN.exr and .png. Returns 0, or -1 with msg. */
-int cli_write_frame(const char *dir, int frame, const float *rgb, int w, int h, char *msg);
+/* Writes DIR/frame_NNNN.exr and .png of r->image; for gradient methods the EXR also holds layers
+ * (the other reconstruction when computed, primal, dx, dy) and frame_NNNN_{primal,dx,dy}.png show
+ * the primal and the gradients in false colour. Returns 0, or -1 with msg. */
+int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *msg);
 
 /* Renders the converged image of what `method` estimates (pt with the method's integrand) with
  * spp samples per pixel from camera cam into a new malloc'ed RGB buffer. */

@@ -152,7 +152,7 @@ static int run_method(const struct scene *s, const struct compare_spec *c, const
     snprintf(path, sizeof(path), "%s/%s", out_dir, c->dir);
     int rc = cli_make_dir(path, msg);
     if (rc == 0)
-        rc = cli_write_frame(path, frames - 1, r.image, p->width, p->height, msg);
+        rc = cli_write_frame(path, frames - 1, &r, msg);
     renderer_fini(&r);
     return rc;
 }

@@ -167,7 +167,7 @@ int cmd_render(int argc, char **argv)
                 (double)st.rays / (st.ms_total * 1e3), accept, disoccluded, ref ? err.relmse : 0.0,
                 ref ? err.mape : 0.0, ref ? err.smape : 0.0, ref ? err.luma_rmse : 0.0, mape_disoccluded);
         if ((o.save_all || f == o.frames - 1) &&
-            cli_write_frame(out_dir, f, r.image, o.params.width, o.params.height, msg) != 0) {
+            cli_write_frame(out_dir, f, &r, msg) != 0) {
             cli_error("%s", msg);
             rc = EXIT_RUNTIME;
         }

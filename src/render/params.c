@@ -30,6 +30,9 @@ static const char *const reuse_names[] = {"standard", "spmis", NULL};
 static const char *const search_names[] = {"always", "sparse", "low-confidence", NULL};
 static const char *const pick_names[] = {"uniform", "confidence", NULL};
 static const char *const history_names[] = {"spatial", "temporal", NULL};
+static const char *const grad_spatial_names[] = {"off", "dense", "adaptive", NULL};
+static const char *const recon_names[] = {"l2", "l1", "both", NULL};
+static const char *const solver_names[] = {"dct", "cg", NULL};
 static const char *const preset_names[] = {"fast", "balanced", "conservative", NULL};
 
 /* Index of val among the NULL-terminated names, or -1. */
@@ -45,6 +48,8 @@ static int name_index(const char *const *names, const char *val)
 _Static_assert(sizeof(enum spatial_select_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum spatial_reuse_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum spmis_search_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(enum grad_spatial_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(enum recon_mode) == sizeof(int), "enum size");
 
 #define F(field) offsetof(struct render_params, field)
 static const struct param_def params[] = {
@@ -125,6 +130,30 @@ static const struct param_def params[] = {
     {"shift.roughness", P_FLOAT, F(shift_roughness), 0, 1, "hybrid shift: GGX alpha at or above which a vertex is rough", NULL},
     {"shift.distance", P_FLOAT, F(shift_distance), 0, 1,
      "hybrid shift: minimum reconnection length as a fraction of the scene diagonal", NULL},
+    {"grad.spatial", P_NAMES, F(grad_spatial), 0, 0,
+     "grestir-pt spatial reuse of paired-pixel samples: off, dense (a similar random pair for every pair) "
+     "or adaptive (edge pairs only, 002 Sec. 4.3.2); the search reads only the G-buffer (unbiased)",
+     grad_spatial_names},
+    {"grad.positivize", P_BOOL, F(grad_positivize), 0, 1,
+     "grestir-pt: separate reservoirs for the positive and negative gradient parts (002 Eq. 23-26)", NULL},
+    {"grad.cross_sign", P_BOOL, F(grad_cross_sign), 0, 1,
+     "grestir-pt: r+ and r- also resample the neighbor's reservoir of the other sign (002 Sec. 4.4 ablation)",
+     NULL},
+    {"grad.search", P_INT, F(grad_search), 1, 4096, "grestir-pt: random neighbor pairs tried per pair (N)", NULL},
+    {"grad.radius", P_FLOAT, F(grad_radius), 1, 512, "grestir-pt: pair-search radius in pixels", NULL},
+    {"grad.edge_albedo", P_FLOAT, F(grad_edge_albedo), 0, 1e30, "edge pair: max albedo difference above", NULL},
+    {"grad.edge_normal", P_FLOAT, F(grad_edge_normal), -1, 1,
+     "edge pair: n_a . n_b below this (the paper's text says '>', which cannot mark an edge)", NULL},
+    {"grad.edge_depth", P_FLOAT, F(grad_edge_depth), 0, 1e30, "edge pair: |d_a - d_b| / d_a above", NULL},
+    {"recon", P_NAMES, F(recon), 0, 0,
+     "gradient methods: which screened Poisson solve fills the image: l2 (unbiased: linear in unbiased "
+     "inputs), l1 (BIASED: iteratively reweighted, robust to outliers) or both (image = L2, L1 as a layer)",
+     recon_names},
+    {"recon.alpha", P_FLOAT, F(recon_alpha), 1e-6, 1e6, "screened Poisson: weight alpha of the primal term", NULL},
+    {"recon.solver", P_NAMES, F(recon_solver), 0, 0,
+     "L2 solver: dct (direct, exact) or cg (conjugate gradient to a relative residual of 1e-6)", solver_names},
+    {"recon.l1_iterations", P_INT, F(recon_l1_iterations), 1, 1000, "L1: IRLS reweighting iterations", NULL},
+    {"recon.l1_cg", P_INT, F(recon_l1_cg), 1, 100000, "L1: conjugate-gradient steps per reweighting", NULL},
 };
 #undef F
 #define NUM_PARAMS (sizeof(params) / sizeof(params[0]))
@@ -176,6 +205,19 @@ void render_params_defaults(struct render_params *p)
     p->spmis_confidence_adjust = 1;
     p->spmis_canonical_pick = 0;
     p->pt_candidates = 1;
+    p->grad_spatial = GRAD_SPATIAL_ADAPTIVE;
+    p->grad_positivize = 1;
+    p->grad_cross_sign = 0;
+    p->grad_search = 256;
+    p->grad_radius = 4.0f;
+    p->grad_edge_albedo = 0.1f;
+    p->grad_edge_normal = 0.9f;
+    p->grad_edge_depth = 0.1f;
+    p->recon = RECON_L2;
+    p->recon_alpha = 0.2f;
+    p->recon_solver = 0;
+    p->recon_l1_iterations = 20;
+    p->recon_l1_cg = 50;
     p->shift = SHIFT_HYBRID;
     p->shift_roughness = 0.2f;
     p->shift_distance = 0.01f;

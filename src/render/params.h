@@ -17,6 +17,11 @@ enum spatial_reuse_mode { REUSE_STANDARD = 0, REUSE_SPMIS };
  * has few contributing pixels (BIASED: that count depends on the samples); or only where the own
  * cell's mean confidence is low (unbiased: confidences depend on history, not on samples). */
 enum spmis_search_mode { SPMIS_SEARCH_ALWAYS = 0, SPMIS_SEARCH_SPARSE, SPMIS_SEARCH_LOW_CONFIDENCE };
+/* Spatial reuse of paired-pixel samples (002 Sec. 4.3.2, Fig. 10): none, a random similar pair for
+ * every pair, or only for edge pairs. */
+enum grad_spatial_mode { GRAD_SPATIAL_OFF = 0, GRAD_SPATIAL_DENSE, GRAD_SPATIAL_ADAPTIVE };
+/* Which screened Poisson reconstruction fills the image (the other one is written as a layer). */
+enum recon_mode { RECON_L2 = 0, RECON_L1, RECON_BOTH };
 
 struct render_params {
     int width, height;
@@ -73,6 +78,18 @@ struct render_params {
     enum shift_kind shift;
     float shift_roughness;  /* hybrid: GGX alpha at or above which a vertex is rough */
     float shift_distance;   /* hybrid: minimum reconnection length, fraction of the scene diagonal */
+
+    /* gradient-domain ReSTIR PT (002) */
+    enum grad_spatial_mode grad_spatial;
+    int grad_positivize;    /* two reservoirs r+, r- per pair (Eq. 23-26) */
+    int grad_cross_sign;    /* r+ and r- also reuse the other sign's neighbor reservoir */
+    int grad_search;        /* N: random neighbor pairs tried by the pair search (256) */
+    float grad_radius;      /* pair-search neighborhood radius, pixels */
+    float grad_edge_albedo, grad_edge_normal, grad_edge_depth; /* edge-pair thresholds (Sec. 4.3.2) */
+    enum recon_mode recon;
+    float recon_alpha;      /* screened Poisson weight alpha of the primal (0.2) */
+    int recon_solver;       /* enum restir_poisson_solver: dct or cg for L2 */
+    int recon_l1_iterations, recon_l1_cg; /* IRLS reweightings and CG steps per reweighting */
 };
 
 /* Spatial neighbors a method tries: spatial.neighbors, or when 0 the default of 001 for ReSTIR DI

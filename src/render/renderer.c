@@ -13,18 +13,42 @@
 #include "reuse_cells.h"
 #include "spatial_select.h"
 #include "core/lowdisc.h"
+#include "gradient/grad_after.h"
+#include "gradient/grad_common.h"
+#include "gradient/grad_frame.h"
+#include "gradient/gpt.h"
+#include "gradient/grestir.h"
 
 const struct method_info method_table[METHOD_COUNT] = {
-    {"pt", "path tracing: NEE + BSDF sampling with MIS, Russian roulette (the reference method)", 0},
-    {"ris-di", "direct lighting by initial RIS only, no reuse (the no-reuse baseline of 001)", 1},
-    {"restir-di", "ReSTIR DI: initial RIS, temporal and spatial reuse by GRIS (pairwise MIS default)", 1},
+    {"pt", "path tracing: NEE + BSDF sampling with MIS, Russian roulette (the reference method)", 0, 0},
+    {"ris-di", "direct lighting by initial RIS only, no reuse (the no-reuse baseline of 001)", 1, 0},
+    {"restir-di", "ReSTIR DI: initial RIS, temporal and spatial reuse by GRIS (pairwise MIS default)", 1, 0},
     {"restir-pt", "ReSTIR PT: path resampling, temporal and spatial path reuse by GRIS with shift mappings "
-                  "(hybrid default) and sub-pixel reservoirs", 0},
+                  "(hybrid default) and sub-pixel reservoirs", 0, 0},
+    {"area-restir", "Area ReSTIR (002 B.3): restir-pt with 1 initial candidate and 2 spatial neighbors, "
+                    "sub-pixel reservoirs", 0, 0},
+    {"gpt", "gradient-domain path tracing (Kettunen et al. 2015, 002 B.2): pt base paths shifted to the 4 "
+            "neighbors (hybrid shift), Poisson reconstruction", 0, 1},
+    {"grad-after-restir", "Gradient after ReSTIR (002 B.1): area-ReSTIR primal, gradients from shifting each "
+                          "pixel's final path to its neighbors, Poisson reconstruction", 0, 1},
+    {"grestir-pt", "gradient-domain ReSTIR PT (002): area-ReSTIR primal, ReSTIR over paired-pixel samples with "
+                   "positivization, temporal and adaptive spatial reuse, Poisson reconstruction", 0, 1},
 };
+
+int method_runs_restir_pt(enum method_id m)
+{
+    return m == METHOD_RESTIR_PT || m == METHOD_AREA_RESTIR || m == METHOD_GRAD_AFTER_RESTIR ||
+           m == METHOD_GRESTIR_PT;
+}
+
+/* Methods without a G-buffer: they trace their own primary rays. */
+static int method_has_gbuffer(enum method_id m) { return m != METHOD_PT && m != METHOD_GPT; }
 
 const char *const pass_names[PASS_COUNT] = {"gbuffer", "initial",         "temporal",    "select",
                                             "spatial", "cells",           "cell_search", "spmis_canonical",
-                                            "spmis_reuse", "shade", "pt"};
+                                            "spmis_reuse", "shade", "pt", "gpt", "grad_initial",
+                                            "grad_temporal", "grad_select", "grad_spatial", "grad_shade",
+                                            "recon_l2", "recon_l1"};
 
 int method_find(const char *name)
 {
@@ -50,9 +74,14 @@ void renderer_init(struct renderer *r, const struct scene *s, enum method_id met
         r->p.temporal = 0;
         r->p.spatial = 0;
     }
+    /* Area ReSTIR's primal (002 Sec. 5): 1 initial candidate (the default) and 2 spatial neighbors. */
+    if ((method == METHOD_AREA_RESTIR || method == METHOD_GRAD_AFTER_RESTIR || method == METHOD_GRESTIR_PT) &&
+        r->p.spatial_neighbors == 0)
+        r->p.spatial_neighbors = 2;
+    p = &r->p;
     size_t n = (size_t)p->width * (size_t)p->height;
     r->image = xcalloc(3 * n, sizeof(float));
-    if (method != METHOD_PT) {
+    if (method_has_gbuffer(method)) {
         gbuffer_init(&r->gb[0], p->width, p->height);
         gbuffer_init(&r->gb[1], p->width, p->height);
         r->neighbors = xcalloc(n * SPATIAL_MAX_NEIGHBORS, sizeof(int));
@@ -70,11 +99,17 @@ void renderer_init(struct renderer *r, const struct scene *s, enum method_id met
         r->hist[0] = xcalloc(n, sizeof(struct di_reservoir));
         r->hist[1] = xcalloc(n, sizeof(struct di_reservoir));
     }
-    if (method == METHOD_RESTIR_PT) {
+    if (method_runs_restir_pt(method)) {
         r->pt_work = xcalloc(n, sizeof(struct pt_reservoir));
         r->pt_hist[0] = xcalloc(n, sizeof(struct pt_reservoir));
         r->pt_hist[1] = xcalloc(n, sizeof(struct pt_reservoir));
         r->pt_emission = xcalloc(n, sizeof(vec3));
+    }
+    if (method_table[method].gradient) {
+        r->grad = xmalloc(sizeof(*r->grad));
+        grad_frame_init(r->grad, p, method == METHOD_GRESTIR_PT);
+    }
+    if (method_runs_restir_pt(method) || method == METHOD_GPT) {
         r->scene_diagonal = scene_diagonal(s);
         struct shift_params sp;
         pt_shift_params(p, r->scene_diagonal, &sp);
@@ -87,7 +122,11 @@ void renderer_init(struct renderer *r, const struct scene *s, enum method_id met
 
 void renderer_fini(struct renderer *r)
 {
-    if (r->method != METHOD_PT) {
+    if (r->grad) {
+        grad_frame_fini(r->grad);
+        free(r->grad);
+    }
+    if (method_has_gbuffer(r->method)) {
         gbuffer_fini(&r->gb[0]);
         gbuffer_fini(&r->gb[1]);
     }
@@ -163,6 +202,70 @@ static void render_restir_di(struct renderer *r, const struct camera_view *view,
     st->valid_pixels = count_valid(g);
 }
 
+/* The gradient passes of grad-after-restir and grestir-pt after their area-ReSTIR primal
+ * (r->image), from the final primal reservoirs res. */
+static void gradient_passes(struct renderer *r, const struct pt_frame *fr, const struct gbuffer *g,
+                            const struct gbuffer *prev_g, const struct pt_reservoir *res, struct frame_stats *st)
+{
+    const struct render_params *p = &r->p;
+    struct grad_frame *gf = r->grad;
+    const size_t n = (size_t)g->width * (size_t)g->height;
+    memcpy(gf->primal, r->image, sizeof(float) * 3 * n);
+    grad_frame_begin(gf);
+    if (r->method == METHOD_GRAD_AFTER_RESTIR) {
+        TIMED(st, PASS_GRAD_INITIAL, st->rays += grad_after_pass(fr, res, gf->os));
+    } else {
+        struct grestir_state *gs = gf->grestir;
+        long long accepted = 0;
+        TIMED(st, PASS_GRAD_INITIAL, st->rays += grestir_initial_pass(fr, g, gf->base, gs));
+        if (p->temporal && r->has_history)
+            TIMED(st, PASS_GRAD_TEMPORAL,
+                  st->rays += grestir_temporal_pass(fr, g, prev_g, gs, 1 - r->cur, &accepted));
+        TIMED(st, PASS_GRAD_SELECT, grestir_select_pass(fr, g, gs));
+        TIMED(st, PASS_GRAD_SPATIAL, st->rays += grestir_spatial_pass(fr, g, gs, r->cur));
+        st->edge_pairs = gs->edge_pairs;
+        st->pair_neighbors = gs->neighbors_found;
+        TIMED(st, PASS_GRAD_SHADE, grestir_shade_pass(p, gs, r->cur, gf->dx, gf->dy));
+        if (p->history_temporal && p->grad_spatial != GRAD_SPATIAL_OFF)
+            for (int d = 0; d < GRAD_PAIR_DIRS; d++)
+                for (int s = 0; s < GRAD_SIGNS; s++)
+                    memcpy(gs->hist[r->cur][d][s], gs->work[d][s], sizeof(struct pair_reservoir) * n);
+    }
+    /* Emission seen directly: restir-pt's paths start after the primary hit. */
+    TIMED(st, PASS_GRAD_SHADE, {
+        st->rays += grad_emission_pass(r->scene, fr->view, p->seed, r->frame, p->jitter, g->width, g->height,
+                                       gf->os);
+        grad_combine(g->width, g->height, gf->os, gf->dx, gf->dy);
+    });
+}
+
+/* Screened Poisson reconstruction of a gradient method's frame into r->image. */
+static void reconstruct(struct renderer *r, struct frame_stats *st)
+{
+    struct grad_frame *gf = r->grad;
+    const size_t n = (size_t)gf->width * (size_t)gf->height;
+    TIMED(st, PASS_RECON_L2, grad_reconstruct_l2(&r->p, gf));
+    st->l2_residual = gf->l2_stats.residual;
+    if (r->p.recon != RECON_L2) {
+        TIMED(st, PASS_RECON_L1, grad_reconstruct_l1(&r->p, gf));
+        st->l1_residual = gf->l1_stats.residual;
+    }
+    memcpy(r->image, r->p.recon == RECON_L1 ? gf->l1 : gf->l2, sizeof(float) * 3 * n);
+}
+
+static void render_gpt(struct renderer *r, const struct camera_view *view, struct frame_stats *st)
+{
+    struct grad_frame *gf = r->grad;
+    struct shift_params sp;
+    pt_shift_params(&r->p, r->scene_diagonal, &sp);
+    sp.rough = r->material_rough;
+    grad_frame_begin(gf);
+    TIMED(st, PASS_GPT, {
+        st->rays += gpt_pass(r->scene, &sp, view, &r->p, r->frame, gf->primal, gf->os);
+        grad_combine(gf->width, gf->height, gf->os, gf->dx, gf->dy);
+    });
+}
+
 static void render_restir_pt(struct renderer *r, const struct camera_view *view, struct frame_stats *st)
 {
     const struct render_params *p = &r->p;
@@ -175,6 +278,8 @@ static void render_restir_pt(struct renderer *r, const struct camera_view *view,
           st->rays += gbuffer_pass(g, r->scene, view, r->has_history ? &r->prev_view : NULL, 0, p->seed,
                                    r->frame)); /* pixel centres: see pt_initial_pass */
     TIMED(st, PASS_INITIAL, st->rays += pt_initial_pass(&fr, g, r->pt_work, r->pt_emission));
+    if (r->grad && r->grad->base) /* grestir-pt: the pairs' initial candidates */
+        memcpy(r->grad->base, r->pt_work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     if (p->temporal && r->has_history)
         TIMED(st, PASS_TEMPORAL,
               st->rays += pt_temporal_pass(&fr, g, prev_g, prev_res, r->pt_work, &st->temporal_accepted));
@@ -195,6 +300,8 @@ static void render_restir_pt(struct renderer *r, const struct camera_view *view,
         memcpy(out, r->pt_work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     }
     TIMED(st, PASS_SHADE, pt_shade_pass(g, out, r->pt_emission, r->image));
+    if (r->grad)
+        gradient_passes(r, &fr, g, prev_g, out, st);
     if (p->history_temporal && p->spatial)
         memcpy(out, r->pt_work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     st->valid_pixels = count_valid(g);
@@ -235,8 +342,10 @@ void renderer_render(struct renderer *r, int frame, const struct camera *cam, st
     r->frame = frame;
     if (r->method == METHOD_PT) {
         TIMED(st, PASS_PT, st->rays += pt_pass(r->scene, &view, &r->p, frame, r->p.spp, r->image));
+    } else if (r->method == METHOD_GPT) {
+        render_gpt(r, &view, st);
     } else {
-        if (r->method == METHOD_RESTIR_PT)
+        if (method_runs_restir_pt(r->method))
             render_restir_pt(r, &view, st);
         else
             render_restir_di(r, &view, st);
@@ -244,6 +353,8 @@ void renderer_render(struct renderer *r, int frame, const struct camera *cam, st
         r->cur = 1 - r->cur;
         r->has_history = 1;
     }
+    if (r->grad)
+        reconstruct(r, st);
     r->prev_view = view;
     st->ms_total = 1e3 * (omp_get_wtime() - t0);
 }

@@ -8,13 +8,30 @@
 #include "params.h"
 #include "restir_pt.h"
 
-enum method_id { METHOD_PT = 0, METHOD_RIS_DI, METHOD_RESTIR_DI, METHOD_RESTIR_PT, METHOD_COUNT };
+struct grad_frame;
+
+enum method_id {
+    METHOD_PT = 0,
+    METHOD_RIS_DI,
+    METHOD_RESTIR_DI,
+    METHOD_RESTIR_PT,
+    METHOD_AREA_RESTIR,      /* 002 B.3: restir-pt with 1 initial candidate and 2 spatial neighbors */
+    METHOD_GPT,              /* 002 B.2: gradient-domain path tracing */
+    METHOD_GRAD_AFTER_RESTIR, /* 002 B.1: gradients from shifting the final area-ReSTIR paths */
+    METHOD_GRESTIR_PT,       /* 002: Gradient with ReSTIR over paired-pixel samples */
+    METHOD_COUNT
+};
 
 struct method_info {
     const char *name;
     const char *description;
     int direct_only; /* estimates direct lighting only: its reference is pt with 1 bounce */
+    int gradient;    /* renders primal + gradients and reconstructs (002) */
 };
+
+/* Methods that run the ReSTIR PT passes (restir-pt, area-restir, and the primal of grad-after-restir
+ * and grestir-pt). */
+int method_runs_restir_pt(enum method_id m);
 
 extern const struct method_info method_table[METHOD_COUNT];
 /* Returns the method id, or -1 for an unknown name. */
@@ -35,6 +52,14 @@ enum pass_id {
     PASS_SPMIS_REUSE,
     PASS_SHADE,
     PASS_PT,
+    PASS_GPT,
+    PASS_GRAD_INITIAL,
+    PASS_GRAD_TEMPORAL,
+    PASS_GRAD_SELECT,
+    PASS_GRAD_SPATIAL,
+    PASS_GRAD_SHADE,
+    PASS_RECON_L2,
+    PASS_RECON_L1,
     PASS_COUNT
 };
 extern const char *const pass_names[PASS_COUNT];
@@ -46,6 +71,9 @@ struct frame_stats {
     long long temporal_accepted; /* pixels whose history passed validation */
     long long neighbors_selected; /* spatial neighbors the selection pass found */
     long long valid_pixels;
+    long long edge_pairs;        /* grestir-pt: pairs the spatial pass searched a neighbor for */
+    long long pair_neighbors;    /* grestir-pt: neighbor pairs found */
+    double l2_residual, l1_residual; /* gradient methods: relative residuals of the solves */
 };
 
 struct renderer {
@@ -69,7 +97,9 @@ struct renderer {
     struct spmis_frame *spmis;    /* spatial.reuse=spmis: cells and per-pixel scratch */
     unsigned char *age[2];        /* per pixel: frames its surface has been in view (history chain
                                      length by G-buffer validation, capped at 255); ping-pong */
-    float *image;                 /* this frame's radiance, RGB */
+    struct grad_frame *grad;      /* gradient methods: primal, gradients, reconstructions */
+    float *image;                 /* this frame's radiance, RGB (gradient methods: the reconstruction
+                                     recon selects, L2 for recon=both) */
 };
 
 /* p must have passed render_params_validate. */

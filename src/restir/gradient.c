@@ -11,8 +11,9 @@ float restir_grad_balance(float own, float other)
         return 0.0f;
     if (!(other > 0.0f))
         return 1.0f; /* shift undefined or the offset contributes nothing: the base covers alone */
-    float w = own / (own + other);
-    return isfinite(w) ? w : (isfinite(own) ? 0.0f : 1.0f);
+    /* 1 / (1 + other / own): no overflow when own + other exceeds the float range */
+    float w = 1.0f / (1.0f + other / own);
+    return isfinite(w) ? w : 0.0f;
 }
 
 void restir_grad_one_sided(const float f_own[3], const float f_other[3], float out[3])

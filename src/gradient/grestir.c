@@ -1,0 +1,468 @@
+/* grestir.c: Gradient with ReSTIR passes (see grestir.h; 002 Sec. 4.2-4.4).
+ *
+ * Domains. A pixel pair (a, b) with b = a + e is the paired domain X = (Omega_a x {0}) u
+ * (Omega_b x {1}) (Eq. 14). Its two pixel domains are pt_domains (path_shift.h), so the outer
+ * shift of (x, k) from pair A to pair B is the pixel shift of x from A's pixel k to B's pixel k with
+ * k kept (Eq. 21), and its Jacobian is that shift's (Eq. 22). Evaluating the target in B then needs
+ * the inner shift of the result into B's other pixel (restir/gradient.h gives h and the targets). */
+#include "grestir.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/check.h"
+#include "grad_common.h"
+#include "render/tiles.h"
+#include "restir/mis.h"
+#include "restir/reservoir.h"
+
+/* The most domains one merge sees: canonical, neighbor r+, neighbor r- (cross-sign reuse). */
+#define PAIR_MAX_DOMAINS 3
+
+struct pair_domain {
+    struct pt_domain px[2];
+};
+
+static void pair_offset(int dir, int *ex, int *ey)
+{
+    *ex = dir == GRAD_PAIR_X;
+    *ey = dir == GRAD_PAIR_Y;
+}
+
+static struct pair_domain pair_current(const struct camera_view *view, int ax, int ay, int dir)
+{
+    int ex, ey;
+    pair_offset(dir, &ex, &ey);
+    struct pair_domain d = {{pt_pixel_domain(view, ax, ay), pt_pixel_domain(view, ax + ex, ay + ey)}};
+    return d;
+}
+
+static int pair_inside(int w, int h, int ax, int ay, int dir)
+{
+    int ex, ey;
+    pair_offset(dir, &ex, &ey);
+    return ax >= 0 && ay >= 0 && ax + ex < w && ay + ey < h;
+}
+
+void grestir_state_init(struct grestir_state *st, int width, int height)
+{
+    memset(st, 0, sizeof(*st));
+    st->width = width;
+    st->height = height;
+    size_t n = (size_t)width * (size_t)height;
+    for (int d = 0; d < GRAD_PAIR_DIRS; d++) {
+        for (int s = 0; s < GRAD_SIGNS; s++) {
+            st->hist[0][d][s] = xcalloc(n, sizeof(struct pair_reservoir));
+            st->hist[1][d][s] = xcalloc(n, sizeof(struct pair_reservoir));
+            st->work[d][s] = xcalloc(n, sizeof(struct pair_reservoir));
+        }
+        st->neighbor[d] = xcalloc(n, sizeof(int));
+    }
+    st->base_other = xcalloc(n * 3 * GRAD_DIRS, sizeof(float));
+}
+
+void grestir_state_fini(struct grestir_state *st)
+{
+    for (int d = 0; d < GRAD_PAIR_DIRS; d++) {
+        for (int s = 0; s < GRAD_SIGNS; s++) {
+            free(st->hist[0][d][s]);
+            free(st->hist[1][d][s]);
+            free(st->work[d][s]);
+        }
+        free(st->neighbor[d]);
+    }
+    free(st->base_other);
+    memset(st, 0, sizeof(*st));
+}
+
+static void pair_clear(struct pair_reservoir *r, float c)
+{
+    memset(r, 0, sizeof(*r));
+    r->c = c;
+}
+
+static int pair_has_sample(const struct pair_reservoir *r) { return r->y.length >= 2 && r->W > 0.0f; }
+
+/* The signs in use: r+ and r- with positivization, one |h| reservoir without. */
+static int sign_count(const struct render_params *p) { return p->grad_positivize ? 2 : 1; }
+static enum restir_grad_sign sign_of(const struct render_params *p, int s)
+{
+    return p->grad_positivize ? (s == 0 ? RESTIR_GRAD_POS : RESTIR_GRAD_NEG) : RESTIR_GRAD_ABS;
+}
+
+/* h(y, k) in pair dom, y in pixel dom->px[k]: the inner shift of y into the other pixel. */
+static long long pair_integrand(const struct pt_frame *fr, const struct path_sample *y, int k,
+                                const struct pair_domain *dom, float h[3])
+{
+    float other[3];
+    long long rays = grad_shift_other(fr->s, &fr->shift, y, &dom->px[k], &dom->px[1 - k], other);
+    const float own[3] = {y->f.x, y->f.y, y->f.z};
+    restir_grad_pair_integrand(k, own, other, h);
+    return rays;
+}
+
+/* Outer shift T* of (x, k) from pair `from` to pair `to` (Eq. 21-22) and h there. Returns 1 with y,
+ * h and |T*'|, or 0 where tau is undefined. */
+static int pair_shift(const struct pt_frame *fr, const struct path_sample *x, int k, const struct pair_domain *from,
+                      const struct pair_domain *to, struct path_sample *y, float h[3], float *J, long long *rays)
+{
+    if (!path_shift(fr->s, &fr->shift, x, &from->px[k], &to->px[k], y, J, rays))
+        return 0;
+    *rays += pair_integrand(fr, y, k, to, h);
+    return 1;
+}
+
+/* ---- initial candidates ------------------------------------------------------------------------ */
+
+long long grestir_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct pt_reservoir *base,
+                               struct grestir_state *st)
+{
+    const struct render_params *p = fr->p;
+    const int w = g->width, h = g->height, ntiles = tile_count(w, h);
+    const size_t n = (size_t)w * (size_t)h;
+    long long rays = 0;
+    /* f(T x_i) |T'| of every pixel's initial path in each neighbor */
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
+    for (int t = 0; t < ntiles; t++) {
+        struct tile_range r = tile_get(w, h, t);
+        for (int y = r.y0; y < r.y1; y++) {
+            for (int x = r.x0; x < r.x1; x++) {
+                size_t i = (size_t)y * (size_t)w + (size_t)x;
+                struct pt_domain from = pt_pixel_domain(fr->view, x, y);
+                for (int d = 0; d < GRAD_DIRS; d++) {
+                    float *other = grad_os(st->base_other, n, d, i);
+                    other[0] = other[1] = other[2] = 0.0f;
+                    int ox, oy;
+                    grad_dir_offset(d, &ox, &oy);
+                    if (!pt_reservoir_has_sample(&base[i]) || x + ox < 0 || x + ox >= w || y + oy < 0 || y + oy >= h)
+                        continue;
+                    struct pt_domain to = pt_pixel_domain(fr->view, x + ox, y + oy);
+                    rays += grad_shift_other(fr->s, &fr->shift, &base[i].y, &from, &to, other);
+                }
+            }
+        }
+    }
+    const int ns = sign_count(p);
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            size_t a = (size_t)y * (size_t)w + (size_t)x;
+            for (int dir = 0; dir < GRAD_PAIR_DIRS; dir++) {
+                for (int s = 0; s < ns; s++)
+                    pair_clear(&st->work[dir][s][a], 0.0f);
+                if (!pair_inside(w, h, x, y, dir))
+                    continue;
+                size_t b = dir == GRAD_PAIR_X ? a + 1 : a + (size_t)w;
+                const struct pt_reservoir *src[2] = {&base[a], &base[b]};
+                float hk[2][3];
+                for (int k = 0; k < 2; k++) {
+                    const float own[3] = {src[k]->y.f.x, src[k]->y.f.y, src[k]->y.f.z};
+                    /* a's path toward b: RIGHT / DOWN; b's path toward a: LEFT / UP */
+                    int d = k == 0 ? (dir == GRAD_PAIR_X ? GRAD_RIGHT : GRAD_DOWN)
+                                   : (dir == GRAD_PAIR_X ? GRAD_LEFT : GRAD_UP);
+                    restir_grad_pair_integrand(k, own, grad_os(st->base_other, n, d, k ? b : a), hk[k]);
+                }
+                pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, a * 2 + (size_t)dir, RNG_PASS_GRAD_INITIAL);
+                for (int s = 0; s < ns; s++) {
+                    enum restir_grad_sign sg = sign_of(p, s);
+                    struct restir_wrs wrs;
+                    restir_wrs_init(&wrs);
+                    int chosen = -1;
+                    float target[2];
+                    for (int k = 0; k < 2; k++) {
+                        target[k] = pt_reservoir_has_sample(src[k]) ? restir_grad_target(sg, hk[k]) : 0.0f;
+                        /* Eq. 20 with m = 1 (disjoint parts) and the pixel path's UCW */
+                        if (restir_wrs_offer(&wrs, target[k] * src[k]->W, pcg32_float(&rng)))
+                            chosen = k;
+                    }
+                    struct pair_reservoir *out = &st->work[dir][s][a];
+                    pair_clear(out, 1.0f);
+                    if (chosen < 0)
+                        continue;
+                    out->y = src[chosen]->y;
+                    out->k = chosen;
+                    memcpy(out->h, hk[chosen], sizeof(out->h));
+                    out->target = target[chosen];
+                    out->W = restir_gris_contribution_weight(&wrs, out->target); /* Eq. 18 */
+                    if (!(out->W > 0.0f))
+                        pair_clear(out, 1.0f);
+                }
+            }
+        }
+    }
+    return rays;
+}
+
+/* ---- GRIS merge over paired domains ------------------------------------------------------------- */
+
+/* One GRIS merge into dom[0] (the canonical pair, identity shift) of n reservoirs; reservoir j lives
+ * in pair dom_id[j] (dom[] indexed by it) with target sign sg[j]. P[k * n + j] = p_hat_{<-k}(Y_j)
+ * (004 Eq. 10) as in restir_pt.c's gris_merge, with the outer shift and each technique's own
+ * target. c_sum counts each pair once. */
+static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_domain *dom, const int *dom_id,
+                            const enum restir_grad_sign *sg, const struct pair_reservoir *const *in, pcg32 *rng,
+                            struct pair_reservoir *out)
+{
+    const struct render_params *p = fr->p;
+    long long rays = 0;
+    float c[PAIR_MAX_DOMAINS], J[PAIR_MAX_DOMAINS], m[PAIR_MAX_DOMAINS];
+    float P[PAIR_MAX_DOMAINS * PAIR_MAX_DOMAINS] = {0};
+    struct path_sample Y[PAIR_MAX_DOMAINS];
+    float H[PAIR_MAX_DOMAINS][3];
+    int ok[PAIR_MAX_DOMAINS];
+    float c_sum = 0.0f;
+    for (int j = 0; j < n; j++) {
+        c[j] = fminf(in[j]->c, p->confidence_cap);
+        if (j == 0 || dom_id[j] != dom_id[j - 1])
+            c_sum += c[j];
+        J[j] = 0.0f;
+        ok[j] = 0;
+        if (!pair_has_sample(in[j]))
+            continue;
+        if (dom_id[j] == dom_id[0]) {
+            Y[j] = in[j]->y;
+            memcpy(H[j], in[j]->h, sizeof(H[j]));
+            J[j] = 1.0f;
+            ok[j] = 1;
+        } else {
+            ok[j] = pair_shift(fr, &in[j]->y, in[j]->k, &dom[dom_id[j]], &dom[dom_id[0]], &Y[j], H[j], &J[j], &rays);
+        }
+        if (ok[j])
+            P[j] = restir_grad_target(sg[0], H[j]);
+    }
+    for (int j = 0; j < n; j++) {
+        if (!ok[j])
+            continue;
+        const int kj = in[j]->k;
+        int shifted_to = -1; /* dom_id whose back-shift of Y_j is cached in hz, Jb */
+        float hz[3] = {0, 0, 0}, Jb = 0.0f;
+        for (int k = 1; k < n; k++) {
+            if (!restir_mis_needs(p->mis, k, j))
+                continue;
+            if (dom_id[k] == dom_id[j]) {
+                P[k * n + j] = restir_grad_target(sg[k], in[j]->h) / J[j]; /* p_hat_k(X_j) |dT^-1/dy| */
+                continue;
+            }
+            if (dom_id[k] == dom_id[0]) {
+                P[k * n + j] = restir_grad_target(sg[k], H[j]);
+                continue;
+            }
+            if (shifted_to != dom_id[k]) {
+                struct path_sample z;
+                shifted_to = dom_id[k];
+                if (!pair_shift(fr, &Y[j], kj, &dom[dom_id[0]], &dom[dom_id[k]], &z, hz, &Jb, &rays))
+                    Jb = 0.0f;
+            }
+            P[k * n + j] = Jb > 0.0f ? restir_grad_target(sg[k], hz) * Jb : 0.0f;
+        }
+    }
+    restir_mis_weights(p->mis, n, c, P, m);
+    struct restir_wrs wrs;
+    restir_wrs_init(&wrs);
+    int chosen = -1;
+    for (int j = 0; j < n; j++) {
+        float wj = ok[j] ? m[j] * P[j] * in[j]->W * J[j] : 0.0f; /* Eq. 20 */
+        if (restir_wrs_offer(&wrs, wj, pcg32_float(rng)))
+            chosen = j;
+    }
+    struct pair_reservoir result;
+    pair_clear(&result, restir_confidence_merge(c_sum, p->confidence_cap));
+    if (chosen >= 0) {
+        result.y = Y[chosen];
+        result.k = in[chosen]->k;
+        memcpy(result.h, H[chosen], sizeof(result.h));
+        result.target = P[chosen];
+        result.W = restir_gris_contribution_weight(&wrs, result.target); /* Eq. 18 */
+        if (!(result.W > 0.0f))
+            pair_clear(&result, result.c);
+    }
+    *out = result;
+    return rays;
+}
+
+/* ---- temporal reuse ----------------------------------------------------------------------------- */
+
+long long grestir_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct gbuffer *prev_g,
+                                struct grestir_state *st, int prev_slot, long long *accepted)
+{
+    const struct render_params *p = fr->p;
+    const int w = g->width, h = g->height, ntiles = tile_count(w, h), ns = sign_count(p);
+    long long rays = 0, acc = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays, acc)
+    for (int t = 0; t < ntiles; t++) {
+        struct tile_range r = tile_get(w, h, t);
+        for (int y = r.y0; y < r.y1; y++) {
+            for (int x = r.x0; x < r.x1; x++) {
+                const int a = y * w + x;
+                for (int dir = 0; dir < GRAD_PAIR_DIRS; dir++) {
+                    if (!pair_inside(w, h, x, y, dir))
+                        continue;
+                    int ex, ey;
+                    pair_offset(dir, &ex, &ey);
+                    const int b = a + ex + ey * w;
+                    /* Pair motion (Sec. 4.3.1): the nearer pixel's fractional motion. */
+                    int pivot = -1;
+                    if (g->valid[a] && (!g->valid[b] || g->depth[a] <= g->depth[b]))
+                        pivot = a;
+                    else if (g->valid[b])
+                        pivot = b;
+                    if (pivot < 0)
+                        continue;
+                    int q = gbuffer_history_pixel(g, pivot, prev_g, p->temporal_normal, p->temporal_plane);
+                    if (q < 0)
+                        continue;
+                    int qa = pivot == a ? q : q - ex - ey * w;
+                    int qax = pivot == a ? q % w : q % w - ex, qay = pivot == a ? q / w : q / w - ey;
+                    if (!pair_inside(w, h, qax, qay, dir))
+                        continue;
+                    struct pair_domain dom[2];
+                    dom[0] = pair_current(fr->view, x, y, dir);
+                    dom[1] = pair_current(fr->prev_view, qax, qay, dir);
+                    if (p->jitter) {
+                        /* Area ReSTIR: the previous pair's offsets move with the pair motion */
+                        for (int k = 0; k < 2; k++) {
+                            dom[1].px[k].origin[0] -= g->motion[2 * pivot];
+                            dom[1].px[k].origin[1] -= g->motion[2 * pivot + 1];
+                        }
+                    }
+                    const int dom_id[2] = {0, 1};
+                    pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)a * 2 + (uint64_t)dir,
+                                        RNG_PASS_GRAD_TEMPORAL);
+                    for (int s = 0; s < ns; s++) {
+                        const enum restir_grad_sign sg[2] = {sign_of(p, s), sign_of(p, s)};
+                        const struct pair_reservoir *in[2] = {&st->work[dir][s][a],
+                                                              &st->hist[prev_slot][dir][s][qa]};
+                        struct pair_reservoir res;
+                        rays += pair_merge(fr, 2, dom, dom_id, sg, in, &rng, &res);
+                        st->work[dir][s][a] = res;
+                    }
+                    acc++;
+                }
+            }
+        }
+    }
+    *accepted = acc;
+    return rays;
+}
+
+/* ---- spatial neighbor pairs ---------------------------------------------------------------------- */
+
+static int gb_edge(const struct render_params *p, const struct gbuffer *g, int i, int j)
+{
+    const struct restir_grad_edge_test t = {p->grad_edge_albedo, p->grad_edge_normal, p->grad_edge_depth};
+    const vec3 ai = g->albedo[i], aj = g->albedo[j], ni = g->normal[i], nj = g->normal[j];
+    const float A[3] = {ai.x, ai.y, ai.z}, B[3] = {aj.x, aj.y, aj.z}, N[3] = {ni.x, ni.y, ni.z},
+                M[3] = {nj.x, nj.y, nj.z};
+    return restir_grad_edge(&t, g->valid[i], A, N, g->depth[i], g->valid[j], B, M, g->depth[j]);
+}
+
+void grestir_select_pass(const struct pt_frame *fr, const struct gbuffer *g, struct grestir_state *st)
+{
+    const struct render_params *p = fr->p;
+    const int w = g->width, h = g->height;
+    long long edges = 0, found = 0;
+#pragma omp parallel for schedule(static) reduction(+ : edges, found)
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            const int a = y * w + x;
+            for (int dir = 0; dir < GRAD_PAIR_DIRS; dir++) {
+                st->neighbor[dir][a] = -1;
+                if (p->grad_spatial == GRAD_SPATIAL_OFF || !pair_inside(w, h, x, y, dir))
+                    continue;
+                int ex, ey;
+                pair_offset(dir, &ex, &ey);
+                const int b = a + ex + ey * w;
+                const int adaptive = p->grad_spatial == GRAD_SPATIAL_ADAPTIVE;
+                if (adaptive && !gb_edge(p, g, a, b))
+                    continue; /* interior pair: keeps its temporal result (Sec. 4.3.2) */
+                edges++;
+                pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)a * 2 + (uint64_t)dir,
+                                    RNG_PASS_GRAD_SELECT);
+                for (int tap = 0; tap < p->grad_search; tap++) {
+                    float rad = p->grad_radius * sqrtf(pcg32_float(&rng)), phi = 6.2831853f * pcg32_float(&rng);
+                    int cx = x + (int)lrintf(rad * cosf(phi)), cy = y + (int)lrintf(rad * sinf(phi));
+                    if ((cx == x && cy == y) || !pair_inside(w, h, cx, cy, dir))
+                        continue;
+                    const int c = cy * w + cx, d = c + ex + ey * w;
+                    /* similar to the current pair pixel by pixel; for adaptive reuse an edge pair too */
+                    if (gb_edge(p, g, a, c) || gb_edge(p, g, b, d) || (adaptive && !gb_edge(p, g, c, d)))
+                        continue;
+                    st->neighbor[dir][a] = c;
+                    found++;
+                    break;
+                }
+            }
+        }
+    }
+    st->edge_pairs = edges;
+    st->neighbors_found = found;
+}
+
+/* ---- spatial reuse -------------------------------------------------------------------------------- */
+
+long long grestir_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, struct grestir_state *st,
+                               int slot)
+{
+    const struct render_params *p = fr->p;
+    const int w = g->width, h = g->height, ntiles = tile_count(w, h), ns = sign_count(p);
+    const int cross = p->grad_cross_sign && ns == 2;
+    long long rays = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
+    for (int t = 0; t < ntiles; t++) {
+        struct tile_range r = tile_get(w, h, t);
+        for (int y = r.y0; y < r.y1; y++) {
+            for (int x = r.x0; x < r.x1; x++) {
+                const int a = y * w + x;
+                for (int dir = 0; dir < GRAD_PAIR_DIRS; dir++) {
+                    const int c = st->neighbor[dir][a];
+                    if (c < 0) {
+                        for (int s = 0; s < ns; s++)
+                            st->hist[slot][dir][s][a] = st->work[dir][s][a];
+                        continue;
+                    }
+                    struct pair_domain dom[2];
+                    dom[0] = pair_current(fr->view, x, y, dir);
+                    dom[1] = pair_current(fr->view, c % w, c / w, dir);
+                    const int dom_id[3] = {0, 1, 1};
+                    pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)a * 2 + (uint64_t)dir,
+                                        RNG_PASS_GRAD_SPATIAL);
+                    for (int s = 0; s < ns; s++) {
+                        const enum restir_grad_sign sg[3] = {sign_of(p, s), sign_of(p, s), sign_of(p, 1 - s)};
+                        const struct pair_reservoir *in[3] = {&st->work[dir][s][a], &st->work[dir][s][c],
+                                                              &st->work[dir][1 - s][c]};
+                        rays += pair_merge(fr, cross ? 3 : 2, dom, dom_id, sg, in, &rng, &st->hist[slot][dir][s][a]);
+                    }
+                }
+            }
+        }
+    }
+    return rays;
+}
+
+/* ---- evaluation ------------------------------------------------------------------------------------ */
+
+void grestir_shade_pass(const struct render_params *p, const struct grestir_state *st, int slot, float *dx,
+                        float *dy)
+{
+    const int w = st->width, h = st->height, ns = sign_count(p);
+    float *out[GRAD_PAIR_DIRS] = {dx, dy};
+#pragma omp parallel for schedule(static)
+    for (int a = 0; a < w * h; a++) {
+        for (int dir = 0; dir < GRAD_PAIR_DIRS; dir++) {
+            for (int s = 0; s < ns; s++) {
+                const struct pair_reservoir *r = &st->hist[slot][dir][s][a];
+                if (!pair_has_sample(r))
+                    continue;
+                enum restir_grad_sign sg = sign_of(p, s);
+                float part[3];
+                restir_grad_part(sg, r->h, part);
+                float sign = sg == RESTIR_GRAD_NEG ? -1.0f : 1.0f; /* Eq. 24: r+ estimate - r- estimate */
+                for (int k = 0; k < 3; k++) {
+                    float v = sign * part[k] * r->W;
+                    if (isfinite(v))
+                        out[dir][3 * a + k] += v;
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,139 @@
+/* test_gradient_unbiased.c: the gradient-domain methods of 002 (gpt, grad-after-restir, grestir-pt)
+ * estimate the forward-difference gradients of the image without bias, with temporal and spatial
+ * reuse on and a moving camera: the mean of K independently seeded runs of dx and dy agrees per
+ * pixel with the forward differences of K path-traced references (Welch, Sidak-corrected), and so
+ * do the primal and the L2 reconstruction (linear in its inputs). L1 is BIASED by design and is
+ * measured, not tested, here (docs/BENCHMARKS.md).
+ * Usage for experiments: render_test_gradient_unbiased [SCENE METHOD RUNS key=value...]. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "gradient/grad_frame.h"
+#include "unbiased_runs.h"
+
+#define FRAMES 3
+#define FRAME_STEP 6
+#define REF_SPP 8
+#define WIDTH 16
+#define HEIGHT 10
+#define ALPHA 0.01
+#define POOLED_Z_MAX 4.5
+
+enum layer { L_PRIMAL, L_DX, L_DY, L_L2, LAYERS };
+static const char *const layer_names[LAYERS] = {"primal", "dx", "dy", "L2 reconstruction"};
+
+/* Forward differences of an RGB image (the last column of dx and last row of dy are 0). */
+static void forward_differences(const float *img, int w, int h, float *dx, float *dy)
+{
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            for (int c = 0; c < 3; c++) {
+                int i = y * w + x;
+                dx[3 * i + c] = x + 1 < w ? img[3 * (i + 1) + c] - img[3 * i + c] : 0.0f;
+                dy[3 * i + c] = y + 1 < h ? img[3 * (i + w) + c] - img[3 * i + c] : 0.0f;
+            }
+}
+
+static void run_reference(const struct scene *s, const struct render_params *base, int runs,
+                          struct pixel_stats *st)
+{
+    const int n = base->width * base->height;
+    float *dx = malloc(sizeof(float) * 3 * (size_t)n), *dy = malloc(sizeof(float) * 3 * (size_t)n);
+    for (int k = 0; k < runs; k++) {
+        struct render_params q = *base;
+        q.spp = REF_SPP;
+        q.seed = 900000 + (uint64_t)k;
+        struct renderer r;
+        renderer_init(&r, s, METHOD_PT, &q);
+        struct frame_stats fs;
+        struct camera cam = scene_camera_at(s, 1, (float)((FRAMES - 1) * FRAME_STEP));
+        renderer_render(&r, 0, &cam, &fs);
+        forward_differences(r.image, q.width, q.height, dx, dy);
+        pixel_stats_add(&st[L_PRIMAL], r.image);
+        pixel_stats_add(&st[L_DX], dx);
+        pixel_stats_add(&st[L_DY], dy);
+        pixel_stats_add(&st[L_L2], r.image);
+        renderer_fini(&r);
+    }
+    free(dx);
+    free(dy);
+}
+
+static void run_method(const struct scene *s, enum method_id m, const struct render_params *base, int runs,
+                       struct pixel_stats *st)
+{
+    for (int k = 0; k < runs; k++) {
+        struct render_params p = *base;
+        p.seed = 1000 + (uint64_t)k;
+        struct renderer r;
+        renderer_init(&r, s, m, &p);
+        for (int f = 0; f < FRAMES; f++) {
+            struct frame_stats fs;
+            struct camera cam = scene_camera_at(s, 1, (float)(f * FRAME_STEP));
+            renderer_render(&r, f, &cam, &fs);
+        }
+        pixel_stats_add(&st[L_PRIMAL], r.grad->primal);
+        pixel_stats_add(&st[L_DX], r.grad->dx);
+        pixel_stats_add(&st[L_DY], r.grad->dy);
+        pixel_stats_add(&st[L_L2], r.grad->l2);
+        renderer_fini(&r);
+    }
+}
+
+/* Returns the number of pixels failing over all layers. */
+static int check(const char *scene_name, const char *method, int runs, const char *const *sets, int nsets,
+                 int expect_unbiased)
+{
+    struct scene s;
+    char msg[512];
+    EXPECT(scene_create_builtin(scene_name, &s, msg) == 0, "%s", msg);
+    int m = method_find(method);
+    EXPECT(m >= 0, "unknown method %s", method);
+    struct render_params p;
+    render_params_defaults(&p);
+    p.width = WIDTH;
+    p.height = HEIGHT;
+    EXPECT(render_params_set(&p, "pt.max_bounces=4", msg) == 0, "%s", msg);
+    for (int k = 0; k < nsets; k++)
+        EXPECT(render_params_set(&p, sets[k], msg) == 0, "%s", msg);
+    struct pixel_stats ref[LAYERS], got[LAYERS];
+    for (int l = 0; l < LAYERS; l++) {
+        pixel_stats_init(&ref[l], WIDTH * HEIGHT);
+        pixel_stats_init(&got[l], WIDTH * HEIGHT);
+    }
+    run_reference(&s, &p, runs, ref);
+    run_method(&s, (enum method_id)m, &p, runs, got);
+    printf("%s %dx%d %s, %d runs of %d frames:", scene_name, WIDTH, HEIGHT, method, runs, FRAMES);
+    for (int k = 0; k < nsets; k++)
+        printf(" %s", sets[k]);
+    printf("\n");
+    int failed = 0;
+    for (int l = 0; l < LAYERS; l++) {
+        printf(" %s:\n", layer_names[l]);
+        struct unbiased_report rep = unbiased_compare(&got[l], &ref[l], ALPHA);
+        failed += rep.pixels_failed;
+        if (expect_unbiased) {
+            EXPECT(rep.pixels_failed == 0, "%s %s %s: %d pixels fail", scene_name, method, layer_names[l],
+                   rep.pixels_failed);
+            EXPECT(fabs(rep.pooled_z) < POOLED_Z_MAX, "%s %s %s: pooled z = %.2f", scene_name, method,
+                   layer_names[l], rep.pooled_z);
+        }
+        pixel_stats_free(&ref[l]);
+        pixel_stats_free(&got[l]);
+    }
+    scene_destroy(&s);
+    return failed;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc >= 4) {
+        check(argv[1], argv[2], atoi(argv[3]), (const char *const *)argv + 4, argc - 4, 1);
+        return test_finish();
+    }
+    const char *none[] = {"recon=l2"};
+    check("cornell", "gpt", 1024, none, 1, 1);
+    check("cornell", "grad-after-restir", 1024, none, 1, 1);
+    check("cornell", "grestir-pt", 1024, none, 1, 1);
+    return test_finish();
+}
