@@ -7,6 +7,7 @@
 
 #include "cli.h"
 #include "core/check.h"
+#include "gradient/grad_frame.h"
 #include "io/image_io.h"
 #include "io/report.h"
 #include "options.h"
@@ -27,6 +28,7 @@ struct compare_result {
     enum method_id method;
     double ms_per_frame;
     int spp;
+    int instances; /* independently seeded runs averaged (equal time) */
     struct restir_error err; /* of the last frame */
 };
 
@@ -124,58 +126,101 @@ static void csv_field(char *out, size_t n, const char *s)
     out[o] = '\0';
 }
 
-/* Runs `frames` frames of spec c with parameters p (c->p, or with pt's equal-time spp) and measures
- * the last frame against ref. Returns 0, or -1 with msg when its last frame cannot be written to
- * out_dir/c->dir. */
+/* Methods that reach a time budget by paths per pixel; the others by averaging independently seeded
+ * instances (002 Sec. 5). */
+static int budget_by_spp(enum method_id m) { return m == METHOD_PT || m == METHOD_GPT; }
+
+#define MAX_INSTANCES 16
+
+/* Runs `frames` frames of spec c with parameters p (c->p, or with an equal-time spp) as `instances`
+ * independently seeded renderers and measures the average of their last frames against ref. For
+ * gradient methods the primal and gradient images are averaged and then reconstructed once (002
+ * Sec. 5, Figure 8), and the frame time counts the instances' passes and one reconstruction.
+ * Returns 0, or -1 with msg when the last frame cannot be written to out_dir/c->dir. */
 static int run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
-                      const float *ref, const char *out_dir, struct compare_result *res, char *msg)
+                      int instances, const float *ref, const char *out_dir, struct compare_result *res, char *msg)
 {
     enum method_id m = c->method;
-    struct renderer r;
-    renderer_init(&r, s, m, p);
+    struct renderer r[MAX_INSTANCES];
+    for (int k = 0; k < instances; k++) {
+        struct render_params q = *p;
+        q.seed = p->seed + 1000003ull * (uint64_t)k;
+        renderer_init(&r[k], s, m, &q);
+    }
     double ms = 0.0;
     struct progress pg;
     progress_begin(&pg, c->label, frames);
     for (int f = 0; f < frames; f++) {
-        struct frame_stats st;
         struct camera cam = scene_camera_at(s, p->camera_path, (float)f);
-        renderer_render(&r, f, &cam, &st);
-        ms += st.ms_total;
+        for (int k = 0; k < instances; k++) {
+            struct frame_stats st;
+            renderer_render(&r[k], f, &cam, &st);
+            ms += st.ms_total - (k > 0 ? st.ms[PASS_RECON_L2] + st.ms[PASS_RECON_L1] : 0.0);
+        }
         progress_update(&pg, f + 1);
     }
     progress_end(&pg);
+    const size_t n3 = 3 * (size_t)p->width * (size_t)p->height;
+    if (instances > 1) {
+        const float inv = 1.0f / (float)instances;
+        for (size_t i = 0; i < n3; i++) {
+            float sum[4] = {0, 0, 0, 0};
+            for (int k = 0; k < instances; k++) {
+                sum[0] += r[k].image[i];
+                if (r[k].grad) {
+                    sum[1] += r[k].grad->primal[i];
+                    sum[2] += r[k].grad->dx[i];
+                    sum[3] += r[k].grad->dy[i];
+                }
+            }
+            r[0].image[i] = sum[0] * inv;
+            if (r[0].grad) {
+                r[0].grad->primal[i] = sum[1] * inv;
+                r[0].grad->dx[i] = sum[2] * inv;
+                r[0].grad->dy[i] = sum[3] * inv;
+            }
+        }
+        if (r[0].grad) {
+            struct frame_stats st;
+            memset(&st, 0, sizeof(st));
+            renderer_reconstruct(&r[0], &st);
+        }
+    }
     res->method = m;
     res->ms_per_frame = ms / frames;
-    res->spp = m == METHOD_PT ? p->spp : 1;
-    restir_error_compute(r.image, ref, (size_t)p->width * (size_t)p->height, NULL, &res->err);
+    res->spp = budget_by_spp(m) ? p->spp : 1;
+    res->instances = instances;
+    restir_error_compute(r[0].image, ref, (size_t)p->width * (size_t)p->height, NULL, &res->err);
     char path[4400];
     snprintf(path, sizeof(path), "%s/%s", out_dir, c->dir);
     int rc = cli_make_dir(path, msg);
     if (rc == 0)
-        rc = cli_write_frame(path, frames - 1, &r, msg);
-    renderer_fini(&r);
+        rc = cli_write_frame(path, frames - 1, &r[0], msg);
+    for (int k = 0; k < instances; k++)
+        renderer_fini(&r[k]);
     return rc;
 }
 
-/* Paths per pixel that fit in budget_ms, from a 1-spp and a 4-spp timing (the difference
- * removes fixed per-frame cost). */
-static int pt_spp_for_budget(const struct scene *s, const struct render_params *p, double budget_ms)
+/* Frame time of method m at spp paths per pixel (the second of two frames, after a warm-up). */
+static double frame_ms_at_spp(const struct scene *s, enum method_id m, const struct render_params *p, int spp)
 {
     struct render_params q = *p;
     struct renderer r;
     struct frame_stats st;
     struct camera cam = scene_camera_at(s, p->camera_path, 0.0f);
-    q.spp = 1;
-    renderer_init(&r, s, METHOD_PT, &q);
+    q.spp = spp;
+    renderer_init(&r, s, m, &q);
     renderer_render(&r, 0, &cam, &st); /* warm-up */
-    renderer_render(&r, 0, &cam, &st);
-    double t1 = st.ms_total;
+    renderer_render(&r, 1, &cam, &st);
     renderer_fini(&r);
-    q.spp = 4;
-    renderer_init(&r, s, METHOD_PT, &q);
-    renderer_render(&r, 0, &cam, &st);
-    double t4 = st.ms_total;
-    renderer_fini(&r);
+    return st.ms_total;
+}
+
+/* Paths per pixel of pt or gpt that fit in budget_ms, from a 1-spp and a 4-spp timing (the
+ * difference removes fixed per-frame cost such as gpt's reconstruction). */
+static int spp_for_budget(const struct scene *s, enum method_id m, const struct render_params *p, double budget_ms)
+{
+    double t1 = frame_ms_at_spp(s, m, p, 1), t4 = frame_ms_at_spp(s, m, p, 4);
     double per_spp = (t4 - t1) / 3.0 > 0.25 * t1 ? (t4 - t1) / 3.0 : t1;
     double fixed = t1 - per_spp > 0.0 ? t1 - per_spp : 0.0;
     int spp = (int)((budget_ms - fixed) / per_spp);
@@ -200,9 +245,12 @@ int cmd_compare(int argc, char **argv)
                "The whole SPEC labels its row. Runs each SPEC for N frames (default 1) and measures the last\n"
                "frame against the reference, rendered from the common parameters with --ref-spp paths\n"
                "(default 1024) when --ref is absent. With --equal-time every row gets the frame time of the\n"
-               "first ReSTIR SPEC: pt gets as many paths per pixel as fit. When DI methods are compared, pt\n"
-               "estimates direct lighting only (1 bounce), like them.\n"
-               "Writes DIR/compare.csv (method = the SPEC, ms per frame, spp, relmse, mape, smape, luma_rmse)\n"
+               "first SPEC other than pt (gradient methods: L2 reconstruction included, 002 Sec. 5): pt and\n"
+               "gpt get as many paths per pixel as fit, the other methods average as many independently\n"
+               "seeded instances as fit (gradient methods average primal and gradients, then reconstruct\n"
+               "once). When DI methods are compared, pt estimates direct lighting only (1 bounce), like them.\n"
+               "Writes DIR/compare.csv (method = the SPEC, ms per frame, spp, instances, relmse, mape, smape,\n"
+               "luma_rmse)\n"
                "and each row's last frame to DIR/FOLDER/, where FOLDER is the SPEC with every character other\n"
                "than A-Z a-z 0-9 . _ - replaced by _ (and _2, _3, ... appended when two SPECs give the same\n"
                "name). Default DIR: out/compare-SCENE.\n");
@@ -283,26 +331,39 @@ int cmd_compare(int argc, char **argv)
     if (!o.ref && exr_write_rgb(ref_path, ref, p.width, p.height, msg) != 0)
         cli_error("warning: %s", msg);
 
-    /* ReSTIR methods first: the first of them sets the equal-time budget. */
+    /* The first spec other than pt sets the equal-time budget (its frame time, reconstruction
+     * included); pt and gpt then fit it by paths per pixel, the others by averaging instances. */
     struct compare_result res[MAX_METHODS];
     double budget = -1.0;
-    for (int k = 0; k < n; k++) {
-        if (specs[k].method == METHOD_PT)
-            continue;
-        if (run_method(&s, &specs[k], &specs[k].p, o.frames, ref, out_dir, &res[k], msg) != 0) {
+    int first = -1;
+    for (int k = 0; k < n && first < 0; k++)
+        if (specs[k].method != METHOD_PT)
+            first = k;
+    if (first >= 0) {
+        if (run_method(&s, &specs[first], &specs[first].p, o.frames, 1, ref, out_dir, &res[first], msg) != 0)
             rc = EXIT_RUNTIME;
-            break;
-        }
-        if (budget < 0.0)
-            budget = res[k].ms_per_frame;
+        budget = res[first].ms_per_frame;
     }
     for (int k = 0; k < n && rc == 0; k++) {
-        if (specs[k].method != METHOD_PT)
+        if (k == first)
             continue;
         struct render_params q = specs[k].p;
-        if (o.equal_time && budget > 0.0)
-            q.spp = pt_spp_for_budget(&s, &specs[k].p, budget);
-        if (run_method(&s, &specs[k], &q, o.frames, ref, out_dir, &res[k], msg) != 0)
+        int instances = 1;
+        if (o.equal_time && budget > 0.0) {
+            if (budget_by_spp(specs[k].method)) {
+                q.spp = spp_for_budget(&s, specs[k].method, &specs[k].p, budget);
+            } else {
+                /* one instance's time from a short run, then as many as fit (at least 1) */
+                struct compare_result probe;
+                if (run_method(&s, &specs[k], &q, o.frames < 3 ? o.frames : 3, 1, ref, out_dir, &probe, msg) != 0) {
+                    rc = EXIT_RUNTIME;
+                    break;
+                }
+                instances = (int)(budget / probe.ms_per_frame + 0.5);
+                instances = instances < 1 ? 1 : instances > MAX_INSTANCES ? MAX_INSTANCES : instances;
+            }
+        }
+        if (run_method(&s, &specs[k], &q, o.frames, instances, ref, out_dir, &res[k], msg) != 0)
             rc = EXIT_RUNTIME;
     }
     if (rc != 0) {
@@ -315,7 +376,7 @@ int cmd_compare(int argc, char **argv)
     char csv_path[4200];
     snprintf(csv_path, sizeof(csv_path), "%s/compare.csv", out_dir);
     struct csv_writer csv;
-    if (csv_open(&csv, csv_path, "method,ms_per_frame,spp,relmse,mape,smape,luma_rmse", msg) != 0) {
+    if (csv_open(&csv, csv_path, "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse", msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }
@@ -325,17 +386,18 @@ int cmd_compare(int argc, char **argv)
             w = (int)strlen(specs[k].label);
     printf("%s, %dx%d, %s camera, error at frame %d%s:\n", o.scene, p.width, p.height,
            p.camera_path ? "moving" : "static", o.frames - 1, o.equal_time ? ", equal time" : "");
-    printf("%-*s %10s %6s %12s %10s %8s %12s\n", w, "method", "ms/frame", "spp", "relMSE", "MAPE", "SMAPE",
-           "relMSE/first");
+    printf("%-*s %10s %6s %5s %12s %10s %8s %12s\n", w, "method", "ms/frame", "spp", "inst", "relMSE", "MAPE",
+           "SMAPE", "relMSE/first");
     for (int k = 0; k < n; k++) {
         const struct compare_result *c = &res[k];
-        printf("%-*s %10.2f %6d %12.5g %10.5g %8.3f %12.3f\n", w, specs[k].label, c->ms_per_frame, c->spp,
-               c->err.relmse, c->err.mape, c->err.smape,
+        printf("%-*s %10.2f %6d %5d %12.5g %10.5g %8.3f %12.3f\n", w, specs[k].label, c->ms_per_frame, c->spp,
+               c->instances, c->err.relmse, c->err.mape, c->err.smape,
                res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0);
         if (rc == 0) {
             char field[2 * SPEC_MAX + 4];
             csv_field(field, sizeof(field), specs[k].label);
-            csv_row(&csv, "%s,%.3f,%d,%.6g,%.6g,%.6g,%.6g", field, c->ms_per_frame, c->spp, c->err.relmse,
+            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g", field, c->ms_per_frame, c->spp, c->instances,
+                    c->err.relmse,
                     c->err.mape, c->err.smape, c->err.luma_rmse);
         }
     }

@@ -17,6 +17,7 @@
 #include "grad_common.h"
 #include "render/path_walk.h"
 #include "render/tiles.h"
+#include "shading/lights.h"
 
 struct gpt_ctx {
     const struct scene *s;
@@ -45,7 +46,7 @@ static void candidate(void *vctx, const struct path_walk *w, const struct path_c
 }
 
 long long gpt_pass(const struct scene *s, const struct shift_params *sp, const struct camera_view *view,
-                   const struct render_params *p, int frame, float *primal, float *os)
+                   const struct render_params *p, int frame, float *primal, float *emission, float *os)
 {
     long long rays = 0;
     const int w = view->width, h = view->height, ntiles = tile_count(w, h);
@@ -58,13 +59,11 @@ long long gpt_pass(const struct scene *s, const struct shift_params *sp, const s
                 size_t i = (size_t)y * (size_t)w + (size_t)x;
                 pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_GPT);
                 struct gpt_ctx ctx = {s, sp, view, x, y, w, h, i, 1.0f / (float)p->spp, {0}, os, v3s(0.0f), 0};
+                vec3 Le = v3s(0.0f);
                 for (int k = 0; k < p->spp; k++) {
                     ctx.trial.u[0] = p->jitter ? pcg32_float(&rng) : 0.5f;
                     ctx.trial.u[1] = p->jitter ? pcg32_float(&rng) : 0.5f;
                     ctx.trial.seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
-                    vec3 Le;
-                    ctx.rays += grad_emission_one_sided(s, view, x, y, w, h, ctx.trial.u, ctx.inv_spp, os, i, &Le);
-                    ctx.primal = v3_add(ctx.primal, v3_scale(Le, ctx.inv_spp));
                     float fx, fy;
                     path_image_position(x, y, ctx.trial.u, &fx, &fy);
                     vec3 d = camera_view_ray(view, fx, fy);
@@ -72,14 +71,19 @@ long long gpt_pass(const struct scene *s, const struct shift_params *sp, const s
                     ctx.rays++;
                     if (!scene_intersect(s, view->position, d, 0.0f, INFINITY, &hit))
                         continue;
+                    if (s->tri_emitter[hit.tri] >= 0 && hit.front)
+                        Le = v3_add(Le, v3_scale(lights_radiance(s, hit.tri, v3_neg(d)), ctx.inv_spp));
                     struct path_vertex x1 = path_vertex_from_hit(&hit, d);
                     ctx.rays += path_walk_run(s, &x1, ctx.trial.seed, p->max_bounces, p->rr_bounces, &walk,
                                               candidate, &ctx);
                 }
                 vec3 L = v3_is_finite(ctx.primal) ? ctx.primal : v3s(0.0f);
-                primal[3 * i] = L.x;
-                primal[3 * i + 1] = L.y;
-                primal[3 * i + 2] = L.z;
+                primal[3 * i] = L.x + Le.x;
+                primal[3 * i + 1] = L.y + Le.y;
+                primal[3 * i + 2] = L.z + Le.z;
+                emission[3 * i] = Le.x;
+                emission[3 * i + 1] = Le.y;
+                emission[3 * i + 2] = Le.z;
                 rays += ctx.rays;
             }
         }

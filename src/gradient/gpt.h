@@ -8,9 +8,11 @@
 #include "render/params.h"
 #include "render/path_shift.h"
 
-/* spp samples per pixel: primal (RGB, the pt estimate of the same paths) and the one-sided
- * differences os (grad_common.h, cleared by the caller). Returns rays traced. */
+/* spp samples per pixel: primal (RGB, the pt estimate of the same paths), its part seen directly
+ * (emission, RGB; its gradients are its forward differences, grad_add_image_differences) and the
+ * one-sided differences of the paths of length >= 2 in os (grad_common.h, cleared by the caller).
+ * Returns rays traced. */
 long long gpt_pass(const struct scene *s, const struct shift_params *sp, const struct camera_view *view,
-                   const struct render_params *p, int frame, float *primal, float *os);
+                   const struct render_params *p, int frame, float *primal, float *emission, float *os);
 
 #endif

@@ -7,7 +7,6 @@
 #include "render/restir_pt.h"
 #include "render/tiles.h"
 #include "restir/gradient.h"
-#include "shading/lights.h"
 
 void grad_os_clear(float *os, size_t n) { memset(os, 0, sizeof(float) * 3 * GRAD_DIRS * n); }
 
@@ -76,64 +75,18 @@ long long grad_one_sided_all(const struct scene *s, const struct shift_params *s
     return rays;
 }
 
-/* Radiance emitted toward the camera by the primary hit at image position (fx, fy). */
-static vec3 primary_emission(const struct scene *s, const struct camera_view *view, float fx, float fy)
+void grad_add_image_differences(int w, int h, const float *E, float *dx, float *dy)
 {
-    vec3 d = camera_view_ray(view, fx, fy);
-    struct surface_hit hit;
-    if (!scene_intersect(s, view->position, d, 0.0f, INFINITY, &hit))
-        return v3s(0.0f);
-    if (s->tri_emitter[hit.tri] < 0 || !hit.front)
-        return v3s(0.0f);
-    return lights_radiance(s, hit.tri, v3_neg(d));
-}
-
-long long grad_emission_one_sided(const struct scene *s, const struct camera_view *view, int px, int py, int w,
-                                  int h, const float u[2], float weight, float *os, size_t i, vec3 *Le)
-{
-    const size_t n = (size_t)w * (size_t)h;
-    vec3 e = primary_emission(s, view, (float)px + u[0], (float)py + u[1]);
-    long long rays = 1;
-    *Le = e;
-    if (!(v3_luminance(e) > 0.0f))
-        return rays;
-    const float own[3] = {e.x, e.y, e.z};
-    for (int d = 0; d < GRAD_DIRS; d++) {
-        int ox, oy;
-        grad_dir_offset(d, &ox, &oy);
-        if (px + ox < 0 || px + ox >= w || py + oy < 0 || py + oy >= h)
-            continue;
-        vec3 o = primary_emission(s, view, (float)(px + ox) + u[0], (float)(py + oy) + u[1]);
-        rays++;
-        const float other[3] = {o.x, o.y, o.z};
-        float diff[3];
-        restir_grad_one_sided(own, other, diff);
-        add_scaled(grad_os(os, n, d, i), diff, weight);
-    }
-    return rays;
-}
-
-long long grad_emission_pass(const struct scene *s, const struct camera_view *view, uint64_t seed, int frame,
-                             int jitter, int w, int h, float *os)
-{
-    long long rays = 0;
-    const int ntiles = tile_count(w, h);
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
-    for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, h, t);
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                size_t i = (size_t)y * (size_t)w + (size_t)x;
-                pcg32 rng = rng_for(seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_GRAD_EMISSION);
-                float u[2] = {0.5f, 0.5f};
-                if (jitter) {
-                    u[0] = pcg32_float(&rng);
-                    u[1] = pcg32_float(&rng);
-                }
-                vec3 Le;
-                rays += grad_emission_one_sided(s, view, x, y, w, h, u, 1.0f, os, i, &Le);
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            size_t i = (size_t)y * (size_t)w + (size_t)x;
+            for (int c = 0; c < 3; c++) {
+                if (x + 1 < w)
+                    dx[3 * i + c] += E[3 * (i + 1) + c] - E[3 * i + c];
+                if (y + 1 < h)
+                    dy[3 * i + c] += E[3 * (i + (size_t)w) + c] - E[3 * i + c];
             }
         }
     }
-    return rays;
 }

@@ -45,17 +45,12 @@ long long grad_one_sided_all(const struct scene *s, const struct shift_params *s
                              const struct path_sample *x, int px, int py, int w, int h, float weight, float *os,
                              size_t i);
 
-/* Emission seen directly, as a path of length 1 in pixel (px, py) at sub-pixel offset u (density 1
- * over the pixel square): its one-sided differences toward the four neighbors (the primary ray of
- * a neighbor at the same offset, |T'| = 1), times weight, into os[.][i]; *Le gets the emission
- * seen in the pixel itself. Returns rays traced. */
-long long grad_emission_one_sided(const struct scene *s, const struct camera_view *view, int px, int py, int w,
-                                  int h, const float u[2], float weight, float *os, size_t i, vec3 *Le);
-
-/* One emission sample per pixel (jittered when jitter != 0, else the centre; stream RNG_PASS_GRAD_EMISSION) into os: the emission part
- * of the gradients of methods whose paths start after the primary hit (restir-pt's paths of
- * length >= 2). Returns rays traced. */
-long long grad_emission_pass(const struct scene *s, const struct camera_view *view, uint64_t seed, int frame,
-                             int jitter, int w, int h, float *os);
+/* dx, dy (RGB) += the forward differences of image E (RGB floats, or vec3 when packed alike): the
+ * gradients of emission seen directly, taken from the primal's own estimate E of it. A primal and
+ * gradients that agree exactly on E reconstruct it exactly (L2 and L1 alike: adding a consistent
+ * pair (E, grad E) to the inputs shifts the solution by E), so this is Kettunen et al.'s "keep
+ * directly visible emission out of the solve and add it after": shifting primary rays instead
+ * gives +-Le one-sided estimates at every light edge, which the solve spreads into blobs. */
+void grad_add_image_differences(int w, int h, const float *E, float *dx, float *dy);
 
 #endif

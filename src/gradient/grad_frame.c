@@ -18,6 +18,7 @@ void grad_frame_init(struct grad_frame *g, const struct render_params *p, int gr
     g->dy = xcalloc(3 * n, sizeof(float));
     g->l2 = xcalloc(3 * n, sizeof(float));
     g->os = xcalloc(3 * GRAD_DIRS * n, sizeof(float));
+    g->emission = xcalloc(3 * n, sizeof(float));
     if (grestir) {
         g->base = xcalloc(n, sizeof(struct pt_reservoir));
         g->grestir = xmalloc(sizeof(*g->grestir));
@@ -33,6 +34,7 @@ void grad_frame_fini(struct grad_frame *g)
     free(g->l2);
     free(g->l1);
     free(g->os);
+    free(g->emission);
     free(g->base);
     if (g->grestir) {
         grestir_state_fini(g->grestir);

@@ -13,6 +13,7 @@ struct grad_frame {
     float *primal, *dx, *dy; /* RGB; dx[a] = F(a + x) - F(a), dy[a] = F(a + y) - F(a) */
     float *l2, *l1;          /* reconstructions; l1 only when recon is l1 or both */
     float *os;               /* one-sided differences (grad_common.h) */
+    float *emission;         /* gpt: the part of the primal seen directly (RGB) */
     struct pt_reservoir *base;     /* grestir-pt: this frame's initial paths */
     struct grestir_state *grestir; /* grestir-pt: paired-pixel reservoirs */
     struct restir_poisson_stats l2_stats, l1_stats;

@@ -231,16 +231,17 @@ static void gradient_passes(struct renderer *r, const struct pt_frame *fr, const
                 for (int s = 0; s < GRAD_SIGNS; s++)
                     memcpy(gs->hist[r->cur][d][s], gs->work[d][s], sizeof(struct pair_reservoir) * n);
     }
-    /* Emission seen directly: restir-pt's paths start after the primary hit. */
+    /* Emission seen directly (restir-pt's paths start after the primary hit): the differences of
+     * the primal's own estimate of it (grad_add_image_differences). */
     TIMED(st, PASS_GRAD_SHADE, {
-        st->rays += grad_emission_pass(r->scene, fr->view, p->seed, r->frame, p->jitter, g->width, g->height,
-                                       gf->os);
         grad_combine(g->width, g->height, gf->os, gf->dx, gf->dy);
+        grad_add_image_differences(g->width, g->height, &r->pt_emission[0].x, gf->dx, gf->dy);
     });
 }
 
-/* Screened Poisson reconstruction of a gradient method's frame into r->image. */
-static void reconstruct(struct renderer *r, struct frame_stats *st)
+_Static_assert(sizeof(vec3) == 3 * sizeof(float), "pt_emission is read as RGB floats");
+
+void renderer_reconstruct(struct renderer *r, struct frame_stats *st)
 {
     struct grad_frame *gf = r->grad;
     const size_t n = (size_t)gf->width * (size_t)gf->height;
@@ -261,8 +262,9 @@ static void render_gpt(struct renderer *r, const struct camera_view *view, struc
     sp.rough = r->material_rough;
     grad_frame_begin(gf);
     TIMED(st, PASS_GPT, {
-        st->rays += gpt_pass(r->scene, &sp, view, &r->p, r->frame, gf->primal, gf->os);
+        st->rays += gpt_pass(r->scene, &sp, view, &r->p, r->frame, gf->primal, gf->emission, gf->os);
         grad_combine(gf->width, gf->height, gf->os, gf->dx, gf->dy);
+        grad_add_image_differences(gf->width, gf->height, gf->emission, gf->dx, gf->dy);
     });
 }
 
@@ -354,7 +356,7 @@ void renderer_render(struct renderer *r, int frame, const struct camera *cam, st
         r->has_history = 1;
     }
     if (r->grad)
-        reconstruct(r, st);
+        renderer_reconstruct(r, st);
     r->prev_view = view;
     st->ms_total = 1e3 * (omp_get_wtime() - t0);
 }

@@ -107,6 +107,10 @@ void renderer_init(struct renderer *r, const struct scene *s, enum method_id met
 void renderer_fini(struct renderer *r);
 /* Renders frame number `frame` seen by cam into r->image. */
 void renderer_render(struct renderer *r, int frame, const struct camera *cam, struct frame_stats *st);
+/* Gradient methods: the screened Poisson reconstruction (L2; L1 too unless recon=l2) of
+ * r->grad's primal and gradients into r->image, timed into st->ms. renderer_render calls it; call
+ * it again after changing the inputs (e.g. averaging instances, 002 Sec. 5). */
+void renderer_reconstruct(struct renderer *r, struct frame_stats *st);
 /* Forgets history (the next frame starts without temporal reuse). */
 void renderer_reset(struct renderer *r);
 
