@@ -19,9 +19,9 @@ static void rp_weights(const struct rp_sys *s, double alpha, const float *primal
                        const double *x, double reg, double *wp, double *wx, double *wy)
 {
     const int w = s->w, h = s->h;
-    double sum = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : sum)
+#pragma omp parallel for schedule(static)
     for (int j = 0; j < h; j++) {
+        double sum = 0.0;
         for (int i = 0; i < w; i++) {
             const size_t p = (size_t)j * (size_t)w + (size_t)i;
             const double *xp = x + 3 * p;
@@ -45,7 +45,10 @@ static void rp_weights(const struct rp_sys *s, double alpha, const float *primal
                 sum += wy[p];
             }
         }
+        s->rows[(size_t)j * RP_ROW_SUMS] = sum;
     }
+    double sum;
+    rp_sum_rows(s, 1, &sum);
     const double rows = (double)s->n + (double)(w - 1) * h + (double)w * (h - 1);
     const double scale = rows / sum;
     const long ln = (long)s->n;
@@ -64,11 +67,11 @@ int restir_poisson_l1(int w, int h, const float *primal, const float *dx, const 
     if (rp_check(w, h, primal, dx, dy, alpha, out) != 0 || iterations < 0 || cg_steps < 1)
         return -1;
     const size_t n = (size_t)w * (size_t)h;
-    struct rp_sys s = {w, h, n, (double)alpha * (double)alpha, NULL, NULL, NULL};
+    struct rp_sys s = {w, h, n, (double)alpha * (double)alpha, NULL, NULL, NULL, rp_alloc(RP_ROW_SUMS * (size_t)h)};
     double *b = rp_alloc(3 * n), *x = rp_alloc(3 * n);
     double *wp = rp_alloc(n), *wx = rp_alloc(n), *wy = rp_alloc(n);
     int rc = -1, total = 0;
-    if (!b || !x || !wp || !wx || !wy)
+    if (!b || !x || !wp || !wx || !wy || !s.rows)
         goto done;
     rp_rhs(&s, primal, dx, dy, b);
     if (rp_dct_solve(w, h, s.a2, b, x) != 0)
@@ -93,6 +96,6 @@ int restir_poisson_l1(int w, int h, const float *primal, const float *dx, const 
     }
     rc = 0;
 done:;
-    free(b), free(x), free(wp), free(wx), free(wy);
+    free(b), free(x), free(wp), free(wx), free(wy), free(s.rows);
     return rc;
 }

@@ -87,10 +87,11 @@ int restir_poisson_l2(int w, int h, const float *primal, const float *dx, const 
         (solver != RESTIR_POISSON_CG || !(tol > 0.0) || !isfinite(tol) || max_iters < 1))
         return -1;
     const size_t n = (size_t)w * (size_t)h;
-    const struct rp_sys s = {w, h, n, (double)alpha * (double)alpha, NULL, NULL, NULL};
+    const struct rp_sys s = {w, h, n, (double)alpha * (double)alpha, NULL, NULL, NULL,
+                             rp_alloc(RP_ROW_SUMS * (size_t)h)};
     double *b = rp_alloc(3 * n), *x = rp_alloc(3 * n);
     int iters = 0, rc = -1;
-    if (!b || !x)
+    if (!b || !x || !s.rows)
         goto done;
     rp_rhs(&s, primal, dx, dy, b);
     if (solver == RESTIR_POISSON_DCT) {
@@ -117,5 +118,6 @@ int restir_poisson_l2(int w, int h, const float *primal, const float *dx, const 
 done:;
     free(b);
     free(x);
+    free(s.rows);
     return rc;
 }

@@ -1,7 +1,7 @@
 /* poisson_ops.c: the normal-equation operator of the (weighted) screened Poisson system, its
  * right-hand side, residuals and Jacobi-preconditioned CG (recon/poisson_ops.h). The three
  * channels are solved in lockstep (one pass over memory per step, per-channel CG scalars); dot
- * products are OpenMP reductions in double. */
+ * products are summed in double per image row, then over rows in order (deterministic). */
 #include "poisson_ops.h"
 
 #include <stdint.h>
@@ -13,6 +13,15 @@ double *rp_alloc(size_t n)
     if (n == 0 || n > SIZE_MAX / sizeof(double))
         return NULL;
     return malloc(n * sizeof(double));
+}
+
+void rp_sum_rows(const struct rp_sys *s, int nv, double *out)
+{
+    for (int v = 0; v < nv; v++)
+        out[v] = 0.0;
+    for (int j = 0; j < s->h; j++)
+        for (int v = 0; v < nv; v++)
+            out[v] += s->rows[(size_t)j * RP_ROW_SUMS + v];
 }
 
 int rp_check(int w, int h, const float *primal, const float *dx, const float *dy, float alpha, const float *out)
@@ -92,9 +101,9 @@ void rp_rhs(const struct rp_sys *s, const float *primal, const float *dx, const 
 static void rp_apply_dot(const struct rp_sys *s, const double *x, double *y, double dot[3])
 {
     const int w = s->w, h = s->h;
-    double d0 = 0.0, d1 = 0.0, d2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : d0, d1, d2)
+#pragma omp parallel for schedule(static)
     for (int j = 0; j < h; j++) {
+        double d0 = 0.0, d1 = 0.0, d2 = 0.0;
         for (int i = 0; i < w; i++) {
             const size_t p = 3 * ((size_t)j * (size_t)w + (size_t)i);
             double *yp = y + p;
@@ -103,19 +112,19 @@ static void rp_apply_dot(const struct rp_sys *s, const double *x, double *y, dou
             d1 += x[p + 1] * yp[1];
             d2 += x[p + 2] * yp[2];
         }
+        double *row = s->rows + (size_t)j * RP_ROW_SUMS;
+        row[0] = d0, row[1] = d1, row[2] = d2;
     }
-    dot[0] = d0;
-    dot[1] = d1;
-    dot[2] = d2;
+    rp_sum_rows(s, 3, dot);
 }
 
 /* Per channel: rr[c] = |b - A x|^2, bb[c] = |b|^2. */
 static void rp_residual_sq(const struct rp_sys *s, const double *b, const double *x, double rr[3], double bb[3])
 {
     const int w = s->w, h = s->h;
-    double r0 = 0.0, r1 = 0.0, r2 = 0.0, b0 = 0.0, b1 = 0.0, b2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : r0, r1, r2, b0, b1, b2)
+#pragma omp parallel for schedule(static)
     for (int j = 0; j < h; j++) {
+        double r0 = 0.0, r1 = 0.0, r2 = 0.0, b0 = 0.0, b1 = 0.0, b2 = 0.0;
         for (int i = 0; i < w; i++) {
             const size_t p = 3 * ((size_t)j * (size_t)w + (size_t)i);
             double y[3];
@@ -128,9 +137,13 @@ static void rp_residual_sq(const struct rp_sys *s, const double *b, const double
             b1 += b[p + 1] * b[p + 1];
             b2 += b[p + 2] * b[p + 2];
         }
+        double *row = s->rows + (size_t)j * RP_ROW_SUMS;
+        row[0] = r0, row[1] = r1, row[2] = r2, row[3] = b0, row[4] = b1, row[5] = b2;
     }
-    rr[0] = r0, rr[1] = r1, rr[2] = r2;
-    bb[0] = b0, bb[1] = b1, bb[2] = b2;
+    double sums[6];
+    rp_sum_rows(s, 6, sums);
+    rr[0] = sums[0], rr[1] = sums[1], rr[2] = sums[2];
+    bb[0] = sums[3], bb[1] = sums[4], bb[2] = sums[5];
 }
 
 void rp_residual(const struct rp_sys *s, const double *b, const double *x, double rel[3])
@@ -185,20 +198,24 @@ int rp_cg(const struct rp_sys *s, const double *b, double *x, double tol, int ma
     /* r = b - A x (q = A x), p = z = dinv r, rz = r . z. */
     double dot[3];
     rp_apply_dot(s, x, q, dot);
-    double z0 = 0.0, z1 = 0.0, z2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : z0, z1, z2)
-    for (long k = 0; k < ln; k++) {
-        double *rk = r + 3 * k, *pk = p + 3 * k;
-        const double *bk = b + 3 * k, *qk = q + 3 * k;
-        for (int c = 0; c < 3; c++) {
-            rk[c] = bk[c] - qk[c];
-            pk[c] = dinv[k] * rk[c];
+#pragma omp parallel for schedule(static)
+    for (int j = 0; j < h; j++) {
+        double z0 = 0.0, z1 = 0.0, z2 = 0.0;
+        for (long k = (long)j * w; k < (long)(j + 1) * w; k++) {
+            double *rk = r + 3 * k, *pk = p + 3 * k;
+            const double *bk = b + 3 * k, *qk = q + 3 * k;
+            for (int c = 0; c < 3; c++) {
+                rk[c] = bk[c] - qk[c];
+                pk[c] = dinv[k] * rk[c];
+            }
+            z0 += rk[0] * pk[0];
+            z1 += rk[1] * pk[1];
+            z2 += rk[2] * pk[2];
         }
-        z0 += rk[0] * pk[0];
-        z1 += rk[1] * pk[1];
-        z2 += rk[2] * pk[2];
+        double *row = s->rows + (size_t)j * RP_ROW_SUMS;
+        row[0] = z0, row[1] = z1, row[2] = z2;
     }
-    rz[0] = z0, rz[1] = z1, rz[2] = z2;
+    rp_sum_rows(s, 3, rz);
 
     int iters = 0;
     while ((active[0] || active[1] || active[2]) && iters < max_iters) {
@@ -208,24 +225,30 @@ int rp_cg(const struct rp_sys *s, const double *b, double *x, double tol, int ma
                 active[c] = 0; /* breakdown: stop this channel where it is */
             a[c] = active[c] ? rz[c] / dot[c] : 0.0;
         }
-        double s0 = 0.0, s1 = 0.0, s2 = 0.0, t0 = 0.0, t1 = 0.0, t2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : s0, s1, s2, t0, t1, t2)
-        for (long k = 0; k < ln; k++) {
-            double *xk = x + 3 * k, *rk = r + 3 * k;
-            const double *pk = p + 3 * k, *qk = q + 3 * k;
-            for (int c = 0; c < 3; c++) {
-                xk[c] += a[c] * pk[c];
-                rk[c] -= a[c] * qk[c];
+#pragma omp parallel for schedule(static)
+        for (int j = 0; j < h; j++) {
+            double s0 = 0.0, s1 = 0.0, s2 = 0.0, t0 = 0.0, t1 = 0.0, t2 = 0.0;
+            for (long k = (long)j * w; k < (long)(j + 1) * w; k++) {
+                double *xk = x + 3 * k, *rk = r + 3 * k;
+                const double *pk = p + 3 * k, *qk = q + 3 * k;
+                for (int c = 0; c < 3; c++) {
+                    xk[c] += a[c] * pk[c];
+                    rk[c] -= a[c] * qk[c];
+                }
+                s0 += rk[0] * rk[0];
+                s1 += rk[1] * rk[1];
+                s2 += rk[2] * rk[2];
+                t0 += rk[0] * rk[0] * dinv[k];
+                t1 += rk[1] * rk[1] * dinv[k];
+                t2 += rk[2] * rk[2] * dinv[k];
             }
-            s0 += rk[0] * rk[0];
-            s1 += rk[1] * rk[1];
-            s2 += rk[2] * rk[2];
-            t0 += rk[0] * rk[0] * dinv[k];
-            t1 += rk[1] * rk[1] * dinv[k];
-            t2 += rk[2] * rk[2] * dinv[k];
+            double *row = s->rows + (size_t)j * RP_ROW_SUMS;
+            row[0] = s0, row[1] = s1, row[2] = s2, row[3] = t0, row[4] = t1, row[5] = t2;
         }
         iters++;
-        const double sr[3] = {s0, s1, s2}, tz[3] = {t0, t1, t2};
+        double sums[6];
+        rp_sum_rows(s, 6, sums);
+        const double sr[3] = {sums[0], sums[1], sums[2]}, tz[3] = {sums[3], sums[4], sums[5]};
         for (int c = 0; c < 3; c++) {
             if (active[c] && sqrt(sr[c]) <= tol * bn[c])
                 active[c] = 0;

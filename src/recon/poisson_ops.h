@@ -16,7 +16,14 @@ struct rp_sys {
     size_t n;
     double a2;
     const double *wp, *wx, *wy;
+    double *rows; /* RP_ROW_SUMS * h scratch doubles for deterministic reductions (rp_alloc) */
 };
+
+/* Reductions are summed per image row (a partition that does not depend on the thread count) and
+ * then over the rows in order, so every result is bit-identical whatever the number of threads. */
+#define RP_ROW_SUMS 6
+/* out[v] = sum over rows j in order of s->rows[j * RP_ROW_SUMS + v], v < nv. */
+void rp_sum_rows(const struct rp_sys *s, int nv, double *out);
 
 /* A non-finite input value reads as 0. */
 static inline double rp_in(float v)
