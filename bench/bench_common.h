@@ -20,5 +20,7 @@ struct bench_spmis_options {
 void bench_spmis(const struct bench_spmis_options *o);
 /* The `poisson` section (bench_poisson.c): argv[0] is "poisson", then its options. */
 int bench_poisson(int argc, char **argv);
+/* The `gradient` section (bench_gradient.c): argv[0] is "gradient", then its options. */
+int bench_gradient(int argc, char **argv);
 
 #endif
