@@ -19,7 +19,10 @@ static void render_usage(FILE *out)
             "                     [--save all|last] [--set key=value]...\n"
             "Writes DIR/frame_NNNN.exr and .png, DIR/metrics.csv (per frame: times per pass, rays, and\n"
             "error metrics when --ref is given) and DIR/summary.json. Default DIR: out/SCENE-METHOD.\n"
-            "ReSTIR methods render 1 sample per pixel per frame; --spp applies to pt.\n\n"
+            "ReSTIR methods render 1 sample per pixel per frame; --spp applies to pt and gpt.\n"
+            "Gradient methods (gpt, grad-after-restir, grestir-pt) write the reconstruction as the image\n"
+            "(L2; L1 with recon=l1), EXR layers primal, dx, dy (and L1 or L2 when computed), and\n"
+            "frame_NNNN_{primal,dx,dy}.png (gradients in false colour: red positive, blue negative).\n\n"
             "Parameters (--set key=value, defaults shown):\n");
     render_params_help(out);
     fprintf(out, "\nMetrics (against --ref):\n%s", restir_metrics_help());
@@ -46,9 +49,12 @@ static int open_scene_and_method(const struct cli_options *o, struct scene *s, e
     return 0;
 }
 
-static cJSON *params_json(const struct cli_options *o)
+static cJSON *params_json(const struct cli_options *o, enum method_id method)
 {
-    const struct render_params *p = &o->params;
+    struct render_params q = o->params;
+    renderer_method_params(method, &q); /* what the renderer ran with */
+    const struct render_params *p = &q;
+    const int paths = method_runs_restir_pt(method) || method == METHOD_GPT;
     cJSON *j = cJSON_CreateObject();
     cJSON_AddStringToObject(j, "scene", o->scene);
     cJSON_AddStringToObject(j, "method", o->method);
@@ -63,17 +69,29 @@ static cJSON *params_json(const struct cli_options *o)
     cJSON_AddNumberToObject(j, "bsdf_candidates", p->bsdf_candidates);
     cJSON_AddBoolToObject(j, "temporal", p->temporal);
     cJSON_AddBoolToObject(j, "spatial", p->spatial);
-    cJSON_AddNumberToObject(j, "spatial_neighbors",
-                            render_params_spatial_neighbors(p, strcmp(o->method, "restir-pt") == 0));
+    cJSON_AddNumberToObject(j, "spatial_neighbors", render_params_spatial_neighbors(p, method_runs_restir_pt(method)));
     cJSON_AddNumberToObject(j, "spatial_radius", p->spatial_radius);
     cJSON_AddNumberToObject(j, "confidence_cap", p->confidence_cap);
     cJSON_AddStringToObject(j, "mis", restir_mis_name(p->mis));
     cJSON_AddBoolToObject(j, "temporal_ratio_guard", p->temporal_ratio_guard);
-    if (strcmp(o->method, "restir-pt") == 0) {
+    if (paths) {
         cJSON_AddNumberToObject(j, "pt_candidates", p->pt_candidates);
         cJSON_AddStringToObject(j, "shift", shift_kind_name(p->shift));
         cJSON_AddNumberToObject(j, "shift_roughness", p->shift_roughness);
         cJSON_AddNumberToObject(j, "shift_distance", p->shift_distance);
+    }
+    if (method_table[method].gradient) {
+        static const char *const recon[] = {"l2", "l1", "both"}, *const spatial[] = {"off", "dense", "adaptive"};
+        cJSON_AddStringToObject(j, "recon", recon[p->recon]);
+        cJSON_AddNumberToObject(j, "recon_alpha", p->recon_alpha);
+        cJSON_AddStringToObject(j, "recon_solver", p->recon_solver ? "cg" : "dct");
+        if (method == METHOD_GRESTIR_PT) {
+            cJSON_AddStringToObject(j, "grad_spatial", spatial[p->grad_spatial]);
+            cJSON_AddBoolToObject(j, "grad_positivize", p->grad_positivize);
+            cJSON_AddBoolToObject(j, "grad_cross_sign", p->grad_cross_sign);
+            cJSON_AddNumberToObject(j, "grad_search", p->grad_search);
+            cJSON_AddNumberToObject(j, "grad_radius", p->grad_radius);
+        }
     }
     return j;
 }
@@ -181,7 +199,7 @@ int cmd_render(int argc, char **argv)
         csv_abort(&csv);
     }
     if (rc == 0) {
-        cJSON *j = params_json(&o);
+        cJSON *j = params_json(&o, method);
         cJSON_AddNumberToObject(j, "ms_per_frame", ms_sum / o.frames);
         cJSON_AddNumberToObject(j, "mrays_per_s", rays_sum / (ms_sum * 1e3));
         if (ref) {

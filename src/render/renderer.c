@@ -64,20 +64,25 @@ void renderer_reference_params(enum method_id method, struct render_params *p)
         p->max_bounces = 1;
 }
 
+void renderer_method_params(enum method_id method, struct render_params *p)
+{
+    if (method == METHOD_RIS_DI) {
+        p->temporal = 0;
+        p->spatial = 0;
+    }
+    /* Area ReSTIR's primal (002 Sec. 5): 1 initial candidate (the default) and 2 spatial neighbors. */
+    if ((method == METHOD_AREA_RESTIR || method == METHOD_GRAD_AFTER_RESTIR || method == METHOD_GRESTIR_PT) &&
+        p->spatial_neighbors == 0)
+        p->spatial_neighbors = 2;
+}
+
 void renderer_init(struct renderer *r, const struct scene *s, enum method_id method, const struct render_params *p)
 {
     memset(r, 0, sizeof(*r));
     r->scene = s;
     r->p = *p;
     r->method = method;
-    if (method == METHOD_RIS_DI) {
-        r->p.temporal = 0;
-        r->p.spatial = 0;
-    }
-    /* Area ReSTIR's primal (002 Sec. 5): 1 initial candidate (the default) and 2 spatial neighbors. */
-    if ((method == METHOD_AREA_RESTIR || method == METHOD_GRAD_AFTER_RESTIR || method == METHOD_GRESTIR_PT) &&
-        r->p.spatial_neighbors == 0)
-        r->p.spatial_neighbors = 2;
+    renderer_method_params(method, &r->p);
     p = &r->p;
     size_t n = (size_t)p->width * (size_t)p->height;
     r->image = xcalloc(3 * n, sizeof(float));

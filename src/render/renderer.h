@@ -102,6 +102,10 @@ struct renderer {
                                      recon selects, L2 for recon=both) */
 };
 
+/* The method's own defaults on top of p (ris-di: no reuse; area-restir and the primal of
+ * grad-after-restir and grestir-pt: 2 spatial neighbors unless spatial.neighbors is set).
+ * renderer_init applies them; reports call it to say what ran. */
+void renderer_method_params(enum method_id method, struct render_params *p);
 /* p must have passed render_params_validate. */
 void renderer_init(struct renderer *r, const struct scene *s, enum method_id method, const struct render_params *p);
 void renderer_fini(struct renderer *r);
