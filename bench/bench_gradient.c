@@ -4,7 +4,9 @@
  * per pixel), error of the last frame for the L2 and the L1 reconstruction and of the gradients; the
  * reconstruction times; the ablations of 002 Fig. 9 (positivization), Fig. 10 (spatial reuse) and
  * Sec. 4.4 (reuse across signs) on ajar; and pictures in the layout of 002 Fig. 7 and 8 for ajar
- * (docs/gradient/). Prints Markdown for docs/BENCHMARKS.md. Must never be run by the tests. */
+ * (docs/gradient/). --equal-samples instead: per scene, every method at 1 instance / 1 spp on the
+ * same frames, with the rays traced per pixel and grestir-pt's temporal pass per frame. Prints
+ * Markdown for docs/BENCHMARKS.md. Must never be run by the tests. */
 #include <errno.h>
 #include <math.h>
 #include <omp.h>
@@ -46,6 +48,18 @@ struct gb_result {
     double grad_err;            /* gradient error (gradient_error) */
     double mean_l2, mean_l1;    /* image mean luminance / the reference's (L2 or image; L1) */
     float *image, *l1_image, *dx, *dy; /* last frame (averaged): copies, freed by gb_result_free */
+    long long rays;   /* rays traced over the timed frames, all instances */
+    int timed_frames; /* frames timed per instance */
+    /* --equal-samples only (else NULL): per frame f of the path (instance 0), the ms of
+     * PASS_GRAD_TEMPORAL, the frame's ms_total and its rays; freed by gb_result_free */
+    double *frame_temporal_ms, *frame_ms;
+    long long *frame_rays;
+};
+
+/* Per-frame records of render_frames (NULL: none). */
+struct gb_frame_log {
+    double *temporal_ms, *ms;
+    long long *rays;
 };
 
 /* Reconstruction timings of every solve, for the medians. */
@@ -208,21 +222,29 @@ static double grad_pass_ms(const double *ms)
 }
 
 /* Renders frames [from, frames) of the camera path with r; frames >= timed_from are timed. Returns
- * their mean frame time and stores the mean per pass in pass_ms; logs every L2 solve timed. */
+ * their mean frame time and stores the mean per pass in pass_ms and the rays they traced in *rays;
+ * logs every L2 solve timed, and, when log is not NULL, every frame rendered into log (by frame). */
 static double render_frames(struct renderer *r, const struct scene *s, int from, int timed_from, int frames,
-                            double pass_ms[PASS_COUNT])
+                            double pass_ms[PASS_COUNT], long long *rays, const struct gb_frame_log *log)
 {
     double total = 0.0;
     int timed = 0;
     memset(pass_ms, 0, sizeof(double) * PASS_COUNT);
+    *rays = 0;
     for (int f = from; f < frames; f++) {
         struct frame_stats st;
         struct camera cam = scene_camera_at(s, 1, (float)f);
         renderer_render(r, f, &cam, &st);
+        if (log) {
+            log->temporal_ms[f] = st.ms[PASS_GRAD_TEMPORAL];
+            log->ms[f] = st.ms_total;
+            log->rays[f] = st.rays;
+        }
         if (f < timed_from)
             continue;
         timed++;
         total += st.ms_total;
+        *rays += st.rays;
         for (int q = 0; q < PASS_COUNT; q++)
             pass_ms[q] += st.ms[q];
         if (r->grad)
@@ -262,14 +284,16 @@ static int spp_for_budget(const struct scene *s, enum method_id m, const struct 
 }
 
 /* Runs method m (common parameters, then `sets`) on the camera path and measures its last frame.
- * budget_ms <= 0: 1 instance at 1 spp. Otherwise pt and gpt get the paths per pixel that fit (they
+ * budget_ms <= 0: 1 instance at 1 spp. equal_samples (with budget_ms <= 0): pt and gpt too render
+ * every frame of the path, timed from TIMING_SKIP as the ReSTIR methods, and every frame is logged
+ * into res->frame_*. Otherwise pt and gpt get the paths per pixel that fit (they
  * keep no state between frames: only frames N-3 .. N-1 are rendered, the last two timed), and the
  * ReSTIR methods average as many independently seeded instances as fit: instance 0's time t0
  * includes one L2 solve, each further instance costs t0 - L2 (gradient methods average primal, dx
  * and dy, then reconstruct once, 002 Sec. 5). Gradient methods then also get the L1 solve of the
  * final inputs (untimed). */
 static void run_method(const struct scene *s, const struct gb_config *c, enum method_id m, const char *sets,
-                       double budget_ms, const struct gb_ref *ref, struct gb_result *res)
+                       double budget_ms, int equal_samples, const struct gb_ref *ref, struct gb_result *res)
 {
     memset(res, 0, sizeof(*res));
     res->method = m;
@@ -278,7 +302,17 @@ static void run_method(const struct scene *s, const struct gb_config *c, enum me
     const size_t npix = (size_t)c->width * c->height, n3 = 3 * npix;
     const int last = c->frames - 1;
     double pass_ms[PASS_COUNT];
+    long long rays_k;
     struct renderer r0;
+    struct gb_frame_log log_store, *log = NULL;
+    if (equal_samples) {
+        budget_ms = 0.0;
+        res->frame_temporal_ms = xcalloc((size_t)c->frames, sizeof(double));
+        res->frame_ms = xcalloc((size_t)c->frames, sizeof(double));
+        res->frame_rays = xcalloc((size_t)c->frames, sizeof(long long));
+        log_store = (struct gb_frame_log){res->frame_temporal_ms, res->frame_ms, res->frame_rays};
+        log = &log_store;
+    }
     res->instances = 1;
     res->spp = 1;
     if (m == METHOD_PT || m == METHOD_GPT) {
@@ -286,12 +320,14 @@ static void run_method(const struct scene *s, const struct gb_config *c, enum me
             p.spp = spp_for_budget(s, m, &p, budget_ms, last);
         res->spp = p.spp;
         renderer_init(&r0, s, m, &p);
-        int from = c->frames - 3;
-        res->ms = render_frames(&r0, s, from, from + 1, c->frames, pass_ms);
+        int from = equal_samples ? 0 : c->frames - 3, timed_from = equal_samples ? TIMING_SKIP : from + 1;
+        res->ms = render_frames(&r0, s, from, timed_from, c->frames, pass_ms, &res->rays, log);
+        res->timed_frames = c->frames - timed_from;
         res->grad_ms = grad_pass_ms(pass_ms);
     } else {
         renderer_init(&r0, s, m, &p);
-        res->ms = render_frames(&r0, s, 0, TIMING_SKIP, c->frames, pass_ms);
+        res->ms = render_frames(&r0, s, 0, TIMING_SKIP, c->frames, pass_ms, &res->rays, log);
+        res->timed_frames = c->frames - TIMING_SKIP;
         res->grad_ms = grad_pass_ms(pass_ms);
         if (budget_ms > 0.0) {
             double extra = res->ms - pass_ms[PASS_RECON_L2] - pass_ms[PASS_RECON_L1];
@@ -310,7 +346,8 @@ static void run_method(const struct scene *s, const struct gb_config *c, enum me
                 q.seed = p.seed + SEED_STRIDE * (uint64_t)k;
                 struct renderer rk;
                 renderer_init(&rk, s, m, &q);
-                double ms_k = render_frames(&rk, s, 0, TIMING_SKIP, c->frames, pass_ms);
+                double ms_k = render_frames(&rk, s, 0, TIMING_SKIP, c->frames, pass_ms, &rays_k, NULL);
+                res->rays += rays_k;
                 res->ms += ms_k - pass_ms[PASS_RECON_L2] - pass_ms[PASS_RECON_L1];
                 res->grad_ms += grad_pass_ms(pass_ms);
                 const float *src[4] = {rk.image, rk.grad ? rk.grad->primal : NULL, rk.grad ? rk.grad->dx : NULL,
@@ -363,6 +400,9 @@ static void gb_result_free(struct gb_result *r)
     free(r->l1_image);
     free(r->dx);
     free(r->dy);
+    free(r->frame_temporal_ms);
+    free(r->frame_ms);
+    free(r->frame_rays);
 }
 
 /* The equal-time rows of one scene (002 Fig. 8), in table order. */
@@ -374,10 +414,10 @@ static void equal_time(const struct scene *s, const char *name, const struct gb_
                        struct gb_result res[ROWS])
 {
     double t0 = omp_get_wtime();
-    run_method(s, c, METHOD_GRESTIR_PT, "", 0.0, ref, &res[ROW_OURS]);
+    run_method(s, c, METHOD_GRESTIR_PT, "", 0.0, 0, ref, &res[ROW_OURS]);
     const double budget = res[ROW_OURS].ms;
     for (int k = 1; k < ROWS; k++)
-        run_method(s, c, row_method[k], "", budget, ref, &res[k]);
+        run_method(s, c, row_method[k], "", budget, 0, ref, &res[k]);
     printf("\n### Equal time (002 Fig. 8) on %s, %dx%d, camera path, error of frame %d against a %d-spp pt "
            "reference; budget = grestir-pt's %.1f ms/frame (L2 included, frames %d-%d)\n\n",
            name, c->width, c->height, c->frames - 1, c->ref_spp, budget, TIMING_SKIP, c->frames - 1);
@@ -403,6 +443,48 @@ static void equal_time(const struct scene *s, const char *name, const struct gb_
            "the reference's. %.0f s.\n",
            omp_get_wtime() - t0);
     fflush(stdout);
+}
+
+/* --equal-samples: the rows of equal_time, each at 1 instance and 1 spp on the same frames (0 .. N-1
+ * rendered, TIMING_SKIP .. N-1 timed), with the rays traced per pixel per timed frame; then
+ * grestir-pt's PASS_GRAD_TEMPORAL, frame time and rays for frames 1 .. N-1 (frame 0 has no history). */
+static void equal_samples(const struct scene *s, const char *name, const struct gb_config *c,
+                          const struct gb_ref *ref)
+{
+    double t0 = omp_get_wtime();
+    const double npix = (double)c->width * c->height;
+    struct gb_result res[ROWS];
+    for (int k = 0; k < ROWS; k++)
+        run_method(s, c, row_method[k], "", 0.0, 1, ref, &res[k]);
+    printf("\n### Equal samples on %s, %dx%d, camera path, error of frame %d against a %d-spp pt reference; "
+           "1 instance each, gpt and pt at 1 spp, all frames 0-%d rendered, frames %d-%d timed\n\n",
+           name, c->width, c->height, c->frames - 1, c->ref_spp, c->frames - 1, TIMING_SKIP, c->frames - 1);
+    printf("| method | ms/frame | spp | instances | rays/px per frame | relMSE L2 | MAPE L2 | relMSE L1 | MAPE L1 "
+           "| relMSE L2 / ours L2 | gradient error | mean / ref L2, L1 |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int k = 0; k < ROWS; k++) {
+        const struct gb_result *r = &res[k];
+        const int grad = method_table[r->method].gradient;
+        char l1a[32], l1b[32], l1m[32];
+        snprintf(l1a, sizeof(l1a), grad ? "%.5g" : "-", r->l1.relmse);
+        snprintf(l1b, sizeof(l1b), grad ? "%.4f" : "-", r->l1.mape);
+        snprintf(l1m, sizeof(l1m), grad ? ", %.3f" : "", r->mean_l1);
+        printf("| %s%s | %.1f | %d | %d | %.2f | %.5g | %.4f | %s | %s | %.2f | %.4f%s | %.3f%s |\n",
+               method_table[r->method].name, k == ROW_OURS ? " (ours)" : "", r->ms, r->spp, r->instances,
+               (double)r->rays / r->timed_frames / npix, r->l2.relmse, r->l2.mape, l1a, l1b,
+               r->l2.relmse / res[ROW_OURS].l2.relmse, r->grad_err, grad ? "" : " *", r->mean_l2, l1m);
+    }
+    printf("\nColumns as in the equal-time tables; rays/px per frame: frame_stats.rays summed over the timed "
+           "frames / frames / pixels (the reconstructions trace none).\n");
+    const struct gb_result *o = &res[ROW_OURS];
+    printf("\ngrestir-pt per frame on %s (frames 0-%d untimed in the table):\n\n", name, TIMING_SKIP - 1);
+    for (int f = 1; f < c->frames; f++)
+        printf("    frame %2d: grad_temporal %7.2f ms, frame %8.2f ms, rays %lld (%.2f/px)\n", f,
+               o->frame_temporal_ms[f], o->frame_ms[f], o->frame_rays[f], (double)o->frame_rays[f] / npix);
+    printf("\n%.0f s.\n", omp_get_wtime() - t0);
+    fflush(stdout);
+    for (int k = 0; k < ROWS; k++)
+        gb_result_free(&res[k]);
 }
 
 /* Copies the w x h window at (x0, y0) of img (width W), upscaled by zoom (nearest), into out (width OW)
@@ -492,7 +574,7 @@ static void ablations(const struct scene *s, const struct gb_config *c, const st
            "| mean / ref L2, L1 |\n|---|---|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < n; k++) {
         struct gb_result r;
-        run_method(s, c, METHOD_GRESTIR_PT, sets[k][0], 0.0, ref, &r);
+        run_method(s, c, METHOD_GRESTIR_PT, sets[k][0], 0.0, 0, ref, &r);
         printf("| %s | %.1f | %.1f | %.5g | %.4f | %.5g | %.4f | %.4f | %.3f, %.3f |\n", sets[k][1], r.ms,
                r.grad_ms, r.l2.relmse, r.l2.mape, r.l1.relmse, r.l1.mape, r.grad_err, r.mean_l2, r.mean_l1);
         fflush(stdout);
@@ -505,8 +587,12 @@ static void ablations(const struct scene *s, const struct gb_config *c, const st
 static int usage(void)
 {
     fprintf(stderr, "usage: restir_bench gradient [--res WxH] [--frames N] [--ref-spp N] [--scenes a,b,c] [--quick]\n"
+                    "                             [--equal-samples]\n"
                     "  defaults: 640x360, 16 frames, 2048 ref spp, scenes ajar,cornell,foliage;\n"
-                    "  --quick: 320x180, 8 frames, 512 ref spp (explicit options override it)\n");
+                    "  --quick: 320x180, 8 frames, 512 ref spp (explicit options override it);\n"
+                    "  --equal-samples: per scene, every method at 1 instance / 1 spp on the same frames\n"
+                    "  (with rays per pixel and grestir-pt's temporal pass per frame) instead of the\n"
+                    "  equal-time tables, pictures and ablations\n");
     return 2;
 }
 
@@ -517,9 +603,12 @@ int bench_gradient(int argc, char **argv)
     for (int i = 1; i < argc; i++)
         if (!strcmp(argv[i], "--quick"))
             c = (struct gb_config){320, 180, 8, 512};
+    int equal_samples_mode = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--quick"))
             continue;
+        else if (!strcmp(argv[i], "--equal-samples"))
+            equal_samples_mode = 1;
         else if (!strcmp(argv[i], "--res") && i + 1 < argc &&
                  sscanf(argv[i + 1], "%dx%d", &c.width, &c.height) == 2 && c.width >= 8 && c.height >= 8)
             i++;
@@ -550,6 +639,21 @@ int bench_gradient(int argc, char **argv)
            c.width, c.height, c.frames, c.ref_spp, omp_get_max_threads(), d.spatial_radius, d.grad_radius,
            d.grad_search);
     fflush(stdout);
+
+    if (equal_samples_mode) {
+        for (int k = 0; k < nscenes; k++) {
+            struct scene s = bench_load_scene(scenes[k]);
+            struct gb_ref ref;
+            load_reference(&s, scenes[k], &c, &ref);
+            equal_samples(&s, scenes[k], &c, &ref);
+            free_reference(&ref);
+            scene_destroy(&s);
+        }
+        printf("\nWall time of the section: %.0f s\n", omp_get_wtime() - t_start);
+        free(l2_log);
+        free(l1_log);
+        return 0;
+    }
 
     struct scene ajar;
     struct gb_ref ajar_ref = {NULL, NULL, NULL};
