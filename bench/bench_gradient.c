@@ -410,6 +410,25 @@ enum { ROW_OURS, ROW_GRAD_AFTER, ROW_GPT, ROW_AREA, ROW_PT, ROWS };
 static const enum method_id row_method[ROWS] = {METHOD_GRESTIR_PT, METHOD_GRAD_AFTER_RESTIR, METHOD_GPT,
                                                 METHOD_AREA_RESTIR, METHOD_PT};
 
+/* The rows of an equal-time or equal-samples table; npix > 0 adds the rays/px column. */
+static void print_rows(const struct gb_result *res, double npix)
+{
+    for (int k = 0; k < ROWS; k++) {
+        const struct gb_result *r = &res[k];
+        const int grad = method_table[r->method].gradient;
+        char l1a[32], l1b[32], l1m[32], rays[32] = "";
+        snprintf(l1a, sizeof(l1a), grad ? "%.5g" : "-", r->l1.relmse);
+        snprintf(l1b, sizeof(l1b), grad ? "%.4f" : "-", r->l1.mape);
+        snprintf(l1m, sizeof(l1m), grad ? ", %.3f" : "", r->mean_l1);
+        if (npix > 0.0)
+            snprintf(rays, sizeof(rays), " %.2f |", (double)r->rays / r->timed_frames / npix);
+        printf("| %s%s | %.1f | %d | %d |%s %.5g | %.4f | %s | %s | %.2f | %.4f%s | %.3f%s |\n",
+               method_table[r->method].name, k == ROW_OURS ? " (ours)" : "", r->ms, r->spp, r->instances, rays,
+               r->l2.relmse, r->l2.mape, l1a, l1b, r->l2.relmse / res[ROW_OURS].l2.relmse, r->grad_err,
+               grad ? "" : " *", r->mean_l2, l1m);
+    }
+}
+
 static void equal_time(const struct scene *s, const char *name, const struct gb_config *c, const struct gb_ref *ref,
                        struct gb_result res[ROWS])
 {
@@ -423,18 +442,7 @@ static void equal_time(const struct scene *s, const char *name, const struct gb_
            name, c->width, c->height, c->frames - 1, c->ref_spp, budget, TIMING_SKIP, c->frames - 1);
     printf("| method | ms/frame | spp | instances | relMSE L2 | MAPE L2 | relMSE L1 | MAPE L1 | relMSE L2 / ours L2 "
            "| gradient error | mean / ref L2, L1 |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
-    for (int k = 0; k < ROWS; k++) {
-        const struct gb_result *r = &res[k];
-        const int grad = method_table[r->method].gradient;
-        char l1a[32], l1b[32], l1m[32];
-        snprintf(l1a, sizeof(l1a), grad ? "%.5g" : "-", r->l1.relmse);
-        snprintf(l1b, sizeof(l1b), grad ? "%.4f" : "-", r->l1.mape);
-        snprintf(l1m, sizeof(l1m), grad ? ", %.3f" : "", r->mean_l1);
-        printf("| %s%s | %.1f | %d | %d | %.5g | %.4f | %s | %s | %.2f | %.4f%s | %.3f%s |\n",
-               method_table[r->method].name, k == ROW_OURS ? " (ours)" : "", r->ms, r->spp, r->instances,
-               r->l2.relmse, r->l2.mape, l1a, l1b, r->l2.relmse / res[ROW_OURS].l2.relmse, r->grad_err,
-               grad ? "" : " *", r->mean_l2, l1m);
-    }
+    print_rows(res, 0.0);
     printf("\nL2 columns: the L2 reconstruction of the gradient methods, the image itself for area-restir and pt; "
            "L1: IRLS (20 x 50) of the same averaged inputs, untimed (BIASED). Gradient error: relative gradient "
            "RMSE sqrt(sum_a sum_{d=x,y} (lum(g_d(a)) - lum(g_ref,d(a)))^2 / sum_a (lum(ref(a))^2 + 1e-4)), "
@@ -462,18 +470,7 @@ static void equal_samples(const struct scene *s, const char *name, const struct 
     printf("| method | ms/frame | spp | instances | rays/px per frame | relMSE L2 | MAPE L2 | relMSE L1 | MAPE L1 "
            "| relMSE L2 / ours L2 | gradient error | mean / ref L2, L1 |\n"
            "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-    for (int k = 0; k < ROWS; k++) {
-        const struct gb_result *r = &res[k];
-        const int grad = method_table[r->method].gradient;
-        char l1a[32], l1b[32], l1m[32];
-        snprintf(l1a, sizeof(l1a), grad ? "%.5g" : "-", r->l1.relmse);
-        snprintf(l1b, sizeof(l1b), grad ? "%.4f" : "-", r->l1.mape);
-        snprintf(l1m, sizeof(l1m), grad ? ", %.3f" : "", r->mean_l1);
-        printf("| %s%s | %.1f | %d | %d | %.2f | %.5g | %.4f | %s | %s | %.2f | %.4f%s | %.3f%s |\n",
-               method_table[r->method].name, k == ROW_OURS ? " (ours)" : "", r->ms, r->spp, r->instances,
-               (double)r->rays / r->timed_frames / npix, r->l2.relmse, r->l2.mape, l1a, l1b,
-               r->l2.relmse / res[ROW_OURS].l2.relmse, r->grad_err, grad ? "" : " *", r->mean_l2, l1m);
-    }
+    print_rows(res, npix);
     printf("\nColumns as in the equal-time tables; rays/px per frame: frame_stats.rays summed over the timed "
            "frames / frames / pixels (the reconstructions trace none).\n");
     const struct gb_result *o = &res[ROW_OURS];
