@@ -556,12 +556,14 @@ static void write_figures(const struct gb_config *c, const struct gb_result res[
 static void ablations(const struct scene *s, const struct gb_config *c, const struct gb_ref *ref)
 {
     static const char *const sets[][2] = {
-        {"", "default (positivize on, spatial adaptive, cross_sign off)"},
+        {"", "default (positivize on, spatial adaptive, cross_sign off, base independent)"},
         {"grad.positivize=off", "grad.positivize=off (Fig. 9)"},
         {"grad.spatial=off", "grad.spatial=off (Fig. 10)"},
         {"grad.spatial=dense", "grad.spatial=dense (Fig. 10)"},
         {"grad.spatial=adaptive", "grad.spatial=adaptive (Fig. 10; = default, rerun: timing repeatability)"},
         {"grad.cross_sign=on", "grad.cross_sign=on (Sec. 4.4)"},
+        {"grad.temporal=off", "grad.temporal=off (no temporal reuse of pairs)"},
+        {"grad.base=shared", "grad.base=shared (pairs start from the primal's initial paths)"},
     };
     const int n = (int)(sizeof(sets) / sizeof(sets[0]));
     printf("\n### Ablations of grestir-pt on ajar (002 Fig. 9, Fig. 10, Sec. 4.4), %dx%d, camera path, error of "

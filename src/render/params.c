@@ -31,6 +31,7 @@ static const char *const search_names[] = {"always", "sparse", "low-confidence",
 static const char *const pick_names[] = {"uniform", "confidence", NULL};
 static const char *const history_names[] = {"spatial", "temporal", NULL};
 static const char *const grad_spatial_names[] = {"off", "dense", "adaptive", NULL};
+static const char *const base_names[] = {"independent", "shared", NULL};
 static const char *const recon_names[] = {"l2", "l1", "both", NULL};
 static const char *const solver_names[] = {"dct", "cg", NULL};
 static const char *const preset_names[] = {"fast", "balanced", "conservative", NULL};
@@ -134,6 +135,14 @@ static const struct param_def params[] = {
      "grestir-pt spatial reuse of paired-pixel samples: off, dense (a similar random pair for every pair) "
      "or adaptive (edge pairs only, 002 Sec. 4.3.2); the search reads only the G-buffer (unbiased)",
      grad_spatial_names},
+    {"grad.temporal", P_BOOL, F(grad_temporal), 0, 1,
+     "grestir-pt: temporal reuse of paired-pixel reservoirs (needs temporal=on; off isolates the gradient "
+     "pass's history from the primal's)", NULL},
+    {"grad.base", P_NAMES, F(grad_base), 0, 0,
+     "grestir-pt: the pairs' initial paths: independent (their own initial pass, as the public 002 code) or "
+     "shared (the primal's initial paths: no extra paths, but primal and gradient errors correlate, which the "
+     "solve does not smooth away); unbiased either way",
+     base_names},
     {"grad.positivize", P_BOOL, F(grad_positivize), 0, 1,
      "grestir-pt: separate reservoirs for the positive and negative gradient parts (002 Eq. 23-26)", NULL},
     {"grad.cross_sign", P_BOOL, F(grad_cross_sign), 0, 1,
@@ -206,6 +215,7 @@ void render_params_defaults(struct render_params *p)
     p->spmis_canonical_pick = 0;
     p->pt_candidates = 1;
     p->grad_spatial = GRAD_SPATIAL_ADAPTIVE;
+    p->grad_temporal = 1;
     p->grad_positivize = 1;
     p->grad_cross_sign = 0;
     p->grad_search = 256;

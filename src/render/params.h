@@ -81,6 +81,8 @@ struct render_params {
 
     /* gradient-domain ReSTIR PT (002) */
     enum grad_spatial_mode grad_spatial;
+    int grad_temporal;      /* temporal reuse of paired-pixel reservoirs (with temporal on) */
+    int grad_base;          /* pairs' initial paths: 0 independent of the primal's, 1 the primal's own */
     int grad_positivize;    /* two reservoirs r+, r- per pair (Eq. 23-26) */
     int grad_cross_sign;    /* r+ and r- also reuse the other sign's neighbor reservoir */
     int grad_search;        /* N: random neighbor pairs tried by the pair search (256) */

@@ -222,8 +222,18 @@ static void gradient_passes(struct renderer *r, const struct pt_frame *fr, const
     } else {
         struct grestir_state *gs = gf->grestir;
         long long accepted = 0;
-        TIMED(st, PASS_GRAD_INITIAL, st->rays += grestir_initial_pass(fr, g, gf->base, gs));
-        if (p->temporal && r->has_history)
+        TIMED(st, PASS_GRAD_INITIAL, {
+            if (!p->grad_base) {
+                /* independent initial paths: the same sampler on streams of another seed */
+                struct render_params q = *p;
+                q.seed = p->seed ^ 0x6772616442617365ull;
+                struct pt_frame fb = *fr;
+                fb.p = &q;
+                st->rays += pt_initial_pass(&fb, g, gf->base, (vec3 *)(void *)gf->emission);
+            }
+            st->rays += grestir_initial_pass(fr, g, gf->base, gs);
+        });
+        if (p->temporal && p->grad_temporal && r->has_history)
             TIMED(st, PASS_GRAD_TEMPORAL,
                   st->rays += grestir_temporal_pass(fr, g, prev_g, gs, 1 - r->cur, &accepted));
         TIMED(st, PASS_GRAD_SELECT, grestir_select_pass(fr, g, gs));
@@ -285,7 +295,7 @@ static void render_restir_pt(struct renderer *r, const struct camera_view *view,
           st->rays += gbuffer_pass(g, r->scene, view, r->has_history ? &r->prev_view : NULL, 0, p->seed,
                                    r->frame)); /* pixel centres: see pt_initial_pass */
     TIMED(st, PASS_INITIAL, st->rays += pt_initial_pass(&fr, g, r->pt_work, r->pt_emission));
-    if (r->grad && r->grad->base) /* grestir-pt: the pairs' initial candidates */
+    if (r->grad && r->grad->base && p->grad_base) /* grestir-pt, grad.base=shared: the pairs' candidates */
         memcpy(r->grad->base, r->pt_work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     if (p->temporal && r->has_history)
         TIMED(st, PASS_TEMPORAL,

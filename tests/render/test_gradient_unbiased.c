@@ -159,8 +159,9 @@ int main(int argc, char **argv)
     const char *variants[][2] = {{"recon=l2", "grad.positivize=off"},
                                  {"recon=l2", "grad.cross_sign=on"},
                                  {"recon=l2", "grad.spatial=dense"},
-                                 {"recon=l2", "history=temporal"}};
-    for (int k = 0; k < 4; k++)
+                                 {"recon=l2", "history=temporal"},
+                                 {"recon=l2", "grad.base=shared"}};
+    for (int k = 0; k < 5; k++)
         check("cornell", "grestir-pt", 2048, variants[k], 2, 1);
     /* L1's bias, measured (printed) with the L2 checks of the same runs. */
     const char *both[] = {"recon=both"};
