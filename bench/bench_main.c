@@ -8,7 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <errno.h>
+#include <sys/stat.h>
+
 #include "core/check.h"
+#include "io/report.h"
 #include "render/pt.h"
 #include "render/renderer.h"
 #include "restir/metrics.h"
@@ -31,22 +35,68 @@ static struct render_params base_params(const struct bench_config *c)
     return p;
 }
 
+/* The CSV twins of the passes and equal-time tables (BENCH_OUT, default out/bench/), so scripts
+ * read the numbers docs/BENCHMARKS.md shows. NULL when not open. */
+static struct csv_writer *passes_csv, *equal_csv;
+
+/* Opens BENCH_OUT/passes.csv and BENCH_OUT/equal_time.csv (the folder is created). */
+static void bench_csv_open(struct csv_writer *pw, struct csv_writer *ew)
+{
+    const char *dir = getenv("BENCH_OUT");
+    char path[4096], msg[RESTIR_MSG_LEN];
+    if (!dir || !*dir)
+        dir = "out/bench";
+    /* mkdir -p */
+    snprintf(path, sizeof(path), "%s", dir);
+    for (char *q = path + 1; *q; q++) {
+        if (*q != '/')
+            continue;
+        *q = '\0';
+        if (mkdir(path, 0777) != 0 && errno != EEXIST)
+            break;
+        *q = '/';
+    }
+    if (mkdir(path, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "restir_bench: cannot create %s: %s (no CSV written)\n", dir, strerror(errno));
+        return;
+    }
+    snprintf(path, sizeof(path), "%s/passes.csv", dir);
+    if (csv_open(pw, path, "scene,method,width,height,frame_ms,embree_only_ms,ratio", msg) == 0)
+        passes_csv = pw;
+    else
+        fprintf(stderr, "restir_bench: %s\n", msg);
+    snprintf(path, sizeof(path), "%s/equal_time.csv", dir);
+    if (csv_open(ew, path, "scene,method,camera,ms_per_frame,spp,relmse,mape,smape", msg) == 0)
+        equal_csv = ew;
+    else
+        fprintf(stderr, "restir_bench: %s\n", msg);
+}
+
+static void bench_csv_close(void)
+{
+    char msg[RESTIR_MSG_LEN];
+    struct csv_writer *w[2] = {passes_csv, equal_csv};
+    for (int k = 0; k < 2; k++)
+        if (w[k] && csv_close(w[k], msg) != 0)
+            fprintf(stderr, "restir_bench: %s\n", msg);
+    passes_csv = equal_csv = NULL;
+}
+
 /* Per-pass timing over frames 1..N-1 (frame 0 has no history), rays per second, and the last
- * frame's rays replayed through Embree alone. */
+ * frame's rays replayed through Embree alone. Pass columns: those any of the methods ran. */
+#define BENCH_MAX_METHODS 4
 static void bench_passes(const struct bench_config *c, const enum method_id *methods, int nmethods)
 {
     struct scene s = bench_load_scene(c->scene);
-    printf("\n### Per-pass time, %s %dx%d, static camera, mean of frames 1-%d (%d threads)\n\n", c->scene,
-           c->width, c->height, c->frames - 1, omp_get_max_threads());
-    printf("| method | gbuffer | initial | temporal | select | spatial | shade | pt | frame ms | Mrays/s | rays/px | "
-           "Embree-only ms | frame / Embree-only |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    double ms[BENCH_MAX_METHODS][PASS_COUNT] = {{0}}, total[BENCH_MAX_METHODS] = {0}, rays[BENCH_MAX_METHODS] = {0};
+    double replay_ms[BENCH_MAX_METHODS] = {0}, last_ms[BENCH_MAX_METHODS] = {0}, rays_px[BENCH_MAX_METHODS] = {0};
+    RESTIR_CHECK(nmethods <= BENCH_MAX_METHODS);
     for (int k = 0; k < nmethods; k++) {
         struct render_params p = base_params(c);
         if (methods[k] == METHOD_PT)
             renderer_reference_params(methods[0], &p); /* pt over the first method's integrand, 1 spp */
         struct renderer r;
         renderer_init(&r, &s, methods[k], &p);
-        double ms[PASS_COUNT] = {0}, total = 0.0, rays = 0.0;
         struct frame_stats st;
         struct camera cam = scene_camera_at(&s, 0, 0.0f);
         for (int f = 0; f < c->frames; f++) {
@@ -56,23 +106,45 @@ static void bench_passes(const struct bench_config *c, const enum method_id *met
             if (f == 0)
                 continue;
             for (int q = 0; q < PASS_COUNT; q++)
-                ms[q] += st.ms[q];
-            total += st.ms_total;
-            rays += (double)st.rays;
+                ms[k][q] += st.ms[q];
+            total[k] += st.ms_total;
+            rays[k] += (double)st.rays;
         }
         size_t nrays;
         struct ray_record *log = scene_ray_log_end(&s, &nrays);
         double replay = scene_ray_replay(&s, log, nrays);
         double replay2 = scene_ray_replay(&s, log, nrays);
-        replay = replay2 < replay ? replay2 : replay;
+        replay_ms[k] = replay2 < replay ? replay2 : replay;
+        last_ms[k] = st.ms_total;
+        rays_px[k] = (double)nrays / ((double)c->width * c->height);
         free(log);
-        int n = c->frames - 1;
+        renderer_fini(&r);
+    }
+    int used[PASS_COUNT] = {0};
+    for (int k = 0; k < nmethods; k++)
+        for (int q = 0; q < PASS_COUNT; q++)
+            used[q] |= ms[k][q] > 0.0;
+    printf("\n### Per-pass time, %s %dx%d, static camera, mean of frames 1-%d (%d threads)\n\n| method |", c->scene,
+           c->width, c->height, c->frames - 1, omp_get_max_threads());
+    for (int q = 0; q < PASS_COUNT; q++)
+        if (used[q])
+            printf(" %s |", pass_names[q]);
+    printf(" frame ms | Mrays/s | rays/px | Embree-only ms | frame / Embree-only |\n|---|");
+    for (int q = 0; q < PASS_COUNT; q++)
+        if (used[q])
+            printf("---|");
+    printf("---|---|---|---|---|\n");
+    const int n = c->frames - 1;
+    for (int k = 0; k < nmethods; k++) {
         printf("| %s |", method_table[methods[k]].name);
         for (int q = 0; q < PASS_COUNT; q++)
-            printf(" %.2f |", ms[q] / n);
-        printf(" %.2f | %.2f | %.2f | %.2f | %.2f |\n", total / n, rays / (total * 1e3),
-               (double)nrays / ((double)c->width * c->height), replay, st.ms_total / replay);
-        renderer_fini(&r);
+            if (used[q])
+                printf(" %.2f |", ms[k][q] / n);
+        printf(" %.2f | %.2f | %.2f | %.2f | %.2f |\n", total[k] / n, rays[k] / (total[k] * 1e3), rays_px[k],
+               replay_ms[k], last_ms[k] / replay_ms[k]);
+        if (passes_csv)
+            csv_row(passes_csv, "%s,%s,%d,%d,%.3f,%.3f,%.4f", c->scene, method_table[methods[k]].name, c->width,
+                    c->height, last_ms[k], replay_ms[k], last_ms[k] / replay_ms[k]);
     }
     scene_destroy(&s);
 }
@@ -133,6 +205,13 @@ static void bench_equal_time(const struct bench_config *c, enum method_id method
     printf("| pt | %.1f | %d | %.5g | %.4f | %.2f |\n", pt_ms, q.spp, e_pt.relmse, e_pt.mape, e_pt.smape);
     printf("\nrelMSE(pt) / relMSE(%s) = **%.2f**; MAPE ratio %.2f; SMAPE ratio %.2f\n", name,
            e_pt.relmse / e_m.relmse, e_pt.mape / e_m.mape, e_pt.smape / e_m.smape);
+    if (equal_csv) {
+        const char *camera = use_path ? "path" : "static";
+        csv_row(equal_csv, "%s,%s,%s,%.3f,1,%.6g,%.6g,%.6g", c->scene, name, camera, budget, e_m.relmse, e_m.mape,
+                e_m.smape);
+        csv_row(equal_csv, "%s,pt,%s,%.3f,%d,%.6g,%.6g,%.6g", c->scene, camera, pt_ms, q.spp, e_pt.relmse, e_pt.mape,
+                e_pt.smape);
+    }
     free(ref);
     scene_destroy(&s);
 }
@@ -361,13 +440,26 @@ int main(int argc, char **argv)
             return 2;
         }
     }
+    const char *bq = getenv("BENCH_QUICK");
+    const int bench_quick = bq && *bq && strcmp(bq, "0") != 0;
+    if (bench_quick && !run_passes && !run_equal && !run_temporal && !run_pt && !run_spmis) {
+        /* what fills passes.csv and equal_time.csv: the DI tables and restir-pt's on ajar, with
+         * 256-spp references (BENCHMARKS.md says which rows came from this mode) */
+        run_passes = run_equal = 1;
+        c.ref_spp = 256;
+    }
     if (!run_passes && !run_equal && !run_temporal && !run_pt && !run_spmis)
         run_passes = run_equal = run_temporal = run_pt = run_spmis = 1;
+    struct csv_writer pw, ew;
+    bench_csv_open(&pw, &ew);
     const enum method_id di_methods[] = {METHOD_RESTIR_DI, METHOD_RIS_DI, METHOD_PT};
     if (run_passes)
         bench_passes(&c, di_methods, 3);
-    if (run_equal)
+    if (run_equal) {
         bench_equal_time(&c, METHOD_RESTIR_DI, 0);
+        if (bench_quick)
+            bench_equal_time(&c, METHOD_RESTIR_DI, 1);
+    }
     if (run_pt) {
         const char *const pt_scenes[] = {"ajar", "cornell"};
         const enum method_id pt_methods[] = {METHOD_RESTIR_PT, METHOD_PT};
@@ -394,5 +486,14 @@ int main(int argc, char **argv)
         }
         bench_spmis(&so);
     }
+    if (bench_quick && !run_pt) {
+        struct bench_config pc = c;
+        pc.scene = "ajar";
+        const enum method_id pt_methods[] = {METHOD_RESTIR_PT, METHOD_PT};
+        bench_passes(&pc, pt_methods, 2);
+        bench_equal_time(&pc, METHOD_RESTIR_PT, 0);
+        bench_equal_time(&pc, METHOD_RESTIR_PT, 1);
+    }
+    bench_csv_close();
     return 0;
 }

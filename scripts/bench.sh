@@ -5,4 +5,5 @@ set -euo pipefail
 build=${1:-build}
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 echo "commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+# BENCH_QUICK=1: only the tables of passes.csv and equal_time.csv (in BENCH_OUT, default out/bench/).
 "$build/restir_bench" ${BENCH_ARGS:-}
