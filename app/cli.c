@@ -9,7 +9,6 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "core/check.h"
@@ -62,33 +61,6 @@ int cli_parse_res(const char *s, int *w, int *h, char *msg)
     return 0;
 }
 
-int cli_make_dir(const char *dir, char *msg)
-{
-    char path[4096];
-    if (snprintf(path, sizeof(path), "%s", dir) >= (int)sizeof(path)) {
-        snprintf(msg, RESTIR_MSG_LEN, "output folder name is too long");
-        return -1;
-    }
-    for (char *p = path + 1;; p++) {
-        char c = *p;
-        if (c == '/' || c == '\0') {
-            *p = '\0';
-            if (mkdir(path, 0777) != 0 && errno != EEXIST) {
-                snprintf(msg, RESTIR_MSG_LEN, "cannot create folder '%.300s': %s", path, strerror(errno));
-                return -1;
-            }
-            *p = c;
-        }
-        if (c == '\0')
-            break;
-    }
-    struct stat st;
-    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        snprintf(msg, RESTIR_MSG_LEN, "'%.300s' is not a folder", dir);
-        return -1;
-    }
-    return 0;
-}
 
 int cli_load_reference(const char *path, int width, int height, float **ref, char *msg)
 {

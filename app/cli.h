@@ -25,8 +25,6 @@ void cli_error(const char *fmt, ...)
 int cli_parse_res(const char *s, int *w, int *h, char *msg);
 /* Parses a whole number in [lo, hi] for option `opt`. Returns 0, or -1 with msg. */
 int cli_parse_int(const char *opt, const char *s, long long lo, long long hi, long long *out, char *msg);
-/* Creates dir and its parents. Returns 0, or -1 with msg. */
-int cli_make_dir(const char *dir, char *msg);
 
 /* Loads a reference EXR and checks it has the render size. Returns 0, or -1 with msg. */
 int cli_load_reference(const char *path, int width, int height, float **ref, char *msg);

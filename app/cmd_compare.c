@@ -193,7 +193,7 @@ static int run_method(const struct scene *s, const struct compare_spec *c, const
     restir_error_compute(r[0].image, ref, (size_t)p->width * (size_t)p->height, NULL, &res->err);
     char path[4400];
     snprintf(path, sizeof(path), "%s/%s", out_dir, c->dir);
-    int rc = cli_make_dir(path, msg);
+    int rc = io_make_dirs(path, msg);
     if (rc == 0)
         rc = cli_write_frame(path, frames - 1, &r[0], msg);
     for (int k = 0; k < instances; k++)
@@ -318,7 +318,7 @@ int cmd_compare(int argc, char **argv)
         struct camera cam = scene_camera_at(&s, p.camera_path, (float)(o.frames - 1));
         ref = cli_render_reference(&s, any_direct ? METHOD_RESTIR_DI : METHOD_PT, &rp, &cam, o.ref_spp);
     }
-    if (rc == 0 && cli_make_dir(out_dir, msg) != 0)
+    if (rc == 0 && io_make_dirs(out_dir, msg) != 0)
         rc = EXIT_RUNTIME;
     if (rc != 0) {
         cli_error("%s", msg);

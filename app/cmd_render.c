@@ -124,7 +124,7 @@ int cmd_render(int argc, char **argv)
         scene_destroy(&s);
         return EXIT_RUNTIME;
     }
-    if (cli_make_dir(out_dir, msg) != 0) {
+    if (io_make_dirs(out_dir, msg) != 0) {
         cli_error("%s", msg);
         free(ref);
         scene_destroy(&s);

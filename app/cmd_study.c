@@ -373,7 +373,7 @@ int cmd_study(int argc, char **argv)
         rp.seed ^= 0x7265666572656e63ull;
         ref = cli_render_reference(&s, (enum method_id)m, &rp, &cam, o.ref_spp);
     }
-    if (cli_make_dir(o.out, msg) != 0) {
+    if (io_make_dirs(o.out, msg) != 0) {
         cli_error("%s", msg);
         free(ref);
         scene_destroy(&s);

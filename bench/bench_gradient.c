@@ -7,13 +7,11 @@
  * (docs/gradient/). --equal-samples instead: per scene, every method at 1 instance / 1 spp on the
  * same frames, with the rays traced per pixel and grestir-pt's temporal pass per frame. Prints
  * Markdown for docs/BENCHMARKS.md. Must never be run by the tests. */
-#include <errno.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "bench_common.h"
 #include "core/check.h"
@@ -162,21 +160,12 @@ static void apply_sets(struct render_params *p, const char *sets)
     }
 }
 
+/* Output folders; a failure is reported and the bench goes on without that output. */
 static void make_dirs(const char *path)
 {
-    char buf[256];
-    snprintf(buf, sizeof(buf), "%s", path);
-    for (char *s = buf + 1;; s++) {
-        if (*s == '/' || *s == '\0') {
-            char keep = *s;
-            *s = '\0';
-            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-                fprintf(stderr, "restir_bench: cannot create %s\n", buf);
-            *s = keep;
-            if (!keep)
-                break;
-        }
-    }
+    char msg[RESTIR_MSG_LEN];
+    if (io_make_dirs(path, msg) != 0)
+        fprintf(stderr, "restir_bench: %s\n", msg);
 }
 
 /* The pt reference of the last frame's camera, from the cache when an identical one (scene,

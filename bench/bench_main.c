@@ -8,10 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <errno.h>
-#include <sys/stat.h>
-
 #include "core/check.h"
+#include "io/image_io.h"
 #include "io/report.h"
 #include "render/pt.h"
 #include "render/renderer.h"
@@ -46,18 +44,8 @@ static void bench_csv_open(struct csv_writer *pw, struct csv_writer *ew)
     char path[4096], msg[RESTIR_MSG_LEN];
     if (!dir || !*dir)
         dir = "out/bench";
-    /* mkdir -p */
-    snprintf(path, sizeof(path), "%s", dir);
-    for (char *q = path + 1; *q; q++) {
-        if (*q != '/')
-            continue;
-        *q = '\0';
-        if (mkdir(path, 0777) != 0 && errno != EEXIST)
-            break;
-        *q = '/';
-    }
-    if (mkdir(path, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "restir_bench: cannot create %s: %s (no CSV written)\n", dir, strerror(errno));
+    if (io_make_dirs(dir, msg) != 0) {
+        fprintf(stderr, "restir_bench: %s (no CSV written)\n", msg);
         return;
     }
     snprintf(path, sizeof(path), "%s/passes.csv", dir);

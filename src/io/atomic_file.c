@@ -1,4 +1,5 @@
-/* atomic_file.c: temporary sibling names and the rename that commits a finished output file.
+/* atomic_file.c: temporary sibling names, the rename that commits a finished output file, and
+ * output folders.
  * Must never depend on image formats, scenes or render code. */
 #include "io/image_io.h"
 
@@ -8,6 +9,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 /* Formats a message into msg (RESTIR_MSG_LEN bytes, may be NULL), truncating long paths. */
@@ -39,6 +41,34 @@ int io_commit(const char *tmp, const char *path, char *msg)
             set_msg(msg, "%s: cannot move temporary file %s into place: %s", path,
                      tmp, strerror(err));
         remove(tmp);
+        return -1;
+    }
+    return 0;
+}
+
+int io_make_dirs(const char *dir, char *msg)
+{
+    char path[4096];
+    if (snprintf(path, sizeof(path), "%s", dir) >= (int)sizeof(path)) {
+        snprintf(msg, RESTIR_MSG_LEN, "output folder name is too long");
+        return -1;
+    }
+    for (char *p = path + 1;; p++) {
+        char c = *p;
+        if (c == '/' || c == '\0') {
+            *p = '\0';
+            if (mkdir(path, 0777) != 0 && errno != EEXIST) {
+                snprintf(msg, RESTIR_MSG_LEN, "cannot create folder '%.300s': %s", path, strerror(errno));
+                return -1;
+            }
+            *p = c;
+        }
+        if (c == '\0')
+            break;
+    }
+    struct stat st;
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        snprintf(msg, RESTIR_MSG_LEN, "'%.300s' is not a folder", dir);
         return -1;
     }
     return 0;

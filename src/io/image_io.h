@@ -47,5 +47,8 @@ int png_write_signed(const char *path, const float *rgb, int w, int h, float sca
 void io_temp_path(const char *path, char *tmp, unsigned long tmp_len);
 /* Renames tmp over path; returns 0, or -1 with msg (and removes tmp). */
 int io_commit(const char *tmp, const char *path, char *msg);
+/* Creates folder dir and its missing parents (mkdir -p). Returns 0, or -1 with msg naming the
+ * folder that could not be made, or dir when it exists but is not a folder. */
+int io_make_dirs(const char *dir, char *msg);
 
 #endif
