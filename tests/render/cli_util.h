@@ -147,4 +147,16 @@ static inline int cli_files_equal(const char *a, const char *b, long *size)
     return same;
 }
 
+/* Reads path into buf (NUL terminated, truncated to n - 1 bytes); empty when it cannot be read. */
+static inline void cli_read_text(const char *path, char *buf, size_t n)
+{
+    buf[0] = '\0';
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return;
+    size_t k = fread(buf, 1, n - 1, f);
+    buf[k] = '\0';
+    fclose(f);
+}
+
 #endif

@@ -165,18 +165,6 @@ static void check_compare(void)
     EXPECT(cli_count_entries(out, ".tmp-") == 0, "temporary files left in %s", out);
 }
 
-/* Reads path into buf (NUL terminated, truncated to n - 1 bytes); empty when it cannot be read. */
-static void read_text(const char *path, char *buf, size_t n)
-{
-    buf[0] = '\0';
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return;
-    size_t k = fread(buf, 1, n - 1, f);
-    buf[k] = '\0';
-    fclose(f);
-}
-
 /* `restir compare` with method specs NAME[:key=value]...: each spec labels its row of the table and
  * of compare.csv, and gets its own folder (the label with [^A-Za-z0-9._-] as '_', then _2, _3). */
 static void check_compare_specs(void)
@@ -194,7 +182,7 @@ static void check_compare_specs(void)
     line_with(out_text, "restir-pt:mis=balance ", line, sizeof(line));
     EXPECT(line[0] != '\0', "the table has no row labelled restir-pt:mis=balance:\n%s", out_text);
     snprintf(path, sizeof(path), "%s/compare.csv", dir);
-    read_text(path, csv, sizeof(csv));
+    cli_read_text(path, csv, sizeof(csv));
     EXPECT(strncmp(csv, "method,", 7) == 0, "%s has no header: %s", path, csv);
     EXPECT(strstr(csv, "\nrestir-pt,") != NULL, "%s has no row labelled restir-pt:\n%s", path, csv);
     const char *first = strstr(csv, "\nrestir-pt:mis=balance,");

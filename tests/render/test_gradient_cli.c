@@ -149,17 +149,6 @@ static int is_png(const char *dir, const char *file)
     return n == 8 && memcmp(sig, want, 8) == 0;
 }
 
-static void read_text(const char *path, char *buf, size_t n)
-{
-    buf[0] = '\0';
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return;
-    size_t k = fread(buf, 1, n - 1, f);
-    buf[k] = '\0';
-    fclose(f);
-}
-
 /* Index of column name in a comma-separated header line (up to the first newline), or -1. */
 static int csv_column(const char *header, const char *name)
 {
@@ -211,7 +200,7 @@ static void check_metrics(const char *dir, const char *method)
     static char csv[CLI_ERR_MAX];
     char path[FILE_MAX];
     snprintf(path, sizeof(path), "%s/metrics.csv", dir);
-    read_text(path, csv, sizeof(csv));
+    cli_read_text(path, csv, sizeof(csv));
     EXPECT(csv[0] != '\0', "%s: %s is missing or empty", method, path);
     int c2 = csv_column(csv, "ms_recon_l2"), c1 = csv_column(csv, "ms_recon_l1");
     EXPECT(c2 >= 0, "%s: %s has no column ms_recon_l2", method, path);
@@ -422,7 +411,7 @@ static void check_compare(void)
     int rc = cli_run(tmp, args, err);
     EXPECT(rc == 0, "compare exited %d: %s", rc, err);
     snprintf(path, sizeof(path), "%s/compare.csv", dir);
-    read_text(path, csv, sizeof(csv));
+    cli_read_text(path, csv, sizeof(csv));
     const char *header = "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse\n";
     EXPECT(strncmp(csv, header, strlen(header)) == 0, "%s: wrong header:\n%s", path, csv);
     int rows = 0;
