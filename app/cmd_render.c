@@ -81,16 +81,15 @@ static cJSON *params_json(const struct cli_options *o, enum method_id method)
         cJSON_AddNumberToObject(j, "shift_distance", p->shift_distance);
     }
     if (method_table[method].gradient) {
-        static const char *const recon[] = {"l2", "l1", "both"}, *const spatial[] = {"off", "dense", "adaptive"};
-        cJSON_AddStringToObject(j, "recon", recon[p->recon]);
-        cJSON_AddNumberToObject(j, "recon_alpha", p->recon_alpha);
-        cJSON_AddStringToObject(j, "recon_solver", p->recon_solver ? "cg" : "dct");
-        if (method == METHOD_GRESTIR_PT) {
-            cJSON_AddStringToObject(j, "grad_spatial", spatial[p->grad_spatial]);
-            cJSON_AddBoolToObject(j, "grad_positivize", p->grad_positivize);
-            cJSON_AddBoolToObject(j, "grad_cross_sign", p->grad_cross_sign);
-            cJSON_AddNumberToObject(j, "grad_search", p->grad_search);
-            cJSON_AddNumberToObject(j, "grad_radius", p->grad_radius);
+        static const char *const keys[] = {"recon", "recon.alpha", "recon.solver", "grad.spatial", "grad.temporal",
+                                           "grad.base", "grad.positivize", "grad.cross_sign", "grad.search",
+                                           "grad.radius"};
+        const int nkeys = method == METHOD_GRESTIR_PT ? 10 : 3;
+        cJSON *g = cJSON_AddObjectToObject(j, "gradient"); /* as --set spells the values */
+        for (int k = 0; k < nkeys; k++) {
+            char val[64];
+            render_params_get(p, keys[k], val, sizeof(val));
+            cJSON_AddStringToObject(g, keys[k], val);
         }
     }
     return j;

@@ -363,28 +363,45 @@ int render_params_validate(const struct render_params *p, char *msg)
     return 0;
 }
 
+/* The value of d's field in p as --set spells it. */
+static void format_value(const struct param_def *pd, const struct render_params *p, char *val, size_t n)
+{
+    const char *base = (const char *)p + pd->offset;
+    switch (pd->type) {
+    case P_INT: snprintf(val, n, "%d", *(const int *)(const void *)base); break;
+    case P_FLOAT: snprintf(val, n, "%g", *(const float *)(const void *)base); break;
+    case P_BOOL: snprintf(val, n, "%s", *(const int *)(const void *)base ? "on" : "off"); break;
+    case P_MIS: snprintf(val, n, "%s", restir_mis_name(*(const enum restir_mis *)(const void *)base)); break;
+    case P_SHIFT: snprintf(val, n, "%s", shift_kind_name(*(const enum shift_kind *)(const void *)base)); break;
+    case P_COUNT: {
+        int v = *(const int *)(const void *)base;
+        snprintf(val, n, v ? "%d" : "M", v);
+        break;
+    }
+    case P_NAMES: snprintf(val, n, "%s", pd->names[*(const int *)(const void *)base]); break;
+    case P_PRESET: snprintf(val, n, "-"); break;
+    }
+}
+
+int render_params_get(const struct render_params *p, const char *key, char *val, size_t n)
+{
+    for (size_t i = 0; i < NUM_PARAMS; i++) {
+        if (!strcmp(params[i].key, key)) {
+            format_value(&params[i], p, val, n);
+            return 0;
+        }
+    }
+    val[0] = '\0';
+    return -1;
+}
+
 void render_params_help(FILE *out)
 {
     struct render_params d;
     render_params_defaults(&d);
     for (size_t i = 0; i < NUM_PARAMS; i++) {
-        const struct param_def *pd = &params[i];
-        const char *base = (const char *)&d + pd->offset;
         char val[32];
-        switch (pd->type) {
-        case P_INT: snprintf(val, sizeof(val), "%d", *(const int *)(const void *)base); break;
-        case P_FLOAT: snprintf(val, sizeof(val), "%g", *(const float *)(const void *)base); break;
-        case P_BOOL: snprintf(val, sizeof(val), "%s", *(const int *)(const void *)base ? "on" : "off"); break;
-        case P_MIS: snprintf(val, sizeof(val), "%s", restir_mis_name(*(const enum restir_mis *)(const void *)base)); break;
-        case P_SHIFT: snprintf(val, sizeof(val), "%s", shift_kind_name(*(const enum shift_kind *)(const void *)base)); break;
-        case P_COUNT: {
-            int v = *(const int *)(const void *)base;
-            snprintf(val, sizeof(val), v ? "%d" : "M", v);
-            break;
-        }
-        case P_NAMES: snprintf(val, sizeof(val), "%s", pd->names[*(const int *)(const void *)base]); break;
-        case P_PRESET: snprintf(val, sizeof(val), "-"); break;
-        }
-        fprintf(out, "  %-26s %-9s %s\n", pd->key, val, pd->help);
+        format_value(&params[i], &d, val, sizeof(val));
+        fprintf(out, "  %-26s %-11s %s\n", params[i].key, val, params[i].help);
     }
 }

@@ -109,6 +109,9 @@ int render_params_set(struct render_params *p, const char *assignment, char *msg
 int render_params_set_list(struct render_params *p, const char *list, char *msg);
 /* Checks ranges (resolution, counts, ...). Returns 0, or -1 with msg naming the problem. */
 int render_params_validate(const struct render_params *p, char *msg);
+/* The value of key in p as --set spells it ("l2", "on", "0.2", ...) into val (n bytes). Returns 0,
+ * or -1 (val empty) for an unknown key. */
+int render_params_get(const struct render_params *p, const char *key, char *val, size_t n);
 /* Prints every key with its default and meaning. */
 void render_params_help(FILE *out);
 
