@@ -2,6 +2,7 @@
  * candidates combined by MIS into one reservoir (Bitterli et al. 2020; 001 Sec. 1). Light
  * candidates are generated and evaluated in batches laid out for SIMD. Must never allocate per pixel. */
 #include "core/rng.h"
+#include "di_visibility.h"
 #include "restir/reservoir.h"
 #include "restir_di.h"
 #include "shading/lights.h"
@@ -163,8 +164,18 @@ static void initial_pixel(const struct scene *s, const struct render_params *p, 
      * so the cached value and every later evaluation agree exactly. */
     r->target = di_target(sp, &r->y);
     r->W = restir_gris_contribution_weight(&wrs, r->target);
-    if (r->W <= 0.0f)
+    if (r->W <= 0.0f) {
         di_reservoir_clear(r, 1.0f);
+        return;
+    }
+    /* Visibility reuse (Bitterli et al. 2020, Alg. 5): a one-candidate resampling step to the
+     * target p_hat V. A visible Y keeps W (p_hat V = p_hat there); an occluded one is dropped while
+     * the confidence stays 1, so W remains an unbiased contribution weight for p_hat V. */
+    if (p->di_visibility_reuse) {
+        (*rays)++;
+        if (!di_sample_visible(s, sp, &r->y))
+            di_reservoir_clear(r, 1.0f);
+    }
 }
 
 long long di_initial_pass(const struct scene *s, const struct render_params *p, int frame,

@@ -34,6 +34,7 @@ static const char *const grad_spatial_names[] = {"off", "dense", "adaptive", NUL
 static const char *const base_names[] = {"independent", "shared", NULL};
 static const char *const recon_names[] = {"l2", "l1", "both", NULL};
 static const char *const solver_names[] = {"dct", "cg", NULL};
+static const char *const visibility_mis_names[] = {"rays", "none", NULL};
 static const char *const preset_names[] = {"fast", "balanced", "conservative", NULL};
 
 /* Index of val among the NULL-terminated names, or -1. */
@@ -51,6 +52,7 @@ _Static_assert(sizeof(enum spatial_reuse_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum spmis_search_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum grad_spatial_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum recon_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(enum di_visibility_mis) == sizeof(int), "enum size");
 
 #define F(field) offsetof(struct render_params, field)
 static const struct param_def params[] = {
@@ -61,6 +63,13 @@ static const struct param_def params[] = {
     {"pt.rr_bounces", P_INT, F(rr_bounces), 0, 1024, "pt: Russian roulette after this many bounces", NULL},
     {"di.light_candidates", P_INT, F(light_candidates), 0, 4096, "initial RIS: light-sampled candidates", NULL},
     {"di.bsdf_candidates", P_INT, F(bsdf_candidates), 0, 64, "initial RIS: BSDF-sampled candidates", NULL},
+    {"di.visibility_reuse", P_BOOL, F(di_visibility_reuse), 0, 1,
+     "restir-di: trace a shadow ray for the initial sample and drop it when occluded (Bitterli et al. "
+     "2020 Alg. 5), so reuse carries visible samples; the final shading then needs no shadow ray", NULL},
+    {"di.visibility_mis", P_NAMES, F(di_visibility_mis), 0, 0,
+     "restir-di with di.visibility_reuse: targets compared across domains include visibility, traced per "
+     "merge (rays, unbiased), or not (none: BIASED, darkens where neighbors cannot see the light; no rays)",
+     visibility_mis_names},
     {"temporal", P_BOOL, F(temporal), 0, 1, "temporal reuse on/off", NULL},
     {"spatial", P_BOOL, F(spatial), 0, 1, "spatial reuse on/off", NULL},
     {"spatial.neighbors", P_INT, F(spatial_neighbors), 0, 5,
@@ -181,6 +190,8 @@ void render_params_defaults(struct render_params *p)
     p->rr_bounces = 3;
     p->light_candidates = 32;
     p->bsdf_candidates = 1;
+    p->di_visibility_reuse = 1;
+    p->di_visibility_mis = DI_VIS_MIS_RAYS;
     p->temporal = 1;
     p->spatial = 1;
     p->spatial_neighbors = 0;

@@ -20,6 +20,10 @@ enum spmis_search_mode { SPMIS_SEARCH_ALWAYS = 0, SPMIS_SEARCH_SPARSE, SPMIS_SEA
 /* Spatial reuse of paired-pixel samples (002 Sec. 4.3.2, Fig. 10): none, a random similar pair for
  * every pair, or only for edge pairs. */
 enum grad_spatial_mode { GRAD_SPATIAL_OFF = 0, GRAD_SPATIAL_DENSE, GRAD_SPATIAL_ADAPTIVE };
+/* Visibility in the targets that ReSTIR DI's reuse compares (Bitterli et al. 2020 Alg. 5):
+ * rays traces a shadow ray for every cross-domain target (unbiased); none uses unshadowed ones
+ * (BIASED: a domain that cannot see the sample still takes MIS weight). */
+enum di_visibility_mis { DI_VIS_MIS_RAYS = 0, DI_VIS_MIS_NONE };
 /* Which screened Poisson reconstruction fills the image (the other one is written as a layer). */
 enum recon_mode { RECON_L2 = 0, RECON_L1, RECON_BOTH };
 
@@ -38,6 +42,8 @@ struct render_params {
     /* ReSTIR DI */
     int light_candidates;
     int bsdf_candidates;
+    int di_visibility_reuse;             /* shadow ray for the initial sample; occluded ones dropped */
+    enum di_visibility_mis di_visibility_mis;
     int temporal;
     int spatial;
     int spatial_neighbors;  /* 0: the method's default (render_params_spatial_neighbors) */

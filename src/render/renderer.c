@@ -184,7 +184,7 @@ static void render_restir_di(struct renderer *r, const struct camera_view *view,
     TIMED(st, PASS_INITIAL, st->rays += di_initial_pass(s, p, frame, g, r->work));
     if (p->temporal && r->has_history)
         TIMED(st, PASS_TEMPORAL,
-              st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, r->work));
+              st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, r->work, &st->rays));
     if (p->spatial && r->spmis) {
         struct spmis_frame *f = r->spmis;
         TIMED(st, PASS_CELLS, {
@@ -192,16 +192,16 @@ static void render_restir_di(struct renderer *r, const struct camera_view *view,
             spmis_cells_pass(f, p, g);
         });
         TIMED(st, PASS_CELL_SEARCH, spmis_search_pass(f, p, g, frame));
-        TIMED(st, PASS_SPMIS_CANONICAL, di_spmis_canonical_pass(s, p, frame, g, r->work, f));
-        TIMED(st, PASS_SPMIS_REUSE, di_spmis_reuse_pass(s, p, frame, g, r->work, f, out));
+        TIMED(st, PASS_SPMIS_CANONICAL, st->rays += di_spmis_canonical_pass(s, p, frame, g, r->work, f));
+        TIMED(st, PASS_SPMIS_REUSE, st->rays += di_spmis_reuse_pass(s, p, frame, g, r->work, f, out));
     } else if (p->spatial) {
         TIMED(st, PASS_SELECT,
               st->neighbors_selected = spatial_select_pass(p, 0, g, frame, r->disk_offsets, r->neighbors));
-        TIMED(st, PASS_SPATIAL, di_spatial_pass(s, p, frame, g, r->neighbors, r->work, out));
+        TIMED(st, PASS_SPATIAL, st->rays += di_spatial_pass(s, p, frame, g, r->neighbors, r->work, out));
     } else {
         memcpy(out, r->work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     }
-    TIMED(st, PASS_SHADE, st->rays += di_shade_pass(s, g, out, r->image));
+    TIMED(st, PASS_SHADE, st->rays += di_shade_pass(s, p, g, out, r->image));
     if (p->history_temporal && p->spatial)
         memcpy(out, r->work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     st->valid_pixels = count_valid(g);

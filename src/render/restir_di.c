@@ -5,6 +5,7 @@
 #include "restir_di.h"
 
 #include "core/rng.h"
+#include "di_visibility.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
 #include "tiles.h"
@@ -14,10 +15,14 @@
 
 /* One GRIS merge (004 Eq. 5-7) into domain 0 (canonical). For DI the sample space is the same
  * in every pixel (points on lights, area measure), so every shift is the identity with Jacobian 1
- * and p_hat_{<-k}(y) is simply domain k's target at y (004 Eq. 10). */
-static void gris_merge(const struct render_params *p, int n, const struct shading_point *sp,
-                       const struct di_reservoir *const *in, pcg32 *rng, struct di_reservoir *out)
+ * and p_hat_{<-k}(y) is simply domain k's target at y (004 Eq. 10), with visibility when the
+ * reservoirs' targets have it (di_visibility.h). Returns the shadow rays traced. */
+static long long gris_merge(const struct scene *s, const struct render_params *p, int n,
+                            const struct shading_point *sp, const struct di_reservoir *const *in, pcg32 *rng,
+                            struct di_reservoir *out)
 {
+    const int visible = di_targets_visible(p);
+    long long rays = 0;
     float c[DI_MAX_DOMAINS] = {0}, P[DI_MAX_DOMAINS * DI_MAX_DOMAINS] = {0}, m[DI_MAX_DOMAINS] = {0};
     float c_sum = 0.0f;
     for (int j = 0; j < n; j++) {
@@ -34,7 +39,7 @@ static void gris_merge(const struct render_params *p, int n, const struct shadin
             else if (k == j)
                 P[k * n + j] = in[j]->target; /* cached p_hat_j(Y_j) */
             else
-                P[k * n + j] = di_target(&sp[k], &in[j]->y);
+                P[k * n + j] = di_domain_target(s, visible, &sp[k], &in[j]->y, &rays);
         }
     }
     restir_mis_weights(p->mis, n, c, P, m);
@@ -57,15 +62,16 @@ static void gris_merge(const struct render_params *p, int n, const struct shadin
             di_reservoir_clear(&result, result.c);
     }
     *out = result;
+    return rays;
 }
 
 long long di_temporal_pass(const struct scene *s, const struct render_params *p, int frame,
                            const struct gbuffer *g, const struct gbuffer *prev_g,
-                           const struct di_reservoir *prev_res, struct di_reservoir *io)
+                           const struct di_reservoir *prev_res, struct di_reservoir *io, long long *rays)
 {
-    long long accepted = 0;
+    long long accepted = 0, traced = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : accepted)
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : accepted, traced)
     for (int t = 0; t < ntiles; t++) {
         struct tile_range r = tile_get(w, h, t);
         for (int y = r.y0; y < r.y1; y++) {
@@ -86,20 +92,22 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
                 }
                 pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_TEMPORAL);
                 const struct di_reservoir *in[2] = {&io[i], hist};
-                gris_merge(p, 2, sp, in, &rng, &io[i]);
+                traced += gris_merge(s, p, 2, sp, in, &rng, &io[i]);
                 accepted++;
             }
         }
     }
+    *rays += traced;
     return accepted;
 }
 
-void di_spatial_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
-                     const int *neighbors, const struct di_reservoir *in, struct di_reservoir *out)
+long long di_spatial_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
+                          const int *neighbors, const struct di_reservoir *in, struct di_reservoir *out)
 {
+    long long rays = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
     const int m = render_params_spatial_neighbors(p, 0); /* at most 5 = DI_MAX_DOMAINS - 1 */
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
         struct tile_range r = tile_get(w, h, t);
         for (int y = r.y0; y < r.y1; y++) {
@@ -122,15 +130,18 @@ void di_spatial_pass(const struct scene *s, const struct render_params *p, int f
                     gbuffer_shading_point(g, s, j, &sp[n]);
                     src[n++] = &in[j];
                 }
-                gris_merge(p, n, sp, src, &rng, &out[i]);
+                rays += gris_merge(s, p, n, sp, src, &rng, &out[i]);
             }
         }
     }
+    return rays;
 }
 
-long long di_shade_pass(const struct scene *s, const struct gbuffer *g, const struct di_reservoir *res,
-                        float *rgb)
+long long di_shade_pass(const struct scene *s, const struct render_params *p, const struct gbuffer *g,
+                        const struct di_reservoir *res, float *rgb)
 {
+    /* A target with visibility that is positive was traced visible from this very pixel. */
+    const int visible = di_targets_visible(p);
     long long rays = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
@@ -146,8 +157,12 @@ long long di_shade_pass(const struct scene *s, const struct gbuffer *g, const st
                     gbuffer_shading_point(g, s, i, &sp);
                     vec3 f = di_unshadowed(&sp, &rv->y);
                     if (v3_max_component(f) > 0.0f) {
-                        rays++;
-                        if (scene_visible(s, sp.p, sp.ng, rv->y.p, rv->y.n))
+                        int seen = visible && rv->target > 0.0f;
+                        if (!seen) {
+                            rays++;
+                            seen = di_sample_visible(s, &sp, &rv->y);
+                        }
+                        if (seen)
                             L = v3_add(L, v3_scale(f, rv->W)); /* f(Y) W_Y */
                     }
                 }

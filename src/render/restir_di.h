@@ -15,31 +15,33 @@ long long di_initial_pass(const struct scene *s, const struct render_params *p, 
 /* Temporal reuse (001): reprojects each pixel into the previous frame, validates against the
  * previous G-buffer and merges the history reservoir by GRIS. io holds the initial reservoirs on
  * entry and the temporal outputs on return. Returns the number of pixels whose history was
- * accepted. */
+ * accepted and adds the shadow rays of visibility-aware targets (di_visibility.h) to *rays. */
 long long di_temporal_pass(const struct scene *s, const struct render_params *p, int frame,
                            const struct gbuffer *g, const struct gbuffer *prev_g,
-                           const struct di_reservoir *prev_res, struct di_reservoir *io);
+                           const struct di_reservoir *prev_res, struct di_reservoir *io, long long *rays);
 
 /* Spatial reuse: GRIS merge of the neighbors' reservoirs; neighbors holds the selection pass's
- * lists (render_params_spatial_neighbors(p, 0) per pixel, -1 for none). */
-void di_spatial_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
-                     const int *neighbors, const struct di_reservoir *in, struct di_reservoir *out);
+ * lists (render_params_spatial_neighbors(p, 0) per pixel, -1 for none). Returns shadow rays traced. */
+long long di_spatial_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
+                          const int *neighbors, const struct di_reservoir *in, struct di_reservoir *out);
 
 /* Stochastic pairwise MIS spatial reuse (004 Algorithm 2) from the cells and chosen cells in f
  * (reuse_cells.h): di_spmis_weights fills f->conf and f->weight (Eq. 17) from the temporal
  * outputs; di_spmis_canonical_pass computes m~_c (lines 6-12, Eq. 18-19) into f->m_c;
  * di_spmis_reuse_pass merges the canonical and N drawn neighbors (lines 13-20, Eq. 14-16). Light
- * samples live in one space for every pixel: each shift is the identity with Jacobian 1. */
+ * samples live in one space for every pixel: each shift is the identity with Jacobian 1. The two
+ * passes return the shadow rays of visibility-aware targets. */
 struct spmis_frame;
 void di_spmis_weights(const struct render_params *p, const struct gbuffer *g, const struct di_reservoir *in,
                       struct spmis_frame *f);
-void di_spmis_canonical_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
-                             const struct di_reservoir *in, struct spmis_frame *f);
-void di_spmis_reuse_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
-                         const struct di_reservoir *in, const struct spmis_frame *f, struct di_reservoir *out);
+long long di_spmis_canonical_pass(const struct scene *s, const struct render_params *p, int frame,
+                                  const struct gbuffer *g, const struct di_reservoir *in, struct spmis_frame *f);
+long long di_spmis_reuse_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
+                              const struct di_reservoir *in, const struct spmis_frame *f, struct di_reservoir *out);
 
-/* Final shading: primary emission + f(Y) W_Y with one shadow ray. Returns rays traced. */
-long long di_shade_pass(const struct scene *s, const struct gbuffer *g, const struct di_reservoir *res,
-                        float *rgb);
+/* Final shading: primary emission + f(Y) W_Y, with one shadow ray unless the reservoir's target
+ * already includes visibility at the pixel (di_targets_visible). Returns rays traced. */
+long long di_shade_pass(const struct scene *s, const struct render_params *p, const struct gbuffer *g,
+                        const struct di_reservoir *res, float *rgb);
 
 #endif

@@ -2,6 +2,7 @@
  * canonical weight m~_c from N_c cell pixels (Eq. 18-19), then a GRIS merge of the canonical light
  * sample and N samples drawn by Eq. 17 (Eq. 14-16). Light samples need no shift (identity, |J| = 1).
  * Must never allocate per pixel. */
+#include "di_visibility.h"
 #include "restir_di.h"
 
 #include "restir/reservoir.h"
@@ -22,11 +23,13 @@ void di_spmis_weights(const struct render_params *p, const struct gbuffer *g, co
     }
 }
 
-void di_spmis_canonical_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
-                             const struct di_reservoir *in, struct spmis_frame *f)
+long long di_spmis_canonical_pass(const struct scene *s, const struct render_params *p, int frame,
+                                  const struct gbuffer *g, const struct di_reservoir *in, struct spmis_frame *f)
 {
+    const int visible = di_targets_visible(p);
+    long long rays = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
         struct tile_range r = tile_get(w, h, t);
         struct restir_spmis_draws draws;
@@ -44,20 +47,23 @@ void di_spmis_canonical_pass(const struct scene *s, const struct render_params *
                     struct shading_point sp;
                     gbuffer_shading_point(g, s, i, &sp);
                     /* Eq. 19 with p_hat_{<-i}(Y_c) = pixel i's target at the same light point */
-                    m_c += restir_spmis_canonical_term(&k, f->conf[i], di_target(&sp, &in[c].y), in[c].target,
-                                                       draws.factor[d]);
+                    float p_i = di_domain_target(s, visible, &sp, &in[c].y, &rays);
+                    m_c += restir_spmis_canonical_term(&k, f->conf[i], p_i, in[c].target, draws.factor[d]);
                 }
                 f->m_c[c] = (float)m_c;
             }
         }
     }
+    return rays;
 }
 
-void di_spmis_reuse_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
-                         const struct di_reservoir *in, const struct spmis_frame *f, struct di_reservoir *out)
+long long di_spmis_reuse_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
+                              const struct di_reservoir *in, const struct spmis_frame *f, struct di_reservoir *out)
 {
+    const int visible = di_targets_visible(p);
+    long long rays = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
         struct tile_range r = tile_get(w, h, t);
         struct restir_spmis_draws draws;
@@ -85,7 +91,7 @@ void di_spmis_reuse_pass(const struct scene *s, const struct render_params *p, i
                 for (int d = 0; d < draws.count; d++) {
                     /* Lines 13-18 (line 15: the drawn neighbor's own sample X_z comes to pixel c) */
                     int z = draws.pixel[d];
-                    float p_c = di_target(&sp, &in[z].y); /* p_hat(y) */
+                    float p_c = di_domain_target(s, visible, &sp, &in[z].y, &rays); /* p_hat(y) */
                     float wz = (float)(restir_spmis_noncanonical(&k, f->conf[z], in[z].target, p_c, draws.factor[d]) *
                                        p_c * in[z].W);
                     if (restir_wrs_offer(&wrs, wz, pcg32_float(&rng))) {
@@ -100,4 +106,5 @@ void di_spmis_reuse_pass(const struct scene *s, const struct render_params *p, i
             }
         }
     }
+    return rays;
 }

@@ -1,7 +1,9 @@
 /* test_di_unbiased.c: restir-di with pairwise MIS (and balance), temporal and spatial reuse on,
  * is unbiased: the mean of K independently seeded runs matches K runs of the direct-lighting
  * path tracer per pixel (Welch t-test, Sidak-corrected). A run uses a moving camera so that
- * temporal reuse merges history from other shading points. */
+ * temporal reuse merges history from other shading points. The default has visibility reuse with
+ * ray-traced visibility in the MIS targets (di.visibility_reuse=on, di.visibility_mis=rays);
+ * visibility_reuse=off is checked too, and visibility_mis=none's bias is measured. */
 #include <string.h>
 
 #include "unbiased_runs.h"
@@ -40,5 +42,16 @@ int main(void)
     check_scene("many-lights", 24, 16, ml_pairwise, 2, 1);
     const char *ml_uniform[] = {"mis=1/M", "jitter=off"};
     check_scene("many-lights", 24, 16, ml_uniform, 2, 0); /* biased option: reported, not asserted */
+    /* Visibility: the default (on, rays) where shadows cover much of the image, the unshadowed
+     * reservoirs of before, and the biased none (reported, not asserted). */
+    const char *pillars_default[] = {"di.visibility_mis=rays"};
+    check_scene("pillars", 24, 16, pillars_default, 1, 1);
+    const char *no_visibility[] = {"di.visibility_reuse=off"};
+    check_scene("cornell", 24, 16, no_visibility, 1, 1);
+    check_scene("pillars", 24, 16, no_visibility, 1, 1);
+    const char *vis_none[] = {"di.visibility_mis=none"};
+    check_scene("pillars", 24, 16, vis_none, 1, 0);
+    const char *ml_vis_none[] = {"di.visibility_mis=none", "jitter=off"};
+    check_scene("many-lights", 24, 16, ml_vis_none, 2, 0);
     return test_finish();
 }

@@ -1,0 +1,17 @@
+/* di_visibility.c: shadow rays for ReSTIR DI's visibility reuse and its visibility-aware targets. */
+#include "di_visibility.h"
+
+int di_sample_visible(const struct scene *s, const struct shading_point *sp, const struct di_sample *y)
+{
+    return scene_visible(s, sp->p, sp->ng, y->p, y->n);
+}
+
+float di_domain_target(const struct scene *s, int visible, const struct shading_point *sp, const struct di_sample *y,
+                       long long *rays)
+{
+    float t = di_target(sp, y);
+    if (!visible || !(t > 0.0f))
+        return t;
+    (*rays)++;
+    return di_sample_visible(s, sp, y) ? t : 0.0f;
+}

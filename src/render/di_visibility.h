@@ -1,0 +1,28 @@
+/* di_visibility.h: visibility in ReSTIR DI's targets. With di.visibility_reuse the initial sample
+ * is kept only when visible (Bitterli et al. 2020, Algorithm 5), so a reservoir's target is
+ * p_hat(x, y) V(x, y); the resampling MIS weights then compare targets that include visibility from
+ * each domain (004 Eq. 10 with p_hat_{<-k} = p_hat_k V_k), traced per merge, which is RTXDI's
+ * ray-traced bias correction. Without those rays (di.visibility_mis=none) a domain that cannot see
+ * a sample still gets MIS weight for it and the estimate darkens (BIASED). */
+#ifndef RESTIR_RENDER_DI_VISIBILITY_H
+#define RESTIR_RENDER_DI_VISIBILITY_H
+
+#include "di_sample.h"
+#include "params.h"
+
+/* 1 when every reservoir target includes visibility at its own pixel, so reuse traces the
+ * cross-domain shadow rays and shading needs none. */
+static inline int di_targets_visible(const struct render_params *p)
+{
+    return p->di_visibility_reuse && p->di_visibility_mis == DI_VIS_MIS_RAYS;
+}
+
+/* 1 when the light point y is unoccluded from sp (one shadow ray). */
+int di_sample_visible(const struct scene *s, const struct shading_point *sp, const struct di_sample *y);
+
+/* The target of domain sp at y as the reservoirs define it: p_hat(y) V(x, y) when visible, else
+ * the unshadowed p_hat(y). The shadow ray is traced (and counted in *rays) only where p_hat > 0. */
+float di_domain_target(const struct scene *s, int visible, const struct shading_point *sp, const struct di_sample *y,
+                       long long *rays);
+
+#endif
