@@ -1,28 +1,24 @@
 /* di_initial.c: ReSTIR DI initial sampling: per pixel, RIS over light-sampled and BSDF-sampled
  * candidates combined by MIS into one reservoir (Bitterli et al. 2020; 001 Sec. 1). Light
- * candidates are generated and evaluated in batches laid out for SIMD. Must never allocate per pixel. */
+ * candidates are windows of the frame's light pool (light_pool.h), evaluated in batches laid out
+ * for SIMD. Must never allocate per pixel. */
 #include "core/rng.h"
 #include "di_visibility.h"
 #include "restir/reservoir.h"
 #include "restir_di.h"
+#include "light_pool.h"
 #include "shading/lights.h"
 #include "tiles.h"
 
-/* Light candidates evaluated together; more than the default 32 are processed batch by batch. */
+/* Light candidates are evaluated in batches of at most DI_BATCH. */
 #define DI_BATCH 64
 
 struct light_batch {
-    int emitter[DI_BATCH];
-    float b1[DI_BATCH], b2[DI_BATCH];
-    float px[DI_BATCH], py[DI_BATCH], pz[DI_BATCH];  /* point on the light */
-    float nx[DI_BATCH], ny[DI_BATCH], nz[DI_BATCH];  /* its emitting normal */
-    float Lr[DI_BATCH], Lg[DI_BATCH], Lb[DI_BATCH];  /* its radiance */
-    float pdf_light[DI_BATCH];                        /* its area density under light sampling */
-    float wx[DI_BATCH], wy[DI_BATCH], wz[DI_BATCH];  /* unit direction x -> y */
-    float geo[DI_BATCH];                              /* cos_x cos_y / d^2, 0 when not facing */
-    float to_area[DI_BATCH];                          /* cos_y / d^2: solid angle -> area at y */
+    float wx[DI_BATCH], wy[DI_BATCH], wz[DI_BATCH]; /* unit direction x -> y */
+    float geo[DI_BATCH];                            /* cos_x cos_y / d^2, 0 when not facing */
+    float to_area[DI_BATCH];                        /* cos_y / d^2: solid angle -> area at y */
     float fr[DI_BATCH], fg[DI_BATCH], fb[DI_BATCH], pdf[DI_BATCH]; /* BSDF value and pdf */
-    float w[DI_BATCH];                                /* RIS weight */
+    float w[DI_BATCH];                              /* RIS weight */
 };
 
 static void sample_from_emitter(const struct scene *s, int e, float b1, float b2, struct di_sample *y)
@@ -37,44 +33,29 @@ static void sample_from_emitter(const struct scene *s, int e, float b1, float b2
     y->Le = ls.Le;
 }
 
-/* Fills n light candidates and their RIS weights
+/* RIS weights of the n light candidates at pool entries first .. first + n - 1:
  *   w = p_hat(y) / (N_light p_light(y) + N_bsdf p_bsdf(y))
  * (the balance heuristic over strategies with candidate counts, so W = sum w / p_hat(Y) is an
  * unbiased contribution weight). Every emitter point along a BSDF ray is a candidate (the BSDF
  * strategy traces the emitters-only BVH), so p_bsdf has no visibility term: both strategies are
  * unshadowed, their MIS weights sum to one wherever p_hat > 0, and W stays valid on p_hat's whole
- * support, which spatial reuse relies on. */
-static void light_batch_fill(const struct scene *s, const struct shading_point *sp, int n, int nl, int nb,
-                             pcg32 *rng, struct light_batch *lb)
+ * support, which spatial reuse relies on. The loops read only contiguous arrays, so they
+ * vectorize. */
+static void light_batch_fill(const struct light_pool *lp, int first, const struct shading_point *sp, int n, int nl,
+                             int nb, struct light_batch *lb)
 {
-    for (int k = 0; k < n; k++) {
-        int e = alias_table_sample(&s->emitter_table, pcg32_float(rng));
-        float u1 = pcg32_float(rng), u2 = pcg32_float(rng);
-        warp_uniform_triangle(u1, u2, &lb->b1[k], &lb->b2[k]);
-        const struct emitter *em = &s->emitters[e];
-        lb->emitter[k] = e;
-        lb->px[k] = em->v0.x + lb->b1[k] * em->e1.x + lb->b2[k] * em->e2.x;
-        lb->py[k] = em->v0.y + lb->b1[k] * em->e1.y + lb->b2[k] * em->e2.y;
-        lb->pz[k] = em->v0.z + lb->b1[k] * em->e1.z + lb->b2[k] * em->e2.z;
-        lb->nx[k] = em->n.x;
-        lb->ny[k] = em->n.y;
-        lb->nz[k] = em->n.z;
-        lb->Lr[k] = em->Le.x;
-        lb->Lg[k] = em->Le.y;
-        lb->Lb[k] = em->Le.z;
-        lb->pdf_light[k] = em->pdf_area;
-    }
-    /* The loops below read only the batch's arrays, so they vectorize. */
+    const float *restrict px = lp->px + first, *restrict py = lp->py + first, *restrict pz = lp->pz + first;
+    const float *restrict nx = lp->nx + first, *restrict ny = lp->ny + first, *restrict nz = lp->nz + first;
     const vec3 x = sp->p, n_s = sp->n, n_g = sp->ng;
     for (int k = 0; k < n; k++) {
-        float dx = lb->px[k] - x.x, dy = lb->py[k] - x.y, dz = lb->pz[k] - x.z;
+        float dx = px[k] - x.x, dy = py[k] - x.y, dz = pz[k] - x.z;
         float d2 = max_f(dx * dx + dy * dy + dz * dz, 1e-30f), inv_d = 1.0f / sqrtf(d2);
         dx *= inv_d;
         dy *= inv_d;
         dz *= inv_d;
         float cos_x = n_s.x * dx + n_s.y * dy + n_s.z * dz;
         float cos_g = n_g.x * dx + n_g.y * dy + n_g.z * dz;
-        float cos_y = -(lb->nx[k] * dx + lb->ny[k] * dy + lb->nz[k] * dz);
+        float cos_y = -(nx[k] * dx + ny[k] * dy + nz[k] * dz);
         float facing = (cos_x > 0.0f && cos_y > 0.0f && cos_g > 0.0f) ? 1.0f : 0.0f;
         lb->wx[k] = dx;
         lb->wy[k] = dy;
@@ -83,11 +64,13 @@ static void light_batch_fill(const struct scene *s, const struct shading_point *
         lb->geo[k] = lb->to_area[k] * cos_x;
     }
     bsdf_frame_eval_batch(&sp->bf, n, lb->wx, lb->wy, lb->wz, lb->fr, lb->fg, lb->fb, lb->pdf);
+    const float *restrict Lr = lp->Lr + first, *restrict Lg = lp->Lg + first, *restrict Lb = lp->Lb + first;
+    const float *restrict pdf_light = lp->pdf + first;
     const float fnl = (float)nl, fnb = (float)nb;
     for (int k = 0; k < n; k++) {
-        float target = lb->geo[k] * (0.2126f * lb->Lr[k] * lb->fr[k] + 0.7152f * lb->Lg[k] * lb->fg[k] +
-                                     0.0722f * lb->Lb[k] * lb->fb[k]);
-        float denom = fnl * lb->pdf_light[k] + fnb * lb->pdf[k] * lb->to_area[k];
+        float target = lb->geo[k] * (0.2126f * Lr[k] * lb->fr[k] + 0.7152f * Lg[k] * lb->fg[k] +
+                                     0.0722f * Lb[k] * lb->fb[k]);
+        float denom = fnl * pdf_light[k] + fnb * lb->pdf[k] * lb->to_area[k];
         lb->w[k] = target > 0.0f ? target / denom : 0.0f;
     }
 }
@@ -109,17 +92,18 @@ static int pick_by_weight(const float *w, int n, float total, float u)
     return last; /* rounding: x landed past the float sum */
 }
 
-static void initial_pixel(const struct scene *s, const struct render_params *p, const struct shading_point *sp,
-                          pcg32 *rng, struct di_reservoir *r, long long *rays)
+static void initial_pixel(const struct scene *s, const struct light_pool *lp, const struct render_params *p,
+                          const struct shading_point *sp, pcg32 *rng, struct di_reservoir *r, long long *rays)
 {
     struct restir_wrs wrs;
     restir_wrs_init(&wrs);
     di_reservoir_clear(r, 1.0f);
     const int nl = s->num_emitters > 0 ? p->light_candidates : 0, nb = p->bsdf_candidates;
     struct light_batch lb;
+    const int window = nl ? light_pool_offset(pcg32_float(rng)) : 0; /* this pixel's nl pool entries */
     for (int done = 0; done < nl; done += DI_BATCH) {
-        int n = nl - done < DI_BATCH ? nl - done : DI_BATCH;
-        light_batch_fill(s, sp, n, nl, nb, rng, &lb);
+        int n = nl - done < DI_BATCH ? nl - done : DI_BATCH, first = window + done;
+        light_batch_fill(lp, first, sp, n, nl, nb, &lb);
         struct restir_wrs batch;
         restir_wrs_init(&batch);
         for (int k = 0; k < n; k++)
@@ -127,8 +111,8 @@ static void initial_pixel(const struct scene *s, const struct render_params *p, 
         batch.offered = n;
         batch.selected = batch.w_sum > 0.0f ? pick_by_weight(lb.w, n, batch.w_sum, pcg32_float(rng)) : -1;
         if (restir_wrs_merge(&wrs, &batch, pcg32_float(rng))) {
-            int k = batch.selected;
-            sample_from_emitter(s, lb.emitter[k], lb.b1[k], lb.b2[k], &r->y);
+            int k = first + batch.selected;
+            sample_from_emitter(s, lp->emitter[k], lp->b1[k], lp->b2[k], &r->y);
         }
     }
     for (int k = 0; k < nb; k++) {
@@ -178,7 +162,7 @@ static void initial_pixel(const struct scene *s, const struct render_params *p, 
     }
 }
 
-long long di_initial_pass(const struct scene *s, const struct render_params *p, int frame,
+long long di_initial_pass(const struct scene *s, const struct light_pool *lp, const struct render_params *p, int frame,
                           const struct gbuffer *g, struct di_reservoir *out)
 {
     long long rays = 0;
@@ -196,7 +180,7 @@ long long di_initial_pass(const struct scene *s, const struct render_params *p, 
                     continue;
                 }
                 pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_INITIAL);
-                initial_pixel(s, p, &sp, &rng, &out[i], &rays);
+                initial_pixel(s, lp, p, &sp, &rng, &out[i], &rays);
             }
         }
     }

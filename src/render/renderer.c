@@ -103,6 +103,7 @@ void renderer_init(struct renderer *r, const struct scene *s, enum method_id met
         r->work = xcalloc(n, sizeof(struct di_reservoir));
         r->hist[0] = xcalloc(n, sizeof(struct di_reservoir));
         r->hist[1] = xcalloc(n, sizeof(struct di_reservoir));
+        light_pool_init(&r->lights, r->p.light_candidates);
     }
     if (method_runs_restir_pt(method)) {
         r->pt_work = xcalloc(n, sizeof(struct pt_reservoir));
@@ -135,6 +136,8 @@ void renderer_fini(struct renderer *r)
         gbuffer_fini(&r->gb[0]);
         gbuffer_fini(&r->gb[1]);
     }
+    if (r->work)
+        light_pool_fini(&r->lights);
     free(r->work);
     free(r->hist[0]);
     free(r->hist[1]);
@@ -181,7 +184,10 @@ static void render_restir_di(struct renderer *r, const struct camera_view *view,
     const int frame = r->frame;
     TIMED(st, PASS_GBUFFER,
           st->rays += gbuffer_pass(g, s, view, r->has_history ? &r->prev_view : NULL, p->jitter, p->seed, frame));
-    TIMED(st, PASS_INITIAL, st->rays += di_initial_pass(s, p, frame, g, r->work));
+    TIMED(st, PASS_INITIAL, {
+        light_pool_fill(&r->lights, s, p->seed, frame);
+        st->rays += di_initial_pass(s, &r->lights, p, frame, g, r->work);
+    });
     if (p->temporal && r->has_history)
         TIMED(st, PASS_TEMPORAL,
               st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, r->work, &st->rays));

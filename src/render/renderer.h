@@ -7,6 +7,7 @@
 #include "gbuffer.h"
 #include "params.h"
 #include "restir_pt.h"
+#include "light_pool.h"
 
 struct grad_frame;
 
@@ -87,6 +88,7 @@ struct renderer {
     struct camera_view prev_view;
     struct di_reservoir *work;    /* initial, then temporal outputs */
     struct di_reservoir *hist[2]; /* spatial outputs: this frame's and the previous frame's */
+    struct light_pool lights;     /* DI methods: this frame's light candidates (initial RIS) */
     struct pt_reservoir *pt_work;    /* restir-pt: as work */
     struct pt_reservoir *pt_hist[2]; /* restir-pt: as hist */
     vec3 *pt_emission;               /* restir-pt: emission seen directly by the initial paths */

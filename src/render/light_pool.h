@@ -1,0 +1,43 @@
+/* light_pool.h: ReSTIR DI's light candidates, presampled once per frame (after Wyman and
+ * Panteleev 2021's light tiles, as RTXDI): LIGHT_POOL_SIZE independent draws of lights_sample's
+ * distribution (emitter proportional to power, uniform point on it), stored as structure of
+ * arrays. A pixel takes its M candidates as one window of M consecutive entries at a uniformly
+ * random offset: distinct entries of an i.i.d. pool, so the pixel's candidates are exactly M
+ * i.i.d. draws of p_light and initial RIS is unchanged in distribution, while the candidate loop
+ * reads contiguous memory and vectorizes. Two pixels share candidates only when their windows
+ * overlap (probability about 2 M / LIGHT_POOL_SIZE), a weak correlation between pixels that no
+ * pixel's expectation sees. Must never trace rays. */
+#ifndef RESTIR_RENDER_LIGHT_POOL_H
+#define RESTIR_RENDER_LIGHT_POOL_H
+
+#include <stdint.h>
+
+#include "scene/scene.h"
+
+#define LIGHT_POOL_SIZE (1 << 14)
+
+struct light_pool {
+    int size;   /* LIGHT_POOL_SIZE draws, then copies of the first `window` so no window wraps */
+    int window; /* the longest window a pixel takes (di.light_candidates) */
+    int *emitter;
+    float *b1, *b2;
+    float *px, *py, *pz; /* point on the light */
+    float *nx, *ny, *nz; /* its emitting normal */
+    float *Lr, *Lg, *Lb; /* its radiance */
+    float *pdf;          /* its area density under light sampling */
+};
+
+/* Allocates a pool for windows of up to `window` (<= LIGHT_POOL_SIZE) candidates. */
+void light_pool_init(struct light_pool *lp, int window);
+void light_pool_fini(struct light_pool *lp);
+/* Draws the frame's pool (seeded by seed and frame, whatever the thread count); a scene without
+ * emitters leaves it empty. */
+void light_pool_fill(struct light_pool *lp, const struct scene *s, uint64_t seed, int frame);
+/* The window offset for a uniform u in [0, 1). */
+static inline int light_pool_offset(float u)
+{
+    int o = (int)(u * (float)LIGHT_POOL_SIZE); /* exact: the product only shifts the exponent */
+    return o < LIGHT_POOL_SIZE ? o : LIGHT_POOL_SIZE - 1;
+}
+
+#endif
