@@ -173,14 +173,13 @@ long long di_initial_pass(const struct scene *s, const struct light_pool *lp, co
         for (int y = r.y0; y < r.y1; y++) {
             for (int x = r.x0; x < r.x1; x++) {
                 int i = y * g->width + x;
-                struct shading_point sp;
-                gbuffer_shading_point(g, s, i, &sp);
-                if (!sp.valid) {
+                const struct shading_point *sp = gbuffer_shading(g, i);
+                if (!sp->valid) {
                     di_reservoir_clear(&out[i], 0.0f);
                     continue;
                 }
                 pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_INITIAL);
-                initial_pixel(s, lp, p, &sp, &rng, &out[i], &rays);
+                initial_pixel(s, lp, p, sp, &rng, &out[i], &rays);
             }
         }
     }

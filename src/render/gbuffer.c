@@ -29,6 +29,7 @@ void gbuffer_init(struct gbuffer *g, int width, int height)
     g->sub_pixel = xcalloc(n, sizeof(vec3));
     g->valid = xcalloc(n, 1);
     g->select_key = xcalloc(n * GBUFFER_KEY, sizeof(float));
+    g->shading = xcalloc(n, sizeof(struct shading_point));
 }
 
 void gbuffer_fini(struct gbuffer *g)
@@ -46,7 +47,21 @@ void gbuffer_fini(struct gbuffer *g)
     free(g->sub_pixel);
     free(g->valid);
     free(g->select_key);
+    free(g->shading);
     memset(g, 0, sizeof(*g));
+}
+
+static void shading_point_init(struct shading_point *sp, const struct material *m, vec3 p, vec3 n, vec3 ng,
+                               vec3 camera)
+{
+    sp->valid = 1;
+    sp->p = p;
+    sp->n = n;
+    sp->ng = ng;
+    sp->wo = v3_normalize(v3_sub(camera, p));
+    struct bsdf b;
+    bsdf_from_material(m, &b);
+    bsdf_frame_init(&sp->bf, &b, n, sp->wo);
 }
 
 long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct camera_view *view,
@@ -76,6 +91,7 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
                     g->emission[i] = v3s(0.0f);
                     g->material[i] = g->object[i] = -1;
                     g->depth[i] = INFINITY;
+                    g->shading[i].valid = 0;
                     continue;
                 }
                 const struct material *m = &s->materials[h.material];
@@ -91,6 +107,7 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
                 g->material[i] = h.material;
                 g->object[i] = h.object;
                 g->emission[i] = s->tri_emitter[h.tri] >= 0 ? lights_radiance(s, h.tri, v3_neg(dir)) : v3s(0.0f);
+                shading_point_init(&g->shading[i], m, h.p, h.ns, h.ng, view->position);
                 float qx, qy;
                 if (prev_view && camera_view_project(prev_view, h.p, &qx, &qy)) {
                     g->motion[2 * i] = qx - px;
@@ -100,20 +117,6 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
         }
     }
     return rays;
-}
-
-void gbuffer_shading_point(const struct gbuffer *g, const struct scene *s, int i, struct shading_point *sp)
-{
-    sp->valid = g->valid[i];
-    if (!sp->valid)
-        return;
-    sp->p = g->position[i];
-    sp->n = g->normal[i];
-    sp->ng = g->geo_normal[i];
-    sp->wo = v3_normalize(v3_sub(g->camera_position, g->position[i]));
-    struct bsdf b;
-    bsdf_from_material(&s->materials[g->material[i]], &b);
-    bsdf_frame_init(&sp->bf, &b, sp->n, sp->wo);
 }
 
 int gbuffer_history_pixel(const struct gbuffer *g, int i, const struct gbuffer *prev_g, float normal_min,

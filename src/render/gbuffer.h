@@ -10,6 +10,14 @@
 
 #define GBUFFER_NO_MOTION 1e30f
 
+/* A surface point as the passes shade it: position, normals, outgoing direction and the BSDF
+ * prepared for that direction (its frame and wo-dependent factors). */
+struct shading_point {
+    vec3 p, n, ng, wo;
+    struct bsdf_frame bf;
+    int valid;
+};
+
 struct gbuffer {
     int width, height;
     vec3 camera_position; /* of the frame it was rendered for (the wo of every pixel) */
@@ -26,6 +34,8 @@ struct gbuffer {
     vec3 *emission;       /* radiance emitted toward the camera by the primary hit */
     vec3 *sub_pixel;      /* x, y: image position of the primary ray (pixel units); z unused */
     unsigned char *valid; /* 1 when the primary ray hit geometry */
+    struct shading_point *shading; /* the primary hit as a shading point: every DI pass and each
+                                      neighbor reads it instead of rebuilding the BSDF frame */
     float *select_key;    /* GBUFFER_KEY floats per pixel: position xyz, normal xyz, depth, valid;
                              what neighbor selection reads, packed so that each of its random taps
                              touches one cache line instead of four */
@@ -48,13 +58,7 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
 int gbuffer_history_pixel(const struct gbuffer *g, int i, const struct gbuffer *prev_g, float normal_min,
                           float plane_max);
 
-/* The surface at pixel i as a shading point: position, normal, outgoing direction, BSDF. */
-struct shading_point {
-    vec3 p, n, ng, wo;
-    struct bsdf_frame bf; /* the BSDF prepared for wo */
-    int valid;
-};
-
-void gbuffer_shading_point(const struct gbuffer *g, const struct scene *s, int i, struct shading_point *sp);
+/* Pixel i's primary hit as a shading point (built once per frame by gbuffer_pass). */
+static inline const struct shading_point *gbuffer_shading(const struct gbuffer *g, int i) { return &g->shading[i]; }
 
 #endif

@@ -18,7 +18,7 @@
  * and p_hat_{<-k}(y) is simply domain k's target at y (004 Eq. 10), with visibility when the
  * reservoirs' targets have it (di_visibility.h). Returns the shadow rays traced. */
 static long long gris_merge(const struct scene *s, const struct render_params *p, int n,
-                            const struct shading_point *sp, const struct di_reservoir *const *in, pcg32 *rng,
+                            const struct shading_point *const *sp, const struct di_reservoir *const *in, pcg32 *rng,
                             struct di_reservoir *out)
 {
     const int visible = di_targets_visible(p);
@@ -39,7 +39,7 @@ static long long gris_merge(const struct scene *s, const struct render_params *p
             else if (k == j)
                 P[k * n + j] = in[j]->target; /* cached p_hat_j(Y_j) */
             else
-                P[k * n + j] = di_domain_target(s, visible, &sp[k], &in[j]->y, &rays);
+                P[k * n + j] = di_domain_target(s, visible, sp[k], &in[j]->y, &rays);
         }
     }
     restir_mis_weights(p->mis, n, c, P, m);
@@ -80,13 +80,11 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
                 int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
                 if (q < 0)
                     continue;
-                struct shading_point sp[2];
-                gbuffer_shading_point(g, s, i, &sp[0]);
-                gbuffer_shading_point(prev_g, s, q, &sp[1]);
+                const struct shading_point *sp[2] = {gbuffer_shading(g, i), gbuffer_shading(prev_g, q)};
                 const struct di_reservoir *hist = &prev_res[q];
                 if (p->temporal_ratio_guard && hist->y.tri >= 0) {
                     /* 001 Sec. 5 guard: depends on the sample, hence BIASED (documented in --help). */
-                    float ratio = di_target(&sp[0], &hist->y) / hist->target;
+                    float ratio = di_target(sp[0], &hist->y) / hist->target;
                     if (!(ratio >= p->ratio_lo && ratio <= p->ratio_hi))
                         continue;
                 }
@@ -113,21 +111,31 @@ long long di_spatial_pass(const struct scene *s, const struct render_params *p, 
         for (int y = r.y0; y < r.y1; y++) {
             for (int x = r.x0; x < r.x1; x++) {
                 int i = y * w + x;
+                /* Neighbors sit at random within the radius: their reservoirs and shading points
+                 * miss the cache, so the next pixel's are fetched while this one merges. */
+                int next = tile_next_pixel(&r, w, x, y);
+                for (int k = 0; next >= 0 && k < m; k++) {
+                    int j = neighbors[(size_t)next * m + k];
+                    if (j >= 0) {
+                        prefetch_bytes(&in[j], sizeof(in[j]));
+                        prefetch_bytes(gbuffer_shading(g, j), sizeof(struct shading_point));
+                    }
+                }
                 if (!g->valid[i]) {
                     out[i] = in[i];
                     continue;
                 }
                 pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_SPATIAL);
-                struct shading_point sp[DI_MAX_DOMAINS];
+                const struct shading_point *sp[DI_MAX_DOMAINS];
                 const struct di_reservoir *src[DI_MAX_DOMAINS];
-                gbuffer_shading_point(g, s, i, &sp[0]);
+                sp[0] = gbuffer_shading(g, i);
                 src[0] = &in[i];
                 int n = 1;
                 for (int k = 0; k < m; k++) {
                     int j = neighbors[(size_t)i * m + k];
                     if (j < 0)
                         continue;
-                    gbuffer_shading_point(g, s, j, &sp[n]);
+                    sp[n] = gbuffer_shading(g, j);
                     src[n++] = &in[j];
                 }
                 rays += gris_merge(s, p, n, sp, src, &rng, &out[i]);
@@ -153,14 +161,13 @@ long long di_shade_pass(const struct scene *s, const struct render_params *p, co
                 vec3 L = g->valid[i] ? g->emission[i] : v3s(0.0f);
                 const struct di_reservoir *rv = &res[i];
                 if (g->valid[i] && rv->y.tri >= 0 && rv->W > 0.0f) {
-                    struct shading_point sp;
-                    gbuffer_shading_point(g, s, i, &sp);
-                    vec3 f = di_unshadowed(&sp, &rv->y);
+                    const struct shading_point *sp = gbuffer_shading(g, i);
+                    vec3 f = di_unshadowed(sp, &rv->y);
                     if (v3_max_component(f) > 0.0f) {
                         int seen = visible && rv->target > 0.0f;
                         if (!seen) {
                             rays++;
-                            seen = di_sample_visible(s, &sp, &rv->y);
+                            seen = di_sample_visible(s, sp, &rv->y);
                         }
                         if (seen)
                             L = v3_add(L, v3_scale(f, rv->W)); /* f(Y) W_Y */

@@ -44,10 +44,9 @@ long long di_spmis_canonical_pass(const struct scene *s, const struct render_par
                 double m_c = restir_spmis_canonical_share(&k);
                 for (int d = 0; d < draws.count; d++) {
                     int i = draws.pixel[d];
-                    struct shading_point sp;
-                    gbuffer_shading_point(g, s, i, &sp);
+                    const struct shading_point *sp = gbuffer_shading(g, i);
                     /* Eq. 19 with p_hat_{<-i}(Y_c) = pixel i's target at the same light point */
-                    float p_i = di_domain_target(s, visible, &sp, &in[c].y, &rays);
+                    float p_i = di_domain_target(s, visible, sp, &in[c].y, &rays);
                     m_c += restir_spmis_canonical_term(&k, f->conf[i], p_i, in[c].target, draws.factor[d]);
                 }
                 f->m_c[c] = (float)m_c;
@@ -86,12 +85,11 @@ long long di_spmis_reuse_pass(const struct scene *s, const struct render_params 
                     result.y = in[c].y;
                     result.target = in[c].target;
                 }
-                struct shading_point sp;
-                gbuffer_shading_point(g, s, c, &sp);
+                const struct shading_point *sp = gbuffer_shading(g, c);
                 for (int d = 0; d < draws.count; d++) {
                     /* Lines 13-18 (line 15: the drawn neighbor's own sample X_z comes to pixel c) */
                     int z = draws.pixel[d];
-                    float p_c = di_domain_target(s, visible, &sp, &in[z].y, &rays); /* p_hat(y) */
+                    float p_c = di_domain_target(s, visible, sp, &in[z].y, &rays); /* p_hat(y) */
                     float wz = (float)(restir_spmis_noncanonical(&k, f->conf[z], in[z].target, p_c, draws.factor[d]) *
                                        p_c * in[z].W);
                     if (restir_wrs_offer(&wrs, wz, pcg32_float(&rng))) {

@@ -25,6 +25,24 @@ static inline struct tile_range tile_get(int width, int height, int tile)
     return r;
 }
 
+/* The pixel a tile loop visits after (x, y) in r (rows left to right), or -1 after the last:
+ * what a pass prefetches for while it works on the current pixel. */
+static inline int tile_next_pixel(const struct tile_range *r, int width, int x, int y)
+{
+    if (x + 1 < r->x1)
+        return y * width + x + 1;
+    return y + 1 < r->y1 ? (y + 1) * width + r->x0 : -1;
+}
+
+/* Prefetches the cache lines of bytes [p, p + n) for reading. */
+static inline void prefetch_bytes(const void *p, unsigned n)
+{
+    const char *c = (const char *)p;
+    for (unsigned k = 0; k < n; k += 64)
+        __builtin_prefetch(c + k);
+    __builtin_prefetch(c + n - 1);
+}
+
 /* Stream ids per pass, the fourth term of the (seed, frame, pixel, pass) seeding rule. */
 enum rng_pass {
     RNG_PASS_GBUFFER = 1,
