@@ -75,21 +75,29 @@ static void light_batch_fill(const struct light_pool *lp, int first, const struc
     }
 }
 
-/* Picks index k with probability w_k / sum w by one uniform (inverse CDF): the same distribution
- * as streaming reservoir sampling over the batch, with one random number instead of n. */
-static int pick_by_weight(const float *w, int n, float total, float u)
+/* Picks index k with probability w_k / sum w by one uniform (inverse CDF over the prefix sums):
+ * the same distribution as streaming reservoir sampling over the batch, with one random number
+ * instead of n. Branch-free, since which weights are zero and where u lands are unpredictable:
+ * k is the number of prefix sums at or below u * total (a zero weight never ends the count), or
+ * the last positive weight when rounding puts u * total past the float sum. Writes the total;
+ * returns -1 when it is 0. */
+static int pick_by_weight(const float *w, int n, float u, float *total)
 {
-    float x = u * total, acc = 0.0f;
+    float acc[DI_BATCH], sum = 0.0f;
     int last = -1;
     for (int k = 0; k < n; k++) {
-        if (w[k] > 0.0f) {
-            acc += w[k];
-            last = k;
-            if (x < acc)
-                return k;
-        }
+        sum += w[k];
+        acc[k] = sum;
+        last = w[k] > 0.0f ? k : last;
     }
-    return last; /* rounding: x landed past the float sum */
+    *total = sum;
+    if (!(sum > 0.0f))
+        return -1;
+    const float x = u * sum;
+    int below = 0;
+    for (int k = 0; k < n; k++)
+        below += acc[k] <= x;
+    return below < n ? below : last;
 }
 
 static void initial_pixel(const struct scene *s, const struct light_pool *lp, const struct render_params *p,
@@ -106,13 +114,11 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
         light_batch_fill(lp, first, sp, n, nl, nb, &lb);
         struct restir_wrs batch;
         restir_wrs_init(&batch);
-        for (int k = 0; k < n; k++)
-            batch.w_sum += lb.w[k];
         batch.offered = n;
-        batch.selected = batch.w_sum > 0.0f ? pick_by_weight(lb.w, n, batch.w_sum, pcg32_float(rng)) : -1;
+        batch.selected = pick_by_weight(lb.w, n, pcg32_float(rng), &batch.w_sum);
         if (restir_wrs_merge(&wrs, &batch, pcg32_float(rng))) {
-            int k = first + batch.selected;
-            sample_from_emitter(s, lp->emitter[k], lp->b1[k], lp->b2[k], &r->y);
+            struct di_sample *y = &r->y;
+            light_pool_entry(lp, first + batch.selected, &y->tri, &y->b1, &y->b2, &y->p, &y->n, &y->Le);
         }
     }
     for (int k = 0; k < nb; k++) {

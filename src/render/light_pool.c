@@ -20,6 +20,7 @@ void light_pool_init(struct light_pool *lp, int window)
     lp->size = LIGHT_POOL_SIZE + window;
     size_t n = (size_t)lp->size;
     lp->emitter = xmalloc(sizeof(int) * n);
+    lp->tri = xmalloc(sizeof(int) * n);
     float **f[] = {&lp->b1, &lp->b2, &lp->px, &lp->py, &lp->pz, &lp->nx, &lp->ny, &lp->nz,
                    &lp->Lr, &lp->Lg, &lp->Lb, &lp->pdf};
     for (size_t k = 0; k < sizeof(f) / sizeof(f[0]); k++)
@@ -32,6 +33,7 @@ void light_pool_fini(struct light_pool *lp)
     for (size_t k = 0; k < sizeof(f) / sizeof(f[0]); k++)
         free(f[k]);
     free(lp->emitter);
+    free(lp->tri);
     memset(lp, 0, sizeof(*lp));
 }
 
@@ -39,6 +41,7 @@ static void put(struct light_pool *lp, int i, int e, float b1, float b2, const s
 {
     const struct emitter *em = &s->emitters[e];
     lp->emitter[i] = e;
+    lp->tri[i] = em->tri;
     lp->b1[i] = b1;
     lp->b2[i] = b2;
     vec3 p = v3_add(em->v0, v3_add(v3_scale(em->e1, b1), v3_scale(em->e2, b2)));

@@ -19,7 +19,8 @@
 struct light_pool {
     int size;   /* LIGHT_POOL_SIZE draws, then copies of the first `window` so no window wraps */
     int window; /* the longest window a pixel takes (di.light_candidates) */
-    int *emitter;
+    int *emitter;        /* index into the scene's emitters */
+    int *tri;            /* its triangle */
     float *b1, *b2;
     float *px, *py, *pz; /* point on the light */
     float *nx, *ny, *nz; /* its emitting normal */
@@ -33,6 +34,18 @@ void light_pool_fini(struct light_pool *lp);
 /* Draws the frame's pool (seeded by seed and frame, whatever the thread count); a scene without
  * emitters leaves it empty. */
 void light_pool_fill(struct light_pool *lp, const struct scene *s, uint64_t seed, int frame);
+/* Entry i as a ReSTIR DI light sample (what lights_point gives for it, bit for bit). */
+static inline void light_pool_entry(const struct light_pool *lp, int i, int *tri, float *b1, float *b2, vec3 *p,
+                                    vec3 *n, vec3 *Le)
+{
+    *tri = lp->tri[i];
+    *b1 = lp->b1[i];
+    *b2 = lp->b2[i];
+    *p = v3(lp->px[i], lp->py[i], lp->pz[i]);
+    *n = v3(lp->nx[i], lp->ny[i], lp->nz[i]);
+    *Le = v3(lp->Lr[i], lp->Lg[i], lp->Lb[i]);
+}
+
 /* The window offset for a uniform u in [0, 1). */
 static inline int light_pool_offset(float u)
 {

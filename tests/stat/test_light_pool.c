@@ -48,7 +48,7 @@ int main(void)
             int e = lp.emitter[i];
             struct light_sample ls;
             lights_point(&s, s.emitters[e].tri, lp.b1[i], lp.b2[i], &ls);
-            if (ls.p.x != lp.px[i] || ls.p.y != lp.py[i] || ls.p.z != lp.pz[i] || ls.n.x != lp.nx[i] ||
+            if (lp.tri[i] != s.emitters[e].tri || ls.p.x != lp.px[i] || ls.p.y != lp.py[i] || ls.p.z != lp.pz[i] || ls.n.x != lp.nx[i] ||
                 ls.Le.y != lp.Lg[i] || ls.pdf_area != lp.pdf[i] || !(lp.b1[i] >= 0.0f && lp.b2[i] >= 0.0f &&
                                                                      lp.b1[i] + lp.b2[i] <= 1.0f + 1e-6f))
                 inconsistent++;
