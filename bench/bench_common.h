@@ -18,6 +18,8 @@ struct bench_spmis_options {
     int main, ablations, interplay; /* which tables */
 };
 void bench_spmis(const struct bench_spmis_options *o);
+/* The `visibility` section (bench_visibility.c): restir-di's visibility reuse variants. */
+void bench_di_visibility(const char *scene, int width, int height, int frames, int ref_spp);
 /* The `poisson` section (bench_poisson.c): argv[0] is "poisson", then its options. */
 int bench_poisson(int argc, char **argv);
 /* The `gradient` section (bench_gradient.c): argv[0] is "gradient", then its options. */

@@ -386,7 +386,7 @@ static void bench_bias(const char *scene, enum method_id method, int w, int h, i
 int main(int argc, char **argv)
 {
     struct bench_config c = {"many-lights", 640, 360, 17, 1024, 64};
-    int run_passes = 0, run_equal = 0, run_temporal = 0, run_pt = 0, run_spmis = 0, quick = 0;
+    int run_passes = 0, run_equal = 0, run_temporal = 0, run_pt = 0, run_spmis = 0, run_visibility = 0, quick = 0;
     struct bench_spmis_options so = {320, 180, 2, 1024, 0, 1, 1, 1};
     if (argc > 1 && !strcmp(argv[1], "poisson")) /* its own options; not part of the default run */
         return bench_poisson(argc - 1, argv + 1);
@@ -403,6 +403,8 @@ int main(int argc, char **argv)
             run_pt = 1;
         else if (!strcmp(argv[i], "spmis"))
             run_spmis = 1;
+        else if (!strcmp(argv[i], "visibility"))
+            run_visibility = 1;
         else if (!strcmp(argv[i], "--spmis-res") && i + 1 < argc &&
                  sscanf(argv[i + 1], "%dx%d", &so.width, &so.height) == 2 && so.width > 0 && so.height > 0)
             i++;
@@ -421,7 +423,7 @@ int main(int argc, char **argv)
             c.ref_spp = 256;
             c.temporal_frames = 16;
         } else {
-            fprintf(stderr, "usage: restir_bench [passes] [equal-time] [temporal] [pt] [spmis] [--quick]\n"
+            fprintf(stderr, "usage: restir_bench [passes] [equal-time] [visibility] [temporal] [pt] [spmis] [--quick]\n"
                     "       restir_bench poisson [--runs N]\n"
                     "       restir_bench gradient [--res WxH] [--frames N] [--ref-spp N] [--scenes a,b,c] [--quick]\n"
                     "       spmis options: [--spmis-res WxH] [--spmis-scaled] [--spmis-main | --spmis-ablations | --spmis-interplay]\n");
@@ -430,14 +432,15 @@ int main(int argc, char **argv)
     }
     const char *bq = getenv("BENCH_QUICK");
     const int bench_quick = bq && *bq && strcmp(bq, "0") != 0;
-    if (bench_quick && !run_passes && !run_equal && !run_temporal && !run_pt && !run_spmis) {
+    const int any = run_passes || run_equal || run_visibility || run_temporal || run_pt || run_spmis;
+    if (bench_quick && !any) {
         /* what fills passes.csv and equal_time.csv: the DI tables and restir-pt's on ajar, with
          * 256-spp references (BENCHMARKS.md says which rows came from this mode) */
         run_passes = run_equal = 1;
         c.ref_spp = 256;
     }
-    if (!run_passes && !run_equal && !run_temporal && !run_pt && !run_spmis)
-        run_passes = run_equal = run_temporal = run_pt = run_spmis = 1;
+    if (!bench_quick && !any)
+        run_passes = run_equal = run_visibility = run_temporal = run_pt = run_spmis = 1;
     struct csv_writer pw, ew;
     bench_csv_open(&pw, &ew);
     const enum method_id di_methods[] = {METHOD_RESTIR_DI, METHOD_RIS_DI, METHOD_PT};
@@ -448,6 +451,8 @@ int main(int argc, char **argv)
         if (bench_quick)
             bench_equal_time(&c, METHOD_RESTIR_DI, 1);
     }
+    if (run_visibility)
+        bench_di_visibility(c.scene, c.width, c.height, c.frames, c.ref_spp);
     if (run_pt) {
         const char *const pt_scenes[] = {"ajar", "cornell"};
         const enum method_id pt_methods[] = {METHOD_RESTIR_PT, METHOD_PT};
