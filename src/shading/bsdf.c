@@ -181,6 +181,17 @@ static vec3 ggx_sample_vndf(vec3 wo, float alpha, float u1, float u2)
     return v3_normalize(v3(alpha * nh.x, alpha * nh.y, fmaxf(0.0f, nh.z)));
 }
 
+/* The lobe mixture's sample in the local frame (lo above the surface): u0 picks the lobe. */
+static vec3 sample_local(const struct bsdf *b, vec3 lo, float u0, float u1, float u2)
+{
+    if (u0 < b->p_spec) {
+        vec3 h = ggx_sample_vndf(lo, b->alpha, u1, u2);
+        float d = v3_dot(lo, h);
+        return v3_sub(v3_scale(h, 2.0f * d), lo); /* mirror wo about h */
+    }
+    return warp_cosine_hemisphere(u1, u2);
+}
+
 int bsdf_sample(const struct bsdf *b, vec3 n, vec3 wo, float u0, float u1, float u2, vec3 *wi,
                 float *pdf, vec3 *f)
 {
@@ -188,14 +199,7 @@ int bsdf_sample(const struct bsdf *b, vec3 n, vec3 wo, float u0, float u1, float
     vec3 lo = frame_to_local(&fr, wo);
     if (lo.z <= 0.0f)
         return 0;
-    vec3 li;
-    if (u0 < b->p_spec) {
-        vec3 h = ggx_sample_vndf(lo, b->alpha, u1, u2);
-        float d = v3_dot(lo, h);
-        li = v3_sub(v3_scale(h, 2.0f * d), lo); /* mirror wo about h */
-    } else {
-        li = warp_cosine_hemisphere(u1, u2);
-    }
+    vec3 li = sample_local(b, lo, u0, u1, u2);
     if (li.z <= 0.0f)
         return 0;
     /* pdf and f go through the public world-space path so that callers comparing them with
@@ -261,6 +265,26 @@ vec3 bsdf_frame_eval(const struct bsdf_frame *bf, vec3 wi, float *pdf)
     if (pdf)
         *pdf = p;
     return f;
+}
+
+int bsdf_frame_sample(const struct bsdf_frame *bf, float u0, float u1, float u2, vec3 *wi, float *pdf, vec3 *f)
+{
+    if (!bf->valid)
+        return 0;
+    vec3 li = sample_local(&bf->b, bf->wo_local, u0, u1, u2);
+    if (li.z <= 0.0f)
+        return 0;
+    /* As in bsdf_sample: f and pdf of the world-space direction returned, so that they agree bit
+     * for bit with bsdf_frame_eval of wi (the other strategy's MIS weight at the same vertex). */
+    vec3 w = v3_normalize(frame_to_world(&bf->fr, li));
+    float p;
+    vec3 fw = bsdf_frame_eval(bf, w, &p);
+    if (!(p > 0.0f) || !isfinite(p))
+        return 0;
+    *wi = w;
+    *pdf = p;
+    *f = fw;
+    return 1;
 }
 
 void bsdf_frame_eval_batch(const struct bsdf_frame *bf, int n, const float *restrict wx,
