@@ -33,20 +33,35 @@ struct initial_ctx {
     struct path_sample trial; /* u and seed of the path being walked */
     struct pt_reservoir *r;
     float resampling_target; /* p_hat of the selection as the resampling weights saw it */
+    int chosen_here;         /* the selection changed during the current walk ... */
+    struct path_candidate chosen; /* ... to this candidate */
 };
 
 /* Resampling weight m f / p of one candidate (Lin et al. 2022 Sec. 7: resampling along the path,
- * target p_hat = luminance(f)). */
+ * target p_hat = luminance(f)). Only the candidate is kept: the reservoir's sample is built once
+ * per walk by keep_chosen, not for every candidate the streaming WRS passes through. */
 static void offer_candidate(void *vctx, const struct path_walk *w, const struct path_candidate *c)
 {
+    (void)w;
     struct initial_ctx *ctx = vctx;
     float target = v3_luminance(c->f);
     float weight = c->pdf > 0.0f ? c->mis * target / c->pdf * ctx->inv_paths : 0.0f;
     if (restir_wrs_offer(&ctx->wrs, weight, pcg32_float(ctx->rng))) {
-        ctx->r->y = ctx->trial;
-        path_sample_from_candidate(ctx->s, ctx->shift, w, c, &ctx->r->y);
+        ctx->chosen = *c;
+        ctx->chosen_here = 1;
         ctx->resampling_target = target;
     }
+}
+
+/* After a walk: the sample of the candidate it selected last, if any. The walk appends vertices
+ * and never rewrites those a reported candidate reads, so the finished walk still describes it. */
+static void keep_chosen(struct initial_ctx *ctx, const struct path_walk *w)
+{
+    if (!ctx->chosen_here)
+        return;
+    ctx->r->y = ctx->trial;
+    path_sample_from_candidate(ctx->s, ctx->shift, w, &ctx->chosen, &ctx->r->y);
+    ctx->chosen_here = 0;
 }
 
 long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, struct pt_reservoir *out,
@@ -73,6 +88,7 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
                 ctx.rng = &rng;
                 ctx.inv_paths = 1.0f / (float)p->pt_candidates;
                 ctx.r = res;
+                ctx.chosen_here = 0;
                 vec3 Le = v3s(0.0f);
                 for (int n = 0; n < p->pt_candidates; n++) {
                     ctx.trial.u[0] = p->jitter ? pcg32_float(&rng) : 0.5f;
@@ -90,6 +106,7 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
                     ctx.trial.seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
                     rays += path_walk_run(s, &x1, ctx.trial.seed, p->max_bounces, p->rr_bounces, &walk,
                                           offer_candidate, &ctx);
+                    keep_chosen(&ctx, &walk);
                 }
                 emission[i] = v3_scale(Le, ctx.inv_paths);
                 res->c = (float)p->pt_candidates;
