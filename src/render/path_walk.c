@@ -103,7 +103,7 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
         prefix_pdf *= pdf;
         if (j > rr_bounces) {
             vec3 beta = v3_scale(prefix_f, 1.0f / prefix_pdf);
-            float q = fminf(v3_max_component(beta), 0.95f);
+            float q = min_f(v3_max_component(beta), 0.95f); /* fminf is a libm call */
             if (!(u_rr < q))
                 break;
             prefix_pdf *= q;
@@ -128,7 +128,7 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
             c.f = v3_mul(prefix_f, c.Le);
             c.pdf = prefix_pdf;
             float cos_l = fabsf(v3_dot(c.light_n, wi));
-            float pdf_light = lights_pdf_area(s, h.tri) * h.t * h.t / fmaxf(cos_l, 1e-12f);
+            float pdf_light = lights_pdf_area(s, h.tri) * h.t * h.t / max_f(cos_l, 1e-12f);
             c.mis = power_heuristic(pdf, pdf_light);
             emit(ctx, w, &c);
         }

@@ -141,7 +141,7 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
     struct path_sample Y[PT_MAX_DOMAINS];
     float c_sum = 0.0f;
     for (int j = 0; j < n; j++) {
-        c[j] = fminf(in[j]->c, p->confidence_cap);
+        c[j] = min_f(in[j]->c, p->confidence_cap); /* fminf is a libm call */
         c_sum += c[j];
         J[j] = 0.0f;
         Y[j].length = 0;

@@ -6,7 +6,10 @@
 
 #include "../core/sampling.h"
 
-static float clampf(float x, float lo, float hi) { return fminf(hi, fmaxf(lo, x)); }
+/* max_f / min_f with the variable first return the bound for a NaN x, as fmaxf / fminf do, but
+ * compile to one instruction: without -ffinite-math-only fmaxf is a libm call, and these run for
+ * every BSDF built or evaluated. */
+static float clampf(float x, float lo, float hi) { return min_f(max_f(x, lo), hi); }
 
 /* GGX / Trowbridge-Reitz NDF (Walter et al. 2007, "Microfacet Models for Refraction through
  * Rough Surfaces", eq. 33), written with the local half vector h as
@@ -60,7 +63,7 @@ static float schlick_scalar(float f0, float cos_d) { return f0 + (1.0f - f0) * s
 void bsdf_from_material(const struct material *m, struct bsdf *b)
 {
     float metallic = clampf(m->metallic, 0.0f, 1.0f);
-    vec3 base = v3(fmaxf(m->base_color.x, 0.0f), fmaxf(m->base_color.y, 0.0f), fmaxf(m->base_color.z, 0.0f));
+    vec3 base = v3(max_f(m->base_color.x, 0.0f), max_f(m->base_color.y, 0.0f), max_f(m->base_color.z, 0.0f));
     if (m->lambert_only) {
         b->diffuse = base;
         b->f0 = v3s(0.0f);
@@ -71,7 +74,7 @@ void bsdf_from_material(const struct material *m, struct bsdf *b)
     b->diffuse = v3_scale(base, 1.0f - metallic);
     b->f0 = v3_lerp(v3s(DIELECTRIC_F0), base, metallic);
     float r = clampf(m->roughness, 0.0f, 1.0f);
-    b->alpha = fmaxf(r * r, BSDF_MIN_ALPHA);
+    b->alpha = max_f(r * r, BSDF_MIN_ALPHA);
     float ld = v3_luminance(b->diffuse);
     float ls = v3_luminance(b->f0);
     if (metallic >= 1.0f || ld <= 0.0f)
@@ -175,10 +178,10 @@ static vec3 ggx_sample_vndf(vec3 wo, float alpha, float u1, float u2)
     float p1 = r * cosf(phi);
     float p2 = r * sinf(phi);
     float s = 0.5f * (1.0f + vh.z);
-    p2 = (1.0f - s) * sqrtf(fmaxf(0.0f, 1.0f - p1 * p1)) + s * p2;
-    float p3 = sqrtf(fmaxf(0.0f, 1.0f - p1 * p1 - p2 * p2));
+    p2 = (1.0f - s) * sqrtf(max_f(1.0f - p1 * p1, 0.0f)) + s * p2;
+    float p3 = sqrtf(max_f(1.0f - p1 * p1 - p2 * p2, 0.0f));
     vec3 nh = v3_add(v3_add(v3_scale(t1, p1), v3_scale(t2, p2)), v3_scale(vh, p3));
-    return v3_normalize(v3(alpha * nh.x, alpha * nh.y, fmaxf(0.0f, nh.z)));
+    return v3_normalize(v3(alpha * nh.x, alpha * nh.y, max_f(nh.z, 0.0f)));
 }
 
 /* The lobe mixture's sample in the local frame (lo above the surface): u0 picks the lobe. */
@@ -221,7 +224,7 @@ void bsdf_frame_init(struct bsdf_frame *bf, const struct bsdf *b, vec3 n, vec3 w
     bf->fr = frame_from_normal(n);
     bf->wo_local = frame_to_local(&bf->fr, wo);
     bf->valid = bf->wo_local.z > 0.0f;
-    float cos_o = fmaxf(bf->wo_local.z, 1e-12f);
+    float cos_o = max_f(bf->wo_local.z, 1e-12f);
     bf->lambda_o = b->p_spec > 0.0f ? ggx_lambda(bf->wo_local, b->alpha) : 0.0f;
     /* The factors of eval_local and pdf_local that depend on wo only. */
     float coupling = 1.0f;
@@ -301,7 +304,7 @@ void bsdf_frame_eval_batch(const struct bsdf_frame *bf, int n, const float *rest
     const float dscale = has_diffuse * bf->diffuse_scale, dpdf = (1.0f - b->p_spec) * RESTIR_INV_PI;
     const float one_m_f0d = 1.0f - DIELECTRIC_F0;
     const float valid = bf->valid ? 1.0f : 0.0f;
-    const float inv_4cos_o = 1.0f / (4.0f * fmaxf(lo.z, 1e-12f));
+    const float inv_4cos_o = 1.0f / (4.0f * max_f(lo.z, 1e-12f));
     const float lambda_o = bf->lambda_o, spec_pdf = has_spec * bf->spec_pdf_scale;
     /* Locals, not loads through b inside the loop: the stores below could alias them. */
     const float kdr = b->diffuse.x, kdg = b->diffuse.y, kdb = b->diffuse.z;
