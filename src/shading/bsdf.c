@@ -11,19 +11,6 @@
  * every BSDF built or evaluated. */
 static float clampf(float x, float lo, float hi) { return min_f(max_f(x, lo), hi); }
 
-/* GGX / Trowbridge-Reitz NDF (Walter et al. 2007, "Microfacet Models for Refraction through
- * Rough Surfaces", eq. 33), written with the local half vector h as
- * D = 1 / (pi a^2 (h.x^2/a^2 + h.y^2/a^2 + h.z^2)^2). This avoids forming 1 - cos^2, which
- * cancels catastrophically near the peak of the near-mirror lobes (alpha ~ 0.0025). */
-static float ggx_d(vec3 h, float alpha)
-{
-    if (h.z <= 0.0f)
-        return 0.0f;
-    float a2 = alpha * alpha;
-    float t = (h.x * h.x + h.y * h.y) / a2 + h.z * h.z;
-    return 1.0f / (RESTIR_PI * a2 * t * t);
-}
-
 /* Smith Lambda for GGX (Heitz 2014, "Understanding the Masking-Shadowing Function in
  * Microfacet-Based BRDFs"), with tan^2 written as (x^2 + y^2) / z^2. */
 static float ggx_lambda(vec3 w, float alpha)
@@ -83,84 +70,20 @@ void bsdf_from_material(const struct material *m, struct bsdf *b)
         b->p_spec = clampf(ls / (ls + ld), 0.1f, 0.9f);
 }
 
-/* Evaluation in the local frame (z = n), both directions already known to be above.
- * Specular: Walter et al. 2007, eq. 20, with Schlick's F at the microfacet (wi.h); Schlick is
- * linear in f0, so F with f0 = mix(0.04, base, metallic) is exactly the glTF 2.0 blend
- * (1 - metallic) * dielectric + metallic * metal of the two specular lobes.
- * Diffuse: a plain sum diffuse/pi + spec reflects more than it receives for a white dielectric
- * (albedo 1 + F), and the glTF 2.0 mix (diffuse weighted by 1 - F(wi.h), spec. Appendix B)
- * still does at grazing angles (we measured albedo 1.08 at 80 deg, roughness 0.5). We couple
- * the lobes as Kelemen & Szirmay-Kalos 2001 ("A Microfacet Based Coupled Specular-Matte BRDF
- * Model with Importance Sampling") do, with the Schlick reflectance of the dielectric
- * interface (f0 = 0.04, the one that covers the diffuse base in glTF) at the macro normal
- * standing in for their specular albedo:
- *   f_d = diffuse/pi * (1 - F(cos_o)) (1 - F(cos_i)) / (1 - F_avg),
- * F_avg = 2 int F(mu) mu dmu = f0 + (1 - f0) / 21 (the hemispherical average of Schlick).
- * It is reciprocal, and its directional albedo is exactly diffuse * (1 - F(cos_o)): the diffuse
- * lobe gets what the interface does not reflect at the viewing angle.
- * A lobe is present only when it can be sampled: the specular one only when p_spec > 0 and
- * the diffuse one only when p_spec < 1, so that the estimator f cos / pdf stays unbiased for any
- * struct bsdf (a bsdf with p_spec = 0 is pure Lambert). */
-static vec3 eval_local(const struct bsdf *b, vec3 wo, vec3 wi)
-{
-    vec3 f = v3s(0.0f);
-    if (b->p_spec < 1.0f) {
-        vec3 fd = v3_scale(b->diffuse, RESTIR_INV_PI);
-        if (b->p_spec > 0.0f) {
-            const float f0 = DIELECTRIC_F0;
-            float to = 1.0f - schlick_scalar(f0, wo.z);
-            float ti = 1.0f - schlick_scalar(f0, wi.z);
-            float avg = 1.0f - (f0 + (1.0f - f0) / 21.0f);
-            fd = v3_scale(fd, to * ti / avg);
-        }
-        f = fd;
-    }
-    if (b->p_spec > 0.0f) {
-        vec3 h = v3_normalize(v3_add(wo, wi));
-        vec3 F = fresnel_schlick(b->f0, v3_dot(wi, h));
-        /* Height-correlated Smith G2 = 1 / (1 + Lambda(wo) + Lambda(wi)) (Heitz 2014). */
-        float g2 = 1.0f / (1.0f + ggx_lambda(wo, b->alpha) + ggx_lambda(wi, b->alpha));
-        float s = ggx_d(h, b->alpha) * g2 / (4.0f * wo.z * wi.z);
-        f = v3_add(f, v3_scale(F, s));
-    }
-    return f;
-}
-
-/* Mixture density: p_spec * D_vis(h) / (4 |wo.h|) + (1 - p_spec) * cos / pi, where
- * D_vis(h) = G1(wo) max(0, wo.h) D(h) / cos_o (Heitz 2018, "Sampling the GGX Distribution of
- * Visible Normals", eq. 2) and 1 / (4 wo.h) is the reflection Jacobian (Walter et al. 2007,
- * eq. 14). The wo.h factors cancel, leaving G1(wo) D(h) / (4 cos_o). */
-static float pdf_local(const struct bsdf *b, vec3 wo, vec3 wi)
-{
-    float p = (1.0f - b->p_spec) * wi.z * RESTIR_INV_PI; /* cosine hemisphere */
-    if (b->p_spec > 0.0f) {
-        vec3 h = v3_normalize(v3_add(wo, wi));
-        if (v3_dot(wo, h) > 0.0f) {
-            float g1 = 1.0f / (1.0f + ggx_lambda(wo, b->alpha));
-            p += b->p_spec * g1 * ggx_d(h, b->alpha) / (4.0f * wo.z);
-        }
-    }
-    return p;
-}
-
 vec3 bsdf_eval(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi)
 {
-    frame fr = frame_from_normal(n);
-    vec3 lo = frame_to_local(&fr, wo);
-    vec3 li = frame_to_local(&fr, wi);
-    if (lo.z <= 0.0f || li.z <= 0.0f)
-        return v3s(0.0f);
-    return eval_local(b, lo, li);
+    struct bsdf_frame bf;
+    bsdf_frame_init(&bf, b, n, wo);
+    return bsdf_frame_eval(&bf, wi, NULL);
 }
 
 float bsdf_pdf(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi)
 {
-    frame fr = frame_from_normal(n);
-    vec3 lo = frame_to_local(&fr, wo);
-    vec3 li = frame_to_local(&fr, wi);
-    if (lo.z <= 0.0f || li.z <= 0.0f)
-        return 0.0f;
-    return pdf_local(b, lo, li);
+    struct bsdf_frame bf;
+    float p;
+    bsdf_frame_init(&bf, b, n, wo);
+    bsdf_frame_eval(&bf, wi, &p);
+    return p;
 }
 
 /* Heitz 2018, "Sampling the GGX Distribution of Visible Normals", listing 1: stretch wo to the
@@ -198,24 +121,9 @@ static vec3 sample_local(const struct bsdf *b, vec3 lo, float u0, float u1, floa
 int bsdf_sample(const struct bsdf *b, vec3 n, vec3 wo, float u0, float u1, float u2, vec3 *wi,
                 float *pdf, vec3 *f)
 {
-    frame fr = frame_from_normal(n);
-    vec3 lo = frame_to_local(&fr, wo);
-    if (lo.z <= 0.0f)
-        return 0;
-    vec3 li = sample_local(b, lo, u0, u1, u2);
-    if (li.z <= 0.0f)
-        return 0;
-    /* pdf and f go through the public world-space path so that callers comparing them with
-     * bsdf_pdf / bsdf_eval of the returned wi get bit-identical values: the near-mirror lobes
-     * are steep enough that the rounding of a frame round trip visibly changes the pdf. */
-    vec3 w = v3_normalize(frame_to_world(&fr, li));
-    float p = bsdf_pdf(b, n, wo, w);
-    if (!(p > 0.0f) || !isfinite(p))
-        return 0;
-    *wi = w;
-    *pdf = p;
-    *f = bsdf_eval(b, n, wo, w);
-    return 1;
+    struct bsdf_frame bf;
+    bsdf_frame_init(&bf, b, n, wo);
+    return bsdf_frame_sample(&bf, u0, u1, u2, wi, pdf, f);
 }
 
 void bsdf_frame_init(struct bsdf_frame *bf, const struct bsdf *b, vec3 n, vec3 wo)
@@ -233,10 +141,32 @@ void bsdf_frame_init(struct bsdf_frame *bf, const struct bsdf *b, vec3 n, vec3 w
         coupling = (1.0f - schlick_scalar(f0, cos_o)) / (1.0f - (f0 + (1.0f - f0) / 21.0f));
     }
     bf->diffuse_scale = coupling * RESTIR_INV_PI;
+    bf->inv_alpha2 = 1.0f / (b->alpha * b->alpha);
     bf->spec_pdf_scale = b->p_spec / ((1.0f + bf->lambda_o) * 4.0f * cos_o);
 }
 
-/* eval_local and pdf_local fused: the half vector, D and the Fresnel term are computed once. */
+/* Evaluation in the local frame (z = n), both directions already known to be above.
+ * Specular: Walter et al. 2007, eq. 20, with Schlick's F at the microfacet (wi.h); Schlick is
+ * linear in f0, so F with f0 = mix(0.04, base, metallic) is exactly the glTF 2.0 blend
+ * (1 - metallic) * dielectric + metallic * metal of the two specular lobes.
+ * Diffuse: a plain sum diffuse/pi + spec reflects more than it receives for a white dielectric
+ * (albedo 1 + F), and the glTF 2.0 mix (diffuse weighted by 1 - F(wi.h), spec. Appendix B)
+ * still does at grazing angles (we measured albedo 1.08 at 80 deg, roughness 0.5). We couple
+ * the lobes as Kelemen & Szirmay-Kalos 2001 ("A Microfacet Based Coupled Specular-Matte BRDF
+ * Model with Importance Sampling") do, with the Schlick reflectance of the dielectric
+ * interface (f0 = 0.04, the one that covers the diffuse base in glTF) at the macro normal
+ * standing in for their specular albedo:
+ *   f_d = diffuse/pi * (1 - F(cos_o)) (1 - F(cos_i)) / (1 - F_avg),
+ * F_avg = 2 int F(mu) mu dmu = f0 + (1 - f0) / 21 (the hemispherical average of Schlick).
+ * It is reciprocal, and its directional albedo is exactly diffuse * (1 - F(cos_o)): the diffuse
+ * lobe gets what the interface does not reflect at the viewing angle.
+ * A lobe is present only when it can be sampled: the specular one only when p_spec > 0 and
+ * the diffuse one only when p_spec < 1, so that the estimator f cos / pdf stays unbiased for any
+ * struct bsdf (a bsdf with p_spec = 0 is pure Lambert). */
+/* Mixture density: p_spec * D_vis(h) / (4 |wo.h|) + (1 - p_spec) * cos / pi, where
+ * D_vis(h) = G1(wo) max(0, wo.h) D(h) / cos_o (Heitz 2018, "Sampling the GGX Distribution of
+ * Visible Normals", eq. 2) and 1 / (4 wo.h) is the reflection Jacobian (Walter et al. 2007,
+ * eq. 14). The wo.h factors cancel, leaving G1(wo) D(h) / (4 cos_o). */
 vec3 bsdf_frame_eval(const struct bsdf_frame *bf, vec3 wi, float *pdf)
 {
     const struct bsdf *b = &bf->b;
@@ -250,20 +180,34 @@ vec3 bsdf_frame_eval(const struct bsdf_frame *bf, vec3 wi, float *pdf)
     vec3 f = v3s(0.0f);
     float p = 0.0f;
     if (b->p_spec < 1.0f) {
-        float scale = bf->diffuse_scale;
+        float scale = bf->diffuse_scale; /* (1 - F(cos_o)) / (1 - F_avg) / pi */
         if (b->p_spec > 0.0f)
             scale *= 1.0f - schlick_scalar(DIELECTRIC_F0, li.z);
         f = v3_scale(b->diffuse, scale);
         p = (1.0f - b->p_spec) * li.z * RESTIR_INV_PI;
     }
     if (b->p_spec > 0.0f) {
-        vec3 h = v3_normalize(v3_add(lo, li));
-        float d = ggx_d(h, b->alpha);
-        vec3 F = fresnel_schlick(b->f0, v3_dot(li, h));
-        float g2 = 1.0f / (1.0f + bf->lambda_o + ggx_lambda(li, b->alpha));
-        f = v3_add(f, v3_scale(F, d * g2 / (4.0f * lo.z * li.z)));
-        if (v3_dot(lo, h) > 0.0f)
-            p += bf->spec_pdf_scale * d;
+        /* GGX / Trowbridge-Reitz NDF (Walter et al. 2007, "Microfacet Models for Refraction
+         * through Rough Surfaces", eq. 33) for the local half vector h, written as
+         * D = 1 / (pi a^2 (h.x^2/a^2 + h.y^2/a^2 + h.z^2)^2), which avoids forming 1 - cos^2 (it
+         * cancels catastrophically near the peak of the near-mirror lobes, alpha ~ 0.0025).
+         * D, G2 and the 1 / (4 cos_o cos_i) of the specular term share one division: with the
+         * unnormalized half vector H = wo + wi (H.z > 0: both are above), D(H / |H|) =
+         * |H|^4 / (pi a^2 T^2), T = (H.x^2 + H.y^2) / a^2 + H.z^2, and
+         * (1 + Lambda(wo) + Lambda(wi)) cos_i = cos_i (1/2 + Lambda(wo)) + S / 2 with
+         * S = sqrt(cos_i^2 + a^2 (wi.x^2 + wi.y^2)) (ggx_lambda times cos_i). */
+        vec3 H = v3_add(lo, li);
+        float H2 = v3_length2(H), H4 = H2 * H2;
+        float a2 = b->alpha * b->alpha;
+        float T = (H.x * H.x + H.y * H.y) * bf->inv_alpha2 + H.z * H.z;
+        float S = sqrtf(li.z * li.z + a2 * (li.x * li.x + li.y * li.y));
+        float g2_cos_i = li.z * (0.5f + bf->lambda_o) + 0.5f * S; /* cos_i / G2 */
+        float d_den = RESTIR_PI * a2 * T * T, f_den = 4.0f * lo.z * g2_cos_i;
+        float r = 1.0f / (d_den * f_den);
+        vec3 F = fresnel_schlick(b->f0, v3_dot(li, H) / sqrtf(H2));
+        f = v3_add(f, v3_scale(F, H4 * r));
+        if (v3_dot(lo, H) > 0.0f)
+            p += bf->spec_pdf_scale * H4 * r * f_den; /* spec_pdf_scale * D */
     }
     if (pdf)
         *pdf = p;
@@ -277,8 +221,10 @@ int bsdf_frame_sample(const struct bsdf_frame *bf, float u0, float u1, float u2,
     vec3 li = sample_local(&bf->b, bf->wo_local, u0, u1, u2);
     if (li.z <= 0.0f)
         return 0;
-    /* As in bsdf_sample: f and pdf of the world-space direction returned, so that they agree bit
-     * for bit with bsdf_frame_eval of wi (the other strategy's MIS weight at the same vertex). */
+    /* pdf and f of the world-space direction returned, not of li: callers comparing them with
+     * bsdf_pdf / bsdf_eval / bsdf_frame_eval of wi (the other strategy's MIS weight at the same
+     * vertex) get bit-identical values, and the near-mirror lobes are steep enough that the
+     * rounding of a frame round trip visibly changes the pdf. */
     vec3 w = v3_normalize(frame_to_world(&bf->fr, li));
     float p;
     vec3 fw = bsdf_frame_eval(bf, w, &p);

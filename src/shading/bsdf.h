@@ -37,6 +37,7 @@ struct bsdf_frame {
     float lambda_o;      /* Smith Lambda(wo) */
     float diffuse_scale; /* Kelemen coupling factor (1 - F(cos_o)) / (1 - F_avg) times 1/pi */
     float spec_pdf_scale;/* p_spec G1(wo) / (4 cos_o) */
+    float inv_alpha2;    /* 1 / alpha^2 */
     int valid;           /* wo above the surface */
 };
 
