@@ -176,13 +176,17 @@ int path_shift(const struct scene *s, const struct shift_params *sp, const struc
     bsdf_from_material(&s->materials[v.material], &b);
     vec3 F = v3s(1.0f);
     float prefix_pdf = 1.0f;
-    /* Random replay of the directions sampled at y_1 .. y_{k-2}. */
+    /* Random replay of the directions sampled at y_1 .. y_{k-2}, through the same sampling
+     * routine as the walk (bsdf_frame_sample), so that an identity shift reproduces its densities
+     * bit for bit. */
     for (int j = 1; j <= k - 2; j++) {
         pcg32 rng = path_rng(x->seed, j);
         float u0 = pcg32_float(&rng), u1 = pcg32_float(&rng), u2 = pcg32_float(&rng);
         vec3 wi, f;
         float pdf;
-        if (!bsdf_sample(&b, v.ns, v.wo, u0, u1, u2, &wi, &pdf, &f) || v3_dot(wi, v.ng) <= 0.0f)
+        struct bsdf_frame bf;
+        bsdf_frame_init(&bf, &b, v.ns, v.wo);
+        if (!bsdf_frame_sample(&bf, u0, u1, u2, &wi, &pdf, &f) || v3_dot(wi, v.ng) <= 0.0f)
             return fail(y);
         F = v3_mul(F, v3_scale(f, v3_dot(v.ns, wi)));
         prefix_pdf *= pdf;

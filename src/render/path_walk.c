@@ -23,9 +23,10 @@ struct path_vertex path_vertex_from_hit(const struct surface_hit *h, vec3 ray_di
     return v;
 }
 
-/* NEE at x (the last vertex of the walk): one light point, reported as a candidate of length
- * nv + 1 when it contributes. prefix_f / prefix_pdf describe x_1 .. x. */
-static long long next_event(const struct scene *s, const struct path_walk *w, const struct bsdf *b,
+/* NEE at x (the last vertex of the walk, BSDF prepared for x->wo in bf): one light point,
+ * reported as a candidate of length nv + 1 when it contributes. prefix_f / prefix_pdf describe
+ * x_1 .. x. */
+static long long next_event(const struct scene *s, const struct path_walk *w, const struct bsdf_frame *bf,
                             vec3 prefix_f, float prefix_pdf, pcg32 *rng, path_candidate_fn emit, void *ctx)
 {
     const struct path_vertex *x = &w->v[w->nv - 1];
@@ -41,7 +42,8 @@ static long long next_event(const struct scene *s, const struct path_walk *w, co
     float cos_l = -v3_dot(ls.n, wi), cos_x = v3_dot(x->ns, wi);
     if (cos_l <= 0.0f || cos_x <= 0.0f || v3_dot(x->ng, wi) <= 0.0f)
         return 0;
-    vec3 f = bsdf_eval(b, x->ns, x->wo, wi);
+    float pdf_bsdf;
+    vec3 f = bsdf_frame_eval(bf, wi, &pdf_bsdf);
     if (v3_max_component(f) <= 0.0f)
         return 0;
     if (!scene_visible(s, x->p, x->ng, ls.p, ls.n))
@@ -57,7 +59,7 @@ static long long next_event(const struct scene *s, const struct path_walk *w, co
     c.fcos_last = v3_scale(f, cos_x);
     c.f = v3_mul(v3_mul(prefix_f, c.fcos_last), ls.Le);
     c.pdf = prefix_pdf * pdf_light;
-    c.mis = power_heuristic(pdf_light, bsdf_pdf(b, x->ns, x->wo, wi));
+    c.mis = power_heuristic(pdf_light, pdf_bsdf);
     emit(ctx, w, &c);
     return 1;
 }
@@ -79,13 +81,17 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
             break;
         pcg32 rng = path_rng(seed, j);
         float ub0 = pcg32_float(&rng), ub1 = pcg32_float(&rng), ub2 = pcg32_float(&rng);
+        /* One frame for NEE and the continuation: f and pdf of both strategies come from
+         * bsdf_frame_eval, so their MIS weights see the same densities. */
         struct bsdf b;
+        struct bsdf_frame bf;
         bsdf_from_material(&s->materials[x->material], &b);
-        rays += next_event(s, w, &b, prefix_f, prefix_pdf, &rng, emit, ctx);
+        bsdf_frame_init(&bf, &b, x->ns, x->wo);
+        rays += next_event(s, w, &bf, prefix_f, prefix_pdf, &rng, emit, ctx);
         float u_rr = pcg32_float(&rng);
         vec3 wi, f;
         float pdf;
-        if (!bsdf_sample(&b, x->ns, x->wo, ub0, ub1, ub2, &wi, &pdf, &f))
+        if (!bsdf_frame_sample(&bf, ub0, ub1, ub2, &wi, &pdf, &f))
             break;
         /* A sampled direction below the geometric surface would leak through it. */
         if (v3_dot(wi, x->ng) <= 0.0f)
@@ -97,7 +103,7 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
         prefix_pdf *= pdf;
         if (j > rr_bounces) {
             vec3 beta = v3_scale(prefix_f, 1.0f / prefix_pdf);
-            float q = fminf(v3_max_component(beta), 0.95f);
+            float q = min_f(v3_max_component(beta), 0.95f); /* fminf is a libm call */
             if (!(u_rr < q))
                 break;
             prefix_pdf *= q;
@@ -122,7 +128,7 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
             c.f = v3_mul(prefix_f, c.Le);
             c.pdf = prefix_pdf;
             float cos_l = fabsf(v3_dot(c.light_n, wi));
-            float pdf_light = lights_pdf_area(s, h.tri) * h.t * h.t / fmaxf(cos_l, 1e-12f);
+            float pdf_light = lights_pdf_area(s, h.tri) * h.t * h.t / max_f(cos_l, 1e-12f);
             c.mis = power_heuristic(pdf, pdf_light);
             emit(ctx, w, &c);
         }

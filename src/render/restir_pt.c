@@ -33,20 +33,35 @@ struct initial_ctx {
     struct path_sample trial; /* u and seed of the path being walked */
     struct pt_reservoir *r;
     float resampling_target; /* p_hat of the selection as the resampling weights saw it */
+    int chosen_here;         /* the selection changed during the current walk ... */
+    struct path_candidate chosen; /* ... to this candidate */
 };
 
 /* Resampling weight m f / p of one candidate (Lin et al. 2022 Sec. 7: resampling along the path,
- * target p_hat = luminance(f)). */
+ * target p_hat = luminance(f)). Only the candidate is kept: the reservoir's sample is built once
+ * per walk by keep_chosen, not for every candidate the streaming WRS passes through. */
 static void offer_candidate(void *vctx, const struct path_walk *w, const struct path_candidate *c)
 {
+    (void)w;
     struct initial_ctx *ctx = vctx;
     float target = v3_luminance(c->f);
     float weight = c->pdf > 0.0f ? c->mis * target / c->pdf * ctx->inv_paths : 0.0f;
     if (restir_wrs_offer(&ctx->wrs, weight, pcg32_float(ctx->rng))) {
-        ctx->r->y = ctx->trial;
-        path_sample_from_candidate(ctx->s, ctx->shift, w, c, &ctx->r->y);
+        ctx->chosen = *c;
+        ctx->chosen_here = 1;
         ctx->resampling_target = target;
     }
+}
+
+/* After a walk: the sample of the candidate it selected last, if any. The walk appends vertices
+ * and never rewrites those a reported candidate reads, so the finished walk still describes it. */
+static void keep_chosen(struct initial_ctx *ctx, const struct path_walk *w)
+{
+    if (!ctx->chosen_here)
+        return;
+    ctx->r->y = ctx->trial;
+    path_sample_from_candidate(ctx->s, ctx->shift, w, &ctx->chosen, &ctx->r->y);
+    ctx->chosen_here = 0;
 }
 
 long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, struct pt_reservoir *out,
@@ -73,6 +88,7 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
                 ctx.rng = &rng;
                 ctx.inv_paths = 1.0f / (float)p->pt_candidates;
                 ctx.r = res;
+                ctx.chosen_here = 0;
                 vec3 Le = v3s(0.0f);
                 for (int n = 0; n < p->pt_candidates; n++) {
                     ctx.trial.u[0] = p->jitter ? pcg32_float(&rng) : 0.5f;
@@ -90,6 +106,7 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
                     ctx.trial.seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
                     rays += path_walk_run(s, &x1, ctx.trial.seed, p->max_bounces, p->rr_bounces, &walk,
                                           offer_candidate, &ctx);
+                    keep_chosen(&ctx, &walk);
                 }
                 emission[i] = v3_scale(Le, ctx.inv_paths);
                 res->c = (float)p->pt_candidates;
@@ -124,7 +141,7 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
     struct path_sample Y[PT_MAX_DOMAINS];
     float c_sum = 0.0f;
     for (int j = 0; j < n; j++) {
-        c[j] = fminf(in[j]->c, p->confidence_cap);
+        c[j] = min_f(in[j]->c, p->confidence_cap); /* fminf is a libm call */
         c_sum += c[j];
         J[j] = 0.0f;
         Y[j].length = 0;
@@ -212,6 +229,20 @@ long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, c
     return rays;
 }
 
+/* Neighbors' reservoirs are read at random within the reuse radius, two cache lines each, and
+ * their loads stalled the merge (half of this pass's own time in perf). Issuing them one pixel
+ * ahead hides the latency behind the current pixel's shifts. */
+static void prefetch_neighbors(const struct pt_reservoir *in, const int *list, int m)
+{
+    for (int k = 0; k < m; k++) {
+        if (list[k] < 0)
+            continue;
+        const char *r = (const char *)&in[list[k]];
+        __builtin_prefetch(r);
+        __builtin_prefetch(r + sizeof(struct pt_reservoir) - 1);
+    }
+}
+
 long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, const int *neighbors,
                           const struct pt_reservoir *in, struct pt_reservoir *out)
 {
@@ -225,6 +256,9 @@ long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, co
         for (int y = r.y0; y < r.y1; y++) {
             for (int x = r.x0; x < r.x1; x++) {
                 int i = y * w + x;
+                int next = x + 1 < r.x1 ? i + 1 : i + w - (r.x1 - r.x0) + 1; /* next pixel of the tile */
+                if (next < w * h)
+                    prefetch_neighbors(in, &neighbors[(size_t)next * m], m);
                 if (!g->valid[i]) {
                     out[i] = in[i];
                     continue;

@@ -267,7 +267,7 @@ double scene_ray_replay(const struct scene *s, const struct ray_record *rays, si
  * precision whatever the scene's size. */
 static float ray_epsilon(vec3 p)
 {
-    return 1e-4f * (1.0f + fmaxf(fabsf(p.x), fmaxf(fabsf(p.y), fabsf(p.z))));
+    return 1e-4f * (1.0f + max_f(fabsf(p.x), max_f(fabsf(p.y), fabsf(p.z)))); /* not fmaxf: a libm call */
 }
 
 vec3 scene_offset_point(vec3 p, vec3 n, vec3 toward)

@@ -6,20 +6,10 @@
 
 #include "../core/sampling.h"
 
-static float clampf(float x, float lo, float hi) { return fminf(hi, fmaxf(lo, x)); }
-
-/* GGX / Trowbridge-Reitz NDF (Walter et al. 2007, "Microfacet Models for Refraction through
- * Rough Surfaces", eq. 33), written with the local half vector h as
- * D = 1 / (pi a^2 (h.x^2/a^2 + h.y^2/a^2 + h.z^2)^2). This avoids forming 1 - cos^2, which
- * cancels catastrophically near the peak of the near-mirror lobes (alpha ~ 0.0025). */
-static float ggx_d(vec3 h, float alpha)
-{
-    if (h.z <= 0.0f)
-        return 0.0f;
-    float a2 = alpha * alpha;
-    float t = (h.x * h.x + h.y * h.y) / a2 + h.z * h.z;
-    return 1.0f / (RESTIR_PI * a2 * t * t);
-}
+/* max_f / min_f with the variable first return the bound for a NaN x, as fmaxf / fminf do, but
+ * compile to one instruction: without -ffinite-math-only fmaxf is a libm call, and these run for
+ * every BSDF built or evaluated. */
+static float clampf(float x, float lo, float hi) { return min_f(max_f(x, lo), hi); }
 
 /* Smith Lambda for GGX (Heitz 2014, "Understanding the Masking-Shadowing Function in
  * Microfacet-Based BRDFs"), with tan^2 written as (x^2 + y^2) / z^2. */
@@ -60,7 +50,7 @@ static float schlick_scalar(float f0, float cos_d) { return f0 + (1.0f - f0) * s
 void bsdf_from_material(const struct material *m, struct bsdf *b)
 {
     float metallic = clampf(m->metallic, 0.0f, 1.0f);
-    vec3 base = v3(fmaxf(m->base_color.x, 0.0f), fmaxf(m->base_color.y, 0.0f), fmaxf(m->base_color.z, 0.0f));
+    vec3 base = v3(max_f(m->base_color.x, 0.0f), max_f(m->base_color.y, 0.0f), max_f(m->base_color.z, 0.0f));
     if (m->lambert_only) {
         b->diffuse = base;
         b->f0 = v3s(0.0f);
@@ -71,13 +61,88 @@ void bsdf_from_material(const struct material *m, struct bsdf *b)
     b->diffuse = v3_scale(base, 1.0f - metallic);
     b->f0 = v3_lerp(v3s(DIELECTRIC_F0), base, metallic);
     float r = clampf(m->roughness, 0.0f, 1.0f);
-    b->alpha = fmaxf(r * r, BSDF_MIN_ALPHA);
+    b->alpha = max_f(r * r, BSDF_MIN_ALPHA);
     float ld = v3_luminance(b->diffuse);
     float ls = v3_luminance(b->f0);
     if (metallic >= 1.0f || ld <= 0.0f)
         b->p_spec = 1.0f;
     else
         b->p_spec = clampf(ls / (ls + ld), 0.1f, 0.9f);
+}
+
+vec3 bsdf_eval(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi)
+{
+    struct bsdf_frame bf;
+    bsdf_frame_init(&bf, b, n, wo);
+    return bsdf_frame_eval(&bf, wi, NULL);
+}
+
+float bsdf_pdf(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi)
+{
+    struct bsdf_frame bf;
+    float p;
+    bsdf_frame_init(&bf, b, n, wo);
+    bsdf_frame_eval(&bf, wi, &p);
+    return p;
+}
+
+/* Heitz 2018, "Sampling the GGX Distribution of Visible Normals", listing 1: stretch wo to the
+ * alpha = 1 configuration, sample the projected hemisphere (a disk whose far half is squashed
+ * by the view angle), lift to the hemisphere and unstretch. Returns a unit microfacet normal
+ * distributed as D_vis(h) for the given wo. */
+static vec3 ggx_sample_vndf(vec3 wo, float alpha, float u1, float u2)
+{
+    vec3 vh = v3_normalize(v3(alpha * wo.x, alpha * wo.y, wo.z));
+    float lensq = vh.x * vh.x + vh.y * vh.y;
+    vec3 t1 = lensq > 0.0f ? v3_scale(v3(-vh.y, vh.x, 0.0f), 1.0f / sqrtf(lensq)) : v3(1.0f, 0.0f, 0.0f);
+    vec3 t2 = v3_cross(vh, t1);
+    float r = sqrtf(u1);
+    float phi = 2.0f * RESTIR_PI * u2;
+    float p1 = r * cosf(phi);
+    float p2 = r * sinf(phi);
+    float s = 0.5f * (1.0f + vh.z);
+    p2 = (1.0f - s) * sqrtf(max_f(1.0f - p1 * p1, 0.0f)) + s * p2;
+    float p3 = sqrtf(max_f(1.0f - p1 * p1 - p2 * p2, 0.0f));
+    vec3 nh = v3_add(v3_add(v3_scale(t1, p1), v3_scale(t2, p2)), v3_scale(vh, p3));
+    return v3_normalize(v3(alpha * nh.x, alpha * nh.y, max_f(nh.z, 0.0f)));
+}
+
+/* The lobe mixture's sample in the local frame (lo above the surface): u0 picks the lobe. */
+static vec3 sample_local(const struct bsdf *b, vec3 lo, float u0, float u1, float u2)
+{
+    if (u0 < b->p_spec) {
+        vec3 h = ggx_sample_vndf(lo, b->alpha, u1, u2);
+        float d = v3_dot(lo, h);
+        return v3_sub(v3_scale(h, 2.0f * d), lo); /* mirror wo about h */
+    }
+    return warp_cosine_hemisphere(u1, u2);
+}
+
+int bsdf_sample(const struct bsdf *b, vec3 n, vec3 wo, float u0, float u1, float u2, vec3 *wi,
+                float *pdf, vec3 *f)
+{
+    struct bsdf_frame bf;
+    bsdf_frame_init(&bf, b, n, wo);
+    return bsdf_frame_sample(&bf, u0, u1, u2, wi, pdf, f);
+}
+
+void bsdf_frame_init(struct bsdf_frame *bf, const struct bsdf *b, vec3 n, vec3 wo)
+{
+    bf->b = *b;
+    bf->fr = frame_from_normal(n);
+    bf->wo_local = frame_to_local(&bf->fr, wo);
+    bf->valid = bf->wo_local.z > 0.0f;
+    float cos_o = max_f(bf->wo_local.z, 1e-12f);
+    bf->lambda_o = b->p_spec > 0.0f ? ggx_lambda(bf->wo_local, b->alpha) : 0.0f;
+    /* The factors of eval_local and pdf_local that depend on wo only. */
+    float coupling = 1.0f;
+    if (b->p_spec > 0.0f) {
+        const float f0 = DIELECTRIC_F0;
+        coupling = (1.0f - schlick_scalar(f0, cos_o)) / (1.0f - (f0 + (1.0f - f0) / 21.0f));
+    }
+    bf->diffuse_scale = coupling * RESTIR_INV_PI;
+    bf->inv_alpha2 = 1.0f / (b->alpha * b->alpha);
+    bf->spec_pdf_scale = b->p_spec / ((1.0f + bf->lambda_o) * 4.0f * cos_o);
 }
 
 /* Evaluation in the local frame (z = n), both directions already known to be above.
@@ -98,138 +163,10 @@ void bsdf_from_material(const struct material *m, struct bsdf *b)
  * A lobe is present only when it can be sampled: the specular one only when p_spec > 0 and
  * the diffuse one only when p_spec < 1, so that the estimator f cos / pdf stays unbiased for any
  * struct bsdf (a bsdf with p_spec = 0 is pure Lambert). */
-static vec3 eval_local(const struct bsdf *b, vec3 wo, vec3 wi)
-{
-    vec3 f = v3s(0.0f);
-    if (b->p_spec < 1.0f) {
-        vec3 fd = v3_scale(b->diffuse, RESTIR_INV_PI);
-        if (b->p_spec > 0.0f) {
-            const float f0 = DIELECTRIC_F0;
-            float to = 1.0f - schlick_scalar(f0, wo.z);
-            float ti = 1.0f - schlick_scalar(f0, wi.z);
-            float avg = 1.0f - (f0 + (1.0f - f0) / 21.0f);
-            fd = v3_scale(fd, to * ti / avg);
-        }
-        f = fd;
-    }
-    if (b->p_spec > 0.0f) {
-        vec3 h = v3_normalize(v3_add(wo, wi));
-        vec3 F = fresnel_schlick(b->f0, v3_dot(wi, h));
-        /* Height-correlated Smith G2 = 1 / (1 + Lambda(wo) + Lambda(wi)) (Heitz 2014). */
-        float g2 = 1.0f / (1.0f + ggx_lambda(wo, b->alpha) + ggx_lambda(wi, b->alpha));
-        float s = ggx_d(h, b->alpha) * g2 / (4.0f * wo.z * wi.z);
-        f = v3_add(f, v3_scale(F, s));
-    }
-    return f;
-}
-
 /* Mixture density: p_spec * D_vis(h) / (4 |wo.h|) + (1 - p_spec) * cos / pi, where
  * D_vis(h) = G1(wo) max(0, wo.h) D(h) / cos_o (Heitz 2018, "Sampling the GGX Distribution of
  * Visible Normals", eq. 2) and 1 / (4 wo.h) is the reflection Jacobian (Walter et al. 2007,
  * eq. 14). The wo.h factors cancel, leaving G1(wo) D(h) / (4 cos_o). */
-static float pdf_local(const struct bsdf *b, vec3 wo, vec3 wi)
-{
-    float p = (1.0f - b->p_spec) * wi.z * RESTIR_INV_PI; /* cosine hemisphere */
-    if (b->p_spec > 0.0f) {
-        vec3 h = v3_normalize(v3_add(wo, wi));
-        if (v3_dot(wo, h) > 0.0f) {
-            float g1 = 1.0f / (1.0f + ggx_lambda(wo, b->alpha));
-            p += b->p_spec * g1 * ggx_d(h, b->alpha) / (4.0f * wo.z);
-        }
-    }
-    return p;
-}
-
-vec3 bsdf_eval(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi)
-{
-    frame fr = frame_from_normal(n);
-    vec3 lo = frame_to_local(&fr, wo);
-    vec3 li = frame_to_local(&fr, wi);
-    if (lo.z <= 0.0f || li.z <= 0.0f)
-        return v3s(0.0f);
-    return eval_local(b, lo, li);
-}
-
-float bsdf_pdf(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi)
-{
-    frame fr = frame_from_normal(n);
-    vec3 lo = frame_to_local(&fr, wo);
-    vec3 li = frame_to_local(&fr, wi);
-    if (lo.z <= 0.0f || li.z <= 0.0f)
-        return 0.0f;
-    return pdf_local(b, lo, li);
-}
-
-/* Heitz 2018, "Sampling the GGX Distribution of Visible Normals", listing 1: stretch wo to the
- * alpha = 1 configuration, sample the projected hemisphere (a disk whose far half is squashed
- * by the view angle), lift to the hemisphere and unstretch. Returns a unit microfacet normal
- * distributed as D_vis(h) for the given wo. */
-static vec3 ggx_sample_vndf(vec3 wo, float alpha, float u1, float u2)
-{
-    vec3 vh = v3_normalize(v3(alpha * wo.x, alpha * wo.y, wo.z));
-    float lensq = vh.x * vh.x + vh.y * vh.y;
-    vec3 t1 = lensq > 0.0f ? v3_scale(v3(-vh.y, vh.x, 0.0f), 1.0f / sqrtf(lensq)) : v3(1.0f, 0.0f, 0.0f);
-    vec3 t2 = v3_cross(vh, t1);
-    float r = sqrtf(u1);
-    float phi = 2.0f * RESTIR_PI * u2;
-    float p1 = r * cosf(phi);
-    float p2 = r * sinf(phi);
-    float s = 0.5f * (1.0f + vh.z);
-    p2 = (1.0f - s) * sqrtf(fmaxf(0.0f, 1.0f - p1 * p1)) + s * p2;
-    float p3 = sqrtf(fmaxf(0.0f, 1.0f - p1 * p1 - p2 * p2));
-    vec3 nh = v3_add(v3_add(v3_scale(t1, p1), v3_scale(t2, p2)), v3_scale(vh, p3));
-    return v3_normalize(v3(alpha * nh.x, alpha * nh.y, fmaxf(0.0f, nh.z)));
-}
-
-int bsdf_sample(const struct bsdf *b, vec3 n, vec3 wo, float u0, float u1, float u2, vec3 *wi,
-                float *pdf, vec3 *f)
-{
-    frame fr = frame_from_normal(n);
-    vec3 lo = frame_to_local(&fr, wo);
-    if (lo.z <= 0.0f)
-        return 0;
-    vec3 li;
-    if (u0 < b->p_spec) {
-        vec3 h = ggx_sample_vndf(lo, b->alpha, u1, u2);
-        float d = v3_dot(lo, h);
-        li = v3_sub(v3_scale(h, 2.0f * d), lo); /* mirror wo about h */
-    } else {
-        li = warp_cosine_hemisphere(u1, u2);
-    }
-    if (li.z <= 0.0f)
-        return 0;
-    /* pdf and f go through the public world-space path so that callers comparing them with
-     * bsdf_pdf / bsdf_eval of the returned wi get bit-identical values: the near-mirror lobes
-     * are steep enough that the rounding of a frame round trip visibly changes the pdf. */
-    vec3 w = v3_normalize(frame_to_world(&fr, li));
-    float p = bsdf_pdf(b, n, wo, w);
-    if (!(p > 0.0f) || !isfinite(p))
-        return 0;
-    *wi = w;
-    *pdf = p;
-    *f = bsdf_eval(b, n, wo, w);
-    return 1;
-}
-
-void bsdf_frame_init(struct bsdf_frame *bf, const struct bsdf *b, vec3 n, vec3 wo)
-{
-    bf->b = *b;
-    bf->fr = frame_from_normal(n);
-    bf->wo_local = frame_to_local(&bf->fr, wo);
-    bf->valid = bf->wo_local.z > 0.0f;
-    float cos_o = fmaxf(bf->wo_local.z, 1e-12f);
-    bf->lambda_o = b->p_spec > 0.0f ? ggx_lambda(bf->wo_local, b->alpha) : 0.0f;
-    /* The factors of eval_local and pdf_local that depend on wo only. */
-    float coupling = 1.0f;
-    if (b->p_spec > 0.0f) {
-        const float f0 = DIELECTRIC_F0;
-        coupling = (1.0f - schlick_scalar(f0, cos_o)) / (1.0f - (f0 + (1.0f - f0) / 21.0f));
-    }
-    bf->diffuse_scale = coupling * RESTIR_INV_PI;
-    bf->spec_pdf_scale = b->p_spec / ((1.0f + bf->lambda_o) * 4.0f * cos_o);
-}
-
-/* eval_local and pdf_local fused: the half vector, D and the Fresnel term are computed once. */
 vec3 bsdf_frame_eval(const struct bsdf_frame *bf, vec3 wi, float *pdf)
 {
     const struct bsdf *b = &bf->b;
@@ -243,24 +180,60 @@ vec3 bsdf_frame_eval(const struct bsdf_frame *bf, vec3 wi, float *pdf)
     vec3 f = v3s(0.0f);
     float p = 0.0f;
     if (b->p_spec < 1.0f) {
-        float scale = bf->diffuse_scale;
+        float scale = bf->diffuse_scale; /* (1 - F(cos_o)) / (1 - F_avg) / pi */
         if (b->p_spec > 0.0f)
             scale *= 1.0f - schlick_scalar(DIELECTRIC_F0, li.z);
         f = v3_scale(b->diffuse, scale);
         p = (1.0f - b->p_spec) * li.z * RESTIR_INV_PI;
     }
     if (b->p_spec > 0.0f) {
-        vec3 h = v3_normalize(v3_add(lo, li));
-        float d = ggx_d(h, b->alpha);
-        vec3 F = fresnel_schlick(b->f0, v3_dot(li, h));
-        float g2 = 1.0f / (1.0f + bf->lambda_o + ggx_lambda(li, b->alpha));
-        f = v3_add(f, v3_scale(F, d * g2 / (4.0f * lo.z * li.z)));
-        if (v3_dot(lo, h) > 0.0f)
-            p += bf->spec_pdf_scale * d;
+        /* GGX / Trowbridge-Reitz NDF (Walter et al. 2007, "Microfacet Models for Refraction
+         * through Rough Surfaces", eq. 33) for the local half vector h, written as
+         * D = 1 / (pi a^2 (h.x^2/a^2 + h.y^2/a^2 + h.z^2)^2), which avoids forming 1 - cos^2 (it
+         * cancels catastrophically near the peak of the near-mirror lobes, alpha ~ 0.0025).
+         * D, G2 and the 1 / (4 cos_o cos_i) of the specular term share one division: with the
+         * unnormalized half vector H = wo + wi (H.z > 0: both are above), D(H / |H|) =
+         * |H|^4 / (pi a^2 T^2), T = (H.x^2 + H.y^2) / a^2 + H.z^2, and
+         * (1 + Lambda(wo) + Lambda(wi)) cos_i = cos_i (1/2 + Lambda(wo)) + S / 2 with
+         * S = sqrt(cos_i^2 + a^2 (wi.x^2 + wi.y^2)) (ggx_lambda times cos_i). */
+        vec3 H = v3_add(lo, li);
+        float H2 = v3_length2(H), H4 = H2 * H2;
+        float a2 = b->alpha * b->alpha;
+        float T = (H.x * H.x + H.y * H.y) * bf->inv_alpha2 + H.z * H.z;
+        float S = sqrtf(li.z * li.z + a2 * (li.x * li.x + li.y * li.y));
+        float g2_cos_i = li.z * (0.5f + bf->lambda_o) + 0.5f * S; /* cos_i / G2 */
+        float d_den = RESTIR_PI * a2 * T * T, f_den = 4.0f * lo.z * g2_cos_i;
+        float r = 1.0f / (d_den * f_den);
+        vec3 F = fresnel_schlick(b->f0, v3_dot(li, H) / sqrtf(H2));
+        f = v3_add(f, v3_scale(F, H4 * r));
+        if (v3_dot(lo, H) > 0.0f)
+            p += bf->spec_pdf_scale * H4 * r * f_den; /* spec_pdf_scale * D */
     }
     if (pdf)
         *pdf = p;
     return f;
+}
+
+int bsdf_frame_sample(const struct bsdf_frame *bf, float u0, float u1, float u2, vec3 *wi, float *pdf, vec3 *f)
+{
+    if (!bf->valid)
+        return 0;
+    vec3 li = sample_local(&bf->b, bf->wo_local, u0, u1, u2);
+    if (li.z <= 0.0f)
+        return 0;
+    /* pdf and f of the world-space direction returned, not of li: callers comparing them with
+     * bsdf_pdf / bsdf_eval / bsdf_frame_eval of wi (the other strategy's MIS weight at the same
+     * vertex) get bit-identical values, and the near-mirror lobes are steep enough that the
+     * rounding of a frame round trip visibly changes the pdf. */
+    vec3 w = v3_normalize(frame_to_world(&bf->fr, li));
+    float p;
+    vec3 fw = bsdf_frame_eval(bf, w, &p);
+    if (!(p > 0.0f) || !isfinite(p))
+        return 0;
+    *wi = w;
+    *pdf = p;
+    *f = fw;
+    return 1;
 }
 
 void bsdf_frame_eval_batch(const struct bsdf_frame *bf, int n, const float *restrict wx,
@@ -277,7 +250,7 @@ void bsdf_frame_eval_batch(const struct bsdf_frame *bf, int n, const float *rest
     const float dscale = has_diffuse * bf->diffuse_scale, dpdf = (1.0f - b->p_spec) * RESTIR_INV_PI;
     const float one_m_f0d = 1.0f - DIELECTRIC_F0;
     const float valid = bf->valid ? 1.0f : 0.0f;
-    const float inv_4cos_o = 1.0f / (4.0f * fmaxf(lo.z, 1e-12f));
+    const float inv_4cos_o = 1.0f / (4.0f * max_f(lo.z, 1e-12f));
     const float lambda_o = bf->lambda_o, spec_pdf = has_spec * bf->spec_pdf_scale;
     /* Locals, not loads through b inside the loop: the stores below could alias them. */
     const float kdr = b->diffuse.x, kdg = b->diffuse.y, kdb = b->diffuse.z;

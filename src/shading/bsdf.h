@@ -37,12 +37,19 @@ struct bsdf_frame {
     float lambda_o;      /* Smith Lambda(wo) */
     float diffuse_scale; /* Kelemen coupling factor (1 - F(cos_o)) / (1 - F_avg) times 1/pi */
     float spec_pdf_scale;/* p_spec G1(wo) / (4 cos_o) */
+    float inv_alpha2;    /* 1 / alpha^2 */
     int valid;           /* wo above the surface */
 };
 
 void bsdf_frame_init(struct bsdf_frame *bf, const struct bsdf *b, vec3 n, vec3 wo);
 /* f_r(wo, wi) as bsdf_eval, and when pdf != NULL the solid-angle density of wi as bsdf_pdf. */
 vec3 bsdf_frame_eval(const struct bsdf_frame *bf, vec3 wi, float *pdf);
+
+/* bsdf_sample with the prepared frame: the same directions for the same uniforms (up to the
+ * rounding of the frame), with *pdf and *f = bsdf_frame_eval of the returned wi. Where one shading
+ * point both samples and evaluates (a path vertex: NEE and the continuation) this builds the frame
+ * and the wo terms once instead of per call. */
+int bsdf_frame_sample(const struct bsdf_frame *bf, float u0, float u1, float u2, vec3 *wi, float *pdf, vec3 *f);
 
 /* bsdf_frame_eval over n directions in structure-of-arrays form (world space, unit), written
  * branch-free so the compiler vectorizes it: f_r into fr/fg/fb and the solid-angle pdf into pdf.
