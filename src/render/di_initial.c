@@ -125,7 +125,7 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
         vec3 wi, f;
         float pdf;
         float u0 = pcg32_float(rng), u1 = pcg32_float(rng), u2 = pcg32_float(rng);
-        if (!bsdf_sample(&sp->bf.b, sp->n, sp->wo, u0, u1, u2, &wi, &pdf, &f) || v3_dot(wi, sp->ng) <= 0.0f)
+        if (!bsdf_frame_sample(&sp->bf, u0, u1, u2, &wi, &pdf, &f) || v3_dot(wi, sp->ng) <= 0.0f)
             continue;
         vec3 o = scene_offset_point(sp->p, sp->ng, wi);
         float tmin = 0.0f;
