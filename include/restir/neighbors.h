@@ -4,6 +4,8 @@
 #ifndef RESTIR_NEIGHBORS_H
 #define RESTIR_NEIGHBORS_H
 
+#include <math.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -18,6 +20,39 @@ int restir_bitterli_compatible(const float n[3], const float n_i[3], float d, fl
  * solid angle omega at distance d. The paper uses omega = 0.05, beta = 8. */
 float restir_compat_score(const float x[3], const float n_x[3], float d, const float y[3], const float n_y[3],
                           float omega, float beta);
+
+/* restir_compat_score with everything that depends only on x prepared once, for scoring one pixel's
+ * K candidates (000 Algorithm 1): 1 / s, and beta as an integer exponent when it is one. */
+struct restir_compat_scorer {
+    float x[3], n[3];
+    float inv_s;  /* 1 / s; 0 when s is not positive (every score is then 0) */
+    float beta;
+    int beta_int; /* beta when it is an integer in [0, 64] (powers by squaring), else -1 */
+};
+
+void restir_compat_scorer_init(struct restir_compat_scorer *c, const float x[3], const float n_x[3], float d,
+                               float omega, float beta);
+
+static inline float restir_compat_scorer_score(const struct restir_compat_scorer *c, const float y[3],
+                                               const float n_y[3])
+{
+    /* 000 Eq. 14-15 */
+    float dx = c->x[0] - y[0], dy = c->x[1] - y[1], dz = c->x[2] - y[2];
+    float cos_n = c->n[0] * n_y[0] + c->n[1] * n_y[1] + c->n[2] * n_y[2];
+    float t = sqrtf(dx * dx + dy * dy + dz * dz) * c->inv_s;
+    if (!(cos_n > 0.0f) || !(c->inv_s > 0.0f) || t > 80.0f) /* exp(-80) ~ 2e-35: below any score that matters */
+        return 0.0f;
+    float hn = 1.0f;
+    if (c->beta_int >= 0) {
+        float b = cos_n; /* powers by squaring over the bits of beta */
+        for (int ib = c->beta_int; ib; ib >>= 1, b *= b)
+            if (ib & 1)
+                hn *= b;
+    } else {
+        hn = powf(cos_n, c->beta);
+    }
+    return expf(-t) * hn;
+}
 
 /* Most neighbors a selection returns. */
 #define RESTIR_SELECT_MAX 8

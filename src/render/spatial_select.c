@@ -92,6 +92,8 @@ static int select_compat(const struct render_params *p, const struct gbuffer *g,
                          const float *offsets, struct pixel_search *ps, int *out)
 {
     const float *ki = key_of(g, y * g->width + x);
+    struct restir_compat_scorer scorer;
+    restir_compat_scorer_init(&scorer, ki, &ki[3], ki[6], p->spatial_omega, p->spatial_beta);
     struct restir_select sel;
     restir_select_init(&sel, m);
     pcg32 *rng = &ps->rng;
@@ -107,7 +109,7 @@ static int select_compat(const struct render_params *p, const struct gbuffer *g,
         if (kj[7] == 0.0f)
             continue; /* no primary hit */
         float h = binary ? (bitterli_ok(p, ki, kj) ? 1.0f : 0.0f)
-                         : restir_compat_score(ki, &ki[3], ki[6], kj, &kj[3], p->spatial_omega, p->spatial_beta);
+                         : restir_compat_scorer_score(&scorer, kj, &kj[3]);
         if (!(h > 0.0f))
             continue;
         restir_select_offer(&sel, j, h, pcg32_float(rng));

@@ -13,30 +13,26 @@ int restir_bitterli_compatible(const float n[3], const float n_i[3], float d, fl
     return dot >= normal_min && d > 0.0f && fabsf(d_i - d) / d < depth_max;
 }
 
+void restir_compat_scorer_init(struct restir_compat_scorer *c, const float x[3], const float n_x[3], float d,
+                               float omega, float beta)
+{
+    for (int k = 0; k < 3; k++) {
+        c->x[k] = x[k];
+        c->n[k] = n_x[k];
+    }
+    float s = sqrtf(omega * d * d / 3.14159265358979f); /* 000 Eq. 15 */
+    c->inv_s = s > 0.0f ? 1.0f / s : 0.0f;
+    c->beta = beta;
+    int ib = (int)beta;
+    c->beta_int = ((float)ib == beta && ib >= 0 && ib <= 64) ? ib : -1; /* the paper's 8 */
+}
+
 float restir_compat_score(const float x[3], const float n_x[3], float d, const float y[3], const float n_y[3],
                           float omega, float beta)
 {
-    /* 000 Eq. 15 */
-    float dx = x[0] - y[0], dy = x[1] - y[1], dz = x[2] - y[2];
-    float dist = sqrtf(dx * dx + dy * dy + dz * dz);
-    float s = sqrtf(omega * d * d / 3.14159265358979f);
-    float cos_n = n_x[0] * n_y[0] + n_x[1] * n_y[1] + n_x[2] * n_y[2];
-    if (!(cos_n > 0.0f) || !(s > 0.0f))
-        return 0.0f;
-    float t = dist / s;
-    if (t > 80.0f) /* exp(-80) ~ 2e-35: below any other candidate's score that matters */
-        return 0.0f;
-    float hn;
-    int ib = (int)beta;
-    if ((float)ib == beta && ib >= 0 && ib <= 64) { /* integer beta (the paper's 8): by squaring */
-        hn = 1.0f;
-        for (float b = cos_n; ib; ib >>= 1, b *= b)
-            if (ib & 1)
-                hn *= b;
-    } else {
-        hn = powf(cos_n, beta);
-    }
-    return expf(-t) * hn; /* 000 Eq. 14 */
+    struct restir_compat_scorer c;
+    restir_compat_scorer_init(&c, x, n_x, d, omega, beta);
+    return restir_compat_scorer_score(&c, y, n_y);
 }
 
 void restir_select_init(struct restir_select *s, int m)
