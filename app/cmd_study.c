@@ -126,7 +126,7 @@ static int hard_pixel_mask(const struct scene *s, const struct render_params *p,
     struct camera_view view;
     camera_view_init(&view, cam, p->width, p->height);
     struct gbuffer g;
-    gbuffer_init(&g, p->width, p->height);
+    gbuffer_init(&g, p->width, p->height, 0);
     gbuffer_pass(&g, s, &view, NULL, 0, p->seed, 0);
     size_t n = (size_t)p->width * p->height;
     float *normals = xmalloc(sizeof(float) * 3 * n);

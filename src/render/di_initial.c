@@ -2,6 +2,7 @@
  * candidates combined by MIS into one reservoir (Bitterli et al. 2020; 001 Sec. 1). Light
  * candidates are windows of the frame's light pool (light_pool.h), evaluated in batches laid out
  * for SIMD. Must never allocate per pixel. */
+#include "core/check.h"
 #include "core/rng.h"
 #include "di_visibility.h"
 #include "restir/reservoir.h"
@@ -21,10 +22,11 @@ struct light_batch {
     float w[DI_BATCH];                              /* RIS weight */
 };
 
-static void sample_from_emitter(const struct scene *s, int e, float b1, float b2, struct di_sample *y)
+/* The light point a BSDF ray hit (triangle tri, barycentrics b1, b2) as a DI sample. */
+static void sample_at_hit(const struct scene *s, int tri, float b1, float b2, struct di_sample *y)
 {
     struct light_sample ls;
-    lights_point(s, s->emitters[e].tri, b1, b2, &ls);
+    lights_point(s, tri, b1, b2, &ls);
     y->tri = ls.tri;
     y->b1 = ls.b1;
     y->b2 = ls.b2;
@@ -38,9 +40,9 @@ static void sample_from_emitter(const struct scene *s, int e, float b1, float b2
  * (the balance heuristic over strategies with candidate counts, so W = sum w / p_hat(Y) is an
  * unbiased contribution weight). Every emitter point along a BSDF ray is a candidate (the BSDF
  * strategy traces the emitters-only BVH), so p_bsdf has no visibility term: both strategies are
- * unshadowed, their MIS weights sum to one wherever p_hat > 0, and W stays valid on p_hat's whole
- * support, which spatial reuse relies on. The loops read only contiguous arrays, so they
- * vectorize. */
+ * unshadowed, their MIS weights sum to one wherever p_hat > 0, and W is valid on p_hat's whole
+ * support (visibility reuse then narrows it to that of p_hat V). The loops read only contiguous
+ * arrays, so they vectorize. */
 static void light_batch_fill(const struct light_pool *lp, int first, const struct shading_point *sp, int n, int nl,
                              int nb, struct light_batch *lb)
 {
@@ -83,6 +85,7 @@ static void light_batch_fill(const struct light_pool *lp, int first, const struc
  * returns -1 when it is 0. */
 static int pick_by_weight(const float *w, int n, float u, float *total)
 {
+    RESTIR_CHECK(n <= DI_BATCH);
     float acc[DI_BATCH], sum = 0.0f;
     int last = -1;
     for (int k = 0; k < n; k++) {
@@ -108,9 +111,9 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
     di_reservoir_clear(r, 1.0f);
     const int nl = s->num_emitters > 0 ? p->light_candidates : 0, nb = p->bsdf_candidates;
     struct light_batch lb;
-    const int window = nl ? light_pool_offset(pcg32_float(rng)) : 0; /* this pixel's nl pool entries */
+    const int offset = nl ? light_pool_offset(pcg32_float(rng)) : 0; /* this pixel's nl pool entries */
     for (int done = 0; done < nl; done += DI_BATCH) {
-        int n = nl - done < DI_BATCH ? nl - done : DI_BATCH, first = window + done;
+        int n = nl - done < DI_BATCH ? nl - done : DI_BATCH, first = offset + done;
         light_batch_fill(lp, first, sp, n, nl, nb, &lb);
         struct restir_wrs batch;
         restir_wrs_init(&batch);
@@ -136,7 +139,7 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
             if (!h.front)
                 continue;
             struct di_sample y;
-            sample_from_emitter(s, s->tri_emitter[h.tri], h.b1, h.b2, &y);
+            sample_at_hit(s, h.tri, h.b1, h.b2, &y);
             float p_bsdf;
             float target = v3_luminance(di_unshadowed_pdf(sp, &y, &p_bsdf));
             if (target <= 0.0f)
@@ -171,6 +174,7 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
 long long di_initial_pass(const struct scene *s, const struct light_pool *lp, const struct render_params *p, int frame,
                           const struct gbuffer *g, struct di_reservoir *out)
 {
+    RESTIR_CHECK(p->light_candidates <= lp->window); /* the pool's windows are that long */
     long long rays = 0;
     const int ntiles = tile_count(g->width, g->height);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)

@@ -6,11 +6,11 @@ int di_sample_visible(const struct scene *s, const struct shading_point *sp, con
     return scene_visible(s, sp->p, sp->ng, y->p, y->n);
 }
 
-float di_domain_target(const struct scene *s, int visible, const struct shading_point *sp, const struct di_sample *y,
-                       long long *rays)
+float di_domain_target(const struct scene *s, int with_visibility, const struct shading_point *sp,
+                       const struct di_sample *y, long long *rays)
 {
     float t = di_target(sp, y);
-    if (!visible || !(t > 0.0f))
+    if (!with_visibility || !(t > 0.0f))
         return t;
     (*rays)++;
     return di_sample_visible(s, sp, y) ? t : 0.0f;

@@ -10,19 +10,21 @@
 #include "di_sample.h"
 #include "params.h"
 
-/* 1 when every reservoir target includes visibility at its own pixel, so reuse traces the
- * cross-domain shadow rays and shading needs none. */
+/* 1 when every reservoir target includes visibility at its own pixel: reuse then traces the
+ * cross-domain shadow rays, and shading needs none. Without reuse (ris-di) that holds for either
+ * di.visibility_mis, since only the initial, visibility-tested targets reach shading. */
 static inline int di_targets_visible(const struct render_params *p)
 {
-    return p->di_visibility_reuse && p->di_visibility_mis == DI_VIS_MIS_RAYS;
+    return p->di_visibility_reuse && (p->di_visibility_mis == DI_VIS_MIS_RAYS || (!p->temporal && !p->spatial));
 }
 
 /* 1 when the light point y is unoccluded from sp (one shadow ray). */
 int di_sample_visible(const struct scene *s, const struct shading_point *sp, const struct di_sample *y);
 
-/* The target of domain sp at y as the reservoirs define it: p_hat(y) V(x, y) when visible, else
- * the unshadowed p_hat(y). The shadow ray is traced (and counted in *rays) only where p_hat > 0. */
-float di_domain_target(const struct scene *s, int visible, const struct shading_point *sp, const struct di_sample *y,
-                       long long *rays);
+/* The target of domain sp at y as the reservoirs define it: p_hat(y) V(x, y) when
+ * with_visibility, else the unshadowed p_hat(y). The shadow ray is traced (and counted in *rays)
+ * only where p_hat > 0. */
+float di_domain_target(const struct scene *s, int with_visibility, const struct shading_point *sp,
+                       const struct di_sample *y, long long *rays);
 
 #endif

@@ -10,7 +10,7 @@
 #include "shading/lights.h"
 #include "tiles.h"
 
-void gbuffer_init(struct gbuffer *g, int width, int height)
+void gbuffer_init(struct gbuffer *g, int width, int height, int with_shading)
 {
     size_t n = (size_t)width * (size_t)height;
     memset(g, 0, sizeof(*g));
@@ -29,7 +29,7 @@ void gbuffer_init(struct gbuffer *g, int width, int height)
     g->sub_pixel = xcalloc(n, sizeof(vec3));
     g->valid = xcalloc(n, 1);
     g->select_key = xcalloc(n * GBUFFER_KEY, sizeof(float));
-    g->shading = xcalloc(n, sizeof(struct shading_point));
+    g->shading = with_shading ? xcalloc(n, sizeof(struct shading_point)) : NULL;
 }
 
 void gbuffer_fini(struct gbuffer *g)
@@ -68,7 +68,6 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
                        const struct camera_view *prev_view, int jitter, uint64_t seed, int frame)
 {
     long long rays = 0;
-    g->camera_position = view->position;
     const int ntiles = tile_count(g->width, g->height);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
@@ -91,7 +90,8 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
                     g->emission[i] = v3s(0.0f);
                     g->material[i] = g->object[i] = -1;
                     g->depth[i] = INFINITY;
-                    g->shading[i].valid = 0;
+                    if (g->shading)
+                        g->shading[i].valid = 0;
                     continue;
                 }
                 const struct material *m = &s->materials[h.material];
@@ -107,7 +107,8 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
                 g->material[i] = h.material;
                 g->object[i] = h.object;
                 g->emission[i] = s->tri_emitter[h.tri] >= 0 ? lights_radiance(s, h.tri, v3_neg(dir)) : v3s(0.0f);
-                shading_point_init(&g->shading[i], m, h.p, h.ns, h.ng, view->position);
+                if (g->shading)
+                    shading_point_init(&g->shading[i], m, h.p, h.ns, h.ng, view->position);
                 float qx, qy;
                 if (prev_view && camera_view_project(prev_view, h.p, &qx, &qy)) {
                     g->motion[2 * i] = qx - px;

@@ -20,7 +20,6 @@ struct shading_point {
 
 struct gbuffer {
     int width, height;
-    vec3 camera_position; /* of the frame it was rendered for (the wo of every pixel) */
     vec3 *position;
     vec3 *normal;         /* shading normal, facing the camera */
     vec3 *geo_normal;     /* geometric normal, facing the camera */
@@ -35,7 +34,8 @@ struct gbuffer {
     vec3 *sub_pixel;      /* x, y: image position of the primary ray (pixel units); z unused */
     unsigned char *valid; /* 1 when the primary ray hit geometry */
     struct shading_point *shading; /* the primary hit as a shading point: every DI pass and each
-                                      neighbor reads it instead of rebuilding the BSDF frame */
+                                      neighbor reads it instead of rebuilding the BSDF frame;
+                                      NULL unless gbuffer_init was asked for it */
     float *select_key;    /* GBUFFER_KEY floats per pixel: position xyz, normal xyz, depth, valid;
                              what neighbor selection reads, packed so that each of its random taps
                              touches one cache line instead of four */
@@ -43,7 +43,8 @@ struct gbuffer {
 
 #define GBUFFER_KEY 8
 
-void gbuffer_init(struct gbuffer *g, int width, int height);
+/* with_shading: also keep each pixel's shading point (what the DI passes read). */
+void gbuffer_init(struct gbuffer *g, int width, int height, int with_shading);
 void gbuffer_fini(struct gbuffer *g);
 
 /* Traces one (jittered when jitter != 0) primary ray per pixel from view; prev_view gives the

@@ -19,7 +19,6 @@ void light_pool_init(struct light_pool *lp, int window)
     lp->window = window;
     lp->size = LIGHT_POOL_SIZE + window;
     size_t n = (size_t)lp->size;
-    lp->emitter = xmalloc(sizeof(int) * n);
     lp->tri = xmalloc(sizeof(int) * n);
     float **f[] = {&lp->b1, &lp->b2, &lp->px, &lp->py, &lp->pz, &lp->nx, &lp->ny, &lp->nz,
                    &lp->Lr, &lp->Lg, &lp->Lb, &lp->pdf};
@@ -32,28 +31,26 @@ void light_pool_fini(struct light_pool *lp)
     float *f[] = {lp->b1, lp->b2, lp->px, lp->py, lp->pz, lp->nx, lp->ny, lp->nz, lp->Lr, lp->Lg, lp->Lb, lp->pdf};
     for (size_t k = 0; k < sizeof(f) / sizeof(f[0]); k++)
         free(f[k]);
-    free(lp->emitter);
     free(lp->tri);
     memset(lp, 0, sizeof(*lp));
 }
 
-static void put(struct light_pool *lp, int i, int e, float b1, float b2, const struct scene *s)
+static void put(struct light_pool *lp, int i, const struct emitter *em, float b1, float b2)
 {
-    const struct emitter *em = &s->emitters[e];
-    lp->emitter[i] = e;
-    lp->tri[i] = em->tri;
+    struct light_sample ls;
+    lights_emitter_point(em, b1, b2, &ls);
+    lp->tri[i] = ls.tri;
     lp->b1[i] = b1;
     lp->b2[i] = b2;
-    vec3 p = v3_add(em->v0, v3_add(v3_scale(em->e1, b1), v3_scale(em->e2, b2)));
-    lp->px[i] = p.x, lp->py[i] = p.y, lp->pz[i] = p.z;
-    lp->nx[i] = em->n.x, lp->ny[i] = em->n.y, lp->nz[i] = em->n.z;
-    lp->Lr[i] = em->Le.x, lp->Lg[i] = em->Le.y, lp->Lb[i] = em->Le.z;
-    lp->pdf[i] = em->pdf_area;
+    lp->px[i] = ls.p.x, lp->py[i] = ls.p.y, lp->pz[i] = ls.p.z;
+    lp->nx[i] = ls.n.x, lp->ny[i] = ls.n.y, lp->nz[i] = ls.n.z;
+    lp->Lr[i] = ls.Le.x, lp->Lg[i] = ls.Le.y, lp->Lb[i] = ls.Le.z;
+    lp->pdf[i] = ls.pdf_area;
 }
 
 void light_pool_fill(struct light_pool *lp, const struct scene *s, uint64_t seed, int frame)
 {
-    if (s->num_emitters <= 0)
+    if (s->num_emitters <= 0 || lp->window <= 0)
         return;
     const int chunks = LIGHT_POOL_SIZE / LIGHT_POOL_CHUNK;
 #pragma omp parallel for schedule(static)
@@ -64,9 +61,13 @@ void light_pool_fill(struct light_pool *lp, const struct scene *s, uint64_t seed
             int e = alias_table_sample(&s->emitter_table, pcg32_float(&rng));
             float u1 = pcg32_float(&rng), u2 = pcg32_float(&rng), b1, b2;
             warp_uniform_triangle(u1, u2, &b1, &b2);
-            put(lp, i, e, b1, b2, s);
+            put(lp, i, &s->emitters[e], b1, b2);
         }
     }
-    for (int i = 0; i < lp->window; i++) /* the tail: windows that start near the end read on */
-        put(lp, LIGHT_POOL_SIZE + i, lp->emitter[i], lp->b1[i], lp->b2[i], s);
+    /* The tail repeats the head, so a window that starts near the end reads on without wrapping. */
+    const size_t tail = (size_t)lp->window;
+    memcpy(lp->tri + LIGHT_POOL_SIZE, lp->tri, tail * sizeof(int));
+    float *f[] = {lp->b1, lp->b2, lp->px, lp->py, lp->pz, lp->nx, lp->ny, lp->nz, lp->Lr, lp->Lg, lp->Lb, lp->pdf};
+    for (size_t k = 0; k < sizeof(f) / sizeof(f[0]); k++)
+        memcpy(f[k] + LIGHT_POOL_SIZE, f[k], tail * sizeof(float));
 }

@@ -19,8 +19,7 @@
 struct light_pool {
     int size;   /* LIGHT_POOL_SIZE draws, then copies of the first `window` so no window wraps */
     int window; /* the longest window a pixel takes (di.light_candidates) */
-    int *emitter;        /* index into the scene's emitters */
-    int *tri;            /* its triangle */
+    int *tri;            /* the emitter's triangle */
     float *b1, *b2;
     float *px, *py, *pz; /* point on the light */
     float *nx, *ny, *nz; /* its emitting normal */
@@ -32,7 +31,7 @@ struct light_pool {
 void light_pool_init(struct light_pool *lp, int window);
 void light_pool_fini(struct light_pool *lp);
 /* Draws the frame's pool (seeded by seed and frame, whatever the thread count); a scene without
- * emitters leaves it empty. */
+ * emitters, or a pool for windows of 0 candidates, is left as it is (nothing reads it). */
 void light_pool_fill(struct light_pool *lp, const struct scene *s, uint64_t seed, int frame);
 /* Entry i as a ReSTIR DI light sample (what lights_point gives for it, bit for bit). */
 static inline void light_pool_entry(const struct light_pool *lp, int i, int *tri, float *b1, float *b2, vec3 *p,

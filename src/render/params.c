@@ -65,7 +65,8 @@ static const struct param_def params[] = {
     {"di.bsdf_candidates", P_INT, F(bsdf_candidates), 0, 64, "initial RIS: BSDF-sampled candidates", NULL},
     {"di.visibility_reuse", P_BOOL, F(di_visibility_reuse), 0, 1,
      "restir-di: trace a shadow ray for the initial sample and drop it when occluded (Bitterli et al. "
-     "2020 Alg. 5), so reuse carries visible samples; the final shading then needs no shadow ray", NULL},
+     "2020 Alg. 5), so reuse carries visible samples (with di.visibility_mis=rays shading then needs no "
+     "shadow ray)", NULL},
     {"di.visibility_mis", P_NAMES, F(di_visibility_mis), 0, 0,
      "restir-di with di.visibility_reuse: targets compared across domains include visibility, traced per "
      "merge (rays, unbiased), or not (none: BIASED, darkens where neighbors cannot see the light; no rays)",

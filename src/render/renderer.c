@@ -87,8 +87,9 @@ void renderer_init(struct renderer *r, const struct scene *s, enum method_id met
     size_t n = (size_t)p->width * (size_t)p->height;
     r->image = xcalloc(3 * n, sizeof(float));
     if (method_has_gbuffer(method)) {
-        gbuffer_init(&r->gb[0], p->width, p->height);
-        gbuffer_init(&r->gb[1], p->width, p->height);
+        const int di = method == METHOD_RIS_DI || method == METHOD_RESTIR_DI; /* the shading points' readers */
+        gbuffer_init(&r->gb[0], p->width, p->height, di);
+        gbuffer_init(&r->gb[1], p->width, p->height, di);
         r->neighbors = xcalloc(n * SPATIAL_MAX_NEIGHBORS, sizeof(int));
         r->disk_offsets = xmalloc(sizeof(float) * 2 * R2_DISK_OFFSETS);
         r2_disk_offsets(R2_DISK_OFFSETS, r->disk_offsets);

@@ -21,7 +21,7 @@ static long long gris_merge(const struct scene *s, const struct render_params *p
                             const struct shading_point *const *sp, const struct di_reservoir *const *in, pcg32 *rng,
                             struct di_reservoir *out)
 {
-    const int visible = di_targets_visible(p);
+    const int with_visibility = di_targets_visible(p);
     long long rays = 0;
     float c[DI_MAX_DOMAINS] = {0}, P[DI_MAX_DOMAINS * DI_MAX_DOMAINS] = {0}, m[DI_MAX_DOMAINS] = {0};
     float c_sum = 0.0f;
@@ -39,7 +39,7 @@ static long long gris_merge(const struct scene *s, const struct render_params *p
             else if (k == j)
                 P[k * n + j] = in[j]->target; /* cached p_hat_j(Y_j) */
             else
-                P[k * n + j] = di_domain_target(s, visible, sp[k], &in[j]->y, &rays);
+                P[k * n + j] = di_domain_target(s, with_visibility, sp[k], &in[j]->y, &rays);
         }
     }
     restir_mis_weights(p->mis, n, c, P, m);
@@ -149,7 +149,7 @@ long long di_shade_pass(const struct scene *s, const struct render_params *p, co
                         const struct di_reservoir *res, float *rgb)
 {
     /* A target with visibility that is positive was traced visible from this very pixel. */
-    const int visible = di_targets_visible(p);
+    const int with_visibility = di_targets_visible(p);
     long long rays = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
@@ -164,7 +164,7 @@ long long di_shade_pass(const struct scene *s, const struct render_params *p, co
                     const struct shading_point *sp = gbuffer_shading(g, i);
                     vec3 f = di_unshadowed(sp, &rv->y);
                     if (v3_max_component(f) > 0.0f) {
-                        int seen = visible && rv->target > 0.0f;
+                        int seen = with_visibility && rv->target > 0.0f;
                         if (!seen) {
                             rays++;
                             seen = di_sample_visible(s, sp, &rv->y);

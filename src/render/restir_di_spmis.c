@@ -26,7 +26,7 @@ void di_spmis_weights(const struct render_params *p, const struct gbuffer *g, co
 long long di_spmis_canonical_pass(const struct scene *s, const struct render_params *p, int frame,
                                   const struct gbuffer *g, const struct di_reservoir *in, struct spmis_frame *f)
 {
-    const int visible = di_targets_visible(p);
+    const int with_visibility = di_targets_visible(p);
     long long rays = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
@@ -46,7 +46,7 @@ long long di_spmis_canonical_pass(const struct scene *s, const struct render_par
                     int i = draws.pixel[d];
                     const struct shading_point *sp = gbuffer_shading(g, i);
                     /* Eq. 19 with p_hat_{<-i}(Y_c) = pixel i's target at the same light point */
-                    float p_i = di_domain_target(s, visible, sp, &in[c].y, &rays);
+                    float p_i = di_domain_target(s, with_visibility, sp, &in[c].y, &rays);
                     m_c += restir_spmis_canonical_term(&k, f->conf[i], p_i, in[c].target, draws.factor[d]);
                 }
                 f->m_c[c] = (float)m_c;
@@ -59,7 +59,7 @@ long long di_spmis_canonical_pass(const struct scene *s, const struct render_par
 long long di_spmis_reuse_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
                               const struct di_reservoir *in, const struct spmis_frame *f, struct di_reservoir *out)
 {
-    const int visible = di_targets_visible(p);
+    const int with_visibility = di_targets_visible(p);
     long long rays = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
@@ -89,7 +89,7 @@ long long di_spmis_reuse_pass(const struct scene *s, const struct render_params 
                 for (int d = 0; d < draws.count; d++) {
                     /* Lines 13-18 (line 15: the drawn neighbor's own sample X_z comes to pixel c) */
                     int z = draws.pixel[d];
-                    float p_c = di_domain_target(s, visible, sp, &in[z].y, &rays); /* p_hat(y) */
+                    float p_c = di_domain_target(s, with_visibility, sp, &in[z].y, &rays); /* p_hat(y) */
                     float wz = (float)(restir_spmis_noncanonical(&k, f->conf[z], in[z].target, p_c, draws.factor[d]) *
                                        p_c * in[z].W);
                     if (restir_wrs_offer(&wrs, wz, pcg32_float(&rng))) {

@@ -3,11 +3,11 @@
 #ifndef RESTIR_RENDER_TILES_H
 #define RESTIR_RENDER_TILES_H
 
-/* Tiles are 64 x 4 pixels: a tile row spans whole cache lines of every per-pixel array (64 bytes
- * of a byte mask, 256 of a float plane), so two threads never write the same line. 8 x 8 tiles
- * put horizontally adjacent tiles, often on different threads, into the same lines of the
- * G-buffer's planes; that false sharing kept the G-buffer pass from scaling at all (59 ms on 1
- * thread, 50 on 2; 27-31 with whole-line tile rows). */
+/* Tiles are 64 x 4 pixels, so a tile row spans 64 bytes of a byte mask and 256 of a float plane:
+ * two threads share at most the cache lines at a tile row's two ends (the planes are not 64-byte
+ * aligned). With 8 x 8 tiles, horizontally adjacent tiles, often on different threads, shared
+ * most lines of every plane; that false sharing kept the G-buffer pass from scaling at all
+ * (59 ms on 1 thread, 50 on 2; 27-31 ms with 64 x 4). */
 #define RESTIR_TILE_W 64
 #define RESTIR_TILE_H 4
 

@@ -30,7 +30,7 @@ float lights_pdf_area(const struct scene *s, int tri)
     return s->emitter_table.pmf[e] / area;
 }
 
-static void emitter_point(const struct emitter *em, float b1, float b2, struct light_sample *ls)
+void lights_emitter_point(const struct emitter *em, float b1, float b2, struct light_sample *ls)
 {
     ls->tri = em->tri;
     ls->b1 = b1;
@@ -56,7 +56,7 @@ void lights_point(const struct scene *s, int tri, float b1, float b2, struct lig
         ls->pdf_area = 0.0f;
         return;
     }
-    emitter_point(&s->emitters[e], b1, b2, ls);
+    lights_emitter_point(&s->emitters[e], b1, b2, ls);
 }
 
 int lights_sample(const struct scene *s, float u_select, float u1, float u2, struct light_sample *ls)
@@ -66,7 +66,7 @@ int lights_sample(const struct scene *s, float u_select, float u1, float u2, str
     int e = alias_table_sample(&s->emitter_table, u_select);
     float b1, b2;
     warp_uniform_triangle(u1, u2, &b1, &b2);
-    emitter_point(&s->emitters[e], b1, b2, ls);
+    lights_emitter_point(&s->emitters[e], b1, b2, ls);
     return ls->pdf_area > 0.0f;
 }
 

@@ -21,6 +21,9 @@ float lights_emitter_power(const struct scene *s, int tri);
 int lights_sample(const struct scene *s, float u_select, float u1, float u2, struct light_sample *ls);
 /* Area density of producing the point on triangle tri (0 when tri is not an emitter). */
 float lights_pdf_area(const struct scene *s, int tri);
+/* Point b1, b2 of emitter em (p = v0 + b1 e1 + b2 e2) with its normal, radiance and density:
+ * the one formula light sampling, lights_point and ReSTIR DI's light pool all use. */
+void lights_emitter_point(const struct emitter *em, float b1, float b2, struct light_sample *ls);
 /* Fills ls->p, n, Le, pdf_area from tri and barycentrics. */
 void lights_point(const struct scene *s, int tri, float b1, float b2, struct light_sample *ls);
 /* Radiance leaving emitter triangle tri toward direction w_out (zero on its back side). */

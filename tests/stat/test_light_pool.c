@@ -28,7 +28,7 @@ static double cell_fraction(int i, int j)
 static int pools_equal(const struct light_pool *a, const struct light_pool *b)
 {
     size_t n = (size_t)a->size;
-    return !memcmp(a->emitter, b->emitter, n * sizeof(int)) && !memcmp(a->b1, b->b1, n * sizeof(float)) &&
+    return !memcmp(a->tri, b->tri, n * sizeof(int)) && !memcmp(a->b1, b->b1, n * sizeof(float)) &&
            !memcmp(a->b2, b->b2, n * sizeof(float)) && !memcmp(a->px, b->px, n * sizeof(float));
 }
 
@@ -45,16 +45,16 @@ int main(void)
     for (int f = 0; f < FRAMES; f++) {
         light_pool_fill(&lp, &s, 7, f);
         for (int i = 0; i < lp.size; i++) {
-            int e = lp.emitter[i];
+            int e = s.tri_emitter[lp.tri[i]];
             struct light_sample ls;
-            lights_point(&s, s.emitters[e].tri, lp.b1[i], lp.b2[i], &ls);
-            if (lp.tri[i] != s.emitters[e].tri || ls.p.x != lp.px[i] || ls.p.y != lp.py[i] || ls.p.z != lp.pz[i] || ls.n.x != lp.nx[i] ||
+            lights_point(&s, lp.tri[i], lp.b1[i], lp.b2[i], &ls);
+            if (e < 0 || ls.p.x != lp.px[i] || ls.p.y != lp.py[i] || ls.p.z != lp.pz[i] || ls.n.x != lp.nx[i] ||
                 ls.Le.y != lp.Lg[i] || ls.pdf_area != lp.pdf[i] || !(lp.b1[i] >= 0.0f && lp.b2[i] >= 0.0f &&
                                                                      lp.b1[i] + lp.b2[i] <= 1.0f + 1e-6f))
                 inconsistent++;
             if (i >= LIGHT_POOL_SIZE) {
                 int h = i - LIGHT_POOL_SIZE;
-                tail_wrong += lp.emitter[i] != lp.emitter[h] || lp.b1[i] != lp.b1[h] || lp.px[i] != lp.px[h];
+                tail_wrong += lp.tri[i] != lp.tri[h] || lp.b1[i] != lp.b1[h] || lp.px[i] != lp.px[h];
                 continue; /* copies: not new draws */
             }
             int ci = (int)(lp.b1[i] * GRID), cj = (int)(lp.b2[i] * GRID);
