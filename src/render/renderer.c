@@ -86,8 +86,8 @@ void renderer_init(struct renderer *r, const struct scene *s, enum method_id met
     p = &r->p;
     size_t n = (size_t)p->width * (size_t)p->height;
     r->image = xcalloc(3 * n, sizeof(float));
+    const int di = method == METHOD_RIS_DI || method == METHOD_RESTIR_DI; /* DI reservoirs, pool, shading points */
     if (method_has_gbuffer(method)) {
-        const int di = method == METHOD_RIS_DI || method == METHOD_RESTIR_DI; /* the shading points' readers */
         gbuffer_init(&r->gb[0], p->width, p->height, di);
         gbuffer_init(&r->gb[1], p->width, p->height, di);
         r->neighbors = xcalloc(n * SPATIAL_MAX_NEIGHBORS, sizeof(int));
@@ -100,7 +100,7 @@ void renderer_init(struct renderer *r, const struct scene *s, enum method_id met
             spmis_frame_init(r->spmis, p);
         }
     }
-    if (method == METHOD_RIS_DI || method == METHOD_RESTIR_DI) {
+    if (di) {
         r->work = xcalloc(n, sizeof(struct di_reservoir));
         r->hist[0] = xcalloc(n, sizeof(struct di_reservoir));
         r->hist[1] = xcalloc(n, sizeof(struct di_reservoir));
@@ -137,8 +137,7 @@ void renderer_fini(struct renderer *r)
         gbuffer_fini(&r->gb[0]);
         gbuffer_fini(&r->gb[1]);
     }
-    if (r->work)
-        light_pool_fini(&r->lights);
+    light_pool_fini(&r->lights); /* zeroed by renderer_init for the other methods: frees nothing */
     free(r->work);
     free(r->hist[0]);
     free(r->hist[1]);
