@@ -62,7 +62,7 @@ static void light_batch_fill(const struct light_pool *lp, int first, const struc
         lb->wx[k] = dx;
         lb->wy[k] = dy;
         lb->wz[k] = dz;
-        lb->to_area[k] = facing * cos_y / d2;
+        lb->to_area[k] = facing * cos_y * inv_d * inv_d;
         lb->geo[k] = lb->to_area[k] * cos_x;
     }
     bsdf_frame_eval_batch(&sp->bf, n, lb->wx, lb->wy, lb->wz, lb->fr, lb->fg, lb->fb, lb->pdf);

@@ -250,7 +250,7 @@ void bsdf_frame_eval_batch(const struct bsdf_frame *bf, int n, const float *rest
     const float dscale = has_diffuse * bf->diffuse_scale, dpdf = (1.0f - b->p_spec) * RESTIR_INV_PI;
     const float one_m_f0d = 1.0f - DIELECTRIC_F0;
     const float valid = bf->valid ? 1.0f : 0.0f;
-    const float inv_4cos_o = 1.0f / (4.0f * max_f(lo.z, 1e-12f));
+    const float four_cos_o = 4.0f * max_f(lo.z, 1e-12f);
     const float lambda_o = bf->lambda_o, spec_pdf = has_spec * bf->spec_pdf_scale;
     /* Locals, not loads through b inside the loop: the stores below could alias them. */
     const float kdr = b->diffuse.x, kdg = b->diffuse.y, kdb = b->diffuse.z;
@@ -268,23 +268,23 @@ void bsdf_frame_eval_batch(const struct bsdf_frame *bf, int n, const float *rest
         float m = min_f(max_f(1.0f - cz, 0.0f), 1.0f), m2 = m * m, sw = m2 * m2 * m;
         float couple_i = 1.0f - couple * (DIELECTRIC_F0 + one_m_f0d * sw);
         float fd = dscale * couple_i;
-        /* specular: half vector, GGX D, Schlick F at wi.h, height-correlated G2 */
+        /* specular as in bsdf_frame_eval, with the unnormalized half vector H = wo + wi: one
+         * division for D, G2 and 1 / (4 cos_o cos_i) together, and wi.h = |H| / 2 (for unit wo
+         * and wi, |H|^2 = 2 (1 + wo.wi) = 2 wi.H), so Schlick's F needs no normalization. */
         float hx = ox + lx, hy = oy + ly, hz = oz + lz;
-        float inv_h = 1.0f / sqrtf(max_f(hx * hx + hy * hy + hz * hz, 1e-30f));
-        hx *= inv_h;
-        hy *= inv_h;
-        hz *= inv_h;
+        float h2 = max_f(hx * hx + hy * hy + hz * hz, 1e-30f), h4 = h2 * h2;
         float t = (hx * hx + hy * hy) * inv_a2 + hz * hz;
-        float d = hz > 0.0f ? 1.0f / (RESTIR_PI * a2 * t * t) : 0.0f;
-        float cos_d = lx * hx + ly * hy + lz * hz;
+        float cos_d = 0.5f * sqrtf(h2);
         float mh = min_f(max_f(1.0f - cos_d, 0.0f), 1.0f), mh2 = mh * mh, swh = mh2 * mh2 * mh;
-        float lambda_i = 0.5f * (sqrtf(1.0f + a2 * (lx * lx + ly * ly) / (cz * cz)) - 1.0f);
-        float s = has_spec * d / (1.0f + lambda_o + lambda_i) * inv_4cos_o / cz;
+        float S = sqrtf(cz * cz + a2 * (lx * lx + ly * ly));
+        float f_den = four_cos_o * (cz * (0.5f + lambda_o) + 0.5f * S); /* 4 cos_o cos_i / G2 */
+        float r = (hz > 0.0f ? has_spec : 0.0f) / (RESTIR_PI * a2 * t * t * f_den);
+        float s = h4 * r; /* D G2 / (4 cos_o cos_i) */
         fr[k] = above * (kdr * fd + (f0r + (1.0f - f0r) * swh) * s);
         fg[k] = above * (kdg * fd + (f0g + (1.0f - f0g) * swh) * s);
         fb[k] = above * (kdb * fd + (f0b + (1.0f - f0b) * swh) * s);
         float wo_h = ox * hx + oy * hy + oz * hz;
-        pdf[k] = above * (dpdf * lz + (wo_h > 0.0f ? spec_pdf * d : 0.0f));
+        pdf[k] = above * (dpdf * lz + (wo_h > 0.0f ? spec_pdf * s * f_den : 0.0f));
     }
 }
 
