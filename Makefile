@@ -3,21 +3,34 @@
 
 BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
-DEB_PACKAGES = build-essential cmake pkg-config libembree-dev libopenexr-dev libpng-dev libcjson-dev libfftw3-dev
+DEB_PACKAGES = build-essential cmake pkg-config libembree-dev libopenexr-dev libpng-dev libcjson-dev libfftw3-dev libassimp-dev libstb-dev
+# Test data only (make test): real assets nobody here wrote, and deliberately broken ones.
+TEST_PACKAGES = assimp-testmodels
+# make fuzz: clang, its libFuzzer and OpenMP runtimes.
+FUZZ_PACKAGES = clang libclang-rt-14-dev libomp-dev
+FUZZ_SECONDS ?= 60
 SUDO = $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps build demo test bench asan clean
+.PHONY: all deps test-deps build demo test bench asan fuzz clean
 
 all: build
 
-deps:
-	@missing=""; for p in $(DEB_PACKAGES); do \
+# $(call apt_install,PACKAGES): installs those of PACKAGES that are missing.
+define apt_install
+	@missing=""; for p in $(1); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
 	done; \
 	if [ -n "$$missing" ]; then \
 	  echo "installing Debian packages:$$missing"; \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; \
 	fi
+endef
+
+deps:
+	$(call apt_install,$(DEB_PACKAGES))
+
+test-deps:
+	$(call apt_install,$(TEST_PACKAGES))
 
 $(BUILD)/CMakeCache.txt: | deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
@@ -28,16 +41,26 @@ build: deps $(BUILD)/CMakeCache.txt
 demo: build
 	./scripts/demo.sh $(BUILD)/restir
 
-test: build
+test: build test-deps
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 bench: build
 	./scripts/bench.sh $(BUILD)
 
-asan: deps
+asan: deps test-deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DRESTIR_SANITIZE=ON
 	cmake --build build-asan -j $(JOBS)
 	cd build-asan && ctest --output-on-failure -j $(JOBS)
 
+# The JSON scene reader under libFuzzer with ASan and UBSan for FUZZ_SECONDS (seeds in fuzz/seeds;
+# the corpus it grows stays in build-fuzz/corpus).
+fuzz: deps
+	$(call apt_install,$(FUZZ_PACKAGES))
+	CC=clang cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRESTIR_FUZZ=ON -DRESTIR_WERROR=OFF
+	cmake --build build-fuzz -j $(JOBS) --target fuzz_scene_json
+	mkdir -p build-fuzz/corpus
+	ASAN_OPTIONS=detect_leaks=1 ./build-fuzz/fuzz_scene_json -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=4096 \
+	  -max_len=65536 -print_final_stats=1 build-fuzz/corpus fuzz/seeds
+
 clean:
-	rm -rf $(BUILD) build-asan
+	rm -rf $(BUILD) build-asan build-fuzz

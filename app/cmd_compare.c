@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/scene_file.h"
 #include "cli.h"
 #include "core/check.h"
 #include "gradient/grad_frame.h"
@@ -297,7 +298,7 @@ int cmd_compare(int argc, char **argv)
     }
     assign_dirs(specs, n);
     struct scene s;
-    if (scene_create_builtin(o.scene, &s, msg) != 0) {
+    if (scene_load(o.scene, &s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
@@ -306,7 +307,7 @@ int cmd_compare(int argc, char **argv)
     char out_dir[4096];
     snprintf(out_dir, sizeof(out_dir), "%s", o.out ? o.out : "");
     if (!o.out)
-        snprintf(out_dir, sizeof(out_dir), "out/compare-%s", o.scene);
+        snprintf(out_dir, sizeof(out_dir), "out/compare-%s", s.name);
     float *ref = NULL;
     int rc = 0;
     if (o.ref) {

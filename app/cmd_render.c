@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/scene_file.h"
 #include "cli.h"
 #include "core/check.h"
 #include "io/image_io.h"
@@ -42,7 +43,7 @@ static int open_scene_and_method(const struct cli_options *o, struct scene *s, e
         return EXIT_USAGE;
     }
     *method = (enum method_id)m;
-    if (scene_create_builtin(o->scene, s, msg) != 0) {
+    if (scene_load(o->scene, s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
@@ -116,7 +117,7 @@ int cmd_render(int argc, char **argv)
     if (o.out)
         snprintf(out_dir, sizeof(out_dir), "%s", o.out);
     else
-        snprintf(out_dir, sizeof(out_dir), "out/%s-%s", o.scene, o.method);
+        snprintf(out_dir, sizeof(out_dir), "out/%s-%s", s.name, o.method);
     float *ref = NULL;
     if (o.ref && cli_load_reference(o.ref, o.params.width, o.params.height, &ref, msg) != 0) {
         cli_error("%s", msg);

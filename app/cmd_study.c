@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/scene_file.h"
 #include "cli.h"
 #include "core/check.h"
 #include "io/image_io.h"
@@ -353,7 +354,7 @@ int cmd_study(int argc, char **argv)
         return EXIT_USAGE;
     }
     struct scene s;
-    if (scene_create_builtin(o.scene, &s, msg) != 0) {
+    if (scene_load(o.scene, &s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }

@@ -1,5 +1,6 @@
 /* bench_common.c: what the benchmarks share: loading a built-in scene and rendering a converged
  * reference with pt. Must never be run by the tests. */
+#include "scene/scene_file.h"
 #include "bench_common.h"
 
 #include <stdio.h>
@@ -12,7 +13,7 @@ struct scene bench_load_scene(const char *name)
 {
     struct scene s;
     char msg[RESTIR_MSG_LEN];
-    if (scene_create_builtin(name, &s, msg) != 0) {
+    if (scene_load(name, &s, msg) != 0) {
         fprintf(stderr, "restir_bench: %s\n", msg);
         exit(1);
     }

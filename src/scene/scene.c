@@ -2,6 +2,7 @@
  * table, and releasing it. Must never include embree headers (scene_rt.c owns the back end). */
 #include "scene.h"
 
+#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,8 +43,42 @@ int scene_add_material(struct scene_builder *b, struct material m)
 
 int scene_new_object(struct scene_builder *b) { return b->s->num_objects++; }
 
+int scene_add_texture(struct scene_builder *b, struct texture t)
+{
+    struct scene *s = b->s;
+    if (s->num_textures == b->cap_textures) {
+        b->cap_textures = b->cap_textures ? 2 * b->cap_textures : 8;
+        s->textures = grow_to(s->textures, b->cap_textures, sizeof(*s->textures));
+    }
+    s->textures[s->num_textures++] = t;
+    return s->num_textures;
+}
+
+void scene_set_last_uvs(struct scene_builder *b, const float uv[6])
+{
+    struct scene *s = b->s;
+    if (!s->uv) /* first UVs: every earlier vertex gets (0, 0) */
+        s->uv = xcalloc(2 * (size_t)b->cap_verts, sizeof(float));
+    memcpy(s->uv + 2 * (size_t)(s->num_verts - 3), uv, 6 * sizeof(float));
+}
+
+/* Appends a record when recording and this is an outermost shape call (a box's quads and a quad's
+ * triangles are not recorded again); every shape function brackets its work with depth. */
+static void record_shape(struct scene_builder *b, struct scene_shape_record r)
+{
+    if (!b->record || b->depth > 0)
+        return;
+    if (b->num_records == b->cap_records) {
+        b->cap_records = b->cap_records ? 2 * b->cap_records : 64;
+        b->records = grow_to(b->records, b->cap_records, sizeof(*b->records));
+    }
+    b->records[b->num_records++] = r;
+}
+
 void scene_add_triangle(struct scene_builder *b, vec3 a, vec3 c, vec3 d, int material, int object)
 {
+    record_shape(b, (struct scene_shape_record){.kind = SHAPE_TRIANGLE, .p = {a, c, d}, .material = material,
+                                                .object = object});
     struct scene *s = b->s;
     if (s->num_tris == b->cap_tris) {
         b->cap_tris = b->cap_tris ? 2 * b->cap_tris : 256;
@@ -52,8 +87,13 @@ void scene_add_triangle(struct scene_builder *b, vec3 a, vec3 c, vec3 d, int mat
         s->tri_object = grow_to(s->tri_object, b->cap_tris, sizeof(int));
     }
     if (s->num_verts + 3 > b->cap_verts) {
+        int old_cap = b->cap_verts;
         b->cap_verts = b->cap_verts ? 2 * b->cap_verts : 768;
         s->verts = grow_to(s->verts, b->cap_verts, sizeof(*s->verts));
+        if (s->uv) {
+            s->uv = grow_to(s->uv, 2 * b->cap_verts, sizeof(float));
+            memset(s->uv + 2 * (size_t)old_cap, 0, 2 * sizeof(float) * (size_t)(b->cap_verts - old_cap));
+        }
     }
     uint32_t base = (uint32_t)s->num_verts;
     s->verts[s->num_verts++] = a;
@@ -68,8 +108,12 @@ void scene_add_triangle(struct scene_builder *b, vec3 a, vec3 c, vec3 d, int mat
 
 void scene_add_quad(struct scene_builder *b, vec3 a, vec3 c, vec3 d, vec3 e, int material, int object)
 {
+    record_shape(b, (struct scene_shape_record){.kind = SHAPE_QUAD, .p = {a, c, d, e}, .material = material,
+                                                .object = object});
+    b->depth++;
     scene_add_triangle(b, a, c, d, material, object);
     scene_add_triangle(b, a, d, e, material, object);
+    b->depth--;
 }
 
 /* Emits the six outward faces of the box spanned by the 8 corners
@@ -93,6 +137,8 @@ static void add_box_corners(struct scene_builder *b, const vec3 corner[8], int m
 void scene_add_box_rotated_y(struct scene_builder *b, vec3 lo, vec3 hi, float angle_rad, int material,
                              int object)
 {
+    record_shape(b, (struct scene_shape_record){.kind = SHAPE_BOX, .p = {lo, hi}, .f = angle_rad,
+                                                .material = material, .object = object});
     vec3 center = v3_scale(v3_add(lo, hi), 0.5f);
     float cs = cosf(angle_rad), sn = sinf(angle_rad);
     vec3 corner[8];
@@ -101,7 +147,9 @@ void scene_add_box_rotated_y(struct scene_builder *b, vec3 lo, vec3 hi, float an
         vec3 d = v3_sub(p, center);
         corner[i] = v3_add(center, v3(cs * d.x + sn * d.z, d.y, -sn * d.x + cs * d.z));
     }
+    b->depth++;
     add_box_corners(b, corner, material, object);
+    b->depth--;
 }
 
 void scene_add_box(struct scene_builder *b, vec3 lo, vec3 hi, int material, int object)
@@ -112,6 +160,10 @@ void scene_add_box(struct scene_builder *b, vec3 lo, vec3 hi, int material, int 
 void scene_add_sphere(struct scene_builder *b, vec3 center, float radius, int segments, int inward_facing,
                       int material, int object)
 {
+    record_shape(b, (struct scene_shape_record){.kind = SHAPE_SPHERE, .p = {center}, .f = radius,
+                                                .segments = segments, .inward_facing = inward_facing,
+                                                .material = material, .object = object});
+    b->depth++;
     int rings = segments / 2 > 2 ? segments / 2 : 2;
     for (int i = 0; i < rings; i++) {
         float t0 = RESTIR_PI * (float)i / (float)rings, t1 = RESTIR_PI * (float)(i + 1) / (float)rings;
@@ -137,6 +189,7 @@ void scene_add_sphere(struct scene_builder *b, vec3 center, float radius, int se
             }
         }
     }
+    b->depth--;
 }
 
 static int derive_triangle_data(struct scene *s, char *msg)
@@ -219,10 +272,21 @@ int scene_builder_end(struct scene_builder *b, char *msg)
                      s->name, m);
             return -1;
         }
+        const int maps[3] = {mt->base_color_map, mt->metal_rough_map, mt->emission_map};
+        for (int k = 0; k < 3; k++) {
+            if (maps[k] < 0 || maps[k] > s->num_textures) {
+                snprintf(msg, RESTIR_MSG_LEN, "scene '%s': material %d names texture %d of %d", s->name, m, maps[k],
+                         s->num_textures);
+                return -1;
+            }
+        }
     }
     if (derive_triangle_data(s, msg) != 0 || build_emitters(s, msg) != 0)
         return -1;
-    return scene_rt_build(s, msg);
+    double t0 = omp_get_wtime();
+    int rc = scene_rt_build(s, msg);
+    s->bvh_ms = 1e3 * (omp_get_wtime() - t0);
+    return rc;
 }
 
 void scene_destroy(struct scene *s)
@@ -239,6 +303,10 @@ void scene_destroy(struct scene *s)
     free(s->emitters);
     free(s->materials);
     free(s->camera_path.keys);
+    free(s->uv);
+    for (int t = 0; t < s->num_textures; t++)
+        texture_fini(&s->textures[t]);
+    free(s->textures);
     if (s->num_emitters > 0)
         alias_table_fini(&s->emitter_table);
     memset(s, 0, sizeof(*s));
@@ -255,4 +323,30 @@ float scene_diagonal(const struct scene *s)
         hi = v3(fmaxf(hi.x, v.x), fmaxf(hi.y, v.y), fmaxf(hi.z, v.z));
     }
     return v3_length(v3_sub(hi, lo));
+}
+
+const struct material *scene_material_at(const struct scene *s, int tri, float b1, float b2, struct material *tmp)
+{
+    const struct material *m = &s->materials[s->tri_material[tri]];
+    if (!(m->base_color_map | m->metal_rough_map | m->emission_map))
+        return m;
+    float u = 0.0f, v = 0.0f; /* a mesh without UVs reads its textures at (0, 0), as glTF does */
+    if (s->uv) {
+        const float *uv = s->uv;
+        const uint32_t *ix = &s->indices[3 * tri];
+        float b0 = 1.0f - b1 - b2;
+        u = b0 * uv[2 * ix[0]] + b1 * uv[2 * ix[1]] + b2 * uv[2 * ix[2]];
+        v = b0 * uv[2 * ix[0] + 1] + b1 * uv[2 * ix[1] + 1] + b2 * uv[2 * ix[2] + 1];
+    }
+    *tmp = *m;
+    if (m->base_color_map)
+        tmp->base_color = v3_mul(m->base_color, texture_sample(&s->textures[m->base_color_map - 1], u, v));
+    if (m->metal_rough_map) {
+        vec3 t = texture_sample(&s->textures[m->metal_rough_map - 1], u, v);
+        tmp->roughness = m->roughness * t.y;
+        tmp->metallic = m->metallic * t.z;
+    }
+    if (m->emission_map)
+        tmp->emission = v3_mul(m->emission, texture_sample(&s->textures[m->emission_map - 1], u, v));
+    return tmp;
 }

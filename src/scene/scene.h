@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include "../core/sampling.h"
 #include "../core/vec3.h"
+#include "texture.h"
 
 /* glTF-style metallic/roughness material; emission is one-sided (front = geometric normal). */
 struct material {
@@ -17,6 +18,9 @@ struct material {
     vec3 emission;   /* emitted radiance, W / (m^2 sr) */
     int lambert_only; /* 1: no specular layer at all, a pure Lambertian of albedo base_color (what
                          analytic test scenes need; glTF's KHR_materials_specular factor 0) */
+    /* Texture maps, glTF 2.0 style (0: none, else scene.textures[map - 1]): base_color and
+     * emission are multiplied by the map's RGB; metallic and roughness by its B and G. */
+    int base_color_map, metal_rough_map, emission_map;
 };
 
 struct camera {
@@ -63,6 +67,9 @@ struct scene {
     int num_materials;
     struct material *materials;
     int num_objects;
+    float *uv;             /* 2 per vertex (assimp's convention, (0, 0) bottom-left), or NULL */
+    int num_textures;
+    struct texture *textures;
 
     /* Emitters: emissive triangles, chosen proportionally to power (alias table). */
     int num_emitters;
@@ -74,6 +81,7 @@ struct scene {
     struct camera_path camera_path; /* default moving camera */
 
     struct scene_rt *rt;
+    double bvh_ms; /* time scene_builder_end spent building the Embree scenes */
 };
 
 /* Surface point reconstructed from a triangle hit. */
@@ -89,14 +97,33 @@ struct surface_hit {
     int front; /* 1 when the ray hit the front (emitting) side */
 };
 
-/* Builder used by the built-in scenes and tests. */
+/* One call of the builder's shape functions, as scene export writes it back (scene_export.h):
+ * replaying the records through the same functions rebuilds the same triangles bit for bit. */
+enum scene_shape_kind { SHAPE_TRIANGLE, SHAPE_QUAD, SHAPE_BOX, SHAPE_SPHERE };
+struct scene_shape_record {
+    enum scene_shape_kind kind;
+    vec3 p[4];  /* triangle: 3 corners; quad: 4 corners; box: lo, hi; sphere: center */
+    float f;    /* box: rotation about y in radians; sphere: radius */
+    int segments, inward_facing; /* sphere */
+    int material, object;
+};
+
+/* Builder used by the built-in scenes, scene files and tests. */
 struct scene_builder {
     struct scene *s;
-    int cap_verts, cap_tris, cap_materials; /* capacities of the growing arrays */
+    int cap_verts, cap_tris, cap_materials, cap_textures; /* capacities of the growing arrays */
+    /* With record set, every outermost shape call is appended to records (the caller frees). */
+    int record, depth;
+    int num_records, cap_records;
+    struct scene_shape_record *records;
 };
 
 void scene_builder_begin(struct scene_builder *b, struct scene *s, const char *name);
 int scene_add_material(struct scene_builder *b, struct material m);
+/* Takes ownership of t; returns its map id for struct material (>= 1). */
+int scene_add_texture(struct scene_builder *b, struct texture t);
+/* The UVs (u0 v0 u1 v1 u2 v2) of the triangle added last. */
+void scene_set_last_uvs(struct scene_builder *b, const float uv[6]);
 int scene_new_object(struct scene_builder *b);
 void scene_add_triangle(struct scene_builder *b, vec3 a, vec3 c, vec3 d, int material, int object);
 /* Quad a-b-c-d (counter-clockwise seen from the front) as two triangles. */
@@ -114,6 +141,10 @@ void scene_add_sphere(struct scene_builder *b, vec3 center, float radius, int se
 int scene_builder_end(struct scene_builder *b, char *msg);
 
 void scene_destroy(struct scene *s);
+
+/* The material at a point of triangle tri (barycentrics b1, b2): its factors times its textures
+ * there. Returns the scene's own material when it has no textures, else fills and returns tmp. */
+const struct material *scene_material_at(const struct scene *s, int tri, float b1, float b2, struct material *tmp);
 
 /* Length of the diagonal of the scene's bounding box (scale for distance thresholds). */
 float scene_diagonal(const struct scene *s);
@@ -149,6 +180,10 @@ double scene_ray_replay(const struct scene *s, const struct ray_record *rays, si
 
 /* Built-in scenes (scenes_builtin.c). Returns 0, or -1 with msg naming the unknown scene. */
 int scene_create_builtin(const char *name, struct scene *s, char *msg);
+/* The same, also returning the builder's shape calls (malloc'ed, caller frees) for export. */
+int scene_create_builtin_recorded(const char *name, struct scene *s, struct scene_shape_record **records,
+                                  int *num_records, char *msg);
+int scene_is_builtin(const char *name);
 /* Names of built-in scenes, NULL terminated. */
 extern const char *const scene_builtin_names[];
 extern const char *const scene_builtin_descriptions[];

@@ -259,6 +259,42 @@ static void check_list_and_help(void)
     EXPECT(strstr(line, "BIASED") != NULL, "render --help does not call 1/M BIASED: '%s'", line);
 }
 
+/* Scene files: every command that takes --scene refuses a bad one before writing anything. */
+static void write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    EXPECT(f != NULL, "cannot write %s", path);
+    if (f) {
+        fputs(text, f);
+        fclose(f);
+    }
+}
+
+static void check_scene_files(void)
+{
+    char bad[2 * CLI_PATH_MAX], dark[2 * CLI_PATH_MAX], junk[2 * CLI_PATH_MAX], fmt[6 * CLI_PATH_MAX];
+    snprintf(bad, sizeof bad, "%s/typo.json", tmp);
+    write_text(bad, "{\"camera\": {\"position\": [0, 0, 1], \"look_at\": [0, 0, 0]}, \"shapes\": [],"
+                    " \"materails\": []}");
+    snprintf(dark, sizeof dark, "%s/dark.obj", tmp);
+    write_text(dark, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    snprintf(junk, sizeof junk, "%s/junk.ply", tmp);
+    write_text(junk, "ply\nformat nonsense\n");
+    snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --out '%%1$s'", bad);
+    expect_failure("JSON scene with an unknown key", fmt, 2, "typo.json", "materails");
+    snprintf(fmt, sizeof fmt, "compare --scene '%s' --methods pt --res 16x16 --out '%%1$s'", bad);
+    expect_failure("compare of a JSON scene with an unknown key", fmt, 2, "typo.json", "materails");
+    snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --out '%%1$s'", dark);
+    expect_failure("mesh file without emitters", fmt, 2, "dark.obj", "emissive");
+    snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --out '%%1$s'", junk);
+    expect_failure("broken mesh file", fmt, 2, "junk.ply", NULL);
+    expect_failure("missing scene file", "render --scene /nonexistent/room.json --method pt --res 16x16 --out '%1$s'",
+                   2, "/nonexistent/room.json", NULL);
+    expect_failure("scene info of a missing file", "scene info /nonexistent/room.gltf", 2, "/nonexistent/room.gltf",
+                   NULL);
+    expect_failure("export of an unknown scene", "scene export no-such-scene --out '%1$s'", 2, "no-such-scene", NULL);
+}
+
 int main(void)
 {
     if (!cli_bin() || cli_make_temp_dir(tmp) != 0) {
@@ -270,6 +306,7 @@ int main(void)
     check_compare();
     check_compare_specs();
     check_study();
+    check_scene_files();
     check_list_and_help();
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
     return test_finish();

@@ -3,6 +3,7 @@
  * (Welch t-test, Sidak-corrected) and over the whole image (pooled z). Runs follow the camera
  * path, so temporal reuse shifts paths between frames along fractional motion vectors.
  * Usage for experiments: render_test_pt_unbiased [SCENE RUNS key=value...]. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -49,6 +50,16 @@ int main(int argc, char **argv)
     const char *compat[] = {"shift=hybrid", "spatial.select=compat", "spatial.radius=8"};
     for (int sc = 0; sc < 2; sc++)
         check(scenes[sc], RUNS, compat, 3, 1);
+    /* A real asset nobody here wrote (assimp-testmodels' BoxTextured glTF, through a JSON scene that
+     * adds a ground, a wall and a lamp). */
+    char real[1024];
+    const char *data = getenv("RESTIR_TEST_DATA");
+    EXPECT(data != NULL, "RESTIR_TEST_DATA is not set (run through ctest)");
+    if (data) {
+        snprintf(real, sizeof real, "%s/scenes/box_textured.json", data);
+        const char *sets[] = {"shift=hybrid", "mis=pairwise"};
+        check(real, RUNS, sets, 2, 1);
+    }
     /* The test has power: the BIASED 1/M weights are caught on the same setup. */
     const char *uniform[] = {"shift=hybrid", "mis=1/M"};
     EXPECT(check("cornell", RUNS, uniform, 2, 0) > 0, "1/M weights were not detected as biased");

@@ -6,6 +6,7 @@
 
 #include <string.h>
 
+#include "scene/scene_file.h"
 #include "render/renderer.h"
 #include "test_util.h"
 #include "unbiased_util.h"
@@ -67,7 +68,7 @@ static inline int unbiased_check(const struct unbiased_case *c, const char *cons
 {
     struct scene s;
     char msg[512];
-    EXPECT(scene_create_builtin(c->scene, &s, msg) == 0, "%s", msg);
+    EXPECT(scene_load(c->scene, &s, msg) == 0, "%s", msg);
     struct render_params p;
     render_params_defaults(&p);
     p.width = c->width;

@@ -1,0 +1,111 @@
+/* cmd_scene.c: `restir scene info NAME|FILE` (what a scene holds and what loading it costs) and
+ * `restir scene export NAME --out DIR` (a built-in scene as an editable JSON scene file).
+ * Must never render. */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "core/check.h"
+#include "io/image_io.h"
+#include "io/scene_export.h"
+#include "scene/scene_file.h"
+
+static void scene_usage(FILE *out)
+{
+    fprintf(out, "usage: restir scene info NAME|FILE\n"
+                 "       restir scene export NAME --out DIR\n"
+                 "info: triangles, emitters, materials, textures, bounds, load and BVH build time of a\n"
+                 "      built-in scene or a scene file (.json, .gltf, .glb, .obj, .ply; docs/SCENES.md).\n"
+                 "export: writes the built-in scene NAME as DIR/NAME.json; rendering that file gives the\n"
+                 "      same images as the built-in scene, bit for bit with the same seed.\n");
+}
+
+static int scene_info(const char *name)
+{
+    struct scene s;
+    char msg[RESTIR_MSG_LEN];
+    double t0 = omp_get_wtime();
+    if (scene_load(name, &s, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
+    double total_ms = 1e3 * (omp_get_wtime() - t0);
+    vec3 lo = v3s(INFINITY), hi = v3s(-INFINITY);
+    for (int i = 0; i < s.num_verts; i++) {
+        vec3 v = s.verts[i];
+        lo = v3(fminf(lo.x, v.x), fminf(lo.y, v.y), fminf(lo.z, v.z));
+        hi = v3(fmaxf(hi.x, v.x), fmaxf(hi.y, v.y), fmaxf(hi.z, v.z));
+    }
+    printf("scene %s\n", s.name);
+    printf("triangles %d\nemitters %d\nmaterials %d\ntextures 0\nobjects %d\n", s.num_tris, s.num_emitters,
+           s.num_materials, s.num_objects);
+    printf("bounds [%g, %g, %g] .. [%g, %g, %g]\n", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
+    printf("camera position [%g, %g, %g] look_at [%g, %g, %g] vfov %g\n", s.camera.position.x,
+           s.camera.position.y, s.camera.position.z, s.camera.target.x, s.camera.target.y, s.camera.target.z,
+           s.camera.vfov_deg);
+    printf("camera_path keys %d\n", s.camera_path.num_keys);
+    printf("load_ms %.1f\nbvh_ms %.1f\n", total_ms - s.bvh_ms, s.bvh_ms);
+    scene_destroy(&s);
+    return 0;
+}
+
+static int scene_export(int argc, char **argv)
+{
+    const char *name = NULL, *out = NULL;
+    for (int i = 0; i < argc; i++) {
+        if (!strcmp(argv[i], "--out") && i + 1 < argc)
+            out = argv[++i];
+        else if (argv[i][0] != '-' && !name)
+            name = argv[i];
+        else {
+            cli_error("scene export: unexpected argument '%s'", argv[i]);
+            return EXIT_USAGE;
+        }
+    }
+    if (!name || !out) {
+        cli_error("scene export needs a built-in scene name and --out DIR");
+        return EXIT_USAGE;
+    }
+    struct scene s;
+    struct scene_shape_record *records = NULL;
+    int n = 0;
+    char msg[RESTIR_MSG_LEN];
+    if (!scene_is_builtin(name)) {
+        cli_error("scene export: '%s' is not a built-in scene (restir list); export writes built-in scenes as files",
+                  name);
+        return EXIT_USAGE;
+    }
+    if (scene_create_builtin_recorded(name, &s, &records, &n, msg) != 0) {
+        cli_error("scene export: %s", msg);
+        return EXIT_USAGE;
+    }
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s.json", out, name);
+    int rc = 0;
+    if (io_make_dirs(out, msg) != 0 || scene_export_json(&s, records, n, path, msg) != 0) {
+        cli_error("scene export: %s", msg);
+        rc = EXIT_RUNTIME;
+    } else {
+        printf("%s\n", path);
+    }
+    free(records);
+    scene_destroy(&s);
+    return rc;
+}
+
+int cmd_scene(int argc, char **argv)
+{
+    if (argc < 1 || !strcmp(argv[0], "--help") || !strcmp(argv[0], "-h")) {
+        scene_usage(argc < 1 ? stderr : stdout);
+        return argc < 1 ? EXIT_USAGE : 0;
+    }
+    if (!strcmp(argv[0], "info") && argc == 2)
+        return scene_info(argv[1]);
+    if (!strcmp(argv[0], "export"))
+        return scene_export(argc - 1, argv + 1);
+    cli_error("scene: expected 'info NAME|FILE' or 'export NAME --out DIR'");
+    scene_usage(stderr);
+    return EXIT_USAGE;
+}

@@ -1,0 +1,167 @@
+/* scene_export.c: a scene as our JSON format (docs/SCENES.md). The shapes are the builder calls
+ * that made the scene (consecutive triangles or quads of one material and object grouped into one
+ * shape), and every float is written with the fewest digits that read back to the same float, so
+ * scene_json_load rebuilds the scene bit for bit. Must never read scene files. */
+#include "io/scene_export.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/check.h"
+#include "io/image_io.h"
+
+/* Shortest %g form of f that the reader (strtod, then a float conversion) turns back into f. */
+static void format_float(float f, char *out, size_t len)
+{
+    for (int digits = 6; digits <= 9; digits++) {
+        snprintf(out, len, "%.*g", digits, (double)f);
+        if ((float)strtod(out, NULL) == f)
+            return;
+    }
+}
+
+static cJSON *number(float f)
+{
+    char buf[32];
+    format_float(f, buf, sizeof buf);
+    return cJSON_CreateRaw(buf);
+}
+
+static cJSON *vec(vec3 v)
+{
+    char x[32], y[32], z[32], buf[112];
+    format_float(v.x, x, sizeof x);
+    format_float(v.y, y, sizeof y);
+    format_float(v.z, z, sizeof z);
+    snprintf(buf, sizeof buf, "[%s, %s, %s]", x, y, z);
+    return cJSON_CreateRaw(buf);
+}
+
+static void material_name(int id, char *out, size_t len) { snprintf(out, len, "material_%d", id); }
+
+static cJSON *camera_json(const struct camera *c, const float *frame)
+{
+    cJSON *j = cJSON_CreateObject();
+    if (frame)
+        cJSON_AddItemToObject(j, "frame", number(*frame));
+    cJSON_AddItemToObject(j, "position", vec(c->position));
+    cJSON_AddItemToObject(j, "look_at", vec(c->target));
+    cJSON_AddItemToObject(j, "up", vec(c->up));
+    cJSON_AddItemToObject(j, "vfov", number(c->vfov_deg));
+    return j;
+}
+
+static cJSON *materials_json(const struct scene *s)
+{
+    cJSON *list = cJSON_CreateArray();
+    for (int m = 0; m < s->num_materials; m++) {
+        const struct material *mt = &s->materials[m];
+        cJSON *j = cJSON_CreateObject();
+        char name[32];
+        material_name(m, name, sizeof name);
+        cJSON_AddStringToObject(j, "name", name);
+        cJSON_AddItemToObject(j, "base_color", vec(mt->base_color));
+        cJSON_AddItemToObject(j, "metallic", number(mt->metallic));
+        cJSON_AddItemToObject(j, "roughness", number(mt->roughness));
+        if (v3_max_component(mt->emission) > 0.0f)
+            cJSON_AddItemToObject(j, "emission", vec(mt->emission));
+        if (mt->lambert_only)
+            cJSON_AddBoolToObject(j, "lambert", 1);
+        cJSON_AddItemToArray(list, j);
+    }
+    return list;
+}
+
+static cJSON *shape_head(const char *type, int material, int object)
+{
+    cJSON *j = cJSON_CreateObject();
+    char name[32];
+    material_name(material, name, sizeof name);
+    cJSON_AddStringToObject(j, "type", type);
+    cJSON_AddStringToObject(j, "material", name);
+    cJSON_AddNumberToObject(j, "object", object);
+    return j;
+}
+
+/* Records i .. returned index - 1: the run of triangles or quads sharing material and object. */
+static int polygon_run(const struct scene_shape_record *r, int n, int i, cJSON *shapes)
+{
+    const int quads = r[i].kind == SHAPE_QUAD, corners = quads ? 4 : 3;
+    cJSON *j = shape_head(quads ? "quads" : "triangles", r[i].material, r[i].object);
+    cJSON *list = cJSON_AddArrayToObject(j, quads ? "quads" : "vertices");
+    int k = i;
+    for (; k < n && r[k].kind == r[i].kind && r[k].material == r[i].material && r[k].object == r[i].object; k++) {
+        cJSON *target = list;
+        if (quads) {
+            target = cJSON_CreateArray();
+            cJSON_AddItemToArray(list, target);
+        }
+        for (int c = 0; c < corners; c++)
+            cJSON_AddItemToArray(target, vec(r[k].p[c]));
+    }
+    cJSON_AddItemToArray(shapes, j);
+    return k;
+}
+
+static cJSON *shapes_json(const struct scene_shape_record *r, int n)
+{
+    cJSON *shapes = cJSON_CreateArray();
+    for (int i = 0; i < n;) {
+        if (r[i].kind == SHAPE_TRIANGLE || r[i].kind == SHAPE_QUAD) {
+            i = polygon_run(r, n, i, shapes);
+            continue;
+        }
+        cJSON *j = shape_head(r[i].kind == SHAPE_BOX ? "box" : "sphere", r[i].material, r[i].object);
+        if (r[i].kind == SHAPE_BOX) {
+            cJSON_AddItemToObject(j, "min", vec(r[i].p[0]));
+            cJSON_AddItemToObject(j, "max", vec(r[i].p[1]));
+            if (r[i].f != 0.0f)
+                cJSON_AddItemToObject(j, "rotate_y_rad", number(r[i].f));
+        } else {
+            cJSON_AddItemToObject(j, "center", vec(r[i].p[0]));
+            cJSON_AddItemToObject(j, "radius", number(r[i].f));
+            cJSON_AddNumberToObject(j, "segments", r[i].segments);
+            if (r[i].inward_facing)
+                cJSON_AddBoolToObject(j, "inward", 1);
+        }
+        cJSON_AddItemToArray(shapes, j);
+        i++;
+    }
+    return shapes;
+}
+
+int scene_export_json(const struct scene *s, const struct scene_shape_record *records, int n, const char *path,
+                      char *msg)
+{
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "format", "restir-scene 1");
+    cJSON_AddStringToObject(root, "name", s->name);
+    cJSON_AddItemToObject(root, "camera", camera_json(&s->camera, NULL));
+    cJSON *path_keys = cJSON_AddArrayToObject(root, "camera_path");
+    for (int k = 0; k < s->camera_path.num_keys; k++)
+        cJSON_AddItemToArray(path_keys, camera_json(&s->camera_path.keys[k].cam, &s->camera_path.keys[k].frame));
+    cJSON_AddItemToObject(root, "materials", materials_json(s));
+    cJSON_AddItemToObject(root, "shapes", shapes_json(records, n));
+    char *text = cJSON_Print(root);
+    cJSON_Delete(root);
+    if (!text) {
+        snprintf(msg, RESTIR_MSG_LEN, "%s: out of memory formatting the scene", path);
+        return -1;
+    }
+    char tmp[4200];
+    io_temp_path(path, tmp, sizeof tmp);
+    FILE *f = fopen(tmp, "wb");
+    int ok = f && fputs(text, f) >= 0 && fputc('\n', f) != EOF;
+    if (f && fclose(f) != 0)
+        ok = 0;
+    free(text);
+    if (!ok) {
+        snprintf(msg, RESTIR_MSG_LEN, "%s: cannot write: %s", path, strerror(errno));
+        remove(tmp);
+        return -1;
+    }
+    return io_commit(tmp, path, msg);
+}

@@ -1,0 +1,16 @@
+/* scene_export.h: writing a scene as our JSON scene format (docs/SCENES.md), for
+ * `restir scene export`: a user starts from a built-in scene's file and edits it. */
+#ifndef RESTIR_IO_SCENE_EXPORT_H
+#define RESTIR_IO_SCENE_EXPORT_H
+
+#include "scene/scene.h"
+
+/* Writes scene s, built by the shape calls records[0 .. n-1] (scene_create_builtin_recorded), as
+ * a JSON scene at path (written to a temporary name, then renamed). Numbers are written with the
+ * fewest digits that read back to the same float, and the shapes are the builder calls that made
+ * the scene, so loading the file rebuilds the same triangles, materials and cameras bit for bit.
+ * Returns 0, or -1 with msg filled. */
+int scene_export_json(const struct scene *s, const struct scene_shape_record *records, int n, const char *path,
+                      char *msg);
+
+#endif

@@ -1,0 +1,861 @@
+/* scene_import.c: mesh files through assimp's C API (glTF 2.0 .gltf/.glb, .obj, .ply and whatever
+ * else assimp reads) into the scene builder: the node hierarchy's transforms, glTF
+ * metallic-roughness materials and the file's first camera. The only file that includes assimp
+ * headers. Never prints and never aborts on bad input: every problem goes into msg, naming the
+ * file. */
+#include "scene_file.h"
+#include "scene_import.h"
+
+#include <float.h>
+#include <limits.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <assimp/camera.h>
+#include <assimp/cimport.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <assimp/version.h>
+#include <cJSON.h>
+
+#include "../core/check.h"
+
+/* Deeper node hierarchies are refused rather than risking the stack (real assets have tens). */
+#define IMPORT_MAX_NODE_DEPTH 1024
+/* The builder's arrays grow by doubling int capacities (3 indices per triangle); this keeps every
+ * capacity far from INT_MAX. */
+#define IMPORT_MAX_TRIS 100000000
+
+/* ---- 4x4 transforms ------------------------------------------------------------------------ */
+
+/* Row-major 4x4 in double (assimp's convention and ours: p' = M p for column vectors). Composed
+ * in double so that a deep hierarchy does not accumulate float rounding; applied as an affine map
+ * (the bottom row of node and user transforms is (0 0 0 1) in every format we read). */
+typedef struct {
+    double m[16];
+} mat4d;
+
+static mat4d mat4d_identity(void)
+{
+    mat4d r = {{0}};
+    r.m[0] = r.m[5] = r.m[10] = r.m[15] = 1.0;
+    return r;
+}
+
+static mat4d mat4d_from_ai(const struct aiMatrix4x4 *a)
+{
+    const double v[16] = {a->a1, a->a2, a->a3, a->a4, a->b1, a->b2, a->b3, a->b4,
+                          a->c1, a->c2, a->c3, a->c4, a->d1, a->d2, a->d3, a->d4};
+    mat4d r;
+    memcpy(r.m, v, sizeof(v));
+    return r;
+}
+
+static mat4d mat4d_from_floats(const float *f)
+{
+    mat4d r;
+    for (int i = 0; i < 16; i++)
+        r.m[i] = f[i];
+    return r;
+}
+
+static mat4d mat4d_mul(const mat4d *a, const mat4d *b)
+{
+    mat4d r;
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) {
+            double s = 0.0;
+            for (int k = 0; k < 4; k++)
+                s += a->m[4 * i + k] * b->m[4 * k + j];
+            r.m[4 * i + j] = s;
+        }
+    return r;
+}
+
+/* Determinant of the linear part: negative means the transform mirrors, which turns
+ * counter-clockwise triangles clockwise. */
+static double mat4d_det3(const mat4d *t)
+{
+    const double *m = t->m;
+    return m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+           m[2] * (m[4] * m[9] - m[5] * m[8]);
+}
+
+/* double to float without undefined behaviour: C leaves out-of-range conversions undefined, so
+ * anything a float cannot hold becomes an infinity (or stays NaN), which the callers refuse. */
+static float to_float(double d)
+{
+    if (isnan(d))
+        return NAN;
+    if (d > (double)FLT_MAX)
+        return INFINITY;
+    if (d < -(double)FLT_MAX)
+        return -INFINITY;
+    return (float)d;
+}
+
+static vec3 mat4d_point(const mat4d *t, double x, double y, double z)
+{
+    const double *m = t->m;
+    return v3(to_float(m[0] * x + m[1] * y + m[2] * z + m[3]), to_float(m[4] * x + m[5] * y + m[6] * z + m[7]),
+              to_float(m[8] * x + m[9] * y + m[10] * z + m[11]));
+}
+
+static vec3 mat4d_dir(const mat4d *t, double x, double y, double z)
+{
+    const double *m = t->m;
+    return v3(to_float(m[0] * x + m[1] * y + m[2] * z), to_float(m[4] * x + m[5] * y + m[6] * z),
+              to_float(m[8] * x + m[9] * y + m[10] * z));
+}
+
+/* ---- small helpers ------------------------------------------------------------------------- */
+
+/* aiString as a C string; its length field is trusted only up to the buffer. */
+static void ai_string_copy(char *dst, size_t cap, const struct aiString *s)
+{
+    size_t n = s->length < MAXLEN ? s->length : MAXLEN - 1;
+    if (n >= cap)
+        n = cap - 1;
+    memcpy(dst, s->data, n);
+    dst[n] = '\0';
+}
+
+static int ai_string_equal(const struct aiString *a, const struct aiString *b)
+{
+    return a->length == b->length && a->length < MAXLEN && memcmp(a->data, b->data, a->length) == 0;
+}
+
+static int is_gltf_path(const char *path) { return scene_path_has_suffix(path, ".gltf") || scene_path_has_suffix(path, ".glb"); }
+
+/* ---- KHR_materials_emissive_strength for assimp 5.2 ----------------------------------------- */
+
+/* assimp 5.2 reads glTF's emissiveFactor (at most 1) but drops KHR_materials_emissive_strength;
+ * 5.3 reports it as AI_MATKEY_EMISSIVE_INTENSITY. Without the strength every glTF emitter would be
+ * capped at radiance 1, so when assimp reports no intensity we read the strength from the file's
+ * JSON ourselves. Materials are matched by name: assimp orders them by first use, not by their
+ * index in the file, so only uniquely named materials can be matched (exporters name them). */
+
+static uint32_t le32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* The JSON text of a .gltf (the whole file) or .glb (its first chunk, which the format requires
+ * to be JSON), malloc'ed, or NULL when it cannot be read. */
+static char *read_gltf_json(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *text = NULL;
+    long size = -1;
+    if (fseek(f, 0, SEEK_END) == 0)
+        size = ftell(f);
+    if (size <= 0 || size > (1L << 30) || fseek(f, 0, SEEK_SET) != 0)
+        goto done;
+    unsigned char head[20];
+    size_t got = fread(head, 1, sizeof head, f);
+    size_t start = 0, n = (size_t)size;
+    if (got == sizeof head && le32(head) == 0x46546C67u) { /* "glTF": binary container */
+        uint32_t chunk = le32(head + 12);
+        if (le32(head + 16) != 0x4E4F534Au || chunk > (uint32_t)size - 20u) /* "JSON" */
+            goto done;
+        start = 20;
+        n = chunk;
+    }
+    if (fseek(f, (long)start, SEEK_SET) != 0)
+        goto done;
+    text = malloc(n + 1);
+    if (!text)
+        goto done;
+    if (fread(text, 1, n, f) != n) {
+        free(text);
+        text = NULL;
+        goto done;
+    }
+    text[n] = '\0';
+    *len = n;
+done:
+    fclose(f);
+    return text;
+}
+
+/* KHR_materials_emissive_strength of the file's material named name, or 1 when the file has no
+ * uniquely named material of that name or that material has no strength. */
+static float gltf_strength_by_name(const cJSON *materials, const char *name)
+{
+    const cJSON *found = NULL;
+    int count = 0;
+    const cJSON *m;
+    cJSON_ArrayForEach(m, materials)
+    {
+        const cJSON *nm = cJSON_GetObjectItemCaseSensitive(m, "name");
+        if (cJSON_IsString(nm) && strcmp(nm->valuestring, name) == 0) {
+            found = m;
+            count++;
+        }
+    }
+    if (count != 1)
+        return 1.0f;
+    const cJSON *ext = cJSON_GetObjectItemCaseSensitive(found, "extensions");
+    const cJSON *es = cJSON_GetObjectItemCaseSensitive(ext, "KHR_materials_emissive_strength");
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(es, "emissiveStrength");
+    return cJSON_IsNumber(v) ? to_float(v->valuedouble) : 1.0f;
+}
+
+/* ---- header counts a file cannot hold ------------------------------------------------------ */
+
+/* assimp 5.2 trusts the element counts of PLY and OFF headers and allocates (and zero-fills) that
+ * many vertices and faces before reading any: the 309-byte invalid/OutOfMemory.off of
+ * assimp-testmodels, whose vertex count wraps to 1.3e9, costs 16 GB and half a minute, and a
+ * 200-byte PLY claiming 1e9 vertices 12 GB. Every element takes at least one byte of the file, so
+ * a count above the file's size is refused before assimp sees the file. */
+
+#define PRECHECK_HEAD 65536 /* how much of the file's start the headers are looked for in */
+
+/* Next whitespace-separated token of [*p, end), '#' comments skipped (OFF allows them). */
+static int next_token(const char **p, const char *end, const char **tok, size_t *len)
+{
+    const char *q = *p;
+    for (;;) {
+        while (q < end && (*q == ' ' || *q == '\t' || *q == '\r' || *q == '\n'))
+            q++;
+        if (q < end && *q == '#') {
+            while (q < end && *q != '\n')
+                q++;
+            continue;
+        }
+        break;
+    }
+    if (q >= end)
+        return 0;
+    *tok = q;
+    while (q < end && *q != ' ' && *q != '\t' && *q != '\r' && *q != '\n')
+        q++;
+    *len = (size_t)(q - *tok);
+    *p = q;
+    return 1;
+}
+
+/* A decimal token as a count, saturating: these headers overflow 32 bits on purpose. */
+static int token_count(const char *tok, size_t len, unsigned long long *out)
+{
+    unsigned long long v = 0;
+    if (len == 0)
+        return 0;
+    for (size_t i = 0; i < len; i++) {
+        if (tok[i] < '0' || tok[i] > '9')
+            return 0;
+        v = v > ULLONG_MAX / 10 - 1 ? ULLONG_MAX / 10 : v * 10 + (unsigned long long)(tok[i] - '0');
+    }
+    *out = v;
+    return 1;
+}
+
+/* The largest element count of a PLY header ("element <name> <count>" lines up to end_header;
+ * read line by line so that comment lines never count), 0 when none. */
+static unsigned long long ply_max_count(const char *p, const char *end)
+{
+    unsigned long long most = 0;
+    while (p < end) {
+        const char *eol = memchr(p, '\n', (size_t)(end - p));
+        const char *line_end = eol ? eol : end, *q = p, *tok;
+        size_t len;
+        if (next_token(&q, line_end, &tok, &len)) {
+            unsigned long long n;
+            if (len == 10 && memcmp(tok, "end_header", 10) == 0)
+                break;
+            if (len == 7 && memcmp(tok, "element", 7) == 0 && next_token(&q, line_end, &tok, &len) &&
+                next_token(&q, line_end, &tok, &len) && token_count(tok, len, &n) && n > most)
+                most = n;
+        }
+        p = eol ? eol + 1 : end;
+    }
+    return most;
+}
+
+/* The larger of an OFF header's vertex and face counts ([ST][C][N][4][n]OFF [dim] nv nf ne), 0
+ * when the header is not of that form. */
+static unsigned long long off_max_count(const char *p, const char *end)
+{
+    const char *tok;
+    size_t len;
+    if (!next_token(&p, end, &tok, &len) || len < 3 || memcmp(tok + len - 3, "OFF", 3) != 0)
+        return 0;
+    unsigned long long nv, nf, dim;
+    const int has_dim = len >= 4 && tok[len - 4] == 'n'; /* nOFF: the dimension comes first */
+    if (has_dim && !(next_token(&p, end, &tok, &len) && token_count(tok, len, &dim)))
+        return 0;
+    if (!(next_token(&p, end, &tok, &len) && token_count(tok, len, &nv)))
+        return 0;
+    if (!(next_token(&p, end, &tok, &len) && token_count(tok, len, &nf)))
+        return nv;
+    return nv > nf ? nv : nf;
+}
+
+/* 0, or -1 with msg when a PLY or OFF header claims more elements than the file has bytes. Files
+ * that cannot be opened are left to assimp, which says why. */
+static int precheck_counts(const char *path, char *msg)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return 0;
+    long size = -1;
+    if (fseek(f, 0, SEEK_END) == 0)
+        size = ftell(f);
+    char *head = NULL;
+    size_t n = 0;
+    if (size > 0 && fseek(f, 0, SEEK_SET) == 0) {
+        head = xmalloc(PRECHECK_HEAD);
+        n = fread(head, 1, PRECHECK_HEAD, f);
+    }
+    fclose(f);
+    unsigned long long most = 0;
+    const char *kind = NULL;
+    if (n >= 4 && memcmp(head, "ply", 3) == 0 && (head[3] == '\n' || head[3] == '\r')) {
+        most = ply_max_count(head + 3, head + n);
+        kind = "PLY";
+    } else if (n > 0) {
+        most = off_max_count(head, head + n);
+        kind = "OFF";
+    }
+    free(head);
+    if (most > (unsigned long long)size) {
+        snprintf(msg, RESTIR_MSG_LEN, "%s: the %s header claims %llu elements, more than the file's %ld bytes can hold",
+                 path, kind, most, size);
+        return -1;
+    }
+    return 0;
+}
+
+/* ---- the import ---------------------------------------------------------------------------- */
+
+struct importer {
+    struct scene_builder *b;
+    const char *path;
+    const struct aiScene *ai;
+    int material;             /* >= 0: every triangle's material */
+    int object;               /* >= 0: every triangle's object */
+    int *builder_material;    /* per file material: builder id once used, else -1 */
+    int *override_material;   /* per file material: the override's builder id, else -1 */
+    cJSON *gltf;              /* the glTF JSON, parsed on first need (emissive strength) */
+    int gltf_tried;
+    vec3 *verts;              /* one mesh's vertices after the transform (scratch) */
+    unsigned cap_verts;
+    int added;                /* triangles added */
+    char *msg;
+};
+
+/* A float material property, or def when the file does not set it. */
+static float mat_float(const struct aiMaterial *m, const char *key, unsigned type, unsigned index, float def,
+                       int *present)
+{
+    ai_real v = 0;
+    unsigned int max = 1;
+    int ok = aiGetMaterialFloatArray(m, key, type, index, &v, &max) == aiReturn_SUCCESS && max == 1;
+    if (present)
+        *present = ok;
+    return ok ? (float)v : def;
+}
+
+static int mat_color(const struct aiMaterial *m, const char *key, unsigned type, unsigned index, vec3 *out)
+{
+    struct aiColor4D c;
+    if (aiGetMaterialColor(m, key, type, index, &c) != aiReturn_SUCCESS)
+        return 0;
+    *out = v3((float)c.r, (float)c.g, (float)c.b);
+    return 1;
+}
+
+static void material_name(const struct aiMaterial *m, char *out, size_t cap)
+{
+    struct aiString s;
+    if (aiGetMaterialString(m, AI_MATKEY_NAME, &s) == aiReturn_SUCCESS)
+        ai_string_copy(out, cap, &s);
+    else
+        snprintf(out, cap, "%s", "");
+}
+
+static float clamp01(float x) { return x < 0.0f ? 0.0f : x > 1.0f ? 1.0f : x; }
+
+/* Emission multiplier of file material idx: assimp's intensity (glTF emissive strength from 5.3
+ * on), else the strength read from the glTF JSON (assimp 5.2), else 1. */
+static float emissive_strength(struct importer *im, const struct aiMaterial *m, const char *name)
+{
+    int present;
+    float k = mat_float(m, AI_MATKEY_EMISSIVE_INTENSITY, 1.0f, &present);
+    if (present || !is_gltf_path(im->path) || !*name)
+        return k;
+    if (!im->gltf_tried) {
+        im->gltf_tried = 1;
+        size_t len = 0;
+        char *text = read_gltf_json(im->path, &len);
+        if (text)
+            im->gltf = cJSON_ParseWithLength(text, len);
+        free(text);
+    }
+    const cJSON *materials = cJSON_GetObjectItemCaseSensitive(im->gltf, "materials");
+    return cJSON_IsArray(materials) ? gltf_strength_by_name(materials, name) : 1.0f;
+}
+
+/* Our material for file material idx. glTF metallic-roughness factors map one to one (textures
+ * are ignored: their factors are what we render). For other formats: the diffuse colour, and a
+ * roughness from the Phong exponent Ns when there is no roughness: Beckmann alpha =
+ * sqrt(2 / (Ns + 2)) (Walter et al. 2007), used as GGX alpha, roughness = sqrt(alpha), so Ns 0 is
+ * fully rough and Ns 1000 gives 0.21. glTF's KHR_materials_pbrSpecularGlossiness (assimp reports
+ * its glossiness) becomes a dielectric with the diffuse colour and roughness 1 - glossiness: the
+ * metallic-roughness defaults that assimp also fills in (white metal) would be wrong. */
+static int make_material(struct importer *im, unsigned idx, struct material *out)
+{
+    const struct aiMaterial *m = im->ai->mMaterials[idx];
+    char name[256];
+    material_name(m, name, sizeof name);
+    vec3 base = v3s(0.8f);
+    float metallic, roughness;
+    int spec_gloss, has_rough, has_shin;
+    float gloss = mat_float(m, AI_MATKEY_GLOSSINESS_FACTOR, 0.0f, &spec_gloss);
+    if (spec_gloss) {
+        mat_color(m, AI_MATKEY_COLOR_DIFFUSE, &base);
+        metallic = 0.0f;
+        roughness = 1.0f - gloss;
+    } else {
+        if (!mat_color(m, AI_MATKEY_BASE_COLOR, &base))
+            mat_color(m, AI_MATKEY_COLOR_DIFFUSE, &base);
+        metallic = mat_float(m, AI_MATKEY_METALLIC_FACTOR, 0.0f, NULL);
+        roughness = mat_float(m, AI_MATKEY_ROUGHNESS_FACTOR, 1.0f, &has_rough);
+        float ns = mat_float(m, AI_MATKEY_SHININESS, 0.0f, &has_shin);
+        if (!has_rough && has_shin && ns >= 0.0f)
+            roughness = sqrtf(sqrtf(2.0f / (ns + 2.0f)));
+    }
+    if (isnan(base.x) || isnan(base.y) || isnan(base.z) || isnan(metallic) || isnan(roughness)) {
+        snprintf(im->msg, RESTIR_MSG_LEN, "%s: material '%s': base colour, metallic or roughness is NaN", im->path,
+                 name);
+        return -1;
+    }
+    vec3 emission = v3s(0.0f);
+    mat_color(m, AI_MATKEY_COLOR_EMISSIVE, &emission);
+    if (v3_max_component(emission) > 0.0f)
+        emission = v3_scale(emission, emissive_strength(im, m, name));
+    if (!v3_is_finite(emission) || emission.x < 0.0f || emission.y < 0.0f || emission.z < 0.0f) {
+        snprintf(im->msg, RESTIR_MSG_LEN, "%s: material '%s': emission (%g %g %g) is NaN, infinite or negative",
+                 im->path, name, (double)emission.x, (double)emission.y, (double)emission.z);
+        return -1;
+    }
+    *out = (struct material){.base_color = v3(clamp01(base.x), clamp01(base.y), clamp01(base.z)), .metallic = clamp01(metallic), .roughness = clamp01(roughness), .emission = emission, .lambert_only = 0};
+    return 0;
+}
+
+/* Builder material for a triangle of a mesh using file material idx (added on first use, so
+ * materials no triangle uses never reach the scene). */
+static int triangle_material(struct importer *im, const struct aiMesh *mesh, unsigned mesh_index, int *id)
+{
+    if (im->material >= 0) {
+        *id = im->material;
+        return 0;
+    }
+    unsigned idx = mesh->mMaterialIndex;
+    if (idx >= im->ai->mNumMaterials || !im->ai->mMaterials[idx]) {
+        snprintf(im->msg, RESTIR_MSG_LEN, "%s: mesh %u uses material %u, the file has %u", im->path, mesh_index,
+                 idx, im->ai->mNumMaterials);
+        return -1;
+    }
+    if (im->override_material[idx] >= 0) {
+        *id = im->override_material[idx];
+        return 0;
+    }
+    if (im->builder_material[idx] < 0) {
+        struct material mt;
+        if (make_material(im, idx, &mt) != 0)
+            return -1;
+        im->builder_material[idx] = scene_add_material(im->b, mt);
+    }
+    *id = im->builder_material[idx];
+    return 0;
+}
+
+/* Zero-area triangles (real assets have a few) are skipped: scene_builder_end would accept them
+ * (derive_triangle_data gives them area 0 and a made-up normal, they never emit, Embree ignores
+ * them) but they add nothing. Also skipped: triangles so thin that the normal computed the way
+ * scene.c computes it is not of unit length (underflow). Returns 1 to skip, 0 to keep, -1 when
+ * the area overflows float (coordinates near FLT_MAX), which no normal survives. */
+static int triangle_degenerate(vec3 a, vec3 c, vec3 d)
+{
+    vec3 n = v3_cross(v3_sub(c, a), v3_sub(d, a));
+    float len = v3_length(n);
+    if (isnan(len) || isinf(len))
+        return -1;
+    if (!(len > 0.0f))
+        return 1;
+    return fabsf(v3_length(v3_scale(n, 1.0f / len)) - 1.0f) > 1e-3f;
+}
+
+/* Appends the triangles of mesh mesh_index placed by transform t. *object is the node's object
+ * id, made on its first triangle. */
+static int add_mesh(struct importer *im, unsigned mesh_index, const mat4d *t, int *object)
+{
+    const struct aiMesh *mesh = im->ai->mMeshes[mesh_index];
+    if (!mesh)
+        return 0;
+    char mname[256];
+    ai_string_copy(mname, sizeof mname, &mesh->mName);
+    if (mesh->mNumFaces > 0 && (!mesh->mFaces || !mesh->mVertices)) {
+        snprintf(im->msg, RESTIR_MSG_LEN, "%s: mesh %u ('%s') has faces but no vertex or face data", im->path,
+                 mesh_index, mname);
+        return -1;
+    }
+    if (mesh->mNumVertices > im->cap_verts) {
+        free(im->verts);
+        im->cap_verts = mesh->mNumVertices;
+        im->verts = xmalloc(sizeof(vec3) * im->cap_verts);
+    }
+    for (unsigned v = 0; v < mesh->mNumVertices; v++) {
+        const struct aiVector3D *p = &mesh->mVertices[v];
+        im->verts[v] = mat4d_point(t, p->x, p->y, p->z);
+    }
+    const int flip = mat4d_det3(t) < 0.0; /* a mirror: swap two corners so fronts stay fronts */
+    for (unsigned f = 0; f < mesh->mNumFaces; f++) {
+        const struct aiFace *face = &mesh->mFaces[f];
+        if (face->mNumIndices != 3 || !face->mIndices)
+            continue; /* points and lines (SortByPType keeps them apart; Triangulate left no polygons) */
+        vec3 p[3];
+        for (int k = 0; k < 3; k++) {
+            unsigned i = face->mIndices[k];
+            if (i >= mesh->mNumVertices) {
+                snprintf(im->msg, RESTIR_MSG_LEN, "%s: mesh %u ('%s'): face %u uses vertex %u of %u", im->path,
+                         mesh_index, mname, f, i, mesh->mNumVertices);
+                return -1;
+            }
+            p[k] = im->verts[i];
+            if (!v3_is_finite(p[k])) {
+                snprintf(im->msg, RESTIR_MSG_LEN,
+                         "%s: mesh %u ('%s'): vertex %u is not finite after the transform (%g %g %g)", im->path,
+                         mesh_index, mname, i, (double)p[k].x, (double)p[k].y, (double)p[k].z);
+                return -1;
+            }
+        }
+        if (flip) {
+            vec3 tmp = p[1];
+            p[1] = p[2];
+            p[2] = tmp;
+        }
+        int dg = triangle_degenerate(p[0], p[1], p[2]);
+        if (dg < 0) {
+            snprintf(im->msg, RESTIR_MSG_LEN, "%s: mesh %u ('%s'): face %u is too large (its area overflows float)",
+                     im->path, mesh_index, mname, f);
+            return -1;
+        }
+        if (dg > 0)
+            continue;
+        if (im->b->s->num_tris >= IMPORT_MAX_TRIS) {
+            snprintf(im->msg, RESTIR_MSG_LEN, "%s: more than %d triangles in the scene", im->path, IMPORT_MAX_TRIS);
+            return -1;
+        }
+        int mat;
+        if (triangle_material(im, mesh, mesh_index, &mat) != 0)
+            return -1;
+        if (*object < 0)
+            *object = im->object >= 0 ? im->object : scene_new_object(im->b);
+        scene_add_triangle(im->b, p[0], p[1], p[2], mat, *object);
+        im->added++;
+    }
+    return 0;
+}
+
+/* Depth-first over the node tree, parent transform first (p' = xform * root * ... * node * p).
+ * One object per node that holds meshes: assimp splits a glTF mesh into one aiMesh per primitive
+ * (per material), and an OBJ group likewise, and those are parts of one object; a mesh placed by
+ * two nodes is two objects. */
+static int walk_nodes(struct importer *im, const struct aiNode *node, const mat4d *parent, int depth)
+{
+    if (depth > IMPORT_MAX_NODE_DEPTH) {
+        snprintf(im->msg, RESTIR_MSG_LEN, "%s: node hierarchy deeper than %d levels", im->path,
+                 IMPORT_MAX_NODE_DEPTH);
+        return -1;
+    }
+    mat4d local = mat4d_from_ai(&node->mTransformation);
+    mat4d t = mat4d_mul(parent, &local);
+    int object = -1;
+    for (unsigned k = 0; k < node->mNumMeshes; k++) {
+        unsigned mi = node->mMeshes ? node->mMeshes[k] : im->ai->mNumMeshes;
+        if (mi >= im->ai->mNumMeshes) {
+            snprintf(im->msg, RESTIR_MSG_LEN, "%s: a node uses mesh %u, the file has %u", im->path, mi,
+                     im->ai->mNumMeshes);
+            return -1;
+        }
+        if (add_mesh(im, mi, &t, &object) != 0)
+            return -1;
+    }
+    for (unsigned c = 0; c < node->mNumChildren; c++)
+        if (node->mChildren && node->mChildren[c] && walk_nodes(im, node->mChildren[c], &t, depth + 1) != 0)
+            return -1;
+    return 0;
+}
+
+/* Maps every override to the file materials of its name; a name no file material has is an
+ * error (a typo would otherwise silently keep the file's material). */
+static int resolve_overrides(struct importer *im, const struct scene_material_override *ov, int n)
+{
+    const int nm = (int)im->ai->mNumMaterials;
+    for (int i = 0; i < n; i++) {
+        const char *want = ov[i].file_name ? ov[i].file_name : "";
+        if (ov[i].material < 0 || ov[i].material >= im->b->s->num_materials) {
+            snprintf(im->msg, RESTIR_MSG_LEN, "%s: material override '%s': material %d does not exist", im->path,
+                     want, ov[i].material);
+            return -1;
+        }
+        int found = 0;
+        for (int j = 0; j < nm; j++) {
+            char name[MAXLEN];
+            if (!im->ai->mMaterials[j])
+                continue;
+            material_name(im->ai->mMaterials[j], name, sizeof name);
+            if (strcmp(name, want) == 0) {
+                if (im->override_material[j] < 0)
+                    im->override_material[j] = ov[i].material;
+                found = 1;
+            }
+        }
+        if (!found) {
+            snprintf(im->msg, RESTIR_MSG_LEN, "%s: material override '%s' matches no material of the file",
+                     im->path, want);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* scene_import_mesh, and for scene_import_file also the aiScene itself (*keep, on success only;
+ * the caller releases it) for its camera. */
+static int import_mesh(struct scene_builder *b, const char *path, const float *xform, int material,
+                       const struct scene_material_override *overrides, int num_overrides, int object, char *msg,
+                       const struct aiScene **keep)
+{
+    if (material >= b->s->num_materials) {
+        snprintf(msg, RESTIR_MSG_LEN, "%s: material %d does not exist", path, material);
+        return -1;
+    }
+    if (precheck_counts(path, msg) != 0)
+        return -1;
+    /* Triangulate: polygons to triangles in their own winding. SortByPType: points and lines in
+     * meshes of their own. ValidateDataStructure: assimp's own consistency checks (indices in
+     * range, node tree well formed) before we read anything. Nothing that merges or reorders
+     * vertices (JoinIdenticalVertices, the optimizers): we keep the file's order. */
+    const struct aiScene *ai =
+        aiImportFile(path, aiProcess_Triangulate | aiProcess_ValidateDataStructure | aiProcess_SortByPType);
+    if (!ai) {
+        const char *e = aiGetErrorString();
+        snprintf(msg, RESTIR_MSG_LEN, "%s: %s", path, e && *e ? e : "assimp could not read the file");
+        return -1;
+    }
+    struct importer im = {.b = b, .path = path, .ai = ai, .material = material, .object = object, .msg = msg};
+    unsigned nm = ai->mNumMaterials;
+    im.builder_material = xmalloc(sizeof(int) * (nm ? nm : 1));
+    im.override_material = xmalloc(sizeof(int) * (nm ? nm : 1));
+    for (unsigned i = 0; i < nm; i++)
+        im.builder_material[i] = im.override_material[i] = -1;
+    int rc = 0;
+    if (nm > 0 && !ai->mMaterials) {
+        snprintf(msg, RESTIR_MSG_LEN, "%s: the material table is missing", path);
+        rc = -1;
+    }
+    if (rc == 0)
+        rc = resolve_overrides(&im, overrides, num_overrides);
+    if (rc == 0 && ai->mRootNode && ai->mMeshes) {
+        mat4d top = xform ? mat4d_from_floats(xform) : mat4d_identity();
+        rc = walk_nodes(&im, ai->mRootNode, &top, 0);
+    }
+    if (rc == 0 && im.added == 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "%s: no triangles", path);
+        rc = -1;
+    }
+    free(im.builder_material);
+    free(im.override_material);
+    free(im.verts);
+    cJSON_Delete(im.gltf);
+    if (rc == 0 && keep)
+        *keep = ai;
+    else
+        aiReleaseImport(ai);
+    return rc == 0 ? im.added : -1;
+}
+
+int scene_import_mesh(struct scene_builder *b, const char *path, const float *xform, int material,
+                      const struct scene_material_override *overrides, int num_overrides, int object, char *msg)
+{
+    return import_mesh(b, path, xform, material, overrides, num_overrides, object, msg, NULL);
+}
+
+/* ---- a file as a whole scene --------------------------------------------------------------- */
+
+/* World transform of the node named name (a camera's node), searched depth-first. */
+static int find_node(const struct aiNode *node, const struct aiString *name, const mat4d *parent, int depth,
+                     mat4d *out)
+{
+    if (depth > IMPORT_MAX_NODE_DEPTH)
+        return 0;
+    mat4d local = mat4d_from_ai(&node->mTransformation);
+    mat4d t = mat4d_mul(parent, &local);
+    if (ai_string_equal(&node->mName, name)) {
+        *out = t;
+        return 1;
+    }
+    for (unsigned c = 0; c < node->mNumChildren; c++)
+        if (node->mChildren && node->mChildren[c] && find_node(node->mChildren[c], name, &t, depth + 1, out))
+            return 1;
+    return 0;
+}
+
+/* Our full vertical field of view from assimp's mHorizontalFOV, which importers fill differently:
+ * documented as half the horizontal angle (what we assume for every other format), but the glTF
+ * importer stores yfov * aspect before 5.3 and the full horizontal angle
+ * 2 atan(tan(yfov / 2) aspect) from 5.3 on (assimp commit 39cbef1e2), both with aspect 1 when the
+ * file gives none; we invert exactly what the running library did. */
+static float camera_vfov_deg(const struct aiCamera *c, int gltf)
+{
+    double h = c->mHorizontalFOV, aspect = c->mAspect > 0.0f ? c->mAspect : 0.0, v;
+    if (gltf) {
+        double a = aspect > 0.0 ? aspect : 1.0;
+        int new_formula = aiGetVersionMajor() > 5 || (aiGetVersionMajor() == 5 && aiGetVersionMinor() >= 3);
+        v = new_formula ? 2.0 * atan(tan(0.5 * h) / a) : h / a;
+    } else {
+        double a = aspect > 0.0 ? aspect : 16.0 / 9.0;
+        v = 2.0 * atan(tan(h) / a);
+    }
+    double deg = v * 180.0 / 3.14159265358979323846;
+    return isfinite(deg) && deg > 1.0 && deg < 179.0 ? (float)deg : 45.0f;
+}
+
+/* An up vector not parallel to the view direction (camera_view_init needs their cross product). */
+static vec3 usable_up(vec3 forward, vec3 up)
+{
+    if (v3_is_finite(up) && v3_length(v3_cross(forward, v3_normalize(up))) > 1e-3f)
+        return v3_normalize(up);
+    return fabsf(forward.y) < 0.9f ? v3(0, 1, 0) : v3(0, 0, 1);
+}
+
+/* The file's first perspective camera through its node, looking at the depth of the bounds'
+ * centre. Orthographic cameras (no field of view) are passed over: we render pinhole only. */
+static int file_camera(const struct aiScene *ai, const char *path, vec3 centre, float diag, struct camera *out)
+{
+    for (unsigned i = 0; ai->mCameras && i < ai->mNumCameras; i++) {
+        const struct aiCamera *c = ai->mCameras[i];
+        if (!c || !(c->mHorizontalFOV > 0.0f) || c->mOrthographicWidth > 0.0f)
+            continue;
+        mat4d t = mat4d_identity(), top = mat4d_identity();
+        if (ai->mRootNode)
+            find_node(ai->mRootNode, &c->mName, &top, 0, &t);
+        /* A glTF camera sits at its node's origin looking down -z, +y up; assimp 5.2 also copies
+         * the node's translation into mPosition, which would apply it twice. */
+        struct aiVector3D p = c->mPosition, look = c->mLookAt, upv = c->mUp;
+        if (is_gltf_path(path)) {
+            p = (struct aiVector3D){0, 0, 0};
+            look = (struct aiVector3D){0, 0, -1};
+            upv = (struct aiVector3D){0, 1, 0};
+        }
+        vec3 pos = mat4d_point(&t, p.x, p.y, p.z);
+        vec3 fwd = v3_normalize(mat4d_dir(&t, look.x, look.y, look.z));
+        if (!v3_is_finite(pos) || !v3_is_finite(fwd) || !(v3_length(fwd) > 0.5f))
+            continue;
+        vec3 up = usable_up(fwd, mat4d_dir(&t, upv.x, upv.y, upv.z));
+        float depth = v3_dot(v3_sub(centre, pos), fwd);
+        if (!(depth > 1e-3f * diag))
+            depth = diag > 0.0f ? 0.5f * diag : 1.0f;
+        *out = (struct camera){pos, v3_madd(pos, fwd, depth), up, camera_vfov_deg(c, is_gltf_path(path))};
+        return 1;
+    }
+    return 0;
+}
+
+/* Bounding box of the scene's vertices (all of them finite by now). */
+static void scene_bounds(const struct scene *s, vec3 *lo, vec3 *hi)
+{
+    *lo = *hi = s->verts[0];
+    for (int i = 1; i < s->num_verts; i++) {
+        vec3 v = s->verts[i];
+        *lo = v3(fminf(lo->x, v.x), fminf(lo->y, v.y), fminf(lo->z, v.z));
+        *hi = v3(fmaxf(hi->x, v.x), fmaxf(hi->y, v.y), fmaxf(hi->z, v.z));
+    }
+}
+
+/* Without a camera in the file: from the +z side and a little above, looking at the centre, far
+ * enough that the bounding sphere fits a 45-degree vertical field of view. */
+static struct camera fitted_camera(vec3 centre, float diag)
+{
+    float radius = diag > 0.0f ? 0.5f * diag : 1.0f;
+    float dist = radius / sinf(0.5f * 45.0f * RESTIR_PI / 180.0f);
+    vec3 dir = v3_normalize(v3(0.0f, 0.3f, 1.0f));
+    return (struct camera){v3_madd(centre, dir, dist), centre, v3(0, 1, 0), 45.0f};
+}
+
+/* The default camera path: the camera at frame 0, moved sideways by a tenth of the bounds'
+ * diagonal at frame 64, still looking at the same point (a short dolly with parallax). */
+static void set_camera_path(struct scene *s, float diag)
+{
+    struct camera c = s->camera;
+    vec3 fwd = v3_normalize(v3_sub(c.target, c.position));
+    vec3 right = v3_normalize(v3_cross(fwd, c.up));
+    if (!(v3_length(right) > 0.5f))
+        right = v3(1, 0, 0);
+    struct camera moved = c;
+    moved.position = v3_madd(c.position, right, 0.1f * (diag > 0.0f ? diag : 1.0f));
+    s->camera_path.num_keys = 2;
+    s->camera_path.keys = xmalloc(2 * sizeof(*s->camera_path.keys));
+    s->camera_path.keys[0] = (struct camera_key){0.0f, c};
+    s->camera_path.keys[1] = (struct camera_key){64.0f, moved};
+}
+
+static int has_emissive_triangle(const struct scene *s)
+{
+    for (int t = 0; t < s->num_tris; t++)
+        if (v3_max_component(s->materials[s->tri_material[t]].emission) > 0.0f)
+            return 1;
+    return 0;
+}
+
+int scene_import_file(const char *path, struct scene *s, char *msg)
+{
+    char name[sizeof(s->name)];
+    scene_file_stem(path, name, sizeof name);
+    struct scene_builder b;
+    scene_builder_begin(&b, s, name);
+    const struct aiScene *ai = NULL;
+    if (import_mesh(&b, path, NULL, -1, NULL, 0, -1, msg, &ai) < 0) {
+        scene_destroy(s);
+        return -1;
+    }
+    int rc = 0;
+    if (!has_emissive_triangle(s)) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "%s: no emissive material; a mesh file on its own must bring its lights: write a JSON "
+                 "scene (docs/SCENES.md) that adds emitters around it",
+                 path);
+        rc = -1;
+    }
+    if (rc == 0) {
+        vec3 lo, hi;
+        scene_bounds(s, &lo, &hi);
+        vec3 centre = v3_scale(v3_add(lo, hi), 0.5f);
+        float diag = v3_length(v3_sub(hi, lo));
+        if (!file_camera(ai, path, centre, diag, &s->camera))
+            s->camera = fitted_camera(centre, diag);
+        set_camera_path(s, diag);
+    }
+    aiReleaseImport(ai);
+    if (rc == 0) {
+        char inner[RESTIR_MSG_LEN];
+        if (scene_builder_end(&b, inner) != 0) {
+            /* in two steps: the path first, then as much of the builder's message as fits */
+            snprintf(msg, RESTIR_MSG_LEN, "%s: ", path);
+            size_t used = strlen(msg);
+            snprintf(msg + used, RESTIR_MSG_LEN - used, "%s", inner);
+            rc = -1;
+        }
+    }
+    if (rc != 0)
+        scene_destroy(s);
+    return rc;
+}

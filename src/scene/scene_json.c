@@ -1,0 +1,700 @@
+/* scene_json.c: the JSON scene reader (format in docs/SCENES.md) and scene_load, the one entry
+ * point for built-in names and scene files. Shapes go through the same builder calls the built-in
+ * scenes make, so an exported built-in scene reads back bit for bit. Every error names the file and
+ * the key; nothing is half-built on failure. */
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../core/check.h"
+#include "scene_file.h"
+#include "scene_import.h"
+
+/* Largest scene file read into memory (the JSON itself; meshes it names are read by assimp). */
+#define SCENE_JSON_MAX_BYTES (1L << 30)
+/* Largest magnitude accepted for a coordinate or radiance: beyond it float math overflows. */
+#define SCENE_COORD_MAX 1e18
+
+struct reader {
+    const char *file;
+    char dir[1024]; /* directory of file, for relative mesh paths ("" = current) */
+    char *msg;
+    struct scene_builder *b;
+    cJSON *materials; /* the "materials" array (names resolve through it) */
+};
+
+/* vsnprintf into out: a message too long for the buffer is cut, never left unterminated. */
+static void msgf(char *out, size_t len, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(out, len, fmt, ap);
+    va_end(ap);
+}
+
+static int fail(struct reader *r, const char *key, const char *fmt, ...)
+{
+    char what[RESTIR_MSG_LEN];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    if (key && *key)
+        msgf(r->msg, RESTIR_MSG_LEN, "%s: %s: %s", r->file, key, what);
+    else
+        msgf(r->msg, RESTIR_MSG_LEN, "%s: %s", r->file, what);
+    return -1;
+}
+
+/* key of a child: "parent.name" or "parent[i]" */
+static void child_key(char *out, size_t len, const char *parent, const char *name, int index)
+{
+    int n = name ? snprintf(out, len, "%s%s%s", parent, *parent ? "." : "", name)
+                 : snprintf(out, len, "%s[%d]", parent, index);
+    if (n >= (int)len && len > 4)
+        memcpy(out + len - 4, "...", 4); /* a cut key says so */
+}
+
+/* An object whose keys must all be among allowed (NULL-terminated). */
+static int check_keys(struct reader *r, const cJSON *obj, const char *key, const char *const *allowed)
+{
+    if (!cJSON_IsObject(obj))
+        return fail(r, key, "must be an object");
+    for (const cJSON *c = obj->child; c; c = c->next) {
+        int known = 0;
+        for (int i = 0; allowed[i] && !known; i++)
+            known = strcmp(c->string, allowed[i]) == 0;
+        if (!known) {
+            char k[256];
+            child_key(k, sizeof k, key, c->string, 0);
+            return fail(r, k, "unknown key");
+        }
+    }
+    return 0;
+}
+
+static int get_number(struct reader *r, const cJSON *obj, const char *key, const char *name, int required,
+                      double lo, double hi, float fallback, float *out)
+{
+    char k[256];
+    child_key(k, sizeof k, key, name, 0);
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, name);
+    if (!v) {
+        if (required)
+            return fail(r, k, "missing");
+        *out = fallback;
+        return 0;
+    }
+    if (!cJSON_IsNumber(v))
+        return fail(r, k, "must be a number");
+    double d = v->valuedouble;
+    if (!isfinite(d) || d < lo || d > hi)
+        return fail(r, k, "%g is out of range [%g, %g]", d, lo, hi);
+    *out = (float)d;
+    return 0;
+}
+
+static int get_int(struct reader *r, const cJSON *obj, const char *key, const char *name, int lo, int hi,
+                   int fallback, int *out)
+{
+    float f;
+    if (get_number(r, obj, key, name, 0, lo, hi, (float)fallback, &f) != 0)
+        return -1;
+    if (f != floorf(f)) {
+        char k[256];
+        child_key(k, sizeof k, key, name, 0);
+        return fail(r, k, "must be an integer");
+    }
+    *out = (int)f;
+    return 0;
+}
+
+static int get_bool(struct reader *r, const cJSON *obj, const char *key, const char *name, int *out)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, name);
+    if (!v) {
+        *out = 0;
+        return 0;
+    }
+    if (!cJSON_IsBool(v)) {
+        char k[256];
+        child_key(k, sizeof k, key, name, 0);
+        return fail(r, k, "must be true or false");
+    }
+    *out = cJSON_IsTrue(v);
+    return 0;
+}
+
+/* A 3-vector from an array value v (key names it). */
+static int vec3_value(struct reader *r, const cJSON *v, const char *key, double lo, double hi, vec3 *out)
+{
+    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != 3)
+        return fail(r, key, "must be an array of 3 numbers");
+    float c[3];
+    int i = 0;
+    for (const cJSON *e = v->child; e; e = e->next, i++) {
+        if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble))
+            return fail(r, key, "must be an array of 3 finite numbers");
+        if (e->valuedouble < lo || e->valuedouble > hi)
+            return fail(r, key, "component %g is out of range [%g, %g]", e->valuedouble, lo, hi);
+        c[i] = (float)e->valuedouble;
+    }
+    *out = v3(c[0], c[1], c[2]);
+    return 0;
+}
+
+static int get_vec3(struct reader *r, const cJSON *obj, const char *key, const char *name, int required, double lo,
+                    double hi, vec3 fallback, vec3 *out)
+{
+    char k[256];
+    child_key(k, sizeof k, key, name, 0);
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, name);
+    if (!v) {
+        if (required)
+            return fail(r, k, "missing");
+        *out = fallback;
+        return 0;
+    }
+    return vec3_value(r, v, k, lo, hi, out);
+}
+
+static const cJSON *get_array(struct reader *r, const cJSON *obj, const char *key, const char *name, int required,
+                              int *ok)
+{
+    char k[256];
+    child_key(k, sizeof k, key, name, 0);
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, name);
+    *ok = 1;
+    if (!v) {
+        if (required)
+            *ok = fail(r, k, "missing") == 0;
+        return NULL;
+    }
+    if (!cJSON_IsArray(v)) {
+        *ok = fail(r, k, "must be an array") == 0;
+        return NULL;
+    }
+    return v;
+}
+
+/* ---- camera ---- */
+
+static const char *const camera_keys[] = {"position", "look_at", "up", "vfov", "frame", NULL};
+
+static int read_camera(struct reader *r, const cJSON *v, const char *key, int with_frame, struct camera *cam,
+                       float *frame)
+{
+    if (check_keys(r, v, key, camera_keys) != 0)
+        return -1;
+    if (!with_frame && cJSON_GetObjectItemCaseSensitive(v, "frame")) {
+        char k[256];
+        child_key(k, sizeof k, key, "frame", 0);
+        return fail(r, k, "only camera_path keys have a frame");
+    }
+    if (get_vec3(r, v, key, "position", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &cam->position) != 0 ||
+        get_vec3(r, v, key, "look_at", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &cam->target) != 0 ||
+        get_vec3(r, v, key, "up", 0, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3(0, 1, 0), &cam->up) != 0 ||
+        get_number(r, v, key, "vfov", 0, 1e-3, 179.0, 45.0f, &cam->vfov_deg) != 0)
+        return -1;
+    if (with_frame && get_number(r, v, key, "frame", 1, -1e9, 1e9, 0.0f, frame) != 0)
+        return -1;
+    vec3 view = v3_sub(cam->target, cam->position);
+    if (!(v3_length(view) > 0.0f))
+        return fail(r, key, "degenerate camera: position equals look_at");
+    vec3 side = v3_cross(view, cam->up);
+    if (!(v3_length(side) > 1e-6f * v3_length(view) * v3_length(cam->up)))
+        return fail(r, key, "degenerate camera: up is zero or parallel to the view direction");
+    return 0;
+}
+
+static int read_camera_path(struct reader *r, const cJSON *path)
+{
+    struct scene *s = r->b->s;
+    const int n = cJSON_GetArraySize(path);
+    if (n < 1)
+        return fail(r, "camera_path", "needs at least one key");
+    s->camera_path.keys = xcalloc((size_t)n, sizeof(struct camera_key));
+    int i = 0;
+    for (const cJSON *k = path->child; k; k = k->next, i++) {
+        char key[64];
+        child_key(key, sizeof key, "camera_path", NULL, i);
+        struct camera_key *ck = &s->camera_path.keys[i];
+        if (read_camera(r, k, key, 1, &ck->cam, &ck->frame) != 0)
+            return -1;
+        s->camera_path.num_keys = i + 1;
+        if (i > 0 && !(ck->frame > s->camera_path.keys[i - 1].frame))
+            return fail(r, key, "frame must be larger than the previous key's");
+    }
+    return 0;
+}
+
+/* ---- materials ---- */
+
+static const char *const material_keys[] = {"name", "base_color", "metallic", "roughness", "emission",
+                                            "emissive_strength", "lambert", NULL};
+
+static int read_materials(struct reader *r)
+{
+    int i = 0;
+    for (const cJSON *m = r->materials ? r->materials->child : NULL; m; m = m->next, i++) {
+        char key[64];
+        child_key(key, sizeof key, "materials", NULL, i);
+        if (check_keys(r, m, key, material_keys) != 0)
+            return -1;
+        const cJSON *name = cJSON_GetObjectItemCaseSensitive(m, "name");
+        if (!cJSON_IsString(name) || !*name->valuestring) {
+            char k[80];
+            child_key(k, sizeof k, key, "name", 0);
+            return fail(r, k, name ? "must be a non-empty string" : "missing");
+        }
+        int j = 0;
+        for (const cJSON *o = r->materials->child; o != m; o = o->next, j++) {
+            const cJSON *on = cJSON_GetObjectItemCaseSensitive(o, "name");
+            if (strcmp(on->valuestring, name->valuestring) == 0)
+                return fail(r, key, "material name '%s' already used by materials[%d]", name->valuestring, j);
+        }
+        struct material mt = {0};
+        float strength;
+        if (get_vec3(r, m, key, "base_color", 0, 0.0, 1.0, v3s(0.8f), &mt.base_color) != 0 ||
+            get_number(r, m, key, "metallic", 0, 0.0, 1.0, 0.0f, &mt.metallic) != 0 ||
+            get_number(r, m, key, "roughness", 0, 0.0, 1.0, 1.0f, &mt.roughness) != 0 ||
+            get_vec3(r, m, key, "emission", 0, 0.0, SCENE_COORD_MAX, v3s(0.0f), &mt.emission) != 0 ||
+            get_number(r, m, key, "emissive_strength", 0, 0.0, SCENE_COORD_MAX, 1.0f, &strength) != 0 ||
+            get_bool(r, m, key, "lambert", &mt.lambert_only) != 0)
+            return -1;
+        if (strength != 1.0f) /* KHR_materials_emissive_strength: a multiplier of the colour */
+            mt.emission = v3_scale(mt.emission, strength);
+        scene_add_material(r->b, mt);
+    }
+    return 0;
+}
+
+/* Material id of the value v (a material name); key names v. */
+static int material_ref(struct reader *r, const cJSON *v, const char *key, int *id)
+{
+    if (!cJSON_IsString(v))
+        return fail(r, key, "must be a material name");
+    int i = 0;
+    for (const cJSON *m = r->materials ? r->materials->child : NULL; m; m = m->next, i++) {
+        if (strcmp(cJSON_GetObjectItemCaseSensitive(m, "name")->valuestring, v->valuestring) == 0) {
+            *id = i;
+            return 0;
+        }
+    }
+    return fail(r, key, "no material named '%s' in \"materials\"", v->valuestring);
+}
+
+/* ---- shapes ---- */
+
+/* Row-major 4x4 from "matrix" or from translate * rotate (z * y * x, degrees) * scale. */
+static int read_transform(struct reader *r, const cJSON *t, const char *key, float m[16])
+{
+    static const char *const keys[] = {"matrix", "translate", "rotate", "scale", NULL};
+    if (check_keys(r, t, key, keys) != 0)
+        return -1;
+    const cJSON *mat = cJSON_GetObjectItemCaseSensitive(t, "matrix");
+    if (mat) {
+        if (t->child->next)
+            return fail(r, key, "\"matrix\" cannot be combined with translate, rotate or scale");
+        if (!cJSON_IsArray(mat) || cJSON_GetArraySize(mat) != 16)
+            return fail(r, key, "matrix must be an array of 16 numbers (row-major)");
+        int i = 0;
+        for (const cJSON *e = mat->child; e; e = e->next, i++) {
+            if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble) || fabs(e->valuedouble) > SCENE_COORD_MAX)
+                return fail(r, key, "matrix[%d] must be a finite number", i);
+            m[i] = (float)e->valuedouble;
+        }
+        return 0;
+    }
+    vec3 tr, rot, sc;
+    const cJSON *scale = cJSON_GetObjectItemCaseSensitive(t, "scale");
+    char k[256];
+    child_key(k, sizeof k, key, "scale", 0);
+    if (scale && cJSON_IsNumber(scale)) {
+        float f;
+        if (get_number(r, t, key, "scale", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, 1.0f, &f) != 0)
+            return -1;
+        sc = v3s(f);
+    } else if (get_vec3(r, t, key, "scale", 0, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(1.0f), &sc) != 0) {
+        return -1;
+    }
+    if (sc.x == 0.0f || sc.y == 0.0f || sc.z == 0.0f)
+        return fail(r, k, "a zero scale flattens the mesh");
+    if (get_vec3(r, t, key, "translate", 0, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0.0f), &tr) != 0 ||
+        get_vec3(r, t, key, "rotate", 0, -1e6, 1e6, v3s(0.0f), &rot) != 0)
+        return -1;
+    const double d2r = 3.14159265358979323846 / 180.0;
+    double cx = cos(rot.x * d2r), sx = sin(rot.x * d2r), cy = cos(rot.y * d2r), sy = sin(rot.y * d2r);
+    double cz = cos(rot.z * d2r), sz = sin(rot.z * d2r);
+    /* R = Rz Ry Rx */
+    double R[3][3] = {{cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx},
+                      {sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx},
+                      {-sy, cy * sx, cy * cx}};
+    const float s3[3] = {sc.x, sc.y, sc.z}, t3[3] = {tr.x, tr.y, tr.z};
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++)
+            m[4 * i + j] = (float)(R[i][j] * s3[j]);
+        m[4 * i + 3] = t3[i];
+    }
+    m[12] = m[13] = m[14] = 0.0f;
+    m[15] = 1.0f;
+    return 0;
+}
+
+static int read_mesh(struct reader *r, const cJSON *sh, const char *key, int material, int object)
+{
+    static const char *const keys[] = {"type", "file", "transform", "material", "materials", "object", NULL};
+    if (check_keys(r, sh, key, keys) != 0)
+        return -1;
+    char k[256];
+    child_key(k, sizeof k, key, "file", 0);
+    const cJSON *file = cJSON_GetObjectItemCaseSensitive(sh, "file");
+    if (!cJSON_IsString(file) || !*file->valuestring)
+        return fail(r, k, file ? "must be a file name" : "missing");
+    char path[2048];
+    if (file->valuestring[0] == '/' || !*r->dir)
+        snprintf(path, sizeof path, "%s", file->valuestring);
+    else
+        snprintf(path, sizeof path, "%s/%s", r->dir, file->valuestring);
+    float m[16];
+    const cJSON *t = cJSON_GetObjectItemCaseSensitive(sh, "transform");
+    child_key(k, sizeof k, key, "transform", 0);
+    if (t && read_transform(r, t, k, m) != 0)
+        return -1;
+    /* "materials": {"name in the file": "our material"} */
+    const cJSON *map = cJSON_GetObjectItemCaseSensitive(sh, "materials");
+    struct scene_material_override ov[64];
+    int nov = 0;
+    if (map) {
+        child_key(k, sizeof k, key, "materials", 0);
+        if (!cJSON_IsObject(map))
+            return fail(r, k, "must be an object mapping the file's material names to ours");
+        for (const cJSON *e = map->child; e; e = e->next) {
+            char ek[320];
+            child_key(ek, sizeof ek, k, e->string, 0);
+            if (nov == 64)
+                return fail(r, k, "at most 64 material overrides per mesh");
+            ov[nov].file_name = e->string;
+            if (material_ref(r, e, ek, &ov[nov].material) != 0)
+                return -1;
+            nov++;
+        }
+    }
+    char imsg[RESTIR_MSG_LEN];
+    if (scene_import_mesh(r->b, path, t ? m : NULL, material, ov, nov, object, imsg) < 0)
+        return fail(r, key, "%s", imsg);
+    return 0;
+}
+
+/* "vertices": [[x,y,z], ...] (triangles) or "quads": [[c0,c1,c2,c3], ...] */
+static int read_polygons(struct reader *r, const cJSON *sh, const char *key, int corners, int material, int object)
+{
+    static const char *const tri_keys[] = {"type", "vertices", "material", "object", NULL};
+    static const char *const quad_keys[] = {"type", "quads", "material", "object", NULL};
+    if (check_keys(r, sh, key, corners == 3 ? tri_keys : quad_keys) != 0)
+        return -1;
+    int ok;
+    const char *name = corners == 3 ? "vertices" : "quads";
+    const cJSON *list = get_array(r, sh, key, name, 1, &ok);
+    if (!ok)
+        return -1;
+    char k[256];
+    child_key(k, sizeof k, key, name, 0);
+    const int n = cJSON_GetArraySize(list);
+    if (n == 0 || (corners == 3 && n % 3 != 0))
+        return fail(r, k, corners == 3 ? "needs 3 vertices per triangle" : "is empty");
+    vec3 p[4];
+    int i = 0, c = 0;
+    for (const cJSON *e = list->child; e; e = e->next, i++) {
+        char ek[300];
+        child_key(ek, sizeof ek, k, NULL, i);
+        if (corners == 3) {
+            if (vec3_value(r, e, ek, -SCENE_COORD_MAX, SCENE_COORD_MAX, &p[c]) != 0)
+                return -1;
+            if (++c == 3) {
+                scene_add_triangle(r->b, p[0], p[1], p[2], material, object);
+                c = 0;
+            }
+            continue;
+        }
+        if (!cJSON_IsArray(e) || cJSON_GetArraySize(e) != 4)
+            return fail(r, ek, "a quad is an array of 4 corners");
+        int j = 0;
+        for (const cJSON *q = e->child; q; q = q->next, j++) {
+            char qk[320];
+            child_key(qk, sizeof qk, ek, NULL, j);
+            if (vec3_value(r, q, qk, -SCENE_COORD_MAX, SCENE_COORD_MAX, &p[j]) != 0)
+                return -1;
+        }
+        scene_add_quad(r->b, p[0], p[1], p[2], p[3], material, object);
+    }
+    return 0;
+}
+
+static int read_box(struct reader *r, const cJSON *sh, const char *key, int material, int object)
+{
+    static const char *const keys[] = {"type", "min", "max", "rotate_y_rad", "material", "object", NULL};
+    vec3 lo, hi;
+    float angle;
+    if (check_keys(r, sh, key, keys) != 0 ||
+        get_vec3(r, sh, key, "min", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &lo) != 0 ||
+        get_vec3(r, sh, key, "max", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &hi) != 0 ||
+        get_number(r, sh, key, "rotate_y_rad", 0, -1e6, 1e6, 0.0f, &angle) != 0)
+        return -1;
+    if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
+        return fail(r, key, "max must exceed min in x, y and z");
+    scene_add_box_rotated_y(r->b, lo, hi, angle, material, object);
+    return 0;
+}
+
+static int read_sphere(struct reader *r, const cJSON *sh, const char *key, int material, int object)
+{
+    static const char *const keys[] = {"type", "center", "radius", "segments", "inward", "material", "object", NULL};
+    vec3 c;
+    float radius;
+    int segments = 0, inward = 0;
+    if (check_keys(r, sh, key, keys) != 0 ||
+        get_vec3(r, sh, key, "center", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &c) != 0 ||
+        get_number(r, sh, key, "radius", 1, 0.0, SCENE_COORD_MAX, 1.0f, &radius) != 0 ||
+        get_int(r, sh, key, "segments", 3, 4096, 32, &segments) != 0 || get_bool(r, sh, key, "inward", &inward) != 0)
+        return -1;
+    if (!(radius > 0.0f)) {
+        char k[256];
+        child_key(k, sizeof k, key, "radius", 0);
+        return fail(r, k, "must be positive");
+    }
+    scene_add_sphere(r->b, c, radius, segments, inward, material, object);
+    return 0;
+}
+
+/* Largest explicit "object" id, so that shapes without one get fresh ids after it. */
+static int max_object_id(const cJSON *shapes)
+{
+    int max_id = -1;
+    for (const cJSON *sh = shapes->child; sh; sh = sh->next) {
+        const cJSON *o = cJSON_GetObjectItemCaseSensitive(sh, "object");
+        if (cJSON_IsNumber(o) && o->valuedouble >= 0 && o->valuedouble <= 1e6 && o->valuedouble > max_id)
+            max_id = (int)o->valuedouble;
+    }
+    return max_id;
+}
+
+static int read_shapes(struct reader *r, const cJSON *shapes)
+{
+    r->b->s->num_objects = max_object_id(shapes) + 1;
+    int i = 0;
+    for (const cJSON *sh = shapes->child; sh; sh = sh->next, i++) {
+        char key[64], k[96];
+        child_key(key, sizeof key, "shapes", NULL, i);
+        if (!cJSON_IsObject(sh))
+            return fail(r, key, "must be an object");
+        const cJSON *type = cJSON_GetObjectItemCaseSensitive(sh, "type");
+        child_key(k, sizeof k, key, "type", 0);
+        if (!cJSON_IsString(type))
+            return fail(r, k, type ? "must be a string" : "missing (mesh, triangles, quads, box or sphere)");
+        const int is_mesh = strcmp(type->valuestring, "mesh") == 0;
+        int object = -1, material = -1;
+        if (get_int(r, sh, key, "object", 0, 1000000, -1, &object) != 0)
+            return -1;
+        const cJSON *mv = cJSON_GetObjectItemCaseSensitive(sh, "material");
+        child_key(k, sizeof k, key, "material", 0);
+        if (mv && material_ref(r, mv, k, &material) != 0)
+            return -1;
+        if (!mv && !is_mesh)
+            return fail(r, k, "missing");
+        if (object < 0 && !is_mesh)
+            object = scene_new_object(r->b);
+        int rc;
+        if (is_mesh)
+            rc = read_mesh(r, sh, key, material, object);
+        else if (strcmp(type->valuestring, "triangles") == 0)
+            rc = read_polygons(r, sh, key, 3, material, object);
+        else if (strcmp(type->valuestring, "quads") == 0)
+            rc = read_polygons(r, sh, key, 4, material, object);
+        else if (strcmp(type->valuestring, "box") == 0)
+            rc = read_box(r, sh, key, material, object);
+        else if (strcmp(type->valuestring, "sphere") == 0)
+            rc = read_sphere(r, sh, key, material, object);
+        else {
+            child_key(k, sizeof k, key, "type", 0);
+            rc = fail(r, k, "unknown shape type '%s' (mesh, triangles, quads, box or sphere)", type->valuestring);
+        }
+        if (rc != 0)
+            return -1;
+        if (object >= r->b->s->num_objects)
+            r->b->s->num_objects = object + 1;
+    }
+    return 0;
+}
+
+/* ---- file ---- */
+
+static char *read_whole_file(const char *path, long *len, char *msg)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(msg, RESTIR_MSG_LEN, "%s: cannot open: %s", path, strerror(errno));
+        return NULL;
+    }
+    char *buf = NULL;
+    if (fseek(f, 0, SEEK_END) == 0 && (*len = ftell(f)) >= 0 && *len <= SCENE_JSON_MAX_BYTES &&
+        fseek(f, 0, SEEK_SET) == 0) {
+        buf = xmalloc((size_t)*len + 1);
+        if (fread(buf, 1, (size_t)*len, f) != (size_t)*len) {
+            free(buf);
+            buf = NULL;
+        }
+    }
+    fclose(f);
+    if (!buf)
+        snprintf(msg, RESTIR_MSG_LEN, "%s: cannot read (not a regular file, or over %ld bytes)", path,
+                 SCENE_JSON_MAX_BYTES);
+    else
+        buf[*len] = '\0';
+    return buf;
+}
+
+/* Line of the position where cJSON stopped parsing. */
+static int line_of(const char *text, const char *at)
+{
+    int line = 1;
+    for (const char *c = text; at && c < at && *c; c++)
+        line += *c == '\n';
+    return line;
+}
+
+void scene_file_stem(const char *path, char *out, size_t len)
+{
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    snprintf(out, len, "%s", base);
+    char *dot = strrchr(out, '.');
+    if (dot && dot != out)
+        *dot = '\0';
+    if (!out[0] && len > 5)
+        snprintf(out, len, "scene");
+}
+
+static const char *const top_keys[] = {"format", "name", "camera", "camera_path", "materials", "shapes", NULL};
+
+static int read_scene(struct reader *r, const cJSON *root)
+{
+    if (check_keys(r, root, "", top_keys) != 0)
+        return -1;
+    const cJSON *format = cJSON_GetObjectItemCaseSensitive(root, "format");
+    if (format && !(cJSON_IsString(format) && strcmp(format->valuestring, "restir-scene 1") == 0))
+        return fail(r, "format", "must be \"restir-scene 1\"");
+    const cJSON *name = cJSON_GetObjectItemCaseSensitive(root, "name");
+    if (name && !cJSON_IsString(name))
+        return fail(r, "name", "must be a string");
+    if (name)
+        snprintf(r->b->s->name, sizeof r->b->s->name, "%s", name->valuestring);
+    int ok;
+    r->materials = (cJSON *)get_array(r, root, "", "materials", 0, &ok);
+    if (!ok || read_materials(r) != 0)
+        return -1;
+    const cJSON *cam = cJSON_GetObjectItemCaseSensitive(root, "camera");
+    if (!cam)
+        return fail(r, "camera", "missing");
+    float unused;
+    if (read_camera(r, cam, "camera", 0, &r->b->s->camera, &unused) != 0)
+        return -1;
+    const cJSON *path = get_array(r, root, "", "camera_path", 0, &ok);
+    if (!ok || (path && read_camera_path(r, path) != 0))
+        return -1;
+    if (!path) { /* the path of a scene without one stands still */
+        r->b->s->camera_path.num_keys = 1;
+        r->b->s->camera_path.keys = xcalloc(1, sizeof(struct camera_key));
+        r->b->s->camera_path.keys[0].cam = r->b->s->camera;
+    }
+    const cJSON *shapes = get_array(r, root, "", "shapes", 1, &ok);
+    if (!ok || read_shapes(r, shapes) != 0)
+        return -1;
+    if (r->b->s->num_tris == 0)
+        return fail(r, "shapes", "no triangles");
+    int emissive = 0;
+    for (int t = 0; t < r->b->s->num_tris && !emissive; t++)
+        emissive = v3_max_component(r->b->s->materials[r->b->s->tri_material[t]].emission) > 0.0f;
+    if (!emissive)
+        return fail(r, "shapes", "no shape has an emissive material: add an emitter (a material with \"emission\")");
+    return 0;
+}
+
+int scene_json_parse(const char *text, size_t len, const char *file, const char *dir, struct scene *s, char *msg)
+{
+    struct reader r = {.file = file, .msg = msg};
+    snprintf(r.dir, sizeof r.dir, "%s", dir ? dir : "");
+    const char *end = NULL;
+    /* text[len] must be the NUL that require_null_terminated looks for, hence len + 1 */
+    cJSON *root = cJSON_ParseWithLengthOpts(text, len + 1, &end, 1);
+    if (!root)
+        return fail(&r, NULL, "invalid JSON at line %d", line_of(text, end ? end : cJSON_GetErrorPtr()));
+    char stem[64];
+    scene_file_stem(file, stem, sizeof stem);
+    struct scene_builder b;
+    scene_builder_begin(&b, s, stem);
+    r.b = &b;
+    int rc = read_scene(&r, root);
+    cJSON_Delete(root);
+    if (rc == 0 && scene_builder_end(&b, msg) != 0) {
+        char inner[RESTIR_MSG_LEN];
+        memcpy(inner, msg, sizeof inner);
+        msgf(msg, RESTIR_MSG_LEN, "%s: %s", file, inner);
+        rc = -1;
+    }
+    if (rc != 0)
+        scene_destroy(s);
+    return rc;
+}
+
+int scene_json_load(const char *path, struct scene *s, char *msg)
+{
+    long len = 0;
+    char *text = read_whole_file(path, &len, msg);
+    if (!text)
+        return -1;
+    char dir[1024] = "";
+    const char *slash = strrchr(path, '/');
+    if (slash)
+        snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    int rc = scene_json_parse(text, (size_t)len, path, dir, s, msg);
+    free(text);
+    return rc;
+}
+
+int scene_path_has_suffix(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), k = strlen(suffix);
+    if (n < k)
+        return 0;
+    for (size_t i = 0; i < k; i++) {
+        char c = s[n - k + i];
+        if (c >= 'A' && c <= 'Z')
+            c = (char)(c - 'A' + 'a');
+        if (c != suffix[i])
+            return 0;
+    }
+    return 1;
+}
+
+int scene_load(const char *name_or_path, struct scene *s, char *msg)
+{
+    if (scene_is_builtin(name_or_path))
+        return scene_create_builtin(name_or_path, s, msg);
+    FILE *f = fopen(name_or_path, "rb");
+    if (!f) {
+        if (!strchr(name_or_path, '/') && !strchr(name_or_path, '.'))
+            return scene_create_builtin(name_or_path, s, msg); /* names the built-in scenes */
+        snprintf(msg, RESTIR_MSG_LEN, "scene '%s': no built-in scene of that name and cannot open it as a file: %s",
+                 name_or_path, strerror(errno));
+        return -1;
+    }
+    fclose(f);
+    if (scene_path_has_suffix(name_or_path, ".json"))
+        return scene_json_load(name_or_path, s, msg);
+    return scene_import_file(name_or_path, s, msg);
+}

@@ -1,0 +1,112 @@
+/* texture.c: texture decoding (stb_image, the Debian libstb build) and bilinear lookup.
+ * Must never depend on materials or render code. */
+#include "texture.h"
+
+#include <math.h>
+#include <stb/stb_image.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../core/check.h"
+
+/* Largest texture accepted per side: beyond it the decode alone would not fit a workstation. */
+#define TEXTURE_MAX_SIDE 32768
+
+/* sRGB transfer function, inverse (IEC 61966-2-1). */
+static float srgb_to_linear(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+}
+
+/* Fills t from 8-bit texels with `channels` bytes each at the given byte offsets of R, G, B. */
+static void from_bytes(const unsigned char *px, int w, int h, int channels, const int rgb_at[3], int srgb,
+                       struct texture *t)
+{
+    float table[256];
+    for (int i = 0; i < 256; i++)
+        table[i] = srgb ? srgb_to_linear((float)i / 255.0f) : (float)i / 255.0f;
+    t->width = w;
+    t->height = h;
+    t->rgb = xmalloc(sizeof(float) * 3 * (size_t)w * (size_t)h);
+    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+        for (int c = 0; c < 3; c++)
+            t->rgb[3 * i + c] = table[px[(size_t)channels * i + (size_t)rgb_at[c]]];
+}
+
+static int decoded(unsigned char *px, int w, int h, int channels, int srgb, const char *name, struct texture *t,
+                   char *msg)
+{
+    if (!px) {
+        snprintf(msg, RESTIR_MSG_LEN, "texture %s: cannot decode: %s", name, stbi_failure_reason());
+        return -1;
+    }
+    if (w < 1 || h < 1 || w > TEXTURE_MAX_SIDE || h > TEXTURE_MAX_SIDE) {
+        snprintf(msg, RESTIR_MSG_LEN, "texture %s: %dx%d is out of range (1..%d per side)", name, w, h,
+                 TEXTURE_MAX_SIDE);
+        stbi_image_free(px);
+        return -1;
+    }
+    /* grey and grey-alpha images replicate their one channel */
+    const int grey[3] = {0, 0, 0}, colour[3] = {0, 1, 2};
+    from_bytes(px, w, h, channels, channels < 3 ? grey : colour, srgb, t);
+    stbi_image_free(px);
+    return 0;
+}
+
+int texture_load_file(const char *path, int srgb, struct texture *t, char *msg)
+{
+    memset(t, 0, sizeof(*t));
+    int w = 0, h = 0, n = 0;
+    unsigned char *px = stbi_load(path, &w, &h, &n, 0);
+    return decoded(px, w, h, n, srgb, path, t, msg);
+}
+
+int texture_load_memory(const unsigned char *data, int len, int srgb, const char *name, struct texture *t, char *msg)
+{
+    memset(t, 0, sizeof(*t));
+    int w = 0, h = 0, n = 0;
+    unsigned char *px = len > 0 ? stbi_load_from_memory(data, len, &w, &h, &n, 0) : NULL;
+    return decoded(px, w, h, n, srgb, name, t, msg);
+}
+
+void texture_from_bgra8(const unsigned char *bgra, int width, int height, int srgb, struct texture *t)
+{
+    const int order[3] = {2, 1, 0};
+    from_bytes(bgra, width, height, 4, order, srgb, t);
+}
+
+void texture_fini(struct texture *t)
+{
+    free(t->rgb);
+    memset(t, 0, sizeof(*t));
+}
+
+static vec3 texel(const struct texture *t, int x, int y)
+{
+    const float *p = t->rgb + 3 * ((size_t)y * (size_t)t->width + (size_t)x);
+    return v3(p[0], p[1], p[2]);
+}
+
+/* Wraps i into [0, n). */
+static int wrap(int i, int n)
+{
+    int r = i % n;
+    return r < 0 ? r + n : r;
+}
+
+vec3 texture_sample(const struct texture *t, float u, float v)
+{
+    if (!isfinite(u) || !isfinite(v))
+        return texel(t, 0, 0);
+    /* texel centres at (i + 0.5) / width; v = 0 is the bottom row, i.e. image row height - 1 */
+    float fx = (u - floorf(u)) * (float)t->width - 0.5f;
+    float fy = (1.0f - (v - floorf(v))) * (float)t->height - 0.5f;
+    float x0f = floorf(fx), y0f = floorf(fy);
+    float ax = fx - x0f, ay = fy - y0f;
+    int x0 = wrap((int)x0f, t->width), y0 = wrap((int)y0f, t->height);
+    int x1 = wrap(x0 + 1, t->width), y1 = wrap(y0 + 1, t->height);
+    vec3 top = v3_lerp(texel(t, x0, y0), texel(t, x1, y0), ax);
+    vec3 bottom = v3_lerp(texel(t, x0, y1), texel(t, x1, y1), ax);
+    return v3_lerp(top, bottom, ay);
+}

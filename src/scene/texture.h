@@ -1,0 +1,27 @@
+/* texture.h: images that modulate material factors (glTF 2.0 base colour, metallic-roughness and
+ * emissive textures), decoded once to linear float RGB and looked up bilinearly with repeat
+ * wrapping. UVs follow assimp's convention: (0, 0) is the image's bottom-left corner. */
+#ifndef RESTIR_SCENE_TEXTURE_H
+#define RESTIR_SCENE_TEXTURE_H
+
+#include "../core/vec3.h"
+
+struct texture {
+    int width, height;
+    float *rgb; /* width * height * 3, linear, row 0 = the image's top row */
+};
+
+/* Decodes an image file (PNG, JPEG, TGA, BMP, ... through stb_image). srgb: the file stores
+ * sRGB-encoded colour (glTF base colour and emissive textures) and is converted to linear; else
+ * values are linear (glTF metallic-roughness). Returns 0, or -1 with msg naming the file. */
+int texture_load_file(const char *path, int srgb, struct texture *t, char *msg);
+/* The same from an encoded image in memory (textures embedded in .glb files); name labels msg. */
+int texture_load_memory(const unsigned char *data, int len, int srgb, const char *name, struct texture *t, char *msg);
+/* An uncompressed image (assimp's embedded aiTexel array, BGRA bytes, width * height texels). */
+void texture_from_bgra8(const unsigned char *bgra, int width, int height, int srgb, struct texture *t);
+void texture_fini(struct texture *t);
+
+/* Bilinear lookup at (u, v), repeat wrapping. */
+vec3 texture_sample(const struct texture *t, float u, float v);
+
+#endif
