@@ -39,8 +39,11 @@ static int scene_info(const char *name)
         hi = v3(fmaxf(hi.x, v.x), fmaxf(hi.y, v.y), fmaxf(hi.z, v.z));
     }
     printf("scene %s\n", s.name);
-    printf("triangles %d\nemitters %d\nmaterials %d\ntextures 0\nobjects %d\n", s.num_tris, s.num_emitters,
-           s.num_materials, s.num_objects);
+    size_t texels = 0;
+    for (int t = 0; t < s.num_textures; t++)
+        texels += (size_t)s.textures[t].width * (size_t)s.textures[t].height;
+    printf("triangles %d\nemitters %d\nmaterials %d\ntextures %d (%.3g Mtexels)\nobjects %d\n", s.num_tris,
+           s.num_emitters, s.num_materials, s.num_textures, (double)texels * 1e-6, s.num_objects);
     printf("bounds [%g, %g, %g] .. [%g, %g, %g]\n", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
     printf("camera position [%g, %g, %g] look_at [%g, %g, %g] vfov %g\n", s.camera.position.x,
            s.camera.position.y, s.camera.position.z, s.camera.target.x, s.camera.target.y, s.camera.target.z,

@@ -72,7 +72,7 @@ long long gpt_pass(const struct scene *s, const struct shift_params *sp, const s
                     if (!scene_intersect(s, view->position, d, 0.0f, INFINITY, &hit))
                         continue;
                     if (s->tri_emitter[hit.tri] >= 0 && hit.front)
-                        Le = v3_add(Le, v3_scale(lights_radiance(s, hit.tri, v3_neg(d)), ctx.inv_spp));
+                        Le = v3_add(Le, v3_scale(lights_radiance(s, hit.tri, hit.b1, hit.b2, v3_neg(d)), ctx.inv_spp));
                     struct path_vertex x1 = path_vertex_from_hit(&hit, d);
                     ctx.rays += path_walk_run(s, &x1, ctx.trial.seed, p->max_bounces, p->rr_bounces, &walk,
                                               candidate, &ctx);

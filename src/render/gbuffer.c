@@ -94,7 +94,8 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
                         g->shading[i].valid = 0;
                     continue;
                 }
-                const struct material *m = &s->materials[h.material];
+                struct material textured;
+                const struct material *m = scene_material_at(s, h.tri, h.b1, h.b2, &textured);
                 g->valid[i] = 1;
                 g->position[i] = h.p;
                 g->normal[i] = h.ns;
@@ -106,7 +107,7 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
                 g->roughness[i] = m->roughness;
                 g->material[i] = h.material;
                 g->object[i] = h.object;
-                g->emission[i] = s->tri_emitter[h.tri] >= 0 ? lights_radiance(s, h.tri, v3_neg(dir)) : v3s(0.0f);
+                g->emission[i] = s->tri_emitter[h.tri] >= 0 ? lights_radiance(s, h.tri, h.b1, h.b2, v3_neg(dir)) : v3s(0.0f);
                 if (g->shading)
                     shading_point_init(&g->shading[i], m, h.p, h.ns, h.ng, view->position);
                 float qx, qy;

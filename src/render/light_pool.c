@@ -35,10 +35,10 @@ void light_pool_fini(struct light_pool *lp)
     memset(lp, 0, sizeof(*lp));
 }
 
-static void put(struct light_pool *lp, int i, const struct emitter *em, float b1, float b2)
+static void put(struct light_pool *lp, const struct scene *s, int i, const struct emitter *em, float b1, float b2)
 {
     struct light_sample ls;
-    lights_emitter_point(em, b1, b2, &ls);
+    lights_emitter_point(s, em, b1, b2, &ls);
     lp->tri[i] = ls.tri;
     lp->b1[i] = b1;
     lp->b2[i] = b2;
@@ -61,7 +61,7 @@ void light_pool_fill(struct light_pool *lp, const struct scene *s, uint64_t seed
             int e = alias_table_sample(&s->emitter_table, pcg32_float(&rng));
             float u1 = pcg32_float(&rng), u2 = pcg32_float(&rng), b1, b2;
             warp_uniform_triangle(u1, u2, &b1, &b2);
-            put(lp, i, &s->emitters[e], b1, b2);
+            put(lp, s, i, &s->emitters[e], b1, b2);
         }
     }
     /* The tail repeats the head, so a window that starts near the end reads on without wrapping. */

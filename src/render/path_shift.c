@@ -84,7 +84,8 @@ static vec3 reconnection_eval(const struct scene *s, const struct path_vertex *v
     vec3 at_k = x->rc_L;
     if (x->rc < x->length) {
         struct bsdf bk;
-        bsdf_from_material(&s->materials[x->rc_material], &bk);
+        struct material tmp;
+        bsdf_from_material(scene_material_at(s, x->rc_tri, x->rc_b1, x->rc_b2, &tmp), &bk);
         vec3 fk = bsdf_eval(&bk, x->rc_n, v3_neg(wk), x->rc_w);
         at_k = v3_mul(at_k, v3_scale(fk, fabsf(v3_dot(x->rc_n, x->rc_w))));
     }
@@ -105,11 +106,16 @@ void path_sample_from_candidate(const struct scene *s, const struct shift_params
         out->rc_L = c->Le;
         out->rc_w = v3s(0.0f);
         out->rc_material = -1;
+        out->rc_tri = -1;
+        out->rc_b1 = out->rc_b2 = 0.0f;
     } else {
         const struct path_vertex *xk = &w->v[k - 1];
         out->rc_p = xk->p;
         out->rc_n = xk->ng;
         out->rc_material = xk->material;
+        out->rc_tri = xk->tri;
+        out->rc_b1 = xk->b1;
+        out->rc_b2 = xk->b2;
         out->rc_w = k == D - 1 ? c->w_last : xk->w_next;
         /* Radiance arriving at x_k: the suffix throughput after x_k times the emission. */
         vec3 L = c->Le;
@@ -128,7 +134,7 @@ void path_sample_from_candidate(const struct scene *s, const struct shift_params
     out->prefix_pdf = pdf;
     const struct path_vertex *xk1 = &w->v[k - 2];
     struct bsdf b;
-    bsdf_from_material(&s->materials[xk1->material], &b);
+    path_vertex_bsdf(s, xk1, &b);
     out->f = v3_mul(F, reconnection_eval(s, xk1, &b, out, &out->rc_cos, &out->rc_dist2));
     if (!(out->rc_dist2 > 0.0f)) { /* the connection failed: keep finite Jacobian terms */
         out->rc_dist2 = 1.0f;
@@ -173,7 +179,7 @@ int path_shift(const struct scene *s, const struct shift_params *sp, const struc
         return fail(y);
     struct path_vertex v = path_vertex_from_hit(&h, dir);
     struct bsdf b;
-    bsdf_from_material(&s->materials[v.material], &b);
+    path_vertex_bsdf(s, &v, &b);
     vec3 F = v3s(1.0f);
     float prefix_pdf = 1.0f;
     /* Random replay of the directions sampled at y_1 .. y_{k-2}, through the same sampling
@@ -198,7 +204,7 @@ int path_shift(const struct scene *s, const struct shift_params *sp, const struc
         if (hybrid && connectable(s, sp, v.p, v.material, next.p, next.material, 0))
             return fail(y);
         v = next;
-        bsdf_from_material(&s->materials[v.material], &b);
+        path_vertex_bsdf(s, &v, &b);
     }
     /* Reconnect y_{k-1} = v to x_k. */
     if (hybrid && k < D && !connectable(s, sp, v.p, v.material, x->rc_p, x->rc_material, 0))

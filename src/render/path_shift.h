@@ -41,6 +41,8 @@ struct path_sample {
     vec3 rc_w;           /* k < D: unit direction x_k -> x_{k+1} */
     vec3 rc_L;           /* k < D: radiance arriving at x_k along rc_w; k = D: Le of x_D */
     int rc_material;     /* k < D: material at x_k */
+    int rc_tri;          /* k < D: x_k's triangle and barycentrics (textures are read there) */
+    float rc_b1, rc_b2;
     /* Jacobian terms of this path in the domain it lives in: */
     float rc_cos;        /* |rc_n . (x_{k-1} - x_k)| / |x_{k-1} - x_k| */
     float rc_dist2;      /* |x_k - x_{k-1}|^2 */

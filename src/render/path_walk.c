@@ -20,7 +20,16 @@ struct path_vertex path_vertex_from_hit(const struct surface_hit *h, vec3 ray_di
     v.ng = h->ng;
     v.wo = v3_neg(ray_dir);
     v.material = h->material;
+    v.tri = h->tri;
+    v.b1 = h->b1;
+    v.b2 = h->b2;
     return v;
+}
+
+void path_vertex_bsdf(const struct scene *s, const struct path_vertex *v, struct bsdf *b)
+{
+    struct material tmp;
+    bsdf_from_material(scene_material_at(s, v->tri, v->b1, v->b2, &tmp), b);
 }
 
 /* NEE at x (the last vertex of the walk, BSDF prepared for x->wo in bf): one light point,
@@ -85,7 +94,7 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
          * bsdf_frame_eval, so their MIS weights see the same densities. */
         struct bsdf b;
         struct bsdf_frame bf;
-        bsdf_from_material(&s->materials[x->material], &b);
+        path_vertex_bsdf(s, x, &b);
         bsdf_frame_init(&bf, &b, x->ns, x->wo);
         rays += next_event(s, w, &bf, prefix_f, prefix_pdf, &rng, emit, ctx);
         float u_rr = pcg32_float(&rng);
@@ -122,7 +131,7 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
             c.via_nee = 0;
             c.light_p = h.p;
             c.light_n = s->tri_normal[h.tri];
-            c.Le = lights_radiance(s, h.tri, v3_neg(wi));
+            c.Le = lights_radiance(s, h.tri, h.b1, h.b2, v3_neg(wi));
             c.w_last = wi;
             c.fcos_last = x->fcos;
             c.f = v3_mul(prefix_f, c.Le);

@@ -27,6 +27,8 @@ struct path_vertex {
     vec3 ns, ng;   /* shading and geometric normals, on the side the path arrived from */
     vec3 wo;       /* unit direction back toward x_{j-1} (the camera for j = 1) */
     int material;
+    int tri;       /* the triangle and barycentrics of p, where textures are read */
+    float b1, b2;
     /* The BSDF-sampled continuation (valid for every vertex but the last one reported): */
     vec3 w_next;   /* sampled direction */
     vec3 fcos;     /* f_s(wo, w_next) |ns . w_next| */
@@ -70,5 +72,8 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
 
 /* The primary vertex from a camera-ray hit (wo = -ray direction). */
 struct path_vertex path_vertex_from_hit(const struct surface_hit *h, vec3 ray_dir);
+struct bsdf;
+/* The BSDF at vertex v: its material with the textures at v's point. */
+void path_vertex_bsdf(const struct scene *s, const struct path_vertex *v, struct bsdf *b);
 
 #endif

@@ -23,7 +23,7 @@ vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, uint64_t p
         return v3s(0.0f);
     vec3 L = v3s(0.0f);
     if (s->tri_emitter[h.tri] >= 0 && h.front)
-        L = lights_radiance(s, h.tri, v3_neg(d));
+        L = lights_radiance(s, h.tri, h.b1, h.b2, v3_neg(d));
     struct path_walk w;
     struct path_vertex x1 = path_vertex_from_hit(&h, d);
     *rays += path_walk_run(s, &x1, path_seed, max_bounces, rr_bounces, &w, accumulate, &L);

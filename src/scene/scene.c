@@ -54,12 +54,14 @@ int scene_add_texture(struct scene_builder *b, struct texture t)
     return s->num_textures;
 }
 
-void scene_set_last_uvs(struct scene_builder *b, const float uv[6])
+void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6])
 {
     struct scene *s = b->s;
-    if (!s->uv) /* first UVs: every earlier vertex gets (0, 0) */
+    RESTIR_CHECK(tri >= 0 && tri < s->num_tris);
+    if (!s->uv) /* first UVs: every other vertex gets (0, 0) */
         s->uv = xcalloc(2 * (size_t)b->cap_verts, sizeof(float));
-    memcpy(s->uv + 2 * (size_t)(s->num_verts - 3), uv, 6 * sizeof(float));
+    for (int k = 0; k < 3; k++)
+        memcpy(s->uv + 2 * (size_t)s->indices[3 * tri + k], uv + 2 * k, 2 * sizeof(float));
 }
 
 /* Appends a record when recording and this is an outermost shape call (a box's quads and a quad's
@@ -251,6 +253,7 @@ static int build_emitters(struct scene *s, char *msg)
         em->e2 = v3_sub(s->verts[s->indices[3 * t + 2]], em->v0);
         em->n = s->tri_normal[t];
         em->Le = s->materials[s->tri_material[t]].emission;
+        em->textured = s->materials[s->tri_material[t]].emission_map != 0;
         em->pdf_area = s->emitter_table.pmf[e] / s->tri_area[t];
         em->tri = t;
     }

@@ -51,6 +51,7 @@ struct emitter {
     vec3 Le;         /* emitted radiance */
     float pdf_area;  /* P(choose this emitter) / area */
     int tri;
+    int textured;    /* 1: Le is modulated by an emission texture (scene_material_at) */
 };
 
 struct scene {
@@ -122,8 +123,8 @@ void scene_builder_begin(struct scene_builder *b, struct scene *s, const char *n
 int scene_add_material(struct scene_builder *b, struct material m);
 /* Takes ownership of t; returns its map id for struct material (>= 1). */
 int scene_add_texture(struct scene_builder *b, struct texture t);
-/* The UVs (u0 v0 u1 v1 u2 v2) of the triangle added last. */
-void scene_set_last_uvs(struct scene_builder *b, const float uv[6]);
+/* The UVs (u0 v0 u1 v1 u2 v2) of triangle tri, already added. */
+void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6]);
 int scene_new_object(struct scene_builder *b);
 void scene_add_triangle(struct scene_builder *b, vec3 a, vec3 c, vec3 d, int material, int object);
 /* Quad a-b-c-d (counter-clockwise seen from the front) as two triangles. */

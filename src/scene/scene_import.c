@@ -5,6 +5,7 @@
  * file. */
 #include "scene_file.h"
 #include "scene_import.h"
+#include "scene_import_texture.h"
 
 #include <float.h>
 #include <limits.h>
@@ -129,7 +130,10 @@ static int ai_string_equal(const struct aiString *a, const struct aiString *b)
     return a->length == b->length && a->length < MAXLEN && memcmp(a->data, b->data, a->length) == 0;
 }
 
-static int is_gltf_path(const char *path) { return scene_path_has_suffix(path, ".gltf") || scene_path_has_suffix(path, ".glb"); }
+static int is_gltf_path(const char *path)
+{
+    return scene_path_has_suffix(path, ".gltf") || scene_path_has_suffix(path, ".glb");
+}
 
 /* ---- KHR_materials_emissive_strength for assimp 5.2 ----------------------------------------- */
 
@@ -347,6 +351,7 @@ struct importer {
     vec3 *verts;              /* one mesh's vertices after the transform (scratch) */
     unsigned cap_verts;
     int added;                /* triangles added */
+    struct import_texture_cache textures;
     char *msg;
 };
 
@@ -445,7 +450,29 @@ static int make_material(struct importer *im, unsigned idx, struct material *out
                  im->path, name, (double)emission.x, (double)emission.y, (double)emission.z);
         return -1;
     }
-    *out = (struct material){.base_color = v3(clamp01(base.x), clamp01(base.y), clamp01(base.z)), .metallic = clamp01(metallic), .roughness = clamp01(roughness), .emission = emission, .lambert_only = 0};
+    *out = (struct material){.base_color = v3(clamp01(base.x), clamp01(base.y), clamp01(base.z)),
+                             .metallic = clamp01(metallic),
+                             .roughness = clamp01(roughness),
+                             .emission = emission};
+    /* glTF 2.0 texture maps: base colour and emissive are sRGB-encoded, metallic-roughness linear
+     * (G roughness, B metallic; assimp 5.2 files it as UNKNOWN, later versions as METALNESS) */
+    static const enum aiTextureType base_types[] = {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE};
+    static const enum aiTextureType mr_types[] = {aiTextureType_UNKNOWN, aiTextureType_METALNESS};
+    static const enum aiTextureType emissive_types[] = {aiTextureType_EMISSIVE};
+    out->base_color_map = import_texture_map(im->b, im->ai, m, im->path, base_types, 2, 1, &im->textures, im->msg);
+    if (out->base_color_map < 0)
+        return -1;
+    if (!spec_gloss) {
+        out->metal_rough_map = import_texture_map(im->b, im->ai, m, im->path, mr_types, 2, 0, &im->textures, im->msg);
+        if (out->metal_rough_map < 0)
+            return -1;
+    }
+    if (v3_max_component(emission) > 0.0f) {
+        out->emission_map =
+            import_texture_map(im->b, im->ai, m, im->path, emissive_types, 1, 1, &im->textures, im->msg);
+        if (out->emission_map < 0)
+            return -1;
+    }
     return 0;
 }
 
@@ -560,6 +587,17 @@ static int add_mesh(struct importer *im, unsigned mesh_index, const mat4d *t, in
         if (*object < 0)
             *object = im->object >= 0 ? im->object : scene_new_object(im->b);
         scene_add_triangle(im->b, p[0], p[1], p[2], mat, *object);
+        if (mesh->mTextureCoords[0]) {
+            float uv[6];
+            for (int k = 0; k < 3; k++) {
+                /* the corner that went to slot k (slots 1 and 2 swap under a mirror) */
+                unsigned i = face->mIndices[flip && k ? 3 - k : k];
+                const struct aiVector3D *c = &mesh->mTextureCoords[0][i];
+                uv[2 * k] = isfinite(c->x) ? (float)c->x : 0.0f;
+                uv[2 * k + 1] = isfinite(c->y) ? (float)c->y : 0.0f;
+            }
+            scene_set_uvs(im->b, im->b->s->num_tris - 1, uv);
+        }
         im->added++;
     }
     return 0;
@@ -676,6 +714,7 @@ static int import_mesh(struct scene_builder *b, const char *path, const float *x
     free(im.override_material);
     free(im.verts);
     cJSON_Delete(im.gltf);
+    import_texture_cache_fini(&im.textures);
     if (rc == 0 && keep)
         *keep = ai;
     else

@@ -25,6 +25,11 @@ struct reader {
     char *msg;
     struct scene_builder *b;
     cJSON *materials; /* the "materials" array (names resolve through it) */
+    int num_loaded;   /* textures read so far, by path, so materials sharing one load it once */
+    struct {
+        char path[1100];
+        int srgb, map;
+    } loaded[64];
 };
 
 /* vsnprintf into out: a message too long for the buffer is cut, never left unterminated. */
@@ -235,7 +240,49 @@ static int read_camera_path(struct reader *r, const cJSON *path)
 /* ---- materials ---- */
 
 static const char *const material_keys[] = {"name", "base_color", "metallic", "roughness", "emission",
-                                            "emissive_strength", "lambert", NULL};
+                                            "emissive_strength", "lambert", "base_color_texture",
+                                            "metallic_roughness_texture", "emission_texture", NULL};
+
+/* A path in the file: absolute, or relative to the file's folder. */
+static void resolve_path(const struct reader *r, const char *name, char *out, size_t len)
+{
+    if (name[0] == '/' || !*r->dir)
+        snprintf(out, len, "%s", name);
+    else
+        snprintf(out, len, "%s/%s", r->dir, name);
+}
+
+/* The texture map named by key of material object m (0 when absent), read on first use. */
+static int texture_map(struct reader *r, const cJSON *m, const char *mkey, const char *key, int srgb, int *map)
+{
+    char k[128];
+    child_key(k, sizeof k, mkey, key, 0);
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(m, key);
+    *map = 0;
+    if (!v)
+        return 0;
+    if (!cJSON_IsString(v) || !*v->valuestring)
+        return fail(r, k, "must be an image file name");
+    char path[1100];
+    resolve_path(r, v->valuestring, path, sizeof path);
+    for (int i = 0; i < r->num_loaded; i++) {
+        if (r->loaded[i].srgb == srgb && strcmp(r->loaded[i].path, path) == 0) {
+            *map = r->loaded[i].map;
+            return 0;
+        }
+    }
+    if (r->num_loaded == (int)(sizeof r->loaded / sizeof r->loaded[0]))
+        return fail(r, k, "more than 64 texture files in one scene");
+    struct texture t;
+    char tmsg[RESTIR_MSG_LEN];
+    if (texture_load_file(path, srgb, &t, tmsg) != 0)
+        return fail(r, k, "%s", tmsg);
+    *map = scene_add_texture(r->b, t);
+    snprintf(r->loaded[r->num_loaded].path, sizeof r->loaded[0].path, "%s", path);
+    r->loaded[r->num_loaded].srgb = srgb;
+    r->loaded[r->num_loaded++].map = *map;
+    return 0;
+}
 
 static int read_materials(struct reader *r)
 {
@@ -268,6 +315,11 @@ static int read_materials(struct reader *r)
             return -1;
         if (strength != 1.0f) /* KHR_materials_emissive_strength: a multiplier of the colour */
             mt.emission = v3_scale(mt.emission, strength);
+        /* glTF 2.0 maps: colour images are sRGB-encoded, metallic-roughness (G, B) linear */
+        if (texture_map(r, m, key, "base_color_texture", 1, &mt.base_color_map) != 0 ||
+            texture_map(r, m, key, "metallic_roughness_texture", 0, &mt.metal_rough_map) != 0 ||
+            texture_map(r, m, key, "emission_texture", 1, &mt.emission_map) != 0)
+            return -1;
         scene_add_material(r->b, mt);
     }
     return 0;
@@ -356,10 +408,7 @@ static int read_mesh(struct reader *r, const cJSON *sh, const char *key, int mat
     if (!cJSON_IsString(file) || !*file->valuestring)
         return fail(r, k, file ? "must be a file name" : "missing");
     char path[2048];
-    if (file->valuestring[0] == '/' || !*r->dir)
-        snprintf(path, sizeof path, "%s", file->valuestring);
-    else
-        snprintf(path, sizeof path, "%s/%s", r->dir, file->valuestring);
+    resolve_path(r, file->valuestring, path, sizeof path);
     float m[16];
     const cJSON *t = cJSON_GetObjectItemCaseSensitive(sh, "transform");
     child_key(k, sizeof k, key, "transform", 0);
@@ -393,7 +442,7 @@ static int read_mesh(struct reader *r, const cJSON *sh, const char *key, int mat
 /* "vertices": [[x,y,z], ...] (triangles) or "quads": [[c0,c1,c2,c3], ...] */
 static int read_polygons(struct reader *r, const cJSON *sh, const char *key, int corners, int material, int object)
 {
-    static const char *const tri_keys[] = {"type", "vertices", "material", "object", NULL};
+    static const char *const tri_keys[] = {"type", "vertices", "uvs", "material", "object", NULL};
     static const char *const quad_keys[] = {"type", "quads", "material", "object", NULL};
     if (check_keys(r, sh, key, corners == 3 ? tri_keys : quad_keys) != 0)
         return -1;
@@ -407,6 +456,17 @@ static int read_polygons(struct reader *r, const cJSON *sh, const char *key, int
     const int n = cJSON_GetArraySize(list);
     if (n == 0 || (corners == 3 && n % 3 != 0))
         return fail(r, k, corners == 3 ? "needs 3 vertices per triangle" : "is empty");
+    /* triangles: optional "uvs" [[u, v], ...], one per vertex; quads: the unit square, c0 at (0, 0) */
+    const cJSON *uvs = corners == 3 ? get_array(r, sh, key, "uvs", 0, &ok) : NULL;
+    if (!ok)
+        return -1;
+    if (uvs && cJSON_GetArraySize(uvs) != n) {
+        char uk[256];
+        child_key(uk, sizeof uk, key, "uvs", 0);
+        return fail(r, uk, "needs one [u, v] per vertex (%d)", n);
+    }
+    const cJSON *uv_item = uvs ? uvs->child : NULL;
+    float uv[8];
     vec3 p[4];
     int i = 0, c = 0;
     for (const cJSON *e = list->child; e; e = e->next, i++) {
@@ -415,8 +475,23 @@ static int read_polygons(struct reader *r, const cJSON *sh, const char *key, int
         if (corners == 3) {
             if (vec3_value(r, e, ek, -SCENE_COORD_MAX, SCENE_COORD_MAX, &p[c]) != 0)
                 return -1;
+            if (uv_item) {
+                char uk[300];
+                child_key(uk, sizeof uk, key, "uvs", 0);
+                child_key(ek, sizeof ek, uk, NULL, i);
+                if (!cJSON_IsArray(uv_item) || cJSON_GetArraySize(uv_item) != 2 ||
+                    !cJSON_IsNumber(uv_item->child) || !cJSON_IsNumber(uv_item->child->next) ||
+                    !isfinite(uv_item->child->valuedouble) || !isfinite(uv_item->child->next->valuedouble) ||
+                    fabs(uv_item->child->valuedouble) > 1e6 || fabs(uv_item->child->next->valuedouble) > 1e6)
+                    return fail(r, ek, "must be [u, v] (finite, at most 1e6)");
+                uv[2 * c] = (float)uv_item->child->valuedouble;
+                uv[2 * c + 1] = (float)uv_item->child->next->valuedouble;
+                uv_item = uv_item->next;
+            }
             if (++c == 3) {
                 scene_add_triangle(r->b, p[0], p[1], p[2], material, object);
+                if (uvs)
+                    scene_set_uvs(r->b, r->b->s->num_tris - 1, uv);
                 c = 0;
             }
             continue;
@@ -431,6 +506,13 @@ static int read_polygons(struct reader *r, const cJSON *sh, const char *key, int
                 return -1;
         }
         scene_add_quad(r->b, p[0], p[1], p[2], p[3], material, object);
+        const struct material *qm = &r->b->s->materials[material];
+        if (qm->base_color_map | qm->metal_rough_map | qm->emission_map) {
+            /* a textured quad gets the unit square: triangles c0 c1 c2 and c0 c2 c3 */
+            const float first[6] = {0, 0, 1, 0, 1, 1}, second[6] = {0, 0, 1, 1, 0, 1};
+            scene_set_uvs(r->b, r->b->s->num_tris - 2, first);
+            scene_set_uvs(r->b, r->b->s->num_tris - 1, second);
+        }
     }
     return 0;
 }

@@ -19,12 +19,14 @@ const char *const scene_builtin_descriptions[] = {
     "closed sphere of albedo 0.5 and emission 0.5 seen from inside: radiance is exactly 1 (test)",
     NULL};
 
-static struct material diffuse(float r, float g, float b)
+static struct material surface(vec3 base, float metallic, float roughness)
 {
-    return (struct material){.base_color = v3(r, g, b), .metallic = 0.0f, .roughness = 1.0f, .emission = v3s(0.0f), .lambert_only = 0};
+    return (struct material){.base_color = base, .metallic = metallic, .roughness = roughness};
 }
 
-static struct material emitter(vec3 e) { return (struct material){.base_color = v3s(0.0f), .metallic = 0.0f, .roughness = 1.0f, .emission = e, .lambert_only = 0}; }
+static struct material diffuse(float r, float g, float b) { return surface(v3(r, g, b), 0.0f, 1.0f); }
+
+static struct material emitter(vec3 e) { return (struct material){.roughness = 1.0f, .emission = e}; }
 
 /* Rectangle centred at c with unit normal n, unit tangent t, half extents hu (along t) and hv. */
 static void add_rect(struct scene_builder *b, vec3 c, vec3 n, vec3 t, float hu, float hv, int mat, int obj)
@@ -64,7 +66,7 @@ static void build_cornell(struct scene_builder *b)
     int white = scene_add_material(b, diffuse(0.73f, 0.73f, 0.73f));
     int red = scene_add_material(b, diffuse(0.65f, 0.05f, 0.05f));
     int green = scene_add_material(b, diffuse(0.12f, 0.45f, 0.15f));
-    int glossy = scene_add_material(b, (struct material){.base_color = v3(0.95f, 0.64f, 0.54f), .metallic = 1.0f, .roughness = 0.25f, .emission = v3s(0.0f), .lambert_only = 0});
+    int glossy = scene_add_material(b, surface(v3(0.95f, 0.64f, 0.54f), 1.0f, 0.25f));
     int light = scene_add_material(b, emitter(v3(17.0f, 12.0f, 4.0f)));
     int room = scene_new_object(b);
     add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 1, 1, white, room);    /* floor */
@@ -97,11 +99,11 @@ static void build_ajar(struct scene_builder *b)
     int wall_warm = scene_add_material(b, diffuse(0.72f, 0.67f, 0.6f));
     int wall_cool = scene_add_material(b, diffuse(0.62f, 0.66f, 0.72f));
     int ceiling = scene_add_material(b, diffuse(0.74f, 0.74f, 0.72f));
-    int floor_mat = scene_add_material(b, (struct material){.base_color = v3(0.62f, 0.56f, 0.5f), .metallic = 0.0f, .roughness = 0.2f, .emission = v3s(0.0f), .lambert_only = 0});
+    int floor_mat = scene_add_material(b, surface(v3(0.62f, 0.56f, 0.5f), 0.0f, 0.2f));
     int outside = scene_add_material(b, diffuse(0.75f, 0.75f, 0.75f));
     int door_mat = scene_add_material(b, diffuse(0.6f, 0.45f, 0.32f));
-    int steel = scene_add_material(b, (struct material){.base_color = v3(0.86f, 0.87f, 0.9f), .metallic = 1.0f, .roughness = 0.35f, .emission = v3s(0.0f), .lambert_only = 0});
-    int gold = scene_add_material(b, (struct material){.base_color = v3(0.95f, 0.78f, 0.45f), .metallic = 1.0f, .roughness = 0.4f, .emission = v3s(0.0f), .lambert_only = 0});
+    int steel = scene_add_material(b, surface(v3(0.86f, 0.87f, 0.9f), 1.0f, 0.35f));
+    int gold = scene_add_material(b, surface(v3(0.95f, 0.78f, 0.45f), 1.0f, 0.4f));
     int red = scene_add_material(b, diffuse(0.65f, 0.2f, 0.15f));
     int blue = scene_add_material(b, diffuse(0.2f, 0.35f, 0.6f));
     int light = scene_add_material(b, emitter(v3(120.0f, 110.0f, 95.0f)));
@@ -166,7 +168,7 @@ static void build_many_lights(struct scene_builder *b)
     pcg32 r = pcg32_make(7, 11);
     int floor_mat = scene_add_material(b, diffuse(0.6f, 0.6f, 0.6f));
     int box_mat = scene_add_material(b, diffuse(0.7f, 0.68f, 0.62f));
-    int metal = scene_add_material(b, (struct material){.base_color = v3(0.9f, 0.9f, 0.92f), .metallic = 1.0f, .roughness = 0.3f, .emission = v3s(0.0f), .lambert_only = 0});
+    int metal = scene_add_material(b, surface(v3(0.9f, 0.9f, 0.92f), 1.0f, 0.3f));
     add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 12, 12, floor_mat, scene_new_object(b));
     for (int i = 0; i < 5; i++) {
         for (int j = 0; j < 5; j++) {
@@ -206,7 +208,7 @@ static void build_foliage(struct scene_builder *b)
     int bark = scene_add_material(b, diffuse(0.3f, 0.2f, 0.12f));
     int leaf[3] = {scene_add_material(b, diffuse(0.25f, 0.5f, 0.12f)),
                    scene_add_material(b, diffuse(0.35f, 0.55f, 0.1f)),
-                   scene_add_material(b, (struct material){.base_color = v3(0.2f, 0.45f, 0.1f), .metallic = 0.0f, .roughness = 0.35f, .emission = v3s(0.0f), .lambert_only = 0})};
+                   scene_add_material(b, surface(v3(0.2f, 0.45f, 0.1f), 0.0f, 0.35f))};
     int sky = scene_add_material(b, emitter(v3(6.0f, 6.0f, 5.5f)));
     int sun = scene_add_material(b, emitter(v3(40.0f, 34.0f, 26.0f)));
     add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 8, 8, ground, scene_new_object(b));
@@ -240,7 +242,7 @@ static void build_foliage(struct scene_builder *b)
 static void build_pillars(struct scene_builder *b)
 {
     int white = scene_add_material(b, diffuse(0.75f, 0.75f, 0.72f));
-    int floor_mat = scene_add_material(b, (struct material){.base_color = v3(0.5f, 0.5f, 0.55f), .metallic = 0.0f, .roughness = 0.3f, .emission = v3s(0.0f), .lambert_only = 0});
+    int floor_mat = scene_add_material(b, surface(v3(0.5f, 0.5f, 0.55f), 0.0f, 0.3f));
     int stone = scene_add_material(b, diffuse(0.55f, 0.45f, 0.35f));
     int warm = scene_add_material(b, emitter(v3(30.0f, 20.0f, 10.0f)));
     int cool = scene_add_material(b, emitter(v3(8.0f, 14.0f, 30.0f)));
@@ -266,7 +268,8 @@ static void build_pillars(struct scene_builder *b)
 static void build_furnace(struct scene_builder *b)
 {
     /* A pure Lambertian (no specular layer) so that L = Le / (1 - albedo) = 1 exactly. */
-    int m = scene_add_material(b, (struct material){.base_color = v3s(0.5f), .metallic = 0.0f, .roughness = 1.0f, .emission = v3s(0.5f), .lambert_only = 1});
+    int m = scene_add_material(
+        b, (struct material){.base_color = v3s(0.5f), .roughness = 1.0f, .emission = v3s(0.5f), .lambert_only = 1});
     scene_add_sphere(b, v3(0, 0, 0), 1.0f, 48, 1, m, scene_new_object(b));
     b->s->camera = (struct camera){v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), 60.0f};
     struct camera_key keys[2] = {{0, {v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), 60.0f}},

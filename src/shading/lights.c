@@ -9,6 +9,13 @@ static vec3 tri_vertex(const struct scene *s, int tri, int k) { return s->verts[
 
 static vec3 tri_emission(const struct scene *s, int tri) { return s->materials[s->tri_material[tri]].emission; }
 
+/* Emission at a point: the material's factor, times its emission texture there. */
+static vec3 point_emission(const struct scene *s, int tri, float b1, float b2)
+{
+    struct material tmp;
+    return scene_material_at(s, tri, b1, b2, &tmp)->emission;
+}
+
 /* Power of a Lambertian emitter of radiance L over area A: integral of L cos over the
  * hemisphere times A = pi L A (one-sided). Luminance collapses the colour for selection. */
 float lights_emitter_power(const struct scene *s, int tri)
@@ -30,14 +37,15 @@ float lights_pdf_area(const struct scene *s, int tri)
     return s->emitter_table.pmf[e] / area;
 }
 
-void lights_emitter_point(const struct emitter *em, float b1, float b2, struct light_sample *ls)
+void lights_emitter_point(const struct scene *s, const struct emitter *em, float b1, float b2,
+                          struct light_sample *ls)
 {
     ls->tri = em->tri;
     ls->b1 = b1;
     ls->b2 = b2;
     ls->p = v3_add(em->v0, v3_add(v3_scale(em->e1, b1), v3_scale(em->e2, b2)));
     ls->n = em->n;
-    ls->Le = em->Le;
+    ls->Le = em->textured ? point_emission(s, em->tri, b1, b2) : em->Le;
     ls->pdf_area = em->pdf_area;
 }
 
@@ -52,11 +60,11 @@ void lights_point(const struct scene *s, int tri, float b1, float b2, struct lig
         ls->b2 = b2;
         ls->p = v3_add(a, v3_add(v3_scale(v3_sub(b, a), b1), v3_scale(v3_sub(c, a), b2)));
         ls->n = s->tri_normal[tri];
-        ls->Le = tri_emission(s, tri);
+        ls->Le = point_emission(s, tri, b1, b2);
         ls->pdf_area = 0.0f;
         return;
     }
-    lights_emitter_point(&s->emitters[e], b1, b2, ls);
+    lights_emitter_point(s, &s->emitters[e], b1, b2, ls);
 }
 
 int lights_sample(const struct scene *s, float u_select, float u1, float u2, struct light_sample *ls)
@@ -66,16 +74,16 @@ int lights_sample(const struct scene *s, float u_select, float u1, float u2, str
     int e = alias_table_sample(&s->emitter_table, u_select);
     float b1, b2;
     warp_uniform_triangle(u1, u2, &b1, &b2);
-    lights_emitter_point(&s->emitters[e], b1, b2, ls);
+    lights_emitter_point(s, &s->emitters[e], b1, b2, ls);
     return ls->pdf_area > 0.0f;
 }
 
 /* Emission is one-sided: only the front (counter-clockwise, geometric normal) side emits. */
-vec3 lights_radiance(const struct scene *s, int tri, vec3 w_out)
+vec3 lights_radiance(const struct scene *s, int tri, float b1, float b2, vec3 w_out)
 {
     if (tri < 0 || tri >= s->num_tris || v3_dot(s->tri_normal[tri], w_out) <= 0.0f)
         return v3s(0.0f);
-    return tri_emission(s, tri);
+    return point_emission(s, tri, b1, b2);
 }
 
 /* dA = dist^2 / |cos_l| dw (PBRT 3rd ed., eq. 5.6), so p_w = p_A dist^2 / cos_l. A light that

@@ -23,11 +23,13 @@ int lights_sample(const struct scene *s, float u_select, float u1, float u2, str
 float lights_pdf_area(const struct scene *s, int tri);
 /* Point b1, b2 of emitter em (p = v0 + b1 e1 + b2 e2) with its normal, radiance and density:
  * the one formula light sampling, lights_point and ReSTIR DI's light pool all use. */
-void lights_emitter_point(const struct emitter *em, float b1, float b2, struct light_sample *ls);
+void lights_emitter_point(const struct scene *s, const struct emitter *em, float b1, float b2,
+                          struct light_sample *ls);
 /* Fills ls->p, n, Le, pdf_area from tri and barycentrics. */
 void lights_point(const struct scene *s, int tri, float b1, float b2, struct light_sample *ls);
-/* Radiance leaving emitter triangle tri toward direction w_out (zero on its back side). */
-vec3 lights_radiance(const struct scene *s, int tri, vec3 w_out);
+/* Radiance leaving emitter triangle tri at barycentrics b1, b2 toward direction w_out (zero on its
+ * back side). */
+vec3 lights_radiance(const struct scene *s, int tri, float b1, float b2, vec3 w_out);
 /* Converts an area density at a light point to solid angle as seen from x. */
 float lights_pdf_solid_angle(float pdf_area, vec3 x, vec3 light_p, vec3 light_n);
 

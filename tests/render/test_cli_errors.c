@@ -1,5 +1,7 @@
 /* test_cli_errors.c: bad input to `restir` gets exit 2 (usage) or 1 (runtime), a "restir: " message naming
  * the problem, and no output files; plus list, bare `restir` and --help. Must never render in-process. */
+#include <dirent.h>
+
 #include "cli_util.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
@@ -295,6 +297,40 @@ static void check_scene_files(void)
     expect_failure("export of an unknown scene", "scene export no-such-scene --out '%1$s'", 2, "no-such-scene", NULL);
 }
 
+/* Every deliberately broken file of assimp-testmodels: `restir scene info` exits 1 or 2 with a
+ * message naming the file, never crashes (the in-process checks are in tests/unit/test_scene_import.c). */
+static void check_broken_assets(void)
+{
+    static const char *const dirs[] = {"invalid", "glTF2/wrongTypes", "glTF2/IndexOutOfRange", "glTF2/MissingBin",
+                                       "glTF2/SchemaFailures", "glTF2/BoxBadNormals-glTF-Binary",
+                                       "glTF2/BoxWithInfinites-glTF-Binary"};
+    int files = 0;
+    for (size_t d = 0; d < sizeof dirs / sizeof dirs[0]; d++) {
+        char dir[512];
+        snprintf(dir, sizeof dir, "/usr/share/assimp/models/%s", dirs[d]);
+        DIR *dp = opendir(dir);
+        EXPECT(dp != NULL, "%s is missing (make test installs assimp-testmodels)", dir);
+        if (!dp)
+            continue;
+        struct dirent *e;
+        while ((e = readdir(dp)) != NULL) {
+            const char *dot = strrchr(e->d_name, '.');
+            if (e->d_name[0] == '.' || !dot || !strcmp(dot, ".bin") || !strcmp(dot, ".png") || !strcmp(dot, ".jpg"))
+                continue;
+            char args[2 * CLI_PATH_MAX], out[CLI_ERR_MAX], err[CLI_ERR_MAX];
+            snprintf(args, sizeof args, "scene info '%s/%s'", dir, e->d_name);
+            int rc = cli_run_capture(tmp, args, out, err);
+            files++;
+            EXPECT(rc == 1 || rc == 2, "restir %s exited %d (want 1 or 2): %s", args, rc, err);
+            EXPECT(strstr(err, e->d_name) != NULL, "restir %s: message does not name the file: %s", args, err);
+            EXPECT(strstr(err, "internal error") == NULL, "restir %s hit an internal check", args);
+        }
+        closedir(dp);
+    }
+    printf("broken assets: %d files, each refused with exit 1 or 2\n", files);
+    EXPECT(files >= 20, "only %d broken asset files found", files);
+}
+
 int main(void)
 {
     if (!cli_bin() || cli_make_temp_dir(tmp) != 0) {
@@ -307,6 +343,7 @@ int main(void)
     check_compare_specs();
     check_study();
     check_scene_files();
+    check_broken_assets();
     check_list_and_help();
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
     return test_finish();

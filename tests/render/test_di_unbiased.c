@@ -6,6 +6,9 @@
  * visibility_reuse=off is checked too, and visibility_mis=none's bias is measured. */
 #include <string.h>
 
+#include <stdio.h>
+#include <stdlib.h>
+
 #include "unbiased_runs.h"
 
 #define RUNS 1024
@@ -83,6 +86,15 @@ int main(int argc, char **argv)
     check_reference(METHOD_RESTIR_DI, "cornell", 24, 16, 64, batches, 3, 1);
     const char *one_candidate[] = {"di.light_candidates=1"};
     check_scene("cornell", 24, 16, one_candidate, 1, 1);
+    /* Textures (tests/data/scenes/textured.json): a checker base colour, a metallic-roughness map
+     * and an emission map, so targets, light-pool radiance and shading vary inside triangles. */
+    const char *data = getenv("RESTIR_TEST_DATA");
+    EXPECT(data != NULL, "RESTIR_TEST_DATA is not set (run through ctest)");
+    if (data) {
+        char textured[1024];
+        snprintf(textured, sizeof textured, "%s/scenes/textured.json", data);
+        check_scene(textured, 24, 16, pairwise, 1, 1);
+    }
     /* ris-di has no reuse: none is exact there (and skips the shading ray). */
     const char *ris_none[] = {"di.visibility_mis=none"};
     check_method(METHOD_RIS_DI, "pillars", 24, 16, ris_none, 1, 1);

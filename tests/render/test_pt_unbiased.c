@@ -50,14 +50,17 @@ int main(int argc, char **argv)
     const char *compat[] = {"shift=hybrid", "spatial.select=compat", "spatial.radius=8"};
     for (int sc = 0; sc < 2; sc++)
         check(scenes[sc], RUNS, compat, 3, 1);
-    /* A real asset nobody here wrote (assimp-testmodels' BoxTextured glTF, through a JSON scene that
-     * adds a ground, a wall and a lamp). */
+    /* A real asset nobody here wrote (assimp-testmodels' BoxTextured glTF with its base colour
+     * texture, through a JSON scene that adds a ground, a wall and a lamp). */
     char real[1024];
     const char *data = getenv("RESTIR_TEST_DATA");
     EXPECT(data != NULL, "RESTIR_TEST_DATA is not set (run through ctest)");
     if (data) {
-        snprintf(real, sizeof real, "%s/scenes/box_textured.json", data);
         const char *sets[] = {"shift=hybrid", "mis=pairwise"};
+        snprintf(real, sizeof real, "%s/scenes/box_textured.json", data);
+        check(real, RUNS, sets, 2, 1);
+        /* base colour, metallic-roughness and emission maps (shading varies inside triangles) */
+        snprintf(real, sizeof real, "%s/scenes/textured.json", data);
         check(real, RUNS, sets, 2, 1);
     }
     /* The test has power: the BIASED 1/M weights are caught on the same setup. */

@@ -136,11 +136,11 @@ int main(void)
     {
         int t = s.emitter_tri[0];
         vec3 n = s.tri_normal[t];
-        vec3 le = lights_radiance(&s, t, n);
-        vec3 back = lights_radiance(&s, t, v3_neg(n));
+        vec3 le = lights_radiance(&s, t, 0.25f, 0.25f, n);
+        vec3 back = lights_radiance(&s, t, 0.25f, 0.25f, v3_neg(n));
         EXPECT(le.x == s.materials[s.tri_material[t]].emission.x, "front side emits");
         EXPECT(v3_max_component(back) == 0.0f, "back side is dark");
-        EXPECT(v3_max_component(lights_radiance(&s, 0, v3(0, 1, 0))) == 0.0f, "floor does not emit");
+        EXPECT(v3_max_component(lights_radiance(&s, 0, 0.25f, 0.25f, v3(0, 1, 0))) == 0.0f, "floor does not emit");
     }
 
     /* Chi-square over (emitter, barycentric cell), plus per-sample consistency. */

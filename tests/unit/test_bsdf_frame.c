@@ -13,7 +13,11 @@ int main(void)
     float worst_f = 0.0f, worst_p = 0.0f;
     int zero_mismatch = 0, nonzero = 0;
     for (int k = 0; k < 200000; k++) {
-        struct material m = {.base_color = v3(pcg32_float(&rng), pcg32_float(&rng), pcg32_float(&rng)), .metallic = k % 3 == 0 ? 1.0f : pcg32_float(&rng), .roughness = pcg32_float(&rng), .emission = v3s(0.0f), .lambert_only = k % 7 == 0};
+        struct material m = {.base_color = v3(pcg32_float(&rng), pcg32_float(&rng), pcg32_float(&rng)),
+                             .metallic = k % 3 == 0 ? 1.0f : pcg32_float(&rng),
+                             .roughness = pcg32_float(&rng),
+                             .emission = v3s(0.0f),
+                             .lambert_only = k % 7 == 0};
         struct bsdf b;
         bsdf_from_material(&m, &b);
         vec3 n = warp_uniform_sphere(pcg32_float(&rng), pcg32_float(&rng));

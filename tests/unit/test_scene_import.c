@@ -150,8 +150,7 @@ static void test_gltf2_samples(void)
             refused++;
             printf("REFUSED       %s: %s\n", rel(l.paths[i]), msg);
             EXPECT(n == -1, "%s: returned %d", l.paths[i], n);
-            EXPECT(msg[0] && strstr(msg, l.paths[i]), "%s: the message does not name the file: '%s'", l.paths[i],
-                   msg);
+            EXPECT(msg[0] && strstr(msg, l.paths[i]), "%s: the message does not name the file: '%s'", l.paths[i], msg);
         }
     }
     printf("glTF2: %d files, %d loaded, %d refused\n", l.n, loaded, refused);
@@ -286,7 +285,9 @@ static void test_obj(const char *dir)
     write_file(path, "v 0.1 0.2 0.3\nv 1.1 0.2 0.3\nv 0.1 1.7 0.3\nf 1 2 3\n");
     const float scale2[16] = {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1};
     scene_builder_begin(&b, &s, "t");
-    int mat = scene_add_material(&b, (struct material){.base_color = v3s(0.5f), .metallic = 0, .roughness = 1, .emission = v3s(0), .lambert_only = 0});
+    int mat = scene_add_material(
+        &b, (struct material){
+                .base_color = v3s(0.5f), .metallic = 0, .roughness = 1, .emission = v3s(0), .lambert_only = 0});
     n = scene_import_mesh(&b, path, scale2, mat, NULL, 0, 7, msg);
     EXPECT(n == 1, "tri.obj: %d (%s)", n, msg);
     if (n == 1) {
@@ -308,7 +309,9 @@ static void test_obj(const char *dir)
      * needs the winding flipped. */
     const float mirror[16] = {-1, 0, 0, 3, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     scene_builder_begin(&b, &s, "t");
-    mat = scene_add_material(&b, (struct material){.base_color = v3s(0.5f), .metallic = 0, .roughness = 1, .emission = v3s(0), .lambert_only = 0});
+    mat = scene_add_material(
+        &b, (struct material){
+                .base_color = v3s(0.5f), .metallic = 0, .roughness = 1, .emission = v3s(0), .lambert_only = 0});
     n = scene_import_mesh(&b, path, mirror, mat, NULL, 0, -1, msg);
     EXPECT(n == 1, "tri.obj mirrored: %d (%s)", n, msg);
     if (n == 1) {
@@ -358,7 +361,9 @@ static void test_obj(const char *dir)
 
     /* Overrides by name; an unknown name fails naming it (and nothing else). */
     scene_builder_begin(&b, &s, "t");
-    int green = scene_add_material(&b, (struct material){.base_color = v3(0, 1, 0), .metallic = 0, .roughness = 1, .emission = v3s(0), .lambert_only = 0});
+    int green = scene_add_material(
+        &b, (struct material){
+                .base_color = v3(0, 1, 0), .metallic = 0, .roughness = 1, .emission = v3s(0), .lambert_only = 0});
     struct scene_material_override ov[2] = {{"red", green}, {"lamp", green}};
     n = scene_import_mesh(&b, path, NULL, -1, ov, 2, -1, msg);
     EXPECT(n == 3, "two.obj with overrides: %d (%s)", n, msg);
@@ -370,7 +375,9 @@ static void test_obj(const char *dir)
     }
     scene_destroy(&s);
     scene_builder_begin(&b, &s, "t");
-    green = scene_add_material(&b, (struct material){.base_color = v3(0, 1, 0), .metallic = 0, .roughness = 1, .emission = v3s(0), .lambert_only = 0});
+    green = scene_add_material(
+        &b, (struct material){
+                .base_color = v3(0, 1, 0), .metallic = 0, .roughness = 1, .emission = v3s(0), .lambert_only = 0});
     struct scene_material_override unknown[2] = {{"red", green}, {"no-such-material", green}};
     n = scene_import_mesh(&b, path, NULL, -1, unknown, 2, -1, msg);
     EXPECT(n == -1 && strstr(msg, "'no-such-material'") && strstr(msg, path) && !strstr(msg, "blue"),
@@ -400,8 +407,7 @@ static void test_obj(const char *dir)
                      "property float x\nproperty float y\nproperty float z\nend_header\n");
     scene_builder_begin(&b, &s, "t");
     n = scene_import_mesh(&b, path, NULL, -1, NULL, 0, -1, msg);
-    EXPECT(n == -1 && strstr(msg, path) && strstr(msg, "header claims 1000000000"), "huge PLY header: %d '%s'", n,
-           msg);
+    EXPECT(n == -1 && strstr(msg, path) && strstr(msg, "header claims 1000000000"), "huge PLY header: %d '%s'", n, msg);
     scene_destroy(&s);
 
     /* A file that does not exist. */
@@ -434,8 +440,8 @@ static void base64(const unsigned char *in, size_t n, char *out)
 static void write_lamp_gltf(const char *path, int with_camera)
 {
     static const float pos[9][3] = {
-        {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {-1, 0, -1}, {1, 0, 1}, {1, 0, -1}, /* floor, facing +y */
-        {-0.5f, 2, -0.5f}, {0.5f, 2, -0.5f}, {0, 2, 0.5f},                     /* lamp, facing -y */
+        {-1, 0, -1},       {-1, 0, 1},       {1, 0, 1},    {-1, 0, -1}, {1, 0, 1}, {1, 0, -1}, /* floor, facing +y */
+        {-0.5f, 2, -0.5f}, {0.5f, 2, -0.5f}, {0, 2, 0.5f},                                     /* lamp, facing -y */
     };
     unsigned char bytes[sizeof pos];
     memcpy(bytes, pos, sizeof pos); /* glTF buffers are little-endian, as is every machine we run on */
@@ -510,8 +516,8 @@ static void test_whole_scene(const char *dir)
                (double)floor->base_color.z, (double)floor->metallic, (double)floor->roughness);
         if (s.num_emitters == 1) {
             vec3 le = s.emitters[0].Le;
-            EXPECT(le.x == 4.0f && le.y == 2.0f && le.z == 1.0f, "lamp radiance (%g %g %g), want (4 2 1)",
-                   (double)le.x, (double)le.y, (double)le.z);
+            EXPECT(le.x == 4.0f && le.y == 2.0f && le.z == 1.0f, "lamp radiance (%g %g %g), want (4 2 1)", (double)le.x,
+                   (double)le.y, (double)le.z);
             EXPECT(s.emitters[0].n.y < -0.999f, "lamp faces (%g %g %g), want down", (double)s.emitters[0].n.x,
                    (double)s.emitters[0].n.y, (double)s.emitters[0].n.z);
         }
@@ -520,8 +526,7 @@ static void test_whole_scene(const char *dir)
         EXPECT(c.position.x == 0.0f && c.position.y == 1.0f && c.position.z == 5.0f, "camera at (%g %g %g)",
                (double)c.position.x, (double)c.position.y, (double)c.position.z);
         vec3 fwd = v3_normalize(v3_sub(c.target, c.position));
-        EXPECT(fwd.z < -0.999f, "camera looks along (%g %g %g), want -z", (double)fwd.x, (double)fwd.y,
-               (double)fwd.z);
+        EXPECT(fwd.z < -0.999f, "camera looks along (%g %g %g), want -z", (double)fwd.x, (double)fwd.y, (double)fwd.z);
         EXPECT(c.up.y > 0.999f, "camera up (%g %g %g)", (double)c.up.x, (double)c.up.y, (double)c.up.z);
         EXPECT_NEAR(c.vfov_deg, 0.7 * 180.0 / 3.14159265358979, 1e-3, "vertical fov from yfov 0.7");
         EXPECT(s.camera_path.num_keys == 2, "%d path keys", s.camera_path.num_keys);
@@ -564,8 +569,9 @@ static void test_whole_scene(const char *dir)
 int main(void)
 {
     if (!file_exists(MODELS)) {
-        EXPECT(0, "%s does not exist: the assimp test models are missing; `make test` installs the "
-                  "assimp-testmodels package",
+        EXPECT(0,
+               "%s does not exist: the assimp test models are missing; `make test` installs the "
+               "assimp-testmodels package",
                MODELS);
         return test_finish();
     }
@@ -580,8 +586,8 @@ int main(void)
     test_whole_scene(dir);
 
     /* Remove what we wrote (the folder holds only our files). */
-    static const char *const ours[] = {"nan.obj", "tri.obj", "two.obj", "two.mtl", "bad.obj", "flat.obj", "huge.ply",
-                                       "lamp.gltf", "lamp-nocam.gltf", NULL};
+    static const char *const ours[] = {"nan.obj",  "tri.obj",  "two.obj",   "two.mtl",         "bad.obj",
+                                       "flat.obj", "huge.ply", "lamp.gltf", "lamp-nocam.gltf", NULL};
     for (int i = 0; ours[i]; i++) {
         char p[512];
         snprintf(p, sizeof p, "%s/%s", dir, ours[i]);

@@ -72,19 +72,23 @@ static void test_good_scene(void)
     EXPECT(mkdir(sub, 0777) == 0, "cannot make %s", sub);
     write_file("meshes/tri.obj", "o tri\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     char text[4096];
-    snprintf(text, sizeof text,
-             "{\"format\": \"restir-scene 1\", %s, %s,\n"
-             " \"camera_path\": [{\"frame\": 0, \"position\": [0, 1, 4], \"look_at\": [0, 1, 0]},"
-             " {\"frame\": 10, \"position\": [1, 1, 4], \"look_at\": [0, 1, 0]}],\n"
-             " \"shapes\": [\n"
-             "  {\"type\": \"quads\", \"material\": \"white\", \"quads\": [[[-2, 0, 2], [2, 0, 2], [2, 0, -2], [-2, 0, -2]]]},\n"
-             "  {\"type\": \"box\", \"material\": \"red\", \"min\": [-0.5, 0, -0.5], \"max\": [0.5, 1, 0.5], \"rotate_y_rad\": 0.3},\n"
-             "  {\"type\": \"sphere\", \"material\": \"red\", \"center\": [1, 0.5, 0], \"radius\": 0.4, \"segments\": 8},\n"
-             "  {\"type\": \"triangles\", \"material\": \"lamp\", \"object\": 7, \"vertices\": [[0, 3, 0], [0, 3, 1], [1, 3, 0]]},\n"
-             "  {\"type\": \"mesh\", \"file\": \"meshes/tri.obj\", \"material\": \"white\",\n"
-             "   \"transform\": {\"translate\": [0, 0, -1], \"scale\": 2}}\n"
-             " ]}\n",
-             good_camera, good_materials);
+    snprintf(
+        text, sizeof text,
+        "{\"format\": \"restir-scene 1\", %s, %s,\n"
+        " \"camera_path\": [{\"frame\": 0, \"position\": [0, 1, 4], \"look_at\": [0, 1, 0]},"
+        " {\"frame\": 10, \"position\": [1, 1, 4], \"look_at\": [0, 1, 0]}],\n"
+        " \"shapes\": [\n"
+        "  {\"type\": \"quads\", \"material\": \"white\", \"quads\": [[[-2, 0, 2], [2, 0, 2], [2, 0, -2], [-2, 0, "
+        "-2]]]},\n"
+        "  {\"type\": \"box\", \"material\": \"red\", \"min\": [-0.5, 0, -0.5], \"max\": [0.5, 1, 0.5], "
+        "\"rotate_y_rad\": 0.3},\n"
+        "  {\"type\": \"sphere\", \"material\": \"red\", \"center\": [1, 0.5, 0], \"radius\": 0.4, \"segments\": 8},\n"
+        "  {\"type\": \"triangles\", \"material\": \"lamp\", \"object\": 7, \"vertices\": [[0, 3, 0], [0, 3, 1], [1, "
+        "3, 0]]},\n"
+        "  {\"type\": \"mesh\", \"file\": \"meshes/tri.obj\", \"material\": \"white\",\n"
+        "   \"transform\": {\"translate\": [0, 0, -1], \"scale\": 2}}\n"
+        " ]}\n",
+        good_camera, good_materials);
     struct scene s;
     expect_loads("good.json", text, &s);
     if (!s.num_tris)
@@ -102,8 +106,8 @@ static void test_good_scene(void)
     EXPECT(s.tri_object[0] == 8 && s.tri_object[2] == 9, "fresh objects %d %d", s.tri_object[0], s.tri_object[2]);
     /* the mesh: (1, 0, 0) scaled by 2 and moved by -1 in z */
     vec3 v1 = s.verts[s.indices[3 * (s.num_tris - 1) + 1]];
-    EXPECT(v1.x == 2.0f && v1.y == 0.0f && v1.z == -1.0f, "mesh vertex (%g, %g, %g), expected (2, 0, -1)", v1.x,
-           v1.y, v1.z);
+    EXPECT(v1.x == 2.0f && v1.y == 0.0f && v1.z == -1.0f, "mesh vertex (%g, %g, %g), expected (2, 0, -1)", v1.x, v1.y,
+           v1.z);
     EXPECT(s.camera_path.num_keys == 2 && s.camera_path.keys[1].frame == 10.0f, "camera path read");
     EXPECT(s.camera.vfov_deg == 40.0f && s.camera.up.y == 1.0f, "camera read (up defaults to +y)");
     EXPECT(strcmp(s.name, "good") == 0, "scene named after the file: %s", s.name);
@@ -120,11 +124,13 @@ static void test_errors(void)
            "unknown name lists the built-in scenes: %s", msg);
 
     const char *quad = "{\"type\": \"quads\", \"material\": \"lamp\", \"quads\": [[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]]}";
-#define SCENE(extra, shapes) (snprintf(t, sizeof t, "{%s, %s%s, \"shapes\": [%s]}", good_camera, good_materials, extra, shapes), t)
+#define SCENE(extra, shapes)                                                                                           \
+    (snprintf(t, sizeof t, "{%s, %s%s, \"shapes\": [%s]}", good_camera, good_materials, extra, shapes), t)
     expect_error("{\"camera\": ", "invalid JSON", "line 1");
     expect_error(SCENE(", \"lights\": []", quad), "lights", "unknown key");
-    expect_error(SCENE("", "{\"type\": \"box\", \"material\": \"white\", \"min\": [0,0,0], \"max\": [1,1,1], \"radius\": 1}"),
-                 "shapes[0].radius", "unknown key");
+    expect_error(
+        SCENE("", "{\"type\": \"box\", \"material\": \"white\", \"min\": [0,0,0], \"max\": [1,1,1], \"radius\": 1}"),
+        "shapes[0].radius", "unknown key");
     expect_error(SCENE("", "{\"type\": \"cone\", \"material\": \"white\"}"), "shapes[0].type", "cone");
     expect_error(SCENE("", "{\"type\": \"sphere\", \"material\": \"white\", \"center\": [0,0,0], \"radius\": \"big\"}"),
                  "shapes[0].radius", "number");
@@ -145,22 +151,26 @@ static void test_errors(void)
     expect_error(SCENE("", "{\"type\": \"mesh\", \"file\": \"nowhere.obj\"}"), "shapes[0]", "nowhere.obj");
     expect_error(SCENE("", "{\"type\": \"mesh\", \"file\": \"meshes/tri.obj\", \"transform\": {\"scale\": 0}}"),
                  "shapes[0].transform.scale", "zero");
-    expect_error(SCENE("", "{\"type\": \"mesh\", \"file\": \"meshes/tri.obj\", \"materials\": {\"tri_mat\": \"nope\"}}"),
-                 "shapes[0].materials.tri_mat", "nope");
+    expect_error(
+        SCENE("", "{\"type\": \"mesh\", \"file\": \"meshes/tri.obj\", \"materials\": {\"tri_mat\": \"nope\"}}"),
+        "shapes[0].materials.tri_mat", "nope");
     expect_error(SCENE(", \"camera_path\": [{\"frame\": 3, \"position\": [0,0,1], \"look_at\": [0,0,0]},"
-                       " {\"frame\": 3, \"position\": [0,0,2], \"look_at\": [0,0,0]}]", quad),
+                       " {\"frame\": 3, \"position\": [0,0,2], \"look_at\": [0,0,0]}]",
+                       quad),
                  "camera_path[1]", "previous key");
-    expect_error(SCENE(", \"camera_path\": [{\"position\": [0,0,1], \"look_at\": [0,0,0]}]", quad), "camera_path[0].frame",
-                 "missing");
+    expect_error(SCENE(", \"camera_path\": [{\"position\": [0,0,1], \"look_at\": [0,0,0]}]", quad),
+                 "camera_path[0].frame", "missing");
 #undef SCENE
     /* camera and materials problems: built by hand since SCENE supplies good ones */
     snprintf(t, sizeof t, "{\"camera\": {\"position\": [1, 1, 1], \"look_at\": [1, 1, 1]}, %s, \"shapes\": [%s]}",
              good_materials, quad);
     expect_error(t, "camera", "position equals look_at");
-    snprintf(t, sizeof t, "{\"camera\": {\"position\": [0, 0, 1], \"look_at\": [0, 0, 0], \"up\": [0, 0, 3]}, %s, \"shapes\": [%s]}",
+    snprintf(t, sizeof t,
+             "{\"camera\": {\"position\": [0, 0, 1], \"look_at\": [0, 0, 0], \"up\": [0, 0, 3]}, %s, \"shapes\": [%s]}",
              good_materials, quad);
     expect_error(t, "camera", "parallel");
-    snprintf(t, sizeof t, "{\"camera\": {\"position\": [0, 0, 1], \"look_at\": [0, 0, 0], \"vfov\": 200}, %s, \"shapes\": [%s]}",
+    snprintf(t, sizeof t,
+             "{\"camera\": {\"position\": [0, 0, 1], \"look_at\": [0, 0, 0], \"vfov\": 200}, %s, \"shapes\": [%s]}",
              good_materials, quad);
     expect_error(t, "camera.vfov", "range");
     snprintf(t, sizeof t, "{%s, \"shapes\": [%s]}", good_materials, quad);
@@ -169,7 +179,8 @@ static void test_errors(void)
     expect_error(t, "materials[0].roughness", "range");
     snprintf(t, sizeof t, "{%s, \"materials\": [{\"name\": \"a\"}, {\"name\": \"a\"}], \"shapes\": []}", good_camera);
     expect_error(t, "materials[1]", "already used");
-    snprintf(t, sizeof t, "{%s, \"materials\": [{\"name\": \"a\", \"emission\": [1, -1, 0]}], \"shapes\": []}", good_camera);
+    snprintf(t, sizeof t, "{%s, \"materials\": [{\"name\": \"a\", \"emission\": [1, -1, 0]}], \"shapes\": []}",
+             good_camera);
     expect_error(t, "materials[0].emission", "range");
     snprintf(t, sizeof t, "{%s, \"materials\": [{\"base_color\": [1, 1, 1]}], \"shapes\": []}", good_camera);
     expect_error(t, "materials[0].name", "missing");
