@@ -30,8 +30,10 @@ struct camera {
     float vfov_deg; /* vertical field of view */
 };
 
-/* A camera path: keyframes at given frame numbers, interpolated piecewise linearly with
- * smoothstep easing; frames outside the range clamp to the ends. */
+/* A camera path: keyframes at given frame numbers, interpolated by a cubic Hermite spline with
+ * Catmull-Rom tangents at interior keys (continuous velocity) and zero velocity at the first and
+ * last key (a two-key path is a smoothstep-eased straight line); frames outside the range clamp to
+ * the ends. */
 struct camera_key {
     float frame;
     struct camera cam;
