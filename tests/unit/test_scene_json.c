@@ -193,6 +193,41 @@ static void test_errors(void)
     expect_error("[1, 2, 3]", "must be an object", NULL);
 }
 
+/* The complete example of docs/SCENES.md (its first json block) loads and renders what it says. */
+static void test_docs_example(void)
+{
+    const char *data = getenv("RESTIR_TEST_DATA");
+    EXPECT(data != NULL, "RESTIR_TEST_DATA is not set (run through ctest)");
+    if (!data)
+        return;
+    char path[1024], msg[RESTIR_MSG_LEN];
+    snprintf(path, sizeof path, "%s/../../docs/SCENES.md", data);
+    FILE *f = fopen(path, "rb");
+    EXPECT(f != NULL, "cannot read %s", path);
+    if (!f)
+        return;
+    static char doc[1 << 16];
+    size_t n = fread(doc, 1, sizeof doc - 1, f);
+    fclose(f);
+    doc[n] = '\0';
+    char *begin = strstr(doc, "```json\n"), *end = begin ? strstr(begin + 8, "```") : NULL;
+    EXPECT(begin && end, "docs/SCENES.md has no json block");
+    if (!begin || !end)
+        return;
+    begin += 8;
+    *end = '\0';
+    struct scene s;
+    int rc = scene_json_parse(begin, (size_t)(end - begin), "docs/SCENES.md example", NULL, &s, msg);
+    EXPECT(rc == 0, "the example of docs/SCENES.md does not load: %s", msg);
+    if (rc != 0)
+        return;
+    EXPECT(strcmp(s.name, "lamp-and-box") == 0 && s.num_textures == 1 && s.num_emitters == 2 &&
+               s.camera_path.num_keys == 3,
+           "example: name %s, %d textures, %d emitters, %d path keys", s.name, s.num_textures, s.num_emitters,
+           s.camera_path.num_keys);
+    scene_destroy(&s);
+}
+
 int main(void)
 {
     snprintf(dir, sizeof dir, "/tmp/restir-scene-json-XXXXXX");
@@ -202,6 +237,7 @@ int main(void)
     }
     test_good_scene();
     test_errors();
+    test_docs_example();
     char cmd[400];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     EXPECT(system(cmd) == 0, "cannot remove %s", dir);
