@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "compare_report.h"
 #include "scene/scene_file.h"
 #include "cli.h"
 #include "core/check.h"
@@ -31,6 +32,7 @@ struct compare_result {
     int spp;
     int instances; /* independently seeded runs averaged (equal time) */
     struct restir_error err; /* of the last frame */
+    float *image;            /* the last frame, kept for --report (else NULL) */
 };
 
 /* msg of render_params_set without its "--set" prefix, which
@@ -139,7 +141,8 @@ static int budget_by_spp(enum method_id m) { return m == METHOD_PT || m == METHO
  * Sec. 5, Figure 8), and the frame time counts the instances' passes and one reconstruction.
  * Returns 0, or -1 with msg when the last frame cannot be written to out_dir/c->dir. */
 static int run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
-                      int instances, const float *ref, const char *out_dir, struct compare_result *res, char *msg)
+                      int instances, const float *ref, const char *out_dir, int keep_image, struct compare_result *res,
+                      char *msg)
 {
     enum method_id m = c->method;
     struct renderer r[MAX_INSTANCES];
@@ -192,6 +195,11 @@ static int run_method(const struct scene *s, const struct compare_spec *c, const
     res->spp = budget_by_spp(m) ? p->spp : 1;
     res->instances = instances;
     restir_error_compute(r[0].image, ref, (size_t)p->width * (size_t)p->height, NULL, &res->err);
+    res->image = NULL;
+    if (keep_image) {
+        res->image = xmalloc(sizeof(float) * n3);
+        memcpy(res->image, r[0].image, sizeof(float) * n3);
+    }
     char path[4400];
     snprintf(path, sizeof(path), "%s/%s", out_dir, c->dir);
     int rc = io_make_dirs(path, msg);
@@ -238,7 +246,7 @@ int cmd_compare(int argc, char **argv)
     }
     if (o.help) {
         printf("usage: restir compare --scene NAME --methods SPEC,SPEC,... [--equal-time] [--frames N] [--res WxH]\n"
-               "                      [--ref FILE.exr | --ref-spp N] [--camera static|path] [--out DIR]\n"
+               "                      [--ref FILE.exr | --ref-spp N] [--camera static|path] [--out DIR] [--report]\n"
                "                      [--seed N] [--threads N] [--set key=value]...\n"
                "Each SPEC is NAME[:key=value]...: method NAME (see restir list) with the command's parameters,\n"
                "then each key=value applied as by --set (see restir render --help) for that row only, e.g.\n"
@@ -254,7 +262,11 @@ int cmd_compare(int argc, char **argv)
                "luma_rmse)\n"
                "and each row's last frame to DIR/FOLDER/, where FOLDER is the SPEC with every character other\n"
                "than A-Z a-z 0-9 . _ - replaced by _ (and _2, _3, ... appended when two SPECs give the same\n"
-               "name). Default DIR: out/compare-SCENE.\n");
+               "name). Default DIR: out/compare-SCENE.\n"
+               "--report also writes DIR/index.html: one self-contained page (no network) with the command,\n"
+               "commit and machine, the table, a relMSE plot, every image beside the reference in a viewer\n"
+               "(synchronized zoom and pan, A/B flip), relative-error heat maps and the crops where the first\n"
+               "two methods differ most.\n");
         return 0;
     }
     if (!o.methods) {
@@ -334,14 +346,14 @@ int cmd_compare(int argc, char **argv)
 
     /* The first spec other than pt sets the equal-time budget (its frame time, reconstruction
      * included); pt and gpt then fit it by paths per pixel, the others by averaging instances. */
-    struct compare_result res[MAX_METHODS];
+    struct compare_result res[MAX_METHODS] = {0};
     double budget = -1.0;
     int first = -1;
     for (int k = 0; k < n && first < 0; k++)
         if (specs[k].method != METHOD_PT)
             first = k;
     if (first >= 0) {
-        if (run_method(&s, &specs[first], &specs[first].p, o.frames, 1, ref, out_dir, &res[first], msg) != 0)
+        if (run_method(&s, &specs[first], &specs[first].p, o.frames, 1, ref, out_dir, o.report, &res[first], msg) != 0)
             rc = EXIT_RUNTIME;
         budget = res[first].ms_per_frame;
     }
@@ -356,7 +368,7 @@ int cmd_compare(int argc, char **argv)
             } else {
                 /* one instance's time from a short run, then as many as fit (at least 1) */
                 struct compare_result probe;
-                if (run_method(&s, &specs[k], &q, o.frames < 3 ? o.frames : 3, 1, ref, out_dir, &probe, msg) != 0) {
+                if (run_method(&s, &specs[k], &q, o.frames < 3 ? o.frames : 3, 1, ref, out_dir, 0, &probe, msg) != 0) {
                     rc = EXIT_RUNTIME;
                     break;
                 }
@@ -364,11 +376,13 @@ int cmd_compare(int argc, char **argv)
                 instances = instances < 1 ? 1 : instances > MAX_INSTANCES ? MAX_INSTANCES : instances;
             }
         }
-        if (run_method(&s, &specs[k], &q, o.frames, instances, ref, out_dir, &res[k], msg) != 0)
+        if (run_method(&s, &specs[k], &q, o.frames, instances, ref, out_dir, o.report, &res[k], msg) != 0)
             rc = EXIT_RUNTIME;
     }
     if (rc != 0) {
         cli_error("%s", msg);
+        for (int k = 0; k < n; k++)
+            free(res[k].image);
         free(ref);
         scene_destroy(&s);
         return rc;
@@ -406,8 +420,29 @@ int cmd_compare(int argc, char **argv)
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }
+    if (rc == 0 && o.report) {
+        char command[8192] = "restir compare", pngs[MAX_METHODS][SPEC_MAX + 40];
+        for (int i = 0; i < argc; i++) {
+            size_t len = strlen(command);
+            snprintf(command + len, sizeof command - len, strchr(argv[i], ' ') ? " '%s'" : " %s", argv[i]);
+        }
+        struct compare_report_method rm[MAX_METHODS];
+        for (int k = 0; k < n; k++) {
+            snprintf(pngs[k], sizeof pngs[k], "%s/frame_%04d.png", specs[k].dir, o.frames - 1);
+            rm[k] = (struct compare_report_method){specs[k].label, pngs[k], res[k].image, res[k].ms_per_frame,
+                                                   res[k].spp, res[k].instances, res[k].err};
+        }
+        const struct compare_report_run run = {out_dir, command, s.name, p.width, p.height, o.frames - 1,
+                                               p.camera_path, o.equal_time, ref};
+        if (compare_write_report(&run, n, rm, msg) != 0) {
+            cli_error("--report: %s", msg);
+            rc = EXIT_RUNTIME;
+        }
+    }
     if (rc == 0)
-        printf("output: %s\n", out_dir);
+        printf("output: %s%s\n", out_dir, o.report ? " (report: index.html)" : "");
+    for (int k = 0; k < n; k++)
+        free(res[k].image);
     free(ref);
     scene_destroy(&s);
     return rc;

@@ -38,6 +38,10 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
             o->equal_time = 1;
             continue;
         }
+        if (!strcmp(a, "--report")) {
+            o->report = 1;
+            continue;
+        }
         if (strncmp(a, "--", 2) != 0) {
             snprintf(msg, RESTIR_MSG_LEN, "%s: unexpected argument '%s'", command, a);
             return -1;

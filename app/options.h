@@ -14,6 +14,7 @@ struct cli_options {
     int frames;
     int frame;           /* reference: camera of this frame */
     int equal_time;
+    int report;          /* compare, study: write DIR/index.html */
     int ref_spp;         /* compare: spp of the reference rendered when --ref is absent */
     int save_all;        /* render: write every frame (1) or only the last (0) */
     int help;

@@ -22,6 +22,10 @@ struct restir_error {
 int restir_error_compute(const float *image, const float *reference, size_t n_pixels,
                          const unsigned char *mask, struct restir_error *out);
 
+/* The per-pixel terms of MAPE: out[i] = mean over channels of |I - R| / (R + 0.01 mean(R)), so
+ * the mean of out over the image is restir_error's mape (heat maps of reports). */
+void restir_error_map_mape(const float *image, const float *reference, size_t n_pixels, float *out);
+
 /* Text with the definitions above, for --help. */
 const char *restir_metrics_help(void);
 

@@ -43,6 +43,14 @@ int png_write_srgb(const char *path, const float *rgb, int w, int h, float expos
  * of pixels nonzero), 1 / (largest |lum|); where every lum is 0, 1. Returns 0 or -1 with msg. */
 int png_write_signed(const char *path, const float *rgb, int w, int h, float scale, char *msg);
 
+/* The heat-map colour of t in [0, 1] (clamped; NaN is black): black, violet, red, orange,
+ * pale yellow at HEAT_STOPS evenly spaced stops, linear between them. */
+#define HEAT_STOPS 5
+extern const unsigned char heat_stops[HEAT_STOPS][3];
+void heat_color(float t, unsigned char rgb[3]);
+/* Writes values (one float per pixel) as an 8-bit PNG through heat_color(v / vmax). */
+int png_write_heatmap(const char *path, const float *values, int w, int h, float vmax, char *msg);
+
 /* Temporary sibling name for atomic writes: "<path>.tmp-<pid>". */
 void io_temp_path(const char *path, char *tmp, unsigned long tmp_len);
 /* Renames tmp over path; returns 0, or -1 with msg (and removes tmp). */

@@ -242,3 +242,35 @@ int png_write_signed(const char *path, const float *rgb, int w, int h, float sca
         png_encode_signed(png_luminance(rgb + 3 * i), scale, pixels + 3 * i);
     return png_write_pixels(path, pixels, w, h, msg);
 }
+
+const unsigned char heat_stops[HEAT_STOPS][3] = {{0, 0, 0}, {90, 20, 130}, {215, 40, 60}, {250, 150, 30}, {255, 250, 190}};
+
+void heat_color(float t, unsigned char rgb[3])
+{
+    if (!(t == t)) { /* NaN */
+        rgb[0] = rgb[1] = rgb[2] = 0;
+        return;
+    }
+    t = t < 0.0f ? 0.0f : t > 1.0f ? 1.0f : t;
+    float x = t * (float)(HEAT_STOPS - 1);
+    int k = (int)x < HEAT_STOPS - 1 ? (int)x : HEAT_STOPS - 2;
+    float a = x - (float)k;
+    for (int c = 0; c < 3; c++)
+        rgb[c] = (unsigned char)((1.0f - a) * heat_stops[k][c] + a * heat_stops[k + 1][c] + 0.5f);
+}
+
+int png_write_heatmap(const char *path, const float *values, int w, int h, float vmax, char *msg)
+{
+    if (png_check_args(path, values, w, h, msg) != 0)
+        return -1;
+    const float inv = vmax > 0.0f && isfinite(vmax) ? 1.0f / vmax : 1.0f;
+    size_t n = (size_t)w * (size_t)h;
+    unsigned char *pixels = malloc(3 * n);
+    if (!pixels) {
+        set_msg(msg, "%s: out of memory", path);
+        return -1;
+    }
+    for (size_t i = 0; i < n; i++)
+        heat_color(values[i] * inv, pixels + 3 * i);
+    return png_write_pixels(path, pixels, w, h, msg);
+}

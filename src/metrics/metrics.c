@@ -72,3 +72,20 @@ const char *restir_metrics_help(void)
            "  luma RMSE = sqrt(mean over pixels of (L(I) - L(R))^2)\n"
            "  L(x)      = 0.2126 x_r + 0.7152 x_g + 0.0722 x_b (Rec. 709 luminance)\n";
 }
+
+void restir_error_map_mape(const float *image, const float *reference, size_t n_pixels, float *out)
+{
+    double ref_sum = 0.0;
+    for (size_t i = 0; i < 3 * n_pixels; i++)
+        ref_sum += (double)reference[i];
+    const double offset = n_pixels ? 0.01 * ref_sum / (3.0 * (double)n_pixels) : 0.0;
+    for (size_t i = 0; i < n_pixels; i++) {
+        double e = 0.0;
+        for (int c = 0; c < 3; c++) {
+            double d = (double)image[3 * i + (size_t)c] - (double)reference[3 * i + (size_t)c];
+            if (d != 0.0) /* as restir_error_compute: an exact match is 0 where R + offset is 0 */
+                e += fabs(d) / ((double)reference[3 * i + (size_t)c] + offset);
+        }
+        out[i] = (float)(e / 3.0);
+    }
+}

@@ -1,0 +1,173 @@
+/* html_report.c: the pieces of a self-contained report page (html_report.h). The viewer's script
+ * is inline: every image of a viewer shares one zoom and pan (wheel about the cursor, drag), and
+ * the A/B view shows one image at a time, the space bar flipping between the two selected.
+ * Must never depend on render code. */
+#include "io/html_report.h"
+
+#include <errno.h>
+#include <stdarg.h>
+#include <string.h>
+
+#include "core/check.h"
+#include "io/image_io.h"
+
+static const char *const page_style =
+    "body{font-family:sans-serif;margin:1.5em;background:#fafafa;color:#222}"
+    "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}"
+    "th{background:#eee}td:first-child,th:first-child{text-align:left}"
+    ".grid{display:flex;flex-wrap:wrap;gap:10px}.pane{margin:0}.pane figcaption{font-size:0.85em;text-align:center}"
+    ".frame{overflow:hidden;border:1px solid #999;cursor:grab;background:#000;position:relative}"
+    ".frame img{transform-origin:0 0;image-rendering:pixelated;display:block;user-select:none}"
+    ".bar{display:inline-block;width:260px;height:14px;vertical-align:middle;border:1px solid #999}"
+    ".crops img{image-rendering:pixelated}code{background:#eee;padding:1px 3px}";
+
+/* One script for every viewer on the page: a viewer is a .viewer element holding .frame elements;
+ * its A/B part is an element with data-ab. Once the page has loaded, the body records how many of
+ * its images and SVG plots there are, how many images failed to load and how many script errors
+ * occurred (data-images, data-broken, data-errors), so a headless browser can check the page. */
+static const char *const page_script =
+    "var restirErrors=0;window.addEventListener('error',function(e){if(!(e instanceof ErrorEvent))return;restirErrors++;"
+    "document.body.dataset.errors=restirErrors;},true);"
+    "window.addEventListener('load',function(){var im=document.images,bad=0;"
+    "for(var i=0;i<im.length;i++)if(!im[i].complete||im[i].naturalWidth===0)bad++;"
+    "document.body.dataset.images=im.length;document.body.dataset.plots=document.querySelectorAll('svg').length;"
+    "document.body.dataset.broken=bad;document.body.dataset.errors=restirErrors;});"
+    "document.querySelectorAll('.viewer').forEach(function(v){"
+    "var s={z:1,x:0,y:0},imgs=v.querySelectorAll('.frame img');"
+    "function apply(){imgs.forEach(function(i){i.style.transform='translate('+s.x+'px,'+s.y+'px) scale('+s.z+')';});}"
+    "v.querySelectorAll('.frame').forEach(function(f){var d=null;"
+    "f.addEventListener('wheel',function(e){e.preventDefault();var r=f.getBoundingClientRect(),"
+    "mx=e.clientX-r.left,my=e.clientY-r.top,k=e.deltaY<0?1.25:0.8;s.x=mx-(mx-s.x)*k;s.y=my-(my-s.y)*k;s.z*=k;apply();});"
+    "f.addEventListener('mousedown',function(e){d=[e.clientX-s.x,e.clientY-s.y];e.preventDefault();});"
+    "window.addEventListener('mouseup',function(){d=null;});"
+    "window.addEventListener('mousemove',function(e){if(d){s.x=e.clientX-d[0];s.y=e.clientY-d[1];apply();}});});"
+    "var ab=v.querySelector('[data-ab]');if(!ab)return;"
+    "var a=ab.querySelector('.a'),b=ab.querySelector('.b'),img=ab.querySelector('img'),"
+    "lab=ab.querySelector('.which'),showA=true;"
+    "function show(){var sel=showA?a:b;img.src=sel.value;lab.textContent=(showA?'A: ':'B: ')+"
+    "sel.options[sel.selectedIndex].text;}"
+    "a.onchange=b.onchange=show;ab.querySelector('button').onclick=function(){showA=!showA;show();};"
+    "document.addEventListener('keydown',function(e){if(e.code==='Space'&&e.target.tagName!=='SELECT'){"
+    "e.preventDefault();showA=!showA;show();}});show();});";
+
+int html_begin(struct html_page *pg, const char *path, const char *title, char *msg)
+{
+    memset(pg, 0, sizeof(*pg));
+    snprintf(pg->path, sizeof pg->path, "%s", path);
+    io_temp_path(path, pg->tmp, sizeof pg->tmp);
+    pg->f = fopen(pg->tmp, "wb");
+    if (!pg->f) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: cannot create: %s", path, strerror(errno));
+        return -1;
+    }
+    fputs("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>", pg->f);
+    html_text(pg, title);
+    fprintf(pg->f, "</title><style>%s</style></head><body>\n", page_style);
+    return 0;
+}
+
+void html_text(struct html_page *pg, const char *s)
+{
+    for (; s && *s; s++) {
+        switch (*s) {
+        case '&': fputs("&amp;", pg->f); break;
+        case '<': fputs("&lt;", pg->f); break;
+        case '>': fputs("&gt;", pg->f); break;
+        case '"': fputs("&quot;", pg->f); break;
+        default: fputc(*s, pg->f);
+        }
+    }
+}
+
+void html_raw(struct html_page *pg, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(pg->f, fmt, ap);
+    va_end(ap);
+}
+
+void html_table(struct html_page *pg, int cols, const char *const *header, int rows, const char *const *cells)
+{
+    fputs("<table><tr>", pg->f);
+    for (int c = 0; c < cols; c++) {
+        fputs("<th>", pg->f);
+        html_text(pg, header[c]);
+        fputs("</th>", pg->f);
+    }
+    fputs("</tr>\n", pg->f);
+    for (int r = 0; r < rows; r++) {
+        fputs("<tr>", pg->f);
+        for (int c = 0; c < cols; c++) {
+            fputs("<td>", pg->f);
+            html_text(pg, cells[r * cols + c]);
+            fputs("</td>", pg->f);
+        }
+        fputs("</tr>\n", pg->f);
+    }
+    fputs("</table>\n", pg->f);
+}
+
+void html_viewer(struct html_page *pg, int n, const char *const *labels, const char *const *srcs, int width,
+                 int height)
+{
+    pg->viewers++;
+    const int zoom = width > 0 && width < 320 ? (320 + width - 1) / width : 1; /* grid */
+    const int ab_zoom = width > 0 && 2 * zoom * width <= 1280 ? 2 * zoom : zoom; /* the A/B view */
+    fputs("<div class=\"viewer\"><p>Wheel: zoom (all images together); drag: pan; space or the button: flip the "
+          "A/B view.</p><div class=\"grid\">\n", pg->f);
+    for (int k = 0; k < n; k++) {
+        fprintf(pg->f, "<figure class=\"pane\"><div class=\"frame\" style=\"width:%dpx;height:%dpx\"><img width=\"%d\" "
+                       "height=\"%d\" alt=\"",
+                zoom * width, zoom * height, zoom * width, zoom * height);
+        html_text(pg, labels[k]);
+        fputs("\" src=\"", pg->f);
+        html_text(pg, srcs[k]);
+        fputs("\"></div><figcaption>", pg->f);
+        html_text(pg, labels[k]);
+        fputs("</figcaption></figure>\n", pg->f);
+    }
+    fputs("</div><div data-ab=\"1\"><p>A <select class=\"a\">", pg->f);
+    for (int pass = 0; pass < 2; pass++) {
+        for (int k = 0; k < n; k++) {
+            fputs("<option value=\"", pg->f);
+            html_text(pg, srcs[k]);
+            fputs(pass == 0 ? (k == 0 ? "\" selected>" : "\">") : (k == (n > 1 ? 1 : 0) ? "\" selected>" : "\">"),
+                  pg->f);
+            html_text(pg, labels[k]);
+            fputs("</option>", pg->f);
+        }
+        fputs(pass == 0 ? "</select> B <select class=\"b\">" : "</select> <button type=\"button\">flip A/B</button> "
+                                                               "<b class=\"which\"></b></p>",
+              pg->f);
+    }
+    fprintf(pg->f, "<div class=\"frame\" style=\"width:%dpx;height:%dpx\"><img width=\"%d\" height=\"%d\" alt=\"A/B\" src=\"",
+            ab_zoom * width, ab_zoom * height, ab_zoom * width, ab_zoom * height);
+    html_text(pg, n > 0 ? srcs[0] : "");
+    fputs("\"></div></div></div>\n", pg->f);
+}
+
+void html_colorbar(struct html_page *pg, float vmax, const char *what)
+{
+    fputs("<p>", pg->f);
+    html_text(pg, what);
+    fputs(": 0 <span class=\"bar\" style=\"background:linear-gradient(to right", pg->f);
+    for (int k = 0; k < HEAT_STOPS; k++)
+        fprintf(pg->f, ",rgb(%d,%d,%d)", heat_stops[k][0], heat_stops[k][1], heat_stops[k][2]);
+    fprintf(pg->f, ")\"></span> %g and above</p>\n", (double)vmax);
+}
+
+int html_end(struct html_page *pg, char *msg)
+{
+    fprintf(pg->f, "<script>%s</script>\n</body></html>\n", page_script);
+    int failed = ferror(pg->f) != 0;
+    if (fclose(pg->f) != 0)
+        failed = 1;
+    pg->f = NULL;
+    if (failed) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: cannot write: %s", pg->path, strerror(errno));
+        remove(pg->tmp);
+        return -1;
+    }
+    return io_commit(pg->tmp, pg->path, msg);
+}

@@ -1,0 +1,38 @@
+/* html_report.h: one self-contained HTML page (inline style and script, no network) beside the
+ * images it shows: escaped text, tables, an image viewer with synchronized zoom and pan and an A/B
+ * flip, heat-map colour bars. Written to a temporary name and renamed when complete. */
+#ifndef RESTIR_IO_HTML_REPORT_H
+#define RESTIR_IO_HTML_REPORT_H
+
+#include <stdio.h>
+
+struct html_page {
+    FILE *f;
+    char path[4096];
+    char tmp[4200];
+    int viewers; /* viewers written, so each gets its own ids */
+};
+
+/* Opens the page and writes its head (title escaped) and the opening of its body. */
+int html_begin(struct html_page *pg, const char *path, const char *title, char *msg);
+/* Escaped text (&, <, >, "). */
+void html_text(struct html_page *pg, const char *s);
+/* Markup, as is. */
+void html_raw(struct html_page *pg, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* A table: header cells, then rows of cells (escaped), rows * cols entries row-major. */
+void html_table(struct html_page *pg, int cols, const char *const *header, int rows, const char *const *cells);
+/* Images (all width x height pixels) in a grid, shown at least ~320 pixels wide (small renders are
+ * magnified by a whole factor, pixelated): the mouse wheel zooms and dragging pans all of them together;
+ * two selectors and the space bar flip one large view between image A and image B. */
+void html_viewer(struct html_page *pg, int n, const char *const *labels, const char *const *srcs, int width,
+                 int height);
+/* The heat-map colour bar (heat_color) from 0 to vmax. */
+void html_colorbar(struct html_page *pg, float vmax, const char *what);
+/* Writes the script, closes the page and renames it into place. Returns 0, or -1 with msg. */
+int html_end(struct html_page *pg, char *msg);
+
+#endif

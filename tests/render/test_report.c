@@ -1,0 +1,107 @@
+/* test_report.c: `restir compare --report` writes a self-contained page: every image it shows
+ * exists beside it, nothing is fetched from a network, and a real browser (headless Chromium)
+ * loads it with every image and plot in place and no script error (the page records both on its
+ * body once loaded). The report and the browser's screenshot stay in RESTIR_TEST_OUTPUT/report. */
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli_util.h"
+#include "test_util.h"
+
+static char page[1 << 20], dom[1 << 20];
+
+static long file_size(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 ? (long)st.st_size : -1;
+}
+
+/* Every src="..." of the page names a non-empty file in dir; returns how many. */
+static int check_sources(const char *dir, const char *html)
+{
+    int n = 0;
+    for (const char *p = strstr(html, "src=\""); p; p = strstr(p + 5, "src=\"")) {
+        const char *b = p + 5, *e = strchr(b, '"');
+        if (!e)
+            break;
+        char rel[512], path[3 * CLI_PATH_MAX];
+        snprintf(rel, sizeof rel, "%.*s", (int)(e - b) < 500 ? (int)(e - b) : 500, b);
+        snprintf(path, sizeof path, "%.*s/%s", CLI_PATH_MAX, dir, rel);
+        EXPECT(strncmp(rel, "http", 4) != 0 && strncmp(rel, "//", 2) != 0, "the page fetches %s", rel);
+        EXPECT(file_size(path) > 0, "the page shows %s, which is missing or empty", rel);
+        n++;
+    }
+    return n;
+}
+
+/* The value of data-NAME="..." on the dumped body, or -1. */
+static int body_attribute(const char *html, const char *name)
+{
+    const char *body = strstr(html, "<body");
+    char key[64];
+    snprintf(key, sizeof key, "data-%s=\"", name);
+    const char *p = body ? strstr(body, key) : NULL;
+    const char *end = body ? strchr(body, '>') : NULL;
+    return p && end && p < end ? atoi(p + strlen(key)) : -1;
+}
+
+int main(void)
+{
+    char tmp[CLI_PATH_MAX], dir[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX], err[CLI_ERR_MAX];
+    const char *out_root = getenv("RESTIR_TEST_OUTPUT");
+    if (!cli_bin() || cli_make_temp_dir(tmp) != 0 || !out_root) {
+        EXPECT(0, "cannot set up (RESTIR_BIN, RESTIR_TEST_OUTPUT or a temporary folder)");
+        return test_finish();
+    }
+    snprintf(dir, sizeof dir, "%s/report", out_root);
+    snprintf(args, sizeof args, "rm -rf '%s'", dir);
+    EXPECT(system(args) == 0, "cannot clear %s", dir);
+    snprintf(args, sizeof args,
+             "compare --scene cornell --methods restir-di,ris-di,pt --res 64x36 --frames 3 --ref-spp 16 --report "
+             "--out '%s'",
+             dir);
+    int rc = cli_run(tmp, args, err);
+    EXPECT(rc == 0, "restir %s exited %d:\n%s", args, rc, err);
+
+    char path[3 * CLI_PATH_MAX];
+    snprintf(path, sizeof path, "%s/index.html", dir);
+    cli_read_text(path, page, sizeof page);
+    EXPECT(strlen(page) > 1000, "%s is missing or nearly empty", path);
+    int images = check_sources(dir, page);
+    printf("index.html: %zu bytes, %d images\n", strlen(page), images);
+    /* reference + 3 methods, their A/B view, 3 heat maps and theirs, 2 regions x 4 crops */
+    EXPECT(images == 4 + 1 + 3 + 1 + 8, "%d images on the page", images);
+    EXPECT(!strstr(page, "<script src") && !strstr(page, "<link") && !strstr(page, "href=\"http"),
+           "the page loads something from outside itself");
+    const char *must[] = {"restir-di", "ris-di", "<svg", "heat_2.png", "crop_1_ref0.png", "restir compare --scene cornell",
+                          "Commit:", "Machine:", "relMSE"};
+    for (size_t k = 0; k < sizeof must / sizeof must[0]; k++)
+        EXPECT(strstr(page, must[k]) != NULL, "the page lacks '%s'", must[k]);
+
+    /* A real browser: the page's own check of its images, plots and script errors. */
+    const char *browser = getenv("CHROMIUM") ? getenv("CHROMIUM") : "/usr/bin/chromium";
+    EXPECT(file_size(browser) > 0, "%s is missing (make test installs Debian's chromium)", browser);
+    if (file_size(browser) > 0) {
+        char cmd[16 * CLI_PATH_MAX], dom_path[3 * CLI_PATH_MAX], shot[3 * CLI_PATH_MAX];
+        const char *flags = "--headless --no-sandbox --disable-gpu --hide-scrollbars --virtual-time-budget=5000";
+        snprintf(dom_path, sizeof dom_path, "%s/dom.html", dir);
+        snprintf(cmd, sizeof cmd, "timeout 120 '%s' %s --dump-dom 'file://%s' > '%s' 2> '%s/browser.log'", browser,
+                 flags, path, dom_path, dir);
+        EXPECT(system(cmd) == 0, "headless chromium failed: %s (see %s/browser.log)", cmd, dir);
+        cli_read_text(dom_path, dom, sizeof dom);
+        int loaded = body_attribute(dom, "images"), broken = body_attribute(dom, "broken");
+        int errors = body_attribute(dom, "errors"), plots = body_attribute(dom, "plots");
+        printf("chromium: %d images (%d broken), %d plots, %d script errors\n", loaded, broken, plots, errors);
+        EXPECT(loaded == images, "the browser saw %d images, the page has %d", loaded, images);
+        EXPECT(broken == 0, "%d images did not load in the browser", broken);
+        EXPECT(plots == 1, "the browser saw %d plots", plots);
+        EXPECT(errors == 0, "%d script errors in the browser", errors);
+        snprintf(shot, sizeof shot, "%s/screenshot.png", dir);
+        snprintf(cmd, sizeof cmd, "timeout 120 '%s' %s --window-size=1300,2600 --screenshot='%s' 'file://%s' 2>> '%s/browser.log'",
+                 browser, flags, shot, path, dir);
+        EXPECT(system(cmd) == 0 && file_size(shot) > 10000, "no screenshot at %s", shot);
+        printf("screenshot: %s\n", shot);
+    }
+    EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
+    return test_finish();
+}
