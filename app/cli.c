@@ -180,3 +180,12 @@ float *cli_render_reference(const struct scene *s, enum method_id method, const 
     free(chunk);
     return sum;
 }
+
+void cli_command_line(const char *command, int argc, char **argv, char *out, size_t len)
+{
+    snprintf(out, len, "restir %s", command);
+    for (int i = 0; i < argc; i++) {
+        size_t used = strlen(out);
+        snprintf(out + used, len - used, strchr(argv[i], ' ') ? " '%s'" : " %s", argv[i]);
+    }
+}

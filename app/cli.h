@@ -26,6 +26,9 @@ int cli_parse_res(const char *s, int *w, int *h, char *msg);
 /* Parses a whole number in [lo, hi] for option `opt`. Returns 0, or -1 with msg. */
 int cli_parse_int(const char *opt, const char *s, long long lo, long long hi, long long *out, char *msg);
 
+/* "restir <command> <args...>" with arguments holding spaces quoted, cut to len. */
+void cli_command_line(const char *command, int argc, char **argv, char *out, size_t len);
+
 /* Loads a reference EXR and checks it has the render size. Returns 0, or -1 with msg. */
 int cli_load_reference(const char *path, int width, int height, float **ref, char *msg);
 

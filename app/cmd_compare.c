@@ -421,11 +421,8 @@ int cmd_compare(int argc, char **argv)
         rc = EXIT_RUNTIME;
     }
     if (rc == 0 && o.report) {
-        char command[8192] = "restir compare", pngs[MAX_METHODS][SPEC_MAX + 40];
-        for (int i = 0; i < argc; i++) {
-            size_t len = strlen(command);
-            snprintf(command + len, sizeof command - len, strchr(argv[i], ' ') ? " '%s'" : " %s", argv[i]);
-        }
+        char command[8192], pngs[MAX_METHODS][SPEC_MAX + 40];
+        cli_command_line("compare", argc, argv, command, sizeof command);
         struct compare_report_method rm[MAX_METHODS];
         for (int k = 0; k < n; k++) {
             snprintf(pngs[k], sizeof pngs[k], "%s/frame_%04d.png", specs[k].dir, o.frames - 1);

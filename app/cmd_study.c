@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "scene/scene_file.h"
+#include "study_report.h"
 #include "cli.h"
 #include "core/check.h"
 #include "io/image_io.h"
@@ -41,13 +42,14 @@ static void study_usage(FILE *out)
     fprintf(out,
             "usage: restir study --scene NAME --method restir-di|restir-pt --configs LIST [--radii LIST]\n"
             "                    [--runs N] [--warmup N] [--frames F] [--res WxH] [--ref FILE.exr | --ref-spp N]\n"
-            "                    [--set key=value]... --out DIR\n"
+            "                    [--set key=value]... [--report] --out DIR\n"
             "The error-correlation study of 000 (Sec. 6-7, Appendix A): N independently seeded sequences per\n"
             "configuration (static camera, confidence cap 20, --warmup frames before measuring, default 40),\n"
             "then --frames measured frames (default 16). LIST: bitterli, fast, balanced, conservative,\n"
             "compat, compat-binary. --radii R1,R2,... adds bitterli and compat at each radius (the Pareto\n"
             "curves). Spatial neighbors M: --set spatial.neighbors=M. Default --res 320x180, --runs 8.\n"
-            "Writes DIR/study.csv, study.md, pareto.svg, hard_pixels.png, strip.png.\n");
+            "Writes DIR/study.csv, study.md, pareto.svg, hard_pixels.png, strip.png; with --report also\n"
+            "DIR/index.html, one self-contained page showing them with the command, commit and machine.\n");
 }
 
 /* A named configuration at radius r (the radius of bitterli, compat and compat-binary). */
@@ -421,6 +423,18 @@ int cmd_study(int argc, char **argv)
                    cfg[k].name, cfg[k].radius, res[k].smape_all, res[k].smape_hard, res[k].temporal_cov,
                    res[k].spatial_cov, res[k].ms_select, res[k].ms_frame);
         printf("output: %s\n", o.out);
+    }
+    if (rc == 0 && o.report) {
+        char command[8192];
+        cli_command_line("study", argc, argv, command, sizeof command);
+        const struct study_report_run run = {o.out, command, s.name, o.method, w, h, o.runs, o.warmup, o.frames,
+                                             nhard, strip_y, ref};
+        if (study_write_report(&run, msg) != 0) {
+            cli_error("--report: %s", msg);
+            rc = EXIT_RUNTIME;
+        } else {
+            printf("report: %s/index.html\n", o.out);
+        }
     }
     free(ref_row);
     free(strips);

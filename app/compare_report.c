@@ -6,40 +6,16 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-#include <unistd.h>
 
 #include "core/check.h"
 #include "io/html_report.h"
 #include "io/image_io.h"
 
-#ifndef RESTIR_GIT_COMMIT
-#define RESTIR_GIT_COMMIT "unknown"
-#endif
+#include "report_commit.h"
 
 /* Heat maps saturate at a relative error of 1 (100%). */
 #define HEAT_MAX 1.0f
 #define MAX_REPORT_METHODS 32
-
-static void machine_name(char *out, size_t len)
-{
-    char model[256] = "unknown CPU";
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    char line[512];
-    while (f && fgets(line, sizeof line, f)) {
-        if (!strncmp(line, "model name", 10)) {
-            const char *c = strchr(line, ':');
-            if (c) {
-                snprintf(model, sizeof model, "%s", c + 2);
-                model[strcspn(model, "\n")] = '\0';
-            }
-            break;
-        }
-    }
-    if (f)
-        fclose(f);
-    snprintf(out, len, "%s, %ld cores", model, sysconf(_SC_NPROCESSORS_ONLN));
-}
 
 /* The cw x cw window (stride cw / 2) with the largest sum of sign * (a - b). */
 static void largest_difference(const float *a, const float *b, int w, int h, int cw, float sign, int *bx, int *by)
@@ -94,15 +70,8 @@ static void relmse_plot(struct html_page *pg, int n, const struct compare_report
 
 static void meta(struct html_page *pg, const struct compare_report_run *run)
 {
-    char machine[400], when[64];
-    machine_name(machine, sizeof machine);
-    time_t now = time(NULL);
-    strftime(when, sizeof when, "%Y-%m-%d %H:%M:%S UTC", gmtime(&now));
-    html_raw(pg, "<p>Command: <code>");
-    html_text(pg, run->command);
-    html_raw(pg, "</code><br>Commit: <code>%s</code> (at build time). Machine: ", RESTIR_GIT_COMMIT);
-    html_text(pg, machine);
-    html_raw(pg, ". Written %s.</p>\n<p>", when);
+    html_run_info(pg, run->command, RESTIR_GIT_COMMIT);
+    html_raw(pg, "<p>");
     html_text(pg, run->scene);
     html_raw(pg, ", %dx%d, %s camera, error at frame %d%s.</p>\n", run->width, run->height,
              run->moving ? "moving" : "static", run->frame, run->equal_time ? ", equal time" : "");

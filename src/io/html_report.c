@@ -7,6 +7,8 @@
 #include <errno.h>
 #include <stdarg.h>
 #include <string.h>
+#include <time.h>
+#include <unistd.h>
 
 #include "core/check.h"
 #include "io/image_io.h"
@@ -85,6 +87,41 @@ void html_raw(struct html_page *pg, const char *fmt, ...)
     va_start(ap, fmt);
     vfprintf(pg->f, fmt, ap);
     va_end(ap);
+}
+
+static void machine_name(char *out, size_t len)
+{
+    char model[256] = "unknown CPU";
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    char line[512];
+    while (f && fgets(line, sizeof line, f)) {
+        if (!strncmp(line, "model name", 10)) {
+            const char *c = strchr(line, ':');
+            if (c) {
+                snprintf(model, sizeof model, "%s", c + 2);
+                model[strcspn(model, "\n")] = '\0';
+            }
+            break;
+        }
+    }
+    if (f)
+        fclose(f);
+    snprintf(out, len, "%s, %ld cores", model, sysconf(_SC_NPROCESSORS_ONLN));
+}
+
+void html_run_info(struct html_page *pg, const char *command, const char *commit)
+{
+    char machine[400], when[64];
+    machine_name(machine, sizeof machine);
+    time_t now = time(NULL);
+    strftime(when, sizeof when, "%Y-%m-%d %H:%M:%S UTC", gmtime(&now));
+    html_raw(pg, "<p>Command: <code>");
+    html_text(pg, command);
+    html_raw(pg, "</code><br>Commit: <code>");
+    html_text(pg, commit);
+    html_raw(pg, "</code> (at build time). Machine: ");
+    html_text(pg, machine);
+    html_raw(pg, ". Written %s.</p>\n", when);
 }
 
 void html_table(struct html_page *pg, int cols, const char *const *header, int rows, const char *const *cells)

@@ -23,6 +23,8 @@ void html_raw(struct html_page *pg, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+/* The run: the command line, the commit, the machine (CPU model and cores) and the time. */
+void html_run_info(struct html_page *pg, const char *command, const char *commit);
 /* A table: header cells, then rows of cells (escaped), rows * cols entries row-major. */
 void html_table(struct html_page *pg, int cols, const char *const *header, int rows, const char *const *cells);
 /* Images (all width x height pixels) in a grid, shown at least ~320 pixels wide (small renders are

@@ -45,6 +45,59 @@ static int body_attribute(const char *html, const char *name)
     return p && end && p < end ? atoi(p + strlen(key)) : -1;
 }
 
+/* Loads dir/index.html in headless Chromium: the page's body must report `images` images, none
+ * broken, `plots` inline plots and no script error; keeps dir/screenshot.png. */
+static void check_in_browser(const char *browser, const char *dir, int images, int plots)
+{
+    char cmd[16 * CLI_PATH_MAX], dom_path[3 * CLI_PATH_MAX], shot[3 * CLI_PATH_MAX];
+    const char *flags = "--headless --no-sandbox --disable-gpu --hide-scrollbars --virtual-time-budget=5000";
+    snprintf(dom_path, sizeof dom_path, "%s/dom.html", dir);
+    snprintf(cmd, sizeof cmd, "timeout 120 '%s' %s --dump-dom 'file://%s/index.html' > '%s' 2> '%s/browser.log'",
+             browser, flags, dir, dom_path, dir);
+    EXPECT(system(cmd) == 0, "headless chromium failed: %s (see %s/browser.log)", cmd, dir);
+    cli_read_text(dom_path, dom, sizeof dom);
+    int loaded = body_attribute(dom, "images"), broken = body_attribute(dom, "broken");
+    int errors = body_attribute(dom, "errors"), seen_plots = body_attribute(dom, "plots");
+    printf("chromium, %s: %d images (%d broken), %d inline plots, %d script errors\n", dir, loaded, broken,
+           seen_plots, errors);
+    EXPECT(loaded == images, "the browser saw %d images, the page has %d", loaded, images);
+    EXPECT(broken == 0, "%d images did not load in the browser", broken);
+    EXPECT(seen_plots == plots, "the browser saw %d inline plots, want %d", seen_plots, plots);
+    EXPECT(errors == 0, "%d script errors in the browser", errors);
+    snprintf(shot, sizeof shot, "%s/screenshot.png", dir);
+    snprintf(cmd, sizeof cmd,
+             "timeout 120 '%s' %s --window-size=1300,2600 --screenshot='%s' 'file://%s/index.html' 2>> '%s/browser.log'",
+             browser, flags, shot, dir, dir);
+    EXPECT(system(cmd) == 0 && file_size(shot) > 10000, "no screenshot at %s", shot);
+    printf("screenshot: %s\n", shot);
+}
+
+/* study --report: the page shows study.csv's rows, the Pareto plot, the mask and the strip. */
+static void check_study(const char *tmp, const char *out_root, const char *browser)
+{
+    char dir[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX], err[CLI_ERR_MAX], path[3 * CLI_PATH_MAX];
+    snprintf(dir, sizeof dir, "%s/study_report", out_root);
+    snprintf(args, sizeof args, "rm -rf '%s'", dir);
+    EXPECT(system(args) == 0, "cannot clear %s", dir);
+    snprintf(args, sizeof args,
+             "study --scene cornell --method restir-di --configs bitterli,fast --radii 8,16 --runs 2 --warmup 2 "
+             "--frames 4 --res 48x27 --ref-spp 16 --report --out '%s'",
+             dir);
+    int rc = cli_run(tmp, args, err);
+    EXPECT(rc == 0, "restir %s exited %d:\n%s", args, rc, err);
+    snprintf(path, sizeof path, "%s/index.html", dir);
+    cli_read_text(path, page, sizeof page);
+    int images = check_sources(dir, page);
+    /* pareto.svg, reference and mask, their A/B view, the strip */
+    EXPECT(images == 5, "%d images on the study page", images);
+    const char *must[] = {"pareto.svg", "hard_pixels.png", "strip.png", "<td>fast</td>", "<td>compat@16</td>",
+                          "smape_hard", "Commit:"};
+    for (size_t k = 0; k < sizeof must / sizeof must[0]; k++)
+        EXPECT(strstr(page, must[k]) != NULL, "the study page lacks '%s'", must[k]);
+    if (file_size(browser) > 0)
+        check_in_browser(browser, dir, images, 0);
+}
+
 int main(void)
 {
     char tmp[CLI_PATH_MAX], dir[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX], err[CLI_ERR_MAX];
@@ -81,27 +134,9 @@ int main(void)
     /* A real browser: the page's own check of its images, plots and script errors. */
     const char *browser = getenv("CHROMIUM") ? getenv("CHROMIUM") : "/usr/bin/chromium";
     EXPECT(file_size(browser) > 0, "%s is missing (make test installs Debian's chromium)", browser);
-    if (file_size(browser) > 0) {
-        char cmd[16 * CLI_PATH_MAX], dom_path[3 * CLI_PATH_MAX], shot[3 * CLI_PATH_MAX];
-        const char *flags = "--headless --no-sandbox --disable-gpu --hide-scrollbars --virtual-time-budget=5000";
-        snprintf(dom_path, sizeof dom_path, "%s/dom.html", dir);
-        snprintf(cmd, sizeof cmd, "timeout 120 '%s' %s --dump-dom 'file://%s' > '%s' 2> '%s/browser.log'", browser,
-                 flags, path, dom_path, dir);
-        EXPECT(system(cmd) == 0, "headless chromium failed: %s (see %s/browser.log)", cmd, dir);
-        cli_read_text(dom_path, dom, sizeof dom);
-        int loaded = body_attribute(dom, "images"), broken = body_attribute(dom, "broken");
-        int errors = body_attribute(dom, "errors"), plots = body_attribute(dom, "plots");
-        printf("chromium: %d images (%d broken), %d plots, %d script errors\n", loaded, broken, plots, errors);
-        EXPECT(loaded == images, "the browser saw %d images, the page has %d", loaded, images);
-        EXPECT(broken == 0, "%d images did not load in the browser", broken);
-        EXPECT(plots == 1, "the browser saw %d plots", plots);
-        EXPECT(errors == 0, "%d script errors in the browser", errors);
-        snprintf(shot, sizeof shot, "%s/screenshot.png", dir);
-        snprintf(cmd, sizeof cmd, "timeout 120 '%s' %s --window-size=1300,2600 --screenshot='%s' 'file://%s' 2>> '%s/browser.log'",
-                 browser, flags, shot, path, dir);
-        EXPECT(system(cmd) == 0 && file_size(shot) > 10000, "no screenshot at %s", shot);
-        printf("screenshot: %s\n", shot);
-    }
+    if (file_size(browser) > 0)
+        check_in_browser(browser, dir, images, 1);
+    check_study(tmp, out_root, browser);
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
     return test_finish();
 }
