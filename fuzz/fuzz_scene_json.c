@@ -14,6 +14,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (size > (1u << 20)) /* scenes larger than 1 MB say nothing new about the reader */
         return 0;
+    scene_set_max_triangles(1 << 18); /* a sphere of 4096 segments must not exhaust the fuzzer's memory */
     char *text = malloc(size + 1);
     if (!text)
         return 0;

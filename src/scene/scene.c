@@ -43,20 +43,43 @@ int scene_add_material(struct scene_builder *b, struct material m)
 
 int scene_new_object(struct scene_builder *b) { return b->s->num_objects++; }
 
-int scene_add_texture(struct scene_builder *b, struct texture t)
+struct scene_texture_key {
+    char *key;
+    int srgb;
+};
+
+int scene_add_texture(struct scene_builder *b, struct texture t, const char *key, int srgb)
 {
     struct scene *s = b->s;
     if (s->num_textures == b->cap_textures) {
         b->cap_textures = b->cap_textures ? 2 * b->cap_textures : 8;
         s->textures = grow_to(s->textures, b->cap_textures, sizeof(*s->textures));
+        s->texture_keys = grow_to(s->texture_keys, b->cap_textures, sizeof(*s->texture_keys));
     }
+    size_t len = strlen(key);
+    s->texture_keys[s->num_textures].key = memcpy(xmalloc(len + 1), key, len + 1);
+    s->texture_keys[s->num_textures].srgb = srgb;
     s->textures[s->num_textures++] = t;
     return s->num_textures;
 }
 
+int scene_texture_find(const struct scene *s, const char *key, int srgb)
+{
+    for (int t = 0; t < s->num_textures; t++)
+        if (s->texture_keys[t].srgb == srgb && strcmp(s->texture_keys[t].key, key) == 0)
+            return t + 1;
+    return 0;
+}
+
+static int max_triangles = 1 << 26;
+
+void scene_set_max_triangles(int n) { max_triangles = n > 0 ? n : 1; }
+
 void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6])
 {
     struct scene *s = b->s;
+    if (b->over_budget) /* the triangle was refused; scene_builder_end will fail */
+        return;
     RESTIR_CHECK(tri >= 0 && tri < s->num_tris);
     if (!s->uv) /* first UVs: every other vertex gets (0, 0) */
         s->uv = xcalloc(2 * (size_t)b->cap_verts, sizeof(float));
@@ -82,6 +105,10 @@ void scene_add_triangle(struct scene_builder *b, vec3 a, vec3 c, vec3 d, int mat
     record_shape(b, (struct scene_shape_record){.kind = SHAPE_TRIANGLE, .p = {a, c, d}, .material = material,
                                                 .object = object});
     struct scene *s = b->s;
+    if (s->num_tris >= max_triangles) {
+        b->over_budget = 1;
+        return;
+    }
     if (s->num_tris == b->cap_tris) {
         b->cap_tris = b->cap_tris ? 2 * b->cap_tris : 256;
         s->indices = grow_to(s->indices, 3 * b->cap_tris, sizeof(*s->indices));
@@ -263,6 +290,10 @@ static int build_emitters(struct scene *s, char *msg)
 int scene_builder_end(struct scene_builder *b, char *msg)
 {
     struct scene *s = b->s;
+    if (b->over_budget) {
+        snprintf(msg, RESTIR_MSG_LEN, "scene '%s' has more than %d triangles (the limit)", s->name, max_triangles);
+        return -1;
+    }
     if (s->num_tris == 0) {
         snprintf(msg, RESTIR_MSG_LEN, "scene '%s' has no triangles", s->name);
         return -1;
@@ -307,9 +338,12 @@ void scene_destroy(struct scene *s)
     free(s->materials);
     free(s->camera_path.keys);
     free(s->uv);
-    for (int t = 0; t < s->num_textures; t++)
+    for (int t = 0; t < s->num_textures; t++) {
         texture_fini(&s->textures[t]);
+        free(s->texture_keys[t].key);
+    }
     free(s->textures);
+    free(s->texture_keys);
     if (s->num_emitters > 0)
         alias_table_fini(&s->emitter_table);
     memset(s, 0, sizeof(*s));

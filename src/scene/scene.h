@@ -73,6 +73,7 @@ struct scene {
     float *uv;             /* 2 per vertex (assimp's convention, (0, 0) bottom-left), or NULL */
     int num_textures;
     struct texture *textures;
+    struct scene_texture_key *texture_keys; /* where each texture came from (scene_texture_find) */
 
     /* Emitters: emissive triangles, chosen proportionally to power (alias table). */
     int num_emitters;
@@ -117,14 +118,22 @@ struct scene_builder {
     int cap_verts, cap_tris, cap_materials, cap_textures; /* capacities of the growing arrays */
     /* With record set, every outermost shape call is appended to records (the caller frees). */
     int record, depth;
+    int over_budget; /* a triangle beyond scene_set_max_triangles was refused */
     int num_records, cap_records;
     struct scene_shape_record *records;
 };
 
 void scene_builder_begin(struct scene_builder *b, struct scene *s, const char *name);
 int scene_add_material(struct scene_builder *b, struct material m);
-/* Takes ownership of t; returns its map id for struct material (>= 1). */
-int scene_add_texture(struct scene_builder *b, struct texture t);
+/* Takes ownership of t; returns its map id for struct material (>= 1). key names where it came
+ * from (a resolved file path, or a model path and an embedded index) and srgb how it was decoded,
+ * so that every later material naming the same image, in any file or instance, shares it. */
+int scene_add_texture(struct scene_builder *b, struct texture t, const char *key, int srgb);
+/* The map id of the texture added with this key and srgb, or 0. */
+int scene_texture_find(const struct scene *s, const char *key, int srgb);
+/* The most triangles a scene may have (default 1 << 26, about 16 GB with its BVH): a builder past
+ * it stops adding and scene_builder_end fails saying so. Fuzzing lowers it. */
+void scene_set_max_triangles(int n);
 /* The UVs (u0 v0 u1 v1 u2 v2) of triangle tri, already added. */
 void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6]);
 int scene_new_object(struct scene_builder *b);

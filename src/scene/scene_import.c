@@ -351,7 +351,6 @@ struct importer {
     vec3 *verts;              /* one mesh's vertices after the transform (scratch) */
     unsigned cap_verts;
     int added;                /* triangles added */
-    struct import_texture_cache textures;
     char *msg;
 };
 
@@ -407,8 +406,8 @@ static float emissive_strength(struct importer *im, const struct aiMaterial *m, 
     return cJSON_IsArray(materials) ? gltf_strength_by_name(materials, name) : 1.0f;
 }
 
-/* Our material for file material idx. glTF metallic-roughness factors map one to one (textures
- * are ignored: their factors are what we render). For other formats: the diffuse colour, and a
+/* Our material for file material idx. glTF metallic-roughness factors map one to one, and its
+ * three texture maps multiply them (scene_import_texture.c). For other formats: the diffuse colour, and a
  * roughness from the Phong exponent Ns when there is no roughness: Beckmann alpha =
  * sqrt(2 / (Ns + 2)) (Walter et al. 2007), used as GGX alpha, roughness = sqrt(alpha), so Ns 0 is
  * fully rough and Ns 1000 gives 0.21. glTF's KHR_materials_pbrSpecularGlossiness (assimp reports
@@ -459,17 +458,17 @@ static int make_material(struct importer *im, unsigned idx, struct material *out
     static const enum aiTextureType base_types[] = {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE};
     static const enum aiTextureType mr_types[] = {aiTextureType_UNKNOWN, aiTextureType_METALNESS};
     static const enum aiTextureType emissive_types[] = {aiTextureType_EMISSIVE};
-    out->base_color_map = import_texture_map(im->b, im->ai, m, im->path, base_types, 2, 1, &im->textures, im->msg);
+    out->base_color_map = import_texture_map(im->b, im->ai, m, im->path, base_types, 2, 1, im->msg);
     if (out->base_color_map < 0)
         return -1;
-    if (!spec_gloss) {
-        out->metal_rough_map = import_texture_map(im->b, im->ai, m, im->path, mr_types, 2, 0, &im->textures, im->msg);
+    if (!spec_gloss && is_gltf_path(im->path)) { /* elsewhere UNKNOWN is a catch-all and METALNESS one channel */
+        out->metal_rough_map = import_texture_map(im->b, im->ai, m, im->path, mr_types, 2, 0, im->msg);
         if (out->metal_rough_map < 0)
             return -1;
     }
     if (v3_max_component(emission) > 0.0f) {
         out->emission_map =
-            import_texture_map(im->b, im->ai, m, im->path, emissive_types, 1, 1, &im->textures, im->msg);
+            import_texture_map(im->b, im->ai, m, im->path, emissive_types, 1, 1, im->msg);
         if (out->emission_map < 0)
             return -1;
     }
@@ -714,7 +713,6 @@ static int import_mesh(struct scene_builder *b, const char *path, const float *x
     free(im.override_material);
     free(im.verts);
     cJSON_Delete(im.gltf);
-    import_texture_cache_fini(&im.textures);
     if (rc == 0 && keep)
         *keep = ai;
     else

@@ -15,8 +15,9 @@ struct scene_material_override {
  * file's node hierarchy, then through xform (4x4, row-major, p' = xform * node * p; NULL: the
  * identity; used as an affine map, its bottom row ignored). A transform that mirrors (negative
  * determinant) has its triangles' winding flipped, so fronts stay fronts. Points, lines and
- * zero-area triangles are skipped; normals, texture coordinates and textures are not read
- * (flat shading, material factors only); skinned or morphed meshes come in their rest pose.
+ * zero-area triangles are skipped; vertex normals are not read (flat shading); the first UV
+ * channel and the glTF base colour, metallic-roughness and emissive textures are (texture.h);
+ * skinned or morphed meshes come in their rest pose.
  * material >= 0: every triangle gets that material; material < 0: the file's materials that
  * triangles use are added to the builder (glTF metallic-roughness factors clamped to [0, 1];
  * emissive factor times KHR_materials_emissive_strength; other formats: diffuse colour and a

@@ -10,12 +10,6 @@
 
 #include "../core/check.h"
 
-void import_texture_cache_fini(struct import_texture_cache *c)
-{
-    free(c->entries);
-    memset(c, 0, sizeof(*c));
-}
-
 /* The embedded texture a reference names: "*N", or (assimp 5.1+) the file name of one. */
 static const struct aiTexture *embedded(const struct aiScene *ai, const char *ref)
 {
@@ -41,8 +35,9 @@ static const struct aiTexture *embedded(const struct aiScene *ai, const char *re
     return NULL;
 }
 
-static int decode(const struct aiScene *ai, const char *model_path, const char *ref, int srgb, struct texture *t,
-                  char *msg)
+/* Decodes reference ref of the model: embedded, or the file at file_path (its resolved key). */
+static int decode(const struct aiScene *ai, const char *model_path, const char *ref, const char *file_path, int srgb,
+                  struct texture *t, char *msg)
 {
     char label[320]; /* long names are cut: the message must fit RESTIR_MSG_LEN */
     snprintf(label, sizeof label, "%.150s (of %.150s)", ref, model_path);
@@ -50,7 +45,7 @@ static int decode(const struct aiScene *ai, const char *model_path, const char *
     if (e && e->pcData) {
         if (e->mHeight == 0) /* compressed: mWidth bytes of PNG, JPEG, ... */
             return texture_load_memory((const unsigned char *)e->pcData, (int)e->mWidth, srgb, label, t, msg);
-        if (e->mWidth > 32768 || e->mHeight > 32768) {
+        if (e->mWidth == 0 || e->mWidth > 32768 || e->mHeight > 32768 || (long)e->mWidth * e->mHeight > (1L << 26)) {
             snprintf(msg, RESTIR_MSG_LEN, "texture %s: %ux%u is out of range", label, e->mWidth, e->mHeight);
             return -1;
         }
@@ -61,18 +56,26 @@ static int decode(const struct aiScene *ai, const char *model_path, const char *
         snprintf(msg, RESTIR_MSG_LEN, "texture %s: the file has no such embedded texture", label);
         return -1;
     }
-    char path[2200];
+    return texture_load_file(file_path, srgb, t, msg);
+}
+
+/* Where reference ref of the model at model_path lives: "model#ref" for an embedded texture, else
+ * the file's path (relative to the model's folder). Returns -1 when it does not fit. */
+static int texture_key(const struct aiScene *ai, const char *model_path, const char *ref, char *out, size_t len)
+{
+    int n;
     const char *slash = strrchr(model_path, '/');
-    if (ref[0] == '/' || !slash)
-        snprintf(path, sizeof path, "%s", ref);
+    if (embedded(ai, ref) || ref[0] == '*')
+        n = snprintf(out, len, "%s#%s", model_path, ref);
+    else if (ref[0] == '/' || !slash)
+        n = snprintf(out, len, "%s", ref);
     else
-        snprintf(path, sizeof path, "%.*s/%s", (int)(slash - model_path), model_path, ref);
-    return texture_load_file(path, srgb, t, msg);
+        n = snprintf(out, len, "%.*s/%s", (int)(slash - model_path), model_path, ref);
+    return n >= 0 && (size_t)n < len ? 0 : -1;
 }
 
 int import_texture_map(struct scene_builder *b, const struct aiScene *ai, const struct aiMaterial *m,
-                       const char *model_path, const enum aiTextureType *types, int ntypes, int srgb,
-                       struct import_texture_cache *cache, char *msg)
+                       const char *model_path, const enum aiTextureType *types, int ntypes, int srgb, char *msg)
 {
     struct aiString ref;
     int found = 0;
@@ -82,22 +85,16 @@ int import_texture_map(struct scene_builder *b, const struct aiScene *ai, const 
                 ref.length > 0 && ref.length < MAXLEN;
     if (!found)
         return 0;
-    const char *key = ref.data;
-    for (int i = 0; i < cache->count; i++)
-        if (cache->entries[i].srgb == srgb && strcmp(cache->entries[i].key, key) == 0)
-            return cache->entries[i].map;
-    struct texture t;
-    if (decode(ai, model_path, key, srgb, &t, msg) != 0)
+    char key[4200];
+    if (texture_key(ai, model_path, ref.data, key, sizeof key) != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: texture path too long", model_path);
         return -1;
-    if (cache->count == cache->cap) {
-        cache->cap = cache->cap ? 2 * cache->cap : 8;
-        struct import_texture_entry *grown = realloc(cache->entries, sizeof(*grown) * (size_t)cache->cap);
-        RESTIR_CHECK(grown != NULL);
-        cache->entries = grown;
     }
-    struct import_texture_entry *e = &cache->entries[cache->count++];
-    snprintf(e->key, sizeof e->key, "%s", key);
-    e->srgb = srgb;
-    e->map = scene_add_texture(b, t);
-    return e->map;
+    int map = scene_texture_find(b->s, key, srgb);
+    if (map > 0)
+        return map;
+    struct texture t;
+    if (decode(ai, model_path, ref.data, key, srgb, &t, msg) != 0)
+        return -1;
+    return scene_add_texture(b, t, key, srgb);
 }

@@ -21,15 +21,10 @@
 
 struct reader {
     const char *file;
-    char dir[1024]; /* directory of file, for relative mesh paths ("" = current) */
+    char dir[4096]; /* directory of file, for relative mesh paths ("" = current) */
     char *msg;
     struct scene_builder *b;
     cJSON *materials; /* the "materials" array (names resolve through it) */
-    int num_loaded;   /* textures read so far, by path, so materials sharing one load it once */
-    struct {
-        char path[1100];
-        int srgb, map;
-    } loaded[64];
 };
 
 /* vsnprintf into out: a message too long for the buffer is cut, never left unterminated. */
@@ -243,13 +238,13 @@ static const char *const material_keys[] = {"name", "base_color", "metallic", "r
                                             "emissive_strength", "lambert", "base_color_texture",
                                             "metallic_roughness_texture", "emission_texture", NULL};
 
-/* A path in the file: absolute, or relative to the file's folder. */
-static void resolve_path(const struct reader *r, const char *name, char *out, size_t len)
+/* A path in the file: absolute, or relative to the file's folder. Returns -1 (msg naming key)
+ * when it does not fit out. */
+static int resolve_path(struct reader *r, const char *key, const char *name, char *out, size_t len)
 {
-    if (name[0] == '/' || !*r->dir)
-        snprintf(out, len, "%s", name);
-    else
-        snprintf(out, len, "%s/%s", r->dir, name);
+    int n = name[0] == '/' || !*r->dir ? snprintf(out, len, "%s", name)
+                                       : snprintf(out, len, "%s%s%s", r->dir, strcmp(r->dir, "/") ? "/" : "", name);
+    return n >= 0 && (size_t)n < len ? 0 : fail(r, key, "path too long");
 }
 
 /* The texture map named by key of material object m (0 when absent), read on first use. */
@@ -263,24 +258,16 @@ static int texture_map(struct reader *r, const cJSON *m, const char *mkey, const
         return 0;
     if (!cJSON_IsString(v) || !*v->valuestring)
         return fail(r, k, "must be an image file name");
-    char path[1100];
-    resolve_path(r, v->valuestring, path, sizeof path);
-    for (int i = 0; i < r->num_loaded; i++) {
-        if (r->loaded[i].srgb == srgb && strcmp(r->loaded[i].path, path) == 0) {
-            *map = r->loaded[i].map;
-            return 0;
-        }
-    }
-    if (r->num_loaded == (int)(sizeof r->loaded / sizeof r->loaded[0]))
-        return fail(r, k, "more than 64 texture files in one scene");
+    char path[4096];
+    if (resolve_path(r, k, v->valuestring, path, sizeof path) != 0)
+        return -1;
+    if ((*map = scene_texture_find(r->b->s, path, srgb)) > 0)
+        return 0; /* read already, by this or another material */
     struct texture t;
     char tmsg[RESTIR_MSG_LEN];
     if (texture_load_file(path, srgb, &t, tmsg) != 0)
         return fail(r, k, "%s", tmsg);
-    *map = scene_add_texture(r->b, t);
-    snprintf(r->loaded[r->num_loaded].path, sizeof r->loaded[0].path, "%s", path);
-    r->loaded[r->num_loaded].srgb = srgb;
-    r->loaded[r->num_loaded++].map = *map;
+    *map = scene_add_texture(r->b, t, path, srgb);
     return 0;
 }
 
@@ -315,6 +302,16 @@ static int read_materials(struct reader *r)
             return -1;
         if (strength != 1.0f) /* KHR_materials_emissive_strength: a multiplier of the colour */
             mt.emission = v3_scale(mt.emission, strength);
+        if (v3_max_component(mt.emission) > 1e18f) {
+            char k[80];
+            child_key(k, sizeof k, key, "emissive_strength", 0);
+            return fail(r, k, "emission times strength exceeds 1e18");
+        }
+        if (cJSON_GetObjectItemCaseSensitive(m, "emission_texture") && !(v3_max_component(mt.emission) > 0.0f)) {
+            char k[80];
+            child_key(k, sizeof k, key, "emission_texture", 0);
+            return fail(r, k, "has no effect without \"emission\" (the map multiplies it, as in glTF)");
+        }
         /* glTF 2.0 maps: colour images are sRGB-encoded, metallic-roughness (G, B) linear */
         if (texture_map(r, m, key, "base_color_texture", 1, &mt.base_color_map) != 0 ||
             texture_map(r, m, key, "metallic_roughness_texture", 0, &mt.metal_rough_map) != 0 ||
@@ -407,8 +404,9 @@ static int read_mesh(struct reader *r, const cJSON *sh, const char *key, int mat
     const cJSON *file = cJSON_GetObjectItemCaseSensitive(sh, "file");
     if (!cJSON_IsString(file) || !*file->valuestring)
         return fail(r, k, file ? "must be a file name" : "missing");
-    char path[2048];
-    resolve_path(r, file->valuestring, path, sizeof path);
+    char path[4096];
+    if (resolve_path(r, k, file->valuestring, path, sizeof path) != 0)
+        return -1;
     float m[16];
     const cJSON *t = cJSON_GetObjectItemCaseSensitive(sh, "transform");
     child_key(k, sizeof k, key, "transform", 0);
@@ -673,6 +671,14 @@ static int read_scene(struct reader *r, const cJSON *root)
     const cJSON *name = cJSON_GetObjectItemCaseSensitive(root, "name");
     if (name && !cJSON_IsString(name))
         return fail(r, "name", "must be a string");
+    if (name) { /* it names output folders: one plain path component */
+        const char *v = name->valuestring;
+        int bad = !*v || strlen(v) >= sizeof r->b->s->name || strstr(v, "..") != NULL;
+        for (const char *c = v; *c && !bad; c++)
+            bad = *c == '/' || *c == '\\' || (unsigned char)*c < 32;
+        if (bad)
+            return fail(r, "name", "must be 1 to 63 characters without '/', '\\', '..' or control characters");
+    }
     if (name)
         snprintf(r->b->s->name, sizeof r->b->s->name, "%s", name->valuestring);
     int ok;
@@ -708,6 +714,7 @@ static int read_scene(struct reader *r, const cJSON *root)
 
 int scene_json_parse(const char *text, size_t len, const char *file, const char *dir, struct scene *s, char *msg)
 {
+    memset(s, 0, sizeof(*s)); /* empty on every failure, so scene_destroy is always safe */
     struct reader r = {.file = file, .msg = msg};
     snprintf(r.dir, sizeof r.dir, "%s", dir ? dir : "");
     const char *end = NULL;
@@ -735,14 +742,22 @@ int scene_json_parse(const char *text, size_t len, const char *file, const char 
 
 int scene_json_load(const char *path, struct scene *s, char *msg)
 {
+    memset(s, 0, sizeof(*s));
     long len = 0;
     char *text = read_whole_file(path, &len, msg);
     if (!text)
         return -1;
-    char dir[1024] = "";
+    char dir[4096] = "";
     const char *slash = strrchr(path, '/');
-    if (slash)
+    if (slash == path)
+        snprintf(dir, sizeof dir, "/");
+    else if (slash && slash - path < (long)sizeof dir)
         snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    else if (slash) {
+        free(text);
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: path too long", path);
+        return -1;
+    }
     int rc = scene_json_parse(text, (size_t)len, path, dir, s, msg);
     free(text);
     return rc;
@@ -765,6 +780,7 @@ int scene_path_has_suffix(const char *s, const char *suffix)
 
 int scene_load(const char *name_or_path, struct scene *s, char *msg)
 {
+    memset(s, 0, sizeof(*s));
     if (scene_is_builtin(name_or_path))
         return scene_create_builtin(name_or_path, s, msg);
     FILE *f = fopen(name_or_path, "rb");

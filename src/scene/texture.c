@@ -10,8 +10,10 @@
 
 #include "../core/check.h"
 
-/* Largest texture accepted per side: beyond it the decode alone would not fit a workstation. */
+/* Largest texture accepted: per side, and in texels (12 bytes each decoded: 2^26 is 768 MB). Both
+ * are checked from the image header, before anything is decoded. */
 #define TEXTURE_MAX_SIDE 32768
+#define TEXTURE_MAX_TEXELS (1L << 26)
 
 /* sRGB transfer function, inverse (IEC 61966-2-1). */
 static float srgb_to_linear(float c)
@@ -34,17 +36,36 @@ static void from_bytes(const unsigned char *px, int w, int h, int channels, cons
             t->rgb[3 * i + c] = table[px[(size_t)channels * i + (size_t)rgb_at[c]]];
 }
 
+static const char *failure_reason(void)
+{
+    const char *why = stbi_failure_reason();
+    return why ? why : "unknown reason";
+}
+
+/* The header's verdict, before decoding: 0, or -1 with msg (unreadable, HDR, too large). */
+static int check_header(int ok, int w, int h, int hdr, const char *name, char *msg)
+{
+    if (!ok) {
+        snprintf(msg, RESTIR_MSG_LEN, "texture %s: cannot read the image: %s", name, failure_reason());
+        return -1;
+    }
+    if (hdr) { /* stb would tone-map it to 8 bits: refuse rather than change the data */
+        snprintf(msg, RESTIR_MSG_LEN, "texture %s: HDR images are not supported (8-bit PNG, JPEG, TGA, BMP)", name);
+        return -1;
+    }
+    if (w < 1 || h < 1 || w > TEXTURE_MAX_SIDE || h > TEXTURE_MAX_SIDE || (long)w * (long)h > TEXTURE_MAX_TEXELS) {
+        snprintf(msg, RESTIR_MSG_LEN, "texture %s: %dx%d is out of range (1..%d per side, %ld texels)", name, w, h,
+                 TEXTURE_MAX_SIDE, TEXTURE_MAX_TEXELS);
+        return -1;
+    }
+    return 0;
+}
+
 static int decoded(unsigned char *px, int w, int h, int channels, int srgb, const char *name, struct texture *t,
                    char *msg)
 {
     if (!px) {
-        snprintf(msg, RESTIR_MSG_LEN, "texture %s: cannot decode: %s", name, stbi_failure_reason());
-        return -1;
-    }
-    if (w < 1 || h < 1 || w > TEXTURE_MAX_SIDE || h > TEXTURE_MAX_SIDE) {
-        snprintf(msg, RESTIR_MSG_LEN, "texture %s: %dx%d is out of range (1..%d per side)", name, w, h,
-                 TEXTURE_MAX_SIDE);
-        stbi_image_free(px);
+        snprintf(msg, RESTIR_MSG_LEN, "texture %s: cannot decode: %s", name, failure_reason());
         return -1;
     }
     /* grey and grey-alpha images replicate their one channel */
@@ -58,6 +79,9 @@ int texture_load_file(const char *path, int srgb, struct texture *t, char *msg)
 {
     memset(t, 0, sizeof(*t));
     int w = 0, h = 0, n = 0;
+    const int ok = stbi_info(path, &w, &h, &n); /* before w and h are read below */
+    if (check_header(ok, w, h, stbi_is_hdr(path), path, msg) != 0)
+        return -1;
     unsigned char *px = stbi_load(path, &w, &h, &n, 0);
     return decoded(px, w, h, n, srgb, path, t, msg);
 }
@@ -66,7 +90,14 @@ int texture_load_memory(const unsigned char *data, int len, int srgb, const char
 {
     memset(t, 0, sizeof(*t));
     int w = 0, h = 0, n = 0;
-    unsigned char *px = len > 0 ? stbi_load_from_memory(data, len, &w, &h, &n, 0) : NULL;
+    if (len <= 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "texture %s: no image data", name);
+        return -1;
+    }
+    const int ok = stbi_info_from_memory(data, len, &w, &h, &n);
+    if (check_header(ok, w, h, stbi_is_hdr_from_memory(data, len), name, msg) != 0)
+        return -1;
+    unsigned char *px = stbi_load_from_memory(data, len, &w, &h, &n, 0);
     return decoded(px, w, h, n, srgb, name, t, msg);
 }
 

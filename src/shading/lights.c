@@ -12,6 +12,9 @@ static vec3 tri_emission(const struct scene *s, int tri) { return s->materials[s
 /* Emission at a point: the material's factor, times its emission texture there. */
 static vec3 point_emission(const struct scene *s, int tri, float b1, float b2)
 {
+    const struct material *m = &s->materials[s->tri_material[tri]];
+    if (!m->emission_map) /* other maps do not change emission */
+        return m->emission;
     struct material tmp;
     return scene_material_at(s, tri, b1, b2, &tmp)->emission;
 }

@@ -191,6 +191,22 @@ static void test_errors(void)
     snprintf(t, sizeof t, "{\"format\": \"pbrt\", %s, %s, \"shapes\": [%s]}", good_camera, good_materials, quad);
     expect_error(t, "format", "restir-scene 1");
     expect_error("[1, 2, 3]", "must be an object", NULL);
+    snprintf(t, sizeof t, "{\"name\": \"../escape\", %s, %s, \"shapes\": [%s]}", good_camera, good_materials, quad);
+    expect_error(t, "name", "without");
+    snprintf(t, sizeof t, "{%s, \"materials\": [{\"name\": \"a\", \"emission_texture\": \"x.png\"}], \"shapes\": []}",
+             good_camera);
+    expect_error(t, "materials[0].emission_texture", "without");
+    snprintf(t, sizeof t, "{%s, \"materials\": [{\"name\": \"a\", \"base_color_texture\": \"nope.png\"}], \"shapes\": []}",
+             good_camera);
+    expect_error(t, "materials[0].base_color_texture", "nope.png");
+    /* the triangle budget: refused with a message, not an exhausted machine */
+    scene_set_max_triangles(100);
+    snprintf(t, sizeof t,
+             "{%s, %s, \"shapes\": [{\"type\": \"sphere\", \"material\": \"lamp\", \"center\": [0,0,0], "
+             "\"radius\": 1, \"segments\": 64}]}",
+             good_camera, good_materials);
+    expect_error(t, "more than 100 triangles", NULL);
+    scene_set_max_triangles(1 << 26);
 }
 
 /* The complete example of docs/SCENES.md (its first json block) loads and renders what it says. */
