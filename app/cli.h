@@ -58,5 +58,6 @@ int cmd_reference(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 int cmd_study(int argc, char **argv);
 int cmd_scene(int argc, char **argv);
+int cmd_view(int argc, char **argv);
 
 #endif

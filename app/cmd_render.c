@@ -16,11 +16,13 @@ static void render_usage(FILE *out)
 {
     fprintf(out,
             "usage: restir render --scene NAME --method NAME [--res WxH] [--frames N] [--spp N] [--seed N]\n"
-            "                     [--threads N] [--camera static|path] [--ref FILE.exr] [--out DIR]\n"
+            "                     [--threads N] [--camera static|path|FILE] [--ref FILE.exr] [--out DIR]\n"
             "                     [--save all|last] [--set key=value]...\n"
             "Writes DIR/frame_NNNN.exr and .png, DIR/metrics.csv (per frame: times per pass, rays, and\n"
             "error metrics when --ref is given) and DIR/summary.json. Default DIR: out/SCENE-METHOD.\n"
             "ReSTIR methods render 1 sample per pixel per frame; --spp applies to pt and gpt.\n"
+            "--camera FILE replays a camera file (one camera per frame, as restir view records them) and\n"
+            "renders as many frames as it holds unless --frames says fewer.\n"
             "Gradient methods (gpt, grad-after-restir, grestir-pt) write the reconstruction as the image\n"
             "(L2; L1 with recon=l1), EXR layers primal, dx, dy (and L1 or L2 when computed), and\n"
             "frame_NNNN_{primal,dx,dy}.png (gradients in false colour: red positive, blue negative).\n\n"
@@ -113,6 +115,20 @@ int cmd_render(int argc, char **argv)
     int rc = open_scene_and_method(&o, &s, &method);
     if (rc != 0)
         return rc;
+    struct camera *cams = NULL; /* --camera FILE: one per frame */
+    int ncams = 0;
+    if (o.camera_file) {
+        if (scene_cameras_load(o.camera_file, &cams, &ncams, msg) != 0 ||
+            (o.frames_given && o.frames > ncams &&
+             snprintf(msg, RESTIR_MSG_LEN, "%.300s holds %d cameras, --frames asks for %d", o.camera_file, ncams,
+                      o.frames) > 0)) {
+            cli_error("%s", msg);
+            scene_destroy(&s);
+            return EXIT_USAGE;
+        }
+        if (!o.frames_given)
+            o.frames = ncams;
+    }
     char out_dir[4096];
     if (o.out)
         snprintf(out_dir, sizeof(out_dir), "%s", o.out);
@@ -157,7 +173,7 @@ int cmd_render(int argc, char **argv)
     rc = 0;
     for (int f = 0; f < o.frames && rc == 0; f++) {
         struct frame_stats st;
-        struct camera cam = scene_camera_at(&s, o.params.camera_path, (float)f);
+        struct camera cam = cams ? cams[f] : scene_camera_at(&s, o.params.camera_path, (float)f);
         renderer_render(&r, f, &cam, &st);
         ms_sum += st.ms_total;
         rays_sum += (double)st.rays;
@@ -233,6 +249,7 @@ int cmd_render(int argc, char **argv)
         printf("\noutput: %s\n", out_dir);
     }
     renderer_fini(&r);
+    free(cams);
     free(ref);
     free(mask);
     scene_destroy(&s);

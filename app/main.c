@@ -15,7 +15,8 @@ static void usage(FILE *out)
             "  reference   render a converged reference of what a method estimates\n"
             "  compare     run several methods on the same frames, optionally at equal time\n"
             "  study       the error-correlation study of neighbor selection (000 Sec. 6-7)\n"
-            "  scene       scene info NAME|FILE; scene export NAME --out DIR (restir scene --help)\n");
+            "  scene       scene info NAME|FILE; scene export NAME --out DIR (restir scene --help)\n"
+            "  view        an interactive window rendering frame after frame (restir view --help)\n");
 }
 
 static int cmd_list(void)
@@ -46,6 +47,8 @@ int main(int argc, char **argv)
         return cmd_study(argc - 2, argv + 2);
     if (!strcmp(cmd, "scene"))
         return cmd_scene(argc - 2, argv + 2);
+    if (!strcmp(cmd, "view"))
+        return cmd_view(argc - 2, argv + 2);
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         usage(stdout);
         return 0;

@@ -59,6 +59,8 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
             o->ref = val;
         else if (!strcmp(a, "--out"))
             o->out = val;
+        else if (!strcmp(a, "--script") && !strcmp(command, "view"))
+            o->script = val;
         else if (!strcmp(a, "--res")) {
             if (cli_parse_res(val, &o->params.width, &o->params.height, msg) != 0)
                 return -1;
@@ -94,6 +96,8 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
                 o->params.camera_path = 0;
             else if (!strcmp(val, "path"))
                 o->params.camera_path = 1;
+            else if (!strcmp(command, "render") || !strcmp(command, "view"))
+                o->camera_file = val; /* a camera file: one camera per frame */
             else {
                 snprintf(msg, RESTIR_MSG_LEN, "--camera expects static or path, got '%s'", val);
                 return -1;
@@ -127,6 +131,7 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
             return -1;
         }
     }
+    o->frames_given = frames_given;
     if (!frames_given && !strcmp(command, "study"))
         o->frames = 16;
     return render_params_validate(&o->params, msg);

@@ -5,6 +5,8 @@
 #ifndef RESTIR_IO_IMAGE_IO_H
 #define RESTIR_IO_IMAGE_IO_H
 
+#include <stddef.h>
+
 /* One RGB image of a multi-layer EXR: interleaved floats (w*h*3). name NULL or "" is the default
  * layer, stored as the plain channels R, G, B; any other name is stored as name.R, name.G,
  * name.B, which tev and the OpenEXR tools show as a layer called name. */
@@ -32,6 +34,8 @@ int exr_read_rgb(const char *path, float **rgb, int *w, int *h, char *msg);
  * B, exactly as exr_read_rgb) into a newly malloc'ed interleaved buffer. A missing layer gives
  * -1 with msg naming the file, the layer and the layers the file does have. */
 int exr_read_layer(const char *path, const char *layer, float **rgb, int *w, int *h, char *msg);
+/* n values of rgb * 2^exposure as 8-bit sRGB, clamped (what PNGs and the viewer show). */
+void encode_srgb8(const float *rgb, size_t n, float exposure, unsigned char *out);
 /* Writes an 8-bit sRGB PNG of rgb * 2^exposure, clamped. Returns 0 or -1 with msg. */
 int png_write_srgb(const char *path, const float *rgb, int w, int h, float exposure, char *msg);
 /* Writes a false-colour 8-bit PNG of a signed image (a gradient or a difference): each pixel's

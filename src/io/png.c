@@ -152,16 +152,21 @@ int png_write_srgb(const char *path, const float *rgb, int w, int h, float expos
 {
     if (png_check_args(path, rgb, w, h, msg) != 0)
         return -1;
-    float scale = exp2f(isfinite(exposure) ? exposure : 0.0f);
     size_t n = (size_t)w * (size_t)h * 3;
     unsigned char *pixels = malloc(n);
     if (!pixels) {
         set_msg(msg, "%s: out of memory for %dx%d PNG", path, w, h);
         return -1;
     }
-    for (size_t i = 0; i < n; i++)
-        pixels[i] = png_encode_value(rgb[i], scale);
+    encode_srgb8(rgb, n, exposure, pixels);
     return png_write_pixels(path, pixels, w, h, msg);
+}
+
+void encode_srgb8(const float *rgb, size_t n, float exposure, unsigned char *out)
+{
+    float scale = exp2f(isfinite(exposure) ? exposure : 0.0f);
+    for (size_t i = 0; i < n; i++)
+        out[i] = png_encode_value(rgb[i], scale);
 }
 
 static float png_luminance(const float *p)

@@ -133,6 +133,46 @@ static cJSON *shapes_json(const struct scene_shape_record *r, int n)
     return shapes;
 }
 
+/* Prints root (and deletes it) to path through a temporary file and a rename. */
+static int write_json(cJSON *root, const char *path, char *msg)
+{
+    char *text = cJSON_Print(root);
+    cJSON_Delete(root);
+    if (!text) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.400s: out of memory formatting JSON", path);
+        return -1;
+    }
+    char tmp[4200];
+    io_temp_path(path, tmp, sizeof tmp);
+    FILE *f = fopen(tmp, "wb");
+    int ok = f && fputs(text, f) >= 0 && fputc('\n', f) != EOF;
+    if (f && fclose(f) != 0)
+        ok = 0;
+    free(text);
+    if (!ok) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.400s: cannot write: %s", path, strerror(errno));
+        remove(tmp);
+        return -1;
+    }
+    return io_commit(tmp, path, msg);
+}
+
+int cameras_write_json(const char *path, const struct camera *cams, int n, const char *scene, const char *method,
+                       int width, int height, unsigned long long seed, char *msg)
+{
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "format", "restir-cameras 1");
+    cJSON_AddStringToObject(root, "scene", scene);
+    cJSON_AddStringToObject(root, "method", method);
+    cJSON_AddNumberToObject(root, "width", width);
+    cJSON_AddNumberToObject(root, "height", height);
+    cJSON_AddNumberToObject(root, "seed", (double)seed);
+    cJSON *list = cJSON_AddArrayToObject(root, "cameras");
+    for (int k = 0; k < n; k++)
+        cJSON_AddItemToArray(list, camera_json(&cams[k], NULL));
+    return write_json(root, path, msg);
+}
+
 int scene_export_json(const struct scene *s, const struct scene_shape_record *records, int n, const char *path,
                       char *msg)
 {
@@ -145,23 +185,5 @@ int scene_export_json(const struct scene *s, const struct scene_shape_record *re
         cJSON_AddItemToArray(path_keys, camera_json(&s->camera_path.keys[k].cam, &s->camera_path.keys[k].frame));
     cJSON_AddItemToObject(root, "materials", materials_json(s));
     cJSON_AddItemToObject(root, "shapes", shapes_json(records, n));
-    char *text = cJSON_Print(root);
-    cJSON_Delete(root);
-    if (!text) {
-        snprintf(msg, RESTIR_MSG_LEN, "%s: out of memory formatting the scene", path);
-        return -1;
-    }
-    char tmp[4200];
-    io_temp_path(path, tmp, sizeof tmp);
-    FILE *f = fopen(tmp, "wb");
-    int ok = f && fputs(text, f) >= 0 && fputc('\n', f) != EOF;
-    if (f && fclose(f) != 0)
-        ok = 0;
-    free(text);
-    if (!ok) {
-        snprintf(msg, RESTIR_MSG_LEN, "%s: cannot write: %s", path, strerror(errno));
-        remove(tmp);
-        return -1;
-    }
-    return io_commit(tmp, path, msg);
+    return write_json(root, path, msg);
 }

@@ -13,4 +13,10 @@
 int scene_export_json(const struct scene *s, const struct scene_shape_record *records, int n, const char *path,
                       char *msg);
 
+/* Writes cams[0 .. n-1] as a camera file (scene_file.h: scene_cameras_load), numbers read back
+ * bit for bit; label fields (scene, method, width, height, seed) describe the recording run.
+ * Returns 0, or -1 with msg. */
+int cameras_write_json(const char *path, const struct camera *cams, int n, const char *scene, const char *method,
+                       int width, int height, unsigned long long seed, char *msg);
+
 #endif

@@ -18,6 +18,12 @@ int scene_json_load(const char *path, struct scene *s, char *msg);
  * messages and dir is where relative mesh paths start ("" or NULL: the current folder). */
 int scene_json_parse(const char *text, size_t len, const char *file, const char *dir, struct scene *s, char *msg);
 
+/* A camera file (`restir view` records them; `render --camera FILE` replays them): one camera per
+ * frame, {"format": "restir-cameras 1", "cameras": [{position, look_at, up, vfov}, ...]} with
+ * optional "scene", "method", "width", "height", "seed" describing the run that recorded it.
+ * Returns 0 with *cams (malloc'ed) and *n, or -1 with msg naming the file and the key. */
+int scene_cameras_load(const char *path, struct camera **cams, int *n, char *msg);
+
 /* The file name without folders and extension ("scenes/Box.gltf" -> "Box"), cut to len. */
 void scene_file_stem(const char *path, char *out, size_t len);
 /* 1 when path ends with suffix (lower-case ".json"), ignoring the case of path. */

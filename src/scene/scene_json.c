@@ -796,3 +796,44 @@ int scene_load(const char *name_or_path, struct scene *s, char *msg)
         return scene_json_load(name_or_path, s, msg);
     return scene_import_file(name_or_path, s, msg);
 }
+
+int scene_cameras_load(const char *path, struct camera **cams, int *n, char *msg)
+{
+    *cams = NULL;
+    *n = 0;
+    long len = 0;
+    char *text = read_whole_file(path, &len, msg);
+    if (!text)
+        return -1;
+    struct reader r = {.file = path, .msg = msg};
+    const char *end = NULL;
+    cJSON *root = cJSON_ParseWithLengthOpts(text, (size_t)len + 1, &end, 1);
+    int rc = 0;
+    static const char *const keys[] = {"format", "scene", "method", "width", "height", "seed", "cameras", NULL};
+    if (!root)
+        rc = fail(&r, NULL, "invalid JSON at line %d", line_of(text, end ? end : cJSON_GetErrorPtr()));
+    else if (check_keys(&r, root, "", keys) != 0)
+        rc = -1;
+    const cJSON *list = rc == 0 ? cJSON_GetObjectItemCaseSensitive(root, "cameras") : NULL;
+    if (rc == 0 && (!cJSON_IsArray(list) || cJSON_GetArraySize(list) < 1))
+        rc = fail(&r, "cameras", "must be an array of at least one camera, one per frame");
+    if (rc == 0) {
+        *cams = xcalloc((size_t)cJSON_GetArraySize(list), sizeof(struct camera));
+        int i = 0;
+        for (const cJSON *c = list->child; c && rc == 0; c = c->next, i++) {
+            char key[64];
+            float unused;
+            child_key(key, sizeof key, "cameras", NULL, i);
+            rc = read_camera(&r, c, key, 0, &(*cams)[i], &unused);
+        }
+        *n = i;
+        if (rc != 0) {
+            free(*cams);
+            *cams = NULL;
+            *n = 0;
+        }
+    }
+    cJSON_Delete(root);
+    free(text);
+    return rc;
+}

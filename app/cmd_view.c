@@ -1,0 +1,61 @@
+/* cmd_view.c: `restir view`: options and scene for the interactive viewer (src/view/viewer.h).
+ * Must never render itself. */
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "core/check.h"
+#include "options.h"
+#include "scene/scene_file.h"
+#include "view/viewer.h"
+
+static void view_usage(FILE *out)
+{
+    fprintf(out,
+            "usage: restir view --scene NAME|FILE [--method NAME] [--res WxH] [--seed N] [--threads N]\n"
+            "                   [--script FILE] [--out DIR] [--set key=value]...\n"
+            "A window that renders frame after frame (default method restir-di, 640x360). Mouse drag turns\n"
+            "the camera, W A S D move, Q E down and up; M next method (restir-di, restir-pt, pt, ris-di),\n"
+            "T temporal reuse, Y spatial reuse, N neighbor selection, P spmis; K screenshot (EXR and PNG),\n"
+            "C camera.json: the cameras since the last change of method or settings, which\n"
+            "`restir render --camera DIR/camera.json --method M --res WxH --seed N` replays exactly;\n"
+            "escape quits and writes DIR/last_frame.exr and .png. The title shows the per-pass times.\n"
+            "--script FILE: timed input, one event per line ('F press KEY', 'F hold KEY N', 'F drag DX DY',\n"
+            "'F quit'; F counts frames from the start). Default DIR: out/view-SCENE. Without a display it\n"
+            "says so and exits 1.\n");
+}
+
+int cmd_view(int argc, char **argv)
+{
+    struct cli_options o;
+    char msg[RESTIR_MSG_LEN];
+    if (cli_parse_options("view", argc, argv, &o, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
+    if (o.help) {
+        view_usage(stdout);
+        return 0;
+    }
+    int m = method_find(o.method ? o.method : "restir-di");
+    if (m < 0) {
+        cli_error("unknown method '%s' (see restir list)", o.method);
+        return EXIT_USAGE;
+    }
+    struct scene s;
+    if (scene_load(o.scene, &s, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
+    if (o.params.threads > 0)
+        omp_set_num_threads(o.params.threads);
+    char out_dir[4096];
+    snprintf(out_dir, sizeof out_dir, o.out ? "%s" : "out/view-%s", o.out ? o.out : s.name);
+    const struct view_options vo = {&s, (enum method_id)m, o.params, o.script, out_dir};
+    int rc = view_run(&vo, msg);
+    if (rc != 0)
+        cli_error("view: %s", msg);
+    scene_destroy(&s);
+    return rc == 0 ? 0 : rc == 2 ? EXIT_USAGE : EXIT_RUNTIME;
+}

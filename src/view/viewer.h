@@ -1,0 +1,27 @@
+/* viewer.h: `restir view`, an SDL2 window that renders frame after frame with one method while the
+ * camera moves (mouse drag turns, W A S D move, Q E down and up), so motion goes through the real
+ * motion vectors and temporal reuse. Keys: M next method, T temporal reuse, Y spatial reuse,
+ * N neighbor selection, P stochastic pairwise MIS (spmis), K screenshot (EXR and PNG), C save the
+ * camera path since the last change of method or settings (a camera file `render --camera FILE`
+ * replays frame for frame), escape quits. The window title shows the method, its settings and the
+ * per-pass milliseconds. The only SDL2 user. */
+#ifndef RESTIR_VIEW_VIEWER_H
+#define RESTIR_VIEW_VIEWER_H
+
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+struct view_options {
+    const struct scene *scene;
+    enum method_id method;
+    struct render_params params;
+    const char *script;  /* timed input (view_script.h), or NULL */
+    const char *out_dir; /* screenshots, camera files and the last frame */
+};
+
+/* Runs the viewer until escape, the window is closed or the script quits; on leaving it writes
+ * out_dir/last_frame.exr and .png. Returns 0, 1 with msg when there is no display or an output
+ * cannot be written, 2 with msg for a bad script. */
+int view_run(const struct view_options *o, char *msg);
+
+#endif

@@ -1,0 +1,119 @@
+/* test_viewer.c: `restir view` under Xvfb with a script: it opens the window, moves and turns the
+ * camera, switches method, saves a screenshot and the camera path, and quits; the screenshot is a
+ * rendered image of the scene, and `restir render --camera` of the recorded path reproduces the
+ * screenshot's frame and the viewer's last frame byte for byte with the same seed. Without a display
+ * the viewer says so, exits 1 and writes nothing; a bad script is refused naming its line. */
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli_util.h"
+#include "io/image_io.h"
+#include "test_util.h"
+
+static long file_size(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 ? (long)st.st_size : -1;
+}
+
+static void write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    EXPECT(f != NULL, "cannot write %s", path);
+    if (f) {
+        fputs(text, f);
+        fclose(f);
+    }
+}
+
+static void same_file(const char *a, const char *b)
+{
+    long size = 0;
+    int same = cli_files_equal(a, b, &size);
+    EXPECT(same == 1 && size > 1000, "%s and %s %s", a, b, same < 0 ? "are not both there" : "differ");
+    printf("%s == %s: %s\n", a, b, same == 1 ? "identical" : "DIFFERENT");
+}
+
+int main(void)
+{
+    char tmp[CLI_PATH_MAX], script[2 * CLI_PATH_MAX], dir[2 * CLI_PATH_MAX], replay[2 * CLI_PATH_MAX];
+    char args[12 * CLI_PATH_MAX], out[4 * CLI_PATH_MAX], err[CLI_ERR_MAX];
+    if (!cli_bin() || cli_make_temp_dir(tmp) != 0) {
+        EXPECT(0, "cannot set up (RESTIR_BIN or temporary folder)");
+        return test_finish();
+    }
+    snprintf(script, sizeof script, "%s/session.txt", tmp);
+    /* ticks 0-5 with restir-di, then restir-pt from tick 6: its frames 0..6, screenshot before frame 6 */
+    write_text(script, "# walk, turn, switch method, screenshot, save the path\n"
+                       "0 hold w 3\n3 drag 30 -10\n4 hold d 2\n6 press m\n7 hold a 4\n10 drag -20 5\n"
+                       "12 press k\n13 press c\n13 quit\n");
+    snprintf(dir, sizeof dir, "%s/view", tmp);
+
+    /* no display: exit 1, a message, no folder */
+    snprintf(args, sizeof args, "view --scene cornell --res 64x36 --script '%s' --out '%s/nodisplay'", script, tmp);
+    char cmd[16 * CLI_PATH_MAX];
+    snprintf(cmd, sizeof cmd, "env -u DISPLAY -u WAYLAND_DISPLAY '%s' %s", cli_bin(), args);
+    snprintf(out, sizeof out, "%s/nodisplay.err", tmp);
+    char full[24 * CLI_PATH_MAX];
+    snprintf(full, sizeof full, "%s 2> '%s'", cmd, out);
+    int status = system(full);
+    cli_read_text(out, err, sizeof err);
+    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 1, "without a display the viewer exited %d, want 1",
+           WEXITSTATUS(status));
+    EXPECT(strstr(err, "no display") != NULL, "without a display the message is: %s", err);
+    snprintf(out, sizeof out, "%s/nodisplay", tmp);
+    EXPECT(file_size(out) < 0, "without a display the viewer made %s", out);
+
+    /* a bad script: exit 2 naming the line */
+    snprintf(out, sizeof out, "%s/bad.txt", tmp);
+    write_text(out, "0 press w\n5 jump 3\n");
+    snprintf(args, sizeof args, "view --scene cornell --res 64x36 --script '%s' --out '%s/bad'", out, tmp);
+    int rc = cli_run(tmp, args, err);
+    EXPECT(rc == 2 && strstr(err, "bad.txt:2") != NULL, "bad script: exit %d, message %s", rc, err);
+
+    /* the scripted session under Xvfb */
+    snprintf(full, sizeof full,
+             "timeout 300 xvfb-run -a '%s' view --scene cornell --res 64x36 --seed 5 --script '%s' --out '%s' > "
+             "'%s/xvfb.log' 2>&1",
+             cli_bin(), script, dir, tmp);
+    status = system(full);
+    snprintf(out, sizeof out, "%s/xvfb.log", tmp);
+    cli_read_text(out, err, sizeof err);
+    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 0, "the scripted viewer under xvfb-run exited %d:\n%s",
+           WEXITSTATUS(status), err);
+    char shot[3 * CLI_PATH_MAX], last[3 * CLI_PATH_MAX], cams[3 * CLI_PATH_MAX], msg[512];
+    snprintf(shot, sizeof shot, "%s/screenshot_0000.exr", dir);
+    snprintf(last, sizeof last, "%s/last_frame.exr", dir);
+    snprintf(cams, sizeof cams, "%s/camera.json", dir);
+    snprintf(out, sizeof out, "%s/screenshot_0000.png", dir);
+    EXPECT(file_size(out) > 100, "no screenshot PNG at %s", out);
+    /* a rendered image of the scene: the Cornell box's red and green walls are both in view */
+    float *img = NULL;
+    int w = 0, h = 0;
+    EXPECT(exr_read_rgb(shot, &img, &w, &h, msg) == 0, "%s", msg);
+    if (img) {
+        double red = 0.0, green = 0.0;
+        for (int i = 0; i < w * h; i++) {
+            red += img[3 * i] > 2.0f * img[3 * i + 1] ? 1.0 : 0.0;
+            green += img[3 * i + 1] > 2.0f * img[3 * i] ? 1.0 : 0.0;
+        }
+        printf("screenshot %dx%d: %.0f red-wall pixels, %.0f green-wall pixels\n", w, h, red, green);
+        EXPECT(w == 64 && h == 36 && red > 20 && green > 20, "the screenshot does not show the Cornell box");
+        free(img);
+    }
+    /* replay the recorded path: restir-pt (one M press from restir-di), same seed and size */
+    snprintf(replay, sizeof replay, "%s/replay", tmp);
+    snprintf(args, sizeof args,
+             "render --scene cornell --method restir-pt --res 64x36 --seed 5 --camera '%s' --out '%s' --save all", cams,
+             replay);
+    rc = cli_run(tmp, args, err);
+    EXPECT(rc == 0, "restir %s exited %d:\n%s", args, rc, err);
+    snprintf(out, sizeof out, "%s/frame_0007.exr", replay);
+    EXPECT(file_size(out) < 0, "the camera file should hold 7 cameras (frames 0-6)");
+    snprintf(out, sizeof out, "%s/frame_0006.exr", replay);
+    same_file(out, last);
+    snprintf(out, sizeof out, "%s/frame_0005.exr", replay);
+    same_file(out, shot);
+    EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
+    return test_finish();
+}
