@@ -36,6 +36,8 @@ int exr_read_rgb(const char *path, float **rgb, int *w, int *h, char *msg);
 int exr_read_layer(const char *path, const char *layer, float **rgb, int *w, int *h, char *msg);
 /* n values of rgb * 2^exposure as 8-bit sRGB, clamped (what PNGs and the viewer show). */
 void encode_srgb8(const float *rgb, size_t n, float exposure, unsigned char *out);
+/* Writes 8-bit RGB bytes as they are. Returns 0 or -1 with msg. */
+int png_write_rgb8(const char *path, const unsigned char *rgb8, int w, int h, char *msg);
 /* Writes an 8-bit sRGB PNG of rgb * 2^exposure, clamped. Returns 0 or -1 with msg. */
 int png_write_srgb(const char *path, const float *rgb, int w, int h, float exposure, char *msg);
 /* Writes a false-colour 8-bit PNG of a signed image (a gradient or a difference): each pixel's

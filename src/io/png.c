@@ -162,6 +162,22 @@ int png_write_srgb(const char *path, const float *rgb, int w, int h, float expos
     return png_write_pixels(path, pixels, w, h, msg);
 }
 
+int png_write_rgb8(const char *path, const unsigned char *rgb8, int w, int h, char *msg)
+{
+    if (!path || !rgb8 || w <= 0 || h <= 0 || w > 65536 || h > 65536) {
+        set_msg(msg, "%s: bad PNG arguments", path ? path : "(null)");
+        return -1;
+    }
+    size_t n = 3 * (size_t)w * (size_t)h;
+    unsigned char *pixels = malloc(n);
+    if (!pixels) {
+        set_msg(msg, "%s: out of memory", path);
+        return -1;
+    }
+    memcpy(pixels, rgb8, n);
+    return png_write_pixels(path, pixels, w, h, msg);
+}
+
 void encode_srgb8(const float *rgb, size_t n, float exposure, unsigned char *out)
 {
     float scale = exp2f(isfinite(exposure) ? exposure : 0.0f);

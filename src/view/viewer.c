@@ -1,6 +1,7 @@
 /* viewer.c: the interactive viewer (viewer.h). Everything that changes the image is a function of
  * the frame's inputs, never of wall time: a held movement key moves the camera by a fixed step per
- * frame, so a scripted session, and the camera file it records, replay exactly. */
+ * frame, so a scripted session, and the camera file it records, replay exactly. A screenshot taken
+ * in a debug view also writes that view (screenshot_NNNN_view.png). */
 #include "view/viewer.h"
 
 #include <SDL2/SDL.h>
@@ -12,6 +13,7 @@
 #include "core/check.h"
 #include "io/image_io.h"
 #include "io/scene_export.h"
+#include "view/view_debug.h"
 #include "view/view_script.h"
 
 static const enum method_id cycle[] = {METHOD_RESTIR_DI, METHOD_RESTIR_PT, METHOD_PT, METHOD_RIS_DI};
@@ -30,6 +32,7 @@ struct view {
     int path_cap;
     int quit;
     int shots;
+    enum view_mode mode; /* what the window shows (V cycles); screenshots are always the image */
 };
 
 static struct camera current_camera(const struct view *v)
@@ -73,6 +76,7 @@ static void press(struct view *v, char key)
         v->p.spatial_reuse = v->p.spatial_reuse == REUSE_SPMIS ? REUSE_STANDARD : REUSE_SPMIS;
         restart(v, 0);
         break;
+    case 'v': v->mode = (enum view_mode)((v->mode + 1) % VIEW_MODES); break;
     case 27: v->quit = 1; break;
     default:
         if (v->held[(unsigned char)key] == 0)
@@ -140,6 +144,16 @@ static void key_event(struct view *v, SDL_Keycode k, int down, char *msg, int *r
         char stem[64];
         snprintf(stem, sizeof stem, "screenshot_%04d", v->shots++);
         save_outputs(v, stem, msg, rc);
+        if (*rc == 0 && v->mode != VIEW_IMAGE) { /* and the debug view on screen */
+            const int w = v->p.width, h = v->p.height;
+            unsigned char *view = xmalloc(3 * (size_t)w * (size_t)h);
+            char path[4300];
+            view_debug_rgb8(&v->r, v->mode, view);
+            snprintf(path, sizeof path, "%s/%s_view.png", v->o->out_dir, stem);
+            if (png_write_rgb8(path, view, w, h, msg) != 0)
+                *rc = 1;
+            free(view);
+        }
     } else if (key == 'c') {
         save_path(v, msg, rc);
     } else {
@@ -169,14 +183,18 @@ static void show(struct view *v, SDL_Window *win, SDL_Renderer *ren, SDL_Texture
                  const struct frame_stats *st)
 {
     const int w = v->p.width, h = v->p.height;
-    encode_srgb8(v->r.image, 3 * (size_t)w * (size_t)h, 0.0f, rgb8);
+    int shown = v->mode != VIEW_IMAGE && view_debug_rgb8(&v->r, v->mode, rgb8);
+    if (v->mode == VIEW_IMAGE)
+        encode_srgb8(v->r.image, 3 * (size_t)w * (size_t)h, 0.0f, rgb8);
     SDL_UpdateTexture(tex, NULL, rgb8, 3 * w);
     SDL_RenderClear(ren);
     SDL_RenderCopy(ren, tex, NULL, NULL);
     SDL_RenderPresent(ren);
     char title[1024], method[256];
     spec(v, method, sizeof method);
-    int n = snprintf(title, sizeof title, "restir view: %s, frame %d, %.1f ms:", method, v->frame, st->ms_total);
+    int n = snprintf(title, sizeof title, "restir view: %s, %s%s, frame %d, %.1f ms:", method,
+                     view_mode_names[v->mode], v->mode != VIEW_IMAGE && !shown ? " (none for this method)" : "",
+                     v->frame, st->ms_total);
     for (int q = 0; q < PASS_COUNT && n > 0 && n < (int)sizeof title; q++)
         if (st->ms[q] > 0.0)
             n += snprintf(title + n, sizeof title - (size_t)n, " %s %.1f", pass_names[q], st->ms[q]);

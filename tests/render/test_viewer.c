@@ -45,7 +45,8 @@ int main(void)
     snprintf(script, sizeof script, "%s/session.txt", tmp);
     /* ticks 0-5 with restir-di, then restir-pt from tick 6: its frames 0..6, screenshot before frame 6 */
     write_text(script, "# walk, turn, switch method, screenshot, save the path\n"
-                       "0 hold w 3\n3 drag 30 -10\n4 hold d 2\n6 press m\n7 hold a 4\n10 drag -20 5\n"
+                       "0 hold w 3\n1 press v\n2 press v\n3 drag 30 -10\n3 press v\n4 hold d 2\n4 press v\n"
+                       "5 press v\n6 press m\n7 hold a 4\n10 drag -20 5\n"
                        "12 press k\n13 press c\n13 quit\n");
     snprintf(dir, sizeof dir, "%s/view", tmp);
 

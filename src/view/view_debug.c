@@ -1,0 +1,56 @@
+/* view_debug.c: the viewer's debug views (view_debug.h). The renderer has flipped its ping-pong
+ * index after the frame, so the last frame's buffers are at 1 - cur. */
+#include "view/view_debug.h"
+
+#include "io/image_io.h"
+#include "render/restir_pt.h"
+#include "render/reuse_cells.h"
+
+const char *const view_mode_names[VIEW_MODES] = {"image", "confidence", "temporal acceptance",
+                                                 "selected neighbors", "reuse cells"};
+
+/* Distinct colours for cell ids (an integer hash to a hue-ish RGB). */
+static void cell_color(int id, unsigned char *out)
+{
+    unsigned h = (unsigned)id * 2654435761u;
+    out[0] = (unsigned char)(64 + (h >> 24) % 192);
+    out[1] = (unsigned char)(64 + (h >> 16) % 192);
+    out[2] = (unsigned char)(64 + (h >> 8) % 192);
+}
+
+int view_debug_rgb8(const struct renderer *r, enum view_mode mode, unsigned char *rgb8)
+{
+    const int n = r->p.width * r->p.height, last = 1 - r->cur, pt = method_runs_restir_pt(r->method);
+    const int m = render_params_spatial_neighbors(&r->p, pt);
+    const int has_conf = pt ? r->pt_hist[last] != NULL : r->hist[last] != NULL;
+    const int ok = mode == VIEW_CONFIDENCE   ? has_conf
+                   : mode == VIEW_ACCEPTANCE ? r->age[last] != NULL
+                   : mode == VIEW_NEIGHBORS  ? r->neighbors != NULL && r->p.spatial && r->p.spatial_reuse == REUSE_STANDARD && m > 0
+                   : mode == VIEW_CELLS      ? r->spmis != NULL && r->p.spatial_reuse == REUSE_SPMIS
+                                             : 0;
+    if (!ok) {
+        encode_srgb8(r->image, 3 * (size_t)n, 0.0f, rgb8);
+        return 0;
+    }
+    const float cap = r->p.confidence_cap > 0.0f ? r->p.confidence_cap : 1.0f;
+    for (int i = 0; i < n; i++) {
+        unsigned char *o = rgb8 + 3 * (size_t)i;
+        if (mode == VIEW_CONFIDENCE) {
+            heat_color((pt ? r->pt_hist[last][i].c : r->hist[last][i].c) / cap, o);
+        } else if (mode == VIEW_ACCEPTANCE) {
+            heat_color((float)r->age[last][i] / 20.0f, o);
+        } else if (mode == VIEW_NEIGHBORS) {
+            int count = 0;
+            for (int k = 0; k < m; k++)
+                count += r->neighbors[(size_t)i * m + k] >= 0;
+            heat_color((float)count / (float)m, o);
+        } else {
+            /* the cell a pixel belongs to (tile, object, quantized normal: 004 Algorithm 1) */
+            if (r->spmis->cell[i] < 0)
+                o[0] = o[1] = o[2] = 0;
+            else
+                cell_color((int)r->spmis->key[i], o);
+        }
+    }
+    return 1;
+}
