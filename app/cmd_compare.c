@@ -426,8 +426,8 @@ int cmd_compare(int argc, char **argv)
         struct compare_report_method rm[MAX_METHODS];
         for (int k = 0; k < n; k++) {
             snprintf(pngs[k], sizeof pngs[k], "%s/frame_%04d.png", specs[k].dir, o.frames - 1);
-            rm[k] = (struct compare_report_method){specs[k].label, pngs[k], res[k].image, res[k].ms_per_frame,
-                                                   res[k].spp, res[k].instances, res[k].err};
+            rm[k] = (struct compare_report_method){specs[k].label, pngs[k], specs[k].dir, res[k].image,
+                                                   res[k].ms_per_frame, res[k].spp, res[k].instances, res[k].err};
         }
         const struct compare_report_run run = {out_dir, command, s.name, p.width, p.height, o.frames - 1,
                                                p.camera_path, o.equal_time, ref};

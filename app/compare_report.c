@@ -16,6 +16,7 @@
 /* Heat maps saturate at a relative error of 1 (100%). */
 #define HEAT_MAX 1.0f
 #define MAX_REPORT_METHODS 32
+#define SPEC_REL_MAX 512 /* a method's folder and file name, relative to the output folder */
 
 /* The cw x cw window (stride cw / 2) with the largest sum of sign * (a - b). */
 static void largest_difference(const float *a, const float *b, int w, int h, int cw, float sign, int *bx, int *by)
@@ -156,6 +157,42 @@ static int crops(struct html_page *pg, const struct compare_report_run *run, int
     return 0;
 }
 
+/* 002's layers of every gradient method: the primal image and the x and y gradients (the PNGs
+ * cli_write_frame wrote beside the reconstruction; red positive, blue negative). */
+static void gradient_layers(struct html_page *pg, const struct compare_report_run *run, int n,
+                            const struct compare_report_method *m)
+{
+    static const char *const layers[3] = {"primal", "dx", "dy"};
+    int any = 0;
+    for (int k = 0; k < n; k++) {
+        char rel[3][SPEC_REL_MAX], path[4400];
+        const char *labels[4], *srcs[4];
+        labels[0] = "reconstruction";
+        srcs[0] = m[k].png;
+        int found = 1;
+        for (int q = 0; q < 3 && found; q++) {
+            snprintf(rel[q], sizeof rel[q], "%s/frame_%04d_%s.png", m[k].dir, run->frame, layers[q]);
+            snprintf(path, sizeof path, "%s/%s", run->out_dir, rel[q]);
+            FILE *f = fopen(path, "rb");
+            found = f != NULL;
+            if (f)
+                fclose(f);
+            labels[q + 1] = layers[q];
+            srcs[q + 1] = rel[q];
+        }
+        if (!found)
+            continue;
+        if (!any)
+            html_raw(pg, "<h2>Gradient layers (002)</h2>\n<p>Per gradient method: the reconstruction, its primal "
+                         "image and the x and y gradients (red positive, blue negative).</p>\n");
+        any = 1;
+        html_raw(pg, "<h3>");
+        html_text(pg, m[k].label);
+        html_raw(pg, "</h3>\n");
+        html_viewer(pg, 4, labels, srcs, run->width, run->height);
+    }
+}
+
 int compare_write_report(const struct compare_report_run *run, int n, const struct compare_report_method *m,
                          char *msg)
 {
@@ -189,6 +226,7 @@ int compare_write_report(const struct compare_report_run *run, int n, const stru
     }
     html_raw(&pg, "<h2>Images</h2>\n");
     html_viewer(&pg, n + 1, labels, srcs, run->width, run->height);
+    gradient_layers(&pg, run, n, m);
     float *maps = xmalloc(sizeof(float) * (size_t)n * (size_t)run->width * (size_t)run->height);
     int rc = heat_maps(&pg, run, n, m, maps, msg);
     if (rc == 0 && n >= 2)

@@ -10,6 +10,7 @@
 struct compare_report_method {
     const char *label;  /* the method spec */
     const char *png;    /* its last frame, relative to the output folder */
+    const char *dir;    /* its folder, relative to the output folder (gradient layers live there) */
     const float *image; /* its last frame, linear RGB */
     double ms_per_frame;
     int spp, instances;

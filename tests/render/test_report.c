@@ -72,6 +72,29 @@ static void check_in_browser(const char *browser, const char *dir, int images, i
     printf("screenshot: %s\n", shot);
 }
 
+/* Gradient methods: the page adds their primal and gradient layers. */
+static void check_gradient(const char *tmp, const char *out_root, const char *browser)
+{
+    char dir[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX], err[CLI_ERR_MAX], path[3 * CLI_PATH_MAX];
+    snprintf(dir, sizeof dir, "%s/gradient_report", out_root);
+    snprintf(args, sizeof args, "rm -rf '%s'", dir);
+    EXPECT(system(args) == 0, "cannot clear %s", dir);
+    snprintf(args, sizeof args,
+             "compare --scene cornell --methods restir-pt,gpt --res 48x27 --frames 2 --ref-spp 16 --report --out '%s'",
+             dir);
+    int rc = cli_run(tmp, args, err);
+    EXPECT(rc == 0, "restir %s exited %d:\n%s", args, rc, err);
+    snprintf(path, sizeof path, "%s/index.html", dir);
+    cli_read_text(path, page, sizeof page);
+    int images = check_sources(dir, page);
+    const char *must[] = {"Gradient layers", "gpt/frame_0001_primal.png", "gpt/frame_0001_dx.png",
+                          "gpt/frame_0001_dy.png"};
+    for (size_t k = 0; k < sizeof must / sizeof must[0]; k++)
+        EXPECT(strstr(page, must[k]) != NULL, "the gradient page lacks '%s'", must[k]);
+    if (file_size(browser) > 0)
+        check_in_browser(browser, dir, images, 1);
+}
+
 /* study --report: the page shows study.csv's rows, the Pareto plot, the mask and the strip. */
 static void check_study(const char *tmp, const char *out_root, const char *browser)
 {
@@ -137,6 +160,7 @@ int main(void)
     if (file_size(browser) > 0)
         check_in_browser(browser, dir, images, 1);
     check_study(tmp, out_root, browser);
+    check_gradient(tmp, out_root, browser);
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
     return test_finish();
 }
