@@ -50,7 +50,8 @@ static int body_attribute(const char *html, const char *name)
 static void check_in_browser(const char *browser, const char *dir, int images, int plots)
 {
     char cmd[16 * CLI_PATH_MAX], dom_path[3 * CLI_PATH_MAX], shot[3 * CLI_PATH_MAX];
-    const char *flags = "--headless --no-sandbox --disable-gpu --hide-scrollbars --virtual-time-budget=5000";
+    const char *flags = "--headless --no-sandbox --disable-gpu --hide-scrollbars --virtual-time-budget=5000 "
+                        "--enable-logging=stderr --v=0";
     snprintf(dom_path, sizeof dom_path, "%s/dom.html", dir);
     snprintf(cmd, sizeof cmd, "timeout 120 '%s' %s --dump-dom 'file://%s/index.html' > '%s' 2> '%s/browser.log'",
              browser, flags, dir, dom_path, dir);
@@ -64,6 +65,11 @@ static void check_in_browser(const char *browser, const char *dir, int images, i
     EXPECT(broken == 0, "%d images did not load in the browser", broken);
     EXPECT(seen_plots == plots, "the browser saw %d inline plots, want %d", seen_plots, plots);
     EXPECT(errors == 0, "%d script errors in the browser", errors);
+    /* the browser's log shows every console message as INFO:CONSOLE:LINE; the page writes none */
+    char log_path[3 * CLI_PATH_MAX];
+    snprintf(log_path, sizeof log_path, "%s/browser.log", dir);
+    cli_read_text(log_path, dom, sizeof dom);
+    EXPECT(strstr(dom, ":CONSOLE") == NULL, "the browser console has messages (see %s)", log_path);
     snprintf(shot, sizeof shot, "%s/screenshot.png", dir);
     snprintf(cmd, sizeof cmd,
              "timeout 120 '%s' %s --window-size=1300,2600 --screenshot='%s' 'file://%s/index.html' 2>> '%s/browser.log'",
