@@ -77,17 +77,27 @@ static int check_keys(struct reader *r, const cJSON *obj, const char *key, const
     return 0;
 }
 
+/* The member name of obj (its key, for messages, into k): 1 with *v when present, 0 when absent
+ * and optional, -1 (with the message) when absent and required. */
+static int member(struct reader *r, const cJSON *obj, const char *key, const char *name, int required, char *k,
+                  size_t klen, const cJSON **v)
+{
+    child_key(k, klen, key, name, 0);
+    *v = cJSON_GetObjectItemCaseSensitive(obj, name);
+    if (*v)
+        return 1;
+    return required ? fail(r, k, "missing") : 0;
+}
+
 static int get_number(struct reader *r, const cJSON *obj, const char *key, const char *name, int required,
                       double lo, double hi, float fallback, float *out)
 {
     char k[256];
-    child_key(k, sizeof k, key, name, 0);
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, name);
-    if (!v) {
-        if (required)
-            return fail(r, k, "missing");
+    const cJSON *v;
+    int has = member(r, obj, key, name, required, k, sizeof k, &v);
+    if (has <= 0) {
         *out = fallback;
-        return 0;
+        return has;
     }
     if (!cJSON_IsNumber(v))
         return fail(r, k, "must be a number");
@@ -151,13 +161,11 @@ static int get_vec3(struct reader *r, const cJSON *obj, const char *key, const c
                     double hi, vec3 fallback, vec3 *out)
 {
     char k[256];
-    child_key(k, sizeof k, key, name, 0);
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, name);
-    if (!v) {
-        if (required)
-            return fail(r, k, "missing");
+    const cJSON *v;
+    int has = member(r, obj, key, name, required, k, sizeof k, &v);
+    if (has <= 0) {
         *out = fallback;
-        return 0;
+        return has;
     }
     return vec3_value(r, v, k, lo, hi, out);
 }

@@ -78,21 +78,31 @@ static void check_in_browser(const char *browser, const char *dir, int images, i
     printf("screenshot: %s\n", shot);
 }
 
+/* Runs `restir ARGS --report --out OUT_ROOT/sub` into a cleared folder (its path into dir) and
+ * reads its index.html into page; returns how many images the page shows (all checked present). */
+static int run_report(const char *tmp, const char *out_root, const char *sub, const char *args, char *dir,
+                      size_t dir_len)
+{
+    char cmd[6 * CLI_PATH_MAX], err[CLI_ERR_MAX], path[3 * CLI_PATH_MAX];
+    snprintf(dir, dir_len, "%s/%s", out_root, sub);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    EXPECT(system(cmd) == 0, "cannot clear %s", dir);
+    snprintf(cmd, sizeof cmd, "%s --report --out '%s'", args, dir);
+    int rc = cli_run(tmp, cmd, err);
+    EXPECT(rc == 0, "restir %s exited %d:\n%s", cmd, rc, err);
+    snprintf(path, sizeof path, "%s/index.html", dir);
+    cli_read_text(path, page, sizeof page);
+    EXPECT(strlen(page) > 1000, "%s is missing or nearly empty", path);
+    return check_sources(dir, page);
+}
+
 /* Gradient methods: the page adds their primal and gradient layers. */
 static void check_gradient(const char *tmp, const char *out_root, const char *browser)
 {
-    char dir[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX], err[CLI_ERR_MAX], path[3 * CLI_PATH_MAX];
-    snprintf(dir, sizeof dir, "%s/gradient_report", out_root);
-    snprintf(args, sizeof args, "rm -rf '%s'", dir);
-    EXPECT(system(args) == 0, "cannot clear %s", dir);
-    snprintf(args, sizeof args,
-             "compare --scene cornell --methods restir-pt,gpt --res 48x27 --frames 2 --ref-spp 16 --report --out '%s'",
-             dir);
-    int rc = cli_run(tmp, args, err);
-    EXPECT(rc == 0, "restir %s exited %d:\n%s", args, rc, err);
-    snprintf(path, sizeof path, "%s/index.html", dir);
-    cli_read_text(path, page, sizeof page);
-    int images = check_sources(dir, page);
+    char dir[2 * CLI_PATH_MAX];
+    int images = run_report(tmp, out_root, "gradient_report",
+                            "compare --scene cornell --methods restir-pt,gpt --res 48x27 --frames 2 --ref-spp 16", dir,
+                            sizeof dir);
     const char *must[] = {"Gradient layers", "gpt/frame_0001_primal.png", "gpt/frame_0001_dx.png",
                           "gpt/frame_0001_dy.png"};
     for (size_t k = 0; k < sizeof must / sizeof must[0]; k++)
@@ -104,19 +114,11 @@ static void check_gradient(const char *tmp, const char *out_root, const char *br
 /* study --report: the page shows study.csv's rows, the Pareto plot, the mask and the strip. */
 static void check_study(const char *tmp, const char *out_root, const char *browser)
 {
-    char dir[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX], err[CLI_ERR_MAX], path[3 * CLI_PATH_MAX];
-    snprintf(dir, sizeof dir, "%s/study_report", out_root);
-    snprintf(args, sizeof args, "rm -rf '%s'", dir);
-    EXPECT(system(args) == 0, "cannot clear %s", dir);
-    snprintf(args, sizeof args,
-             "study --scene cornell --method restir-di --configs bitterli,fast --radii 8,16 --runs 2 --warmup 2 "
-             "--frames 4 --res 48x27 --ref-spp 16 --report --out '%s'",
-             dir);
-    int rc = cli_run(tmp, args, err);
-    EXPECT(rc == 0, "restir %s exited %d:\n%s", args, rc, err);
-    snprintf(path, sizeof path, "%s/index.html", dir);
-    cli_read_text(path, page, sizeof page);
-    int images = check_sources(dir, page);
+    char dir[2 * CLI_PATH_MAX];
+    int images = run_report(tmp, out_root, "study_report",
+                            "study --scene cornell --method restir-di --configs bitterli,fast --radii 8,16 --runs 2 "
+                            "--warmup 2 --frames 4 --res 48x27 --ref-spp 16",
+                            dir, sizeof dir);
     /* pareto.svg, reference and mask, their A/B view, the strip */
     EXPECT(images == 5, "%d images on the study page", images);
     const char *must[] = {"pareto.svg", "hard_pixels.png", "strip.png", "<td>fast</td>", "<td>compat@16</td>",
@@ -129,27 +131,15 @@ static void check_study(const char *tmp, const char *out_root, const char *brows
 
 int main(void)
 {
-    char tmp[CLI_PATH_MAX], dir[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX], err[CLI_ERR_MAX];
+    char tmp[CLI_PATH_MAX], dir[2 * CLI_PATH_MAX];
     const char *out_root = getenv("RESTIR_TEST_OUTPUT");
     if (!cli_bin() || cli_make_temp_dir(tmp) != 0 || !out_root) {
         EXPECT(0, "cannot set up (RESTIR_BIN, RESTIR_TEST_OUTPUT or a temporary folder)");
         return test_finish();
     }
-    snprintf(dir, sizeof dir, "%s/report", out_root);
-    snprintf(args, sizeof args, "rm -rf '%s'", dir);
-    EXPECT(system(args) == 0, "cannot clear %s", dir);
-    snprintf(args, sizeof args,
-             "compare --scene cornell --methods restir-di,ris-di,pt --res 64x36 --frames 3 --ref-spp 16 --report "
-             "--out '%s'",
-             dir);
-    int rc = cli_run(tmp, args, err);
-    EXPECT(rc == 0, "restir %s exited %d:\n%s", args, rc, err);
-
-    char path[3 * CLI_PATH_MAX];
-    snprintf(path, sizeof path, "%s/index.html", dir);
-    cli_read_text(path, page, sizeof page);
-    EXPECT(strlen(page) > 1000, "%s is missing or nearly empty", path);
-    int images = check_sources(dir, page);
+    int images = run_report(tmp, out_root, "report",
+                            "compare --scene cornell --methods restir-di,ris-di,pt --res 64x36 --frames 3 --ref-spp 16",
+                            dir, sizeof dir);
     printf("index.html: %zu bytes, %d images\n", strlen(page), images);
     /* reference + 3 methods, their A/B view, 3 heat maps and theirs, 2 regions x 4 crops */
     EXPECT(images == 4 + 1 + 3 + 1 + 8, "%d images on the page", images);
