@@ -2,6 +2,7 @@
  * summary) and `restir reference` (a converged image of what a method estimates).
  * Must never implement a method: it drives the renderer. */
 #include <omp.h>
+#include <sys/resource.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -223,6 +224,9 @@ int cmd_render(int argc, char **argv)
         cJSON *j = params_json(&o, method);
         cJSON_AddNumberToObject(j, "ms_per_frame", ms_sum / o.frames);
         cJSON_AddNumberToObject(j, "mrays_per_s", rays_sum / (ms_sum * 1e3));
+        struct rusage ru; /* the process's peak resident memory (Linux reports kilobytes) */
+        if (getrusage(RUSAGE_SELF, &ru) == 0)
+            cJSON_AddNumberToObject(j, "peak_memory_mb", (double)ru.ru_maxrss / 1024.0);
         if (ref) {
             cJSON *last = cJSON_AddObjectToObject(j, "last_frame");
             cJSON_AddNumberToObject(last, "relmse", err.relmse);

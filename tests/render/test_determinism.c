@@ -26,6 +26,12 @@ static void check_method(const char *tmp, const char *method)
     EXPECT(render(tmp, method, 1, 1, d1) == 0, "%s: render with 1 thread failed", method);
     EXPECT(render(tmp, method, 2, 1, d2) == 0, "%s: render with 2 threads failed", method);
     EXPECT(render(tmp, method, 2, 2, d3) == 0, "%s: render with seed 2 failed", method);
+    /* summary.json reports the process's peak memory */
+    char summary[2 * CLI_PATH_MAX], text[4096];
+    snprintf(summary, sizeof(summary), "%s/summary.json", d1);
+    cli_read_text(summary, text, sizeof(text));
+    const char *peak = strstr(text, "\"peak_memory_mb\":");
+    EXPECT(peak && atof(peak + 17) > 1.0, "%s: summary.json has no plausible peak_memory_mb", method);
     /* Every frame is written (--save all is the default); frame 2 of restir-di carries two
      * frames of temporal history, so it sees every pass. */
     const char *frames[] = {"frame_0000.exr", "frame_0002.exr", "frame_0002.png"};
