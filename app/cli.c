@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "core/check.h"
+#include "render/memory_estimate.h"
 #include "io/image_io.h"
 #include "render/pt.h"
 
@@ -188,4 +189,20 @@ void cli_command_line(const char *command, int argc, char **argv, char *out, siz
         size_t used = strlen(out);
         snprintf(out + used, len - used, strchr(argv[i], ' ') ? " '%s'" : " %s", argv[i]);
     }
+}
+
+int cli_check_memory(const struct scene *s, enum method_id m, const struct render_params *p, long long max_memory_mb,
+                     char *msg)
+{
+    double per_pixel = 0.0;
+    const double need = (double)renderer_estimate_bytes(s, m, p, &per_pixel) / (1024.0 * 1024.0);
+    const double have = max_memory_mb > 0 ? (double)max_memory_mb : (double)memory_available_bytes() / (1024.0 * 1024.0);
+    if (have <= 0.0 || need <= have)
+        return 0;
+    snprintf(msg, RESTIR_MSG_LEN,
+             "%s at %dx%d needs about %.0f MB (%.0f bytes per pixel), more than the %.0f MB %s; lower --res%s", 
+             method_table[m].name, p->width, p->height, need, per_pixel, have,
+             max_memory_mb > 0 ? "that --max-memory allows" : "this machine has available",
+             max_memory_mb > 0 ? " or raise --max-memory" : "");
+    return -1;
 }

@@ -29,6 +29,11 @@ int cli_parse_int(const char *opt, const char *s, long long lo, long long hi, lo
 /* "restir <command> <args...>" with arguments holding spaces quoted, cut to len. */
 void cli_command_line(const char *command, int argc, char **argv, char *out, size_t len);
 
+/* 0 when a renderer of method m with parameters p fits in max_memory_mb (0: the memory the system
+ * has available now), else -1 with msg giving the estimate and the limit (memory_estimate.h). */
+int cli_check_memory(const struct scene *s, enum method_id m, const struct render_params *p, long long max_memory_mb,
+                     char *msg);
+
 /* Loads a reference EXR and checks it has the render size. Returns 0, or -1 with msg. */
 int cli_load_reference(const char *path, int width, int height, float **ref, char *msg);
 

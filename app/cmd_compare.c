@@ -314,6 +314,13 @@ int cmd_compare(int argc, char **argv)
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
+    for (int k = 0; k < n; k++) { /* each method's renderers exist one at a time */
+        if (cli_check_memory(&s, specs[k].method, &specs[k].p, o.max_memory_mb, msg) != 0) {
+            cli_error("--methods spec '%s': %s", specs[k].label, msg);
+            scene_destroy(&s);
+            return EXIT_RUNTIME;
+        }
+    }
     if (o.params.threads > 0)
         omp_set_num_threads(o.params.threads);
     char out_dir[4096];

@@ -116,6 +116,11 @@ int cmd_render(int argc, char **argv)
     int rc = open_scene_and_method(&o, &s, &method);
     if (rc != 0)
         return rc;
+    if (cli_check_memory(&s, method, &o.params, o.max_memory_mb, msg) != 0) {
+        cli_error("%s", msg);
+        scene_destroy(&s);
+        return EXIT_RUNTIME;
+    }
     struct camera *cams = NULL; /* --camera FILE: one per frame */
     int ncams = 0;
     if (o.camera_file) {

@@ -360,6 +360,11 @@ int cmd_study(int argc, char **argv)
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
+    if (cli_check_memory(&s, (enum method_id)m, &o.params, o.max_memory_mb, msg) != 0) {
+        cli_error("%s", msg);
+        scene_destroy(&s);
+        return EXIT_RUNTIME;
+    }
     const int w = o.params.width, h = o.params.height;
     const size_t npix = (size_t)w * h;
     struct camera cam = scene_camera_at(&s, 0, 0.0f);

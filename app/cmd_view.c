@@ -49,6 +49,11 @@ int cmd_view(int argc, char **argv)
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
+    if (cli_check_memory(&s, (enum method_id)m, &o.params, o.max_memory_mb, msg) != 0) {
+        cli_error("%s", msg);
+        scene_destroy(&s);
+        return EXIT_RUNTIME;
+    }
     if (o.params.threads > 0)
         omp_set_num_threads(o.params.threads);
     char out_dir[4096];

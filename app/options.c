@@ -87,6 +87,10 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
             if (cli_parse_int(a, val, 0, (1ll << 62), &v, msg) != 0)
                 return -1;
             o->params.seed = (uint64_t)v;
+        } else if (!strcmp(a, "--max-memory")) {
+            if (cli_parse_int(a, val, 1, 1LL << 40, &v, msg) != 0)
+                return -1;
+            o->max_memory_mb = v;
         } else if (!strcmp(a, "--threads")) {
             if (cli_parse_int(a, val, 0, 1024, &v, msg) != 0)
                 return -1;

@@ -17,6 +17,7 @@ struct cli_options {
     int report;          /* compare, study: write DIR/index.html */
     const char *camera_file; /* render: --camera FILE, one camera per frame (restir view records them) */
     const char *script;      /* view: timed input (src/view/view_script.h) */
+    long long max_memory_mb; /* --max-memory: refuse renders estimated above it (0: what the system has) */
     int frames_given;
     int ref_spp;         /* compare: spp of the reference rendered when --ref is absent */
     int save_all;        /* render: write every frame (1) or only the last (0) */

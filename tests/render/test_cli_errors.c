@@ -71,6 +71,13 @@ static void check_bad_render_input(void)
     expect_failure("unknown method", "render --scene cornell --method no-such-method --res 16x16 --out '%1$s'", 2,
                    "no-such-method", NULL);
     expect_failure("zero width", "render --scene cornell --method pt --res 0x10 --out '%1$s'", 2, "--res", "0");
+    /* a render that does not fit the memory allowed: refused before allocating, both numbers said */
+    expect_failure("too large for --max-memory",
+                   "render --scene cornell --method restir-pt --res 4000x4000 --max-memory 200 --out '%1$s'", 1,
+                   "needs about", "than the 200 MB that --max-memory allows");
+    expect_failure("compare too large for --max-memory",
+                   "compare --scene cornell --methods restir-di,pt --res 4000x4000 --max-memory 200 --out '%1$s'", 1,
+                   "restir-di", "needs about");
     expect_failure("huge width", "render --scene cornell --method pt --res 100000x10 --out '%1$s'", 2, "--res",
                    "100000");
     expect_failure("malformed resolution", "render --scene cornell --method pt --res abc --out '%1$s'", 2, "--res",
