@@ -160,7 +160,8 @@ int cmd_render(int argc, char **argv)
     for (int q = 0; q < PASS_COUNT; q++)
         snprintf(header + strlen(header), sizeof(header) - strlen(header), ",ms_%s", pass_names[q]);
     snprintf(header + strlen(header), sizeof(header) - strlen(header), "%s",
-             ",rays,mrays_per_s,temporal_accept,disoccluded,relmse,mape,smape,luma_rmse,mape_disoccluded,ms_write");
+             ",rays,mrays_per_s,temporal_accept,disoccluded,relmse,mape,smape,luma_rmse,mape_disoccluded,ms_write,"
+             "nonfinite");
     struct csv_writer csv;
     if (csv_open(&csv, csv_path, header, msg) != 0) {
         cli_error("%s", msg);
@@ -173,6 +174,7 @@ int cmd_render(int argc, char **argv)
     struct progress pg;
     progress_begin(&pg, o.method, o.frames);
     double ms_sum = 0.0, rays_sum = 0.0;
+    long long nonfinite_sum = 0;
     struct restir_error err = {0, 0, 0, 0}, err_sum = {0, 0, 0, 0};
     size_t npix = (size_t)o.params.width * (size_t)o.params.height;
     unsigned char *mask = xcalloc(npix, 1);
@@ -213,9 +215,11 @@ int cmd_render(int argc, char **argv)
             }
             ms_write = 1e3 * (omp_get_wtime() - t0);
         }
-        csv_row(&csv, "%d,%.3f%s,%lld,%.3f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.3f", f, st.ms_total, passes, st.rays,
-                (double)st.rays / (st.ms_total * 1e3), accept, disoccluded, ref ? err.relmse : 0.0,
-                ref ? err.mape : 0.0, ref ? err.smape : 0.0, ref ? err.luma_rmse : 0.0, mape_disoccluded, ms_write);
+        csv_row(&csv, "%d,%.3f%s,%lld,%.3f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.3f,%lld", f, st.ms_total, passes,
+                st.rays, (double)st.rays / (st.ms_total * 1e3), accept, disoccluded, ref ? err.relmse : 0.0,
+                ref ? err.mape : 0.0, ref ? err.smape : 0.0, ref ? err.luma_rmse : 0.0, mape_disoccluded, ms_write,
+                st.nonfinite);
+        nonfinite_sum += st.nonfinite;
         progress_update(&pg, f + 1);
     }
     progress_end(&pg);
@@ -229,6 +233,7 @@ int cmd_render(int argc, char **argv)
         cJSON *j = params_json(&o, method);
         cJSON_AddNumberToObject(j, "ms_per_frame", ms_sum / o.frames);
         cJSON_AddNumberToObject(j, "mrays_per_s", rays_sum / (ms_sum * 1e3));
+        cJSON_AddNumberToObject(j, "nonfinite_discarded", (double)nonfinite_sum);
         struct rusage ru; /* the process's peak resident memory (Linux reports kilobytes) */
         if (getrusage(RUSAGE_SELF, &ru) == 0)
             cJSON_AddNumberToObject(j, "peak_memory_mb", (double)ru.ru_maxrss / 1024.0);

@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "pt.h"
+#include "nonfinite.h"
 #include "restir_di.h"
 #include "restir_pt.h"
 #include "reuse_cells.h"
@@ -182,15 +183,18 @@ static void render_restir_di(struct renderer *r, const struct camera_view *view,
     struct gbuffer *g = &r->gb[r->cur], *prev_g = &r->gb[1 - r->cur];
     struct di_reservoir *out = r->hist[r->cur], *prev_res = r->hist[1 - r->cur];
     const int frame = r->frame;
+    const size_t n = (size_t)g->width * (size_t)g->height;
     TIMED(st, PASS_GBUFFER,
           st->rays += gbuffer_pass(g, s, view, r->has_history ? &r->prev_view : NULL, p->jitter, p->seed, frame));
     TIMED(st, PASS_INITIAL, {
         light_pool_fill(&r->lights, s, p->seed, frame);
         st->rays += di_initial_pass(s, &r->lights, p, frame, g, r->work);
+        st->nonfinite += nonfinite_discard_di(r->work, n);
     });
     if (p->temporal && r->has_history)
         TIMED(st, PASS_TEMPORAL,
-              st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, r->work, &st->rays));
+              st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, r->work, &st->rays);
+              st->nonfinite += nonfinite_discard_di(r->work, n));
     if (p->spatial && r->spmis) {
         struct spmis_frame *f = r->spmis;
         TIMED(st, PASS_CELLS, {
@@ -199,11 +203,13 @@ static void render_restir_di(struct renderer *r, const struct camera_view *view,
         });
         TIMED(st, PASS_CELL_SEARCH, spmis_search_pass(f, p, g, frame));
         TIMED(st, PASS_SPMIS_CANONICAL, st->rays += di_spmis_canonical_pass(s, p, frame, g, r->work, f));
-        TIMED(st, PASS_SPMIS_REUSE, st->rays += di_spmis_reuse_pass(s, p, frame, g, r->work, f, out));
+        TIMED(st, PASS_SPMIS_REUSE, st->rays += di_spmis_reuse_pass(s, p, frame, g, r->work, f, out);
+              st->nonfinite += nonfinite_discard_di(out, n));
     } else if (p->spatial) {
         TIMED(st, PASS_SELECT,
               st->neighbors_selected = spatial_select_pass(p, 0, g, frame, r->disk_offsets, r->neighbors));
-        TIMED(st, PASS_SPATIAL, st->rays += di_spatial_pass(s, p, frame, g, r->neighbors, r->work, out));
+        TIMED(st, PASS_SPATIAL, st->rays += di_spatial_pass(s, p, frame, g, r->neighbors, r->work, out);
+              st->nonfinite += nonfinite_discard_di(out, n));
     } else {
         memcpy(out, r->work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     }
@@ -300,12 +306,15 @@ static void render_restir_pt(struct renderer *r, const struct camera_view *view,
     TIMED(st, PASS_GBUFFER,
           st->rays += gbuffer_pass(g, r->scene, view, r->has_history ? &r->prev_view : NULL, 0, p->seed,
                                    r->frame)); /* pixel centres: see pt_initial_pass */
-    TIMED(st, PASS_INITIAL, st->rays += pt_initial_pass(&fr, g, r->pt_work, r->pt_emission));
+    const size_t n = (size_t)g->width * (size_t)g->height;
+    TIMED(st, PASS_INITIAL, st->rays += pt_initial_pass(&fr, g, r->pt_work, r->pt_emission);
+          st->nonfinite += nonfinite_discard_pt(r->pt_work, n));
     if (r->grad && r->grad->base && p->grad_base) /* grestir-pt, grad.base=shared: the pairs' candidates */
         memcpy(r->grad->base, r->pt_work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     if (p->temporal && r->has_history)
         TIMED(st, PASS_TEMPORAL,
-              st->rays += pt_temporal_pass(&fr, g, prev_g, prev_res, r->pt_work, &st->temporal_accepted));
+              st->rays += pt_temporal_pass(&fr, g, prev_g, prev_res, r->pt_work, &st->temporal_accepted);
+              st->nonfinite += nonfinite_discard_pt(r->pt_work, n));
     if (p->spatial && r->spmis) {
         struct spmis_frame *f = r->spmis;
         TIMED(st, PASS_CELLS, {
@@ -314,11 +323,13 @@ static void render_restir_pt(struct renderer *r, const struct camera_view *view,
         });
         TIMED(st, PASS_CELL_SEARCH, spmis_search_pass(f, p, g, r->frame));
         TIMED(st, PASS_SPMIS_CANONICAL, st->rays += pt_spmis_canonical_pass(&fr, g, r->pt_work, f));
-        TIMED(st, PASS_SPMIS_REUSE, st->rays += pt_spmis_reuse_pass(&fr, g, r->pt_work, f, out));
+        TIMED(st, PASS_SPMIS_REUSE, st->rays += pt_spmis_reuse_pass(&fr, g, r->pt_work, f, out);
+              st->nonfinite += nonfinite_discard_pt(out, n));
     } else if (p->spatial) {
         TIMED(st, PASS_SELECT,
               st->neighbors_selected = spatial_select_pass(p, 1, g, r->frame, r->disk_offsets, r->neighbors));
-        TIMED(st, PASS_SPATIAL, st->rays += pt_spatial_pass(&fr, g, r->neighbors, r->pt_work, out));
+        TIMED(st, PASS_SPATIAL, st->rays += pt_spatial_pass(&fr, g, r->neighbors, r->pt_work, out);
+              st->nonfinite += nonfinite_discard_pt(out, n));
     } else {
         memcpy(out, r->pt_work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
     }
@@ -378,6 +389,8 @@ void renderer_render(struct renderer *r, int frame, const struct camera *cam, st
     }
     if (r->grad)
         renderer_reconstruct(r, st);
+    /* the frame's radiance (every method, reconstructions included) */
+    st->nonfinite += nonfinite_discard_rgb(r->image, (size_t)r->p.width * (size_t)r->p.height);
     r->prev_view = view;
     st->ms_total = 1e3 * (omp_get_wtime() - t0);
 }

@@ -75,6 +75,7 @@ struct frame_stats {
     long long edge_pairs;        /* grestir-pt: pairs the spatial pass searched a neighbor for */
     long long pair_neighbors;    /* grestir-pt: neighbor pairs found */
     double l2_residual, l1_residual; /* gradient methods: relative residuals of the solves */
+    long long nonfinite;             /* NaN / infinite reservoirs and radiance values discarded (nonfinite.h) */
 };
 
 struct renderer {
