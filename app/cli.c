@@ -206,3 +206,18 @@ int cli_check_memory(const struct scene *s, enum method_id m, const struct rende
              max_memory_mb > 0 ? " or raise --max-memory" : "");
     return -1;
 }
+
+volatile sig_atomic_t cli_stop_signal = 0;
+
+static void record_stop_signal(int sig) { cli_stop_signal = sig; }
+
+void cli_catch_stop_signals(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = record_stop_signal;
+    sa.sa_flags = SA_RESTART; /* a write in progress completes */
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}

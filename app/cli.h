@@ -3,6 +3,7 @@
 #ifndef RESTIR_APP_CLI_H
 #define RESTIR_APP_CLI_H
 
+#include <signal.h>
 #include <stdio.h>
 
 #include "render/params.h"
@@ -28,6 +29,12 @@ int cli_parse_int(const char *opt, const char *s, long long lo, long long hi, lo
 
 /* "restir <command> <args...>" with arguments holding spaces quoted, cut to len. */
 void cli_command_line(const char *command, int argc, char **argv, char *out, size_t len);
+
+/* SIGINT / SIGTERM: the handler only records the signal (cli_stop_signal, else 0); long commands
+ * check it between frames, finish what they are writing, keep every complete output and exit with
+ * 128 + the signal's number. */
+extern volatile sig_atomic_t cli_stop_signal;
+void cli_catch_stop_signals(void);
 
 /* 0 when a renderer of method m with parameters p fits in max_memory_mb (0: the memory the system
  * has available now), else -1 with msg giving the estimate and the limit (memory_estimate.h). */

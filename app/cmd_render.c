@@ -179,6 +179,8 @@ int cmd_render(int argc, char **argv)
     size_t npix = (size_t)o.params.width * (size_t)o.params.height;
     unsigned char *mask = xcalloc(npix, 1);
     rc = 0;
+    int done = 0; /* frames rendered; fewer than o.frames after SIGINT / SIGTERM */
+    cli_catch_stop_signals();
     for (int f = 0; f < o.frames && rc == 0; f++) {
         struct frame_stats st;
         struct camera cam = cams ? cams[f] : scene_camera_at(&s, o.params.camera_path, (float)f);
@@ -207,7 +209,8 @@ int cmd_render(int argc, char **argv)
             snprintf(passes + strlen(passes), sizeof(passes) - strlen(passes), ",%.3f", st.ms[q]);
         /* Writing is timed on its own (ms_write), outside the frame's ms_total. */
         double ms_write = 0.0;
-        if (o.save_all || f == o.frames - 1) {
+        const int stopping = cli_stop_signal != 0; /* this frame is the last: write it as such */
+        if (o.save_all || f == o.frames - 1 || stopping) {
             double t0 = omp_get_wtime();
             if (cli_write_frame(out_dir, f, &r, msg) != 0) {
                 cli_error("%s", msg);
@@ -221,8 +224,24 @@ int cmd_render(int argc, char **argv)
                 st.nonfinite);
         nonfinite_sum += st.nonfinite;
         progress_update(&pg, f + 1);
+        done = f + 1;
+        if (stopping)
+            break;
     }
     progress_end(&pg);
+    if (rc == 0 && done < o.frames) { /* interrupted: the complete frames and their metrics stay */
+        if (csv_close(&csv, msg) != 0)
+            cli_error("%s", msg);
+        cli_error("interrupted by %s after %d of %d frames; the complete outputs are in %s",
+                  cli_stop_signal == SIGINT ? "SIGINT" : "SIGTERM", done, o.frames, out_dir);
+        rc = 128 + (int)cli_stop_signal;
+        renderer_fini(&r);
+        free(cams);
+        free(mask);
+        free(ref);
+        scene_destroy(&s);
+        return rc;
+    }
     if (rc == 0 && csv_close(&csv, msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;

@@ -1,0 +1,85 @@
+/* test_interrupt.c: SIGINT or SIGTERM during `restir render` finishes the frame being written,
+ * keeps every complete output (the frames written, metrics.csv with their rows), leaves no
+ * temporary file, says so and exits 128 + the signal. */
+#include <signal.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli_util.h"
+#include "io/image_io.h"
+#include "test_util.h"
+
+/* Starts a long render into dir, signals it once frame 2 is on disk, returns its exit status. */
+static int interrupted_render(const char *dir, int sig, const char *save)
+{
+    char first[3 * CLI_PATH_MAX];
+    snprintf(first, sizeof first, "%s/frame_0002.exr", dir);
+    pid_t pid = fork();
+    if (pid == 0) {
+        execl(cli_bin(), cli_bin(), "render", "--scene", "cornell", "--method", "restir-di", "--res", "64x36",
+              "--frames", "100000", "--save", save, "--out", dir, (char *)NULL);
+        _exit(127);
+    }
+    struct stat st;
+    int waited = 0;
+    /* --save all: wait for frame 2; --save last: give it a moment to render a few frames */
+    while (waited < 3000 && (strcmp(save, "all") ? waited < 50 : stat(first, &st) != 0)) {
+        nanosleep(&(struct timespec){0, 20000000L}, NULL);
+        waited++;
+    }
+    kill(pid, sig);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return status;
+}
+
+static void check(const char *tmp, int sig, const char *save)
+{
+    char dir[2 * CLI_PATH_MAX], path[3 * CLI_PATH_MAX], text[1 << 16], msg[512];
+    snprintf(dir, sizeof dir, "%s/%s-%s", tmp, sig == SIGINT ? "int" : "term", save);
+    int status = interrupted_render(dir, sig, save);
+    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 128 + sig, "%s: exit status %d (signalled %d), want %d", dir,
+           WIFEXITED(status) ? WEXITSTATUS(status) : -1, WIFSIGNALED(status), 128 + sig);
+    EXPECT(cli_count_entries(dir, ".tmp-") == 0, "%s: temporary files left", dir);
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    struct stat st;
+    EXPECT(stat(path, &st) != 0, "%s: an interrupted run wrote summary.json", dir);
+    snprintf(path, sizeof path, "%s/metrics.csv", dir);
+    cli_read_text(path, text, sizeof text);
+    int rows = -1;
+    for (const char *c = text; *c; c++)
+        rows += *c == '\n';
+    EXPECT(rows >= 1, "%s: metrics.csv has %d complete rows", dir, rows);
+    /* every frame file there is complete: it reads back at the render's size */
+    int frames = 0;
+    for (int f = 0; f <= rows + 1; f++) {
+        snprintf(path, sizeof path, "%s/frame_%04d.exr", dir, f);
+        if (stat(path, &st) != 0)
+            continue;
+        float *img = NULL;
+        int w = 0, h = 0;
+        EXPECT(exr_read_rgb(path, &img, &w, &h, msg) == 0 && w == 64 && h == 36, "%s: %s", path, msg);
+        free(img);
+        frames++;
+    }
+    EXPECT(frames >= 1, "%s: no complete frame kept", dir);
+    printf("%s: exit %d, %d metric rows, %d frames kept, no temporary files\n", dir,
+           WIFEXITED(status) ? WEXITSTATUS(status) : -1, rows, frames);
+}
+
+int main(void)
+{
+    char tmp[CLI_PATH_MAX];
+    if (!cli_bin() || cli_make_temp_dir(tmp) != 0) {
+        EXPECT(0, "cannot set up (RESTIR_BIN or temporary folder)");
+        return test_finish();
+    }
+    check(tmp, SIGINT, "all");
+    check(tmp, SIGTERM, "all");
+    check(tmp, SIGINT, "last"); /* the frame being rendered when the signal came is written */
+    EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
+    return test_finish();
+}
