@@ -14,7 +14,7 @@
 #include "core/check.h"
 #include "render/memory_estimate.h"
 #include "io/image_io.h"
-#include "render/pt.h"
+#include "render/reference.h"
 
 void cli_error(const char *fmt, ...)
 {
@@ -156,30 +156,20 @@ int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *
 float *cli_render_reference(const struct scene *s, enum method_id method, const struct render_params *p,
                             const struct camera *cam, int spp)
 {
-    struct render_params rp = *p;
-    renderer_reference_params(method, &rp);
-    struct camera_view view;
-    camera_view_init(&view, cam, rp.width, rp.height);
-    size_t n = 3 * (size_t)rp.width * (size_t)rp.height;
-    float *sum = xcalloc(n, sizeof(float)), *chunk = xcalloc(n, sizeof(float));
-    const int per_chunk = 16;
-    int chunks = (spp + per_chunk - 1) / per_chunk, done = 0;
+    struct reference_accum a;
+    reference_accum_init(&a, s, method, p, cam, spp);
     struct progress pg;
     progress_begin(&pg, "reference", spp);
-    for (int c = 0; c < chunks; c++) {
-        int k = spp - done < per_chunk ? spp - done : per_chunk;
-        /* A frame number no render uses keeps reference noise independent of the compared runs. */
-        pt_pass(s, &view, &rp, 1000000 + c, k, chunk);
-        for (size_t i = 0; i < n; i++)
-            sum[i] += chunk[i] * (float)k;
-        done += k;
-        progress_update(&pg, done);
+    while (a.done < spp && !cli_stop_signal) {
+        reference_accum_step(&a);
+        progress_update(&pg, a.done);
     }
     progress_end(&pg);
-    for (size_t i = 0; i < n; i++)
-        sum[i] /= (float)spp;
-    free(chunk);
-    return sum;
+    float *img = a.done == spp ? a.mean : NULL;
+    if (!img)
+        free(a.mean);
+    free(a.chunk);
+    return img;
 }
 
 void cli_command_line(const char *command, int argc, char **argv, char *out, size_t len)
@@ -195,13 +185,20 @@ int cli_check_memory(const struct scene *s, enum method_id m, const struct rende
                      char *msg)
 {
     double per_pixel = 0.0;
-    const double need = (double)renderer_estimate_bytes(s, m, p, &per_pixel) / (1024.0 * 1024.0);
+    const double need = (double)renderer_estimate_bytes(s, m, p, &per_pixel);
+    return cli_check_bytes(method_table[m].name, p->width, p->height, need, per_pixel, max_memory_mb, msg);
+}
+
+int cli_check_bytes(const char *what, int width, int height, double need_bytes, double per_pixel,
+                    long long max_memory_mb, char *msg)
+{
+    const double need = need_bytes / (1024.0 * 1024.0);
     const double have = max_memory_mb > 0 ? (double)max_memory_mb : (double)memory_available_bytes() / (1024.0 * 1024.0);
     if (have <= 0.0 || need <= have)
         return 0;
     snprintf(msg, RESTIR_MSG_LEN,
-             "%s at %dx%d needs about %.0f MB (%.0f bytes per pixel), more than the %.0f MB %s; lower --res%s", 
-             method_table[m].name, p->width, p->height, need, per_pixel, have,
+             "%s at %dx%d needs about %.0f MB (%.0f bytes per pixel), more than the %.0f MB %s; lower --res%s",
+             what, width, height, need, per_pixel, have,
              max_memory_mb > 0 ? "that --max-memory allows" : "this machine has available",
              max_memory_mb > 0 ? " or raise --max-memory" : "");
     return -1;
@@ -209,7 +206,22 @@ int cli_check_memory(const struct scene *s, enum method_id m, const struct rende
 
 volatile sig_atomic_t cli_stop_signal = 0;
 
-static void record_stop_signal(int sig) { cli_stop_signal = sig; }
+/* The first signal asks for a clean stop; a second one, while that stop is under way, ends the
+ * process at once (the default action), for a user who will not wait for the current frame. */
+static void record_stop_signal(int sig)
+{
+    if (cli_stop_signal) {
+        signal(sig, SIG_DFL);
+        raise(sig);
+        return;
+    }
+    cli_stop_signal = sig;
+}
+
+const char *cli_stop_signal_name(void)
+{
+    return cli_stop_signal == SIGINT ? "SIGINT" : cli_stop_signal == SIGTERM ? "SIGTERM" : "no signal";
+}
 
 void cli_catch_stop_signals(void)
 {

@@ -32,14 +32,20 @@ void cli_command_line(const char *command, int argc, char **argv, char *out, siz
 
 /* SIGINT / SIGTERM: the handler only records the signal (cli_stop_signal, else 0); long commands
  * check it between frames, finish what they are writing, keep every complete output and exit with
- * 128 + the signal's number. */
+ * 128 + the signal's number. A second signal during that stop ends the process at once. */
 extern volatile sig_atomic_t cli_stop_signal;
 void cli_catch_stop_signals(void);
+/* "SIGINT" or "SIGTERM": the signal cli_stop_signal holds, for messages. */
+const char *cli_stop_signal_name(void);
 
 /* 0 when a renderer of method m with parameters p fits in max_memory_mb (0: the memory the system
  * has available now), else -1 with msg giving the estimate and the limit (memory_estimate.h). */
 int cli_check_memory(const struct scene *s, enum method_id m, const struct render_params *p, long long max_memory_mb,
                      char *msg);
+/* The same for a known need: 0 when need_bytes fits, else -1 with msg naming what (a method or
+ * command), the resolution, the need (and per_pixel bytes) and the limit. */
+int cli_check_bytes(const char *what, int width, int height, double need_bytes, double per_pixel,
+                    long long max_memory_mb, char *msg);
 
 /* Loads a reference EXR and checks it has the render size. Returns 0, or -1 with msg. */
 int cli_load_reference(const char *path, int width, int height, float **ref, char *msg);
@@ -61,7 +67,8 @@ void progress_end(struct progress *pg);
 int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *msg);
 
 /* Renders the converged image of what `method` estimates (pt with the method's integrand) with
- * spp samples per pixel from camera cam into a new malloc'ed RGB buffer. */
+ * spp samples per pixel from camera cam into a new malloc'ed RGB buffer (render/reference.h).
+ * Returns NULL, having stopped between chunks, when a stop signal arrived (cli_stop_signal). */
 float *cli_render_reference(const struct scene *s, enum method_id method, const struct render_params *p,
                             const struct camera *cam, int spp);
 

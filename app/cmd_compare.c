@@ -140,6 +140,11 @@ static int budget_by_spp(enum method_id m) { return m == METHOD_PT || m == METHO
  * gradient methods the primal and gradient images are averaged and then reconstructed once (002
  * Sec. 5, Figure 8), and the frame time counts the instances' passes and one reconstruction.
  * Returns 0, or -1 with msg when the last frame cannot be written to out_dir/c->dir. */
+/* run_method's result when a stop signal arrived before the method's last frame (cli.h). */
+#define RUN_STOPPED 1
+
+/* Renders frames of c (averaging instances), measures the last frame against ref and writes it
+ * under out_dir/c->dir. Returns 0, -1 with msg, or RUN_STOPPED having written nothing. */
 static int run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
                       int instances, const float *ref, const char *out_dir, int keep_image, struct compare_result *res,
                       char *msg)
@@ -155,6 +160,12 @@ static int run_method(const struct scene *s, const struct compare_spec *c, const
     struct progress pg;
     progress_begin(&pg, c->label, frames);
     for (int f = 0; f < frames; f++) {
+        if (cli_stop_signal) { /* stopped: this method's result would be incomplete, so none */
+            progress_end(&pg);
+            for (int k = 0; k < instances; k++)
+                renderer_fini(&r[k]);
+            return RUN_STOPPED;
+        }
         struct camera cam = scene_camera_at(s, p->camera_path, (float)f);
         for (int k = 0; k < instances; k++) {
             struct frame_stats st;
@@ -323,6 +334,7 @@ int cmd_compare(int argc, char **argv)
     }
     if (o.params.threads > 0)
         omp_set_num_threads(o.params.threads);
+    cli_catch_stop_signals();
     char out_dir[4096];
     snprintf(out_dir, sizeof(out_dir), "%s", o.out ? o.out : "");
     if (!o.out)
@@ -337,6 +349,11 @@ int cmd_compare(int argc, char **argv)
         rp.seed = p.seed ^ 0x7265666572656e63ull; /* independent of the compared runs */
         struct camera cam = scene_camera_at(&s, p.camera_path, (float)(o.frames - 1));
         ref = cli_render_reference(&s, any_direct ? METHOD_RESTIR_DI : METHOD_PT, &rp, &cam, o.ref_spp);
+        if (!ref) {
+            cli_error("interrupted by %s while rendering the reference; nothing written", cli_stop_signal_name());
+            scene_destroy(&s);
+            return 128 + (int)cli_stop_signal;
+        }
     }
     if (rc == 0 && io_make_dirs(out_dir, msg) != 0)
         rc = EXIT_RUNTIME;
@@ -359,9 +376,10 @@ int cmd_compare(int argc, char **argv)
     for (int k = 0; k < n && first < 0; k++)
         if (specs[k].method != METHOD_PT)
             first = k;
+    int stopped_at = -1; /* the spec a stop signal interrupted */
     if (first >= 0) {
-        if (run_method(&s, &specs[first], &specs[first].p, o.frames, 1, ref, out_dir, o.report, &res[first], msg) != 0)
-            rc = EXIT_RUNTIME;
+        rc = run_method(&s, &specs[first], &specs[first].p, o.frames, 1, ref, out_dir, o.report, &res[first], msg);
+        stopped_at = rc == RUN_STOPPED ? first : -1;
         budget = res[first].ms_per_frame;
     }
     for (int k = 0; k < n && rc == 0; k++) {
@@ -375,19 +393,34 @@ int cmd_compare(int argc, char **argv)
             } else {
                 /* one instance's time from a short run, then as many as fit (at least 1) */
                 struct compare_result probe;
-                if (run_method(&s, &specs[k], &q, o.frames < 3 ? o.frames : 3, 1, ref, out_dir, 0, &probe, msg) != 0) {
-                    rc = EXIT_RUNTIME;
+                rc = run_method(&s, &specs[k], &q, o.frames < 3 ? o.frames : 3, 1, ref, out_dir, 0, &probe, msg);
+                if (rc != 0) {
+                    stopped_at = rc == RUN_STOPPED ? k : -1;
                     break;
                 }
                 instances = (int)(budget / probe.ms_per_frame + 0.5);
                 instances = instances < 1 ? 1 : instances > MAX_INSTANCES ? MAX_INSTANCES : instances;
             }
         }
-        if (run_method(&s, &specs[k], &q, o.frames, instances, ref, out_dir, o.report, &res[k], msg) != 0)
-            rc = EXIT_RUNTIME;
+        rc = run_method(&s, &specs[k], &q, o.frames, instances, ref, out_dir, o.report, &res[k], msg);
+        stopped_at = rc == RUN_STOPPED ? k : -1;
+    }
+    if (rc == RUN_STOPPED) { /* the finished methods' frames and the reference stay; no table */
+        char kept[1024] = "";
+        if (!o.ref)
+            snprintf(kept, sizeof kept, " reference.exr");
+        for (int k = 0; k < n; k++)
+            if (res[k].instances > 0) /* finished: its last frame is written */
+                snprintf(kept + strlen(kept), sizeof kept - strlen(kept), " %s/", specs[k].dir);
+        cli_error("interrupted by %s during %s; kept in %s:%s; no compare.csv (its rows need every method)",
+                  cli_stop_signal_name(), specs[stopped_at].label, out_dir, kept[0] ? kept : " nothing");
+        rc = 128 + (int)cli_stop_signal;
+    } else if (rc != 0) {
+        rc = EXIT_RUNTIME;
     }
     if (rc != 0) {
-        cli_error("%s", msg);
+        if (rc == EXIT_RUNTIME)
+            cli_error("%s", msg);
         for (int k = 0; k < n; k++)
             free(res[k].image);
         free(ref);

@@ -1,5 +1,5 @@
-/* cmd_render.c: `restir render` (frames of one method, with per-frame metrics, CSV and JSON
- * summary) and `restir reference` (a converged image of what a method estimates).
+/* cmd_render.c: `restir render`: frames of one method, with per-frame metrics, CSV and JSON
+ * summary.
  * Must never implement a method: it drives the renderer. */
 #include <omp.h>
 #include <sys/resource.h>
@@ -233,7 +233,7 @@ int cmd_render(int argc, char **argv)
         if (csv_close(&csv, msg) != 0)
             cli_error("%s", msg);
         cli_error("interrupted by %s after %d of %d frames; the complete outputs are in %s",
-                  cli_stop_signal == SIGINT ? "SIGINT" : "SIGTERM", done, o.frames, out_dir);
+                  cli_stop_signal_name(), done, o.frames, out_dir);
         rc = 128 + (int)cli_stop_signal;
         renderer_fini(&r);
         free(cams);
@@ -285,48 +285,6 @@ int cmd_render(int argc, char **argv)
     free(cams);
     free(ref);
     free(mask);
-    scene_destroy(&s);
-    return rc;
-}
-
-int cmd_reference(int argc, char **argv)
-{
-    struct cli_options o;
-    char msg[RESTIR_MSG_LEN];
-    if (cli_parse_options("reference", argc, argv, &o, msg) != 0) {
-        cli_error("%s", msg);
-        return EXIT_USAGE;
-    }
-    if (o.help) {
-        printf("usage: restir reference --scene NAME --method NAME [--res WxH] [--spp N] [--camera static|path]\n"
-               "                        [--frame F] [--seed N] [--threads N] --out FILE.exr\n"
-               "Renders the converged image of what METHOD estimates (pt over the same integrand: direct\n"
-               "lighting only for DI methods) from the camera of frame F. Default --spp 1024.\n");
-        return 0;
-    }
-    if (!o.out) {
-        cli_error("--out FILE.exr is required");
-        return EXIT_USAGE;
-    }
-    struct scene s;
-    enum method_id method;
-    int rc = open_scene_and_method(&o, &s, &method);
-    if (rc != 0)
-        return rc;
-    int spp = o.spp_given ? o.params.spp : 1024;
-    if (o.params.threads > 0)
-        omp_set_num_threads(o.params.threads);
-    struct camera cam = scene_camera_at(&s, o.params.camera_path, (float)o.frame);
-    float *img = cli_render_reference(&s, method, &o.params, &cam, spp);
-    rc = 0;
-    if (exr_write_rgb(o.out, img, o.params.width, o.params.height, msg) != 0) {
-        cli_error("%s", msg);
-        rc = EXIT_RUNTIME;
-    } else {
-        printf("reference of %s on %s (%dx%d, %d spp) written to %s\n", o.method, o.scene, o.params.width,
-               o.params.height, spp, o.out);
-    }
-    free(img);
     scene_destroy(&s);
     return rc;
 }

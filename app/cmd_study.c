@@ -147,9 +147,11 @@ static int hard_pixel_mask(const struct scene *s, const struct render_params *p,
 
 /* Runs one configuration: `runs` sequences of warmup + frames frames; measured luminance goes to
  * seq (run-major, then frame) for the covariances, and run 0's frames of row strip_y to strip. */
-static void run_config(const struct scene *s, enum method_id method, const struct render_params *base,
-                       const struct study_config *c, const struct cli_options *o, const float *ref,
-                       const unsigned char *hard, float *seq, float *strip, int strip_y, struct study_result *res)
+/* Runs configuration c (o->runs sequences) into res. Returns 0, or -1 when a stop signal arrived
+ * (res is then incomplete). */
+static int run_config(const struct scene *s, enum method_id method, const struct render_params *base,
+                      const struct study_config *c, const struct cli_options *o, const float *ref,
+                      const unsigned char *hard, float *seq, float *strip, int strip_y, struct study_result *res)
 {
     const int w = base->width, h = base->height, frames = o->frames;
     const size_t npix = (size_t)w * h;
@@ -165,6 +167,10 @@ static void run_config(const struct scene *s, enum method_id method, const struc
         struct renderer r;
         renderer_init(&r, s, method, &p);
         for (int f = 0; f < o->warmup + frames; f++) {
+            if (cli_stop_signal) {
+                renderer_fini(&r);
+                return -1;
+            }
             struct frame_stats st;
             renderer_render(&r, f, &cam, &st);
             int t = f - o->warmup;
@@ -197,6 +203,7 @@ static void run_config(const struct scene *s, enum method_id method, const struc
         res->spatial_cov += restir_spatial_covariance(at_t, o->runs, w, h, COV_RADIUS, COV_EPS, NULL) / frames;
     }
     free(at_t);
+    return 0;
 }
 
 static int write_tables(const char *dir, const struct study_config *cfg, const struct study_result *res, int n,
@@ -365,6 +372,7 @@ int cmd_study(int argc, char **argv)
         scene_destroy(&s);
         return EXIT_RUNTIME;
     }
+    cli_catch_stop_signals();
     const int w = o.params.width, h = o.params.height;
     const size_t npix = (size_t)w * h;
     struct camera cam = scene_camera_at(&s, 0, 0.0f);
@@ -380,6 +388,11 @@ int cmd_study(int argc, char **argv)
         struct render_params rp = o.params;
         rp.seed ^= 0x7265666572656e63ull;
         ref = cli_render_reference(&s, (enum method_id)m, &rp, &cam, o.ref_spp);
+        if (!ref) {
+            cli_error("interrupted by %s while rendering the reference; nothing written", cli_stop_signal_name());
+            scene_destroy(&s);
+            return 128 + (int)cli_stop_signal;
+        }
     }
     if (io_make_dirs(o.out, msg) != 0) {
         cli_error("%s", msg);
@@ -403,12 +416,24 @@ int cmd_study(int argc, char **argv)
     static struct study_result res[STUDY_MAX_CONFIGS];
     struct progress pg;
     progress_begin(&pg, "study", ncfg);
-    for (int k = 0; k < ncfg; k++) {
-        run_config(&s, (enum method_id)m, &o.params, &cfg[k], &o, ref, hard, seq, &strips[(size_t)k * w * o.frames],
-                   strip_y, &res[k]);
+    int stopped_at = -1;
+    for (int k = 0; k < ncfg && stopped_at < 0; k++) {
+        if (run_config(&s, (enum method_id)m, &o.params, &cfg[k], &o, ref, hard, seq,
+                       &strips[(size_t)k * w * o.frames], strip_y, &res[k]) != 0)
+            stopped_at = k;
         progress_update(&pg, k + 1);
     }
     progress_end(&pg);
+    if (stopped_at >= 0) { /* the tables compare every configuration: none is written from a part */
+        cli_error("interrupted by %s in configuration %s (%d of %d); nothing written", cli_stop_signal_name(),
+                  cfg[stopped_at].name, stopped_at + 1, ncfg);
+        free(strips);
+        free(seq);
+        free(hard);
+        free(ref);
+        scene_destroy(&s);
+        return 128 + (int)cli_stop_signal;
+    }
     float *ref_row = xmalloc(sizeof(float) * (size_t)w);
     for (int x = 0; x < w; x++)
         ref_row[x] = luminance_at(ref, (size_t)strip_y * w + x);

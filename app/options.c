@@ -2,6 +2,8 @@
  * message naming the offending option. Must never run a render. */
 #include "options.h"
 
+#include <errno.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
@@ -26,6 +28,7 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
     o->save_all = 1;
     o->runs = 8;
     o->warmup = 40; /* 000 Sec. 7 */
+    o->checkpoint_every = -1.0;
     int frames_given = 0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
@@ -127,6 +130,15 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
             if (cli_parse_int(a, val, 0, 100000, &v, msg) != 0)
                 return -1;
             o->warmup = (int)v;
+        } else if (!strcmp(a, "--checkpoint-every") && !strcmp(command, "reference")) {
+            char *end = NULL;
+            errno = 0;
+            double s = strtod(val, &end);
+            if (end == val || *end != '\0' || errno != 0 || !(s >= 0.0 && s <= 1e7)) {
+                snprintf(msg, RESTIR_MSG_LEN, "--checkpoint-every expects seconds in [0, 1e7], got '%s'", val);
+                return -1;
+            }
+            o->checkpoint_every = s;
         } else if (!strcmp(a, "--set")) {
             if (render_params_set(&o->params, val, msg) != 0)
                 return -1;

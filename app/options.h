@@ -28,6 +28,7 @@ struct cli_options {
     const char *radii;   /* study: comma-separated radii */
     int runs;            /* study: independent sequences per configuration */
     int warmup;          /* study: frames before measuring */
+    double checkpoint_every; /* reference: seconds between checkpoints (< 0: none, 0: every chunk) */
     struct render_params params;
 };
 

@@ -5,9 +5,12 @@
 
 #include "core/check.h"
 
+#include <dirent.h>
 #include <errno.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -44,6 +47,37 @@ int io_commit(const char *tmp, const char *path, char *msg)
         return -1;
     }
     return 0;
+}
+
+int io_remove_stale_temporaries(const char *path)
+{
+    char dir[4096];
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) : 1, slash ? path : ".");
+    if (slash == path)
+        snprintf(dir, sizeof dir, "/");
+    DIR *d = opendir(dir);
+    if (!d)
+        return 0;
+    const size_t n = strlen(base);
+    int removed = 0;
+    for (struct dirent *e = readdir(d); e; e = readdir(d)) {
+        const char *name = e->d_name;
+        if (strncmp(name, base, n) != 0 || strncmp(name + n, ".tmp-", 5) != 0)
+            continue;
+        char *end = NULL;
+        long pid = strtol(name + n + 5, &end, 10);
+        if (end == name + n + 5 || *end != '\0' || pid <= 0 || pid == (long)getpid())
+            continue;
+        if (kill((pid_t)pid, 0) == 0 || errno != ESRCH)
+            continue; /* its writer may still be running */
+        char full[8400];
+        snprintf(full, sizeof full, "%s/%s", dir, name);
+        removed += remove(full) == 0;
+    }
+    closedir(d);
+    return removed;
 }
 
 int io_make_dirs(const char *dir, char *msg)

@@ -156,8 +156,41 @@ static int exr_bind_encode(exr_encode_pipeline_t *enc, const struct exr_layer *l
     return 0;
 }
 
+/* Header attributes we write: names and values must be plain, bounded text. */
+#define EXR_ATTR_NAME_MAX 200
+#define EXR_ATTR_VALUE_MAX 65536
+#define EXR_MAX_ATTRS 64
+
+static int exr_check_attributes(const char *path, const struct exr_attribute *attrs, int n, char *msg)
+{
+    if (n < 0 || n > EXR_MAX_ATTRS || (n > 0 && !attrs)) {
+        set_msg(msg, "%s: cannot write EXR with %d header attributes (0 to %d allowed)", path, n, EXR_MAX_ATTRS);
+        return -1;
+    }
+    for (int i = 0; i < n; i++) {
+        const char *name = attrs[i].name, *value = attrs[i].value;
+        if (!name || !name[0] || strlen(name) > EXR_ATTR_NAME_MAX || !strchr(name, '.')) {
+            set_msg(msg, "%s: EXR attribute name '%.60s' must be 1 to %d bytes with a '.' (a namespace such as "
+                         "\"restir.samples\", so it never collides with the standard attributes)",
+                    path, name ? name : "(null)", EXR_ATTR_NAME_MAX);
+            return -1;
+        }
+        if (!value || strlen(value) > EXR_ATTR_VALUE_MAX) {
+            set_msg(msg, "%s: EXR attribute '%s' has no value or one longer than %d bytes", path, name,
+                    EXR_ATTR_VALUE_MAX);
+            return -1;
+        }
+        for (int j = 0; j < i; j++)
+            if (strcmp(attrs[j].name, name) == 0) {
+                set_msg(msg, "%s: EXR attribute '%s' is given twice", path, name);
+                return -1;
+            }
+    }
+    return 0;
+}
+
 static int exr_write_body(exr_context_t ctxt, const char *path, const struct exr_layer *layers,
-                          int n, int w, int h, char *msg)
+                          int n, const struct exr_attribute *attrs, int n_attrs, int w, int h, char *msg)
 {
     int part = 0;
     exr_result_t rv = exr_add_part(ctxt, NULL, EXR_STORAGE_SCANLINE, &part);
@@ -170,6 +203,8 @@ static int exr_write_body(exr_context_t ctxt, const char *path, const struct exr
         long_names |= !exr_is_default_layer(layers[l].name) && strlen(layers[l].name) + 2 > 31;
     if (rv == EXR_ERR_SUCCESS && long_names)
         rv = exr_set_longname_support(ctxt, 1);
+    for (int i = 0; i < n_attrs && rv == EXR_ERR_SUCCESS; i++)
+        rv = exr_attr_set_string(ctxt, part, attrs[i].name, attrs[i].value);
     /* Channel order in the file is alphabetical; the library sorts the list itself. */
     char name[EXR_LAYER_NAME_MAX + 3];
     for (int l = 0; l < n && rv == EXR_ERR_SUCCESS; l++)
@@ -229,11 +264,17 @@ static int exr_write_body(exr_context_t ctxt, const char *path, const struct exr
 int exr_write_layers(const char *path, const struct exr_layer *layers, int n, int w, int h,
                      char *msg)
 {
+    return exr_write_layers_attrs(path, layers, n, NULL, 0, w, h, msg);
+}
+
+int exr_write_layers_attrs(const char *path, const struct exr_layer *layers, int n,
+                           const struct exr_attribute *attrs, int n_attrs, int w, int h, char *msg)
+{
     if (w <= 0 || h <= 0 || w > EXR_MAX_SIDE || h > EXR_MAX_SIDE) {
         set_msg(msg, "%s: cannot write EXR of invalid size %dx%d", path, w, h);
         return -1;
     }
-    if (exr_check_layers(path, layers, n, msg) != 0)
+    if (exr_check_layers(path, layers, n, msg) != 0 || exr_check_attributes(path, attrs, n_attrs, msg) != 0)
         return -1;
     char tmp[EXR_PATH_MAX + 32];
     if (strlen(path) >= EXR_PATH_MAX) {
@@ -261,7 +302,7 @@ int exr_write_layers(const char *path, const struct exr_layer *layers, int n, in
         remove(tmp);
         return -1;
     }
-    int status = exr_write_body(ctxt, path, layers, n, w, h, msg);
+    int status = exr_write_body(ctxt, path, layers, n, attrs, n_attrs, w, h, msg);
     rv = exr_finish(&ctxt);
     if (status == 0 && rv != EXR_ERR_SUCCESS) {
         exr_fail(msg, path, "cannot finish EXR file", rv);
@@ -531,4 +572,44 @@ int exr_read_layer(const char *path, const char *layer, float **rgb, int *w, int
 int exr_read_rgb(const char *path, float **rgb, int *w, int *h, char *msg)
 {
     return exr_read_layer(path, NULL, rgb, w, h, msg);
+}
+
+int exr_read_attribute(const char *path, const char *name, char *value, size_t len, char *msg)
+{
+    if (len > 0)
+        value[0] = '\0';
+    if (exr_probe_file(path, msg) != 0)
+        return -1;
+    exr_last_error[0] = '\0';
+    exr_context_initializer_t init = exr_initializer();
+    exr_context_t ctxt = NULL;
+    exr_result_t rv = exr_start_read(&ctxt, path, &init);
+    if (rv != EXR_ERR_SUCCESS) {
+        exr_fail(msg, path, "invalid or unreadable EXR header", rv);
+        if (ctxt)
+            exr_finish(&ctxt);
+        return -1;
+    }
+    int32_t n = 0;
+    const char *text = NULL;
+    rv = exr_attr_get_string(ctxt, 0, name, &n, &text);
+    int status = 0;
+    if (rv == EXR_ERR_NO_ATTR_BY_NAME) {
+        status = 1;
+    } else if (rv == EXR_ERR_ATTR_TYPE_MISMATCH) {
+        set_msg(msg, "%s: EXR attribute '%.200s' is not text", path, name);
+        status = -1;
+    } else if (rv != EXR_ERR_SUCCESS || n < 0 || !text) {
+        exr_fail(msg, path, "cannot read EXR attribute", rv);
+        status = -1;
+    } else if ((size_t)n >= len) {
+        set_msg(msg, "%s: EXR attribute '%.200s' is longer (%d bytes) than the %zu allowed", path, name, (int)n,
+                len - 1);
+        status = -1;
+    } else {
+        memcpy(value, text, (size_t)n);
+        value[n] = '\0';
+    }
+    exr_finish(&ctxt);
+    return status;
 }

@@ -23,6 +23,20 @@ struct exr_layer {
  * naming the file and the problem. */
 int exr_write_layers(const char *path, const struct exr_layer *layers, int n, int w, int h,
                      char *msg);
+/* A text attribute of an EXR header (OpenEXR type "string"): the name needs a '.' namespace
+ * ("restir.samples") so it cannot collide with a standard attribute. */
+struct exr_attribute {
+    const char *name;
+    const char *value;
+};
+/* exr_write_layers with n_attrs (0 to 64) text attributes in the header, checked (names unique,
+ * namespaced, at most 200 bytes; values at most 64 KiB) before any file is created. */
+int exr_write_layers_attrs(const char *path, const struct exr_layer *layers, int n,
+                           const struct exr_attribute *attrs, int n_attrs, int w, int h, char *msg);
+/* Reads text attribute name of path's header into value (len bytes). Returns 0; 1 (value empty)
+ * when the header has no such attribute; -1 with msg when the file is unreadable, the attribute is
+ * not text or it does not fit. */
+int exr_read_attribute(const char *path, const char *name, char *value, size_t len, char *msg);
 /* Writes interleaved RGB floats (w*h*3) as a 32-bit float EXR with channels R, G, B: the
  * one-layer case of exr_write_layers. Returns 0, or -1 with msg naming the file and problem. */
 int exr_write_rgb(const char *path, const float *rgb, int w, int h, char *msg);
@@ -59,6 +73,9 @@ int png_write_heatmap(const char *path, const float *values, int w, int h, float
 
 /* Temporary sibling name for atomic writes: "<path>.tmp-<pid>". */
 void io_temp_path(const char *path, char *tmp, unsigned long tmp_len);
+/* Removes path's temporaries ("<path>.tmp-<pid>") whose writer process no longer exists, left by a
+ * process that was killed mid-write. Returns how many were removed. */
+int io_remove_stale_temporaries(const char *path);
 /* Renames tmp over path; returns 0, or -1 with msg (and removes tmp). */
 int io_commit(const char *tmp, const char *path, char *msg);
 /* Creates folder dir and its missing parents (mkdir -p). Returns 0, or -1 with msg naming the

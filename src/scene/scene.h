@@ -153,6 +153,10 @@ void scene_add_sphere(struct scene_builder *b, vec3 center, float radius, int se
 int scene_builder_end(struct scene_builder *b, char *msg);
 
 void scene_destroy(struct scene *s);
+/* A 64-bit FNV-1a hash of everything rendering reads: vertices, triangles, their materials,
+ * objects and uvs, the materials and the textures' texels. Equal scenes hash equally on every
+ * machine and run; a changed vertex, material or texel changes it (up to hash collisions). */
+uint64_t scene_content_hash(const struct scene *s);
 
 /* The material at a point of triangle tri (barycentrics b1, b2): its factors times its textures
  * there. Returns the scene's own material when it has no textures, else fills and returns tmp. */

@@ -4,11 +4,13 @@
 #define RESTIR_TEST_CLI_UTIL_H
 
 #include <dirent.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #define CLI_PATH_MAX 4096
@@ -145,6 +147,43 @@ static inline int cli_files_equal(const char *a, const char *b, long *size)
     fclose(fa);
     fclose(fb);
     return same;
+}
+
+/* Starts `$RESTIR_BIN args` in the background (the shell execs it, so signals reach restir
+ * itself), stdout to /dev/null and stderr to err_path. Returns its pid, or -1. */
+static inline pid_t cli_spawn(const char *args, const char *err_path)
+{
+    const char *bin = cli_bin();
+    char cmd[3 * CLI_PATH_MAX];
+    if (!bin || snprintf(cmd, sizeof cmd, "exec '%s' %s >/dev/null 2>'%s'", bin, args, err_path) >= (int)sizeof cmd)
+        return -1;
+    pid_t pid = fork();
+    if (pid == 0) {
+        execl("/bin/sh", "sh", "-c", cmd, (char *)NULL);
+        _exit(127);
+    }
+    return pid;
+}
+
+/* Waits until path exists (polling every 10 ms), at most timeout_ms. Returns 1 when it does. */
+static inline int cli_wait_for_file(const char *path, int timeout_ms)
+{
+    struct stat st;
+    for (int waited = 0; waited < timeout_ms; waited += 10) {
+        if (stat(path, &st) == 0)
+            return 1;
+        nanosleep(&(struct timespec){0, 10000000L}, NULL);
+    }
+    return stat(path, &st) == 0;
+}
+
+/* Signals pid with sig and waits for it; returns the raw wait status. */
+static inline int cli_signal_and_wait(pid_t pid, int sig)
+{
+    int status = 0;
+    kill(pid, sig);
+    waitpid(pid, &status, 0);
+    return status;
 }
 
 /* Reads path into buf (NUL terminated, truncated to n - 1 bytes); empty when it cannot be read. */

@@ -78,6 +78,13 @@ static void check_bad_render_input(void)
     expect_failure("compare too large for --max-memory",
                    "compare --scene cornell --methods restir-di,pt --res 4000x4000 --max-memory 200 --out '%1$s'", 1,
                    "restir-di", "needs about");
+    expect_failure("reference too large for --max-memory",
+                   "reference --scene cornell --method pt --res 8000x6000 --max-memory 200 --out '%1$s/r.exr'", 1,
+                   "reference at 8000x6000 needs about", "than the 200 MB that --max-memory allows");
+    expect_failure("bad --checkpoint-every", "reference --scene cornell --method pt --checkpoint-every -1 --out '%1$s/r.exr'",
+                   2, "--checkpoint-every", "-1");
+    expect_failure("--checkpoint-every outside reference", RENDER_ARGS("--checkpoint-every 5"), 2,
+                   "--checkpoint-every", NULL);
     expect_failure("huge width", "render --scene cornell --method pt --res 100000x10 --out '%1$s'", 2, "--res",
                    "100000");
     expect_failure("malformed resolution", "render --scene cornell --method pt --res abc --out '%1$s'", 2, "--res",

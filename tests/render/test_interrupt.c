@@ -1,6 +1,7 @@
 /* test_interrupt.c: SIGINT or SIGTERM during `restir render` finishes the frame being written,
  * keeps every complete output (the frames written, metrics.csv with their rows), leaves no
- * temporary file, says so and exits 128 + the signal. */
+ * temporary file, says so and exits 128 + the signal; `compare` keeps its reference and writes no
+ * table from a part, `study` writes nothing. (`reference`: test_reference_resume.c.) */
 #include <dirent.h>
 #include <signal.h>
 #include <string.h>
@@ -76,6 +77,57 @@ static void check(const char *tmp, int sig, const char *save)
            WIFEXITED(status) ? WEXITSTATUS(status) : -1, rows, frames);
 }
 
+/* compare: the reference and the finished methods' frames stay; no compare.csv from a part. */
+static void check_compare(const char *tmp)
+{
+    char dir[2 * CLI_PATH_MAX], args[5 * CLI_PATH_MAX], path[3 * CLI_PATH_MAX], err[3 * CLI_PATH_MAX], msg[512];
+    static char text[CLI_ERR_MAX];
+    snprintf(dir, sizeof dir, "%s/compare", tmp);
+    snprintf(err, sizeof err, "%s/compare_stderr.txt", tmp);
+    snprintf(args, sizeof args,
+             "compare --scene cornell --methods pt,restir-di --res 96x54 --frames 100000 --ref-spp 16 --out '%s'", dir);
+    pid_t pid = cli_spawn(args, err);
+    snprintf(path, sizeof path, "%s/reference.exr", dir);
+    EXPECT(cli_wait_for_file(path, 60000), "compare wrote no reference");
+    nanosleep(&(struct timespec){0, 200000000L}, NULL);
+    int status = cli_signal_and_wait(pid, SIGTERM);
+    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM, "compare: exit status %d, want %d",
+           WIFEXITED(status) ? WEXITSTATUS(status) : -1, 128 + SIGTERM);
+    float *img = NULL;
+    int w = 0, h = 0;
+    EXPECT(exr_read_rgb(path, &img, &w, &h, msg) == 0 && w == 96 && h == 54, "compare's reference: %s", msg);
+    free(img);
+    snprintf(path, sizeof path, "%s/compare.csv", dir);
+    struct stat st;
+    EXPECT(stat(path, &st) != 0, "an interrupted compare wrote compare.csv");
+    EXPECT(cli_count_entries(dir, ".tmp-") == 0, "compare: temporary files left");
+    cli_read_text(err, text, sizeof text);
+    EXPECT(strstr(text, "interrupted by SIGTERM") && strstr(text, "reference.exr"), "compare said: %s", text);
+    printf("compare: exit %d, %s", WIFEXITED(status) ? WEXITSTATUS(status) : -1, text);
+}
+
+/* study: its tables compare every configuration, so an interrupted study writes none. */
+static void check_study(const char *tmp)
+{
+    char dir[2 * CLI_PATH_MAX], args[5 * CLI_PATH_MAX], err[3 * CLI_PATH_MAX];
+    static char text[CLI_ERR_MAX];
+    snprintf(dir, sizeof dir, "%s/study", tmp);
+    snprintf(err, sizeof err, "%s/study_stderr.txt", tmp);
+    snprintf(args, sizeof args,
+             "study --scene cornell --method restir-di --configs bitterli,compat --res 64x36 --frames 8 "
+             "--runs 100000 --ref-spp 16 --out '%s'", dir);
+    pid_t pid = cli_spawn(args, err);
+    EXPECT(cli_wait_for_file(dir, 60000), "study made no folder");
+    nanosleep(&(struct timespec){0, 200000000L}, NULL);
+    int status = cli_signal_and_wait(pid, SIGINT);
+    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGINT, "study: exit status %d, want %d",
+           WIFEXITED(status) ? WEXITSTATUS(status) : -1, 128 + SIGINT);
+    EXPECT(cli_count_entries(dir, "") == 0, "an interrupted study wrote %d files", cli_count_entries(dir, ""));
+    cli_read_text(err, text, sizeof text);
+    EXPECT(strstr(text, "interrupted by SIGINT"), "study said: %s", text);
+    printf("study: exit %d, %s", WIFEXITED(status) ? WEXITSTATUS(status) : -1, text);
+}
+
 int main(void)
 {
     char tmp[CLI_PATH_MAX];
@@ -86,6 +138,8 @@ int main(void)
     check(tmp, SIGINT, "all");
     check(tmp, SIGTERM, "all");
     check(tmp, SIGINT, "last"); /* the frame being rendered when the signal came is written */
+    check_compare(tmp);
+    check_study(tmp);
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
     return test_finish();
 }

@@ -723,6 +723,44 @@ static void test_commit(void)
     EXPECT(file_size(tmp) == -1, "tmp not removed after failed commit");
 }
 
+/* Text header attributes: written with the pixels, read back exactly, absent ones reported as
+ * such, bad names refused before any file exists. */
+static void test_exr_attributes(void)
+{
+    char path[512], msg[RESTIR_MSG_LEN], value[256];
+    snprintf(path, sizeof path, "%s/attrs.exr", dir);
+    const float px[3 * 2] = {1, 2, 3, 4, 5, 6};
+    const struct exr_layer layer = {NULL, px};
+    const struct exr_attribute attrs[2] = {{"restir.samples", "1024"},
+                                           {"restir.run", "scene=cornell; seed=7; \"quoted\" text"}};
+    EXPECT(exr_write_layers_attrs(path, &layer, 1, attrs, 2, 2, 1, msg) == 0, "write with attributes: %s", msg);
+    EXPECT(exr_read_attribute(path, "restir.samples", value, sizeof value, msg) == 0 && !strcmp(value, "1024"),
+           "restir.samples read back as '%s' (%s)", value, msg);
+    EXPECT(exr_read_attribute(path, "restir.run", value, sizeof value, msg) == 0 && !strcmp(value, attrs[1].value),
+           "restir.run read back as '%s'", value);
+    EXPECT(exr_read_attribute(path, "restir.absent", value, sizeof value, msg) == 1 && value[0] == '\0',
+           "absent attribute not reported as absent");
+    EXPECT(exr_read_attribute(path, "restir.run", value, 8, msg) == -1 && strstr(msg, "longer"),
+           "over-long attribute accepted: %s", msg);
+    EXPECT(exr_read_attribute(path, "compression", value, sizeof value, msg) == -1 && strstr(msg, "not text"),
+           "non-text attribute read as text: %s", msg);
+    float *img = NULL;
+    int w = 0, h = 0;
+    EXPECT(exr_read_rgb(path, &img, &w, &h, msg) == 0 && w == 2 && h == 1 && img[5] == 6.0f,
+           "pixels of a file with attributes: %s", msg);
+    free(img);
+    char bad[512];
+    snprintf(bad, sizeof bad, "%s/bad_attrs.exr", dir);
+    const struct exr_attribute unnamed = {"samples", "1"}, twice[2] = {{"restir.a", "1"}, {"restir.a", "2"}};
+    EXPECT(exr_write_layers_attrs(bad, &layer, 1, &unnamed, 1, 2, 1, msg) == -1 && strstr(msg, "samples"),
+           "attribute without a namespace accepted");
+    EXPECT(exr_write_layers_attrs(bad, &layer, 1, twice, 2, 2, 1, msg) == -1 && strstr(msg, "twice"),
+           "duplicate attribute accepted");
+    struct stat st;
+    EXPECT(stat(bad, &st) != 0, "a refused write left %s", bad);
+    EXPECT(exr_read_attribute(bad, "restir.a", value, sizeof value, msg) == -1, "missing file has attributes");
+}
+
 int main(void)
 {
     snprintf(dir, sizeof dir, "/tmp/restir_io_XXXXXX");
@@ -736,6 +774,7 @@ int main(void)
     test_exr_errors();
     test_exr_foreign_layouts();
     test_exr_layers();
+    test_exr_attributes();
     test_png();
     test_png_signed();
     test_reports();

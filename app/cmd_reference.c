@@ -1,0 +1,255 @@
+/* cmd_reference.c: `restir reference`, a converged image of what a method estimates, with
+ * checkpoints that let the same command continue after Ctrl-C, SIGTERM or a kill and still give
+ * the bytes of an uninterrupted run (issue 13). Must never implement a method. */
+#include <errno.h>
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli.h"
+#include "core/check.h"
+#include "io/image_io.h"
+#include "options.h"
+#include "render/reference.h"
+#include "scene/scene_file.h"
+
+#define RUN_TEXT_MAX 1024
+
+static void reference_usage(FILE *out)
+{
+    fprintf(out,
+            "usage: restir reference --scene NAME --method NAME [--res WxH] [--spp N] [--camera static|path]\n"
+            "                        [--frame F] [--seed N] [--threads N] [--checkpoint-every SECONDS]\n"
+            "                        [--max-memory MB] --out FILE.exr\n"
+            "Renders the converged image of what METHOD estimates (pt over the same integrand: direct\n"
+            "lighting only for DI methods) from the camera of frame F. Default --spp 1024. The samples come\n"
+            "in chunks of %d, chunk c always from the same random numbers, so the image does not depend on\n"
+            "--threads or on interruptions.\n"
+            "--checkpoint-every S saves the running mean and its sample count (EXR attributes restir.samples\n"
+            "and restir.run) to FILE.checkpoint.exr every S seconds (0: after every chunk) and when SIGINT or\n"
+            "SIGTERM arrives, each time through a temporary file and a rename. The same command then\n"
+            "continues from the checkpoint, after a kill too, and writes byte for byte the image an\n"
+            "uninterrupted run gives; a larger --spp extends it. A checkpoint of another run (scene content,\n"
+            "camera, resolution, seed or pt parameters) is refused, not overwritten. The finished reference\n"
+            "carries the same attributes, and the checkpoint is removed.\n"
+            "SIGINT / SIGTERM stop after the current chunk (a second one stops at once); without\n"
+            "--checkpoint-every nothing is written. Exit status 128 + the signal.\n",
+            REFERENCE_CHUNK_SPP);
+}
+
+/* FILE.exr -> FILE.checkpoint.exr; any other name gets ".checkpoint.exr" appended. */
+static void checkpoint_path(const char *out, char *path, size_t len)
+{
+    size_t n = strlen(out);
+    if (n >= 4 && strcmp(out + n - 4, ".exr") == 0)
+        snprintf(path, len, "%.*s.checkpoint.exr", (int)(n - 4), out);
+    else
+        snprintf(path, len, "%s.checkpoint.exr", out);
+}
+
+/* The first "key=value" field where two run descriptions differ, as "key: A (checkpoint) vs B". */
+static void first_difference(const char *theirs, const char *ours, char *out, size_t len)
+{
+    while (*theirs || *ours) {
+        size_t a = strcspn(theirs, ";"), b = strcspn(ours, ";");
+        if (a != b || strncmp(theirs, ours, a) != 0) {
+            size_t key = strcspn(ours, "=");
+            const char *ta = memchr(theirs, '=', a), *ob = memchr(ours, '=', b);
+            snprintf(out, len, "%.*s: %.*s in the checkpoint, %.*s now", (int)(key < b ? key : b), ours,
+                     ta ? (int)(a - (size_t)(ta + 1 - theirs)) : (int)a, ta ? ta + 1 : theirs,
+                     ob ? (int)(b - (size_t)(ob + 1 - ours)) : (int)b, ob ? ob + 1 : ours);
+            return;
+        }
+        theirs += a + (theirs[a] == ';');
+        ours += b + (ours[b] == ';');
+        theirs += *theirs == ' ';
+        ours += *ours == ' ';
+    }
+    snprintf(out, len, "(no difference found)");
+}
+
+/* Writes the mean and its attributes to path (atomically: image_io.h). */
+static int write_state(const char *path, const struct reference_accum *a, const char *run, const char *method,
+                       const char *scene, char *msg)
+{
+    char samples[32], spp[32];
+    snprintf(samples, sizeof samples, "%d", a->done);
+    snprintf(spp, sizeof spp, "%d", a->spp);
+    const struct exr_attribute attrs[5] = {{"restir.samples", samples}, {"restir.spp", spp}, {"restir.run", run},
+                                           {"restir.method", method}, {"restir.scene", scene}};
+    const struct exr_layer layer = {NULL, a->mean};
+    return exr_write_layers_attrs(path, &layer, 1, attrs, 5, a->params.width, a->params.height, msg);
+}
+
+/* Continues a from the checkpoint at path when it is this run's. Returns 0 (resumed, or no
+ * checkpoint: *resumed says which), or -1 with msg saying why the checkpoint cannot be used. */
+static int resume_from(const char *path, const char *run, struct reference_accum *a, int *resumed, char *msg)
+{
+    *resumed = 0;
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return 0;
+    char theirs[RUN_TEXT_MAX], text[64], why[RESTIR_MSG_LEN];
+    int rc = exr_read_attribute(path, "restir.run", theirs, sizeof theirs, why);
+    if (rc != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s exists but is not a reference checkpoint (%.150s); move it away",
+                 path, rc > 0 ? "no restir.run attribute" : why);
+        return -1;
+    }
+    if (strcmp(theirs, run) != 0) {
+        first_difference(theirs, run, why, sizeof why);
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "%.200s is a checkpoint of another run (%.150s); remove it to start over or choose another --out",
+                 path, why);
+        return -1;
+    }
+    char *end = NULL;
+    errno = 0;
+    long done = exr_read_attribute(path, "restir.samples", text, sizeof text, why) == 0 ? strtol(text, &end, 10) : -1;
+    if (!end || end == text || *end != '\0' || errno != 0 || done < 1 || done > (1L << 20)) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: restir.samples is missing or not a sample count", path);
+        return -1;
+    }
+    if (!reference_accum_can_resume((int)done, a->spp)) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 done > a->spp ? "%.300s holds %ld samples, more than --spp %d"
+                               : "%.300s holds %ld samples, which is not a multiple of %d: it cannot continue exactly",
+                 path, done, done > a->spp ? a->spp : REFERENCE_CHUNK_SPP);
+        return -1;
+    }
+    float *mean = NULL;
+    int w = 0, h = 0;
+    if (exr_read_rgb(path, &mean, &w, &h, why) != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "cannot resume: %.400s", why);
+        return -1;
+    }
+    if (w != a->params.width || h != a->params.height) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: its image is %dx%d, not the %dx%d its restir.run names; remove it",
+                 path, w, h, a->params.width, a->params.height);
+        free(mean);
+        return -1;
+    }
+    for (size_t i = 0; i < 3 * (size_t)w * (size_t)h; i++)
+        if (!isfinite(mean[i])) {
+            snprintf(msg, RESTIR_MSG_LEN, "%.300s: pixel (%zu, %zu) is %f; remove the checkpoint to start over", path,
+                     i / 3 % (size_t)w, i / 3 / (size_t)w, (double)mean[i]);
+            free(mean);
+            return -1;
+        }
+    reference_accum_resume(a, mean, (int)done);
+    free(mean);
+    *resumed = 1;
+    return 0;
+}
+
+int cmd_reference(int argc, char **argv)
+{
+    struct cli_options o;
+    char msg[RESTIR_MSG_LEN];
+    if (cli_parse_options("reference", argc, argv, &o, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
+    if (o.help) {
+        reference_usage(stdout);
+        return 0;
+    }
+    if (!o.out) {
+        cli_error("--out FILE.exr is required");
+        return EXIT_USAGE;
+    }
+    if (!o.method || method_find(o.method) < 0) {
+        cli_error(o.method ? "unknown method '%s' (see restir list)" : "--method is required (see restir list)%s",
+                  o.method ? o.method : "");
+        return EXIT_USAGE;
+    }
+    const enum method_id method = (enum method_id)method_find(o.method);
+    struct scene s;
+    if (scene_load(o.scene, &s, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
+    /* the mean, the chunk and, while resuming, the checkpoint read: three RGB float images */
+    const double per_pixel = 3.0 * 3.0 * sizeof(float);
+    if (cli_check_bytes("reference", o.params.width, o.params.height,
+                        per_pixel * o.params.width * (double)o.params.height, per_pixel, o.max_memory_mb, msg) != 0) {
+        cli_error("%s", msg);
+        scene_destroy(&s);
+        return EXIT_RUNTIME;
+    }
+    const int spp = o.spp_given ? o.params.spp : 1024;
+    if (o.params.threads > 0)
+        omp_set_num_threads(o.params.threads);
+    struct camera cam = scene_camera_at(&s, o.params.camera_path, (float)o.frame);
+    struct reference_accum a;
+    reference_accum_init(&a, &s, method, &o.params, &cam, spp);
+    char run[RUN_TEXT_MAX], ckpt[4200];
+    reference_describe(&a, run, sizeof run);
+    checkpoint_path(o.out, ckpt, sizeof ckpt);
+    /* a kill during an earlier run's write leaves its temporary behind */
+    io_remove_stale_temporaries(ckpt);
+    io_remove_stale_temporaries(o.out);
+    int resumed = 0, rc = 0;
+    if (resume_from(ckpt, run, &a, &resumed, msg) != 0) {
+        cli_error("%s", msg);
+        reference_accum_fini(&a);
+        scene_destroy(&s);
+        return EXIT_RUNTIME;
+    }
+    if (resumed)
+        printf("resuming %s from %d of %d samples\n", ckpt, a.done, spp);
+    const int checkpoints = o.checkpoint_every >= 0.0;
+    cli_catch_stop_signals();
+    struct progress pg;
+    progress_begin(&pg, "reference", spp);
+    double last = omp_get_wtime(), t_render = 0.0, t_checkpoints = 0.0;
+    int saved = 0, first = a.done;
+    while (a.done < spp && !cli_stop_signal) {
+        double t0 = omp_get_wtime();
+        reference_accum_step(&a);
+        t_render += omp_get_wtime() - t0;
+        progress_update(&pg, a.done);
+        if (checkpoints && a.done < spp && !cli_stop_signal && omp_get_wtime() - last >= o.checkpoint_every) {
+            t0 = omp_get_wtime();
+            if (write_state(ckpt, &a, run, o.method, o.scene, msg) != 0) {
+                rc = EXIT_RUNTIME;
+                break;
+            }
+            last = omp_get_wtime();
+            t_checkpoints += last - t0;
+            saved++;
+        }
+    }
+    progress_end(&pg);
+    if (rc == 0 && a.done < spp) { /* stopped by a signal */
+        const char *sig = cli_stop_signal_name();
+        if (!checkpoints) {
+            cli_error("interrupted by %s at %d of %d samples; nothing written (--checkpoint-every makes a reference "
+                      "resumable)", sig, a.done, spp);
+        } else if (write_state(ckpt, &a, run, o.method, o.scene, msg) != 0) {
+            cli_error("interrupted by %s at %d of %d samples, and the checkpoint failed: %s", sig, a.done, spp, msg);
+        } else {
+            cli_error("interrupted by %s at %d of %d samples; checkpoint %s (the same command continues)", sig,
+                      a.done, spp, ckpt);
+        }
+        rc = 128 + (int)cli_stop_signal;
+    } else if (rc == 0 && write_state(o.out, &a, run, o.method, o.scene, msg) != 0) {
+        rc = EXIT_RUNTIME;
+    } else if (rc == 0) {
+        if (remove(ckpt) != 0 && errno != ENOENT)
+            cli_error("warning: cannot remove %s: %s", ckpt, strerror(errno));
+        printf("reference of %s on %s (%dx%d, %d spp) written to %s\n", o.method, o.scene, o.params.width,
+               o.params.height, spp, o.out);
+        if (saved > 0)
+            printf("%d checkpoints, %.1f ms each; %.1f ms per chunk of %d samples rendered\n", saved,
+                   1e3 * t_checkpoints / saved, 1e3 * t_render * REFERENCE_CHUNK_SPP / (spp - first),
+                   REFERENCE_CHUNK_SPP);
+    }
+    if (rc == EXIT_RUNTIME)
+        cli_error("%s", msg);
+    reference_accum_fini(&a);
+    scene_destroy(&s);
+    return rc;
+}

@@ -1,0 +1,50 @@
+/* reference.h: a converged reference image as a running mean of pt chunks, resumable from its
+ * state (the mean and the sample count) with bit-identical results (issue 13).
+ * Must never depend on files or the command line: saving the state is the caller's job. */
+#ifndef RESTIR_RENDER_REFERENCE_H
+#define RESTIR_RENDER_REFERENCE_H
+
+#include <stddef.h>
+
+#include "params.h"
+#include "renderer.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+
+/* Samples per chunk. Chunk c renders pt frame REFERENCE_FRAME_BASE + c, so chunk c's samples are
+ * the same whatever ran before it: a run resumed at a chunk boundary continues exactly. */
+#define REFERENCE_CHUNK_SPP 16
+/* A frame number no render uses keeps reference noise independent of the compared runs. */
+#define REFERENCE_FRAME_BASE 1000000
+
+struct reference_accum {
+    const struct scene *scene;
+    struct render_params params; /* with renderer_reference_params applied: the integrand */
+    struct camera_view view;
+    int spp;     /* samples the finished image holds */
+    int done;    /* samples in mean so far */
+    float *mean; /* w*h*3: the running mean of the done samples */
+    float *chunk;
+};
+
+/* Prepares a reference of what method estimates (pt over the same integrand) from cam with spp
+ * samples, starting empty. */
+void reference_accum_init(struct reference_accum *a, const struct scene *s, enum method_id method,
+                          const struct render_params *p, const struct camera *cam, int spp);
+/* Continues from a saved state: mean (w*h*3, copied) holding done samples. done must be a chunk
+ * boundary (a multiple of REFERENCE_CHUNK_SPP) or spp itself (reference_accum_can_resume). */
+void reference_accum_resume(struct reference_accum *a, const float *mean, int done);
+/* Whether a state of done samples continues exactly into a run of spp samples. */
+int reference_accum_can_resume(int done, int spp);
+/* Renders the next chunk (REFERENCE_CHUNK_SPP samples or what is left) and folds it into the
+ * mean: mean' = (mean * done + chunk * k) / (done + k) in double, rounded once to float. Returns
+ * the rays traced. Call only while done < spp. */
+long long reference_accum_step(struct reference_accum *a);
+void reference_accum_fini(struct reference_accum *a);
+
+/* The params and camera a reference's samples depend on, as "key=value; ..." text: scene content
+ * (scene_content_hash), camera, resolution, seed and pt's parameters. Two runs with the same text
+ * produce the same chunks. out holds len bytes. */
+void reference_describe(const struct reference_accum *a, char *out, size_t len);
+
+#endif
