@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 DEB_PACKAGES = build-essential cmake pkg-config libembree-dev libopenexr-dev libpng-dev libcjson-dev libfftw3-dev libassimp-dev libstb-dev libsdl2-dev
 # Test only (make test): real assets nobody here wrote and deliberately broken ones, and a
 # browser that loads the HTML reports.
-TEST_PACKAGES = assimp-testmodels chromium xvfb xauth
+TEST_PACKAGES = assimp-testmodels chromium xvfb xauth parallel slurm-wlm munge
 # make fuzz: clang, its libFuzzer and OpenMP runtimes.
 FUZZ_PACKAGES = clang libclang-rt-14-dev libomp-dev
 FUZZ_SECONDS ?= 60

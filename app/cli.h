@@ -78,5 +78,13 @@ int cmd_compare(int argc, char **argv);
 int cmd_study(int argc, char **argv);
 int cmd_scene(int argc, char **argv);
 int cmd_view(int argc, char **argv);
+int cmd_job(int argc, char **argv);
+
+struct plan;
+/* Job k (0-based) of a plan of each kind (plan.h): computes it into its output under runs/, or
+ * says it is done already. Returns an exit code. */
+int study_run_job(const struct plan *pl, int k);
+int reference_run_job(const struct plan *pl, int k);
+int compare_run_job(const struct plan *pl, int k);
 
 #endif

@@ -13,16 +13,16 @@
 #include "io/image_io.h"
 #include "options.h"
 #include "render/reference.h"
+#include "reference_cmd.h"
 #include "scene/scene_file.h"
-
-#define RUN_TEXT_MAX 1024
 
 static void reference_usage(FILE *out)
 {
     fprintf(out,
             "usage: restir reference --scene NAME --method NAME [--res WxH] [--spp N] [--camera static|path]\n"
             "                        [--frame F] [--seed N] [--threads N] [--checkpoint-every SECONDS]\n"
-            "                        [--max-memory MB] --out FILE.exr\n"
+            "                        [--max-memory MB] --out FILE.exr | --shards N --plan DIR\n"
+            "       restir reference --merge DIR --out FILE.exr\n"
             "Renders the converged image of what METHOD estimates (pt over the same integrand: direct\n"
             "lighting only for DI methods) from the camera of frame F. Default --spp 1024. The samples come\n"
             "in chunks of %d, chunk c always from the same random numbers, so the image does not depend on\n"
@@ -35,7 +35,12 @@ static void reference_usage(FILE *out)
             "camera, resolution, seed or pt parameters) is refused, not overwritten. The finished reference\n"
             "carries the same attributes, and the checkpoint is removed.\n"
             "SIGINT / SIGTERM stop after the current chunk (a second one stops at once); without\n"
-            "--checkpoint-every nothing is written. Exit status 128 + the signal.\n",
+            "--checkpoint-every nothing is written. Exit status 128 + the signal.\n"
+            "--shards N --plan DIR splits the chunks into N jobs (DIR/jobs.txt, plan.json, slurm.sh; see\n"
+            "restir study --help and docs/CLUSTER.md); `restir reference --merge DIR --out FILE.exr` then\n"
+            "averages the shards, weighted by samples: the same samples as the unsplit reference, equal to\n"
+            "it up to the order of the floating-point sums (relative difference at most (2C+1) 2^-24 for C\n"
+            "chunks).\n",
             REFERENCE_CHUNK_SPP);
 }
 
@@ -70,17 +75,26 @@ static void first_difference(const char *theirs, const char *ours, char *out, si
     snprintf(out, len, "(no difference found)");
 }
 
-/* Writes the mean and its attributes to path (atomically: image_io.h). */
+int reference_write_image(const char *path, const float *mean, int w, int h, int samples, int spp, const char *run,
+                          const char *method, const char *scene, const char *extra_name, const char *extra_value,
+                          char *msg)
+{
+    char samples_text[32], spp_text[32];
+    snprintf(samples_text, sizeof samples_text, "%d", samples);
+    snprintf(spp_text, sizeof spp_text, "%d", spp);
+    const struct exr_attribute attrs[6] = {{"restir.samples", samples_text}, {"restir.spp", spp_text},
+                                           {"restir.run", run},           {"restir.method", method},
+                                           {"restir.scene", scene},       {extra_name, extra_value}};
+    const struct exr_layer layer = {NULL, mean};
+    return exr_write_layers_attrs(path, &layer, 1, attrs, extra_name ? 6 : 5, w, h, msg);
+}
+
+/* Writes the running mean and its attributes to path (atomically: image_io.h). */
 static int write_state(const char *path, const struct reference_accum *a, const char *run, const char *method,
                        const char *scene, char *msg)
 {
-    char samples[32], spp[32];
-    snprintf(samples, sizeof samples, "%d", a->done);
-    snprintf(spp, sizeof spp, "%d", a->spp);
-    const struct exr_attribute attrs[5] = {{"restir.samples", samples}, {"restir.spp", spp}, {"restir.run", run},
-                                           {"restir.method", method}, {"restir.scene", scene}};
-    const struct exr_layer layer = {NULL, a->mean};
-    return exr_write_layers_attrs(path, &layer, 1, attrs, 5, a->params.width, a->params.height, msg);
+    return reference_write_image(path, a->mean, a->params.width, a->params.height, a->done, a->spp, run, method,
+                                 scene, NULL, NULL, msg);
 }
 
 /* Continues a from the checkpoint at path when it is this run's. Returns 0 (resumed, or no
@@ -144,45 +158,67 @@ static int resume_from(const char *path, const char *run, struct reference_accum
     return 0;
 }
 
-int cmd_reference(int argc, char **argv)
+int reference_setup(int argc, char **argv, int need_out, struct reference_setup *st)
 {
-    struct cli_options o;
     char msg[RESTIR_MSG_LEN];
-    if (cli_parse_options("reference", argc, argv, &o, msg) != 0) {
+    struct cli_options *o = &st->o;
+    if (cli_parse_options("reference", argc, argv, o, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
-    if (o.help) {
+    if (o->help) {
         reference_usage(stdout);
-        return 0;
+        return -1;
     }
-    if (!o.out) {
-        cli_error("--out FILE.exr is required");
+    if (need_out && !o->out && !o->plan) {
+        cli_error("--out FILE.exr (or --shards N --plan DIR) is required");
         return EXIT_USAGE;
     }
-    if (!o.method || method_find(o.method) < 0) {
-        cli_error(o.method ? "unknown method '%s' (see restir list)" : "--method is required (see restir list)%s",
-                  o.method ? o.method : "");
+    if (!o->method || method_find(o->method) < 0) {
+        cli_error(o->method ? "unknown method '%s' (see restir list)" : "--method is required (see restir list)%s",
+                  o->method ? o->method : "");
         return EXIT_USAGE;
     }
-    const enum method_id method = (enum method_id)method_find(o.method);
-    struct scene s;
-    if (scene_load(o.scene, &s, msg) != 0) {
+    st->method = (enum method_id)method_find(o->method);
+    if (scene_load(o->scene, &st->s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
-    /* the mean, the chunk and, while resuming, the checkpoint read: three RGB float images */
+    /* the mean, the chunk and, while resuming or merging, one image read: three RGB float images */
     const double per_pixel = 3.0 * 3.0 * sizeof(float);
-    if (cli_check_bytes("reference", o.params.width, o.params.height,
-                        per_pixel * o.params.width * (double)o.params.height, per_pixel, o.max_memory_mb, msg) != 0) {
+    if (cli_check_bytes("reference", o->params.width, o->params.height,
+                        per_pixel * o->params.width * (double)o->params.height, per_pixel, o->max_memory_mb, msg) != 0) {
         cli_error("%s", msg);
-        scene_destroy(&s);
+        scene_destroy(&st->s);
         return EXIT_RUNTIME;
     }
-    const int spp = o.spp_given ? o.params.spp : 1024;
-    if (o.params.threads > 0)
-        omp_set_num_threads(o.params.threads);
-    struct camera cam = scene_camera_at(&s, o.params.camera_path, (float)o.frame);
+    st->spp = o->spp_given ? o->params.spp : 1024;
+    if (o->params.threads > 0)
+        omp_set_num_threads(o->params.threads);
+    st->cam = scene_camera_at(&st->s, o->params.camera_path, (float)o->frame);
+    return 0;
+}
+
+int cmd_reference(int argc, char **argv)
+{
+    for (int i = 0; i + 1 < argc; i++)
+        if (!strcmp(argv[i], "--merge"))
+            return reference_merge(argc, argv);
+    struct reference_setup st;
+    int rc = reference_setup(argc, argv, 1, &st);
+    if (rc != 0)
+        return rc < 0 ? 0 : rc;
+    if (st.o.plan || st.o.shards) {
+        rc = reference_plan(&st, argc, argv);
+        scene_destroy(&st.s);
+        return rc;
+    }
+    char msg[RESTIR_MSG_LEN];
+    const struct cli_options o = st.o;
+    const int spp = st.spp;
+    struct scene s = st.s;
+    const enum method_id method = st.method;
+    struct camera cam = st.cam;
     struct reference_accum a;
     reference_accum_init(&a, &s, method, &o.params, &cam, spp);
     char run[RUN_TEXT_MAX], ckpt[4200];
@@ -191,7 +227,7 @@ int cmd_reference(int argc, char **argv)
     /* a kill during an earlier run's write leaves its temporary behind */
     io_remove_stale_temporaries(ckpt);
     io_remove_stale_temporaries(o.out);
-    int resumed = 0, rc = 0;
+    int resumed = 0;
     if (resume_from(ckpt, run, &a, &resumed, msg) != 0) {
         cli_error("%s", msg);
         reference_accum_fini(&a);
@@ -253,3 +289,4 @@ int cmd_reference(int argc, char **argv)
     scene_destroy(&s);
     return rc;
 }
+

@@ -15,27 +15,10 @@
 #include "io/report.h"
 #include "io/svg_plot.h"
 #include "options.h"
-#include "render/gbuffer.h"
+#include "plan.h"
+#include "study_run.h"
 
-#define STUDY_MAX_CONFIGS 64
-#define HARD_FRACTION 0.1f /* 000 Sec. 7: the hardest 10% of pixels */
-#define HARD_RADIUS 30.0f  /* ... judged within Bitterli's 30-pixel radius */
-#define COV_RADIUS 8       /* 000 Appendix A: radial covariance over radius-8 disks */
-#define COV_LAG 3          /* 000 Appendix A: autocovariance at a lag of 3 frames */
-#define COV_EPS 1e-4f
 #define STRIP_SCALE 4      /* strip plot: rows per frame */
-
-struct study_config {
-    char name[40];
-    enum spatial_select_mode select;
-    float radius;
-    int candidates;
-    int sweep; /* 0: named; 1: bitterli radius sweep; 2: compat radius sweep (000 Figure 3) */
-};
-
-struct study_result {
-    double smape_all, smape_hard, temporal_cov, spatial_cov, ms_select, ms_spatial, ms_frame;
-};
 
 static void study_usage(FILE *out)
 {
@@ -49,162 +32,15 @@ static void study_usage(FILE *out)
             "compat, compat-binary. --radii R1,R2,... adds bitterli and compat at each radius (the Pareto\n"
             "curves). Spatial neighbors M: --set spatial.neighbors=M. Default --res 320x180, --runs 8.\n"
             "Writes DIR/study.csv, study.md, pareto.svg, hard_pixels.png, strip.png; with --report also\n"
-            "DIR/index.html, one self-contained page showing them with the command, commit and machine.\n");
-}
-
-/* A named configuration at radius r (the radius of bitterli, compat and compat-binary). */
-static int named_config(const char *name, float r, int candidates, struct study_config *c, char *msg)
-{
-    memset(c, 0, sizeof(*c));
-    snprintf(c->name, sizeof(c->name), "%s", name);
-    c->radius = r;
-    c->candidates = 32;
-    if (!strcmp(name, "bitterli")) {
-        c->select = SELECT_BITTERLI;
-        c->candidates = 0;
-    } else if (!strcmp(name, "fast") || !strcmp(name, "balanced") || !strcmp(name, "conservative")) {
-        c->select = SELECT_COMPAT; /* 000 Table 1 presets: K 32 and R 30 / 50 / 100 */
-        c->radius = name[0] == 'f' ? 30.0f : name[0] == 'b' ? 50.0f : 100.0f;
-    } else if (!strcmp(name, "compat")) {
-        c->select = SELECT_COMPAT;
-        c->candidates = candidates;
-    } else if (!strcmp(name, "compat-binary")) {
-        c->select = SELECT_COMPAT_BINARY;
-        c->candidates = candidates;
-    } else {
-        snprintf(msg, RESTIR_MSG_LEN,
-                 "--configs: unknown configuration '%s' (bitterli, fast, balanced, conservative, compat, "
-                 "compat-binary)",
-                 name);
-        return -1;
-    }
-    return 0;
-}
-
-static int parse_configs(const struct cli_options *o, struct study_config *cfg, int *n, char *msg)
-{
-    char list[1024];
-    *n = 0;
-    snprintf(list, sizeof(list), "%s", o->configs ? o->configs : "");
-    for (char *t = strtok(list, ","); t; t = strtok(NULL, ",")) {
-        if (*n == STUDY_MAX_CONFIGS) {
-            snprintf(msg, RESTIR_MSG_LEN, "--configs: more than %d configurations", STUDY_MAX_CONFIGS);
-            return -1;
-        }
-        if (named_config(t, o->params.spatial_radius, o->params.spatial_candidates, &cfg[(*n)++], msg) != 0)
-            return -1;
-    }
-    snprintf(list, sizeof(list), "%s", o->radii ? o->radii : "");
-    for (char *t = strtok(list, ","); t; t = strtok(NULL, ",")) {
-        char *end;
-        double r = strtod(t, &end);
-        if (end == t || *end || !(r >= 1.0 && r <= 512.0)) {
-            snprintf(msg, RESTIR_MSG_LEN, "--radii: '%s' is not a radius in [1, 512] pixels", t);
-            return -1;
-        }
-        for (int k = 0; k < 2; k++) {
-            if (*n == STUDY_MAX_CONFIGS) {
-                snprintf(msg, RESTIR_MSG_LEN, "--radii: more than %d configurations in all", STUDY_MAX_CONFIGS);
-                return -1;
-            }
-            struct study_config *c = &cfg[(*n)++];
-            named_config(k ? "compat" : "bitterli", (float)r, o->params.spatial_candidates, c, msg);
-            snprintf(c->name, sizeof(c->name), "%s@%g", k ? "compat" : "bitterli", r);
-            c->sweep = k + 1;
-        }
-    }
-    if (*n == 0) {
-        snprintf(msg, RESTIR_MSG_LEN, "study: --configs or --radii must name at least one configuration");
-        return -1;
-    }
-    return 0;
+            "DIR/index.html, one self-contained page showing them with the command, commit and machine.\n"
+            "--plan DIR (instead of --out) writes DIR/jobs.txt (one command per configuration and run, and\n"
+            "one for the reference without --ref), DIR/plan.json and DIR/slurm.sh (sbatch --array) instead\n"
+            "of running; run the jobs in any order and anywhere (`parallel -j N < DIR/jobs.txt`, `sbatch\n"
+            "DIR/slurm.sh`), then `restir study --merge DIR` writes into DIR what the study writes, with the\n"
+            "same numbers (the pass times are those the jobs measured). docs/CLUSTER.md.\n");
 }
 
 static float luminance_at(const float *rgb, size_t i) { return v3_luminance(v3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2])); }
-
-/* The hard-pixel mask of the static view (000 Sec. 7) from a pixel-centre G-buffer. */
-static int hard_pixel_mask(const struct scene *s, const struct render_params *p, const struct camera *cam,
-                           unsigned char *mask)
-{
-    struct camera_view view;
-    camera_view_init(&view, cam, p->width, p->height);
-    struct gbuffer g;
-    gbuffer_init(&g, p->width, p->height, 0);
-    gbuffer_pass(&g, s, &view, NULL, 0, p->seed, 0);
-    size_t n = (size_t)p->width * p->height;
-    float *normals = xmalloc(sizeof(float) * 3 * n);
-    for (size_t i = 0; i < n; i++) {
-        normals[3 * i] = g.normal[i].x;
-        normals[3 * i + 1] = g.normal[i].y;
-        normals[3 * i + 2] = g.normal[i].z;
-    }
-    int hard = restir_hard_pixels(normals, g.depth, g.valid, p->width, p->height, HARD_RADIUS, p->spatial_normal,
-                                  p->spatial_depth, HARD_FRACTION, mask, NULL);
-    free(normals);
-    gbuffer_fini(&g);
-    return hard;
-}
-
-/* Runs one configuration: `runs` sequences of warmup + frames frames; measured luminance goes to
- * seq (run-major, then frame) for the covariances, and run 0's frames of row strip_y to strip. */
-/* Runs configuration c (o->runs sequences) into res. Returns 0, or -1 when a stop signal arrived
- * (res is then incomplete). */
-static int run_config(const struct scene *s, enum method_id method, const struct render_params *base,
-                      const struct study_config *c, const struct cli_options *o, const float *ref,
-                      const unsigned char *hard, float *seq, float *strip, int strip_y, struct study_result *res)
-{
-    const int w = base->width, h = base->height, frames = o->frames;
-    const size_t npix = (size_t)w * h;
-    struct render_params p = *base;
-    p.spatial_select = c->select;
-    p.spatial_radius = c->radius;
-    if (c->candidates > 0)
-        p.spatial_candidates = c->candidates;
-    struct camera cam = scene_camera_at(s, 0, 0.0f);
-    memset(res, 0, sizeof(*res));
-    for (int n = 0; n < o->runs; n++) {
-        p.seed = base->seed + 1000003ull * (uint64_t)n;
-        struct renderer r;
-        renderer_init(&r, s, method, &p);
-        for (int f = 0; f < o->warmup + frames; f++) {
-            if (cli_stop_signal) {
-                renderer_fini(&r);
-                return -1;
-            }
-            struct frame_stats st;
-            renderer_render(&r, f, &cam, &st);
-            int t = f - o->warmup;
-            if (t < 0)
-                continue;
-            float *lum = &seq[((size_t)n * frames + t) * npix];
-            for (size_t i = 0; i < npix; i++)
-                lum[i] = luminance_at(r.image, i);
-            if (n == 0)
-                memcpy(&strip[(size_t)t * w], &lum[(size_t)strip_y * w], sizeof(float) * (size_t)w);
-            struct restir_error e_all, e_hard;
-            restir_error_compute(r.image, ref, npix, NULL, &e_all);
-            if (restir_error_compute(r.image, ref, npix, hard, &e_hard) != 0)
-                e_hard.smape = 0.0;
-            const double k = 1.0 / ((double)o->runs * frames);
-            res->smape_all += e_all.smape * k;
-            res->smape_hard += e_hard.smape * k;
-            res->ms_select += st.ms[PASS_SELECT] * k;
-            res->ms_spatial += st.ms[PASS_SPATIAL] * k;
-            res->ms_frame += st.ms_total * k;
-        }
-        renderer_fini(&r);
-    }
-    res->temporal_cov = restir_temporal_autocovariance(seq, o->runs, frames, w, h, COV_LAG, COV_EPS, NULL);
-    /* Spatial covariance of each measured frame across runs, averaged over frames. */
-    float *at_t = xmalloc(sizeof(float) * npix * (size_t)o->runs);
-    for (int t = 0; t < frames; t++) {
-        for (int n = 0; n < o->runs; n++)
-            memcpy(&at_t[(size_t)n * npix], &seq[((size_t)n * frames + t) * npix], sizeof(float) * npix);
-        res->spatial_cov += restir_spatial_covariance(at_t, o->runs, w, h, COV_RADIUS, COV_EPS, NULL) / frames;
-    }
-    free(at_t);
-    return 0;
-}
 
 static int write_tables(const char *dir, const struct study_config *cfg, const struct study_result *res, int n,
                         int m, char *msg)
@@ -326,151 +162,377 @@ static int write_strip(const char *dir, const float *strips, const float *ref_ro
     return rc;
 }
 
-int cmd_study(int argc, char **argv)
-{
+/* What every mode of the study (run, plan, job, merge) derives from its options. */
+struct study_setup {
     struct cli_options o;
+    enum method_id method;
+    struct study_config cfg[STUDY_MAX_CONFIGS];
+    int ncfg;
+    struct scene s;
+};
+
+/* Parses and checks the study's options and loads its scene. Returns 0, or an exit code having
+ * said why. need_out: the unsplit study writes to --out. */
+static int study_setup(int argc, char **argv, int need_out, struct study_setup *st)
+{
     char msg[RESTIR_MSG_LEN];
-    if (cli_parse_options("study", argc, argv, &o, msg) != 0) {
+    struct cli_options *o = &st->o;
+    if (cli_parse_options("study", argc, argv, o, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
-    if (o.help) {
+    if (o->help) {
         study_usage(stdout);
-        return 0;
+        return -1;
     }
-    if (!o.res_given) {
-        o.params.width = 320;
-        o.params.height = 180;
+    if (!o->res_given) {
+        o->params.width = 320;
+        o->params.height = 180;
     }
-    if (!o.out) {
-        cli_error("study: --out DIR is required");
+    if (need_out && !o->out && !o->plan && !o->merge) {
+        cli_error("study: --out DIR (or --plan DIR, or --merge DIR) is required");
         return EXIT_USAGE;
     }
-    int m = o.method ? method_find(o.method) : -1;
+    int m = o->method ? method_find(o->method) : -1;
     if (m != METHOD_RESTIR_DI && m != METHOD_RESTIR_PT) {
         cli_error("study: --method must be restir-di or restir-pt (methods with spatial reuse), got '%s'",
-                  o.method ? o.method : "(none)");
+                  o->method ? o->method : "(none)");
         return EXIT_USAGE;
     }
-    if (o.frames <= COV_LAG || o.runs < 2) {
-        cli_error("study: needs --frames > %d (autocovariance lag) and --runs >= 2", COV_LAG);
+    st->method = (enum method_id)m;
+    if (o->frames <= STUDY_COV_LAG || o->runs < 2) {
+        cli_error("study: needs --frames > %d (autocovariance lag) and --runs >= 2", STUDY_COV_LAG);
         return EXIT_USAGE;
     }
-    static struct study_config cfg[STUDY_MAX_CONFIGS];
-    int ncfg;
-    if (parse_configs(&o, cfg, &ncfg, msg) != 0) {
+    if (study_parse_configs(o, st->cfg, &st->ncfg, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
-    struct scene s;
-    if (scene_load(o.scene, &s, msg) != 0) {
+    if (scene_load(o->scene, &st->s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
-    if (cli_check_memory(&s, (enum method_id)m, &o.params, o.max_memory_mb, msg) != 0) {
+    if (cli_check_memory(&st->s, st->method, &o->params, o->max_memory_mb, msg) != 0) {
         cli_error("%s", msg);
-        scene_destroy(&s);
+        scene_destroy(&st->s);
         return EXIT_RUNTIME;
     }
-    cli_catch_stop_signals();
-    const int w = o.params.width, h = o.params.height;
-    const size_t npix = (size_t)w * h;
-    struct camera cam = scene_camera_at(&s, 0, 0.0f);
-    float *ref = NULL;
-    int rc = 0;
-    if (o.ref) {
-        if (cli_load_reference(o.ref, w, h, &ref, msg) != 0) {
-            cli_error("%s", msg);
-            scene_destroy(&s);
-            return EXIT_RUNTIME;
-        }
-    } else {
-        struct render_params rp = o.params;
-        rp.seed ^= 0x7265666572656e63ull;
-        ref = cli_render_reference(&s, (enum method_id)m, &rp, &cam, o.ref_spp);
-        if (!ref) {
-            cli_error("interrupted by %s while rendering the reference; nothing written", cli_stop_signal_name());
-            scene_destroy(&s);
-            return 128 + (int)cli_stop_signal;
-        }
-    }
-    if (io_make_dirs(o.out, msg) != 0) {
-        cli_error("%s", msg);
-        free(ref);
-        scene_destroy(&s);
-        return EXIT_RUNTIME;
-    }
-    unsigned char *hard = xcalloc(npix, 1);
-    int nhard = hard_pixel_mask(&s, &o.params, &cam, hard);
-    /* The strip row: the one with the most hard pixels. */
-    int strip_y = 0, best = -1;
-    for (int y = 0; y < h; y++) {
-        int c = 0;
-        for (int x = 0; x < w; x++)
-            c += hard[(size_t)y * w + x];
-        if (c > best)
-            best = c, strip_y = y;
-    }
-    float *seq = xmalloc(sizeof(float) * npix * (size_t)o.runs * (size_t)o.frames);
-    float *strips = xmalloc(sizeof(float) * (size_t)w * o.frames * ncfg);
-    static struct study_result res[STUDY_MAX_CONFIGS];
-    struct progress pg;
-    progress_begin(&pg, "study", ncfg);
-    int stopped_at = -1;
-    for (int k = 0; k < ncfg && stopped_at < 0; k++) {
-        if (run_config(&s, (enum method_id)m, &o.params, &cfg[k], &o, ref, hard, seq,
-                       &strips[(size_t)k * w * o.frames], strip_y, &res[k]) != 0)
-            stopped_at = k;
-        progress_update(&pg, k + 1);
-    }
-    progress_end(&pg);
-    if (stopped_at >= 0) { /* the tables compare every configuration: none is written from a part */
-        cli_error("interrupted by %s in configuration %s (%d of %d); nothing written", cli_stop_signal_name(),
-                  cfg[stopped_at].name, stopped_at + 1, ncfg);
-        free(strips);
-        free(seq);
-        free(hard);
-        free(ref);
-        scene_destroy(&s);
-        return 128 + (int)cli_stop_signal;
-    }
+    return 0;
+}
+
+/* The study's own reference: pt over the method's integrand, independently seeded. NULL when a
+ * stop signal arrived. */
+static float *study_render_reference(const struct study_setup *st)
+{
+    struct render_params rp = st->o.params;
+    rp.seed ^= 0x7265666572656e63ull;
+    const struct camera cam = study_camera(&st->s);
+    return cli_render_reference(&st->s, st->method, &rp, &cam, st->o.ref_spp);
+}
+
+/* Writes the study's tables, plots and report into dir and prints its summary. */
+static int study_write_outputs(const struct study_setup *st, const char *dir, const char *command,
+                               const struct study_result *res, const float *ref, const unsigned char *hard,
+                               int nhard, int strip_y, const float *strips)
+{
+    char msg[RESTIR_MSG_LEN];
+    const struct cli_options *o = &st->o;
+    const int w = o->params.width, h = o->params.height;
     float *ref_row = xmalloc(sizeof(float) * (size_t)w);
     for (int x = 0; x < w; x++)
         ref_row[x] = luminance_at(ref, (size_t)strip_y * w + x);
-    const int neighbors = render_params_spatial_neighbors(&o.params, m == METHOD_RESTIR_PT);
-    if (write_tables(o.out, cfg, res, ncfg, neighbors, msg) != 0 || write_pareto(o.out, cfg, res, ncfg, msg) != 0 ||
-        write_mask(o.out, ref, hard, w, h, msg) != 0 ||
-        write_strip(o.out, strips, ref_row, w, o.frames, ncfg, msg) != 0) {
+    const int neighbors = render_params_spatial_neighbors(&o->params, st->method == METHOD_RESTIR_PT);
+    int rc = 0;
+    if (write_tables(dir, st->cfg, res, st->ncfg, neighbors, msg) != 0 ||
+        write_pareto(dir, st->cfg, res, st->ncfg, msg) != 0 || write_mask(dir, ref, hard, w, h, msg) != 0 ||
+        write_strip(dir, strips, ref_row, w, o->frames, st->ncfg, msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }
+    free(ref_row);
     if (rc == 0) {
         printf("study of %s on %s, %dx%d, %d runs, %d warm-up + %d frames, %d hard pixels (row %d in strip.png)\n",
-               o.method, o.scene, w, h, o.runs, o.warmup, o.frames, nhard, strip_y);
-        for (int k = 0; k < ncfg; k++)
+               o->method, o->scene, w, h, o->runs, o->warmup, o->frames, nhard, strip_y);
+        for (int k = 0; k < st->ncfg; k++)
             printf("  %-16s R %-5g SMAPE %.3f hard %.3f  temporal cov %.4g  spatial cov %.4g  select %.2f ms  "
                    "frame %.2f ms\n",
-                   cfg[k].name, cfg[k].radius, res[k].smape_all, res[k].smape_hard, res[k].temporal_cov,
+                   st->cfg[k].name, st->cfg[k].radius, res[k].smape_all, res[k].smape_hard, res[k].temporal_cov,
                    res[k].spatial_cov, res[k].ms_select, res[k].ms_frame);
-        printf("output: %s\n", o.out);
+        printf("output: %s\n", dir);
     }
-    if (rc == 0 && o.report) {
-        char command[8192];
-        cli_command_line("study", argc, argv, command, sizeof command);
-        const struct study_report_run run = {o.out, command, s.name, o.method, w, h, o.runs, o.warmup, o.frames,
-                                             nhard, strip_y, ref};
+    if (rc == 0 && o->report) {
+        const struct study_report_run run = {dir, command, st->s.name, o->method, w, h, o->runs, o->warmup,
+                                             o->frames, nhard, strip_y, ref};
         if (study_write_report(&run, msg) != 0) {
             cli_error("--report: %s", msg);
             rc = EXIT_RUNTIME;
         } else {
-            printf("report: %s/index.html\n", o.out);
+            printf("report: %s/index.html\n", dir);
         }
     }
-    free(ref_row);
+    return rc;
+}
+
+/* Where a study plan keeps the result of run n of configuration k. */
+static void unit_output(int k, int n, char *out, size_t len)
+{
+    snprintf(out, len, "runs/study_c%02d_r%05d.bin", k, n);
+}
+
+/* Reads a unit's file, for plan_check_jobs and the merge. */
+struct study_merge_ctx {
+    const struct study_setup *st;
+    int has_reference_job;
+};
+
+static int study_job_valid(const struct plan *pl, int k, char *why, void *ctx)
+{
+    const struct study_merge_ctx *c = ctx;
+    char path[PLAN_PATH_MAX + 200];
+    plan_output_path(pl, k, path, sizeof path);
+    const struct render_params *p = &c->st->o.params;
+    if (c->has_reference_job && k == 0) {
+        float *ref = NULL;
+        int rc = cli_load_reference(path, p->width, p->height, &ref, why);
+        free(ref);
+        return rc;
+    }
+    struct study_unit u;
+    int rc = study_unit_read(path, pl->id, c->st->o.frames, (size_t)p->width * p->height, &u, why);
+    if (rc == 0)
+        study_unit_free(&u);
+    return rc == 0 ? 0 : -1;
+}
+
+/* The unsplit study, a plan, or a merge: every configuration's row from its runs. get_unit fills
+ * run n of configuration k (rendering it or reading its file). */
+static int study_rows(const struct study_setup *st, const struct plan *pl, const float *ref, const unsigned char *hard,
+                      int strip_y, float *strips, struct study_result *res)
+{
+    const struct cli_options *o = &st->o;
+    const int w = o->params.width, h = o->params.height;
+    struct study_unit *units = xcalloc((size_t)o->runs, sizeof(struct study_unit));
+    struct progress pg;
+    progress_begin(&pg, pl ? "merge" : "study", st->ncfg);
+    int rc = 0;
+    for (int k = 0; k < st->ncfg && rc == 0; k++) {
+        int got = 0;
+        for (; got < o->runs && rc == 0; got++) {
+            if (pl) {
+                char rel[64], path[PLAN_PATH_MAX + 200], msg[RESTIR_MSG_LEN];
+                unit_output(k, got, rel, sizeof rel);
+                snprintf(path, sizeof path, "%s/%s", pl->dir, rel);
+                if (study_unit_read(path, pl->id, o->frames, (size_t)w * h, &units[got], msg) != 0) {
+                    cli_error("%s", msg);
+                    rc = EXIT_RUNTIME;
+                }
+            } else if (study_run_unit(&st->s, st->method, &o->params, &st->cfg[k], o, got, &units[got]) != 0) {
+                cli_error("interrupted by %s in configuration %s (%d of %d); nothing written", cli_stop_signal_name(),
+                          st->cfg[k].name, k + 1, st->ncfg);
+                rc = 128 + (int)cli_stop_signal;
+            }
+            if (rc != 0)
+                break;
+        }
+        if (rc == 0)
+            study_combine(units, o->runs, w, h, ref, hard, strip_y, &strips[(size_t)k * w * o->frames], &res[k]);
+        for (int n = 0; n < got; n++)
+            study_unit_free(&units[n]);
+        progress_update(&pg, k + 1);
+    }
+    progress_end(&pg);
+    free(units);
+    return rc;
+}
+
+/* Rows, then outputs, once the reference is known: shared by the unsplit study and the merge. */
+static int study_finish(const struct study_setup *st, const struct plan *pl, const char *dir, const char *command,
+                        const float *ref)
+{
+    const int w = st->o.params.width, h = st->o.params.height;
+    const struct camera cam = study_camera(&st->s);
+    unsigned char *hard = xcalloc((size_t)w * h, 1);
+    const int nhard = study_hard_pixel_mask(&st->s, &st->o.params, &cam, hard);
+    const int strip_y = study_strip_row(hard, w, h);
+    float *strips = xmalloc(sizeof(float) * (size_t)w * st->o.frames * st->ncfg);
+    static struct study_result res[STUDY_MAX_CONFIGS];
+    int rc = study_rows(st, pl, ref, hard, strip_y, strips, res);
+    if (rc == 0)
+        rc = study_write_outputs(st, dir, command, res, ref, hard, nhard, strip_y, strips);
     free(strips);
-    free(seq);
     free(hard);
+    return rc;
+}
+
+static int study_plan(const struct study_setup *st, int argc, char **argv)
+{
+    char msg[RESTIR_MSG_LEN], command[8192], name[96], rel[64];
+    cli_command_line("study", argc, argv, command, sizeof command);
+    struct plan pl;
+    if (plan_init(&pl, st->o.plan, "study", argc, argv, command, scene_content_hash(&st->s), msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_RUNTIME;
+    }
+    if (!st->o.ref)
+        plan_add_job(&pl, "the study's reference", "runs/reference.exr");
+    for (int k = 0; k < st->ncfg; k++)
+        for (int n = 0; n < st->o.runs; n++) {
+            snprintf(name, sizeof name, "config %s, run %d", st->cfg[k].name, n);
+            unit_output(k, n, rel, sizeof rel);
+            plan_add_job(&pl, name, rel);
+        }
+    int rc = plan_write(&pl, msg) == 0 ? 0 : EXIT_RUNTIME;
+    if (rc != 0)
+        cli_error("%s", msg);
+    else
+        printf("planned %d jobs in %s: run them with `parallel -j N < %s/jobs.txt` or `sbatch %s/slurm.sh`, then "
+               "`restir study --merge %s`\n",
+               pl.n_jobs, pl.dir, pl.dir, pl.dir, pl.dir);
+    plan_free(&pl);
+    return rc;
+}
+
+/* The scene a job or merge loads must be the one the plan was made from. */
+static int check_scene(const struct plan *pl, const struct scene *s)
+{
+    if (scene_content_hash(s) == pl->scene_hash)
+        return 0;
+    cli_error("the scene of %s/plan.json changed since the plan was made (its content hash differs); plan again",
+              pl->dir);
+    return EXIT_RUNTIME;
+}
+
+int study_run_job(const struct plan *pl, int k)
+{
+    struct study_setup st;
+    int rc = study_setup(pl->argc, pl->argv, 0, &st);
+    if (rc != 0)
+        return rc < 0 ? EXIT_USAGE : rc;
+    if ((rc = check_scene(pl, &st.s)) != 0) {
+        scene_destroy(&st.s);
+        return rc;
+    }
+    cli_catch_stop_signals();
+    char path[PLAN_PATH_MAX + 200], msg[RESTIR_MSG_LEN];
+    plan_output_path(pl, k, path, sizeof path);
+    const int has_ref = !st.o.ref;
+    struct study_merge_ctx ctx = {&st, has_ref};
+    int done_before = study_job_valid(pl, k, msg, &ctx) == 0;
+    if (done_before) {
+        printf("job %d of %d (%s): already done: %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
+    } else if (has_ref && k == 0) {
+        float *ref = study_render_reference(&st);
+        if (!ref) {
+            cli_error("interrupted by %s; nothing written", cli_stop_signal_name());
+            rc = 128 + (int)cli_stop_signal;
+        } else if (exr_write_rgb(path, ref, st.o.params.width, st.o.params.height, msg) != 0) {
+            cli_error("%s", msg);
+            rc = EXIT_RUNTIME;
+        }
+        free(ref);
+    } else {
+        const int unit = k - has_ref, cfg = unit / st.o.runs, run = unit % st.o.runs;
+        struct study_unit u;
+        if (study_run_unit(&st.s, st.method, &st.o.params, &st.cfg[cfg], &st.o, run, &u) != 0) {
+            cli_error("interrupted by %s; nothing written", cli_stop_signal_name());
+            rc = 128 + (int)cli_stop_signal;
+        } else {
+            if (study_unit_write(path, pl->id, &u, msg) != 0) {
+                cli_error("%s", msg);
+                rc = EXIT_RUNTIME;
+            }
+            study_unit_free(&u);
+        }
+    }
+    if (rc == 0 && !done_before)
+        printf("job %d of %d (%s): %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
+    scene_destroy(&st.s);
+    return rc;
+}
+
+static int study_merge(const char *dir)
+{
+    char msg[RESTIR_MSG_LEN];
+    struct plan pl;
+    if (plan_load(dir, &pl, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_RUNTIME;
+    }
+    if (strcmp(pl.kind, "study") != 0) {
+        cli_error("%s holds a plan of `restir %s`, not of a study", pl.dir, pl.kind);
+        plan_free(&pl);
+        return EXIT_USAGE;
+    }
+    struct study_setup st;
+    int rc = study_setup(pl.argc, pl.argv, 0, &st);
+    if (rc != 0) {
+        plan_free(&pl);
+        return rc < 0 ? EXIT_USAGE : rc;
+    }
+    rc = check_scene(&pl, &st.s);
+    struct study_merge_ctx ctx = {&st, !st.o.ref};
+    if (rc == 0 && plan_check_jobs(&pl, study_job_valid, &ctx, msg) != 0) {
+        cli_error("cannot merge: %s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    float *ref = NULL;
+    char path[PLAN_PATH_MAX + 64];
+    snprintf(path, sizeof path, "%s/runs/reference.exr", pl.dir);
+    if (rc == 0 && cli_load_reference(st.o.ref ? st.o.ref : path, st.o.params.width, st.o.params.height, &ref,
+                                      msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    if (rc == 0)
+        rc = study_finish(&st, &pl, pl.dir, pl.command, ref);
     free(ref);
-    scene_destroy(&s);
+    scene_destroy(&st.s);
+    plan_free(&pl);
+    return rc;
+}
+
+int cmd_study(int argc, char **argv)
+{
+    char msg[RESTIR_MSG_LEN];
+    for (int i = 0; i + 1 < argc; i++)
+        if (!strcmp(argv[i], "--merge")) {
+            if (argc != 2) {
+                cli_error("study --merge DIR takes no other option (the plan holds them)");
+                return EXIT_USAGE;
+            }
+            return study_merge(argv[i + 1]);
+        }
+    struct study_setup st;
+    int rc = study_setup(argc, argv, 1, &st);
+    if (rc != 0)
+        return rc < 0 ? 0 : rc;
+    if (st.o.plan) {
+        rc = study_plan(&st, argc, argv);
+        scene_destroy(&st.s);
+        return rc;
+    }
+    cli_catch_stop_signals();
+    float *ref = NULL;
+    if (st.o.ref) {
+        if (cli_load_reference(st.o.ref, st.o.params.width, st.o.params.height, &ref, msg) != 0) {
+            cli_error("%s", msg);
+            scene_destroy(&st.s);
+            return EXIT_RUNTIME;
+        }
+    } else if (!(ref = study_render_reference(&st))) {
+        cli_error("interrupted by %s while rendering the reference; nothing written", cli_stop_signal_name());
+        scene_destroy(&st.s);
+        return 128 + (int)cli_stop_signal;
+    }
+    if (io_make_dirs(st.o.out, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    char command[8192];
+    cli_command_line("study", argc, argv, command, sizeof command);
+    if (rc == 0)
+        rc = study_finish(&st, NULL, st.o.out, command, ref);
+    free(ref);
+    scene_destroy(&st.s);
     return rc;
 }

@@ -1,4 +1,5 @@
-/* main.c: the `restir` command: dispatches to list, render, reference, compare and study.
+/* main.c: the `restir` command: dispatches to list, render, reference, compare, study, scene, view
+ * and job.
  * Must never parse method parameters itself (options.c and params.c do). */
 #include <stdio.h>
 #include <string.h>
@@ -16,7 +17,8 @@ static void usage(FILE *out)
             "  compare     run several methods on the same frames, optionally at equal time\n"
             "  study       the error-correlation study of neighbor selection (000 Sec. 6-7)\n"
             "  scene       scene info NAME|FILE; scene export NAME --out DIR (restir scene --help)\n"
-            "  view        an interactive window rendering frame after frame (restir view --help)\n");
+            "  view        an interactive window rendering frame after frame (restir view --help)\n"
+            "  job         job K of a plan folder (study, reference, compare --plan DIR): restir job DIR K\n");
 }
 
 static int cmd_list(void)
@@ -49,6 +51,8 @@ int main(int argc, char **argv)
         return cmd_scene(argc - 2, argv + 2);
     if (!strcmp(cmd, "view"))
         return cmd_view(argc - 2, argv + 2);
+    if (!strcmp(cmd, "job"))
+        return cmd_job(argc - 2, argv + 2);
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         usage(stdout);
         return 0;

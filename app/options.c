@@ -139,6 +139,14 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
                 return -1;
             }
             o->checkpoint_every = s;
+        } else if (!strcmp(a, "--plan") && strcmp(command, "render") && strcmp(command, "view")) {
+            o->plan = val;
+        } else if (!strcmp(a, "--merge") && strcmp(command, "render") && strcmp(command, "view")) {
+            o->merge = val;
+        } else if (!strcmp(a, "--shards") && !strcmp(command, "reference")) {
+            if (cli_parse_int(a, val, 1, 4096, &v, msg) != 0)
+                return -1;
+            o->shards = (int)v;
         } else if (!strcmp(a, "--set")) {
             if (render_params_set(&o->params, val, msg) != 0)
                 return -1;

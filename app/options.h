@@ -29,6 +29,9 @@ struct cli_options {
     int runs;            /* study: independent sequences per configuration */
     int warmup;          /* study: frames before measuring */
     double checkpoint_every; /* reference: seconds between checkpoints (< 0: none, 0: every chunk) */
+    const char *plan;        /* study, reference, compare: write jobs into this folder instead of running */
+    const char *merge;       /* study, reference, compare: merge the finished jobs of this plan folder */
+    int shards;              /* reference --plan: jobs the samples are split into (0: not given) */
     struct render_params params;
 };
 

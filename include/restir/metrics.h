@@ -22,6 +22,14 @@ struct restir_error {
 int restir_error_compute(const float *image, const float *reference, size_t n_pixels,
                          const unsigned char *mask, struct restir_error *out);
 
+/* out[i] = L(image pixel i) in double, the luminance SMAPE and luma RMSE use. */
+void restir_luminance_image(const float *image, size_t n_pixels, double *out);
+/* SMAPE of an image given as its luminance (restir_luminance_image) against an RGB reference:
+ * exactly (bit for bit) restir_error_compute's smape of that image. Returns 0, or -1 if no pixel
+ * is selected. */
+int restir_smape_luminance(const double *luminance, const float *reference, size_t n_pixels,
+                           const unsigned char *mask, double *smape);
+
 /* The per-pixel terms of MAPE: out[i] = mean over channels of |I - R| / (R + 0.01 mean(R)), so
  * the mean of out over the image is restir_error's mape (heat maps of reports). */
 void restir_error_map_mape(const float *image, const float *reference, size_t n_pixels, float *out);

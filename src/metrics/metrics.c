@@ -15,6 +15,36 @@ static int metrics_selected(const unsigned char *mask, size_t i)
     return mask == NULL || mask[i] != 0;
 }
 
+void restir_luminance_image(const float *image, size_t n_pixels, double *out)
+{
+    for (size_t i = 0; i < n_pixels; i++)
+        out[i] = metrics_luminance(image + 3 * i);
+}
+
+/* SMAPE's per-pixel term, shared by restir_error_compute and restir_smape_luminance so that both
+ * give the same bits. */
+static double smape_term(double li, double lr)
+{
+    return fabs(li - lr) / (fabs(li) + fabs(lr) + 1e-4);
+}
+
+int restir_smape_luminance(const double *luminance, const float *reference, size_t n_pixels,
+                           const unsigned char *mask, double *smape)
+{
+    size_t count = 0;
+    double sum = 0.0;
+    for (size_t i = 0; i < n_pixels; i++) {
+        if (!metrics_selected(mask, i))
+            continue;
+        count++;
+        sum += smape_term(luminance[i], metrics_luminance(reference + 3 * i));
+    }
+    if (count == 0)
+        return -1;
+    *smape = 100.0 * sum / (double)count;
+    return 0;
+}
+
 int restir_error_compute(const float *image, const float *reference, size_t n_pixels,
                          const unsigned char *mask, struct restir_error *out)
 {
@@ -49,7 +79,7 @@ int restir_error_compute(const float *image, const float *reference, size_t n_pi
         }
         double li = metrics_luminance(p), lr = metrics_luminance(r);
         double dl = li - lr;
-        smape += fabs(dl) / (fabs(li) + fabs(lr) + 1e-4);
+        smape += smape_term(li, lr);
         luma_se += dl * dl;
     }
     double n = (double)count;

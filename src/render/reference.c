@@ -21,6 +21,13 @@ void reference_accum_init(struct reference_accum *a, const struct scene *s, enum
     a->chunk = xcalloc(n, sizeof(float));
 }
 
+void reference_accum_init_shard(struct reference_accum *a, const struct scene *s, enum method_id method,
+                                const struct render_params *p, const struct camera *cam, int first_chunk, int spp)
+{
+    reference_accum_init(a, s, method, p, cam, spp);
+    a->first_chunk = first_chunk;
+}
+
 int reference_accum_can_resume(int done, int spp)
 {
     return done >= 0 && done <= spp && (done % REFERENCE_CHUNK_SPP == 0 || done == spp);
@@ -36,7 +43,7 @@ void reference_accum_resume(struct reference_accum *a, const float *mean, int do
 long long reference_accum_step(struct reference_accum *a)
 {
     RESTIR_CHECK(a->done < a->spp);
-    const int c = a->done / REFERENCE_CHUNK_SPP;
+    const int c = a->first_chunk + a->done / REFERENCE_CHUNK_SPP;
     const int k = a->spp - a->done < REFERENCE_CHUNK_SPP ? a->spp - a->done : REFERENCE_CHUNK_SPP;
     long long rays = pt_pass(a->scene, &a->view, &a->params, REFERENCE_FRAME_BASE + c, k, a->chunk);
     const double done = a->done, total = a->done + k;

@@ -21,6 +21,7 @@ struct reference_accum {
     const struct scene *scene;
     struct render_params params; /* with renderer_reference_params applied: the integrand */
     struct camera_view view;
+    int first_chunk; /* the chunk this accumulation starts at (0; a shard's first chunk) */
     int spp;     /* samples the finished image holds */
     int done;    /* samples in mean so far */
     float *mean; /* w*h*3: the running mean of the done samples */
@@ -31,6 +32,9 @@ struct reference_accum {
  * samples, starting empty. */
 void reference_accum_init(struct reference_accum *a, const struct scene *s, enum method_id method,
                           const struct render_params *p, const struct camera *cam, int spp);
+/* The same for a shard: the samples of chunks first_chunk, first_chunk + 1, ... (spp of them). */
+void reference_accum_init_shard(struct reference_accum *a, const struct scene *s, enum method_id method,
+                                const struct render_params *p, const struct camera *cam, int first_chunk, int spp);
 /* Continues from a saved state: mean (w*h*3, copied) holding done samples. done must be a chunk
  * boundary (a multiple of REFERENCE_CHUNK_SPP) or spp itself (reference_accum_can_resume). */
 void reference_accum_resume(struct reference_accum *a, const float *mean, int done);

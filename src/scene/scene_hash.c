@@ -4,37 +4,31 @@
 
 #include <assert.h>
 
+#include "core/hash.h"
 #include "texture.h"
 
 /* Hashing the structs' bytes is only stable when they hold no padding: all 4-byte fields. */
 static_assert(sizeof(vec3) == 3 * sizeof(float), "vec3 must be three packed floats");
 static_assert(sizeof(struct material) == 12 * 4, "struct material must be 4-byte fields without padding");
 
-static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
-{
-    const unsigned char *b = data;
-    for (size_t i = 0; i < n; i++)
-        h = (h ^ b[i]) * 0x100000001b3ull;
-    return h;
-}
 
 uint64_t scene_content_hash(const struct scene *s)
 {
-    uint64_t h = 0xcbf29ce484222325ull;
+    uint64_t h = FNV1A64_BASIS;
     const int counts[4] = {s->num_verts, s->num_tris, s->num_materials, s->num_textures};
-    h = fnv1a(h, counts, sizeof counts);
-    h = fnv1a(h, s->verts, sizeof(vec3) * (size_t)s->num_verts);
-    h = fnv1a(h, s->indices, 3 * sizeof(uint32_t) * (size_t)s->num_tris);
-    h = fnv1a(h, s->tri_material, sizeof(int) * (size_t)s->num_tris);
-    h = fnv1a(h, s->tri_object, sizeof(int) * (size_t)s->num_tris);
+    h = fnv1a64(h, counts, sizeof counts);
+    h = fnv1a64(h, s->verts, sizeof(vec3) * (size_t)s->num_verts);
+    h = fnv1a64(h, s->indices, 3 * sizeof(uint32_t) * (size_t)s->num_tris);
+    h = fnv1a64(h, s->tri_material, sizeof(int) * (size_t)s->num_tris);
+    h = fnv1a64(h, s->tri_object, sizeof(int) * (size_t)s->num_tris);
     if (s->uv)
-        h = fnv1a(h, s->uv, 2 * sizeof(float) * (size_t)s->num_verts);
-    h = fnv1a(h, s->materials, sizeof(struct material) * (size_t)s->num_materials);
+        h = fnv1a64(h, s->uv, 2 * sizeof(float) * (size_t)s->num_verts);
+    h = fnv1a64(h, s->materials, sizeof(struct material) * (size_t)s->num_materials);
     for (int t = 0; t < s->num_textures; t++) {
         const struct texture *x = &s->textures[t];
         const int size[2] = {x->width, x->height};
-        h = fnv1a(h, size, sizeof size);
-        h = fnv1a(h, x->rgb, 3 * sizeof(float) * (size_t)x->width * (size_t)x->height);
+        h = fnv1a64(h, size, sizeof size);
+        h = fnv1a64(h, x->rgb, 3 * sizeof(float) * (size_t)x->width * (size_t)x->height);
     }
     return h;
 }

@@ -86,8 +86,38 @@ static void test_help(void)
            "help text incomplete");
 }
 
+/* SMAPE from the luminance alone (what study jobs keep) has restir_error_compute's exact bits. */
+static void test_smape_from_luminance(void)
+{
+    enum { N = 999 };
+    static float img[3 * N], ref[3 * N];
+    static double lum[N];
+    static unsigned char mask[N];
+    unsigned s = 12345u;
+    for (int i = 0; i < 3 * N; i++) {
+        s = s * 1664525u + 1013904223u;
+        img[i] = (float)(s >> 8) / 16777216.0f * (i % 7 == 0 ? 100.0f : 1.0f);
+        s = s * 1664525u + 1013904223u;
+        ref[i] = (float)(s >> 8) / 16777216.0f;
+    }
+    for (int i = 0; i < N; i++)
+        mask[i] = (unsigned char)(i % 3 == 0);
+    restir_luminance_image(img, N, lum);
+    struct restir_error e;
+    double smape = -1.0;
+    EXPECT(restir_error_compute(img, ref, N, NULL, &e) == 0 && restir_smape_luminance(lum, ref, N, NULL, &smape) == 0,
+           "smape from luminance");
+    EXPECT(memcmp(&smape, &e.smape, sizeof smape) == 0, "smape from luminance %.17g != %.17g", smape, e.smape);
+    EXPECT(restir_error_compute(img, ref, N, mask, &e) == 0 && restir_smape_luminance(lum, ref, N, mask, &smape) == 0,
+           "masked smape from luminance");
+    EXPECT(memcmp(&smape, &e.smape, sizeof smape) == 0, "masked smape %.17g != %.17g", smape, e.smape);
+    memset(mask, 0, sizeof mask);
+    EXPECT(restir_smape_luminance(lum, ref, N, mask, &smape) == -1, "empty mask accepted");
+}
+
 int main(void)
 {
+    test_smape_from_luminance();
     test_two_pixels();
     test_mask();
     test_identical();

@@ -1,0 +1,47 @@
+/* cmd_job.c: `restir job DIR K`, line K of a plan folder's jobs.txt (plan.h): loads the plan and
+ * hands job K to the command that planned it. Must never implement a method. */
+#include <string.h>
+
+#include "cli.h"
+#include "core/check.h"
+#include "plan.h"
+
+int cmd_job(int argc, char **argv)
+{
+    if (argc == 1 && (!strcmp(argv[0], "--help") || !strcmp(argv[0], "-h"))) {
+        printf("usage: restir job DIR K\n"
+               "Runs job K (1-based: line K of DIR/jobs.txt) of a plan that `restir study|reference|compare ...\n"
+               "--plan DIR` wrote. The job writes only its own result under DIR/runs/ (a temporary file, then a\n"
+               "rename); a job whose result is there and sound says so and exits 0, so a plan can be run again.\n");
+        return 0;
+    }
+    if (argc != 2) {
+        cli_error("usage: restir job DIR K");
+        return EXIT_USAGE;
+    }
+    char msg[RESTIR_MSG_LEN];
+    struct plan pl;
+    if (plan_load(argv[0], &pl, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
+    long long k = 0;
+    if (cli_parse_int("job", argv[1], 1, pl.n_jobs, &k, msg) != 0) {
+        cli_error("%s (%s has %d jobs)", msg, pl.dir, pl.n_jobs);
+        plan_free(&pl);
+        return EXIT_USAGE;
+    }
+    int rc;
+    if (!strcmp(pl.kind, "study"))
+        rc = study_run_job(&pl, (int)k - 1);
+    else if (!strcmp(pl.kind, "reference"))
+        rc = reference_run_job(&pl, (int)k - 1);
+    else if (!strcmp(pl.kind, "compare"))
+        rc = compare_run_job(&pl, (int)k - 1);
+    else {
+        cli_error("%s/plan.json: unknown kind '%s'", pl.dir, pl.kind);
+        rc = EXIT_USAGE;
+    }
+    plan_free(&pl);
+    return rc;
+}

@@ -1,0 +1,398 @@
+/* plan.c: plan folders (plan.h). */
+#define _XOPEN_SOURCE 700 /* realpath */
+#include "plan.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cJSON.h>
+
+#include "core/check.h"
+#include "core/hash.h"
+#include "io/image_io.h"
+#include "io/report.h"
+
+
+static uint64_t plan_hash(const char *kind, int argc, char **argv)
+{
+    uint64_t h = fnv1a64(FNV1A64_BASIS, kind, strlen(kind) + 1);
+    for (int i = 0; i < argc; i++)
+        h = fnv1a64(h, argv[i], strlen(argv[i]) + 1);
+    return h;
+}
+
+static char *xstrdup(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *c = xmalloc(n);
+    memcpy(c, s, n);
+    return c;
+}
+
+/* Slurm's #SBATCH lines cannot quote, and jobs.txt is read by shells: keep the folder plain. */
+static int plain_path(const char *s)
+{
+    for (; *s; s++)
+        if (*s == ' ' || *s == '\t' || *s == '\n' || *s == '\'' || *s == '"' || *s == '\\' || *s == '$' ||
+            *s == '`' || *s == '%')
+            return 0;
+    return 1;
+}
+
+int plan_init(struct plan *p, const char *dir, const char *kind, int argc, char **argv, const char *command,
+              uint64_t scene_hash, char *msg)
+{
+    memset(p, 0, sizeof *p);
+    if (io_make_dirs(dir, msg) != 0)
+        return -1;
+    if (!realpath(dir, p->dir)) {
+        snprintf(msg, RESTIR_MSG_LEN, "--plan %.300s: %s", dir, strerror(errno));
+        return -1;
+    }
+    if (!plain_path(p->dir)) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "--plan %.300s: the folder's path must not hold spaces, quotes, '$', '%%' or '\\' (Slurm's "
+                 "#SBATCH lines cannot quote them)", p->dir);
+        return -1;
+    }
+    snprintf(p->kind, sizeof p->kind, "%s", kind);
+    snprintf(p->command, sizeof p->command, "%s", command);
+    p->scene_hash = scene_hash;
+    p->argv = xcalloc((size_t)argc + 1, sizeof(char *));
+    for (int i = 0; i < argc; i++) {
+        if (!strcmp(argv[i], "--plan")) { /* the jobs run the command itself */
+            i++;
+            continue;
+        }
+        const int path_value = i > 0 && (!strcmp(argv[i - 1], "--scene") || !strcmp(argv[i - 1], "--ref"));
+        char abs[PATH_MAX];
+        struct stat st;
+        /* a scene name stays a name; a file is found again from any folder a job runs in */
+        p->argv[p->argc++] = xstrdup(path_value && stat(argv[i], &st) == 0 && realpath(argv[i], abs) ? abs : argv[i]);
+        if (!strcmp(argv[i], "--threads") && i + 1 < argc)
+            p->threads = atoi(argv[i + 1]);
+    }
+    p->id = plan_hash(kind, p->argc, p->argv);
+    return 0;
+}
+
+void plan_add_job(struct plan *p, const char *name, const char *output)
+{
+    RESTIR_CHECK(p->n_jobs < PLAN_MAX_JOBS);
+    p->jobs = realloc(p->jobs, sizeof(struct plan_job) * (size_t)(p->n_jobs + 1));
+    RESTIR_CHECK(p->jobs != NULL);
+    struct plan_job *j = &p->jobs[p->n_jobs++];
+    snprintf(j->name, sizeof j->name, "%s", name);
+    snprintf(j->output, sizeof j->output, "%s", output);
+}
+
+void plan_output_path(const struct plan *p, int k, char *out, size_t len)
+{
+    snprintf(out, len, "%s/%s", p->dir, p->jobs[k].output);
+}
+
+/* Writes text to path through a temporary file. */
+static int write_text(const char *path, const char *text, int executable, char *msg)
+{
+    char tmp[PLAN_PATH_MAX + 64];
+    io_temp_path(path, tmp, sizeof tmp);
+    FILE *f = fopen(tmp, "w");
+    if (!f) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: cannot write: %s", path, strerror(errno));
+        return -1;
+    }
+    fputs(text, f);
+    if (ferror(f) | fclose(f)) {
+        remove(tmp);
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: write failed", path);
+        return -1;
+    }
+    if (executable)
+        chmod(tmp, 0755);
+    return io_commit(tmp, path, msg);
+}
+
+/* The restir binary running now, so jobs run the same build from any folder. */
+static void self_path(char *out, size_t len)
+{
+    ssize_t n = readlink("/proc/self/exe", out, len - 1);
+    out[n > 0 ? n : 0] = '\0';
+    if (n <= 0)
+        snprintf(out, len, "restir");
+}
+
+int plan_write(const struct plan *p, char *msg)
+{
+    char path[PLAN_PATH_MAX + 64], exe[PLAN_PATH_MAX];
+    self_path(exe, sizeof exe);
+    if (!plain_path(exe)) {
+        snprintf(msg, RESTIR_MSG_LEN, "the restir binary's path %.300s holds spaces or quotes; jobs.txt could not "
+                 "name it", exe);
+        return -1;
+    }
+    snprintf(path, sizeof path, "%s/runs/logs", p->dir);
+    if (io_make_dirs(path, msg) != 0)
+        return -1;
+
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddNumberToObject(j, "restir_plan", 1);
+    cJSON_AddStringToObject(j, "kind", p->kind);
+    cJSON_AddStringToObject(j, "command", p->command);
+    cJSON *args = cJSON_AddArrayToObject(j, "args");
+    for (int i = 0; i < p->argc; i++)
+        cJSON_AddItemToArray(args, cJSON_CreateString(p->argv[i]));
+    char hex[32];
+    snprintf(hex, sizeof hex, "%016llx", (unsigned long long)p->scene_hash);
+    cJSON_AddStringToObject(j, "scene_hash", hex);
+    cJSON_AddStringToObject(j, "binary", exe);
+    cJSON *jobs = cJSON_AddArrayToObject(j, "jobs");
+    for (int k = 0; k < p->n_jobs; k++) {
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddNumberToObject(o, "line", k + 1);
+        cJSON_AddStringToObject(o, "name", p->jobs[k].name);
+        cJSON_AddStringToObject(o, "output", p->jobs[k].output);
+        cJSON_AddItemToArray(jobs, o);
+    }
+    snprintf(path, sizeof path, "%s/plan.json", p->dir);
+    int rc = json_write_file(path, j, msg);
+    cJSON_Delete(j);
+    if (rc != 0)
+        return -1;
+
+    size_t cap = (size_t)p->n_jobs * (strlen(exe) + strlen(p->dir) + 140) + 1, used = 0;
+    char *text = xmalloc(cap);
+    text[0] = '\0';
+    for (int k = 0; k < p->n_jobs; k++)
+        used += (size_t)snprintf(text + used, cap - used, "%s job %s %d  # %s\n", exe, p->dir, k + 1, p->jobs[k].name);
+    snprintf(path, sizeof path, "%s/jobs.txt", p->dir);
+    rc = write_text(path, text, 0, msg);
+    free(text);
+    if (rc != 0)
+        return -1;
+
+    char script[4 * PLAN_PATH_MAX + 2048];
+    snprintf(script, sizeof script,
+             "#!/bin/sh\n"
+             "# A Slurm job array over the %d jobs of this plan (restir %s): array task K runs line K of\n"
+             "# jobs.txt. Submit: sbatch %s/slurm.sh; when every task is done: restir %s --merge %s%s\n"
+             "#SBATCH --job-name=restir-%s\n"
+             "#SBATCH --array=1-%d\n"
+             "#SBATCH --cpus-per-task=%d\n"
+             "#SBATCH --output=%s/runs/logs/%%A_%%a.out\n"
+             "set -eu\n"
+             "line=$(sed -n \"${SLURM_ARRAY_TASK_ID}p\" %s/jobs.txt)\n"
+             "if [ -z \"$line\" ]; then\n"
+             "    echo \"slurm.sh: %s/jobs.txt has no line $SLURM_ARRAY_TASK_ID\" >&2\n"
+             "    exit 1\n"
+             "fi\n"
+             "export OMP_NUM_THREADS=\"${SLURM_CPUS_PER_TASK:-1}\"\n"
+             "exec /bin/sh -c \"$line\"\n",
+             p->n_jobs, p->kind, p->dir, p->kind, p->dir, strcmp(p->kind, "reference") ? "" : " --out FILE.exr",
+             p->kind, p->n_jobs, p->threads > 0 ? p->threads : 1, p->dir, p->dir, p->dir);
+    snprintf(path, sizeof path, "%s/slurm.sh", p->dir);
+    return write_text(path, script, 1, msg);
+}
+
+static char *read_file(const char *path, size_t max, char *msg)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: %s", path, strerror(errno));
+        return NULL;
+    }
+    char *buf = xmalloc(max + 1);
+    size_t n = fread(buf, 1, max + 1, f);
+    fclose(f);
+    if (n > max) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: larger than %zu bytes", path, max);
+        free(buf);
+        return NULL;
+    }
+    buf[n] = '\0';
+    return buf;
+}
+
+int plan_load(const char *dir, struct plan *p, char *msg)
+{
+    memset(p, 0, sizeof *p);
+    char path[PLAN_PATH_MAX + 64], why[RESTIR_MSG_LEN];
+    if (!realpath(dir, p->dir)) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: not a plan folder (%s)", dir, strerror(errno));
+        return -1;
+    }
+    snprintf(path, sizeof path, "%s/plan.json", p->dir);
+    char *text = read_file(path, 64u << 20, why);
+    if (!text) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s is not a plan folder: %.180s", dir, why);
+        return -1;
+    }
+    cJSON *j = cJSON_Parse(text);
+    free(text);
+    const cJSON *kind = cJSON_GetObjectItemCaseSensitive(j, "kind");
+    const cJSON *args = cJSON_GetObjectItemCaseSensitive(j, "args");
+    const cJSON *jobs = cJSON_GetObjectItemCaseSensitive(j, "jobs");
+    const cJSON *hash = cJSON_GetObjectItemCaseSensitive(j, "scene_hash");
+    const cJSON *command = cJSON_GetObjectItemCaseSensitive(j, "command");
+    if (!j || !cJSON_IsString(kind) || !cJSON_IsArray(args) || !cJSON_IsArray(jobs) || !cJSON_IsString(hash) ||
+        !cJSON_IsString(command) || strlen(kind->valuestring) >= sizeof p->kind ||
+        cJSON_GetArraySize(jobs) > PLAN_MAX_JOBS) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: not a plan (kind, args, jobs, scene_hash and command are required)",
+                 path);
+        cJSON_Delete(j);
+        return -1;
+    }
+    snprintf(p->kind, sizeof p->kind, "%s", kind->valuestring);
+    snprintf(p->command, sizeof p->command, "%s", command->valuestring);
+    p->scene_hash = strtoull(hash->valuestring, NULL, 16);
+    p->argc = cJSON_GetArraySize(args);
+    p->argv = xcalloc((size_t)p->argc + 1, sizeof(char *));
+    int bad = 0, i = 0;
+    const cJSON *a;
+    cJSON_ArrayForEach(a, args)
+    {
+        bad |= !cJSON_IsString(a);
+        p->argv[i] = xstrdup(cJSON_IsString(a) ? a->valuestring : "");
+        if (i > 0 && !strcmp(p->argv[i - 1], "--threads"))
+            p->threads = atoi(p->argv[i]);
+        i++;
+    }
+    const cJSON *o;
+    cJSON_ArrayForEach(o, jobs)
+    {
+        const cJSON *name = cJSON_GetObjectItemCaseSensitive(o, "name");
+        const cJSON *out = cJSON_GetObjectItemCaseSensitive(o, "output");
+        if (!cJSON_IsString(name) || !cJSON_IsString(out) || strstr(out->valuestring, "..") ||
+            strncmp(out->valuestring, "runs/", 5) != 0) {
+            bad = 1;
+            break;
+        }
+        plan_add_job(p, name->valuestring, out->valuestring);
+    }
+    cJSON_Delete(j);
+    if (bad) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: an argument or a job entry is malformed", path);
+        plan_free(p);
+        return -1;
+    }
+    p->id = plan_hash(p->kind, p->argc, p->argv);
+    return 0;
+}
+
+void plan_free(struct plan *p)
+{
+    for (int i = 0; i < p->argc; i++)
+        free(p->argv[i]);
+    free(p->argv);
+    free(p->jobs);
+    p->argv = NULL;
+    p->jobs = NULL;
+    p->argc = p->n_jobs = 0;
+}
+
+int plan_check_jobs(const struct plan *p, int (*valid)(const struct plan *p, int k, char *why, void *ctx), void *ctx,
+                    char *msg)
+{
+    char list[RESTIR_MSG_LEN] = "", why[RESTIR_MSG_LEN], first_why[RESTIR_MSG_LEN] = "";
+    int missing = 0;
+    for (int k = 0; k < p->n_jobs; k++) {
+        if (valid(p, k, why, ctx) == 0)
+            continue;
+        if (missing == 0)
+            snprintf(first_why, sizeof first_why, "%s", why);
+        if (missing < 8)
+            snprintf(list + strlen(list), sizeof list - strlen(list), "%sline %d (%s)", missing ? ", " : "", k + 1,
+                     p->jobs[k].name);
+        missing++;
+    }
+    if (missing == 0)
+        return 0;
+    snprintf(msg, RESTIR_MSG_LEN, "%d of %d jobs of %.80s are missing or corrupt: %.200s%s; first: %.140s", missing,
+             p->n_jobs, p->dir, list, missing > 8 ? ", ..." : "", first_why);
+    return -1;
+}
+
+int plan_blob_write(const char *path, const char magic[8], uint64_t id, const void *const *parts, const size_t *sizes,
+                    int n, char *msg)
+{
+    char tmp[PLAN_PATH_MAX + 64];
+    io_temp_path(path, tmp, sizeof tmp);
+    FILE *f = fopen(tmp, "wb");
+    if (!f) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: cannot write: %s", path, strerror(errno));
+        return -1;
+    }
+    uint64_t size = 0;
+    for (int i = 0; i < n; i++)
+        size += sizes[i];
+    uint64_t h = FNV1A64_BASIS;
+    h = fnv1a64(h, magic, 8);
+    h = fnv1a64(h, &id, sizeof id);
+    h = fnv1a64(h, &size, sizeof size);
+    fwrite(magic, 1, 8, f);
+    fwrite(&id, sizeof id, 1, f);
+    fwrite(&size, sizeof size, 1, f);
+    for (int i = 0; i < n; i++) {
+        fwrite(parts[i], 1, sizes[i], f);
+        h = fnv1a64(h, parts[i], sizes[i]);
+    }
+    fwrite(&h, sizeof h, 1, f);
+    if (ferror(f) | fclose(f)) {
+        remove(tmp);
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: write failed", path);
+        return -1;
+    }
+    return io_commit(tmp, path, msg);
+}
+
+int plan_blob_read(const char *path, const char magic[8], uint64_t id, void **payload, size_t *size, char *msg)
+{
+    *payload = NULL;
+    *size = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: %s", path, strerror(errno));
+        return errno == ENOENT ? 1 : -1;
+    }
+    char m[8];
+    uint64_t fid = 0, n = 0, stored = 0;
+    int ok = fread(m, 1, 8, f) == 8 && fread(&fid, sizeof fid, 1, f) == 1 && fread(&n, sizeof n, 1, f) == 1;
+    if (!ok || memcmp(m, magic, 8) != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: not a %.8s result", path, magic);
+        fclose(f);
+        return -1;
+    }
+    if (fid != id) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: written for another plan (its arguments differ)", path);
+        fclose(f);
+        return -1;
+    }
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0 || (uint64_t)st.st_size != 8 + 2 * sizeof(uint64_t) + n + sizeof(uint64_t)) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: truncated or padded (%lld bytes for a payload of %llu)", path,
+                 (long long)st.st_size, (unsigned long long)n);
+        fclose(f);
+        return -1;
+    }
+    unsigned char *data = xmalloc(n ? (size_t)n : 1);
+    ok = fread(data, 1, (size_t)n, f) == n && fread(&stored, sizeof stored, 1, f) == 1;
+    fclose(f);
+    uint64_t h = FNV1A64_BASIS;
+    h = fnv1a64(h, m, 8);
+    h = fnv1a64(h, &fid, sizeof fid);
+    h = fnv1a64(h, &n, sizeof n);
+    h = fnv1a64(h, data, (size_t)n);
+    if (!ok || h != stored) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: checksum mismatch (corrupt)", path);
+        free(data);
+        return -1;
+    }
+    *payload = data;
+    *size = (size_t)n;
+    return 0;
+}

@@ -1,0 +1,66 @@
+/* study_run.h: the pieces of `restir study` (000 Sec. 6-7, Appendix A) that a job runs alone: the
+ * configurations, one run of one configuration (a "unit"), the unit's result file, and the
+ * combination of a configuration's runs into its row. The unsplit study and a merged plan both
+ * call these same functions on the same data, so they write the same numbers (issue 14).
+ * Must never implement a method: it drives the renderer. */
+#ifndef RESTIR_APP_STUDY_RUN_H
+#define RESTIR_APP_STUDY_RUN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "options.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+#define STUDY_MAX_CONFIGS 64
+#define STUDY_COV_LAG 3 /* 000 Appendix A: autocovariance at a lag of 3 frames */
+
+struct study_config {
+    char name[40];
+    enum spatial_select_mode select;
+    float radius;
+    int candidates;
+    int sweep; /* 0: named; 1: bitterli radius sweep; 2: compat radius sweep (000 Figure 3) */
+};
+
+struct study_result {
+    double smape_all, smape_hard, temporal_cov, spatial_cov, ms_select, ms_spatial, ms_frame;
+};
+
+/* One run of one configuration: what its measured frames leave for the study's statistics. */
+struct study_unit {
+    int frames;
+    size_t npix;
+    double *luminance; /* frames * npix: L of each measured frame (restir_luminance_image) */
+    double *ms;        /* frames * 3: the select pass, the spatial pass, the whole frame */
+};
+
+/* --configs and --radii into cfg (at most STUDY_MAX_CONFIGS). Returns 0, or -1 with msg. */
+int study_parse_configs(const struct cli_options *o, struct study_config *cfg, int *n, char *msg);
+/* The hard-pixel mask of the static view (000 Sec. 7). Returns the number of hard pixels. */
+int study_hard_pixel_mask(const struct scene *s, const struct render_params *p, const struct camera *cam,
+                          unsigned char *mask);
+/* The row the strip plot shows: the one with the most hard pixels. */
+int study_strip_row(const unsigned char *hard, int w, int h);
+/* The static camera every study run uses. */
+struct camera study_camera(const struct scene *s);
+
+/* Renders run `run` (seed base->seed + 1000003 run) of configuration c: o->warmup frames, then
+ * o->frames measured into u (allocated here). Returns 0, or -1 when a stop signal arrived (u is
+ * then freed). */
+int study_run_unit(const struct scene *s, enum method_id method, const struct render_params *base,
+                   const struct study_config *c, const struct cli_options *o, int run, struct study_unit *u);
+void study_unit_free(struct study_unit *u);
+/* A unit's result file (plan.h blobs, tagged with plan id). Returns 0, or -1 with msg; read: 1 when
+ * the file does not exist, -1 when it is corrupt or of another shape than frames x npix. */
+int study_unit_write(const char *path, uint64_t id, const struct study_unit *u, char *msg);
+int study_unit_read(const char *path, uint64_t id, int frames, size_t npix, struct study_unit *u, char *msg);
+
+/* A configuration's row from its runs' units (in run order): SMAPE over all and hard pixels
+ * against ref, temporal and spatial relative covariance, mean pass times; run 0's row strip_y of
+ * each measured frame goes to strip (frames * w). */
+void study_combine(const struct study_unit *units, int runs, int w, int h, const float *ref,
+                   const unsigned char *hard, int strip_y, float *strip, struct study_result *res);
+
+#endif

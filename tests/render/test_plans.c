@@ -1,0 +1,190 @@
+/* test_plans.c: long commands split into jobs (issue 14). A study planned with --plan, its jobs
+ * run by GNU parallel in shuffled order and merged, equals the unsplit study (study.csv except
+ * its timing columns, pareto.svg, hard_pixels.png, strip.png byte for byte); a reference split
+ * into shards, run with xargs -P and merged, equals the unsplit one within the summation-order
+ * bound (2 C + 1) 2^-24 of reference_shards.c; merges with a job missing or corrupt are refused
+ * naming its line; a finished job run again says so. */
+#include <math.h>
+#include <signal.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli_util.h"
+#include "io/image_io.h"
+#include "test_util.h"
+
+#define MSG_LEN 512
+
+static char tmp[CLI_PATH_MAX];
+
+#define STUDY "study --scene cornell --method restir-di --configs bitterli,compat --radii 12 --res 48x27 " \
+              "--frames 5 --warmup 3 --runs 3 --ref-spp 32 --seed 11"
+#define REF "reference --scene cornell --method restir-di --res 64x36 --spp 1000 --seed 4"
+
+static int have(const char *tool)
+{
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "command -v %s >/dev/null 2>&1", tool);
+    return system(cmd) == 0;
+}
+
+static int sh(const char *fmt, const char *a, const char *b)
+{
+    char cmd[6 * CLI_PATH_MAX];
+    snprintf(cmd, sizeof cmd, fmt, a, b);
+    int st = system(cmd);
+    return st == -1 || !WIFEXITED(st) ? -1 : WEXITSTATUS(st);
+}
+
+/* The first 8 columns of study.csv (config, radius, K, M, smape_all, smape_hard, temporal_cov,
+ * spatial_cov): everything but the pass times, which are measurements of each run. */
+static void csv_without_times(const char *path, char *out, size_t n)
+{
+    static char text[1 << 16];
+    cli_read_text(path, text, sizeof text);
+    size_t o = 0;
+    int col = 0;
+    for (const char *c = text; *c && o + 2 < n; c++) {
+        if (*c == '\n') {
+            col = 0;
+            out[o++] = '\n';
+            continue;
+        }
+        if (*c == ',')
+            col++;
+        if (col < 8)
+            out[o++] = *c;
+    }
+    out[o] = '\0';
+}
+
+static void test_study(char *err)
+{
+    char unsplit[2 * CLI_PATH_MAX], plan[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX];
+    snprintf(unsplit, sizeof unsplit, "%s/study", tmp);
+    snprintf(plan, sizeof plan, "%s/study_plan", tmp);
+    snprintf(args, sizeof args, STUDY " --out '%s'", unsplit);
+    EXPECT(cli_run(tmp, args, err) == 0, "unsplit study: %s", err);
+    snprintf(args, sizeof args, STUDY " --plan '%s'", plan);
+    EXPECT(cli_run(tmp, args, err) == 0, "study --plan: %s", err);
+    static const char *const files[] = {"plan.json", "jobs.txt", "slurm.sh", "runs/logs"};
+    for (int i = 0; i < 4; i++) {
+        char path[3 * CLI_PATH_MAX];
+        snprintf(path, sizeof path, "%s/%s", plan, files[i]);
+        struct stat st;
+        EXPECT(stat(path, &st) == 0, "the plan has no %s", files[i]);
+    }
+    /* 1 reference + 4 configurations x 3 runs, in shuffled order, two at a time */
+    EXPECT(sh("test $(wc -l < '%s/jobs.txt') -eq 13", plan, "") == 0, "jobs.txt does not hold 13 jobs");
+    EXPECT(sh("shuf '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel --halt now,fail=1 -j 2 > '%s/parallel.log' 2>&1", plan,
+              plan) == 0, "GNU parallel: a job failed (%s/parallel.log)", plan);
+    snprintf(args, sizeof args, "study --merge '%s'", plan);
+    EXPECT(cli_run(tmp, args, err) == 0, "study --merge: %s", err);
+    static char a[1 << 16], b[1 << 16];
+    char pa[3 * CLI_PATH_MAX], pb[3 * CLI_PATH_MAX];
+    snprintf(pa, sizeof pa, "%s/study.csv", unsplit);
+    snprintf(pb, sizeof pb, "%s/study.csv", plan);
+    csv_without_times(pa, a, sizeof a);
+    csv_without_times(pb, b, sizeof b);
+    EXPECT(a[0] && strcmp(a, b) == 0, "merged study.csv differs from the unsplit one:\n%s\nvs\n%s", a, b);
+    static const char *const same[] = {"pareto.svg", "hard_pixels.png", "strip.png"};
+    for (int i = 0; i < 3; i++) {
+        long size = 0;
+        snprintf(pa, sizeof pa, "%s/%s", unsplit, same[i]);
+        snprintf(pb, sizeof pb, "%s/%s", plan, same[i]);
+        EXPECT(cli_files_equal(pa, pb, &size) == 1, "merged %s differs from the unsplit one", same[i]);
+    }
+    printf("study: 13 jobs shuffled under GNU parallel, merged: study.csv (all but the times), pareto.svg, "
+           "hard_pixels.png and strip.png equal the unsplit study's\n%s", b);
+
+    /* a job run again: already done; a missing or corrupt result: refused, named by its line */
+    static char out[CLI_ERR_MAX];
+    snprintf(args, sizeof args, "job '%s' 7", plan);
+    EXPECT(cli_run_capture(tmp, args, out, err) == 0 && strstr(out, "already done"), "job 7 again: %s%s", out, err);
+    EXPECT(sh("mv '%s/runs/study_c01_r00002.bin' '%s/moved.bin'", plan, plan) == 0, "cannot move a result");
+    snprintf(args, sizeof args, "study --merge '%s'", plan);
+    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 7 (config compat, run 2)"),
+           "merge with a missing job: %s", err);
+    EXPECT(sh("mv '%s/moved.bin' '%s/runs/study_c01_r00002.bin'", plan, plan) == 0, "cannot move it back");
+    EXPECT(sh("printf 'X' | dd of='%s/runs/study_c02_r00001.bin' bs=1 seek=200 conv=notrunc 2>/dev/null%s", plan,
+              "") == 0, "cannot corrupt");
+    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 9 (config bitterli@12, run 1)") &&
+               strstr(err, "corrupt"),
+           "merge with a corrupt job: %s", err);
+    printf("refused: %s", err);
+    snprintf(args, sizeof args, "job '%s' 9", plan); /* run again, it replaces the corrupt result */
+    EXPECT(cli_run(tmp, args, err) == 0, "job 9 again: %s", err);
+    snprintf(args, sizeof args, "study --merge '%s'", plan);
+    EXPECT(cli_run(tmp, args, err) == 0, "merge after the rerun: %s", err);
+    snprintf(pb, sizeof pb, "%s/study.csv", plan);
+    csv_without_times(pb, b, sizeof b);
+    EXPECT(strcmp(a, b) == 0, "study.csv after rerunning a corrupt job differs:\n%s\nvs\n%s", a, b);
+    snprintf(args, sizeof args, "job '%s' 14", plan);
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "13 jobs"), "job 14 of 13: %s", err);
+}
+
+static void test_reference(char *err)
+{
+    char unsplit[2 * CLI_PATH_MAX], merged[2 * CLI_PATH_MAX], plan[2 * CLI_PATH_MAX], args[6 * CLI_PATH_MAX];
+    char msg[MSG_LEN];
+    snprintf(unsplit, sizeof unsplit, "%s/ref.exr", tmp);
+    snprintf(merged, sizeof merged, "%s/merged.exr", tmp);
+    snprintf(plan, sizeof plan, "%s/ref_plan", tmp);
+    snprintf(args, sizeof args, REF " --out '%s'", unsplit);
+    EXPECT(cli_run(tmp, args, err) == 0, "unsplit reference: %s", err);
+    snprintf(args, sizeof args, REF " --shards 5 --plan '%s'", plan);
+    EXPECT(cli_run(tmp, args, err) == 0, "reference --plan: %s", err);
+    /* the documented alternative to GNU parallel: xargs, one line per shell */
+    EXPECT(sh("tac '%s/jobs.txt' | OMP_NUM_THREADS=1 xargs -d '\\n' -n 1 -P 2 sh -c > '%s/xargs.log' 2>&1", plan,
+              plan) == 0, "xargs: a shard failed");
+    snprintf(args, sizeof args, "reference --merge '%s' --out '%s'", plan, merged);
+    EXPECT(cli_run(tmp, args, err) == 0, "reference --merge: %s", err);
+    float *a = NULL, *b = NULL;
+    int w = 0, h = 0, w2 = 0, h2 = 0;
+    EXPECT(exr_read_rgb(unsplit, &a, &w, &h, msg) == 0 && exr_read_rgb(merged, &b, &w2, &h2, msg) == 0 && w == w2 &&
+               h == h2,
+           "cannot read the references: %s", msg);
+    if (a && b && w == w2 && h == h2) {
+        const int chunks = (1000 + 15) / 16;
+        const double bound = (2.0 * chunks + 1.0) * ldexp(1.0, -24);
+        double worst = 0.0;
+        long differ = 0;
+        for (size_t i = 0; i < 3 * (size_t)w * h; i++) {
+            double d = fabs((double)a[i] - (double)b[i]), rel = a[i] != 0.0f ? d / fabs((double)a[i]) : d;
+            differ += d != 0.0;
+            worst = rel > worst ? rel : worst;
+            if (rel > bound)
+                EXPECT(0, "merged reference value %zu: %.9g vs unsplit %.9g (relative %.3g > %.3g)", i, b[i], a[i], rel,
+                       bound);
+        }
+        printf("reference: 5 shards merged; %ld of %zu values differ from the unsplit reference in their last bits, "
+               "largest relative difference %.3g (bound %.3g)\n",
+               differ, 3 * (size_t)w * h, worst, bound);
+    }
+    free(a);
+    free(b);
+    EXPECT(sh("rm '%s/runs/shard_0003.exr'%s", plan, "") == 0, "cannot remove a shard");
+    snprintf(args, sizeof args, "reference --merge '%s' --out '%s/never.exr'", plan, tmp);
+    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 4 (shard 3"), "merge with a shard missing: %s", err);
+    char never[3 * CLI_PATH_MAX];
+    snprintf(never, sizeof never, "%s/never.exr", tmp);
+    struct stat st;
+    EXPECT(stat(never, &st) != 0, "a refused merge wrote its output");
+    snprintf(args, sizeof args, "study --merge '%s'", plan);
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "not of a study"), "study --merge of a reference plan: %s",
+           err);
+}
+
+int main(void)
+{
+    static char err[CLI_ERR_MAX];
+    if (!cli_bin() || cli_make_temp_dir(tmp) != 0) {
+        EXPECT(0, "cannot set up (RESTIR_BIN or temporary folder)");
+        return test_finish();
+    }
+    EXPECT(have("parallel"), "GNU parallel is not installed (make test-deps installs it)");
+    test_study(err);
+    test_reference(err);
+    EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
+    return test_finish();
+}
