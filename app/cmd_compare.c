@@ -12,28 +12,12 @@
 #include "gradient/grad_frame.h"
 #include "io/image_io.h"
 #include "io/report.h"
+#include "compare_run.h"
 #include "options.h"
+#include "plan.h"
 
-#define MAX_METHODS 16
-#define SPEC_MAX 200 /* characters of one spec; its folder name stays under NAME_MAX */
 
-/* One row of the comparison: a method with the command's parameters and then the spec's own
- * key=value settings. The spec text labels the row; dir is its folder name under DIR. */
-struct compare_spec {
-    char label[SPEC_MAX + 1];
-    char dir[SPEC_MAX + 16];
-    enum method_id method;
-    struct render_params p;
-};
 
-struct compare_result {
-    enum method_id method;
-    double ms_per_frame;
-    int spp;
-    int instances; /* independently seeded runs averaged (equal time) */
-    struct restir_error err; /* of the last frame */
-    float *image;            /* the last frame, kept for --report (else NULL) */
-};
 
 /* msg of render_params_set without its "--set" prefix, which
  * would name an option the user did not give. */
@@ -140,12 +124,9 @@ static int budget_by_spp(enum method_id m) { return m == METHOD_PT || m == METHO
  * gradient methods the primal and gradient images are averaged and then reconstructed once (002
  * Sec. 5, Figure 8), and the frame time counts the instances' passes and one reconstruction.
  * Returns 0, or -1 with msg when the last frame cannot be written to out_dir/c->dir. */
-/* run_method's result when a stop signal arrived before the method's last frame (cli.h). */
-#define RUN_STOPPED 1
-
 /* Renders frames of c (averaging instances), measures the last frame against ref and writes it
  * under out_dir/c->dir. Returns 0, -1 with msg, or RUN_STOPPED having written nothing. */
-static int run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
+int compare_run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
                       int instances, const float *ref, const char *out_dir, int keep_image, struct compare_result *res,
                       char *msg)
 {
@@ -205,7 +186,8 @@ static int run_method(const struct scene *s, const struct compare_spec *c, const
     res->ms_per_frame = ms / frames;
     res->spp = budget_by_spp(m) ? p->spp : 1;
     res->instances = instances;
-    restir_error_compute(r[0].image, ref, (size_t)p->width * (size_t)p->height, NULL, &res->err);
+    if (ref) /* a planned job measures nothing: the merge does, from the frame it writes */
+        restir_error_compute(r[0].image, ref, (size_t)p->width * (size_t)p->height, NULL, &res->err);
     res->image = NULL;
     if (keep_image) {
         res->image = xmalloc(sizeof(float) * n3);
@@ -247,16 +229,9 @@ static int spp_for_budget(const struct scene *s, enum method_id m, const struct 
     return spp < 1 ? 1 : spp;
 }
 
-int cmd_compare(int argc, char **argv)
+static void compare_usage(void)
 {
-    struct cli_options o;
-    char msg[RESTIR_MSG_LEN];
-    if (cli_parse_options("compare", argc, argv, &o, msg) != 0) {
-        cli_error("%s", msg);
-        return EXIT_USAGE;
-    }
-    if (o.help) {
-        printf("usage: restir compare --scene NAME --methods SPEC,SPEC,... [--equal-time] [--frames N] [--res WxH]\n"
+    printf("usage: restir compare --scene NAME --methods SPEC,SPEC,... [--equal-time] [--frames N] [--res WxH]\n"
                "                      [--ref FILE.exr | --ref-spp N] [--camera static|path] [--out DIR] [--report]\n"
                "                      [--seed N] [--threads N] [--set key=value]...\n"
                "Each SPEC is NAME[:key=value]...: method NAME (see restir list) with the command's parameters,\n"
@@ -278,96 +253,194 @@ int cmd_compare(int argc, char **argv)
                "commit and machine, the table, a relMSE plot, every image beside the reference in a viewer\n"
                "(synchronized zoom and pan, A/B flip), relative-error heat maps and the crops where the first\n"
                "two methods differ most.\n");
-        return 0;
+}
+
+int compare_setup(int argc, char **argv, struct compare_setup *st)
+{
+    char msg[RESTIR_MSG_LEN];
+    struct cli_options *o = &st->o;
+    if (cli_parse_options("compare", argc, argv, o, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_USAGE;
     }
-    if (!o.methods) {
+    if (o->help) {
+        compare_usage();
+        return -1;
+    }
+    if (!o->methods) {
         cli_error("--methods SPEC,SPEC,... is required (see restir list)");
         return EXIT_USAGE;
     }
     char list[MAX_METHODS * (SPEC_MAX + 1) + 64];
-    if (strlen(o.methods) >= sizeof(list)) {
+    if (strlen(o->methods) >= sizeof(list)) {
         cli_error("--methods is longer than %zu characters", sizeof(list) - 1);
         return EXIT_USAGE;
     }
-    snprintf(list, sizeof(list), "%s", o.methods);
-    struct compare_spec specs[MAX_METHODS];
-    int n = 0, any_direct = 0;
+    snprintf(list, sizeof(list), "%s", o->methods);
+    st->n = 0;
+    st->any_direct = 0;
     for (char *tok = strtok(list, ","); tok; tok = strtok(NULL, ",")) {
-        if (n == MAX_METHODS) {
+        if (st->n == MAX_METHODS) {
             cli_error("--methods lists more than %d methods", MAX_METHODS);
             return EXIT_USAGE;
         }
-        if (parse_spec(tok, &o.params, &specs[n], msg) != 0) {
+        if (parse_spec(tok, &o->params, &st->specs[st->n], msg) != 0) {
             cli_error("%s", msg);
             return EXIT_USAGE;
         }
-        any_direct |= method_table[specs[n].method].direct_only;
-        n++;
+        st->any_direct |= method_table[st->specs[st->n].method].direct_only;
+        st->n++;
     }
-    if (n == 0) {
+    if (st->n == 0) {
         cli_error("--methods lists no method (see restir list)");
         return EXIT_USAGE;
     }
-    struct render_params p = o.params;
-    if (any_direct)
-        renderer_reference_params(METHOD_RESTIR_DI, &p); /* pt estimates the same integral */
-    for (int k = 0; k < n; k++) {
-        if (any_direct)
-            renderer_reference_params(METHOD_RESTIR_DI, &specs[k].p); /* as for --set */
-        if (render_params_validate(&specs[k].p, msg) != 0) {
-            cli_error("--methods spec '%s': %s", specs[k].label, msg);
+    st->p = o->params;
+    if (st->any_direct)
+        renderer_reference_params(METHOD_RESTIR_DI, &st->p); /* pt estimates the same integral */
+    for (int k = 0; k < st->n; k++) {
+        if (st->any_direct)
+            renderer_reference_params(METHOD_RESTIR_DI, &st->specs[k].p); /* as for --set */
+        if (render_params_validate(&st->specs[k].p, msg) != 0) {
+            cli_error("--methods spec '%s': %s", st->specs[k].label, msg);
             return EXIT_USAGE;
         }
     }
-    assign_dirs(specs, n);
-    struct scene s;
-    if (scene_load(o.scene, &s, msg) != 0) {
+    assign_dirs(st->specs, st->n);
+    if (scene_load(o->scene, &st->s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
-    for (int k = 0; k < n; k++) { /* each method's renderers exist one at a time */
-        if (cli_check_memory(&s, specs[k].method, &specs[k].p, o.max_memory_mb, msg) != 0) {
-            cli_error("--methods spec '%s': %s", specs[k].label, msg);
-            scene_destroy(&s);
+    for (int k = 0; k < st->n; k++) { /* each method's renderers exist one at a time */
+        if (cli_check_memory(&st->s, st->specs[k].method, &st->specs[k].p, o->max_memory_mb, msg) != 0) {
+            cli_error("--methods spec '%s': %s", st->specs[k].label, msg);
+            scene_destroy(&st->s);
             return EXIT_RUNTIME;
         }
     }
-    if (o.params.threads > 0)
-        omp_set_num_threads(o.params.threads);
+    if (o->params.threads > 0)
+        omp_set_num_threads(o->params.threads);
+    return 0;
+}
+
+float *compare_render_reference(const struct compare_setup *st)
+{
+    struct render_params rp = st->p;
+    rp.seed = st->p.seed ^ 0x7265666572656e63ull; /* independent of the compared runs */
+    struct camera cam = scene_camera_at(&st->s, st->p.camera_path, (float)(st->o.frames - 1));
+    return cli_render_reference(&st->s, st->any_direct ? METHOD_RESTIR_DI : METHOD_PT, &rp, &cam, st->o.ref_spp);
+}
+
+int compare_write_table(const struct compare_setup *st, const char *out_dir, const char *command,
+                        const struct compare_result *res, const float *ref)
+{
+    char msg[RESTIR_MSG_LEN];
+    const struct cli_options *o = &st->o;
+    const struct render_params *p = &st->p;
+    const struct compare_spec *specs = st->specs;
+    const int n = st->n;
+    int rc = 0;
+    char csv_path[4200];
+    snprintf(csv_path, sizeof(csv_path), "%s/compare.csv", out_dir);
+    struct csv_writer csv;
+    if (csv_open(&csv, csv_path, "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse", msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    int w = 12;
+    for (int k = 0; k < n; k++)
+        if ((int)strlen(specs[k].label) > w)
+            w = (int)strlen(specs[k].label);
+    printf("%s, %dx%d, %s camera, error at frame %d%s:\n", o->scene, p->width, p->height,
+           p->camera_path ? "moving" : "static", o->frames - 1, o->equal_time ? ", equal time" : "");
+    printf("%-*s %10s %6s %5s %12s %10s %8s %12s\n", w, "method", "ms/frame", "spp", "inst", "relMSE", "MAPE",
+           "SMAPE", "relMSE/first");
+    for (int k = 0; k < n; k++) {
+        const struct compare_result *c = &res[k];
+        printf("%-*s %10.2f %6d %5d %12.5g %10.5g %8.3f %12.3f\n", w, specs[k].label, c->ms_per_frame, c->spp,
+               c->instances, c->err.relmse, c->err.mape, c->err.smape,
+               res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0);
+        if (rc == 0) {
+            char field[2 * SPEC_MAX + 4];
+            csv_field(field, sizeof(field), specs[k].label);
+            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g", field, c->ms_per_frame, c->spp, c->instances,
+                    c->err.relmse, c->err.mape, c->err.smape, c->err.luma_rmse);
+        }
+    }
+    if (rc == 0 && csv_close(&csv, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    if (rc == 0 && o->report) {
+        char pngs[MAX_METHODS][SPEC_MAX + 40];
+        struct compare_report_method rm[MAX_METHODS];
+        for (int k = 0; k < n; k++) {
+            snprintf(pngs[k], sizeof pngs[k], "%s/frame_%04d.png", specs[k].dir, o->frames - 1);
+            rm[k] = (struct compare_report_method){specs[k].label, pngs[k], specs[k].dir, res[k].image,
+                                                   res[k].ms_per_frame, res[k].spp, res[k].instances, res[k].err};
+        }
+        const struct compare_report_run run = {out_dir, command, st->s.name, p->width, p->height, o->frames - 1,
+                                               p->camera_path, o->equal_time, ref};
+        if (compare_write_report(&run, n, rm, msg) != 0) {
+            cli_error("--report: %s", msg);
+            rc = EXIT_RUNTIME;
+        }
+    }
+    if (rc == 0)
+        printf("output: %s%s\n", out_dir, o->report ? " (report: index.html)" : "");
+    return rc;
+}
+
+int cmd_compare(int argc, char **argv)
+{
+    for (int i = 0; i + 1 < argc; i++)
+        if (!strcmp(argv[i], "--merge")) {
+            if (argc != 2) {
+                cli_error("compare --merge DIR takes no other option (the plan holds them)");
+                return EXIT_USAGE;
+            }
+            return compare_merge(argv[i + 1]);
+        }
+    static struct compare_setup st;
+    int rc = compare_setup(argc, argv, &st);
+    if (rc != 0)
+        return rc < 0 ? 0 : rc;
+    if (st.o.plan) {
+        rc = compare_plan(&st, argc, argv);
+        scene_destroy(&st.s);
+        return rc;
+    }
+    char msg[RESTIR_MSG_LEN];
+    const struct cli_options o = st.o;
+    const struct render_params p = st.p;
+    struct compare_spec *specs = st.specs;
+    const int n = st.n;
     cli_catch_stop_signals();
     char out_dir[4096];
     snprintf(out_dir, sizeof(out_dir), "%s", o.out ? o.out : "");
     if (!o.out)
-        snprintf(out_dir, sizeof(out_dir), "out/compare-%s", s.name);
+        snprintf(out_dir, sizeof(out_dir), "out/compare-%s", st.s.name);
     float *ref = NULL;
-    int rc = 0;
     if (o.ref) {
         if (cli_load_reference(o.ref, p.width, p.height, &ref, msg) != 0)
             rc = EXIT_RUNTIME;
-    } else {
-        struct render_params rp = p;
-        rp.seed = p.seed ^ 0x7265666572656e63ull; /* independent of the compared runs */
-        struct camera cam = scene_camera_at(&s, p.camera_path, (float)(o.frames - 1));
-        ref = cli_render_reference(&s, any_direct ? METHOD_RESTIR_DI : METHOD_PT, &rp, &cam, o.ref_spp);
-        if (!ref) {
-            cli_error("interrupted by %s while rendering the reference; nothing written", cli_stop_signal_name());
-            scene_destroy(&s);
-            return 128 + (int)cli_stop_signal;
-        }
+    } else if (!(ref = compare_render_reference(&st))) {
+        cli_error("interrupted by %s while rendering the reference; nothing written", cli_stop_signal_name());
+        scene_destroy(&st.s);
+        return 128 + (int)cli_stop_signal;
     }
     if (rc == 0 && io_make_dirs(out_dir, msg) != 0)
         rc = EXIT_RUNTIME;
     if (rc != 0) {
         cli_error("%s", msg);
         free(ref);
-        scene_destroy(&s);
+        scene_destroy(&st.s);
         return rc;
     }
     char ref_path[4200];
     snprintf(ref_path, sizeof(ref_path), "%s/reference.exr", out_dir);
     if (!o.ref && exr_write_rgb(ref_path, ref, p.width, p.height, msg) != 0)
         cli_error("warning: %s", msg);
-
     /* The first spec other than pt sets the equal-time budget (its frame time, reconstruction
      * included); pt and gpt then fit it by paths per pixel, the others by averaging instances. */
     struct compare_result res[MAX_METHODS] = {0};
@@ -378,7 +451,7 @@ int cmd_compare(int argc, char **argv)
             first = k;
     int stopped_at = -1; /* the spec a stop signal interrupted */
     if (first >= 0) {
-        rc = run_method(&s, &specs[first], &specs[first].p, o.frames, 1, ref, out_dir, o.report, &res[first], msg);
+        rc = compare_run_method(&st.s, &specs[first], &specs[first].p, o.frames, 1, ref, out_dir, o.report, &res[first], msg);
         stopped_at = rc == RUN_STOPPED ? first : -1;
         budget = res[first].ms_per_frame;
     }
@@ -389,11 +462,11 @@ int cmd_compare(int argc, char **argv)
         int instances = 1;
         if (o.equal_time && budget > 0.0) {
             if (budget_by_spp(specs[k].method)) {
-                q.spp = spp_for_budget(&s, specs[k].method, &specs[k].p, budget);
+                q.spp = spp_for_budget(&st.s, specs[k].method, &specs[k].p, budget);
             } else {
                 /* one instance's time from a short run, then as many as fit (at least 1) */
                 struct compare_result probe;
-                rc = run_method(&s, &specs[k], &q, o.frames < 3 ? o.frames : 3, 1, ref, out_dir, 0, &probe, msg);
+                rc = compare_run_method(&st.s, &specs[k], &q, o.frames < 3 ? o.frames : 3, 1, ref, out_dir, 0, &probe, msg);
                 if (rc != 0) {
                     stopped_at = rc == RUN_STOPPED ? k : -1;
                     break;
@@ -402,7 +475,7 @@ int cmd_compare(int argc, char **argv)
                 instances = instances < 1 ? 1 : instances > MAX_INSTANCES ? MAX_INSTANCES : instances;
             }
         }
-        rc = run_method(&s, &specs[k], &q, o.frames, instances, ref, out_dir, o.report, &res[k], msg);
+        rc = compare_run_method(&st.s, &specs[k], &q, o.frames, instances, ref, out_dir, o.report, &res[k], msg);
         stopped_at = rc == RUN_STOPPED ? k : -1;
     }
     if (rc == RUN_STOPPED) { /* the finished methods' frames and the reference stay; no table */
@@ -424,70 +497,16 @@ int cmd_compare(int argc, char **argv)
         for (int k = 0; k < n; k++)
             free(res[k].image);
         free(ref);
-        scene_destroy(&s);
+        scene_destroy(&st.s);
         return rc;
     }
 
-    char csv_path[4200];
-    snprintf(csv_path, sizeof(csv_path), "%s/compare.csv", out_dir);
-    struct csv_writer csv;
-    if (csv_open(&csv, csv_path, "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse", msg) != 0) {
-        cli_error("%s", msg);
-        rc = EXIT_RUNTIME;
-    }
-    int w = 12;
-    for (int k = 0; k < n; k++)
-        if ((int)strlen(specs[k].label) > w)
-            w = (int)strlen(specs[k].label);
-    printf("%s, %dx%d, %s camera, error at frame %d%s:\n", o.scene, p.width, p.height,
-           p.camera_path ? "moving" : "static", o.frames - 1, o.equal_time ? ", equal time" : "");
-    printf("%-*s %10s %6s %5s %12s %10s %8s %12s\n", w, "method", "ms/frame", "spp", "inst", "relMSE", "MAPE",
-           "SMAPE", "relMSE/first");
-    for (int k = 0; k < n; k++) {
-        const struct compare_result *c = &res[k];
-        printf("%-*s %10.2f %6d %5d %12.5g %10.5g %8.3f %12.3f\n", w, specs[k].label, c->ms_per_frame, c->spp,
-               c->instances, c->err.relmse, c->err.mape, c->err.smape,
-               res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0);
-        if (rc == 0) {
-            char field[2 * SPEC_MAX + 4];
-            csv_field(field, sizeof(field), specs[k].label);
-            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g", field, c->ms_per_frame, c->spp, c->instances,
-                    c->err.relmse,
-                    c->err.mape, c->err.smape, c->err.luma_rmse);
-        }
-    }
-    if (rc == 0 && csv_close(&csv, msg) != 0) {
-        cli_error("%s", msg);
-        rc = EXIT_RUNTIME;
-    }
-    if (rc == 0 && o.report) {
-        char command[8192], pngs[MAX_METHODS][SPEC_MAX + 40];
-        cli_command_line("compare", argc, argv, command, sizeof command);
-        struct compare_report_method rm[MAX_METHODS];
-        for (int k = 0; k < n; k++) {
-            snprintf(pngs[k], sizeof pngs[k], "%s/frame_%04d.png", specs[k].dir, o.frames - 1);
-            rm[k] = (struct compare_report_method){specs[k].label, pngs[k], specs[k].dir, res[k].image,
-                                                   res[k].ms_per_frame, res[k].spp, res[k].instances, res[k].err};
-        }
-        const struct compare_report_run run = {out_dir, command, s.name, p.width, p.height, o.frames - 1,
-                                               p.camera_path, o.equal_time, ref};
-        if (compare_write_report(&run, n, rm, msg) != 0) {
-            cli_error("--report: %s", msg);
-            rc = EXIT_RUNTIME;
-        }
-    }
-    if (rc == 0)
-        printf("output: %s%s\n", out_dir, o.report ? " (report: index.html)" : "");
+    char command[8192];
+    cli_command_line("compare", argc, argv, command, sizeof command);
+    rc = compare_write_table(&st, out_dir, command, res, ref);
     for (int k = 0; k < n; k++)
         free(res[k].image);
     free(ref);
-    scene_destroy(&s);
+    scene_destroy(&st.s);
     return rc;
-}
-
-int compare_run_job(const struct plan *pl, int k)
-{
-    (void)pl;
-    (void)k;
-    return EXIT_RUNTIME;
 }

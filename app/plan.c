@@ -317,6 +317,35 @@ int plan_check_jobs(const struct plan *p, int (*valid)(const struct plan *p, int
     return -1;
 }
 
+int plan_copy_file(const char *src, const char *dst, char *msg)
+{
+    FILE *in = fopen(src, "rb");
+    if (!in) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: %s", src, strerror(errno));
+        return -1;
+    }
+    char tmp[PLAN_PATH_MAX + 400];
+    io_temp_path(dst, tmp, sizeof tmp);
+    FILE *out = fopen(tmp, "wb");
+    if (!out) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: cannot write: %s", dst, strerror(errno));
+        fclose(in);
+        return -1;
+    }
+    char buf[1 << 16];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, in)) > 0)
+        fwrite(buf, 1, n, out);
+    const int bad = ferror(in);
+    fclose(in);
+    if (bad | ferror(out) | fclose(out)) {
+        remove(tmp);
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: copy failed", dst);
+        return -1;
+    }
+    return io_commit(tmp, dst, msg);
+}
+
 int plan_blob_write(const char *path, const char magic[8], uint64_t id, const void *const *parts, const size_t *sizes,
                     int n, char *msg)
 {

@@ -49,6 +49,9 @@ void plan_output_path(const struct plan *p, int k, char *out, size_t len);
 int plan_check_jobs(const struct plan *p, int (*valid)(const struct plan *p, int k, char *why, void *ctx), void *ctx,
                     char *msg);
 
+/* Copies src to dst through a temporary name. Returns 0, or -1 with msg. */
+int plan_copy_file(const char *src, const char *dst, char *msg);
+
 /* A job's binary result: an 8-byte magic, the plan id, the payload size, the payload (parts
  * concatenated) and an FNV-1a 64 checksum of everything before it; written to a temporary name
  * and renamed. Returns 0, or -1 with msg. */

@@ -3,7 +3,8 @@
  * its timing columns, pareto.svg, hard_pixels.png, strip.png byte for byte); a reference split
  * into shards, run with xargs -P and merged, equals the unsplit one within the summation-order
  * bound (2 C + 1) 2^-24 of reference_shards.c; merges with a job missing or corrupt are refused
- * naming its line; a finished job run again says so. */
+ * naming its line; a finished job run again says so; a comparison planned per method and merged
+ * equals the unsplit one (compare.csv except ms_per_frame, reference and frames byte for byte). */
 #include <math.h>
 #include <signal.h>
 #include <string.h>
@@ -175,6 +176,60 @@ static void test_reference(char *err)
            err);
 }
 
+#define COMPARE "compare --scene cornell --methods restir-di,pt,restir-di:mis=balance --res 48x27 --frames 3 " \
+                "--ref-spp 32 --seed 9"
+
+/* compare.csv without its ms_per_frame column (the jobs' own times). */
+static void csv_without_ms(const char *path, char *out, size_t n)
+{
+    static char text[1 << 16];
+    cli_read_text(path, text, sizeof text);
+    size_t o = 0;
+    int col = 0;
+    for (const char *c = text; *c && o + 2 < n; c++) {
+        col = *c == '\n' ? 0 : col + (*c == ',');
+        if (col != 1)
+            out[o++] = *c;
+    }
+    out[o] = '\0';
+}
+
+static void test_compare(char *err)
+{
+    char unsplit[2 * CLI_PATH_MAX], plan[2 * CLI_PATH_MAX], args[6 * CLI_PATH_MAX];
+    snprintf(unsplit, sizeof unsplit, "%s/compare", tmp);
+    snprintf(plan, sizeof plan, "%s/compare_plan", tmp);
+    snprintf(args, sizeof args, COMPARE " --out '%s'", unsplit);
+    EXPECT(cli_run(tmp, args, err) == 0, "unsplit compare: %s", err);
+    snprintf(args, sizeof args, COMPARE " --equal-time --plan '%s'", plan);
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "--equal-time"), "an equal-time plan accepted: %s", err);
+    snprintf(args, sizeof args, COMPARE " --plan '%s'", plan);
+    EXPECT(cli_run(tmp, args, err) == 0, "compare --plan: %s", err);
+    EXPECT(sh("tac '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel -j 2 > '%s/parallel.log' 2>&1", plan, plan) == 0,
+           "GNU parallel: a compare job failed");
+    snprintf(args, sizeof args, "compare --merge '%s'", plan);
+    EXPECT(cli_run(tmp, args, err) == 0, "compare --merge: %s", err);
+    static char a[1 << 16], b[1 << 16];
+    char pa[3 * CLI_PATH_MAX], pb[3 * CLI_PATH_MAX];
+    snprintf(pa, sizeof pa, "%s/compare.csv", unsplit);
+    snprintf(pb, sizeof pb, "%s/compare.csv", plan);
+    csv_without_ms(pa, a, sizeof a);
+    csv_without_ms(pb, b, sizeof b);
+    EXPECT(a[0] && strcmp(a, b) == 0, "merged compare.csv differs:\n%s\nvs\n%s", a, b);
+    static const char *const same[] = {"reference.exr", "restir-di/frame_0002.exr", "pt/frame_0002.png",
+                                       "restir-di_mis_balance/frame_0002.exr"};
+    for (int i = 0; i < 4; i++) {
+        long size = 0;
+        snprintf(pa, sizeof pa, "%s/%s", unsplit, same[i]);
+        snprintf(pb, sizeof pb, "%s/%s", plan, same[i]);
+        EXPECT(cli_files_equal(pa, pb, &size) == 1, "merged %s differs from the unsplit one", same[i]);
+    }
+    printf("compare: 4 jobs under GNU parallel, merged: compare.csv (all but ms_per_frame), the reference and the "
+           "frames equal the unsplit compare's\n%s", b);
+    EXPECT(sh("rm '%s/runs/pt/result.bin'%s", plan, "") == 0, "cannot remove a result");
+    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 3 (pt)"), "merge with a missing job: %s", err);
+}
+
 int main(void)
 {
     static char err[CLI_ERR_MAX];
@@ -185,6 +240,7 @@ int main(void)
     EXPECT(have("parallel"), "GNU parallel is not installed (make test-deps installs it)");
     test_study(err);
     test_reference(err);
+    test_compare(err);
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
     return test_finish();
 }

@@ -1,0 +1,263 @@
+/* compare_plan.c: a comparison split into jobs (issue 14): `restir compare ... --plan DIR` plans
+ * one job per SPEC (and one for the reference without --ref); `restir job` runs a SPEC's frames and
+ * writes its last frame and its timing under DIR/runs/FOLDER/; `restir compare --merge DIR` measures
+ * every last frame against the reference and writes what the unsplit compare writes into DIR (the
+ * same errors, bit for bit: they are computed from the same frames; the times are the jobs' own).
+ * --equal-time is refused: its budget is one method's time on the machine that runs the others. */
+#include <dirent.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "compare_run.h"
+#include "core/check.h"
+#include "io/image_io.h"
+#include "plan.h"
+
+static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '1'};
+
+/* What a SPEC's job measured: its frame time, paths per pixel and instances. */
+struct job_timing {
+    double ms_per_frame;
+    int32_t spp, instances;
+};
+
+static int spec_of_job(const struct compare_setup *st, int k)
+{
+    return k - (st->o.ref ? 0 : 1); /* -1: the reference job */
+}
+
+int compare_plan(const struct compare_setup *st, int argc, char **argv)
+{
+    if (st->o.equal_time) {
+        cli_error("compare: --equal-time cannot be planned: its budget is one method's frame time, which only "
+                  "means something for methods timed on the same machine; run it unsplit");
+        return EXIT_USAGE;
+    }
+    char msg[RESTIR_MSG_LEN], command[8192], name[96], rel[PLAN_PATH_MAX];
+    cli_command_line("compare", argc, argv, command, sizeof command);
+    struct plan pl;
+    if (plan_init(&pl, st->o.plan, "compare", argc, argv, command, scene_content_hash(&st->s), msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_RUNTIME;
+    }
+    if (!st->o.ref)
+        plan_add_job(&pl, "the comparison's reference", "runs/reference.exr");
+    for (int k = 0; k < st->n; k++) {
+        snprintf(name, sizeof name, "%.80s", st->specs[k].label);
+        snprintf(rel, sizeof rel, "runs/%.140s/result.bin", st->specs[k].dir);
+        plan_add_job(&pl, name, rel);
+    }
+    int rc = plan_write(&pl, msg) == 0 ? 0 : EXIT_RUNTIME;
+    if (rc != 0)
+        cli_error("%s", msg);
+    else
+        printf("planned %d jobs in %s: run them with `parallel -j N < %s/jobs.txt` or `sbatch %s/slurm.sh`, then "
+               "`restir compare --merge %s`\n",
+               pl.n_jobs, pl.dir, pl.dir, pl.dir, pl.dir);
+    plan_free(&pl);
+    return rc;
+}
+
+/* Job k's result: the reference image, or a SPEC's timing and last frame. */
+static int read_job(const struct plan *pl, const struct compare_setup *st, int k, struct job_timing *timing,
+                    float **image, char *why)
+{
+    char path[PLAN_PATH_MAX + 200];
+    plan_output_path(pl, k, path, sizeof path);
+    const int spec = spec_of_job(st, k);
+    float *img = NULL;
+    if (spec < 0) {
+        if (cli_load_reference(path, st->p.width, st->p.height, &img, why) != 0)
+            return -1;
+    } else {
+        void *data = NULL;
+        size_t size = 0;
+        if (plan_blob_read(path, result_magic, pl->id, &data, &size, why) != 0)
+            return -1;
+        if (size != sizeof(struct job_timing)) {
+            snprintf(why, RESTIR_MSG_LEN, "%.300s: not a timing record", path);
+            free(data);
+            return -1;
+        }
+        if (timing)
+            memcpy(timing, data, sizeof *timing);
+        free(data);
+        snprintf(path, sizeof path, "%s/runs/%s/frame_%04d.exr", pl->dir, st->specs[spec].dir, st->o.frames - 1);
+        if (cli_load_reference(path, st->p.width, st->p.height, &img, why) != 0)
+            return -1;
+    }
+    if (image)
+        *image = img;
+    else
+        free(img);
+    return 0;
+}
+
+static int job_valid(const struct plan *pl, int k, char *why, void *ctx)
+{
+    return read_job(pl, ctx, k, NULL, NULL, why);
+}
+
+static int check_scene(const struct plan *pl, const struct scene *s)
+{
+    if (scene_content_hash(s) == pl->scene_hash)
+        return 0;
+    cli_error("the scene of %s/plan.json changed since the plan was made (its content hash differs); plan again",
+              pl->dir);
+    return EXIT_RUNTIME;
+}
+
+int compare_run_job(const struct plan *pl, int k)
+{
+    static struct compare_setup st;
+    int rc = compare_setup(pl->argc, pl->argv, &st);
+    if (rc != 0)
+        return rc < 0 ? EXIT_USAGE : rc;
+    if ((rc = check_scene(pl, &st.s)) != 0) {
+        scene_destroy(&st.s);
+        return rc;
+    }
+    char path[PLAN_PATH_MAX + 200], runs[PLAN_PATH_MAX + 16], msg[RESTIR_MSG_LEN];
+    plan_output_path(pl, k, path, sizeof path);
+    snprintf(runs, sizeof runs, "%s/runs", pl->dir);
+    if (read_job(pl, &st, k, NULL, NULL, msg) == 0) {
+        printf("job %d of %d (%s): already done: %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
+        scene_destroy(&st.s);
+        return 0;
+    }
+    cli_catch_stop_signals();
+    const int spec = spec_of_job(&st, k);
+    if (spec < 0) {
+        float *ref = compare_render_reference(&st);
+        if (!ref) {
+            cli_error("interrupted by %s; nothing written", cli_stop_signal_name());
+            rc = 128 + (int)cli_stop_signal;
+        } else if (exr_write_rgb(path, ref, st.p.width, st.p.height, msg) != 0) {
+            cli_error("%s", msg);
+            rc = EXIT_RUNTIME;
+        }
+        free(ref);
+    } else {
+        struct compare_result res;
+        memset(&res, 0, sizeof res);
+        rc = compare_run_method(&st.s, &st.specs[spec], &st.specs[spec].p, st.o.frames, 1, NULL, runs, 0, &res, msg);
+        if (rc == RUN_STOPPED) {
+            cli_error("interrupted by %s; no result written", cli_stop_signal_name());
+            rc = 128 + (int)cli_stop_signal;
+        } else if (rc != 0) {
+            cli_error("%s", msg);
+            rc = EXIT_RUNTIME;
+        } else {
+            /* written after the frame: a result file means the frame is there */
+            const struct job_timing t = {res.ms_per_frame, res.spp, res.instances};
+            const void *parts[1] = {&t};
+            const size_t sizes[1] = {sizeof t};
+            if (plan_blob_write(path, result_magic, pl->id, parts, sizes, 1, msg) != 0) {
+                cli_error("%s", msg);
+                rc = EXIT_RUNTIME;
+            }
+        }
+    }
+    if (rc == 0)
+        printf("job %d of %d (%s): %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
+    scene_destroy(&st.s);
+    return rc;
+}
+
+/* Copies every file of from/ but result.bin into to/ (made), each through a temporary name. */
+static int copy_folder(const char *from, const char *to, char *msg)
+{
+    if (io_make_dirs(to, msg) != 0)
+        return -1;
+    DIR *d = opendir(from);
+    if (!d) {
+        snprintf(msg, RESTIR_MSG_LEN, "cannot read %.300s", from);
+        return -1;
+    }
+    int rc = 0;
+    for (struct dirent *e = readdir(d); e && rc == 0; e = readdir(d)) {
+        if (e->d_name[0] == '.' || !strcmp(e->d_name, "result.bin") || strstr(e->d_name, ".tmp-"))
+            continue;
+        char src[2 * PLAN_PATH_MAX + 300], dst[2 * PLAN_PATH_MAX + 300];
+        snprintf(src, sizeof src, "%s/%s", from, e->d_name);
+        snprintf(dst, sizeof dst, "%s/%s", to, e->d_name);
+        rc = plan_copy_file(src, dst, msg);
+    }
+    closedir(d);
+    return rc;
+}
+
+int compare_merge(const char *dir)
+{
+    char msg[RESTIR_MSG_LEN];
+    struct plan pl;
+    if (plan_load(dir, &pl, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_RUNTIME;
+    }
+    if (strcmp(pl.kind, "compare") != 0) {
+        cli_error("%s holds a plan of `restir %s`, not of a comparison", pl.dir, pl.kind);
+        plan_free(&pl);
+        return EXIT_USAGE;
+    }
+    static struct compare_setup st;
+    int rc = compare_setup(pl.argc, pl.argv, &st);
+    if (rc != 0) {
+        plan_free(&pl);
+        return rc < 0 ? EXIT_USAGE : rc;
+    }
+    rc = check_scene(&pl, &st.s);
+    if (rc == 0 && plan_check_jobs(&pl, job_valid, &st, msg) != 0) {
+        cli_error("cannot merge: %s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    float *ref = NULL;
+    char path[PLAN_PATH_MAX + 300], to[PLAN_PATH_MAX + 300];
+    snprintf(path, sizeof path, "%s/runs/reference.exr", pl.dir);
+    if (rc == 0 && cli_load_reference(st.o.ref ? st.o.ref : path, st.p.width, st.p.height, &ref, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    snprintf(to, sizeof to, "%s/reference.exr", pl.dir);
+    if (rc == 0 && !st.o.ref && plan_copy_file(path, to, msg) != 0) { /* where the unsplit compare puts it */
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    struct compare_result res[MAX_METHODS];
+    memset(res, 0, sizeof res);
+    const size_t npix = (size_t)st.p.width * st.p.height;
+    for (int k = 0; k < st.n && rc == 0; k++) {
+        const int job = k + (st.o.ref ? 0 : 1);
+        struct job_timing t;
+        float *image = NULL;
+        if (read_job(&pl, &st, job, &t, &image, msg) != 0) {
+            cli_error("cannot merge: %s", msg);
+            rc = EXIT_RUNTIME;
+            break;
+        }
+        res[k].method = st.specs[k].method;
+        res[k].ms_per_frame = t.ms_per_frame;
+        res[k].spp = t.spp;
+        res[k].instances = t.instances;
+        restir_error_compute(image, ref, npix, NULL, &res[k].err);
+        if (st.o.report)
+            res[k].image = image;
+        else
+            free(image);
+        snprintf(path, sizeof path, "%s/runs/%s", pl.dir, st.specs[k].dir);
+        snprintf(to, sizeof to, "%s/%s", pl.dir, st.specs[k].dir);
+        if (copy_folder(path, to, msg) != 0) {
+            cli_error("%s", msg);
+            rc = EXIT_RUNTIME;
+        }
+    }
+    if (rc == 0)
+        rc = compare_write_table(&st, pl.dir, pl.command, res, ref);
+    for (int k = 0; k < st.n; k++)
+        free(res[k].image);
+    free(ref);
+    scene_destroy(&st.s);
+    plan_free(&pl);
+    return rc;
+}

@@ -1,0 +1,66 @@
+/* compare_run.h: what `restir compare` (cmd_compare.c) and its planned form (compare_plan.c:
+ * --plan DIR, restir job, --merge DIR) share: the parsed specs, one method's run, the reference and
+ * the table. Must never implement a method. */
+#ifndef RESTIR_APP_COMPARE_RUN_H
+#define RESTIR_APP_COMPARE_RUN_H
+
+#include "options.h"
+#include "render/renderer.h"
+#include "restir/metrics.h"
+#include "scene/scene.h"
+
+#define MAX_METHODS 16
+#define SPEC_MAX 200 /* characters of one spec; its folder name stays under NAME_MAX */
+
+/* One row of the comparison: a method with the command's parameters and then the spec's own
+ * key=value settings. The spec text labels the row; dir is its folder name under DIR. */
+struct compare_spec {
+    char label[SPEC_MAX + 1];
+    char dir[SPEC_MAX + 16];
+    enum method_id method;
+    struct render_params p;
+};
+
+struct compare_result {
+    enum method_id method;
+    double ms_per_frame;
+    int spp;
+    int instances;           /* independently seeded runs averaged (equal time) */
+    struct restir_error err; /* of the last frame */
+    float *image;            /* the last frame, kept for --report (else NULL) */
+};
+
+struct compare_setup {
+    struct cli_options o;
+    struct compare_spec specs[MAX_METHODS];
+    int n;
+    int any_direct;         /* a DI method is compared: every row and the reference use 1 bounce */
+    struct render_params p; /* the common parameters */
+    struct scene s;
+};
+
+/* compare_run_method's result when a stop signal arrived before the method's last frame. */
+#define RUN_STOPPED 1
+
+/* Parses the options and specs, loads the scene (st->s, to destroy), checks memory. Returns 0, -1
+ * after printing --help, or an exit code having said why. */
+int compare_setup(int argc, char **argv, struct compare_setup *st);
+/* The comparison's own reference (independently seeded, from the last frame's camera), or NULL
+ * when a stop signal arrived. */
+float *compare_render_reference(const struct compare_setup *st);
+/* Runs frames of spec c with p as `instances` renderers, measures the last frame against ref (none
+ * when ref is NULL) and writes it under out_dir/c->dir. Returns 0, -1 with msg, or RUN_STOPPED. */
+int compare_run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
+                       int instances, const float *ref, const char *out_dir, int keep_image, struct compare_result *res,
+                       char *msg);
+/* Prints the table, writes out_dir/compare.csv and, with --report, index.html. Returns an exit
+ * code. */
+int compare_write_table(const struct compare_setup *st, const char *out_dir, const char *command,
+                        const struct compare_result *res, const float *ref);
+
+/* --plan DIR: writes the plan (compare_plan.c). Returns an exit code. */
+int compare_plan(const struct compare_setup *st, int argc, char **argv);
+/* --merge DIR: the table and outputs of a plan's finished jobs. Returns an exit code. */
+int compare_merge(const char *dir);
+
+#endif
