@@ -63,7 +63,7 @@ int compare_plan(const struct compare_setup *st, int argc, char **argv)
 static int read_job(const struct plan *pl, const struct compare_setup *st, int k, struct job_timing *timing,
                     float **image, char *why)
 {
-    char path[PLAN_PATH_MAX + 200];
+    char path[2 * PLAN_PATH_MAX];
     plan_output_path(pl, k, path, sizeof path);
     const int spec = spec_of_job(st, k);
     float *img = NULL;

@@ -176,7 +176,7 @@ int plan_write(const struct plan *p, char *msg)
     if (rc != 0)
         return -1;
 
-    char script[4 * PLAN_PATH_MAX + 2048];
+    char script[8 * PLAN_PATH_MAX + 2048];
     snprintf(script, sizeof script,
              "#!/bin/sh\n"
              "# A Slurm job array over the %d jobs of this plan (restir %s): array task K runs line K of\n"
