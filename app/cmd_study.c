@@ -392,15 +392,6 @@ static int study_plan(const struct study_setup *st, int argc, char **argv)
     return rc;
 }
 
-/* The scene a job or merge loads must be the one the plan was made from. */
-static int check_scene(const struct plan *pl, const struct scene *s)
-{
-    if (scene_content_hash(s) == pl->scene_hash)
-        return 0;
-    cli_error("the scene of %s/plan.json changed since the plan was made (its content hash differs); plan again",
-              pl->dir);
-    return EXIT_RUNTIME;
-}
 
 int study_run_job(const struct plan *pl, int k)
 {
@@ -408,7 +399,7 @@ int study_run_job(const struct plan *pl, int k)
     int rc = study_setup(pl->argc, pl->argv, 0, &st);
     if (rc != 0)
         return rc < 0 ? EXIT_USAGE : rc;
-    if ((rc = check_scene(pl, &st.s)) != 0) {
+    if ((rc = plan_check_scene(pl, scene_content_hash(&st.s))) != 0) {
         scene_destroy(&st.s);
         return rc;
     }
@@ -469,7 +460,7 @@ static int study_merge(const char *dir)
         plan_free(&pl);
         return rc < 0 ? EXIT_USAGE : rc;
     }
-    rc = check_scene(&pl, &st.s);
+    rc = plan_check_scene(&pl, scene_content_hash(&st.s));
     struct study_merge_ctx ctx = {&st, !st.o.ref};
     if (rc == 0 && plan_check_jobs(&pl, study_job_valid, &ctx, msg) != 0) {
         cli_error("cannot merge: %s", msg);

@@ -99,14 +99,6 @@ static int job_valid(const struct plan *pl, int k, char *why, void *ctx)
     return read_job(pl, ctx, k, NULL, NULL, why);
 }
 
-static int check_scene(const struct plan *pl, const struct scene *s)
-{
-    if (scene_content_hash(s) == pl->scene_hash)
-        return 0;
-    cli_error("the scene of %s/plan.json changed since the plan was made (its content hash differs); plan again",
-              pl->dir);
-    return EXIT_RUNTIME;
-}
 
 int compare_run_job(const struct plan *pl, int k)
 {
@@ -114,7 +106,7 @@ int compare_run_job(const struct plan *pl, int k)
     int rc = compare_setup(pl->argc, pl->argv, &st);
     if (rc != 0)
         return rc < 0 ? EXIT_USAGE : rc;
-    if ((rc = check_scene(pl, &st.s)) != 0) {
+    if ((rc = plan_check_scene(pl, scene_content_hash(&st.s))) != 0) {
         scene_destroy(&st.s);
         return rc;
     }
@@ -207,7 +199,7 @@ int compare_merge(const char *dir)
         plan_free(&pl);
         return rc < 0 ? EXIT_USAGE : rc;
     }
-    rc = check_scene(&pl, &st.s);
+    rc = plan_check_scene(&pl, scene_content_hash(&st.s));
     if (rc == 0 && plan_check_jobs(&pl, job_valid, &st, msg) != 0) {
         cli_error("cannot merge: %s", msg);
         rc = EXIT_RUNTIME;

@@ -13,6 +13,7 @@
 
 #include <cJSON.h>
 
+#include "cli.h"
 #include "core/check.h"
 #include "core/hash.h"
 #include "io/image_io.h"
@@ -315,6 +316,15 @@ int plan_check_jobs(const struct plan *p, int (*valid)(const struct plan *p, int
     snprintf(msg, RESTIR_MSG_LEN, "%d of %d jobs of %.80s are missing or corrupt: %.200s%s; first: %.140s", missing,
              p->n_jobs, p->dir, list, missing > 8 ? ", ..." : "", first_why);
     return -1;
+}
+
+int plan_check_scene(const struct plan *p, uint64_t scene_hash)
+{
+    if (scene_hash == p->scene_hash)
+        return 0;
+    cli_error("the scene of %s/plan.json changed since the plan was made (its content hash differs); plan again",
+              p->dir);
+    return EXIT_RUNTIME;
 }
 
 int plan_copy_file(const char *src, const char *dst, char *msg)

@@ -49,6 +49,9 @@ void plan_output_path(const struct plan *p, int k, char *out, size_t len);
 int plan_check_jobs(const struct plan *p, int (*valid)(const struct plan *p, int k, char *why, void *ctx), void *ctx,
                     char *msg);
 
+/* 0 when scene_hash (scene_content_hash of what a job or merge loaded) is the plan's; else it says
+ * the scene changed since planning and returns EXIT_RUNTIME. */
+int plan_check_scene(const struct plan *p, uint64_t scene_hash);
 /* Copies src to dst through a temporary name. Returns 0, or -1 with msg. */
 int plan_copy_file(const char *src, const char *dst, char *msg);
 

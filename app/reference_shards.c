@@ -128,14 +128,6 @@ static int shard_valid(const struct plan *pl, int k, char *why, void *ctx)
     return read_shard(pl, k, ctx, NULL, why);
 }
 
-static int check_scene(const struct plan *pl, const struct scene *s)
-{
-    if (scene_content_hash(s) == pl->scene_hash)
-        return 0;
-    cli_error("the scene of %s/plan.json changed since the plan was made (its content hash differs); plan again",
-              pl->dir);
-    return EXIT_RUNTIME;
-}
 
 int reference_run_job(const struct plan *pl, int k)
 {
@@ -143,7 +135,7 @@ int reference_run_job(const struct plan *pl, int k)
     int rc = reference_setup(pl->argc, pl->argv, 0, &st);
     if (rc != 0)
         return rc < 0 ? EXIT_USAGE : rc;
-    if ((rc = check_scene(pl, &st.s)) != 0) {
+    if ((rc = plan_check_scene(pl, scene_content_hash(&st.s))) != 0) {
         scene_destroy(&st.s);
         return rc;
     }
@@ -214,7 +206,7 @@ int reference_merge(int argc, char **argv)
     char run[RUN_TEXT_MAX];
     run_text(&st, run, sizeof run);
     const struct shard_ctx ctx = {&st, run};
-    rc = check_scene(&pl, &st.s);
+    rc = plan_check_scene(&pl, scene_content_hash(&st.s));
     if (rc == 0 && plan_check_jobs(&pl, shard_valid, (void *)&ctx, msg) != 0) {
         cli_error("cannot merge: %s", msg);
         rc = EXIT_RUNTIME;

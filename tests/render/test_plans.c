@@ -230,6 +230,23 @@ static void test_compare(char *err)
     EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 3 (pt)"), "merge with a missing job: %s", err);
 }
 
+/* A job refuses a scene file whose content changed after planning. */
+static void test_changed_scene(char *err)
+{
+    char dir[2 * CLI_PATH_MAX], plan[2 * CLI_PATH_MAX], args[6 * CLI_PATH_MAX];
+    snprintf(dir, sizeof dir, "%s/scene", tmp);
+    snprintf(plan, sizeof plan, "%s/changed_plan", tmp);
+    snprintf(args, sizeof args, "scene export cornell --out '%s'", dir);
+    EXPECT(cli_run(tmp, args, err) == 0, "scene export: %s", err);
+    snprintf(args, sizeof args, "reference --scene '%s/cornell.json' --method pt --res 16x9 --spp 32 --shards 2 "
+             "--plan '%s'", dir, plan);
+    EXPECT(cli_run(tmp, args, err) == 0, "plan on a scene file: %s", err);
+    EXPECT(sh("sed -i 's/0.65, 0.05, 0.05/0.6, 0.05, 0.05/' '%s/cornell.json'%s", dir, "") == 0, "cannot edit");
+    snprintf(args, sizeof args, "job '%s' 1", plan);
+    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "changed since the plan was made"),
+           "a job on a changed scene ran: %s", err);
+}
+
 int main(void)
 {
     static char err[CLI_ERR_MAX];
@@ -241,6 +258,7 @@ int main(void)
     test_study(err);
     test_reference(err);
     test_compare(err);
+    test_changed_scene(err);
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
     return test_finish();
 }
