@@ -304,44 +304,46 @@ static int study_job_valid(const struct plan *pl, int k, char *why, void *ctx)
     return rc == 0 ? 0 : -1;
 }
 
-/* The unsplit study, a plan, or a merge: every configuration's row from its runs. get_unit fills
- * run n of configuration k (rendering it or reading its file). */
+/* Every configuration's row from its runs, one unit at a time: rendered (the unsplit study, pl
+ * NULL) or read from the plan's results (the merge). */
 static int study_rows(const struct study_setup *st, const struct plan *pl, const float *ref, const unsigned char *hard,
                       int strip_y, float *strips, struct study_result *res)
 {
     const struct cli_options *o = &st->o;
     const int w = o->params.width, h = o->params.height;
-    struct study_unit *units = xcalloc((size_t)o->runs, sizeof(struct study_unit));
     struct progress pg;
     progress_begin(&pg, pl ? "merge" : "study", st->ncfg);
     int rc = 0;
     for (int k = 0; k < st->ncfg && rc == 0; k++) {
-        int got = 0;
-        for (; got < o->runs && rc == 0; got++) {
+        struct study_row row;
+        study_row_begin(&row, o->runs, o->frames, w, h);
+        for (int n = 0; n < o->runs && rc == 0; n++) {
+            struct study_unit u;
             if (pl) {
                 char rel[64], path[PLAN_PATH_MAX + 200], msg[RESTIR_MSG_LEN];
-                unit_output(k, got, rel, sizeof rel);
+                unit_output(k, n, rel, sizeof rel);
                 snprintf(path, sizeof path, "%s/%s", pl->dir, rel);
-                if (study_unit_read(path, pl->id, o->frames, (size_t)w * h, &units[got], msg) != 0) {
+                if (study_unit_read(path, pl->id, o->frames, (size_t)w * h, &u, msg) != 0) {
                     cli_error("%s", msg);
                     rc = EXIT_RUNTIME;
                 }
-            } else if (study_run_unit(&st->s, st->method, &o->params, &st->cfg[k], o, got, &units[got]) != 0) {
+            } else if (study_run_unit(&st->s, st->method, &o->params, &st->cfg[k], o, n, &u) != 0) {
                 cli_error("interrupted by %s in configuration %s (%d of %d); nothing written", cli_stop_signal_name(),
                           st->cfg[k].name, k + 1, st->ncfg);
                 rc = 128 + (int)cli_stop_signal;
             }
             if (rc != 0)
                 break;
+            study_row_add(&row, &u, ref, hard, strip_y, &strips[(size_t)k * w * o->frames]);
+            study_unit_free(&u);
         }
         if (rc == 0)
-            study_combine(units, o->runs, w, h, ref, hard, strip_y, &strips[(size_t)k * w * o->frames], &res[k]);
-        for (int n = 0; n < got; n++)
-            study_unit_free(&units[n]);
+            study_row_end(&row, &res[k]);
+        else
+            study_row_free(&row);
         progress_update(&pg, k + 1);
     }
     progress_end(&pg);
-    free(units);
     return rc;
 }
 

@@ -206,41 +206,64 @@ int study_unit_read(const char *path, uint64_t id, int frames, size_t npix, stru
     return 0;
 }
 
-void study_combine(const struct study_unit *units, int runs, int w, int h, const float *ref,
-                   const unsigned char *hard, int strip_y, float *strip, struct study_result *res)
+void study_row_begin(struct study_row *row, int runs, int frames, int w, int h)
 {
+    memset(row, 0, sizeof *row);
+    row->runs = runs;
+    row->frames = frames;
+    row->w = w;
+    row->h = h;
+    row->seq = xmalloc(sizeof(float) * (size_t)w * h * (size_t)runs * (size_t)frames);
+}
+
+void study_row_add(struct study_row *row, const struct study_unit *u, const float *ref, const unsigned char *hard,
+                   int strip_y, float *strip)
+{
+    const size_t npix = (size_t)row->w * row->h;
+    const int n = row->added++, frames = row->frames;
+    RESTIR_CHECK(n < row->runs && u->frames == frames && u->npix == npix);
+    struct study_result *res = &row->res;
+    const double k = 1.0 / ((double)row->runs * frames);
+    for (int t = 0; t < frames; t++) {
+        const double *lum = &u->luminance[(size_t)t * npix];
+        double all = 0.0, hard_smape = 0.0;
+        restir_smape_luminance(lum, ref, npix, NULL, &all);
+        if (restir_smape_luminance(lum, ref, npix, hard, &hard_smape) != 0)
+            hard_smape = 0.0;
+        res->smape_all += all * k;
+        res->smape_hard += hard_smape * k;
+        res->ms_select += u->ms[3 * t] * k;
+        res->ms_spatial += u->ms[3 * t + 1] * k;
+        res->ms_frame += u->ms[3 * t + 2] * k;
+        /* covariances work on float luminance, run-major then frame */
+        float *out = &row->seq[((size_t)n * frames + t) * npix];
+        for (size_t i = 0; i < npix; i++)
+            out[i] = (float)lum[i];
+        if (n == 0)
+            memcpy(&strip[(size_t)t * row->w], &out[(size_t)strip_y * row->w], sizeof(float) * (size_t)row->w);
+    }
+}
+
+void study_row_end(struct study_row *row, struct study_result *res)
+{
+    const int runs = row->runs, frames = row->frames, w = row->w, h = row->h;
     const size_t npix = (size_t)w * h;
-    const int frames = units[0].frames;
-    memset(res, 0, sizeof(*res));
-    const double k = 1.0 / ((double)runs * frames);
-    /* covariances work on float luminance, run-major then frame */
-    float *seq = xmalloc(sizeof(float) * npix * (size_t)runs * (size_t)frames);
-    for (int n = 0; n < runs; n++)
-        for (int t = 0; t < frames; t++) {
-            const double *lum = &units[n].luminance[(size_t)t * npix];
-            double all = 0.0, hard_smape = 0.0;
-            restir_smape_luminance(lum, ref, npix, NULL, &all);
-            if (restir_smape_luminance(lum, ref, npix, hard, &hard_smape) != 0)
-                hard_smape = 0.0;
-            res->smape_all += all * k;
-            res->smape_hard += hard_smape * k;
-            res->ms_select += units[n].ms[3 * t] * k;
-            res->ms_spatial += units[n].ms[3 * t + 1] * k;
-            res->ms_frame += units[n].ms[3 * t + 2] * k;
-            float *out = &seq[((size_t)n * frames + t) * npix];
-            for (size_t i = 0; i < npix; i++)
-                out[i] = (float)lum[i];
-            if (n == 0)
-                memcpy(&strip[(size_t)t * w], &out[(size_t)strip_y * w], sizeof(float) * (size_t)w);
-        }
-    res->temporal_cov = restir_temporal_autocovariance(seq, runs, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
+    RESTIR_CHECK(row->added == runs);
+    *res = row->res;
+    res->temporal_cov = restir_temporal_autocovariance(row->seq, runs, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
     /* Spatial covariance of each measured frame across runs, averaged over frames. */
     float *at_t = xmalloc(sizeof(float) * npix * (size_t)runs);
     for (int t = 0; t < frames; t++) {
         for (int n = 0; n < runs; n++)
-            memcpy(&at_t[(size_t)n * npix], &seq[((size_t)n * frames + t) * npix], sizeof(float) * npix);
+            memcpy(&at_t[(size_t)n * npix], &row->seq[((size_t)n * frames + t) * npix], sizeof(float) * npix);
         res->spatial_cov += restir_spatial_covariance(at_t, runs, w, h, COV_RADIUS, COV_EPS, NULL) / frames;
     }
     free(at_t);
-    free(seq);
+    study_row_free(row);
+}
+
+void study_row_free(struct study_row *row)
+{
+    free(row->seq);
+    row->seq = NULL;
 }

@@ -57,10 +57,22 @@ void study_unit_free(struct study_unit *u);
 int study_unit_write(const char *path, uint64_t id, const struct study_unit *u, char *msg);
 int study_unit_read(const char *path, uint64_t id, int frames, size_t npix, struct study_unit *u, char *msg);
 
-/* A configuration's row from its runs' units (in run order): SMAPE over all and hard pixels
- * against ref, temporal and spatial relative covariance, mean pass times; run 0's row strip_y of
- * each measured frame goes to strip (frames * w). */
-void study_combine(const struct study_unit *units, int runs, int w, int h, const float *ref,
-                   const unsigned char *hard, int strip_y, float *strip, struct study_result *res);
+/* A configuration's row, built from its runs' units one at a time, in run order, so only one
+ * unit's double luminance is held at once: SMAPE over all and hard pixels against ref and the mean
+ * pass times as units arrive; the temporal and spatial relative covariances at the end, from the
+ * float luminance of every run. Run 0's row strip_y of each measured frame goes to strip
+ * (frames * w). */
+struct study_row {
+    int runs, frames, w, h, added;
+    float *seq; /* runs * frames * w * h, run-major then frame */
+    struct study_result res;
+};
+void study_row_begin(struct study_row *row, int runs, int frames, int w, int h);
+void study_row_add(struct study_row *row, const struct study_unit *u, const float *ref, const unsigned char *hard,
+                   int strip_y, float *strip);
+/* Completes res (every run added) and frees the row. */
+void study_row_end(struct study_row *row, struct study_result *res);
+/* Frees a row given up before its end. */
+void study_row_free(struct study_row *row);
 
 #endif
