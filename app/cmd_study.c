@@ -383,15 +383,7 @@ static int study_plan(const struct study_setup *st, int argc, char **argv)
             unit_output(k, n, rel, sizeof rel);
             plan_add_job(&pl, name, rel);
         }
-    int rc = plan_write(&pl, msg) == 0 ? 0 : EXIT_RUNTIME;
-    if (rc != 0)
-        cli_error("%s", msg);
-    else
-        printf("planned %d jobs in %s: run them with `parallel -j N < %s/jobs.txt` or `sbatch %s/slurm.sh`, then "
-               "`restir study --merge %s`\n",
-               pl.n_jobs, pl.dir, pl.dir, pl.dir, pl.dir);
-    plan_free(&pl);
-    return rc;
+    return plan_finish(&pl);
 }
 
 

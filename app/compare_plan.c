@@ -48,15 +48,7 @@ int compare_plan(const struct compare_setup *st, int argc, char **argv)
         snprintf(rel, sizeof rel, "runs/%.140s/result.bin", st->specs[k].dir);
         plan_add_job(&pl, name, rel);
     }
-    int rc = plan_write(&pl, msg) == 0 ? 0 : EXIT_RUNTIME;
-    if (rc != 0)
-        cli_error("%s", msg);
-    else
-        printf("planned %d jobs in %s: run them with `parallel -j N < %s/jobs.txt` or `sbatch %s/slurm.sh`, then "
-               "`restir compare --merge %s`\n",
-               pl.n_jobs, pl.dir, pl.dir, pl.dir, pl.dir);
-    plan_free(&pl);
-    return rc;
+    return plan_finish(&pl);
 }
 
 /* Job k's result: the reference image, or a SPEC's timing and last frame. */

@@ -200,6 +200,20 @@ int plan_write(const struct plan *p, char *msg)
     return write_text(path, script, 1, msg);
 }
 
+int plan_finish(struct plan *p)
+{
+    char msg[RESTIR_MSG_LEN];
+    int rc = plan_write(p, msg) == 0 ? 0 : EXIT_RUNTIME;
+    if (rc != 0)
+        cli_error("%s", msg);
+    else
+        printf("planned %d jobs in %s: run them with `parallel -j N < %s/jobs.txt` or `sbatch %s/slurm.sh`, then "
+               "`restir %s --merge %s%s`\n",
+               p->n_jobs, p->dir, p->dir, p->dir, p->kind, p->dir, strcmp(p->kind, "reference") ? "" : " --out FILE.exr");
+    plan_free(p);
+    return rc;
+}
+
 static char *read_file(const char *path, size_t max, char *msg)
 {
     FILE *f = fopen(path, "rb");

@@ -38,6 +38,8 @@ void plan_add_job(struct plan *p, const char *name, const char *output);
 /* Writes dir/plan.json, dir/jobs.txt, dir/slurm.sh and makes dir/runs/logs. Returns 0, or -1 with
  * msg. */
 int plan_write(const struct plan *p, char *msg);
+/* plan_write, then says how to run the jobs and merge them, and frees p. Returns an exit code. */
+int plan_finish(struct plan *p);
 /* Reads dir/plan.json. Returns 0, or -1 with msg naming the folder and the problem. */
 int plan_load(const char *dir, struct plan *p, char *msg);
 void plan_free(struct plan *p);

@@ -70,15 +70,7 @@ int reference_plan(const struct reference_setup *st, int argc, char **argv)
         shard_output(s, rel, sizeof rel);
         plan_add_job(&pl, name, rel);
     }
-    int rc = plan_write(&pl, msg) == 0 ? 0 : EXIT_RUNTIME;
-    if (rc != 0)
-        cli_error("%s", msg);
-    else
-        printf("planned %d shards of %d samples in %s: run them with `parallel -j N < %s/jobs.txt` or `sbatch "
-               "%s/slurm.sh`, then `restir reference --merge %s --out FILE.exr`\n",
-               pl.n_jobs, st->spp, pl.dir, pl.dir, pl.dir, pl.dir);
-    plan_free(&pl);
-    return rc;
+    return plan_finish(&pl);
 }
 
 struct shard_ctx {

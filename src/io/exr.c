@@ -542,6 +542,24 @@ static int exr_read_body(exr_context_t ctxt, const char *path, const char *layer
     return 0;
 }
 
+/* Checks the magic bytes and reads the header into *ctxt (to exr_finish). Returns 0, or -1 with msg. */
+static int exr_open_read(const char *path, exr_context_t *ctxt, char *msg)
+{
+    if (exr_probe_file(path, msg) != 0)
+        return -1;
+    exr_last_error[0] = '\0';
+    exr_context_initializer_t init = exr_initializer();
+    *ctxt = NULL;
+    exr_result_t rv = exr_start_read(ctxt, path, &init);
+    if (rv != EXR_ERR_SUCCESS) {
+        exr_fail(msg, path, "invalid or unreadable EXR header", rv);
+        if (*ctxt)
+            exr_finish(ctxt);
+        return -1;
+    }
+    return 0;
+}
+
 int exr_read_layer(const char *path, const char *layer, float **rgb, int *w, int *h, char *msg)
 {
     *rgb = NULL;
@@ -551,19 +569,9 @@ int exr_read_layer(const char *path, const char *layer, float **rgb, int *w, int
                 EXR_LAYER_NAME_MAX);
         return -1;
     }
-    if (exr_probe_file(path, msg) != 0)
-        return -1;
-
-    exr_last_error[0] = '\0';
-    exr_context_initializer_t init = exr_initializer();
     exr_context_t ctxt = NULL;
-    exr_result_t rv = exr_start_read(&ctxt, path, &init);
-    if (rv != EXR_ERR_SUCCESS) {
-        exr_fail(msg, path, "invalid or unreadable EXR header", rv);
-        if (ctxt)
-            exr_finish(&ctxt);
+    if (exr_open_read(path, &ctxt, msg) != 0)
         return -1;
-    }
     int status = exr_read_body(ctxt, path, layer, rgb, w, h, msg);
     exr_finish(&ctxt);
     return status;
@@ -578,21 +586,12 @@ int exr_read_attribute(const char *path, const char *name, char *value, size_t l
 {
     if (len > 0)
         value[0] = '\0';
-    if (exr_probe_file(path, msg) != 0)
-        return -1;
-    exr_last_error[0] = '\0';
-    exr_context_initializer_t init = exr_initializer();
     exr_context_t ctxt = NULL;
-    exr_result_t rv = exr_start_read(&ctxt, path, &init);
-    if (rv != EXR_ERR_SUCCESS) {
-        exr_fail(msg, path, "invalid or unreadable EXR header", rv);
-        if (ctxt)
-            exr_finish(&ctxt);
+    if (exr_open_read(path, &ctxt, msg) != 0)
         return -1;
-    }
     int32_t n = 0;
     const char *text = NULL;
-    rv = exr_attr_get_string(ctxt, 0, name, &n, &text);
+    exr_result_t rv = exr_attr_get_string(ctxt, 0, name, &n, &text);
     int status = 0;
     if (rv == EXR_ERR_NO_ATTR_BY_NAME) {
         status = 1;

@@ -186,6 +186,26 @@ static inline int cli_signal_and_wait(pid_t pid, int sig)
     return status;
 }
 
+/* Reads the CSV file path into out (n bytes) without its columns first..last (0-based, first >= 1;
+ * fields hold no quoted commas): how tests compare tables whose timing columns are measurements. */
+static inline void cli_csv_without_columns(const char *path, int first, int last, char *out, size_t n)
+{
+    static char text[1 << 16];
+    FILE *f = fopen(path, "rb");
+    size_t len = f ? fread(text, 1, sizeof text - 1, f) : 0;
+    if (f)
+        fclose(f);
+    text[len] = '\0';
+    size_t o = 0;
+    int col = 0;
+    for (const char *c = text; *c && o + 2 < n; c++) {
+        col = *c == '\n' ? 0 : col + (*c == ',');
+        if (col < first || col > last) /* a column's leading comma goes with it */
+            out[o++] = *c;
+    }
+    out[o] = '\0';
+}
+
 /* Reads path into buf (NUL terminated, truncated to n - 1 bytes); empty when it cannot be read. */
 static inline void cli_read_text(const char *path, char *buf, size_t n)
 {

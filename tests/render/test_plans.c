@@ -37,27 +37,6 @@ static int sh(const char *fmt, const char *a, const char *b)
     return st == -1 || !WIFEXITED(st) ? -1 : WEXITSTATUS(st);
 }
 
-/* The first 8 columns of study.csv (config, radius, K, M, smape_all, smape_hard, temporal_cov,
- * spatial_cov): everything but the pass times, which are measurements of each run. */
-static void csv_without_times(const char *path, char *out, size_t n)
-{
-    static char text[1 << 16];
-    cli_read_text(path, text, sizeof text);
-    size_t o = 0;
-    int col = 0;
-    for (const char *c = text; *c && o + 2 < n; c++) {
-        if (*c == '\n') {
-            col = 0;
-            out[o++] = '\n';
-            continue;
-        }
-        if (*c == ',')
-            col++;
-        if (col < 8)
-            out[o++] = *c;
-    }
-    out[o] = '\0';
-}
 
 static void test_study(char *err)
 {
@@ -85,8 +64,8 @@ static void test_study(char *err)
     char pa[3 * CLI_PATH_MAX], pb[3 * CLI_PATH_MAX];
     snprintf(pa, sizeof pa, "%s/study.csv", unsplit);
     snprintf(pb, sizeof pb, "%s/study.csv", plan);
-    csv_without_times(pa, a, sizeof a);
-    csv_without_times(pb, b, sizeof b);
+    cli_csv_without_columns(pa, 8, 1000, a, sizeof a); /* all but the pass times */
+    cli_csv_without_columns(pb, 8, 1000, b, sizeof b); /* all but the pass times */
     EXPECT(a[0] && strcmp(a, b) == 0, "merged study.csv differs from the unsplit one:\n%s\nvs\n%s", a, b);
     static const char *const same[] = {"pareto.svg", "hard_pixels.png", "strip.png"};
     for (int i = 0; i < 3; i++) {
@@ -118,7 +97,7 @@ static void test_study(char *err)
     snprintf(args, sizeof args, "study --merge '%s'", plan);
     EXPECT(cli_run(tmp, args, err) == 0, "merge after the rerun: %s", err);
     snprintf(pb, sizeof pb, "%s/study.csv", plan);
-    csv_without_times(pb, b, sizeof b);
+    cli_csv_without_columns(pb, 8, 1000, b, sizeof b); /* all but the pass times */
     EXPECT(strcmp(a, b) == 0, "study.csv after rerunning a corrupt job differs:\n%s\nvs\n%s", a, b);
     snprintf(args, sizeof args, "job '%s' 14", plan);
     EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "13 jobs"), "job 14 of 13: %s", err);
@@ -179,20 +158,6 @@ static void test_reference(char *err)
 #define COMPARE "compare --scene cornell --methods restir-di,pt,restir-di:mis=balance --res 48x27 --frames 3 " \
                 "--ref-spp 32 --seed 9"
 
-/* compare.csv without its ms_per_frame column (the jobs' own times). */
-static void csv_without_ms(const char *path, char *out, size_t n)
-{
-    static char text[1 << 16];
-    cli_read_text(path, text, sizeof text);
-    size_t o = 0;
-    int col = 0;
-    for (const char *c = text; *c && o + 2 < n; c++) {
-        col = *c == '\n' ? 0 : col + (*c == ',');
-        if (col != 1)
-            out[o++] = *c;
-    }
-    out[o] = '\0';
-}
 
 static void test_compare(char *err)
 {
@@ -213,8 +178,8 @@ static void test_compare(char *err)
     char pa[3 * CLI_PATH_MAX], pb[3 * CLI_PATH_MAX];
     snprintf(pa, sizeof pa, "%s/compare.csv", unsplit);
     snprintf(pb, sizeof pb, "%s/compare.csv", plan);
-    csv_without_ms(pa, a, sizeof a);
-    csv_without_ms(pb, b, sizeof b);
+    cli_csv_without_columns(pa, 1, 1, a, sizeof a); /* all but ms_per_frame */
+    cli_csv_without_columns(pb, 1, 1, b, sizeof b); /* all but ms_per_frame */
     EXPECT(a[0] && strcmp(a, b) == 0, "merged compare.csv differs:\n%s\nvs\n%s", a, b);
     static const char *const same[] = {"reference.exr", "restir-di/frame_0002.exr", "pt/frame_0002.png",
                                        "restir-di_mis_balance/frame_0002.exr"};
