@@ -439,17 +439,11 @@ static int study_merge(const char *dir)
 {
     char msg[RESTIR_MSG_LEN];
     struct plan pl;
-    if (plan_load(dir, &pl, msg) != 0) {
-        cli_error("%s", msg);
-        return EXIT_RUNTIME;
-    }
-    if (strcmp(pl.kind, "study") != 0) {
-        cli_error("%s holds a plan of `restir %s`, not of a study", pl.dir, pl.kind);
-        plan_free(&pl);
-        return EXIT_USAGE;
-    }
+    int rc = plan_load_kind(dir, "study", "a study", &pl);
+    if (rc != 0)
+        return rc;
     struct study_setup st;
-    int rc = study_setup(pl.argc, pl.argv, 0, &st);
+    rc = study_setup(pl.argc, pl.argv, 0, &st);
     if (rc != 0) {
         plan_free(&pl);
         return rc < 0 ? EXIT_USAGE : rc;

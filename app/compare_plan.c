@@ -176,17 +176,11 @@ int compare_merge(const char *dir)
 {
     char msg[RESTIR_MSG_LEN];
     struct plan pl;
-    if (plan_load(dir, &pl, msg) != 0) {
-        cli_error("%s", msg);
-        return EXIT_RUNTIME;
-    }
-    if (strcmp(pl.kind, "compare") != 0) {
-        cli_error("%s holds a plan of `restir %s`, not of a comparison", pl.dir, pl.kind);
-        plan_free(&pl);
-        return EXIT_USAGE;
-    }
+    int rc = plan_load_kind(dir, "compare", "a comparison", &pl);
+    if (rc != 0)
+        return rc;
     static struct compare_setup st;
-    int rc = compare_setup(pl.argc, pl.argv, &st);
+    rc = compare_setup(pl.argc, pl.argv, &st);
     if (rc != 0) {
         plan_free(&pl);
         return rc < 0 ? EXIT_USAGE : rc;

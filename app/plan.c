@@ -86,8 +86,11 @@ int plan_init(struct plan *p, const char *dir, const char *kind, int argc, char 
 void plan_add_job(struct plan *p, const char *name, const char *output)
 {
     RESTIR_CHECK(p->n_jobs < PLAN_MAX_JOBS);
-    p->jobs = realloc(p->jobs, sizeof(struct plan_job) * (size_t)(p->n_jobs + 1));
-    RESTIR_CHECK(p->jobs != NULL);
+    if (p->n_jobs == p->cap_jobs) { /* doubling: a plan of 100 000 jobs copies each entry about twice */
+        p->cap_jobs = p->cap_jobs ? 2 * p->cap_jobs : 64;
+        p->jobs = realloc(p->jobs, sizeof(struct plan_job) * (size_t)p->cap_jobs);
+        RESTIR_CHECK(p->jobs != NULL);
+    }
     struct plan_job *j = &p->jobs[p->n_jobs++];
     snprintf(j->name, sizeof j->name, "%s", name);
     snprintf(j->output, sizeof j->output, "%s", output);
@@ -299,6 +302,21 @@ int plan_load(const char *dir, struct plan *p, char *msg)
     return 0;
 }
 
+int plan_load_kind(const char *dir, const char *kind, const char *what, struct plan *p)
+{
+    char msg[RESTIR_MSG_LEN];
+    if (plan_load(dir, p, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_RUNTIME;
+    }
+    if (strcmp(p->kind, kind) != 0) {
+        cli_error("%s holds a plan of `restir %s`, not of %s", p->dir, p->kind, what);
+        plan_free(p);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
 void plan_free(struct plan *p)
 {
     for (int i = 0; i < p->argc; i++)
@@ -307,7 +325,7 @@ void plan_free(struct plan *p)
     free(p->jobs);
     p->argv = NULL;
     p->jobs = NULL;
-    p->argc = p->n_jobs = 0;
+    p->argc = p->n_jobs = p->cap_jobs = 0;
 }
 
 int plan_check_jobs(const struct plan *p, int (*valid)(const struct plan *p, int k, char *why, void *ctx), void *ctx,

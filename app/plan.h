@@ -26,7 +26,7 @@ struct plan {
     uint64_t id;             /* hash of kind and arguments: every result file carries it */
     uint64_t scene_hash;     /* scene_content_hash when planned: jobs refuse a changed scene */
     int threads;             /* --threads of the command (0: not given): Slurm's CPUs per task */
-    int n_jobs;
+    int n_jobs, cap_jobs;
     struct plan_job *jobs;
 };
 
@@ -43,6 +43,9 @@ int plan_finish(struct plan *p);
 /* Reads dir/plan.json. Returns 0, or -1 with msg naming the folder and the problem. */
 int plan_load(const char *dir, struct plan *p, char *msg);
 void plan_free(struct plan *p);
+/* plan_load for a merge, which needs a plan of kind (what: "a study" ...). Returns 0, or an exit
+ * code having said why (p is then freed). */
+int plan_load_kind(const char *dir, const char *kind, const char *what, struct plan *p);
 /* Absolute path of job k's (0-based) output. */
 void plan_output_path(const struct plan *p, int k, char *out, size_t len);
 /* Checks that every job finished: valid(p, k, why, ctx) says whether job k's output is there and

@@ -5,7 +5,6 @@
  * sample counts, in double, rounded once. The merged image differs from the unsplit one only by
  * the order of the floating-point sums: both are within C 2^-24 (relative) of the exact mean of the
  * same samples, so within (2 C + 1) 2^-24 of each other (tests/render/test_plans.c). */
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -86,27 +85,27 @@ static int read_shard(const struct plan *pl, int k, const struct shard_ctx *c, f
     plan_output_path(pl, k, path, sizeof path);
     int c0, n;
     shard_range(c->st->spp, pl->n_jobs, k, &c0, &n);
-    if (exr_read_attribute(path, "restir.run", text, sizeof text, why) != 0 || strcmp(text, c->run) != 0) {
-        if (!why[0] || strstr(why, "restir.run") == NULL)
-            snprintf(why + strlen(why), RESTIR_MSG_LEN - strlen(why), "%s%.300s: not a shard of this plan's run",
-                     why[0] ? "; " : "", path);
+    int rc = exr_read_attribute(path, "restir.run", text, sizeof text, why);
+    if (rc < 0)
+        return -1;
+    if (rc > 0 || strcmp(text, c->run) != 0) {
+        snprintf(why, RESTIR_MSG_LEN, "%.300s: not a shard of this plan's run (restir.run %s)", path,
+                 rc > 0 ? "missing" : "differs");
         return -1;
     }
     char want[64];
     snprintf(want, sizeof want, "%d+%d", c0, n);
-    if (exr_read_attribute(path, "restir.shard", text, sizeof text, why) != 0 || strcmp(text, want) != 0) {
-        snprintf(why, RESTIR_MSG_LEN, "%.300s: holds chunks/samples '%.40s', not the plan's %s", path, text, want);
+    rc = exr_read_attribute(path, "restir.shard", text, sizeof text, why);
+    if (rc < 0)
+        return -1;
+    if (rc > 0 || strcmp(text, want) != 0) {
+        snprintf(why, RESTIR_MSG_LEN, "%.300s: holds chunks+samples '%.40s', not the plan's %s", path,
+                 rc > 0 ? "(none)" : text, want);
         return -1;
     }
-    float *img = NULL;
+    float *img = NULL; /* cli_load_reference also refuses NaN and infinite values */
     if (cli_load_reference(path, c->st->o.params.width, c->st->o.params.height, &img, why) != 0)
         return -1;
-    for (size_t i = 0; i < 3 * (size_t)c->st->o.params.width * c->st->o.params.height; i++)
-        if (!isfinite(img[i])) {
-            snprintf(why, RESTIR_MSG_LEN, "%.300s: holds NaN or infinite values", path);
-            free(img);
-            return -1;
-        }
     if (mean)
         *mean = img;
     else
@@ -116,7 +115,6 @@ static int read_shard(const struct plan *pl, int k, const struct shard_ctx *c, f
 
 static int shard_valid(const struct plan *pl, int k, char *why, void *ctx)
 {
-    why[0] = '\0';
     return read_shard(pl, k, ctx, NULL, why);
 }
 
@@ -180,17 +178,11 @@ int reference_merge(int argc, char **argv)
     }
     char msg[RESTIR_MSG_LEN];
     struct plan pl;
-    if (plan_load(dir, &pl, msg) != 0) {
-        cli_error("%s", msg);
-        return EXIT_RUNTIME;
-    }
-    if (strcmp(pl.kind, "reference") != 0) {
-        cli_error("%s holds a plan of `restir %s`, not of a reference", pl.dir, pl.kind);
-        plan_free(&pl);
-        return EXIT_USAGE;
-    }
+    int rc = plan_load_kind(dir, "reference", "a reference", &pl);
+    if (rc != 0)
+        return rc;
     struct reference_setup st;
-    int rc = reference_setup(pl.argc, pl.argv, 0, &st);
+    rc = reference_setup(pl.argc, pl.argv, 0, &st);
     if (rc != 0) {
         plan_free(&pl);
         return rc < 0 ? EXIT_USAGE : rc;
