@@ -5,8 +5,8 @@ BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 DEB_PACKAGES = build-essential cmake pkg-config libembree-dev libopenexr-dev libpng-dev libcjson-dev libfftw3-dev libassimp-dev libstb-dev libsdl2-dev
 # Test only (make test): real assets nobody here wrote and deliberately broken ones, and a
-# browser that loads the HTML reports.
-TEST_PACKAGES = assimp-testmodels chromium xvfb xauth parallel slurm-wlm munge
+# browser that loads the HTML reports, and python3 for scripts/check_layers.py.
+TEST_PACKAGES = assimp-testmodels chromium xvfb xauth parallel slurm-wlm munge python3
 # make fuzz: clang, its libFuzzer and OpenMP runtimes.
 FUZZ_PACKAGES = clang libclang-rt-14-dev libomp-dev
 FUZZ_SECONDS ?= 60
@@ -55,7 +55,7 @@ asan: deps test-deps
 
 # ASan + UBSan over the unit, statistical, CLI, scene and report tests (what CI runs; `make asan`
 # runs every test). The viewer's test is left out: SDL's video drivers leak on their own.
-SANITIZE_TESTS = ^(unit|stat)\.|cli_errors|scene_export|report|determinism|reference_resume|interrupt|plans
+SANITIZE_TESTS = ^(unit|stat)\.|cli_errors|scene_export|report|determinism|reference_resume|interrupt|plans|params_replay
 sanitize: deps test-deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DRESTIR_SANITIZE=ON
 	cmake --build build-asan -j $(JOBS)

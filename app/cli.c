@@ -2,8 +2,6 @@
  * Must never implement a rendering method. */
 #include "cli.h"
 
-#include "gradient/grad_frame.h"
-
 #include <errno.h>
 #include <omp.h>
 #include <stdarg.h>
@@ -12,9 +10,10 @@
 #include <unistd.h>
 
 #include "core/check.h"
-#include "render/memory_estimate.h"
+#include "gradient/grad_frame.h"
 #include "io/image_io.h"
-#include "render/reference.h"
+#include "methods/memory_estimate.h"
+#include "methods/reference.h"
 
 void cli_error(const char *fmt, ...)
 {

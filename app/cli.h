@@ -6,8 +6,8 @@
 #include <signal.h>
 #include <stdio.h>
 
+#include "methods/renderer.h"
 #include "render/params.h"
-#include "render/renderer.h"
 #include "restir/metrics.h"
 #include "scene/scene.h"
 
@@ -71,20 +71,5 @@ int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *
  * Returns NULL, having stopped between chunks, when a stop signal arrived (cli_stop_signal). */
 float *cli_render_reference(const struct scene *s, enum method_id method, const struct render_params *p,
                             const struct camera *cam, int spp);
-
-int cmd_render(int argc, char **argv);
-int cmd_reference(int argc, char **argv);
-int cmd_compare(int argc, char **argv);
-int cmd_study(int argc, char **argv);
-int cmd_scene(int argc, char **argv);
-int cmd_view(int argc, char **argv);
-int cmd_job(int argc, char **argv);
-
-struct plan;
-/* Job k (0-based) of a plan of each kind (plan.h): computes it into its output under runs/, or
- * says it is done already. Returns an exit code. */
-int study_run_job(const struct plan *pl, int k);
-int reference_run_job(const struct plan *pl, int k);
-int compare_run_job(const struct plan *pl, int k);
 
 #endif

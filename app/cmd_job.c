@@ -1,10 +1,14 @@
-/* cmd_job.c: `restir job DIR K`, line K of a plan folder's jobs.txt (plan.h): loads the plan and
- * hands job K to the command that planned it. Must never implement a method. */
+/* cmd_job.c: `restir job DIR K`, line K of a plan folder's jobs.txt (plan.h): loads the plan and hands
+ * job K to the command that planned it. Must never implement a method or know what a job computes. */
+#include <stdio.h>
 #include <string.h>
 
 #include "cli.h"
+#include "commands.h"
+#include "compare_plan.h"
 #include "core/check.h"
 #include "plan.h"
+#include "reference_shards.h"
 
 int cmd_job(int argc, char **argv)
 {

@@ -1,27 +1,35 @@
 /* cmd_render.c: `restir render`: frames of one method, with per-frame metrics, CSV and JSON
  * summary.
  * Must never implement a method: it drives the renderer. */
+#define _XOPEN_SOURCE 700 /* realpath */
+#include <limits.h>
 #include <omp.h>
-#include <sys/resource.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
-#include "scene/scene_file.h"
 #include "cli.h"
+#include "commands.h"
 #include "core/check.h"
 #include "io/image_io.h"
 #include "io/report.h"
 #include "options.h"
+#include "scene/scene_file.h"
+#include "scene/scenes_builtin.h"
+#include "settings_file.h"
 
 static void render_usage(FILE *out)
 {
     fprintf(out,
             "usage: restir render --scene NAME --method NAME [--res WxH] [--frames N] [--spp N] [--seed N]\n"
             "                     [--threads N] [--camera static|path|FILE] [--ref FILE.exr] [--out DIR]\n"
-            "                     [--save all|last] [--set key=value]...\n"
+            "                     [--save all|last] [--params FILE.json] [--set key=value]...\n"
             "Writes DIR/frame_NNNN.exr and .png, DIR/metrics.csv (per frame: times per pass, rays, and\n"
             "error metrics when --ref is given) and DIR/summary.json. Default DIR: out/SCENE-METHOD.\n"
             "ReSTIR methods render 1 sample per pixel per frame; --spp applies to pt and gpt.\n"
+            "--params FILE reads settings in order with the other options: a summary.json reruns that run\n"
+            "(scene, method, resolution, frames, seed, camera and every setting; later options override),\n"
+            "a plain JSON object of --set keys ({\"mis\": \"balance\", \"spatial.radius\": 50}) sets those.\n"
             "--camera FILE replays a camera file (one camera per frame, as restir view records them) and\n"
             "renders as many frames as it holds unless --frames says fewer.\n"
             "Gradient methods (gpt, grad-after-restir, grestir-pt) write the reconstruction as the image\n"
@@ -53,49 +61,34 @@ static int open_scene_and_method(const struct cli_options *o, struct scene *s, e
     return 0;
 }
 
+/* What ran, so that `restir render --params summary.json` runs it again: scene, method, frames,
+ * resolution, seed, camera, and every setting of the table as the renderer used it. */
 static cJSON *params_json(const struct cli_options *o, enum method_id method)
 {
-    struct render_params q = o->params;
-    renderer_method_params(method, &q); /* what the renderer ran with */
-    const struct render_params *p = &q;
-    const int paths = method_runs_restir_pt(method) || method == METHOD_GPT;
+    struct render_params p = o->params;
+    renderer_method_params(method, &p); /* what the renderer ran with */
     cJSON *j = cJSON_CreateObject();
-    cJSON_AddStringToObject(j, "scene", o->scene);
+    char scene[PATH_MAX], camera[PATH_MAX]; /* files by absolute path: --params may run elsewhere */
+    if (scene_is_builtin(o->scene) || !realpath(o->scene, scene))
+        snprintf(scene, sizeof(scene), "%s", o->scene);
+    cJSON_AddStringToObject(j, "scene", scene);
     cJSON_AddStringToObject(j, "method", o->method);
-    cJSON_AddNumberToObject(j, "width", p->width);
-    cJSON_AddNumberToObject(j, "height", p->height);
+    cJSON_AddNumberToObject(j, "width", p.width);
+    cJSON_AddNumberToObject(j, "height", p.height);
     cJSON_AddNumberToObject(j, "frames", o->frames);
-    cJSON_AddNumberToObject(j, "spp", p->spp);
-    cJSON_AddNumberToObject(j, "seed", (double)p->seed);
-    cJSON_AddStringToObject(j, "camera", p->camera_path ? "path" : "static");
-    cJSON_AddNumberToObject(j, "max_bounces", p->max_bounces);
-    cJSON_AddNumberToObject(j, "light_candidates", p->light_candidates);
-    cJSON_AddNumberToObject(j, "bsdf_candidates", p->bsdf_candidates);
-    cJSON_AddBoolToObject(j, "temporal", p->temporal);
-    cJSON_AddBoolToObject(j, "spatial", p->spatial);
-    cJSON_AddNumberToObject(j, "spatial_neighbors", render_params_spatial_neighbors(p, method_runs_restir_pt(method)));
-    cJSON_AddNumberToObject(j, "spatial_radius", p->spatial_radius);
-    cJSON_AddNumberToObject(j, "confidence_cap", p->confidence_cap);
-    cJSON_AddStringToObject(j, "mis", restir_mis_name(p->mis));
-    cJSON_AddBoolToObject(j, "temporal_ratio_guard", p->temporal_ratio_guard);
-    if (paths) {
-        cJSON_AddNumberToObject(j, "pt_candidates", p->pt_candidates);
-        cJSON_AddStringToObject(j, "shift", shift_kind_name(p->shift));
-        cJSON_AddNumberToObject(j, "shift_roughness", p->shift_roughness);
-        cJSON_AddNumberToObject(j, "shift_distance", p->shift_distance);
-    }
-    if (method_table[method].gradient) {
-        static const char *const keys[] = {"recon", "recon.alpha", "recon.solver", "grad.spatial", "grad.temporal",
-                                           "grad.base", "grad.positivize", "grad.cross_sign", "grad.search",
-                                           "grad.radius"};
-        const int nkeys = method == METHOD_GRESTIR_PT ? 10 : 3;
-        cJSON *g = cJSON_AddObjectToObject(j, "gradient"); /* as --set spells the values */
-        for (int k = 0; k < nkeys; k++) {
-            char val[64];
-            render_params_get(p, keys[k], val, sizeof(val));
-            cJSON_AddStringToObject(g, keys[k], val);
-        }
-    }
+    char seed[32];
+    snprintf(seed, sizeof(seed), "%llu", (unsigned long long)p.seed);
+    if (p.seed <= (1ull << 53)) /* a JSON number holds it exactly */
+        cJSON_AddItemToObject(j, "seed", cJSON_CreateRaw(seed));
+    else
+        cJSON_AddStringToObject(j, "seed", seed);
+    if (o->camera_file && !realpath(o->camera_file, camera))
+        snprintf(camera, sizeof(camera), "%s", o->camera_file);
+    cJSON_AddStringToObject(j, "camera", o->camera_file ? camera : p.camera_path ? "path" : "static");
+    cJSON_AddItemToObject(j, "settings", settings_json(&p));
+    char biased[RESTIR_MSG_LEN];
+    render_params_biased(&p, biased, sizeof(biased));
+    cJSON_AddStringToObject(j, "biased", biased); /* BIASED settings in effect; empty: none */
     return j;
 }
 

@@ -7,10 +7,12 @@
 #include <string.h>
 
 #include "cli.h"
+#include "commands.h"
 #include "core/check.h"
 #include "io/image_io.h"
 #include "io/scene_export.h"
 #include "scene/scene_file.h"
+#include "scene/scenes_builtin.h"
 
 static void scene_usage(FILE *out)
 {

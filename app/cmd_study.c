@@ -1,22 +1,27 @@
-/* cmd_study.c: `restir study`, the error-correlation study of 000 Sec. 6-7 and Appendices A-B: per
- * configuration of spatial neighbor selection, N independently seeded static-camera sequences
- * after a warm-up; SMAPE over all and over hard pixels, temporal and spatial relative covariance,
- * pass times. Writes study.csv, study.md, pareto.svg, hard_pixels.png and strip.png.
- * Must never implement a method: it drives the renderer. */
+/* cmd_study.c: `restir study`, the error-correlation study of 000 Sec. 6-7 and Appendices A-B, unsplit or planned.
+ * Must never implement a method: it drives the renderer through study_run.h. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene/scene_file.h"
-#include "study_report.h"
 #include "cli.h"
+#include "commands.h"
 #include "core/check.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/exr.h"
+#include "io/png.h"
 #include "io/report.h"
 #include "io/svg_plot.h"
 #include "options.h"
 #include "plan.h"
+#include "scene/scene_file.h"
+#include "study_report.h"
 #include "study_run.h"
+
+/* Per configuration of spatial neighbor selection, N independently seeded static-camera sequences
+ * after a warm-up; SMAPE over all and over hard pixels, temporal and spatial relative covariance,
+ * pass times. Writes study.csv, study.md, pareto.svg, hard_pixels.png and strip.png. */
 
 #define STRIP_SCALE 4      /* strip plot: rows per frame */
 
@@ -368,13 +373,11 @@ static int study_finish(const struct study_setup *st, const struct plan *pl, con
 
 static int study_plan(const struct study_setup *st, int argc, char **argv)
 {
-    char msg[RESTIR_MSG_LEN], command[8192], name[96], rel[64];
-    cli_command_line("study", argc, argv, command, sizeof command);
+    char name[96], rel[64];
     struct plan pl;
-    if (plan_init(&pl, st->o.plan, "study", argc, argv, command, scene_content_hash(&st->s), msg) != 0) {
-        cli_error("%s", msg);
-        return EXIT_RUNTIME;
-    }
+    const int rc = plan_start(&pl, st->o.plan, "study", argc, argv, scene_content_hash(&st->s));
+    if (rc != 0)
+        return rc;
     if (!st->o.ref)
         plan_add_job(&pl, "the study's reference", "runs/reference.exr");
     for (int k = 0; k < st->ncfg; k++)
@@ -385,7 +388,6 @@ static int study_plan(const struct study_setup *st, int argc, char **argv)
         }
     return plan_finish(&pl);
 }
-
 
 int study_run_job(const struct plan *pl, int k)
 {

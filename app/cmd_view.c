@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "commands.h"
 #include "core/check.h"
 #include "options.h"
 #include "scene/scene_file.h"

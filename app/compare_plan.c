@@ -1,18 +1,26 @@
-/* compare_plan.c: a comparison split into jobs (issue 14): `restir compare ... --plan DIR` plans
- * one job per SPEC (and one for the reference without --ref); `restir job` runs a SPEC's frames and
- * writes its last frame and its timing under DIR/runs/FOLDER/; `restir compare --merge DIR` measures
- * every last frame against the reference and writes what the unsplit compare writes into DIR (the
- * same errors, bit for bit: they are computed from the same frames; the times are the jobs' own).
- * --equal-time is refused: its budget is one method's time on the machine that runs the others. */
+/* compare_plan.c: a comparison split into jobs (issue 14; compare_plan.h): the plan, one job, the merge.
+ * Must never implement a method or be called by compare_run.c: cmd_compare.c and cmd_job.c call it. */
+#include "compare_plan.h"
+
 #include <dirent.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
 #include "compare_run.h"
 #include "core/check.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/exr.h"
 #include "plan.h"
+
+/* `restir compare ... --plan DIR` plans one job per SPEC (and one for the reference without --ref);
+ * `restir job` runs a SPEC's frames and writes its last frame and its timing under DIR/runs/FOLDER/;
+ * `restir compare --merge DIR` measures every last frame against the reference and writes what the
+ * unsplit compare writes into DIR (the same errors, bit for bit: they are computed from the same
+ * frames; the times are the jobs' own). --equal-time is refused: its budget is one method's time on
+ * the machine that runs the others. */
 
 static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '1'};
 
@@ -34,13 +42,11 @@ int compare_plan(const struct compare_setup *st, int argc, char **argv)
                   "means something for methods timed on the same machine; run it unsplit");
         return EXIT_USAGE;
     }
-    char msg[RESTIR_MSG_LEN], command[8192], name[96], rel[PLAN_PATH_MAX];
-    cli_command_line("compare", argc, argv, command, sizeof command);
+    char name[96], rel[PLAN_PATH_MAX];
     struct plan pl;
-    if (plan_init(&pl, st->o.plan, "compare", argc, argv, command, scene_content_hash(&st->s), msg) != 0) {
-        cli_error("%s", msg);
-        return EXIT_RUNTIME;
-    }
+    const int rc = plan_start(&pl, st->o.plan, "compare", argc, argv, scene_content_hash(&st->s));
+    if (rc != 0)
+        return rc;
     if (!st->o.ref)
         plan_add_job(&pl, "the comparison's reference", "runs/reference.exr");
     for (int k = 0; k < st->n; k++) {
@@ -90,7 +96,6 @@ static int job_valid(const struct plan *pl, int k, char *why, void *ctx)
 {
     return read_job(pl, ctx, k, NULL, NULL, why);
 }
-
 
 int compare_run_job(const struct plan *pl, int k)
 {

@@ -1,17 +1,20 @@
-/* compare_report.c: the page of `restir compare --report` (compare_report.h). Heat maps show the
- * per-pixel terms of MAPE (their image mean is the table's MAPE) on one fixed scale for every
- * method, so maps are comparable side by side. Must never render. */
+/* compare_report.c: the page of `restir compare --report` (compare_report.h), from the images it is given.
+ * Must never render or read a comparison's files: it shows what the caller measured. */
 #include "compare_report.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/check.h"
+#include "io/atomic_file.h"
 #include "io/html_report.h"
-#include "io/image_io.h"
-
+#include "io/png.h"
 #include "report_commit.h"
+
+/* Heat maps show the per-pixel terms of MAPE (their image mean is the table's MAPE) on one fixed
+ * scale for every method, so maps are comparable side by side. */
 
 /* Heat maps saturate at a relative error of 1 (100%). */
 #define HEAT_MAX 1.0f
@@ -233,8 +236,7 @@ int compare_write_report(const struct compare_report_run *run, int n, const stru
         rc = crops(&pg, run, n, m, maps, msg);
     free(maps);
     if (rc != 0) {
-        fclose(pg.f);
-        remove(pg.tmp);
+        html_abort(&pg);
         return -1;
     }
     return html_end(&pg, msg);

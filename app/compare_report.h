@@ -1,11 +1,13 @@
-/* compare_report.h: `restir compare --report`: DIR/index.html, one self-contained page with the
- * run's command, commit and machine, its table and a bar plot, every method's image and the
- * reference in a synchronized viewer with an A/B flip, per-pixel relative-error heat maps with a
- * colour bar, and crops of the regions where the first two methods' errors differ most. */
+/* compare_report.h: `restir compare --report`: DIR/index.html, one self-contained page (compare_report.c).
+ * Must never depend on the renderer or on how a comparison runs: it shows what it is given. */
 #ifndef RESTIR_APP_COMPARE_REPORT_H
 #define RESTIR_APP_COMPARE_REPORT_H
 
 #include "restir/metrics.h"
+
+/* The page: the run's command, commit and machine, its table and a bar plot, every method's image
+ * and the reference in a synchronized viewer with an A/B flip, per-pixel relative-error heat maps
+ * with a colour bar, and crops of the regions where the first two methods' errors differ most. */
 
 struct compare_report_method {
     const char *label;  /* the method spec */

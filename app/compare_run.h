@@ -1,15 +1,15 @@
-/* compare_run.h: what `restir compare` (cmd_compare.c) and its planned form (compare_plan.c:
- * --plan DIR, restir job, --merge DIR) share: the parsed specs, one method's run, the reference and
- * the table. Must never implement a method. */
+/* compare_run.h: what `restir compare` (cmd_compare.c) and its planned form (compare_plan.c) share:
+ * the specs, one method's run, the reference, the table. Must never implement a method or call into either. */
 #ifndef RESTIR_APP_COMPARE_RUN_H
 #define RESTIR_APP_COMPARE_RUN_H
 
+#include "methods/renderer.h"
 #include "options.h"
-#include "render/renderer.h"
 #include "restir/metrics.h"
 #include "scene/scene.h"
 
 #define MAX_METHODS 16
+#define MAX_INSTANCES 16 /* independently seeded renderers one row may average */
 #define SPEC_MAX 200 /* characters of one spec; its folder name stays under NAME_MAX */
 
 /* One row of the comparison: a method with the command's parameters and then the spec's own
@@ -39,6 +39,10 @@ struct compare_setup {
     struct scene s;
 };
 
+/* 1 for the methods that reach a time budget by paths per pixel (pt, gpt); the others do by
+ * averaging independently seeded instances (002 Sec. 5). */
+int compare_budget_by_spp(enum method_id m);
+
 /* compare_run_method's result when a stop signal arrived before the method's last frame. */
 #define RUN_STOPPED 1
 
@@ -48,8 +52,10 @@ int compare_setup(int argc, char **argv, struct compare_setup *st);
 /* The comparison's own reference (independently seeded, from the last frame's camera), or NULL
  * when a stop signal arrived. */
 float *compare_render_reference(const struct compare_setup *st);
-/* Runs frames of spec c with p as `instances` renderers, measures the last frame against ref (none
- * when ref is NULL) and writes it under out_dir/c->dir. Returns 0, -1 with msg, or RUN_STOPPED. */
+/* Runs `frames` frames of spec c with parameters p (c->p, or with an equal-time spp) as `instances`
+ * (at most MAX_INSTANCES) independently seeded renderers, measures the average of their last frames
+ * against ref (none when ref is NULL) and writes it under out_dir/c->dir. Returns 0, -1 with msg
+ * (the frame cannot be written), or RUN_STOPPED having written nothing. */
 int compare_run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
                        int instances, const float *ref, const char *out_dir, int keep_image, struct compare_result *res,
                        char *msg);
@@ -57,10 +63,5 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
  * code. */
 int compare_write_table(const struct compare_setup *st, const char *out_dir, const char *command,
                         const struct compare_result *res, const float *ref);
-
-/* --plan DIR: writes the plan (compare_plan.c). Returns an exit code. */
-int compare_plan(const struct compare_setup *st, int argc, char **argv);
-/* --merge DIR: the table and outputs of a plan's finished jobs. Returns an exit code. */
-int compare_merge(const char *dir);
 
 #endif

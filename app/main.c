@@ -5,6 +5,8 @@
 #include <string.h>
 
 #include "cli.h"
+#include "commands.h"
+#include "scene/scenes_builtin.h"
 
 static void usage(FILE *out)
 {

@@ -8,6 +8,7 @@
 
 #include "cli.h"
 #include "core/check.h"
+#include "settings_file.h"
 
 static int need_value(int i, int argc, char **argv, char *msg)
 {
@@ -16,6 +17,79 @@ static int need_value(int i, int argc, char **argv, char *msg)
         return -1;
     }
     return 0;
+}
+
+/* summary.json's run description: the keys `restir render` takes as options of their own. */
+static int apply_run_description(const char *path, const cJSON *root, struct cli_options *o, char *msg)
+{
+    const cJSON *v;
+    char why[RESTIR_MSG_LEN];
+    long long n;
+    if ((v = cJSON_GetObjectItemCaseSensitive(root, "scene")) && cJSON_IsString(v)) {
+        snprintf(o->params_scene, sizeof(o->params_scene), "%s", v->valuestring);
+        o->scene = o->params_scene;
+    }
+    if ((v = cJSON_GetObjectItemCaseSensitive(root, "method")) && cJSON_IsString(v)) {
+        snprintf(o->params_method, sizeof(o->params_method), "%s", v->valuestring);
+        o->method = o->params_method;
+    }
+    const char *ints[] = {"width", "height", "frames", "seed"};
+    const long long lo[] = {1, 1, 1, 0}, hi[] = {16384, 16384, 100000, 1ll << 62};
+    for (int k = 0; k < 4; k++) {
+        if (!(v = cJSON_GetObjectItemCaseSensitive(root, ints[k])))
+            continue;
+        char text[64] = "";
+        if (cJSON_IsNumber(v))
+            snprintf(text, sizeof(text), "%.17g", v->valuedouble);
+        else if (cJSON_IsString(v)) /* seeds above 2^53 are written as strings */
+            snprintf(text, sizeof(text), "%.60s", v->valuestring);
+        if (cli_parse_int(ints[k], text, lo[k], hi[k], &n, why) != 0) {
+            snprintf(msg, RESTIR_MSG_LEN, "--params %.250s: %.250s", path, why);
+            return -1;
+        }
+        if (k == 0)
+            o->params.width = (int)n;
+        else if (k == 1)
+            o->params.height = (int)n;
+        else if (k == 2) {
+            o->frames = (int)n;
+            o->frames_given = 1;
+        } else
+            o->params.seed = (uint64_t)n;
+    }
+    if ((v = cJSON_GetObjectItemCaseSensitive(root, "camera")) && cJSON_IsString(v)) {
+        if (!strcmp(v->valuestring, "static") || !strcmp(v->valuestring, "path")) {
+            o->params.camera_path = !strcmp(v->valuestring, "path");
+            o->camera_file = NULL;
+        } else {
+            snprintf(o->params_camera, sizeof(o->params_camera), "%s", v->valuestring);
+            o->camera_file = o->params_camera;
+        }
+    }
+    return 0;
+}
+
+/* --params FILE: a summary.json (its run description and "settings") or a plain object of --set
+ * keys. */
+static int apply_params_file(const char *path, struct cli_options *o, char *msg)
+{
+    cJSON *root = settings_read_file(path, msg);
+    if (!root)
+        return -1;
+    const cJSON *settings = cJSON_GetObjectItemCaseSensitive(root, "settings");
+    int rc = 0;
+    if (settings && !cJSON_IsObject(settings)) {
+        snprintf(msg, RESTIR_MSG_LEN, "--params %.300s: \"settings\" must be an object", path);
+        rc = -1;
+    } else if (settings) {
+        rc = apply_run_description(path, root, o, msg);
+        if (rc == 0)
+            rc = settings_apply_object(path, settings, &o->params, msg);
+    } else {
+        rc = settings_apply_object(path, root, &o->params, msg);
+    }
+    cJSON_Delete(root);
+    return rc;
 }
 
 int cli_parse_options(const char *command, int argc, char **argv, struct cli_options *o, char *msg)
@@ -147,6 +221,10 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
             if (cli_parse_int(a, val, 1, 4096, &v, msg) != 0)
                 return -1;
             o->shards = (int)v;
+        } else if (!strcmp(a, "--params") && !strcmp(command, "render")) {
+            if (apply_params_file(val, o, msg) != 0)
+                return -1;
+            frames_given |= o->frames_given;
         } else if (!strcmp(a, "--set")) {
             if (render_params_set(&o->params, val, msg) != 0)
                 return -1;

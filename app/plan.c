@@ -1,24 +1,23 @@
-/* plan.c: plan folders (plan.h). */
+/* plan.c: plan folders (plan.h): plan.json, jobs.txt, slurm.sh, job results and their checks.
+ * Must never implement a method or know a command's results; it knows commands only by their kind. */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "plan.h"
 
+#include <cjson/cJSON.h>
 #include <errno.h>
 #include <limits.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <cJSON.h>
-
 #include "cli.h"
 #include "core/check.h"
 #include "core/hash.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
 #include "io/report.h"
-
+#include "io/text_file.h"
 
 static uint64_t plan_hash(const char *kind, int argc, char **argv)
 {
@@ -46,8 +45,10 @@ static int plain_path(const char *s)
     return 1;
 }
 
-int plan_init(struct plan *p, const char *dir, const char *kind, int argc, char **argv, const char *command,
-              uint64_t scene_hash, char *msg)
+/* Starts a plan of kind in dir (made, if missing) from the command's arguments, copying them
+ * without --plan DIR and with --scene FILE and --ref FILE made absolute. Returns 0, or -1 with msg. */
+static int plan_init(struct plan *p, const char *dir, const char *kind, int argc, char **argv, const char *command,
+                     uint64_t scene_hash, char *msg)
 {
     memset(p, 0, sizeof *p);
     if (io_make_dirs(dir, msg) != 0)
@@ -83,6 +84,17 @@ int plan_init(struct plan *p, const char *dir, const char *kind, int argc, char 
     return 0;
 }
 
+int plan_start(struct plan *p, const char *dir, const char *kind, int argc, char **argv, uint64_t scene_hash)
+{
+    char msg[RESTIR_MSG_LEN], command[8192];
+    cli_command_line(kind, argc, argv, command, sizeof command);
+    if (plan_init(p, dir, kind, argc, argv, command, scene_hash, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_RUNTIME;
+    }
+    return 0;
+}
+
 void plan_add_job(struct plan *p, const char *name, const char *output)
 {
     RESTIR_CHECK(p->n_jobs < PLAN_MAX_JOBS);
@@ -101,25 +113,39 @@ void plan_output_path(const struct plan *p, int k, char *out, size_t len)
     snprintf(out, len, "%s/%s", p->dir, p->jobs[k].output);
 }
 
-/* Writes text to path through a temporary file. */
-static int write_text(const char *path, const char *text, int executable, char *msg)
+/* Creates and opens (fopen mode) path's temporary sibling tmp (len bytes). Returns the file, or
+ * NULL with msg. */
+static FILE *open_temp(const char *path, char *tmp, size_t len, const char *mode, char *msg)
 {
-    char tmp[PLAN_PATH_MAX + 64];
-    io_temp_path(path, tmp, sizeof tmp);
-    FILE *f = fopen(tmp, "w");
-    if (!f) {
+    io_temp_path(path, tmp, len);
+    FILE *f = fopen(tmp, mode);
+    if (!f)
         snprintf(msg, RESTIR_MSG_LEN, "%.300s: cannot write: %s", path, strerror(errno));
-        return -1;
-    }
-    fputs(text, f);
+    return f;
+}
+
+/* Closes f, written to tmp, and renames tmp over path. Returns 0, or -1 with msg (tmp removed). */
+static int close_commit(FILE *f, const char *tmp, const char *path, char *msg)
+{
     if (ferror(f) | fclose(f)) {
         remove(tmp);
         snprintf(msg, RESTIR_MSG_LEN, "%.300s: write failed", path);
         return -1;
     }
+    return io_commit(tmp, path, msg);
+}
+
+/* Writes text to path through a temporary file. */
+static int write_text(const char *path, const char *text, int executable, char *msg)
+{
+    char tmp[PLAN_PATH_MAX + 64];
+    FILE *f = open_temp(path, tmp, sizeof tmp, "w", msg);
+    if (!f)
+        return -1;
+    fputs(text, f);
     if (executable)
         chmod(tmp, 0755);
-    return io_commit(tmp, path, msg);
+    return close_commit(f, tmp, path, msg);
 }
 
 /* The restir binary running now, so jobs run the same build from any folder. */
@@ -217,25 +243,6 @@ int plan_finish(struct plan *p)
     return rc;
 }
 
-static char *read_file(const char *path, size_t max, char *msg)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(msg, RESTIR_MSG_LEN, "%.300s: %s", path, strerror(errno));
-        return NULL;
-    }
-    char *buf = xmalloc(max + 1);
-    size_t n = fread(buf, 1, max + 1, f);
-    fclose(f);
-    if (n > max) {
-        snprintf(msg, RESTIR_MSG_LEN, "%.300s: larger than %zu bytes", path, max);
-        free(buf);
-        return NULL;
-    }
-    buf[n] = '\0';
-    return buf;
-}
-
 int plan_load(const char *dir, struct plan *p, char *msg)
 {
     memset(p, 0, sizeof *p);
@@ -245,7 +252,7 @@ int plan_load(const char *dir, struct plan *p, char *msg)
         return -1;
     }
     snprintf(path, sizeof path, "%s/plan.json", p->dir);
-    char *text = read_file(path, 64u << 20, why);
+    char *text = io_read_text(path, 64u << 20, why);
     if (!text) {
         snprintf(msg, RESTIR_MSG_LEN, "%.300s is not a plan folder: %.180s", dir, why);
         return -1;
@@ -367,10 +374,8 @@ int plan_copy_file(const char *src, const char *dst, char *msg)
         return -1;
     }
     char tmp[PLAN_PATH_MAX + 400];
-    io_temp_path(dst, tmp, sizeof tmp);
-    FILE *out = fopen(tmp, "wb");
+    FILE *out = open_temp(dst, tmp, sizeof tmp, "wb", msg);
     if (!out) {
-        snprintf(msg, RESTIR_MSG_LEN, "%.300s: cannot write: %s", dst, strerror(errno));
         fclose(in);
         return -1;
     }
@@ -392,12 +397,9 @@ int plan_blob_write(const char *path, const char magic[8], uint64_t id, const vo
                     int n, char *msg)
 {
     char tmp[PLAN_PATH_MAX + 64];
-    io_temp_path(path, tmp, sizeof tmp);
-    FILE *f = fopen(tmp, "wb");
-    if (!f) {
-        snprintf(msg, RESTIR_MSG_LEN, "%.300s: cannot write: %s", path, strerror(errno));
+    FILE *f = open_temp(path, tmp, sizeof tmp, "wb", msg);
+    if (!f)
         return -1;
-    }
     uint64_t size = 0;
     for (int i = 0; i < n; i++)
         size += sizes[i];
@@ -413,12 +415,7 @@ int plan_blob_write(const char *path, const char magic[8], uint64_t id, const vo
         h = fnv1a64(h, parts[i], sizes[i]);
     }
     fwrite(&h, sizeof h, 1, f);
-    if (ferror(f) | fclose(f)) {
-        remove(tmp);
-        snprintf(msg, RESTIR_MSG_LEN, "%.300s: write failed", path);
-        return -1;
-    }
-    return io_commit(tmp, path, msg);
+    return close_commit(f, tmp, path, msg);
 }
 
 int plan_blob_read(const char *path, const char magic[8], uint64_t id, void **payload, size_t *size, char *msg)

@@ -1,13 +1,15 @@
-/* plan.h: long commands split into independent jobs that GNU parallel or a Slurm job array runs,
- * then merged (issue 14). A plan folder holds plan.json (the command's kind, its arguments and its
- * jobs), jobs.txt (one shell command per job: `restir job DIR K`), slurm.sh (an `sbatch --array`
- * script that runs line $SLURM_ARRAY_TASK_ID of jobs.txt) and runs/, the only place jobs write,
- * each its own output, atomically. Must never implement a method or know a command's results. */
+/* plan.h: plan folders: long commands split into independent jobs, run anywhere, then merged (issue 14).
+ * Must never implement a method or know a command's results. */
 #ifndef RESTIR_APP_PLAN_H
 #define RESTIR_APP_PLAN_H
 
 #include <stddef.h>
 #include <stdint.h>
+
+/* A plan folder holds plan.json (the command's kind, its arguments and its jobs), jobs.txt (one
+ * shell command per job: `restir job DIR K`, for GNU parallel), slurm.sh (an `sbatch --array`
+ * script that runs line $SLURM_ARRAY_TASK_ID of jobs.txt) and runs/, the only place jobs write,
+ * each its own output, atomically. */
 
 #define PLAN_MAX_JOBS 100000
 #define PLAN_PATH_MAX 4096
@@ -30,10 +32,10 @@ struct plan {
     struct plan_job *jobs;
 };
 
-/* Starts a plan of kind in dir (made, if missing) from the command's arguments, copying them
- * without --plan DIR and with --scene FILE and --ref FILE made absolute. Returns 0, or -1 with msg. */
-int plan_init(struct plan *p, const char *dir, const char *kind, int argc, char **argv, const char *command,
-              uint64_t scene_hash, char *msg);
+/* Starts a plan of `restir kind` in dir (made, if missing) from the command's arguments, copying
+ * them without --plan DIR and with --scene FILE and --ref FILE made absolute; the command line is
+ * kept for reports. Returns 0, or an exit code having said why. */
+int plan_start(struct plan *p, const char *dir, const char *kind, int argc, char **argv, uint64_t scene_hash);
 void plan_add_job(struct plan *p, const char *name, const char *output);
 /* Writes dir/plan.json, dir/jobs.txt, dir/slurm.sh and makes dir/runs/logs. Returns 0, or -1 with
  * msg. */

@@ -1,19 +1,25 @@
-/* reference_shards.c: a reference split into shards (issue 14): `restir reference ... --shards N
- * --plan DIR` plans N jobs, shard s rendering the chunks [s C / N, (s + 1) C / N) of the C chunks of
- * 16 samples the unsplit reference renders, so the shards hold exactly its samples; `restir job`
- * renders one; `restir reference --merge DIR --out FILE.exr` averages them weighted by their
- * sample counts, in double, rounded once. The merged image differs from the unsplit one only by
- * the order of the floating-point sums: both are within C 2^-24 (relative) of the exact mean of the
- * same samples, so within (2 C + 1) 2^-24 of each other (tests/render/test_plans.c). */
+/* reference_shards.c: a reference split into shards (issue 14; reference_shards.h): the plan, one shard, the merge.
+ * Must never implement a method or be called by reference_run.c: cmd_reference.c and cmd_job.c call it. */
+#include "reference_shards.h"
+
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
 #include "core/check.h"
-#include "io/image_io.h"
+#include "io/exr.h"
+#include "methods/reference.h"
 #include "plan.h"
-#include "reference_cmd.h"
-#include "render/reference.h"
+#include "reference_run.h"
+
+/* `restir reference ... --shards N --plan DIR` plans N jobs, shard s rendering the chunks
+ * [s C / N, (s + 1) C / N) of the C chunks of 16 samples the unsplit reference renders, so the
+ * shards hold exactly its samples; `restir job` renders one; `restir reference --merge DIR --out
+ * FILE.exr` averages them weighted by their sample counts, in double, rounded once. The merged
+ * image differs from the unsplit one only by the order of the floating-point sums: both are within
+ * C 2^-24 (relative) of the exact mean of the same samples, so within (2 C + 1) 2^-24 of each other
+ * (tests/render/test_plans.c). */
 
 /* Chunks and samples of shard s of n over spp samples. */
 static void shard_range(int spp, int n, int s, int *first_chunk, int *samples)
@@ -55,13 +61,11 @@ int reference_plan(const struct reference_setup *st, int argc, char **argv)
         cli_error("reference: --checkpoint-every does not apply to a plan (a shard that fails is run again)");
         return EXIT_USAGE;
     }
-    char msg[RESTIR_MSG_LEN], command[8192], name[96], rel[64];
-    cli_command_line("reference", argc, argv, command, sizeof command);
+    char name[96], rel[64];
     struct plan pl;
-    if (plan_init(&pl, st->o.plan, "reference", argc, argv, command, scene_content_hash(&st->s), msg) != 0) {
-        cli_error("%s", msg);
-        return EXIT_RUNTIME;
-    }
+    const int rc = plan_start(&pl, st->o.plan, "reference", argc, argv, scene_content_hash(&st->s));
+    if (rc != 0)
+        return rc;
     for (int s = 0; s < st->o.shards; s++) {
         int c0, n;
         shard_range(st->spp, st->o.shards, s, &c0, &n);
@@ -117,7 +121,6 @@ static int shard_valid(const struct plan *pl, int k, char *why, void *ctx)
 {
     return read_shard(pl, k, ctx, NULL, why);
 }
-
 
 int reference_run_job(const struct plan *pl, int k)
 {

@@ -1,6 +1,5 @@
-/* study_report.c: `restir study --report`: DIR/index.html beside what the study wrote (study.csv
- * as the table, pareto.svg, hard_pixels.png, strip.png) and the reference it measured against.
- * The page is built from the files themselves, so it shows exactly the study's numbers. */
+/* study_report.c: `restir study --report` (study_report.h): DIR/index.html beside what the study wrote.
+ * Must never render or compute a study's numbers: the page is built from the files the study wrote. */
 #include "study_report.h"
 
 #include <stdio.h>
@@ -9,8 +8,11 @@
 
 #include "core/check.h"
 #include "io/html_report.h"
-#include "io/image_io.h"
+#include "io/png.h"
 #include "report_commit.h"
+
+/* The page shows study.csv as the table, pareto.svg, hard_pixels.png, strip.png and the reference
+ * the study measured against, so it shows exactly the study's numbers. */
 
 #define STUDY_REPORT_MAX_CELLS 4096
 
@@ -75,8 +77,7 @@ int study_write_report(const struct study_report_run *run, char *msg)
              "camera; %d hard pixels (000 Sec. 7).</p>\n<h2>Results (study.csv)</h2>\n",
              run->width, run->height, run->runs, run->warmup, run->frames, run->hard_pixels);
     if (csv_table(&pg, run->out_dir, msg) != 0) {
-        fclose(pg.f);
-        remove(pg.tmp);
+        html_abort(&pg);
         return -1;
     }
     html_raw(&pg, "<h2>Pareto plot (000 Figure 3)</h2>\n<p>SMAPE against spatial covariance over the radius "

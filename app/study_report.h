@@ -1,4 +1,5 @@
-/* study_report.h: the page of `restir study --report` (study_report.c). */
+/* study_report.h: the page of `restir study --report` (study_report.c).
+ * Must never depend on the renderer or the study's computation: it reads what the study wrote. */
 #ifndef RESTIR_APP_STUDY_REPORT_H
 #define RESTIR_APP_STUDY_REPORT_H
 

@@ -1,6 +1,8 @@
-/* study_run.c: a study's configurations, units, unit files and rows (study_run.h). */
+/* study_run.c: a study's configurations, units, unit files and rows (study_run.h).
+ * Must never implement a method or call into cmd_study.c: it drives the renderer. */
 #include "study_run.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 

@@ -1,17 +1,18 @@
-/* study_run.h: the pieces of `restir study` (000 Sec. 6-7, Appendix A) that a job runs alone: the
- * configurations, one run of one configuration (a "unit"), the unit's result file, and the
- * combination of a configuration's runs into its row. The unsplit study and a merged plan both
- * call these same functions on the same data, so they write the same numbers (issue 14).
- * Must never implement a method: it drives the renderer. */
+/* study_run.h: the pieces of `restir study` (000 Sec. 6-7, Appendix A) that a job runs alone (study_run.c).
+ * Must never implement a method or call into cmd_study.c: it drives the renderer. */
 #ifndef RESTIR_APP_STUDY_RUN_H
 #define RESTIR_APP_STUDY_RUN_H
 
 #include <stddef.h>
 #include <stdint.h>
 
+#include "methods/renderer.h"
 #include "options.h"
-#include "render/renderer.h"
 #include "scene/scene.h"
+
+/* The configurations, one run of one configuration (a "unit"), the unit's result file, and the
+ * combination of a configuration's runs into its row. The unsplit study and a merged plan both
+ * call these same functions on the same data, so they write the same numbers (issue 14). */
 
 #define STUDY_MAX_CONFIGS 64
 #define STUDY_COV_LAG 3 /* 000 Appendix A: autocovariance at a lag of 3 frames */

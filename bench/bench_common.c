@@ -1,6 +1,5 @@
 /* bench_common.c: what the benchmarks share: loading a built-in scene and rendering a converged
  * reference with pt. Must never be run by the tests. */
-#include "scene/scene_file.h"
 #include "bench_common.h"
 
 #include <stdio.h>
@@ -8,6 +7,7 @@
 
 #include "core/check.h"
 #include "render/pt.h"
+#include "scene/scene_file.h"
 
 struct scene bench_load_scene(const char *name)
 {

@@ -3,7 +3,7 @@
 #ifndef RESTIR_BENCH_COMMON_H
 #define RESTIR_BENCH_COMMON_H
 
-#include "render/renderer.h"
+#include "methods/renderer.h"
 
 /* A built-in scene; exits with a message when the name is unknown. */
 struct scene bench_load_scene(const char *name);

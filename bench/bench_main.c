@@ -8,13 +8,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench_common.h"
 #include "core/check.h"
 #include "io/image_io.h"
 #include "io/report.h"
+#include "methods/renderer.h"
 #include "render/pt.h"
-#include "render/renderer.h"
 #include "restir/metrics.h"
-#include "bench_common.h"
 
 struct bench_config {
     const char *scene;

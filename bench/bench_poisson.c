@@ -9,8 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "restir/poisson.h"
 #include "bench_common.h"
+#include "restir/poisson.h"
 
 static uint64_t bp_state = 0x2545f4914f6cdd1dull;
 

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "core/check.h"
-#include "scene/scene_file.h"
+#include "scene/scene_json.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -3,7 +3,7 @@
  * files or the renderer.
  *
  * Images are interleaved RGB floats, row-major, w*h*3 values. The gradient images hold forward
- * differences, the convention of restir/gradient.h:
+ * differences, the convention of restir/paired_pixel.h:
  *   dx[p] ~ I(x+1, y) - I(x, y)   (the last column of dx is ignored)
  *   dy[p] ~ I(x, y+1) - I(x, y)   (the last row of dy is ignored)
  * Per channel the reconstruction I minimizes, over the rows r of the stacked system

@@ -1,6 +1,6 @@
 /* check.c: allocation helpers that stop the program with a message when memory runs out.
  * Must never depend on scene, render or I/O code. */
-#include "check.h"
+#include "core/check.h"
 
 void *xmalloc(size_t n)
 {

@@ -1,9 +1,9 @@
 /* lowdisc.c: the R2 sequence on the unit disk (see lowdisc.h). */
-#include "lowdisc.h"
+#include "core/lowdisc.h"
 
 #include <math.h>
 
-#include "sampling.h"
+#include "core/sampling.h"
 
 void r2_disk_offsets(int n, float *xy)
 {

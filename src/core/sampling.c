@@ -1,11 +1,11 @@
 /* sampling.c: warps from the unit square to the disk, hemisphere, triangle and sphere, and the
  * Walker/Vose alias table. Must never depend on scene, shading or render code. */
-#include "sampling.h"
+#include "core/sampling.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "check.h"
+#include "core/check.h"
 
 #define QUARTER_PI 0.78539816339744830962f
 

@@ -3,7 +3,7 @@
 #ifndef RESTIR_CORE_SAMPLING_H
 #define RESTIR_CORE_SAMPLING_H
 
-#include "vec3.h"
+#include "core/vec3.h"
 
 #define RESTIR_PI 3.14159265358979323846f
 #define RESTIR_INV_PI 0.31830988618379067154f

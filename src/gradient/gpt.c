@@ -12,9 +12,9 @@
  * toward neighbor n is (m_c / p_c) omega_an(c) (f_a(c) - f_n(T c) |T'|); summed over the NEE/BSDF
  * strategies this is unbiased because omega does not depend on the strategy and the m_c of each
  * pixel sum to one. */
-#include "gpt.h"
+#include "gradient/gpt.h"
 
-#include "grad_common.h"
+#include "gradient/grad_common.h"
 #include "render/path_walk.h"
 #include "render/tiles.h"
 #include "shading/lights.h"
@@ -52,40 +52,38 @@ long long gpt_pass(const struct scene *s, const struct shift_params *sp, const s
     const int w = view->width, h = view->height, ntiles = tile_count(w, h);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, h, t);
         struct path_walk walk;
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                size_t i = (size_t)y * (size_t)w + (size_t)x;
-                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_GPT);
-                struct gpt_ctx ctx = {s, sp, view, x, y, w, h, i, 1.0f / (float)p->spp, {0}, os, v3s(0.0f), 0};
-                vec3 Le = v3s(0.0f);
-                for (int k = 0; k < p->spp; k++) {
-                    ctx.trial.u[0] = p->jitter ? pcg32_float(&rng) : 0.5f;
-                    ctx.trial.u[1] = p->jitter ? pcg32_float(&rng) : 0.5f;
-                    ctx.trial.seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
-                    float fx, fy;
-                    path_image_position(x, y, ctx.trial.u, &fx, &fy);
-                    vec3 d = camera_view_ray(view, fx, fy);
-                    struct surface_hit hit;
-                    ctx.rays++;
-                    if (!scene_intersect(s, view->position, d, 0.0f, INFINITY, &hit))
-                        continue;
-                    if (s->tri_emitter[hit.tri] >= 0 && hit.front)
-                        Le = v3_add(Le, v3_scale(lights_radiance(s, hit.tri, hit.b1, hit.b2, v3_neg(d)), ctx.inv_spp));
-                    struct path_vertex x1 = path_vertex_from_hit(&hit, d);
-                    ctx.rays += path_walk_run(s, &x1, ctx.trial.seed, p->max_bounces, p->rr_bounces, &walk,
-                                              candidate, &ctx);
-                }
-                vec3 L = v3_is_finite(ctx.primal) ? ctx.primal : v3s(0.0f);
-                primal[3 * i] = L.x + Le.x;
-                primal[3 * i + 1] = L.y + Le.y;
-                primal[3 * i + 2] = L.z + Le.z;
-                emission[3 * i] = Le.x;
-                emission[3 * i + 1] = Le.y;
-                emission[3 * i + 2] = Le.z;
-                rays += ctx.rays;
+        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+            const int x = px.x, y = px.y;
+            const size_t i = (size_t)px.i;
+            pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_GPT);
+            struct gpt_ctx ctx = {s, sp, view, x, y, w, h, i, 1.0f / (float)p->spp, {0}, os, v3s(0.0f), 0};
+            vec3 Le = v3s(0.0f);
+            for (int k = 0; k < p->spp; k++) {
+                ctx.trial.u[0] = p->jitter ? pcg32_float(&rng) : 0.5f;
+                ctx.trial.u[1] = p->jitter ? pcg32_float(&rng) : 0.5f;
+                ctx.trial.seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
+                float fx, fy;
+                path_image_position(x, y, ctx.trial.u, &fx, &fy);
+                vec3 d = camera_view_ray(view, fx, fy);
+                struct surface_hit hit;
+                ctx.rays++;
+                if (!scene_intersect(s, view->position, d, 0.0f, INFINITY, &hit))
+                    continue;
+                if (s->tri_emitter[hit.tri] >= 0 && hit.front)
+                    Le = v3_add(Le, v3_scale(lights_radiance(s, hit.tri, hit.b1, hit.b2, v3_neg(d)), ctx.inv_spp));
+                struct path_vertex x1 = path_vertex_from_hit(&hit, d);
+                ctx.rays += path_walk_run(s, &x1, ctx.trial.seed, p->max_bounces, p->rr_bounces, &walk,
+                                          candidate, &ctx);
             }
+            vec3 L = v3_is_finite(ctx.primal) ? ctx.primal : v3s(0.0f);
+            primal[3 * i] = L.x + Le.x;
+            primal[3 * i + 1] = L.y + Le.y;
+            primal[3 * i + 2] = L.z + Le.z;
+            emission[3 * i] = Le.x;
+            emission[3 * i + 1] = Le.y;
+            emission[3 * i + 2] = Le.z;
+            rays += ctx.rays;
         }
     }
     return rays;

@@ -1,7 +1,7 @@
 /* grad_after.c: Gradient after ReSTIR (see grad_after.h; 002 Eq. 10-13). */
-#include "grad_after.h"
+#include "gradient/grad_after.h"
 
-#include "grad_common.h"
+#include "gradient/grad_common.h"
 #include "render/tiles.h"
 
 long long grad_after_pass(const struct pt_frame *fr, const struct pt_reservoir *res, float *os)
@@ -10,13 +10,11 @@ long long grad_after_pass(const struct pt_frame *fr, const struct pt_reservoir *
     long long rays = 0;
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, h, t);
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                size_t i = (size_t)y * (size_t)w + (size_t)x;
-                if (pt_reservoir_has_sample(&res[i]))
-                    rays += grad_one_sided_all(fr->s, &fr->shift, fr->view, &res[i].y, x, y, w, h, res[i].W, os, i);
-            }
+        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+            const int x = px.x, y = px.y;
+            const size_t i = (size_t)px.i;
+            if (pt_reservoir_has_sample(&res[i]))
+                rays += grad_one_sided_all(fr->s, &fr->shift, fr->view, &res[i].y, x, y, w, h, res[i].W, os, i);
         }
     }
     return rays;

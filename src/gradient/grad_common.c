@@ -1,12 +1,12 @@
 /* grad_common.c: one-sided differences, emission differences and their combination into forward
  * gradients (see grad_common.h; 002 Eq. 3, 11-13). */
-#include "grad_common.h"
+#include "gradient/grad_common.h"
 
 #include <string.h>
 
 #include "render/restir_pt.h"
 #include "render/tiles.h"
-#include "restir/gradient.h"
+#include "restir/paired_pixel.h"
 
 void grad_os_clear(float *os, size_t n) { memset(os, 0, sizeof(float) * 3 * GRAD_DIRS * n); }
 

@@ -1,11 +1,11 @@
 /* grad_frame.c: gradient-domain frame buffers and the reconstruction calls (see grad_frame.h). */
-#include "grad_frame.h"
+#include "gradient/grad_frame.h"
 
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/check.h"
-#include "grad_common.h"
+#include "gradient/grad_common.h"
 
 void grad_frame_init(struct grad_frame *g, const struct render_params *p, int grestir)
 {

@@ -4,7 +4,7 @@
 #ifndef RESTIR_GRADIENT_GRAD_FRAME_H
 #define RESTIR_GRADIENT_GRAD_FRAME_H
 
-#include "grestir.h"
+#include "gradient/grestir.h"
 #include "render/params.h"
 #include "restir/poisson.h"
 

@@ -4,14 +4,14 @@
  * (Omega_b x {1}) (Eq. 14). Its two pixel domains are pt_domains (path_shift.h), so the outer
  * shift of (x, k) from pair A to pair B is the pixel shift of x from A's pixel k to B's pixel k with
  * k kept (Eq. 21), and its Jacobian is that shift's (Eq. 22). Evaluating the target in B then needs
- * the inner shift of the result into B's other pixel (restir/gradient.h gives h and the targets). */
-#include "grestir.h"
+ * the inner shift of the result into B's other pixel (restir/paired_pixel.h gives h and the targets). */
+#include "gradient/grestir.h"
 
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/check.h"
-#include "grad_common.h"
+#include "gradient/grad_common.h"
 #include "render/tiles.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
@@ -124,21 +124,19 @@ long long grestir_initial_pass(const struct pt_frame *fr, const struct gbuffer *
     /* f(T x_i) |T'| of every pixel's initial path in each neighbor */
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, h, t);
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                size_t i = (size_t)y * (size_t)w + (size_t)x;
-                struct pt_domain from = pt_pixel_domain(fr->view, x, y);
-                for (int d = 0; d < GRAD_DIRS; d++) {
-                    float *other = grad_os(st->base_other, n, d, i);
-                    other[0] = other[1] = other[2] = 0.0f;
-                    int ox, oy;
-                    grad_dir_offset(d, &ox, &oy);
-                    if (!pt_reservoir_has_sample(&base[i]) || x + ox < 0 || x + ox >= w || y + oy < 0 || y + oy >= h)
-                        continue;
-                    struct pt_domain to = pt_pixel_domain(fr->view, x + ox, y + oy);
-                    rays += grad_shift_other(fr->s, &fr->shift, &base[i].y, &from, &to, other);
-                }
+        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+            const int x = px.x, y = px.y;
+            const size_t i = (size_t)px.i;
+            struct pt_domain from = pt_pixel_domain(fr->view, x, y);
+            for (int d = 0; d < GRAD_DIRS; d++) {
+                float *other = grad_os(st->base_other, n, d, i);
+                other[0] = other[1] = other[2] = 0.0f;
+                int ox, oy;
+                grad_dir_offset(d, &ox, &oy);
+                if (!pt_reservoir_has_sample(&base[i]) || x + ox < 0 || x + ox >= w || y + oy < 0 || y + oy >= h)
+                    continue;
+                struct pt_domain to = pt_pixel_domain(fr->view, x + ox, y + oy);
+                rays += grad_shift_other(fr->s, &fr->shift, &base[i].y, &from, &to, other);
             }
         }
     }
@@ -290,54 +288,51 @@ long long grestir_temporal_pass(const struct pt_frame *fr, const struct gbuffer 
     long long rays = 0, acc = 0;
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays, acc)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, h, t);
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                const int a = y * w + x;
-                for (int dir = 0; dir < GRAD_PAIR_DIRS; dir++) {
-                    if (!pair_inside(w, h, x, y, dir))
-                        continue;
-                    int ex, ey;
-                    pair_offset(dir, &ex, &ey);
-                    const int b = a + ex + ey * w;
-                    /* Pair motion (Sec. 4.3.1): the nearer pixel's fractional motion. */
-                    int pivot = -1;
-                    if (g->valid[a] && (!g->valid[b] || g->depth[a] <= g->depth[b]))
-                        pivot = a;
-                    else if (g->valid[b])
-                        pivot = b;
-                    if (pivot < 0)
-                        continue;
-                    int q = gbuffer_history_pixel(g, pivot, prev_g, p->temporal_normal, p->temporal_plane);
-                    if (q < 0)
-                        continue;
-                    int qa = pivot == a ? q : q - ex - ey * w;
-                    int qax = pivot == a ? q % w : q % w - ex, qay = pivot == a ? q / w : q / w - ey;
-                    if (!pair_inside(w, h, qax, qay, dir))
-                        continue;
-                    struct pair_domain dom[2];
-                    dom[0] = pair_current(fr->view, x, y, dir);
-                    dom[1] = pair_current(fr->prev_view, qax, qay, dir);
-                    if (p->jitter) {
-                        /* Area ReSTIR: the previous pair's offsets move with the pair motion */
-                        for (int k = 0; k < 2; k++) {
-                            dom[1].px[k].origin[0] -= g->motion[2 * pivot];
-                            dom[1].px[k].origin[1] -= g->motion[2 * pivot + 1];
-                        }
+        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+            const int x = px.x, y = px.y, a = px.i;
+            for (int dir = 0; dir < GRAD_PAIR_DIRS; dir++) {
+                if (!pair_inside(w, h, x, y, dir))
+                    continue;
+                int ex, ey;
+                pair_offset(dir, &ex, &ey);
+                const int b = a + ex + ey * w;
+                /* Pair motion (Sec. 4.3.1): the nearer pixel's fractional motion. */
+                int pivot = -1;
+                if (g->valid[a] && (!g->valid[b] || g->depth[a] <= g->depth[b]))
+                    pivot = a;
+                else if (g->valid[b])
+                    pivot = b;
+                if (pivot < 0)
+                    continue;
+                int q = gbuffer_history_pixel(g, pivot, prev_g, p->temporal_normal, p->temporal_plane);
+                if (q < 0)
+                    continue;
+                int qa = pivot == a ? q : q - ex - ey * w;
+                int qax = pivot == a ? q % w : q % w - ex, qay = pivot == a ? q / w : q / w - ey;
+                if (!pair_inside(w, h, qax, qay, dir))
+                    continue;
+                struct pair_domain dom[2];
+                dom[0] = pair_current(fr->view, x, y, dir);
+                dom[1] = pair_current(fr->prev_view, qax, qay, dir);
+                if (p->jitter) {
+                    /* Area ReSTIR: the previous pair's offsets move with the pair motion */
+                    for (int k = 0; k < 2; k++) {
+                        dom[1].px[k].origin[0] -= g->motion[2 * pivot];
+                        dom[1].px[k].origin[1] -= g->motion[2 * pivot + 1];
                     }
-                    const int dom_id[2] = {0, 1};
-                    pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)a * 2 + (uint64_t)dir,
-                                        RNG_PASS_GRAD_TEMPORAL);
-                    for (int s = 0; s < ns; s++) {
-                        const enum restir_grad_sign sg[2] = {sign_of(p, s), sign_of(p, s)};
-                        const struct pair_reservoir *in[2] = {&st->work[dir][s][a],
-                                                              &st->hist[prev_slot][dir][s][qa]};
-                        struct pair_reservoir res;
-                        rays += pair_merge(fr, 2, dom, dom_id, sg, in, &rng, &res);
-                        st->work[dir][s][a] = res;
-                    }
-                    acc++;
                 }
+                const int dom_id[2] = {0, 1};
+                pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)a * 2 + (uint64_t)dir,
+                                    RNG_PASS_GRAD_TEMPORAL);
+                for (int s = 0; s < ns; s++) {
+                    const enum restir_grad_sign sg[2] = {sign_of(p, s), sign_of(p, s)};
+                    const struct pair_reservoir *in[2] = {&st->work[dir][s][a],
+                                                          &st->hist[prev_slot][dir][s][qa]};
+                    struct pair_reservoir res;
+                    rays += pair_merge(fr, 2, dom, dom_id, sg, in, &rng, &res);
+                    st->work[dir][s][a] = res;
+                }
+                acc++;
             }
         }
     }
@@ -409,29 +404,26 @@ long long grestir_spatial_pass(const struct pt_frame *fr, const struct gbuffer *
     long long rays = 0;
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, h, t);
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                const int a = y * w + x;
-                for (int dir = 0; dir < GRAD_PAIR_DIRS; dir++) {
-                    const int c = st->neighbor[dir][a];
-                    if (c < 0) {
-                        for (int s = 0; s < ns; s++)
-                            st->hist[slot][dir][s][a] = st->work[dir][s][a];
-                        continue;
-                    }
-                    struct pair_domain dom[2];
-                    dom[0] = pair_current(fr->view, x, y, dir);
-                    dom[1] = pair_current(fr->view, c % w, c / w, dir);
-                    const int dom_id[3] = {0, 1, 1};
-                    pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)a * 2 + (uint64_t)dir,
-                                        RNG_PASS_GRAD_SPATIAL);
-                    for (int s = 0; s < ns; s++) {
-                        const enum restir_grad_sign sg[3] = {sign_of(p, s), sign_of(p, s), sign_of(p, 1 - s)};
-                        const struct pair_reservoir *in[3] = {&st->work[dir][s][a], &st->work[dir][s][c],
-                                                              &st->work[dir][1 - s][c]};
-                        rays += pair_merge(fr, cross ? 3 : 2, dom, dom_id, sg, in, &rng, &st->hist[slot][dir][s][a]);
-                    }
+        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+            const int x = px.x, y = px.y, a = px.i;
+            for (int dir = 0; dir < GRAD_PAIR_DIRS; dir++) {
+                const int c = st->neighbor[dir][a];
+                if (c < 0) {
+                    for (int s = 0; s < ns; s++)
+                        st->hist[slot][dir][s][a] = st->work[dir][s][a];
+                    continue;
+                }
+                struct pair_domain dom[2];
+                dom[0] = pair_current(fr->view, x, y, dir);
+                dom[1] = pair_current(fr->view, c % w, c / w, dir);
+                const int dom_id[3] = {0, 1, 1};
+                pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)a * 2 + (uint64_t)dir,
+                                    RNG_PASS_GRAD_SPATIAL);
+                for (int s = 0; s < ns; s++) {
+                    const enum restir_grad_sign sg[3] = {sign_of(p, s), sign_of(p, s), sign_of(p, 1 - s)};
+                    const struct pair_reservoir *in[3] = {&st->work[dir][s][a], &st->work[dir][s][c],
+                                                          &st->work[dir][1 - s][c]};
+                    rays += pair_merge(fr, cross ? 3 : 2, dom, dom_id, sg, in, &rng, &st->hist[slot][dir][s][a]);
                 }
             }
         }

@@ -1,33 +1,17 @@
 /* atomic_file.c: temporary sibling names, the rename that commits a finished output file, and
- * output folders.
- * Must never depend on image formats, scenes or render code. */
-#include "io/image_io.h"
-
-#include "core/check.h"
+ * output folders (atomic_file.h). Must never depend on image formats, scenes or render code. */
+#include "io/atomic_file.h"
 
 #include <dirent.h>
 #include <errno.h>
 #include <signal.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* Formats a message into msg (RESTIR_MSG_LEN bytes, may be NULL), truncating long paths. */
-#if defined(__GNUC__)
-__attribute__((format(printf, 2, 3)))
-#endif
-static void set_msg(char *msg, const char *fmt, ...)
-{
-    if (!msg)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, RESTIR_MSG_LEN, fmt, ap);
-    va_end(ap);
-}
+#include "io/io_msg.h"
 
 void io_temp_path(const char *path, char *tmp, unsigned long tmp_len)
 {
@@ -36,13 +20,20 @@ void io_temp_path(const char *path, char *tmp, unsigned long tmp_len)
     snprintf(tmp, (size_t)tmp_len, "%s.tmp-%ld", path ? path : "", (long)getpid());
 }
 
+FILE *io_open_temp(const char *path, char *tmp, unsigned long tmp_len, const char *mode, char *msg)
+{
+    io_temp_path(path, tmp, tmp_len);
+    FILE *f = fopen(tmp, mode);
+    if (!f)
+        io_msg(msg, "%s: cannot create temporary file %.200s: %s", path, tmp, strerror(errno));
+    return f;
+}
+
 int io_commit(const char *tmp, const char *path, char *msg)
 {
     if (rename(tmp, path) != 0) {
         int err = errno;
-        if (msg)
-            set_msg(msg, "%s: cannot move temporary file %s into place: %s", path,
-                     tmp, strerror(err));
+        io_msg(msg, "%s: cannot move temporary file %s into place: %s", path, tmp, strerror(err));
         remove(tmp);
         return -1;
     }
@@ -84,7 +75,7 @@ int io_make_dirs(const char *dir, char *msg)
 {
     char path[4096];
     if (snprintf(path, sizeof(path), "%s", dir) >= (int)sizeof(path)) {
-        snprintf(msg, RESTIR_MSG_LEN, "output folder name is too long");
+        io_msg(msg, "output folder name is too long");
         return -1;
     }
     for (char *p = path + 1;; p++) {
@@ -92,7 +83,7 @@ int io_make_dirs(const char *dir, char *msg)
         if (c == '/' || c == '\0') {
             *p = '\0';
             if (mkdir(path, 0777) != 0 && errno != EEXIST) {
-                snprintf(msg, RESTIR_MSG_LEN, "cannot create folder '%.300s': %s", path, strerror(errno));
+                io_msg(msg, "cannot create folder '%.300s': %s", path, strerror(errno));
                 return -1;
             }
             *p = c;
@@ -102,7 +93,7 @@ int io_make_dirs(const char *dir, char *msg)
     }
     struct stat st;
     if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        snprintf(msg, RESTIR_MSG_LEN, "'%.300s' is not a folder", dir);
+        io_msg(msg, "'%.300s' is not a folder", dir);
         return -1;
     }
     return 0;

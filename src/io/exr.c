@@ -1,31 +1,16 @@
 /* exr.c: OpenEXR reading and writing of interleaved RGB float images through the OpenEXR Core C API.
  * Must never depend on scenes, render code or anything that aborts on bad input. */
-#include "io/image_io.h"
-
-#include "core/check.h"
-
-#include <openexr.h>
+#include "io/exr.h"
 
 #include <errno.h>
-#include <stdarg.h>
+#include <openexr.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Formats a message into msg (RESTIR_MSG_LEN bytes, may be NULL), truncating long paths. */
-#if defined(__GNUC__)
-__attribute__((format(printf, 2, 3)))
-#endif
-static void set_msg(char *msg, const char *fmt, ...)
-{
-    if (!msg)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, RESTIR_MSG_LEN, fmt, ap);
-    va_end(ap);
-}
+#include "io/atomic_file.h"
+#include "io/io_msg.h"
 
 /* Largest image side and pixel count we accept; anything beyond is a broken or hostile header. */
 #define EXR_MAX_SIDE 65536
@@ -59,9 +44,9 @@ static void exr_fail(char *msg, const char *path, const char *what, exr_result_t
     if (!msg)
         return;
     if (exr_last_error[0])
-        set_msg(msg, "%s: %s: %s", path, what, exr_last_error);
+        io_msg(msg, "%s: %s: %s", path, what, exr_last_error);
     else
-        set_msg(msg, "%s: %s: %s", path, what, exr_get_default_error_message(rv));
+        io_msg(msg, "%s: %s: %s", path, what, exr_get_default_error_message(rv));
 }
 
 /* Longest layer name we accept and most layers per file; both far beyond any real use. The name
@@ -90,28 +75,28 @@ static int exr_is_default_layer(const char *name)
 static int exr_check_layers(const char *path, const struct exr_layer *layers, int n, char *msg)
 {
     if (!layers || n < 1 || n > EXR_MAX_LAYERS) {
-        set_msg(msg, "%s: cannot write EXR with %d layers (1 to %d allowed)", path, n,
-                EXR_MAX_LAYERS);
+        io_msg(msg, "%s: cannot write EXR with %d layers (1 to %d allowed)", path, n,
+               EXR_MAX_LAYERS);
         return -1;
     }
     for (int i = 0; i < n; i++) {
         const char *name = layers[i].name;
         const char *shown = exr_is_default_layer(name) ? "(default)" : name;
         if (!layers[i].rgb) {
-            set_msg(msg, "%s: EXR layer '%.200s' has no pixels", path, shown);
+            io_msg(msg, "%s: EXR layer '%.200s' has no pixels", path, shown);
             return -1;
         }
         if (!exr_is_default_layer(name)) {
             size_t len = strlen(name);
             if (len > EXR_LAYER_NAME_MAX) {
-                set_msg(msg, "%s: EXR layer name '%.40s...' is longer than %d bytes", path, name,
-                        EXR_LAYER_NAME_MAX);
+                io_msg(msg, "%s: EXR layer name '%.40s...' is longer than %d bytes", path, name,
+                       EXR_LAYER_NAME_MAX);
                 return -1;
             }
             if (strchr(name, '.')) {
-                set_msg(msg, "%s: EXR layer name '%s' contains '.' (layer names must be plain "
-                             "words such as \"primal\" or \"dx\")",
-                        path, name);
+                io_msg(msg, "%s: EXR layer name '%s' contains '.' (layer names must be plain "
+                            "words such as \"primal\" or \"dx\")",
+                       path, name);
                 return -1;
             }
         }
@@ -121,8 +106,8 @@ static int exr_check_layers(const char *path, const struct exr_layer *layers, in
                                                   : !exr_is_default_layer(other) &&
                                                         strcmp(name, other) == 0;
             if (same) {
-                set_msg(msg, "%s: EXR layer '%.200s' is given twice (layers %d and %d)", path,
-                        shown, j, i);
+                io_msg(msg, "%s: EXR layer '%.200s' is given twice (layers %d and %d)", path,
+                       shown, j, i);
                 return -1;
             }
         }
@@ -164,25 +149,25 @@ static int exr_bind_encode(exr_encode_pipeline_t *enc, const struct exr_layer *l
 static int exr_check_attributes(const char *path, const struct exr_attribute *attrs, int n, char *msg)
 {
     if (n < 0 || n > EXR_MAX_ATTRS || (n > 0 && !attrs)) {
-        set_msg(msg, "%s: cannot write EXR with %d header attributes (0 to %d allowed)", path, n, EXR_MAX_ATTRS);
+        io_msg(msg, "%s: cannot write EXR with %d header attributes (0 to %d allowed)", path, n, EXR_MAX_ATTRS);
         return -1;
     }
     for (int i = 0; i < n; i++) {
         const char *name = attrs[i].name, *value = attrs[i].value;
         if (!name || !name[0] || strlen(name) > EXR_ATTR_NAME_MAX || !strchr(name, '.')) {
-            set_msg(msg, "%s: EXR attribute name '%.60s' must be 1 to %d bytes with a '.' (a namespace such as "
-                         "\"restir.samples\", so it never collides with the standard attributes)",
-                    path, name ? name : "(null)", EXR_ATTR_NAME_MAX);
+            io_msg(msg, "%s: EXR attribute name '%.60s' must be 1 to %d bytes with a '.' (a namespace such as "
+                        "\"restir.samples\", so it never collides with the standard attributes)",
+                   path, name ? name : "(null)", EXR_ATTR_NAME_MAX);
             return -1;
         }
         if (!value || strlen(value) > EXR_ATTR_VALUE_MAX) {
-            set_msg(msg, "%s: EXR attribute '%s' has no value or one longer than %d bytes", path, name,
-                    EXR_ATTR_VALUE_MAX);
+            io_msg(msg, "%s: EXR attribute '%s' has no value or one longer than %d bytes", path, name,
+                   EXR_ATTR_VALUE_MAX);
             return -1;
         }
         for (int j = 0; j < i; j++)
             if (strcmp(attrs[j].name, name) == 0) {
-                set_msg(msg, "%s: EXR attribute '%s' is given twice", path, name);
+                io_msg(msg, "%s: EXR attribute '%s' is given twice", path, name);
                 return -1;
             }
     }
@@ -243,7 +228,7 @@ static int exr_write_body(exr_context_t ctxt, const char *path, const struct exr
             }
         }
         if (rv == EXR_ERR_SUCCESS && exr_bind_encode(&enc, layers, n, w, cinfo.start_y) != 0) {
-            set_msg(msg, "%s: unexpected channel in EXR encoder", path);
+            io_msg(msg, "%s: unexpected channel in EXR encoder", path);
             status = -1;
             break;
         }
@@ -271,24 +256,20 @@ int exr_write_layers_attrs(const char *path, const struct exr_layer *layers, int
                            const struct exr_attribute *attrs, int n_attrs, int w, int h, char *msg)
 {
     if (w <= 0 || h <= 0 || w > EXR_MAX_SIDE || h > EXR_MAX_SIDE) {
-        set_msg(msg, "%s: cannot write EXR of invalid size %dx%d", path, w, h);
+        io_msg(msg, "%s: cannot write EXR of invalid size %dx%d", path, w, h);
         return -1;
     }
     if (exr_check_layers(path, layers, n, msg) != 0 || exr_check_attributes(path, attrs, n_attrs, msg) != 0)
         return -1;
     char tmp[EXR_PATH_MAX + 32];
     if (strlen(path) >= EXR_PATH_MAX) {
-        set_msg(msg, "%.200s...: output path is too long", path);
+        io_msg(msg, "%.200s...: output path is too long", path);
         return -1;
     }
-    io_temp_path(path, tmp, sizeof tmp);
-
     /* Open the temporary file ourselves first so a bad directory gets a plain errno message. */
-    FILE *probe = fopen(tmp, "wb");
-    if (!probe) {
-        set_msg(msg, "%s: cannot create temporary file %.200s: %s", path, tmp, strerror(errno));
+    FILE *probe = io_open_temp(path, tmp, sizeof tmp, "wb", msg);
+    if (!probe)
         return -1;
-    }
     fclose(probe);
 
     exr_last_error[0] = '\0';
@@ -318,7 +299,7 @@ int exr_write_layers_attrs(const char *path, const struct exr_layer *layers, int
 int exr_write_rgb(const char *path, const float *rgb, int w, int h, char *msg)
 {
     if (!rgb) {
-        set_msg(msg, "%s: cannot write EXR of invalid size %dx%d (no pixels)", path, w, h);
+        io_msg(msg, "%s: cannot write EXR of invalid size %dx%d (no pixels)", path, w, h);
         return -1;
     }
     struct exr_layer layer = {NULL, rgb};
@@ -330,7 +311,7 @@ static int exr_probe_file(const char *path, char *msg)
 {
     FILE *f = fopen(path, "rb");
     if (!f) {
-        set_msg(msg, "%s: cannot open: %s", path, strerror(errno));
+        io_msg(msg, "%s: cannot open: %s", path, strerror(errno));
         return -1;
     }
     unsigned char magic[4];
@@ -338,7 +319,7 @@ static int exr_probe_file(const char *path, char *msg)
     fclose(f);
     if (got != sizeof magic || magic[0] != 0x76 || magic[1] != 0x2f || magic[2] != 0x31 ||
         magic[3] != 0x01) {
-        set_msg(msg, "%s: not an OpenEXR file (bad magic number)", path);
+        io_msg(msg, "%s: not an OpenEXR file (bad magic number)", path);
         return -1;
     }
     return 0;
@@ -423,10 +404,10 @@ static int exr_read_body(exr_context_t ctxt, const char *path, const char *layer
         return -1;
     }
     if (storage != EXR_STORAGE_SCANLINE) {
-        set_msg(msg, "%s: unsupported EXR layout (%s); only scanline images can be read", path,
-                storage == EXR_STORAGE_TILED           ? "tiled"
-                : storage == EXR_STORAGE_DEEP_SCANLINE ? "deep scanline"
-                                                       : "deep tiled");
+        io_msg(msg, "%s: unsupported EXR layout (%s); only scanline images can be read", path,
+               storage == EXR_STORAGE_TILED           ? "tiled"
+               : storage == EXR_STORAGE_DEEP_SCANLINE ? "deep scanline"
+                                                      : "deep tiled");
         return -1;
     }
 
@@ -438,8 +419,8 @@ static int exr_read_body(exr_context_t ctxt, const char *path, const char *layer
     }
     int64_t w = (int64_t)dw.max.x - dw.min.x + 1, h = (int64_t)dw.max.y - dw.min.y + 1;
     if (w <= 0 || h <= 0 || w > EXR_MAX_SIDE || h > EXR_MAX_SIDE || w * h > EXR_MAX_PIXELS) {
-        set_msg(msg, "%s: unsupported EXR image size %lldx%lld", path,
-                 (long long)w, (long long)h);
+        io_msg(msg, "%s: unsupported EXR image size %lldx%lld", path,
+                (long long)w, (long long)h);
         return -1;
     }
 
@@ -457,24 +438,24 @@ static int exr_read_body(exr_context_t ctxt, const char *path, const char *layer
         int i = exr_find_channel(chl, names[c]);
         if (i < 0) {
             if (exr_is_default_layer(layer)) {
-                set_msg(msg, "%s: EXR has no '%s' channel (R, G and B are required)", path,
-                        names[c]);
+                io_msg(msg, "%s: EXR has no '%s' channel (R, G and B are required)", path,
+                       names[c]);
             } else {
                 char have[160];
                 exr_list_layers(chl, have, sizeof have);
-                set_msg(msg, "%s: EXR has no layer '%.200s' (channel '%s' is missing; layers "
-                             "in the file: %s)",
-                        path, layer, names[c], have[0] ? have : "none");
+                io_msg(msg, "%s: EXR has no layer '%.200s' (channel '%s' is missing; layers "
+                            "in the file: %s)",
+                       path, layer, names[c], have[0] ? have : "none");
             }
             return -1;
         }
         const exr_attr_chlist_entry_t *e = &chl->entries[i];
         if (e->pixel_type != EXR_PIXEL_HALF && e->pixel_type != EXR_PIXEL_FLOAT) {
-            set_msg(msg, "%s: EXR channel '%s' is not half or float", path, names[c]);
+            io_msg(msg, "%s: EXR channel '%s' is not half or float", path, names[c]);
             return -1;
         }
         if (e->x_sampling != 1 || e->y_sampling != 1) {
-            set_msg(msg, "%s: EXR channel '%s' is subsampled (unsupported)", path, names[c]);
+            io_msg(msg, "%s: EXR channel '%s' is subsampled (unsupported)", path, names[c]);
             return -1;
         }
     }
@@ -488,8 +469,8 @@ static int exr_read_body(exr_context_t ctxt, const char *path, const char *layer
 
     float *out = calloc((size_t)(w * h * 3), sizeof(float));
     if (!out) {
-        set_msg(msg, "%s: out of memory for %lldx%lld image", path, (long long)w,
-                 (long long)h);
+        io_msg(msg, "%s: out of memory for %lldx%lld image", path, (long long)w,
+                (long long)h);
         return -1;
     }
 
@@ -511,8 +492,8 @@ static int exr_read_body(exr_context_t ctxt, const char *path, const char *layer
         if (rv == EXR_ERR_SUCCESS) {
             int64_t row = (int64_t)cinfo.start_y - dw.min.y;
             if (row < 0 || row + cinfo.height > h || cinfo.width != w) {
-                set_msg(msg, "%s: EXR chunk at line %lld is outside the image",
-                         path, (long long)y);
+                io_msg(msg, "%s: EXR chunk at line %lld is outside the image",
+                        path, (long long)y);
                 status = -1;
                 break;
             }
@@ -565,8 +546,8 @@ int exr_read_layer(const char *path, const char *layer, float **rgb, int *w, int
     *rgb = NULL;
     *w = *h = 0;
     if (layer && strlen(layer) > EXR_LAYER_NAME_MAX) {
-        set_msg(msg, "%s: EXR layer name '%.40s...' is longer than %d bytes", path, layer,
-                EXR_LAYER_NAME_MAX);
+        io_msg(msg, "%s: EXR layer name '%.40s...' is longer than %d bytes", path, layer,
+               EXR_LAYER_NAME_MAX);
         return -1;
     }
     exr_context_t ctxt = NULL;
@@ -596,14 +577,14 @@ int exr_read_attribute(const char *path, const char *name, char *value, size_t l
     if (rv == EXR_ERR_NO_ATTR_BY_NAME) {
         status = 1;
     } else if (rv == EXR_ERR_ATTR_TYPE_MISMATCH) {
-        set_msg(msg, "%s: EXR attribute '%.200s' is not text", path, name);
+        io_msg(msg, "%s: EXR attribute '%.200s' is not text", path, name);
         status = -1;
     } else if (rv != EXR_ERR_SUCCESS || n < 0 || !text) {
         exr_fail(msg, path, "cannot read EXR attribute", rv);
         status = -1;
     } else if ((size_t)n >= len) {
-        set_msg(msg, "%s: EXR attribute '%.200s' is longer (%d bytes) than the %zu allowed", path, name, (int)n,
-                len - 1);
+        io_msg(msg, "%s: EXR attribute '%.200s' is longer (%d bytes) than the %zu allowed", path, name, (int)n,
+               len - 1);
         status = -1;
     } else {
         memcpy(value, text, (size_t)n);

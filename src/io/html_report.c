@@ -1,17 +1,17 @@
-/* html_report.c: the pieces of a self-contained report page (html_report.h). The viewer's script
- * is inline: every image of a viewer shares one zoom and pan (wheel about the cursor, drag), and
- * the A/B view shows one image at a time, the space bar flipping between the two selected.
+/* html_report.c: the pieces of a self-contained report page (html_report.h), its style and script inline.
  * Must never depend on render code. */
 #include "io/html_report.h"
 
 #include <errno.h>
 #include <stdarg.h>
+#include <stdio.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
 
-#include "core/check.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/io_msg.h"
+#include "io/png.h"
 
 static const char *const page_style =
     "body{font-family:sans-serif;margin:1.5em;background:#fafafa;color:#222}"
@@ -23,7 +23,9 @@ static const char *const page_style =
     ".bar{display:inline-block;width:260px;height:14px;vertical-align:middle;border:1px solid #999}"
     ".crops img{image-rendering:pixelated}code{background:#eee;padding:1px 3px}";
 
-/* One script for every viewer on the page: a viewer is a .viewer element holding .frame elements;
+/* One script for every viewer on the page: every image of a viewer shares one zoom and pan (wheel
+ * about the cursor, drag), and the A/B view shows one image at a time, the space bar flipping
+ * between the two selected. A viewer is a .viewer element holding .frame elements;
  * its A/B part is an element with data-ab. Once the page has loaded, the body records how many of
  * its images and SVG plots there are, how many images failed to load and how many script errors
  * occurred (data-images, data-broken, data-errors), so a headless browser can check the page. */
@@ -59,7 +61,7 @@ int html_begin(struct html_page *pg, const char *path, const char *title, char *
     io_temp_path(path, pg->tmp, sizeof pg->tmp);
     pg->f = fopen(pg->tmp, "wb");
     if (!pg->f) {
-        snprintf(msg, RESTIR_MSG_LEN, "%.300s: cannot create: %s", path, strerror(errno));
+        io_msg(msg, "%.300s: cannot create: %s", path, strerror(errno));
         return -1;
     }
     fputs("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>", pg->f);
@@ -202,9 +204,16 @@ int html_end(struct html_page *pg, char *msg)
         failed = 1;
     pg->f = NULL;
     if (failed) {
-        snprintf(msg, RESTIR_MSG_LEN, "%.300s: cannot write: %s", pg->path, strerror(errno));
+        io_msg(msg, "%.300s: cannot write: %s", pg->path, strerror(errno));
         remove(pg->tmp);
         return -1;
     }
     return io_commit(pg->tmp, pg->path, msg);
+}
+
+void html_abort(struct html_page *pg)
+{
+    fclose(pg->f);
+    pg->f = NULL;
+    remove(pg->tmp);
 }

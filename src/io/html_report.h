@@ -1,11 +1,12 @@
-/* html_report.h: one self-contained HTML page (inline style and script, no network) beside the
- * images it shows: escaped text, tables, an image viewer with synchronized zoom and pan and an A/B
- * flip, heat-map colour bars. Written to a temporary name and renamed when complete. */
+/* html_report.h: one self-contained HTML page (inline style and script, no network) beside the images it shows.
+ * Must never depend on render code. */
 #ifndef RESTIR_IO_HTML_REPORT_H
 #define RESTIR_IO_HTML_REPORT_H
 
 #include <stdio.h>
 
+/* A page: escaped text, tables, an image viewer with synchronized zoom and pan and an A/B flip,
+ * heat-map colour bars. Written to a temporary name and renamed when complete. */
 struct html_page {
     FILE *f;
     char path[4096];
@@ -36,5 +37,7 @@ void html_viewer(struct html_page *pg, int n, const char *const *labels, const c
 void html_colorbar(struct html_page *pg, float vmax, const char *what);
 /* Writes the script, closes the page and renames it into place. Returns 0, or -1 with msg. */
 int html_end(struct html_page *pg, char *msg);
+/* Gives the page up: closes and removes its temporary file; path is left untouched. */
+void html_abort(struct html_page *pg);
 
 #endif

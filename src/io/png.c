@@ -1,34 +1,18 @@
-/* png.c: 8-bit PNG output through libpng: tone-mapped sRGB (exposure, clamp, sRGB transfer) and
- * false colour for signed images (diverging map of luminance).
+/* png.c: 8-bit PNG output through libpng (png.h): tone-mapped sRGB and false colour for signed images.
  * Must never depend on scenes, render code or anything that aborts on bad input. */
-#include "io/image_io.h"
-
-#include "core/check.h"
-
-#include <png.h>
+#include "io/png.h"
 
 #include <errno.h>
 #include <float.h>
-#include <stdarg.h>
 #include <math.h>
+#include <png.h>
 #include <setjmp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Formats a message into msg (RESTIR_MSG_LEN bytes, may be NULL), truncating long paths. */
-#if defined(__GNUC__)
-__attribute__((format(printf, 2, 3)))
-#endif
-static void set_msg(char *msg, const char *fmt, ...)
-{
-    if (!msg)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, RESTIR_MSG_LEN, fmt, ap);
-    va_end(ap);
-}
+#include "io/atomic_file.h"
+#include "io/io_msg.h"
 
 #define PNG_PATH_MAX 4096
 
@@ -110,10 +94,8 @@ static int png_write_stream(FILE *f, const unsigned char *pixels, int w, int h, 
 static int png_write_pixels(const char *path, unsigned char *pixels, int w, int h, char *msg)
 {
     char tmp[PNG_PATH_MAX + 32];
-    io_temp_path(path, tmp, sizeof tmp);
-    FILE *f = fopen(tmp, "wb");
+    FILE *f = io_open_temp(path, tmp, sizeof tmp, "wb", msg);
     if (!f) {
-        set_msg(msg, "%s: cannot create temporary file %.200s: %s", path, tmp, strerror(errno));
         free(pixels);
         return -1;
     }
@@ -124,10 +106,10 @@ static int png_write_pixels(const char *path, unsigned char *pixels, int w, int 
     int close_failed = fclose(f) != 0;
     if (status != 0 || close_failed) {
         if (status != 0)
-            set_msg(msg, "%s: PNG write failed: %s", path, err.text);
+            io_msg(msg, "%s: PNG write failed: %s", path, err.text);
         else
-            set_msg(msg, "%s: cannot finish writing %.200s: %s", path, tmp,
-                     strerror(errno));
+            io_msg(msg, "%s: cannot finish writing %.200s: %s", path, tmp,
+                    strerror(errno));
         remove(tmp);
         return -1;
     }
@@ -138,11 +120,11 @@ static int png_write_pixels(const char *path, unsigned char *pixels, int w, int 
 static int png_check_args(const char *path, const float *rgb, int w, int h, char *msg)
 {
     if (!rgb || w <= 0 || h <= 0 || w > 65536 || h > 65536) {
-        set_msg(msg, "%s: cannot write PNG of invalid size %dx%d", path, w, h);
+        io_msg(msg, "%s: cannot write PNG of invalid size %dx%d", path, w, h);
         return -1;
     }
     if (strlen(path) >= PNG_PATH_MAX) {
-        set_msg(msg, "%.200s...: output path is too long", path);
+        io_msg(msg, "%.200s...: output path is too long", path);
         return -1;
     }
     return 0;
@@ -155,7 +137,7 @@ int png_write_srgb(const char *path, const float *rgb, int w, int h, float expos
     size_t n = (size_t)w * (size_t)h * 3;
     unsigned char *pixels = malloc(n);
     if (!pixels) {
-        set_msg(msg, "%s: out of memory for %dx%d PNG", path, w, h);
+        io_msg(msg, "%s: out of memory for %dx%d PNG", path, w, h);
         return -1;
     }
     encode_srgb8(rgb, n, exposure, pixels);
@@ -165,13 +147,13 @@ int png_write_srgb(const char *path, const float *rgb, int w, int h, float expos
 int png_write_rgb8(const char *path, const unsigned char *rgb8, int w, int h, char *msg)
 {
     if (!path || !rgb8 || w <= 0 || h <= 0 || w > 65536 || h > 65536) {
-        set_msg(msg, "%s: bad PNG arguments", path ? path : "(null)");
+        io_msg(msg, "%s: bad PNG arguments", path ? path : "(null)");
         return -1;
     }
     size_t n = 3 * (size_t)w * (size_t)h;
     unsigned char *pixels = malloc(n);
     if (!pixels) {
-        set_msg(msg, "%s: out of memory", path);
+        io_msg(msg, "%s: out of memory", path);
         return -1;
     }
     memcpy(pixels, rgb8, n);
@@ -250,13 +232,13 @@ int png_write_signed(const char *path, const float *rgb, int w, int h, float sca
     size_t npix = (size_t)w * (size_t)h;
     if (!(scale > 0.0f) || !isfinite(scale)) {
         if (png_signed_auto_scale(rgb, npix, &scale) != 0) {
-            set_msg(msg, "%s: out of memory for %dx%d PNG", path, w, h);
+            io_msg(msg, "%s: out of memory for %dx%d PNG", path, w, h);
             return -1;
         }
     }
     unsigned char *pixels = malloc(npix * 3);
     if (!pixels) {
-        set_msg(msg, "%s: out of memory for %dx%d PNG", path, w, h);
+        io_msg(msg, "%s: out of memory for %dx%d PNG", path, w, h);
         return -1;
     }
     for (size_t i = 0; i < npix; i++)
@@ -288,7 +270,7 @@ int png_write_heatmap(const char *path, const float *values, int w, int h, float
     size_t n = (size_t)w * (size_t)h;
     unsigned char *pixels = malloc(3 * n);
     if (!pixels) {
-        set_msg(msg, "%s: out of memory", path);
+        io_msg(msg, "%s: out of memory", path);
         return -1;
     }
     for (size_t i = 0; i < n; i++)

@@ -3,9 +3,8 @@
 #ifndef RESTIR_IO_REPORT_H
 #define RESTIR_IO_REPORT_H
 
+#include <cjson/cJSON.h>
 #include <stdio.h>
-
-#include <cJSON.h>
 
 #define REPORT_PATH_MAX 4096
 

@@ -1,4 +1,5 @@
-/* svg_plot.c: x-y line plots as SVG (see svg_plot.h). */
+/* svg_plot.c: x-y line plots as SVG (svg_plot.h), through a temporary file and a rename.
+ * Must never depend on render code. */
 #include "io/svg_plot.h"
 
 #include <errno.h>
@@ -6,8 +7,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/check.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/io_msg.h"
 
 enum { PLOT_W = 640, PLOT_H = 440, MARGIN_L = 80, MARGIN_R = 150, MARGIN_T = 40, MARGIN_B = 60 };
 
@@ -37,7 +38,7 @@ int svg_write_xy_plot(const char *path, const char *title, const char *xlabel, c
     io_temp_path(path, tmp, sizeof(tmp));
     FILE *f = fopen(tmp, "w");
     if (!f) {
-        snprintf(msg, RESTIR_MSG_LEN, "%s: cannot write: %s", path, strerror(errno));
+        io_msg(msg, "%s: cannot write: %s", path, strerror(errno));
         return -1;
     }
     const double left = MARGIN_L, right = PLOT_W - MARGIN_R, top = MARGIN_T, bottom = PLOT_H - MARGIN_B;
@@ -79,7 +80,7 @@ int svg_write_xy_plot(const char *path, const char *title, const char *xlabel, c
     fprintf(f, "</svg>\n");
     if (ferror(f) | fclose(f)) {
         remove(tmp);
-        snprintf(msg, RESTIR_MSG_LEN, "%s: write failed", path);
+        io_msg(msg, "%s: write failed", path);
         return -1;
     }
     return io_commit(tmp, path, msg);

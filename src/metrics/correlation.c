@@ -1,12 +1,12 @@
 /* correlation.c: correlation metrics of independent runs (000 Appendix A, Eq. 16-17) and the hard
  * pixel classification of 000 Sec. 7, as declared in restir/metrics.h. Serial code (librestir
  * does not link OpenMP). Must never depend on src/ headers, a ray tracer, files or the renderer. */
-#include "restir/metrics.h"
-#include "restir/neighbors.h"
-
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "restir/metrics.h"
+#include "restir/neighbors.h"
 
 static int corr_selected(const unsigned char *mask, size_t i)
 {

@@ -1,9 +1,9 @@
 /* metrics.c: the project's image error metrics (relMSE, MAPE, SMAPE, luminance RMSE) as declared
  * in restir/metrics.h. Must never depend on src/ headers, a ray tracer, files or the renderer. */
-#include "restir/metrics.h"
-
 #include <math.h>
 #include <stddef.h>
+
+#include "restir/metrics.h"
 
 static double metrics_luminance(const float *p)
 {

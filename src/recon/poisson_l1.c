@@ -1,12 +1,11 @@
 /* poisson_l1.c: L1 screened Poisson reconstruction by IRLS (restir/poisson.h), after the public
  * G-PT solver's "L1D" preset (see the header for where it differs). */
-#include "restir/poisson.h"
-
-#include "poisson_ops.h"
-
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
+
+#include "recon/poisson_ops.h"
+#include "restir/poisson.h"
 
 static inline double rp_len3(double a, double b, double c)
 {

@@ -1,13 +1,12 @@
 /* poisson_l2.c: L2 screened Poisson reconstruction (restir/poisson.h): the DCT direct solve and
  * the CG path. */
-#include "restir/poisson.h"
-
-#include "poisson_ops.h"
-
 #include <fftw3.h>
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
+
+#include "recon/poisson_ops.h"
+#include "restir/poisson.h"
 
 /* The Neumann grid Laplacian is Lx (+) Ly with Lx the path-graph Laplacian of w nodes, whose
  * eigenvectors cos(pi k (i + 1/2) / w) are the DCT-II basis, eigenvalue 2 - 2 cos(pi k / w).

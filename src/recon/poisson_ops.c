@@ -2,7 +2,7 @@
  * right-hand side, residuals and Jacobi-preconditioned CG (recon/poisson_ops.h). The three
  * channels are solved in lockstep (one pass over memory per step, per-channel CG scalars); dot
  * products are summed in double per image row, then over rows in order (deterministic). */
-#include "poisson_ops.h"
+#include "recon/poisson_ops.h"
 
 #include <stdint.h>
 #include <stdlib.h>

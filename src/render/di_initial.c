@@ -4,12 +4,12 @@
  * for SIMD. Must never allocate per pixel. */
 #include "core/check.h"
 #include "core/rng.h"
-#include "di_visibility.h"
+#include "render/di_visibility.h"
+#include "render/light_pool.h"
+#include "render/restir_di.h"
+#include "render/tiles.h"
 #include "restir/reservoir.h"
-#include "restir_di.h"
-#include "light_pool.h"
 #include "shading/lights.h"
-#include "tiles.h"
 
 /* Light candidates are evaluated in batches of at most DI_BATCH. */
 #define DI_BATCH 64
@@ -179,18 +179,15 @@ long long di_initial_pass(const struct scene *s, const struct light_pool *lp, co
     const int ntiles = tile_count(g->width, g->height);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(g->width, g->height, t);
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                int i = y * g->width + x;
-                const struct shading_point *sp = gbuffer_shading(g, i);
-                if (!sp->valid) {
-                    di_reservoir_clear(&out[i], 0.0f);
-                    continue;
-                }
-                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_INITIAL);
-                initial_pixel(s, lp, p, sp, &rng, &out[i], &rays);
+        for (struct tile_pixel px = tile_first_pixel(g->width, g->height, t); px.i >= 0; tile_advance(&px)) {
+            const int i = px.i;
+            const struct shading_point *sp = gbuffer_shading(g, i);
+            if (!sp->valid) {
+                di_reservoir_clear(&out[i], 0.0f);
+                continue;
             }
+            pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_INITIAL);
+            initial_pixel(s, lp, p, sp, &rng, &out[i], &rays);
         }
     }
     return rays;

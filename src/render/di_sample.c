@@ -1,6 +1,6 @@
 /* di_sample.c: evaluation of the ReSTIR DI integrand without visibility, shared by initial
  * sampling, temporal and spatial reuse and shading. Must never trace rays. */
-#include "di_sample.h"
+#include "render/di_sample.h"
 
 #include <stddef.h>
 

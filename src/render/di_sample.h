@@ -4,7 +4,7 @@
 #ifndef RESTIR_RENDER_DI_SAMPLE_H
 #define RESTIR_RENDER_DI_SAMPLE_H
 
-#include "gbuffer.h"
+#include "render/gbuffer.h"
 
 struct di_sample {
     int tri;          /* emissive triangle, -1 for "no sample" */

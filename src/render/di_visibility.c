@@ -1,5 +1,5 @@
 /* di_visibility.c: shadow rays for ReSTIR DI's visibility reuse and its visibility-aware targets. */
-#include "di_visibility.h"
+#include "render/di_visibility.h"
 
 int di_sample_visible(const struct scene *s, const struct shading_point *sp, const struct di_sample *y)
 {

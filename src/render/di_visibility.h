@@ -7,8 +7,8 @@
 #ifndef RESTIR_RENDER_DI_VISIBILITY_H
 #define RESTIR_RENDER_DI_VISIBILITY_H
 
-#include "di_sample.h"
-#include "params.h"
+#include "render/di_sample.h"
+#include "render/params.h"
 
 /* 1 when every reservoir target includes visibility at its own pixel: reuse then traces the
  * cross-domain shadow rays, and shading needs none. Without reuse (ris-di) that holds for either

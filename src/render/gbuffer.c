@@ -1,14 +1,14 @@
 /* gbuffer.c: allocation of the G-buffer and the primary-visibility pass that fills it, with
  * sub-pixel jitter and backward motion vectors. Must never depend on reservoirs or methods. */
-#include "gbuffer.h"
+#include "render/gbuffer.h"
 
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/check.h"
 #include "core/rng.h"
+#include "render/tiles.h"
 #include "shading/lights.h"
-#include "tiles.h"
 
 void gbuffer_init(struct gbuffer *g, int width, int height, int with_shading)
 {
@@ -71,50 +71,47 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
     const int ntiles = tile_count(g->width, g->height);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(g->width, g->height, t);
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                int i = y * g->width + x;
-                pcg32 rng = rng_for(seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_GBUFFER);
-                float jx = jitter ? pcg32_float(&rng) : 0.5f, jy = jitter ? pcg32_float(&rng) : 0.5f;
-                float px = (float)x + jx, py = (float)y + jy;
-                vec3 dir = camera_view_ray(view, px, py);
-                struct surface_hit h;
-                rays++;
-                g->sub_pixel[i] = v3(px, py, 0.0f);
-                g->motion[2 * i] = g->motion[2 * i + 1] = prev_view ? GBUFFER_NO_MOTION : 0.0f;
-                float *key = &g->select_key[(size_t)i * GBUFFER_KEY];
-                if (!scene_intersect(s, view->position, dir, 0.0f, INFINITY, &h)) {
-                    memset(key, 0, sizeof(float) * GBUFFER_KEY);
-                    g->valid[i] = 0;
-                    g->emission[i] = v3s(0.0f);
-                    g->material[i] = g->object[i] = -1;
-                    g->depth[i] = INFINITY;
-                    if (g->shading)
-                        g->shading[i].valid = 0;
-                    continue;
-                }
-                struct material textured;
-                const struct material *m = scene_material_at(s, h.tri, h.b1, h.b2, &textured);
-                g->valid[i] = 1;
-                g->position[i] = h.p;
-                g->normal[i] = h.ns;
-                g->geo_normal[i] = h.ng;
-                g->depth[i] = h.t;
-                const float packed[GBUFFER_KEY] = {h.p.x, h.p.y, h.p.z, h.ns.x, h.ns.y, h.ns.z, h.t, 1.0f};
-                memcpy(key, packed, sizeof(packed));
-                g->albedo[i] = m->base_color;
-                g->roughness[i] = m->roughness;
-                g->material[i] = h.material;
-                g->object[i] = h.object;
-                g->emission[i] = s->tri_emitter[h.tri] >= 0 ? lights_radiance(s, h.tri, h.b1, h.b2, v3_neg(dir)) : v3s(0.0f);
+        for (struct tile_pixel px = tile_first_pixel(g->width, g->height, t); px.i >= 0; tile_advance(&px)) {
+            const int x = px.x, y = px.y, i = px.i;
+            pcg32 rng = rng_for(seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_GBUFFER);
+            float jx = jitter ? pcg32_float(&rng) : 0.5f, jy = jitter ? pcg32_float(&rng) : 0.5f;
+            float px = (float)x + jx, py = (float)y + jy;
+            vec3 dir = camera_view_ray(view, px, py);
+            struct surface_hit h;
+            rays++;
+            g->sub_pixel[i] = v3(px, py, 0.0f);
+            g->motion[2 * i] = g->motion[2 * i + 1] = prev_view ? GBUFFER_NO_MOTION : 0.0f;
+            float *key = &g->select_key[(size_t)i * GBUFFER_KEY];
+            if (!scene_intersect(s, view->position, dir, 0.0f, INFINITY, &h)) {
+                memset(key, 0, sizeof(float) * GBUFFER_KEY);
+                g->valid[i] = 0;
+                g->emission[i] = v3s(0.0f);
+                g->material[i] = g->object[i] = -1;
+                g->depth[i] = INFINITY;
                 if (g->shading)
-                    shading_point_init(&g->shading[i], m, h.p, h.ns, h.ng, view->position);
-                float qx, qy;
-                if (prev_view && camera_view_project(prev_view, h.p, &qx, &qy)) {
-                    g->motion[2 * i] = qx - px;
-                    g->motion[2 * i + 1] = qy - py;
-                }
+                    g->shading[i].valid = 0;
+                continue;
+            }
+            struct material textured;
+            const struct material *m = scene_material_at(s, h.tri, h.b1, h.b2, &textured);
+            g->valid[i] = 1;
+            g->position[i] = h.p;
+            g->normal[i] = h.ns;
+            g->geo_normal[i] = h.ng;
+            g->depth[i] = h.t;
+            const float packed[GBUFFER_KEY] = {h.p.x, h.p.y, h.p.z, h.ns.x, h.ns.y, h.ns.z, h.t, 1.0f};
+            memcpy(key, packed, sizeof(packed));
+            g->albedo[i] = m->base_color;
+            g->roughness[i] = m->roughness;
+            g->material[i] = h.material;
+            g->object[i] = h.object;
+            g->emission[i] = s->tri_emitter[h.tri] >= 0 ? lights_radiance(s, h.tri, h.b1, h.b2, v3_neg(dir)) : v3s(0.0f);
+            if (g->shading)
+                shading_point_init(&g->shading[i], m, h.p, h.ns, h.ng, view->position);
+            float qx, qy;
+            if (prev_view && camera_view_project(prev_view, h.p, &qx, &qy)) {
+                g->motion[2 * i] = qx - px;
+                g->motion[2 * i + 1] = qy - py;
             }
         }
     }

@@ -1,13 +1,13 @@
 /* light_pool.c: the per-frame light-candidate pool of ReSTIR DI's initial RIS. */
-#include "light_pool.h"
+#include "render/light_pool.h"
 
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/check.h"
 #include "core/rng.h"
+#include "render/tiles.h"
 #include "shading/lights.h"
-#include "tiles.h"
 
 /* Entries drawn per random stream; chunks are filled in parallel. */
 #define LIGHT_POOL_CHUNK 1024

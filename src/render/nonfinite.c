@@ -1,5 +1,5 @@
 /* nonfinite.c: discarding and counting non-finite reservoirs and radiance (nonfinite.h). */
-#include "nonfinite.h"
+#include "render/nonfinite.h"
 
 #include <math.h>
 

@@ -7,8 +7,8 @@
 
 #include <stddef.h>
 
-#include "di_sample.h"
-#include "restir_pt.h"
+#include "render/di_sample.h"
+#include "render/restir_pt.h"
 
 /* Each returns how many entries it discarded. */
 long long nonfinite_discard_di(struct di_reservoir *res, size_t n);

@@ -1,6 +1,6 @@
 /* params.c: the table that maps `--set` keys to fields of struct render_params, with parsing,
  * range checks and help text. Must never depend on the ray tracer or render passes. */
-#include "params.h"
+#include "render/params.h"
 
 #include <errno.h>
 #include <math.h>
@@ -9,18 +9,21 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "restir/cells.h"
 #include "restir/spmis.h"
-#include "reuse_cells.h"
 
 /* P_NAMES: an enum stored as int, spelled by the def's names; P_COUNT: an int where "M" means 0
  * (all M pixels of a reuse cell). */
 enum param_type { P_INT, P_COUNT, P_FLOAT, P_BOOL, P_MIS, P_SHIFT, P_NAMES, P_PRESET };
 
+/* One row per setting: everything about it is said here, once. */
 struct param_def {
     const char *key;
     enum param_type type;
     size_t offset;
-    double lo, hi; /* accepted range for numbers */
+    double lo, hi;       /* accepted range for numbers */
+    const char *def;     /* the default, as --set spells it (NULL: a shorthand that sets other keys) */
+    const char *biased;  /* the value that makes the estimator BIASED, as --set spells it (NULL: none) */
     const char *help;
     const char *const *names; /* P_NAMES: the spellings of values 0, 1, ..., NULL-terminated */
 };
@@ -56,194 +59,126 @@ _Static_assert(sizeof(enum di_visibility_mis) == sizeof(int), "enum size");
 
 #define F(field) offsetof(struct render_params, field)
 static const struct param_def params[] = {
-    {"spp", P_INT, F(spp), 1, 1 << 20, "pt: paths per pixel per frame", NULL},
-    {"jitter", P_BOOL, F(jitter), 0, 1, "jitter primary rays over the pixel (integrates the box filter)", NULL},
-    {"pt.max_bounces", P_INT, F(max_bounces), 1, 64,
+    {"spp", P_INT, F(spp), 1, 1 << 20, "1", NULL, "pt: paths per pixel per frame", NULL},
+    {"jitter", P_BOOL, F(jitter), 0, 1, "on", NULL, "jitter primary rays over the pixel (integrates the box filter)", NULL},
+    {"pt.max_bounces", P_INT, F(max_bounces), 1, 64, "8", NULL,
      "pt: maximum scattering events (1 = direct lighting; set for you when comparing DI methods)", NULL},
-    {"pt.rr_bounces", P_INT, F(rr_bounces), 0, 1024, "pt: Russian roulette after this many bounces", NULL},
-    {"di.light_candidates", P_INT, F(light_candidates), 0, 4096, "initial RIS: light-sampled candidates", NULL},
-    {"di.bsdf_candidates", P_INT, F(bsdf_candidates), 0, 64, "initial RIS: BSDF-sampled candidates", NULL},
-    {"di.visibility_reuse", P_BOOL, F(di_visibility_reuse), 0, 1,
+    {"pt.rr_bounces", P_INT, F(rr_bounces), 0, 1024, "3", NULL, "pt: Russian roulette after this many bounces", NULL},
+    {"di.light_candidates", P_INT, F(light_candidates), 0, 4096, "32", NULL, "initial RIS: light-sampled candidates", NULL},
+    {"di.bsdf_candidates", P_INT, F(bsdf_candidates), 0, 64, "1", NULL, "initial RIS: BSDF-sampled candidates", NULL},
+    {"di.visibility_reuse", P_BOOL, F(di_visibility_reuse), 0, 1, "on", NULL,
      "restir-di: trace a shadow ray for the initial sample and drop it when occluded (Bitterli et al. "
      "2020 Alg. 5), so reuse carries visible samples (with di.visibility_mis=rays shading then needs no "
      "shadow ray)", NULL},
-    {"di.visibility_mis", P_NAMES, F(di_visibility_mis), 0, 0,
+    {"di.visibility_mis", P_NAMES, F(di_visibility_mis), 0, 0, "rays", "none",
      "restir-di with di.visibility_reuse: targets compared across domains include visibility, traced per "
      "merge (rays, unbiased), or not (none: BIASED, darkens where neighbors cannot see the light; no rays)",
      visibility_mis_names},
-    {"temporal", P_BOOL, F(temporal), 0, 1, "temporal reuse on/off", NULL},
-    {"spatial", P_BOOL, F(spatial), 0, 1, "spatial reuse on/off", NULL},
-    {"spatial.neighbors", P_INT, F(spatial_neighbors), 0, 5,
+    {"temporal", P_BOOL, F(temporal), 0, 1, "on", NULL, "temporal reuse on/off", NULL},
+    {"spatial", P_BOOL, F(spatial), 0, 1, "on", NULL, "spatial reuse on/off", NULL},
+    {"spatial.neighbors", P_INT, F(spatial_neighbors), 0, 5, "0", NULL,
      "spatial neighbors tried per pixel (0: method default, 1 for restir-di, 3 for restir-pt)", NULL},
-    {"spatial.radius", P_FLOAT, F(spatial_radius), 1, 512, "spatial reuse disk radius in pixels", NULL},
-    {"spatial.select", P_NAMES, F(spatial_select), 0, 0,
+    {"spatial.radius", P_FLOAT, F(spatial_radius), 1, 512, "30", NULL, "spatial reuse disk radius in pixels", NULL},
+    {"spatial.select", P_NAMES, F(spatial_select), 0, 0, "bitterli", NULL,
      "neighbor selection: bitterli (uniform tries, 000 Eq. 7), compat (000 Algorithm 1, Eq. 14 scores), "
      "compat-binary (Algorithm 1 with Eq. 7 as score); all read only the G-buffer (unbiased)",
      select_names},
-    {"spatial.preset", P_PRESET, 0, 0, 0,
+    {"spatial.preset", P_PRESET, 0, 0, 0, NULL, NULL,
      "000 presets: fast (compat, R 30, K 32), balanced (R 50), conservative (R 100)", NULL},
-    {"spatial.candidates", P_INT, F(spatial_candidates), 1, 4096, "compat: candidates K per pixel", NULL},
-    {"spatial.omega", P_FLOAT, F(spatial_omega), 1e-9, 12.57, "compat: solid angle Omega of the position scale (Eq. 15)", NULL},
-    {"spatial.beta", P_FLOAT, F(spatial_beta), 0, 1e3, "compat: normal exponent beta (Eq. 15)", NULL},
-    {"spatial.early_stop", P_BOOL, F(spatial_early_stop), 0, 1,
+    {"spatial.candidates", P_INT, F(spatial_candidates), 1, 4096, "32", NULL, "compat: candidates K per pixel", NULL},
+    {"spatial.omega", P_FLOAT, F(spatial_omega), 1e-9, 12.57, "0.05", NULL, "compat: solid angle Omega of the position scale (Eq. 15)", NULL},
+    {"spatial.beta", P_FLOAT, F(spatial_beta), 0, 1e3, "8", NULL, "compat: normal exponent beta (Eq. 15)", NULL},
+    {"spatial.early_stop", P_BOOL, F(spatial_early_stop), 0, 1, "on", NULL,
      "compat: stop once more than M candidates score above 0.5 (000 Sec. 5)", NULL},
-    {"spatial.normal", P_FLOAT, F(spatial_normal), -1, 1, "Bitterli test (000 Eq. 7): minimum n . n_i", NULL},
-    {"spatial.depth", P_FLOAT, F(spatial_depth), 0, 1e30, "Bitterli test (000 Eq. 7): max |d_i - d| / d", NULL},
-    {"history", P_NAMES, F(history_temporal), 0, 0,
+    {"spatial.normal", P_FLOAT, F(spatial_normal), -1, 1, "0.5", NULL, "Bitterli test (000 Eq. 7): minimum n . n_i", NULL},
+    {"spatial.depth", P_FLOAT, F(spatial_depth), 0, 1e30, "0.1", NULL, "Bitterli test (000 Eq. 7): max |d_i - d| / d", NULL},
+    {"history", P_NAMES, F(history_temporal), 0, 0, "spatial", NULL,
      "what the next frame reuses temporally: the spatial-reuse output (spatial, as Lin et al. 2022) or the "
      "temporal output before spatial reuse (temporal: spatial reuse then cannot feed back; unbiased either way)",
      history_names},
-    {"confidence_cap", P_FLOAT, F(confidence_cap), 1, 1e9, "cap on confidence weights c (M cap)", NULL},
-    {"mis", P_MIS, F(mis), 0, 0,
+    {"confidence_cap", P_FLOAT, F(confidence_cap), 1, 1e9, "20", NULL, "cap on confidence weights c (M cap)", NULL},
+    {"mis", P_MIS, F(mis), 0, 0, "pairwise", "1/M",
      "resampling MIS: pairwise (defensive, unbiased), balance (unbiased), 1/M (BIASED: ignores that "
      "domains cannot all produce every sample)", NULL},
-    {"temporal.normal", P_FLOAT, F(temporal_normal), -1, 1, "history rejected when n . n_prev is below", NULL},
-    {"temporal.plane", P_FLOAT, F(temporal_plane), 0, 1e30,
+    {"temporal.normal", P_FLOAT, F(temporal_normal), -1, 1, "0.8", NULL, "history rejected when n . n_prev is below", NULL},
+    {"temporal.plane", P_FLOAT, F(temporal_plane), 0, 1e30, "0.05", NULL,
      "history rejected when the plane distance / depth is above", NULL},
-    {"temporal.ratio_guard", P_BOOL, F(temporal_ratio_guard), 0, 1,
+    {"temporal.ratio_guard", P_BOOL, F(temporal_ratio_guard), 0, 1, "off", "on",
      "BIASED: reject history whose target ratio leaves [ratio_lo, ratio_hi] (001 Sec. 5)", NULL},
-    {"temporal.ratio_lo", P_FLOAT, F(ratio_lo), 0, 1e30, "target-ratio guard lower bound", NULL},
-    {"temporal.ratio_hi", P_FLOAT, F(ratio_hi), 0, 1e30, "target-ratio guard upper bound", NULL},
-    {"spatial.reuse", P_NAMES, F(spatial_reuse), 0, 0,
+    {"temporal.ratio_lo", P_FLOAT, F(ratio_lo), 0, 1e30, "0.1", NULL, "target-ratio guard lower bound", NULL},
+    {"temporal.ratio_hi", P_FLOAT, F(ratio_hi), 0, 1e30, "10", NULL, "target-ratio guard upper bound", NULL},
+    {"spatial.reuse", P_NAMES, F(spatial_reuse), 0, 0, "standard", NULL,
      "spatial reuse: standard (GRIS over the selected neighbors) or spmis (004 Algorithm 2: stochastic "
      "pairwise MIS over one reuse cell; unbiased)",
      reuse_names},
-    {"spmis.candidates", P_COUNT, F(spmis_candidates), 1, RESTIR_SPMIS_MAX_DRAWS,
+    {"spmis.candidates", P_COUNT, F(spmis_candidates), 1, RESTIR_SPMIS_MAX_DRAWS, "3", NULL,
      "spmis: neighbor draws N (004 Eq. 15-17); M = deterministic pairwise over the whole cell", NULL},
-    {"spmis.canonical_candidates", P_COUNT, F(spmis_canonical_candidates), 1, RESTIR_SPMIS_MAX_DRAWS,
+    {"spmis.canonical_candidates", P_COUNT, F(spmis_canonical_candidates), 1, RESTIR_SPMIS_MAX_DRAWS, "1", NULL,
      "spmis: canonical-weight draws N_c (004 Eq. 18); M = the exact Eq. 11b sum", NULL},
-    {"spmis.tile", P_INT, F(spmis_tile), 1, RESTIR_CELL_MAX_TILE, "spmis: reuse-cell tile edge in pixels (004 Sec. 5)", NULL},
-    {"spmis.normal_bins", P_INT, F(spmis_normal_bins), 1, 64,
+    {"spmis.tile", P_INT, F(spmis_tile), 1, RESTIR_CELL_MAX_TILE, "8", NULL, "spmis: reuse-cell tile edge in pixels (004 Sec. 5)", NULL},
+    {"spmis.normal_bins", P_INT, F(spmis_normal_bins), 1, 64, "4", NULL,
      "spmis: cell key quantizes each normal component into this many buckets", NULL},
-    {"spmis.search_steps", P_INT, F(spmis_search_steps), 0, SPMIS_MAX_SEARCH_STEPS,
+    {"spmis.search_steps", P_INT, F(spmis_search_steps), 0, SPMIS_MAX_SEARCH_STEPS, "12", NULL,
      "spmis: cell-search taps (004 Sec. 5.1; 0 = always the pixel's own cell)", NULL},
-    {"spmis.search_radius", P_FLOAT, F(spmis_search_radius), 0, 4096, "spmis: initial cell-search radius, pixels", NULL},
-    {"spmis.search_growth", P_FLOAT, F(spmis_search_growth), 1, 16, "spmis: cell-search radius factor per tap", NULL},
-    {"spmis.search_normal", P_FLOAT, F(spmis_search_normal), -1, 1,
+    {"spmis.search_radius", P_FLOAT, F(spmis_search_radius), 0, 4096, "30", NULL, "spmis: initial cell-search radius, pixels", NULL},
+    {"spmis.search_growth", P_FLOAT, F(spmis_search_growth), 1, 16, "1.25", NULL, "spmis: cell-search radius factor per tap", NULL},
+    {"spmis.search_normal", P_FLOAT, F(spmis_search_normal), -1, 1, "0.9", NULL,
      "spmis: a search tap is rejected when n . n_tap is below this (or on another object)", NULL},
-    {"spmis.search", P_NAMES, F(spmis_search), 0, 0,
+    {"spmis.search", P_NAMES, F(spmis_search), 0, 0, "always", "sparse",
      "spmis: always (search for every pixel, 004 Sec. 5.1), sparse (BIASED: search only where the own "
      "cell has at most spmis.sparse_count contributing pixels, a count that depends on the samples) or "
      "low-confidence (unbiased: search only where the own cell's mean confidence is below "
      "spmis.search_confidence, e.g. after a disocclusion)",
      search_names},
-    {"spmis.sparse_count", P_INT, F(spmis_sparse_count), 0, 256, "spmis: threshold of the sparse search", NULL},
-    {"spmis.search_confidence", P_FLOAT, F(spmis_search_confidence), 0, 1e9,
+    {"spmis.sparse_count", P_INT, F(spmis_sparse_count), 0, 256, "2", NULL, "spmis: threshold of the sparse search", NULL},
+    {"spmis.search_confidence", P_FLOAT, F(spmis_search_confidence), 0, 1e9, "4", NULL,
      "spmis: threshold of the low-confidence search (mean c of the own cell)", NULL},
-    {"spmis.confidence_adjust", P_BOOL, F(spmis_confidence_adjust), 0, 1,
+    {"spmis.confidence_adjust", P_BOOL, F(spmis_confidence_adjust), 0, 1, "on", NULL,
      "spmis: scale non-canonical confidences by N / M (004 Sec. 4.3)", NULL},
-    {"spmis.canonical_pick", P_NAMES, F(spmis_canonical_pick), 0, 0,
+    {"spmis.canonical_pick", P_NAMES, F(spmis_canonical_pick), 0, 0, "uniform", NULL,
      "spmis: canonical draws P_c uniform (004) or proportional to confidence", pick_names},
-    {"pt.candidates", P_INT, F(pt_candidates), 1, 64, "restir-pt: initial paths resampled per pixel", NULL},
-    {"shift", P_SHIFT, F(shift), 0, 0,
+    {"pt.candidates", P_INT, F(pt_candidates), 1, 64, "1", NULL, "restir-pt: initial paths resampled per pixel", NULL},
+    {"shift", P_SHIFT, F(shift), 0, 0, "hybrid", NULL,
      "restir-pt shift mapping: hybrid (replay until two rough, distant vertices, then reconnect), "
      "reconnection (at the secondary vertex), replay (whole prefix; reconnects only at the light)", NULL},
-    {"shift.roughness", P_FLOAT, F(shift_roughness), 0, 1, "hybrid shift: GGX alpha at or above which a vertex is rough", NULL},
-    {"shift.distance", P_FLOAT, F(shift_distance), 0, 1,
+    {"shift.roughness", P_FLOAT, F(shift_roughness), 0, 1, "0.2", NULL, "hybrid shift: GGX alpha at or above which a vertex is rough", NULL},
+    {"shift.distance", P_FLOAT, F(shift_distance), 0, 1, "0.01", NULL,
      "hybrid shift: minimum reconnection length as a fraction of the scene diagonal", NULL},
-    {"grad.spatial", P_NAMES, F(grad_spatial), 0, 0,
+    {"grad.spatial", P_NAMES, F(grad_spatial), 0, 0, "adaptive", NULL,
      "grestir-pt spatial reuse of paired-pixel samples: off, dense (a similar random pair for every pair) "
      "or adaptive (edge pairs only, 002 Sec. 4.3.2); the search reads only the G-buffer (unbiased)",
      grad_spatial_names},
-    {"grad.temporal", P_BOOL, F(grad_temporal), 0, 1,
+    {"grad.temporal", P_BOOL, F(grad_temporal), 0, 1, "on", NULL,
      "grestir-pt: temporal reuse of paired-pixel reservoirs (needs temporal=on; off isolates the gradient "
      "pass's history from the primal's)", NULL},
-    {"grad.base", P_NAMES, F(grad_base), 0, 0,
+    {"grad.base", P_NAMES, F(grad_base), 0, 0, "independent", NULL,
      "grestir-pt: the pairs' initial paths: independent (their own initial pass, as the public 002 code) or "
      "shared (the primal's initial paths: no extra paths, but primal and gradient errors correlate, which the "
      "solve does not smooth away); unbiased either way",
      base_names},
-    {"grad.positivize", P_BOOL, F(grad_positivize), 0, 1,
+    {"grad.positivize", P_BOOL, F(grad_positivize), 0, 1, "on", NULL,
      "grestir-pt: separate reservoirs for the positive and negative gradient parts (002 Eq. 23-26)", NULL},
-    {"grad.cross_sign", P_BOOL, F(grad_cross_sign), 0, 1,
+    {"grad.cross_sign", P_BOOL, F(grad_cross_sign), 0, 1, "off", NULL,
      "grestir-pt: r+ and r- also resample the neighbor's reservoir of the other sign (002 Sec. 4.4 ablation)",
      NULL},
-    {"grad.search", P_INT, F(grad_search), 1, 4096, "grestir-pt: random neighbor pairs tried per pair (N)", NULL},
-    {"grad.radius", P_FLOAT, F(grad_radius), 1, 512, "grestir-pt: pair-search radius in pixels", NULL},
-    {"grad.edge_albedo", P_FLOAT, F(grad_edge_albedo), 0, 1e30, "edge pair: max albedo difference above", NULL},
-    {"grad.edge_normal", P_FLOAT, F(grad_edge_normal), -1, 1,
+    {"grad.search", P_INT, F(grad_search), 1, 4096, "256", NULL, "grestir-pt: random neighbor pairs tried per pair (N)", NULL},
+    {"grad.radius", P_FLOAT, F(grad_radius), 1, 512, "4", NULL, "grestir-pt: pair-search radius in pixels", NULL},
+    {"grad.edge_albedo", P_FLOAT, F(grad_edge_albedo), 0, 1e30, "0.1", NULL, "edge pair: max albedo difference above", NULL},
+    {"grad.edge_normal", P_FLOAT, F(grad_edge_normal), -1, 1, "0.9", NULL,
      "edge pair: n_a . n_b below this (the paper's text says '>', which cannot mark an edge)", NULL},
-    {"grad.edge_depth", P_FLOAT, F(grad_edge_depth), 0, 1e30, "edge pair: |d_a - d_b| / d_a above", NULL},
-    {"recon", P_NAMES, F(recon), 0, 0,
+    {"grad.edge_depth", P_FLOAT, F(grad_edge_depth), 0, 1e30, "0.1", NULL, "edge pair: |d_a - d_b| / d_a above", NULL},
+    {"recon", P_NAMES, F(recon), 0, 0, "l2", "l1",
      "gradient methods: which screened Poisson solve fills the image: l2 (unbiased: linear in unbiased "
      "inputs), l1 (BIASED: iteratively reweighted, robust to outliers) or both (image = L2, L1 as a layer)",
      recon_names},
-    {"recon.alpha", P_FLOAT, F(recon_alpha), 1e-6, 1e6, "screened Poisson: weight alpha of the primal term", NULL},
-    {"recon.solver", P_NAMES, F(recon_solver), 0, 0,
+    {"recon.alpha", P_FLOAT, F(recon_alpha), 1e-6, 1e6, "0.2", NULL, "screened Poisson: weight alpha of the primal term", NULL},
+    {"recon.solver", P_NAMES, F(recon_solver), 0, 0, "dct", NULL,
      "L2 solver: dct (direct, exact) or cg (conjugate gradient to a relative residual of 1e-6)", solver_names},
-    {"recon.l1_iterations", P_INT, F(recon_l1_iterations), 1, 1000, "L1: IRLS reweighting iterations", NULL},
-    {"recon.l1_cg", P_INT, F(recon_l1_cg), 1, 100000, "L1: conjugate-gradient steps per reweighting", NULL},
+    {"recon.l1_iterations", P_INT, F(recon_l1_iterations), 1, 1000, "20", NULL, "L1: IRLS reweighting iterations", NULL},
+    {"recon.l1_cg", P_INT, F(recon_l1_cg), 1, 100000, "50", NULL, "L1: conjugate-gradient steps per reweighting", NULL},
 };
 #undef F
 #define NUM_PARAMS (sizeof(params) / sizeof(params[0]))
-
-void render_params_defaults(struct render_params *p)
-{
-    memset(p, 0, sizeof(*p));
-    p->width = 640;
-    p->height = 360;
-    p->spp = 1;
-    p->seed = 1;
-    p->threads = 0;
-    p->camera_path = 0;
-    p->jitter = 1;
-    p->max_bounces = 8;
-    p->rr_bounces = 3;
-    p->light_candidates = 32;
-    p->bsdf_candidates = 1;
-    p->di_visibility_reuse = 1;
-    p->di_visibility_mis = DI_VIS_MIS_RAYS;
-    p->temporal = 1;
-    p->spatial = 1;
-    p->spatial_neighbors = 0;
-    p->spatial_select = SELECT_BITTERLI;
-    p->spatial_candidates = 32;
-    p->spatial_omega = 0.05f;
-    p->spatial_beta = 8.0f;
-    p->spatial_early_stop = 1;
-    p->spatial_radius = 30.0f;
-    p->spatial_normal = 0.5f;
-    p->spatial_depth = 0.1f;
-    p->confidence_cap = 20.0f;
-    p->mis = RESTIR_MIS_PAIRWISE;
-    p->temporal_normal = 0.8f;
-    p->temporal_plane = 0.05f;
-    p->temporal_ratio_guard = 0;
-    p->ratio_lo = 0.1f;
-    p->ratio_hi = 10.0f;
-    p->spatial_reuse = REUSE_STANDARD;
-    p->spmis_candidates = 3;
-    p->spmis_canonical_candidates = 1;
-    p->spmis_tile = 8;
-    p->spmis_normal_bins = 4;
-    p->spmis_search_steps = 12;
-    p->spmis_search_radius = 30.0f;
-    p->spmis_search_growth = 1.25f;
-    p->spmis_search_normal = 0.9f;
-    p->spmis_search = SPMIS_SEARCH_ALWAYS;
-    p->spmis_sparse_count = 2;
-    p->spmis_search_confidence = 4.0f;
-    p->spmis_confidence_adjust = 1;
-    p->spmis_canonical_pick = 0;
-    p->pt_candidates = 1;
-    p->grad_spatial = GRAD_SPATIAL_ADAPTIVE;
-    p->grad_temporal = 1;
-    p->grad_positivize = 1;
-    p->grad_cross_sign = 0;
-    p->grad_search = 256;
-    p->grad_radius = 4.0f;
-    p->grad_edge_albedo = 0.1f;
-    p->grad_edge_normal = 0.9f;
-    p->grad_edge_depth = 0.1f;
-    p->recon = RECON_L2;
-    p->recon_alpha = 0.2f;
-    p->recon_solver = 0;
-    p->recon_l1_iterations = 20;
-    p->recon_l1_cg = 50;
-    p->shift = SHIFT_HYBRID;
-    p->shift_roughness = 0.2f;
-    p->shift_distance = 0.01f;
-}
 
 static int parse_value(const struct param_def *d, const char *val, struct render_params *p, char *msg)
 {
@@ -324,6 +259,21 @@ static int parse_value(const struct param_def *d, const char *val, struct render
     return 0;
 }
 
+void render_params_defaults(struct render_params *p)
+{
+    memset(p, 0, sizeof(*p));
+    /* What the command line sets by options of its own (--res, --seed, --threads, --camera). */
+    p->width = 640;
+    p->height = 360;
+    p->seed = 1;
+    p->threads = 0;
+    p->camera_path = 0;
+    char msg[RESTIR_MSG_LEN];
+    for (size_t i = 0; i < NUM_PARAMS; i++)
+        if (params[i].def)
+            RESTIR_CHECK(parse_value(&params[i], params[i].def, p, msg) == 0);
+}
+
 int render_params_set(struct render_params *p, const char *assignment, char *msg)
 {
     const char *eq = strchr(assignment, '=');
@@ -375,13 +325,24 @@ int render_params_validate(const struct render_params *p, char *msg)
     return 0;
 }
 
+/* The shortest %g spelling of v (at least 6 digits) that --set parses back to v exactly, so that
+ * settings written to summary.json reproduce the run bit for bit. */
+static void format_float(float v, char *val, size_t n)
+{
+    for (int digits = 6; digits <= 9; digits++) {
+        snprintf(val, n, "%.*g", digits, v);
+        if ((float)strtod(val, NULL) == v)
+            return;
+    }
+}
+
 /* The value of d's field in p as --set spells it. */
 static void format_value(const struct param_def *pd, const struct render_params *p, char *val, size_t n)
 {
     const char *base = (const char *)p + pd->offset;
     switch (pd->type) {
     case P_INT: snprintf(val, n, "%d", *(const int *)(const void *)base); break;
-    case P_FLOAT: snprintf(val, n, "%g", *(const float *)(const void *)base); break;
+    case P_FLOAT: format_float(*(const float *)(const void *)base, val, n); break;
     case P_BOOL: snprintf(val, n, "%s", *(const int *)(const void *)base ? "on" : "off"); break;
     case P_MIS: snprintf(val, n, "%s", restir_mis_name(*(const enum restir_mis *)(const void *)base)); break;
     case P_SHIFT: snprintf(val, n, "%s", shift_kind_name(*(const enum shift_kind *)(const void *)base)); break;
@@ -414,6 +375,37 @@ void render_params_help(FILE *out)
     for (size_t i = 0; i < NUM_PARAMS; i++) {
         char val[32];
         format_value(&params[i], &d, val, sizeof(val));
-        fprintf(out, "  %-26s %-11s %s\n", params[i].key, val, params[i].help);
+        fprintf(out, "  %-26s %-11s %s", params[i].key, val, params[i].help);
+        if (params[i].biased)
+            fprintf(out, " [%s=%s is BIASED]", params[i].key, params[i].biased);
+        fputc('\n', out);
     }
+}
+
+const char *render_params_key(size_t i)
+{
+    /* shorthands (spatial.preset) set other keys and have no value of their own */
+    for (size_t k = 0; k < NUM_PARAMS; k++)
+        if (params[k].def && i-- == 0)
+            return params[k].key;
+    return NULL;
+}
+
+int render_params_biased(const struct render_params *p, char *out, size_t n)
+{
+    int count = 0;
+    if (n > 0)
+        out[0] = '\0';
+    for (size_t i = 0; i < NUM_PARAMS; i++) {
+        if (!params[i].biased)
+            continue;
+        char val[32];
+        format_value(&params[i], p, val, sizeof(val));
+        if (strcmp(val, params[i].biased) != 0)
+            continue;
+        size_t used = strlen(out);
+        snprintf(out + used, n - used, "%s%s=%s", count ? ", " : "", params[i].key, val);
+        count++;
+    }
+    return count;
 }

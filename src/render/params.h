@@ -1,13 +1,14 @@
-/* params.h: every method parameter with its default, reachable from the command line through
- * `--set key=value`, and described for `--help`. Must never depend on the ray tracer. */
+/* params.h: every method parameter. params.c's table is the one place a setting is spelled: key,
+ * type, default, range or names, BIASED value and help; `--set`, `--help`, the defaults, validation
+ * and summary.json all read it. Must never depend on the ray tracer. */
 #ifndef RESTIR_RENDER_PARAMS_H
 #define RESTIR_RENDER_PARAMS_H
 
 #include <stdint.h>
 #include <stdio.h>
 
+#include "render/shift_kind.h"
 #include "restir/mis.h"
-#include "shift_kind.h"
 
 /* Spatial neighbor selection (spatial_select.h). */
 enum spatial_select_mode { SELECT_BITTERLI = 0, SELECT_COMPAT, SELECT_COMPAT_BINARY };
@@ -26,6 +27,8 @@ enum grad_spatial_mode { GRAD_SPATIAL_OFF = 0, GRAD_SPATIAL_DENSE, GRAD_SPATIAL_
 enum di_visibility_mis { DI_VIS_MIS_RAYS = 0, DI_VIS_MIS_NONE };
 /* Which screened Poisson reconstruction fills the image (the other one is written as a layer). */
 enum recon_mode { RECON_L2 = 0, RECON_L1, RECON_BOTH };
+/* Most cell-search taps spmis.search_steps takes (reuse_cells.c keeps this many uniforms). */
+#define SPMIS_MAX_SEARCH_STEPS 256
 
 struct render_params {
     int width, height;
@@ -118,7 +121,14 @@ int render_params_validate(const struct render_params *p, char *msg);
 /* The value of key in p as --set spells it ("l2", "on", "0.2", ...) into val (n bytes). Returns 0,
  * or -1 (val empty) for an unknown key. */
 int render_params_get(const struct render_params *p, const char *key, char *val, size_t n);
-/* Prints every key with its default and meaning. */
+/* Prints every key with its default, meaning, and the value that makes it BIASED. */
 void render_params_help(FILE *out);
+/* The i-th key that has a value of its own (every key --set takes but shorthands such as
+ * spatial.preset), in table order; NULL past the last. With render_params_get this lists every
+ * setting of a run, as summary.json records it. */
+const char *render_params_key(size_t i);
+/* Writes "key=value, ..." of the settings in p whose value makes the estimator BIASED into out
+ * (n bytes) and returns how many there are (0: every setting in p is unbiased). */
+int render_params_biased(const struct render_params *p, char *out, size_t n);
 
 #endif

@@ -2,26 +2,9 @@
  * their Jacobian determinants (see path_shift.h; 000 Eq. 1 and 6, Lin et al. 2022 Sec. 7).
  * Shading normals equal geometric normals in this renderer (flat shading), so x_k's BSDF is
  * evaluated with its stored geometric normal. Must never depend on reservoirs. */
-#include "path_shift.h"
-
-#include <string.h>
+#include "render/path_shift.h"
 
 #include "shading/bsdf.h"
-
-static const char *const kind_names[] = {"reconnection", "replay", "hybrid"};
-
-int shift_kind_parse(const char *name, enum shift_kind *out)
-{
-    for (int k = 0; k < 3; k++) {
-        if (strcmp(name, kind_names[k]) == 0) {
-            *out = (enum shift_kind)k;
-            return 0;
-        }
-    }
-    return -1;
-}
-
-const char *shift_kind_name(enum shift_kind k) { return kind_names[k]; }
 
 static int material_rough_eval(const struct scene *s, const struct shift_params *sp, int material)
 {

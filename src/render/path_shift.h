@@ -16,9 +16,9 @@
 #ifndef RESTIR_RENDER_PATH_SHIFT_H
 #define RESTIR_RENDER_PATH_SHIFT_H
 
-#include "path_walk.h"
+#include "render/path_walk.h"
+#include "render/shift_kind.h"
 #include "scene/camera.h"
-#include "shift_kind.h"
 
 struct shift_params {
     enum shift_kind kind;

@@ -1,7 +1,7 @@
 /* path_walk.c: the path generator shared by `pt` and ReSTIR PT: NEE and BSDF sampling combined by
  * the power heuristic (Veach 1997, Ch. 9) and throughput-based Russian roulette, reporting every
  * complete path as a candidate. Must never depend on reservoirs. */
-#include "path_walk.h"
+#include "render/path_walk.h"
 
 #include "shading/bsdf.h"
 #include "shading/lights.h"

@@ -1,10 +1,10 @@
 /* pt.c: the reference path tracer: the shared path walk (path_walk.c) with every candidate path
  * summed as m f / p, plus emission seen directly. Must never depend on reservoirs. */
-#include "pt.h"
+#include "render/pt.h"
 
-#include "path_walk.h"
+#include "render/path_walk.h"
+#include "render/tiles.h"
 #include "shading/lights.h"
-#include "tiles.h"
 
 static void accumulate(void *ctx, const struct path_walk *w, const struct path_candidate *c)
 {
@@ -37,25 +37,22 @@ long long pt_pass(const struct scene *s, const struct camera_view *view, const s
     const int w = view->width, hgt = view->height, ntiles = tile_count(w, hgt);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, hgt, t);
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                int i = y * w + x;
-                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_PT);
-                vec3 sum = v3s(0.0f);
-                for (int k = 0; k < spp; k++) {
-                    float jx = p->jitter ? pcg32_float(&rng) : 0.5f, jy = p->jitter ? pcg32_float(&rng) : 0.5f;
-                    uint64_t path_seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
-                    vec3 d = camera_view_ray(view, (float)x + jx, (float)y + jy);
-                    vec3 L = pt_trace(s, view->position, d, p->max_bounces, path_seed, p->rr_bounces, &rays);
-                    if (v3_is_finite(L))
-                        sum = v3_add(sum, L);
-                }
-                vec3 mean = v3_scale(sum, 1.0f / (float)spp);
-                rgb[3 * i] = mean.x;
-                rgb[3 * i + 1] = mean.y;
-                rgb[3 * i + 2] = mean.z;
+        for (struct tile_pixel px = tile_first_pixel(w, hgt, t); px.i >= 0; tile_advance(&px)) {
+            const int x = px.x, y = px.y, i = px.i;
+            pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_PT);
+            vec3 sum = v3s(0.0f);
+            for (int k = 0; k < spp; k++) {
+                float jx = p->jitter ? pcg32_float(&rng) : 0.5f, jy = p->jitter ? pcg32_float(&rng) : 0.5f;
+                uint64_t path_seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
+                vec3 d = camera_view_ray(view, (float)x + jx, (float)y + jy);
+                vec3 L = pt_trace(s, view->position, d, p->max_bounces, path_seed, p->rr_bounces, &rays);
+                if (v3_is_finite(L))
+                    sum = v3_add(sum, L);
             }
+            vec3 mean = v3_scale(sum, 1.0f / (float)spp);
+            rgb[3 * i] = mean.x;
+            rgb[3 * i + 1] = mean.y;
+            rgb[3 * i + 2] = mean.z;
         }
     }
     return rays;

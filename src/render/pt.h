@@ -5,7 +5,7 @@
 #define RESTIR_RENDER_PT_H
 
 #include "core/rng.h"
-#include "params.h"
+#include "render/params.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 

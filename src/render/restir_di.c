@@ -2,13 +2,13 @@
  * validation (001), spatial reuse with Bitterli's neighbor test (000 Eq. 7), GRIS merges with
  * selectable resampling MIS (004 Eq. 5-12), and shading (initial RIS is in di_initial.c).
  * Must never allocate per pixel. */
-#include "restir_di.h"
+#include "render/restir_di.h"
 
 #include "core/rng.h"
-#include "di_visibility.h"
+#include "render/di_visibility.h"
+#include "render/tiles.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
-#include "tiles.h"
 
 /* Canonical domain + at most 5 spatial neighbors. */
 #define DI_MAX_DOMAINS 6
@@ -73,26 +73,23 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : accepted, traced)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, h, t);
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                int i = y * w + x;
-                int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
-                if (q < 0)
+        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+            const int i = px.i;
+            int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
+            if (q < 0)
+                continue;
+            const struct shading_point *sp[2] = {gbuffer_shading(g, i), gbuffer_shading(prev_g, q)};
+            const struct di_reservoir *hist = &prev_res[q];
+            if (p->temporal_ratio_guard && hist->y.tri >= 0) {
+                /* 001 Sec. 5 guard: depends on the sample, hence BIASED (documented in --help). */
+                float ratio = di_target(sp[0], &hist->y) / hist->target;
+                if (!(ratio >= p->ratio_lo && ratio <= p->ratio_hi))
                     continue;
-                const struct shading_point *sp[2] = {gbuffer_shading(g, i), gbuffer_shading(prev_g, q)};
-                const struct di_reservoir *hist = &prev_res[q];
-                if (p->temporal_ratio_guard && hist->y.tri >= 0) {
-                    /* 001 Sec. 5 guard: depends on the sample, hence BIASED (documented in --help). */
-                    float ratio = di_target(sp[0], &hist->y) / hist->target;
-                    if (!(ratio >= p->ratio_lo && ratio <= p->ratio_hi))
-                        continue;
-                }
-                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_TEMPORAL);
-                const struct di_reservoir *in[2] = {&io[i], hist};
-                traced += gris_merge(s, p, 2, sp, in, &rng, &io[i]);
-                accepted++;
             }
+            pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_TEMPORAL);
+            const struct di_reservoir *in[2] = {&io[i], hist};
+            traced += gris_merge(s, p, 2, sp, in, &rng, &io[i]);
+            accepted++;
         }
     }
     *rays += traced;
@@ -107,39 +104,36 @@ long long di_spatial_pass(const struct scene *s, const struct render_params *p, 
     const int m = render_params_spatial_neighbors(p, 0); /* at most 5 = DI_MAX_DOMAINS - 1 */
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, h, t);
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                int i = y * w + x;
-                /* Neighbors sit at random within the radius: their reservoirs and shading points
-                 * miss the cache, so the next pixel's are fetched while this one merges. */
-                int next = tile_next_pixel(&r, w, x, y);
-                for (int k = 0; next >= 0 && k < m; k++) {
-                    int j = neighbors[(size_t)next * m + k];
-                    if (j >= 0) {
-                        prefetch_bytes(&in[j], sizeof(in[j]));
-                        prefetch_bytes(gbuffer_shading(g, j), sizeof(struct shading_point));
-                    }
+        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+            const int i = px.i;
+            /* Neighbors sit at random within the radius: their reservoirs and shading points
+             * miss the cache, so the next pixel's are fetched while this one merges. */
+            int next = tile_peek(&px);
+            for (int k = 0; next >= 0 && k < m; k++) {
+                int j = neighbors[(size_t)next * m + k];
+                if (j >= 0) {
+                    prefetch_bytes(&in[j], sizeof(in[j]));
+                    prefetch_bytes(gbuffer_shading(g, j), sizeof(struct shading_point));
                 }
-                if (!g->valid[i]) {
-                    out[i] = in[i];
-                    continue;
-                }
-                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_SPATIAL);
-                const struct shading_point *sp[DI_MAX_DOMAINS];
-                const struct di_reservoir *src[DI_MAX_DOMAINS];
-                sp[0] = gbuffer_shading(g, i);
-                src[0] = &in[i];
-                int n = 1;
-                for (int k = 0; k < m; k++) {
-                    int j = neighbors[(size_t)i * m + k];
-                    if (j < 0)
-                        continue;
-                    sp[n] = gbuffer_shading(g, j);
-                    src[n++] = &in[j];
-                }
-                rays += gris_merge(s, p, n, sp, src, &rng, &out[i]);
             }
+            if (!g->valid[i]) {
+                out[i] = in[i];
+                continue;
+            }
+            pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_SPATIAL);
+            const struct shading_point *sp[DI_MAX_DOMAINS];
+            const struct di_reservoir *src[DI_MAX_DOMAINS];
+            sp[0] = gbuffer_shading(g, i);
+            src[0] = &in[i];
+            int n = 1;
+            for (int k = 0; k < m; k++) {
+                int j = neighbors[(size_t)i * m + k];
+                if (j < 0)
+                    continue;
+                sp[n] = gbuffer_shading(g, j);
+                src[n++] = &in[j];
+            }
+            rays += gris_merge(s, p, n, sp, src, &rng, &out[i]);
         }
     }
     return rays;
@@ -154,29 +148,26 @@ long long di_shade_pass(const struct scene *s, const struct render_params *p, co
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, h, t);
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                int i = y * w + x;
-                vec3 L = g->valid[i] ? g->emission[i] : v3s(0.0f);
-                const struct di_reservoir *rv = &res[i];
-                if (g->valid[i] && rv->y.tri >= 0 && rv->W > 0.0f) {
-                    const struct shading_point *sp = gbuffer_shading(g, i);
-                    vec3 f = di_unshadowed(sp, &rv->y);
-                    if (v3_max_component(f) > 0.0f) {
-                        int seen = with_visibility && rv->target > 0.0f;
-                        if (!seen) {
-                            rays++;
-                            seen = di_sample_visible(s, sp, &rv->y);
-                        }
-                        if (seen)
-                            L = v3_add(L, v3_scale(f, rv->W)); /* f(Y) W_Y */
+        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+            const int i = px.i;
+            vec3 L = g->valid[i] ? g->emission[i] : v3s(0.0f);
+            const struct di_reservoir *rv = &res[i];
+            if (g->valid[i] && rv->y.tri >= 0 && rv->W > 0.0f) {
+                const struct shading_point *sp = gbuffer_shading(g, i);
+                vec3 f = di_unshadowed(sp, &rv->y);
+                if (v3_max_component(f) > 0.0f) {
+                    int seen = with_visibility && rv->target > 0.0f;
+                    if (!seen) {
+                        rays++;
+                        seen = di_sample_visible(s, sp, &rv->y);
                     }
+                    if (seen)
+                        L = v3_add(L, v3_scale(f, rv->W)); /* f(Y) W_Y */
                 }
-                rgb[3 * i] = L.x;
-                rgb[3 * i + 1] = L.y;
-                rgb[3 * i + 2] = L.z;
             }
+            rgb[3 * i] = L.x;
+            rgb[3 * i + 1] = L.y;
+            rgb[3 * i + 2] = L.z;
         }
     }
     return rays;

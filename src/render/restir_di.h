@@ -4,8 +4,8 @@
 #ifndef RESTIR_RENDER_RESTIR_DI_H
 #define RESTIR_RENDER_RESTIR_DI_H
 
-#include "di_sample.h"
-#include "params.h"
+#include "render/di_sample.h"
+#include "render/params.h"
 
 struct light_pool;
 /* Initial RIS: light + BSDF candidates combined by MIS into one reservoir per pixel, c = 1; the

@@ -2,12 +2,11 @@
  * canonical weight m~_c from N_c cell pixels (Eq. 18-19), then a GRIS merge of the canonical light
  * sample and N samples drawn by Eq. 17 (Eq. 14-16). Light samples need no shift (identity, |J| = 1).
  * Must never allocate per pixel. */
-#include "di_visibility.h"
-#include "restir_di.h"
-
+#include "render/di_visibility.h"
+#include "render/restir_di.h"
+#include "render/reuse_cells.h"
+#include "render/tiles.h"
 #include "restir/reservoir.h"
-#include "reuse_cells.h"
-#include "tiles.h"
 
 static int has_sample(const struct di_reservoir *r) { return r->y.tri >= 0 && r->W > 0.0f; }
 
@@ -23,37 +22,34 @@ void di_spmis_weights(const struct render_params *p, const struct gbuffer *g, co
     }
 }
 
+struct di_canonical_ctx {
+    const struct scene *s;
+    const struct gbuffer *g;
+    const struct di_reservoir *in;
+    int with_visibility;
+};
+
+static int di_canonical_has_sample(const void *ctx, int c)
+{
+    return has_sample(&((const struct di_canonical_ctx *)ctx)->in[c]);
+}
+
+static float di_canonical_target(const void *ctx, int c) { return ((const struct di_canonical_ctx *)ctx)->in[c].target; }
+
+/* Eq. 19 with p_hat_{<-i}(Y_c) = pixel i's target at the same light point (no shift, |J| = 1) */
+static float di_canonical_target_from(const void *ctx, int c, int i, long long *rays)
+{
+    const struct di_canonical_ctx *k = ctx;
+    return di_domain_target(k->s, k->with_visibility, gbuffer_shading(k->g, i), &k->in[c].y, rays);
+}
+
 long long di_spmis_canonical_pass(const struct scene *s, const struct render_params *p, int frame,
                                   const struct gbuffer *g, const struct di_reservoir *in, struct spmis_frame *f)
 {
-    const int with_visibility = di_targets_visible(p);
-    long long rays = 0;
-    const int w = g->width, h = g->height, ntiles = tile_count(w, h);
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
-    for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, h, t);
-        struct restir_spmis_draws draws;
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                int c = y * w + x;
-                f->m_c[c] = 1.0f;
-                if (!g->valid[c] || !has_sample(&in[c]))
-                    continue; /* Algorithm 2 line 6 */
-                struct restir_spmis_conf k;
-                spmis_canonical_plan(f, p, frame, c, &k, &draws);
-                double m_c = restir_spmis_canonical_share(&k);
-                for (int d = 0; d < draws.count; d++) {
-                    int i = draws.pixel[d];
-                    const struct shading_point *sp = gbuffer_shading(g, i);
-                    /* Eq. 19 with p_hat_{<-i}(Y_c) = pixel i's target at the same light point */
-                    float p_i = di_domain_target(s, with_visibility, sp, &in[c].y, &rays);
-                    m_c += restir_spmis_canonical_term(&k, f->conf[i], p_i, in[c].target, draws.factor[d]);
-                }
-                f->m_c[c] = (float)m_c;
-            }
-        }
-    }
-    return rays;
+    const struct di_canonical_ctx ctx = {s, g, in, di_targets_visible(p)};
+    const struct spmis_canonical_ops ops = {&ctx, di_canonical_has_sample, di_canonical_target,
+                                            di_canonical_target_from};
+    return spmis_canonical_pass(f, p, frame, g, &ops);
 }
 
 long long di_spmis_reuse_pass(const struct scene *s, const struct render_params *p, int frame, const struct gbuffer *g,
@@ -64,44 +60,41 @@ long long di_spmis_reuse_pass(const struct scene *s, const struct render_params 
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, h, t);
         struct restir_spmis_draws draws;
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                int c = y * w + x;
-                if (!g->valid[c]) {
-                    out[c] = in[c];
-                    continue;
-                }
-                struct restir_spmis_conf k;
-                float merged_c;
-                pcg32 rng = spmis_neighbor_plan(f, p, frame, c, &k, &merged_c, &draws);
-                struct restir_wrs wrs;
-                restir_wrs_init(&wrs);
-                struct di_reservoir result;
-                di_reservoir_clear(&result, merged_c);
-                /* Lines 11-12: w~_c = m~_c p_hat(X_c) W_c (Eq. 14) */
-                if (has_sample(&in[c]) && restir_wrs_offer(&wrs, f->m_c[c] * in[c].target * in[c].W, pcg32_float(&rng))) {
-                    result.y = in[c].y;
-                    result.target = in[c].target;
-                }
-                const struct shading_point *sp = gbuffer_shading(g, c);
-                for (int d = 0; d < draws.count; d++) {
-                    /* Lines 13-18 (line 15: the drawn neighbor's own sample X_z comes to pixel c) */
-                    int z = draws.pixel[d];
-                    float p_c = di_domain_target(s, with_visibility, sp, &in[z].y, &rays); /* p_hat(y) */
-                    float wz = (float)(restir_spmis_noncanonical(&k, f->conf[z], in[z].target, p_c, draws.factor[d]) *
-                                       p_c * in[z].W);
-                    if (restir_wrs_offer(&wrs, wz, pcg32_float(&rng))) {
-                        result.y = in[z].y;
-                        result.target = p_c;
-                    }
-                }
-                result.W = restir_gris_contribution_weight(&wrs, result.target); /* line 19, Eq. 7 */
-                if (!(result.W > 0.0f))
-                    di_reservoir_clear(&result, result.c);
-                out[c] = result;
+        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+            const int c = px.i;
+            if (!g->valid[c]) {
+                out[c] = in[c];
+                continue;
             }
+            struct restir_spmis_conf k;
+            float merged_c;
+            pcg32 rng = spmis_neighbor_plan(f, p, frame, c, &k, &merged_c, &draws);
+            struct restir_wrs wrs;
+            restir_wrs_init(&wrs);
+            struct di_reservoir result;
+            di_reservoir_clear(&result, merged_c);
+            /* Lines 11-12: w~_c = m~_c p_hat(X_c) W_c (Eq. 14) */
+            if (has_sample(&in[c]) && restir_wrs_offer(&wrs, f->m_c[c] * in[c].target * in[c].W, pcg32_float(&rng))) {
+                result.y = in[c].y;
+                result.target = in[c].target;
+            }
+            const struct shading_point *sp = gbuffer_shading(g, c);
+            for (int d = 0; d < draws.count; d++) {
+                /* Lines 13-18 (line 15: the drawn neighbor's own sample X_z comes to pixel c) */
+                int z = draws.pixel[d];
+                float p_c = di_domain_target(s, with_visibility, sp, &in[z].y, &rays); /* p_hat(y) */
+                float wz = (float)(restir_spmis_noncanonical(&k, f->conf[z], in[z].target, p_c, draws.factor[d]) *
+                                   p_c * in[z].W);
+                if (restir_wrs_offer(&wrs, wz, pcg32_float(&rng))) {
+                    result.y = in[z].y;
+                    result.target = p_c;
+                }
+            }
+            result.W = restir_gris_contribution_weight(&wrs, result.target); /* line 19, Eq. 7 */
+            if (!(result.W > 0.0f))
+                di_reservoir_clear(&result, result.c);
+            out[c] = result;
         }
     }
     return rays;

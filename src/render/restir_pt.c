@@ -2,12 +2,12 @@
  * the shared path walk, GRIS merges with shift mappings and Jacobians (004 Eq. 5-7) and
  * selectable resampling MIS (004 Eq. 9-12), temporal and spatial reuse, shading.
  * Must never allocate per pixel. */
-#include "restir_pt.h"
+#include "render/restir_pt.h"
 
+#include "render/tiles.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
 #include "shading/lights.h"
-#include "tiles.h"
 
 /* Canonical domain + at most 5 spatial neighbors. */
 #define PT_MAX_DOMAINS 6
@@ -73,53 +73,50 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, h, t);
         struct path_walk walk;
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                int i = y * w + x;
-                struct pt_reservoir *res = &out[i];
-                pt_reservoir_clear(res, 0.0f); /* every pixel samples paths, even where the centre ray misses */
-                pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_INITIAL);
-                struct initial_ctx ctx;
-                ctx.s = s;
-                ctx.shift = &fr->shift;
-                restir_wrs_init(&ctx.wrs);
-                ctx.rng = &rng;
-                ctx.inv_paths = 1.0f / (float)p->pt_candidates;
-                ctx.r = res;
-                ctx.chosen_here = 0;
-                vec3 Le = v3s(0.0f);
-                for (int n = 0; n < p->pt_candidates; n++) {
-                    ctx.trial.u[0] = p->jitter ? pcg32_float(&rng) : 0.5f;
-                    ctx.trial.u[1] = p->jitter ? pcg32_float(&rng) : 0.5f;
-                    float px, py;
-                    path_image_position(x, y, ctx.trial.u, &px, &py);
-                    vec3 d = camera_view_ray(fr->view, px, py);
-                    struct surface_hit hit;
-                    rays++;
-                    if (!scene_intersect(s, fr->view->position, d, 0.0f, INFINITY, &hit))
-                        continue;
-                    if (s->tri_emitter[hit.tri] >= 0 && hit.front)
-                        Le = v3_add(Le, lights_radiance(s, hit.tri, hit.b1, hit.b2, v3_neg(d)));
-                    struct path_vertex x1 = path_vertex_from_hit(&hit, d);
-                    ctx.trial.seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
-                    rays += path_walk_run(s, &x1, ctx.trial.seed, p->max_bounces, p->rr_bounces, &walk,
-                                          offer_candidate, &ctx);
-                    keep_chosen(&ctx, &walk);
-                }
-                emission[i] = v3_scale(Le, ctx.inv_paths);
-                res->c = (float)p->pt_candidates;
-                if (ctx.wrs.selected >= 0) {
-                    /* W must divide by the p_hat the weights used (the walk's f); it is then a
-                     * UCW for any integrand, and the reservoir caches the target as shifts
-                     * evaluate it (path_sample_from_candidate), so reuse sees one definition. */
-                    res->W = restir_gris_contribution_weight(&ctx.wrs, ctx.resampling_target);
-                    res->target = v3_luminance(res->y.f);
-                }
-                if (!(res->W > 0.0f))
-                    pt_reservoir_clear(res, res->c);
+        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+            const int x = px.x, y = px.y, i = px.i;
+            struct pt_reservoir *res = &out[i];
+            pt_reservoir_clear(res, 0.0f); /* every pixel samples paths, even where the centre ray misses */
+            pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_INITIAL);
+            struct initial_ctx ctx;
+            ctx.s = s;
+            ctx.shift = &fr->shift;
+            restir_wrs_init(&ctx.wrs);
+            ctx.rng = &rng;
+            ctx.inv_paths = 1.0f / (float)p->pt_candidates;
+            ctx.r = res;
+            ctx.chosen_here = 0;
+            vec3 Le = v3s(0.0f);
+            for (int n = 0; n < p->pt_candidates; n++) {
+                ctx.trial.u[0] = p->jitter ? pcg32_float(&rng) : 0.5f;
+                ctx.trial.u[1] = p->jitter ? pcg32_float(&rng) : 0.5f;
+                float px, py;
+                path_image_position(x, y, ctx.trial.u, &px, &py);
+                vec3 d = camera_view_ray(fr->view, px, py);
+                struct surface_hit hit;
+                rays++;
+                if (!scene_intersect(s, fr->view->position, d, 0.0f, INFINITY, &hit))
+                    continue;
+                if (s->tri_emitter[hit.tri] >= 0 && hit.front)
+                    Le = v3_add(Le, lights_radiance(s, hit.tri, hit.b1, hit.b2, v3_neg(d)));
+                struct path_vertex x1 = path_vertex_from_hit(&hit, d);
+                ctx.trial.seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
+                rays += path_walk_run(s, &x1, ctx.trial.seed, p->max_bounces, p->rr_bounces, &walk,
+                                      offer_candidate, &ctx);
+                keep_chosen(&ctx, &walk);
             }
+            emission[i] = v3_scale(Le, ctx.inv_paths);
+            res->c = (float)p->pt_candidates;
+            if (ctx.wrs.selected >= 0) {
+                /* W must divide by the p_hat the weights used (the walk's f); it is then a
+                 * UCW for any integrand, and the reservoir caches the target as shifts
+                 * evaluate it (path_sample_from_candidate), so reuse sees one definition. */
+                res->W = restir_gris_contribution_weight(&ctx.wrs, ctx.resampling_target);
+                res->target = v3_luminance(res->y.f);
+            }
+            if (!(res->W > 0.0f))
+                pt_reservoir_clear(res, res->c);
         }
     }
     return rays;
@@ -202,27 +199,24 @@ long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, c
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays, acc)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, h, t);
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                int i = y * w + x;
-                int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
-                if (q < 0)
-                    continue;
-                struct pt_domain dom[2];
-                dom[0] = pt_pixel_domain(fr->view, x, y);
-                dom[1] = pt_pixel_domain(fr->prev_view, q % w, q / w);
-                if (p->jitter) {
-                    /* Area ReSTIR: a previous-frame offset moves with the fractional backward
-                     * motion, a translation of the sub-pixel square (|T'| = 1). */
-                    dom[1].origin[0] -= g->motion[2 * i];
-                    dom[1].origin[1] -= g->motion[2 * i + 1];
-                }
-                pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_TEMPORAL);
-                const struct pt_reservoir *in[2] = {&io[i], &prev_res[q]};
-                rays += gris_merge(fr, 2, dom, in, &rng, &io[i]);
-                acc++;
+        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+            const int x = px.x, y = px.y, i = px.i;
+            int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
+            if (q < 0)
+                continue;
+            struct pt_domain dom[2];
+            dom[0] = pt_pixel_domain(fr->view, x, y);
+            dom[1] = pt_pixel_domain(fr->prev_view, q % w, q / w);
+            if (p->jitter) {
+                /* Area ReSTIR: a previous-frame offset moves with the fractional backward
+                 * motion, a translation of the sub-pixel square (|T'| = 1). */
+                dom[1].origin[0] -= g->motion[2 * i];
+                dom[1].origin[1] -= g->motion[2 * i + 1];
             }
+            pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_TEMPORAL);
+            const struct pt_reservoir *in[2] = {&io[i], &prev_res[q]};
+            rays += gris_merge(fr, 2, dom, in, &rng, &io[i]);
+            acc++;
         }
     }
     *accepted = acc;
@@ -252,32 +246,29 @@ long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, co
     const int m = render_params_spatial_neighbors(p, 1); /* at most 5 = PT_MAX_DOMAINS - 1 (params.c) */
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
-        struct tile_range r = tile_get(w, h, t);
-        for (int y = r.y0; y < r.y1; y++) {
-            for (int x = r.x0; x < r.x1; x++) {
-                int i = y * w + x;
-                int next = x + 1 < r.x1 ? i + 1 : i + w - (r.x1 - r.x0) + 1; /* next pixel of the tile */
-                if (next < w * h)
-                    prefetch_neighbors(in, &neighbors[(size_t)next * m], m);
-                if (!g->valid[i]) {
-                    out[i] = in[i];
-                    continue;
-                }
-                pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_SPATIAL);
-                struct pt_domain dom[PT_MAX_DOMAINS];
-                const struct pt_reservoir *src[PT_MAX_DOMAINS];
-                dom[0] = pt_pixel_domain(fr->view, x, y);
-                src[0] = &in[i];
-                int n = 1;
-                for (int k = 0; k < m; k++) {
-                    int j = neighbors[(size_t)i * m + k];
-                    if (j < 0)
-                        continue;
-                    dom[n] = pt_pixel_domain(fr->view, j % w, j / w);
-                    src[n++] = &in[j];
-                }
-                rays += gris_merge(fr, n, dom, src, &rng, &out[i]);
+        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+            const int x = px.x, y = px.y, i = px.i;
+            int next = tile_peek(&px);
+            if (next >= 0)
+                prefetch_neighbors(in, &neighbors[(size_t)next * m], m);
+            if (!g->valid[i]) {
+                out[i] = in[i];
+                continue;
             }
+            pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_SPATIAL);
+            struct pt_domain dom[PT_MAX_DOMAINS];
+            const struct pt_reservoir *src[PT_MAX_DOMAINS];
+            dom[0] = pt_pixel_domain(fr->view, x, y);
+            src[0] = &in[i];
+            int n = 1;
+            for (int k = 0; k < m; k++) {
+                int j = neighbors[(size_t)i * m + k];
+                if (j < 0)
+                    continue;
+                dom[n] = pt_pixel_domain(fr->view, j % w, j / w);
+                src[n++] = &in[j];
+            }
+            rays += gris_merge(fr, n, dom, src, &rng, &out[i]);
         }
     }
     return rays;

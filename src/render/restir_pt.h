@@ -5,9 +5,9 @@
 #ifndef RESTIR_RENDER_RESTIR_PT_H
 #define RESTIR_RENDER_RESTIR_PT_H
 
-#include "gbuffer.h"
-#include "params.h"
-#include "path_shift.h"
+#include "render/gbuffer.h"
+#include "render/params.h"
+#include "render/path_shift.h"
 
 /* A path reservoir (004 Sec. 2.6): the path, its unbiased contribution weight W, confidence c and
  * the cached target p_hat = luminance(f) in the pixel that owns it. */

@@ -1,12 +1,12 @@
 /* reuse_cells.c: SPMIS reuse cells and cell search over the G-buffer (see reuse_cells.h; 004
  * Sec. 5, Algorithm 1, Sec. 5.1). Must never allocate per frame or read samples. */
-#include "reuse_cells.h"
+#include "render/reuse_cells.h"
 
 #include <stdlib.h>
 
 #include "core/check.h"
+#include "render/tiles.h"
 #include "restir/reservoir.h"
-#include "tiles.h"
 
 /* n uniforms into u, n clamped to cap (the size of u): params.c bounds every count by it already. */
 static void uniforms(pcg32 *rng, int n, float *u, int cap)
@@ -121,4 +121,32 @@ pcg32 spmis_neighbor_plan(const struct spmis_frame *f, const struct render_param
     uniforms(&rng, p->spmis_candidates, u, RESTIR_SPMIS_MAX_DRAWS);
     restir_spmis_neighbor_draws(&f->cells, f->cell[c], c, p->spmis_candidates, u, draws);
     return rng;
+}
+
+long long spmis_canonical_pass(struct spmis_frame *f, const struct render_params *p, int frame,
+                               const struct gbuffer *g, const struct spmis_canonical_ops *ops)
+{
+    long long rays = 0;
+    const int w = g->width, h = g->height, ntiles = tile_count(w, h);
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
+    for (int t = 0; t < ntiles; t++) {
+        struct restir_spmis_draws draws;
+        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+            const int c = px.i;
+            f->m_c[c] = 1.0f;
+            if (!g->valid[c] || !ops->has_sample(ops->ctx, c))
+                continue;
+            struct restir_spmis_conf k;
+            spmis_canonical_plan(f, p, frame, c, &k, &draws);
+            const float p_c = ops->target(ops->ctx, c);
+            double m_c = restir_spmis_canonical_share(&k);
+            for (int d = 0; d < draws.count; d++) {
+                const int i = draws.pixel[d];
+                const float p_from = ops->target_from(ops->ctx, c, i, &rays);
+                m_c += restir_spmis_canonical_term(&k, f->conf[i], p_from, p_c, draws.factor[d]);
+            }
+            f->m_c[c] = (float)m_c;
+        }
+    }
+    return rays;
 }

@@ -6,8 +6,8 @@
 #define RESTIR_RENDER_REUSE_CELLS_H
 
 #include "core/rng.h"
-#include "gbuffer.h"
-#include "params.h"
+#include "render/gbuffer.h"
+#include "render/params.h"
 #include "restir/spmis.h"
 
 /* What SPMIS keeps per frame; made once per resolution. */
@@ -26,9 +26,6 @@ void spmis_frame_fini(struct spmis_frame *f);
 /* 004 Algorithm 1: cell keys from the G-buffer, then the cells over f->conf and f->weight. */
 void spmis_cells_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g);
 
-/* Most cell-search taps (params.c bounds spmis.search_steps by it). */
-#define SPMIS_MAX_SEARCH_STEPS 256
-
 /* 004 Sec. 5.1 for every valid pixel into f->cell (spmis.search: always, sparse or low-confidence). */
 void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g, int frame);
 
@@ -46,5 +43,23 @@ void spmis_canonical_plan(const struct spmis_frame *f, const struct render_param
  * Fig. 2 ablation changes one thing. Returns the pixel's stream, to drive the merge's WRS. */
 pcg32 spmis_neighbor_plan(const struct spmis_frame *f, const struct render_params *p, int frame, int c,
                           struct restir_spmis_conf *k, float *merged, struct restir_spmis_draws *draws);
+
+/* What the canonical pass asks of a method's samples. */
+struct spmis_canonical_ops {
+    const void *ctx;
+    /* pixel c's reservoir holds a sample (Algorithm 2 line 6: only those need m~_c) */
+    int (*has_sample)(const void *ctx, int c);
+    /* p_hat(Y_c): the target cached with pixel c's sample */
+    float (*target)(const void *ctx, int c);
+    /* p_hat_{<-i}(Y_c) of Eq. 19: pixel i's target for pixel c's sample brought into i's domain
+     * (with the shift's Jacobian), adding the rays it traces to *rays */
+    float (*target_from)(const void *ctx, int c, int i, long long *rays);
+};
+
+/* 004 Algorithm 2 lines 6-12 for every pixel: the stochastic canonical weight m~_c from
+ * spmis.canonical_candidates draws of the pixel's cell (Eq. 18-19) into f->m_c (1 where the pixel
+ * is invalid or has no sample). Returns the rays traced. */
+long long spmis_canonical_pass(struct spmis_frame *f, const struct render_params *p, int frame,
+                               const struct gbuffer *g, const struct spmis_canonical_ops *ops);
 
 #endif

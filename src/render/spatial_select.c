@@ -1,11 +1,11 @@
 /* spatial_select.c: the neighbor-selection pass (see spatial_select.h; 000 Sec. 3.5, 4.3, 5). */
-#include "spatial_select.h"
+#include "render/spatial_select.h"
 
 #include "core/lowdisc.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "render/tiles.h"
 #include "restir/neighbors.h"
-#include "tiles.h"
 
 static const float *key_of(const struct gbuffer *g, int i) { return &g->select_key[(size_t)i * GBUFFER_KEY]; }
 

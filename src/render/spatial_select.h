@@ -4,8 +4,8 @@
 #ifndef RESTIR_RENDER_SPATIAL_SELECT_H
 #define RESTIR_RENDER_SPATIAL_SELECT_H
 
-#include "gbuffer.h"
-#include "params.h"
+#include "render/gbuffer.h"
+#include "render/params.h"
 
 /* Most neighbors per pixel (the parameter table caps spatial.neighbors at this). */
 #define SPATIAL_MAX_NEIGHBORS 5

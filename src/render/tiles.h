@@ -31,14 +31,45 @@ static inline struct tile_range tile_get(int width, int height, int tile)
     return r;
 }
 
-/* The pixel a tile loop visits after (x, y) in r (rows left to right), or -1 after the last:
- * what a pass prefetches for while it works on the current pixel. */
-static inline int tile_next_pixel(const struct tile_range *r, int width, int x, int y)
+/* A walk over the pixels of one tile, row by row, left to right:
+ *     for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px))
+ * Every pass runs this loop inside its OpenMP loop over tiles. */
+struct tile_pixel {
+    struct tile_range r;
+    int width;
+    int x, y, i; /* i = y * width + x; -1 once the walk is past the last pixel */
+};
+
+/* The pixel after (x, y) in r, or -1 after the last. */
+static inline int tile_pixel_after(const struct tile_range *r, int width, int x, int y)
 {
     if (x + 1 < r->x1)
         return y * width + x + 1;
     return y + 1 < r->y1 ? (y + 1) * width + r->x0 : -1;
 }
+
+static inline struct tile_pixel tile_first_pixel(int width, int height, int tile)
+{
+    struct tile_pixel px;
+    px.r = tile_get(width, height, tile);
+    px.width = width;
+    px.x = px.r.x0;
+    px.y = px.r.y0;
+    px.i = px.r.x0 < px.r.x1 && px.r.y0 < px.r.y1 ? px.y * width + px.x : -1;
+    return px;
+}
+
+static inline void tile_advance(struct tile_pixel *px)
+{
+    px->i = tile_pixel_after(&px->r, px->width, px->x, px->y);
+    if (++px->x >= px->r.x1) {
+        px->x = px->r.x0;
+        px->y++;
+    }
+}
+
+/* The pixel the walk visits next (-1: none): what a pass prefetches for while it works on px. */
+static inline int tile_peek(const struct tile_pixel *px) { return tile_pixel_after(&px->r, px->width, px->x, px->y); }
 
 /* Prefetches the cache lines of bytes [p, p + n) for reading. */
 static inline void prefetch_bytes(const void *p, unsigned n)

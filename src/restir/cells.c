@@ -1,10 +1,10 @@
 /* restir/cells.c: screen-space reuse cells (004 Sec. 5, Algorithm 1), draws from a cell (uniform and
  * Eq. 17) and the cell search (Sec. 5.1). Must never depend on a ray tracer, files or the renderer. */
-#include "restir/cells.h"
-
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "restir/cells.h"
 
 uint32_t restir_pcg_hash(uint32_t v)
 {

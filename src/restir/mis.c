@@ -1,8 +1,8 @@
 /* restir/mis.c: resampling MIS weights for GRIS: 1/M, balance (004 Eq. 9), pairwise (004 Eq. 11).
  * Must never depend on a ray tracer, files, the renderer or anything else in src/. */
-#include "restir/mis.h"
-
 #include <string.h>
+
+#include "restir/mis.h"
 
 int restir_mis_parse(const char *name, enum restir_mis *out)
 {

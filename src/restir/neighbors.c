@@ -1,9 +1,9 @@
 /* neighbors.c: G-buffer compatibility tests and scores for spatial neighbor selection, and
  * weighted selection of distinct neighbors (000 Sec. 3-5).
  * Must never depend on a ray tracer, files or the renderer. */
-#include "restir/neighbors.h"
-
 #include <math.h>
+
+#include "restir/neighbors.h"
 
 int restir_bitterli_compatible(const float n[3], const float n_i[3], float d, float d_i, float normal_min,
                                float depth_max)

@@ -1,8 +1,8 @@
 /* restir/reservoir.c: streaming weighted reservoir sampling, reservoir merging, GRIS contribution
  * weights. Must never depend on a ray tracer, files, the renderer or anything else in src/. */
-#include "restir/reservoir.h"
-
 #include <math.h>
+
+#include "restir/reservoir.h"
 
 void restir_wrs_init(struct restir_wrs *r)
 {

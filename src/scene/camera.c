@@ -1,6 +1,6 @@
 /* camera.c: pinhole camera basis, primary rays, projection of world points (for reprojection),
  * and keyframed camera paths. Must never depend on the ray tracer or render passes. */
-#include "camera.h"
+#include "scene/camera.h"
 
 #include <math.h>
 

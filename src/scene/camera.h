@@ -3,7 +3,8 @@
 #ifndef RESTIR_SCENE_CAMERA_H
 #define RESTIR_SCENE_CAMERA_H
 
-#include "scene.h"
+#include "core/vec3.h"
+#include "scene/scene_types.h"
 
 /* Precomputed basis of a camera for an image of width x height pixels. */
 struct camera_view {
@@ -19,5 +20,8 @@ void camera_view_init(struct camera_view *v, const struct camera *c, int width, 
 vec3 camera_view_ray(const struct camera_view *v, float px, float py);
 /* Projects world point p to image coordinates; returns 0 when p is behind the camera. */
 int camera_view_project(const struct camera_view *v, vec3 p, float *px, float *py);
+
+/* Camera at a frame of the default path (or the static camera when path is 0). */
+struct camera scene_camera_at(const struct scene *s, int use_path, float frame);
 
 #endif

@@ -1,15 +1,15 @@
-/* scene.c: building a scene from triangles (builder), deriving normals, areas and the emitter
- * table, and releasing it. Must never include embree headers (scene_rt.c owns the back end). */
-#include "scene.h"
+/* scene.c: building a scene from triangles (builder), deriving normals and areas, and releasing it.
+ * Must never include embree headers (scene_rt.c owns the back end) nor anything from shading up. */
+#include "scene/scene.h"
 
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/check.h"
-#include "../shading/lights.h"
-#include "scene_rt.h"
+#include "core/check.h"
+#include "scene/scene_lights.h"
+#include "scene/scene_rt.h"
 
 static void *grow_to(void *p, int cap, size_t elem)
 {
@@ -247,46 +247,6 @@ static int derive_triangle_data(struct scene *s, char *msg)
     return 0;
 }
 
-static int build_emitters(struct scene *s, char *msg)
-{
-    s->tri_emitter = xmalloc(sizeof(int) * (size_t)s->num_tris);
-    s->emitter_tri = xmalloc(sizeof(int) * (size_t)s->num_tris);
-    s->num_emitters = 0;
-    for (int t = 0; t < s->num_tris; t++) {
-        vec3 e = s->materials[s->tri_material[t]].emission;
-        int emits = v3_max_component(e) > 0.0f && s->tri_area[t] > 0.0f;
-        s->tri_emitter[t] = emits ? s->num_emitters : -1;
-        if (emits)
-            s->emitter_tri[s->num_emitters++] = t;
-    }
-    if (s->num_emitters == 0)
-        return 0; /* a scene without lights renders black; light sampling reports no sample */
-    float *power = xmalloc(sizeof(float) * (size_t)s->num_emitters);
-    for (int i = 0; i < s->num_emitters; i++)
-        power[i] = lights_emitter_power(s, s->emitter_tri[i]);
-    int rc = alias_table_init(&s->emitter_table, power, s->num_emitters);
-    free(power);
-    if (rc != 0) {
-        snprintf(msg, RESTIR_MSG_LEN, "scene '%s': emitter powers are invalid (negative or NaN emission)",
-                 s->name);
-        return -1;
-    }
-    s->emitters = xmalloc(sizeof(*s->emitters) * (size_t)s->num_emitters);
-    for (int e = 0; e < s->num_emitters; e++) {
-        int t = s->emitter_tri[e];
-        struct emitter *em = &s->emitters[e];
-        em->v0 = s->verts[s->indices[3 * t]];
-        em->e1 = v3_sub(s->verts[s->indices[3 * t + 1]], em->v0);
-        em->e2 = v3_sub(s->verts[s->indices[3 * t + 2]], em->v0);
-        em->n = s->tri_normal[t];
-        em->Le = s->materials[s->tri_material[t]].emission;
-        em->textured = s->materials[s->tri_material[t]].emission_map != 0;
-        em->pdf_area = s->emitter_table.pmf[e] / s->tri_area[t];
-        em->tri = t;
-    }
-    return 0;
-}
-
 int scene_builder_end(struct scene_builder *b, char *msg)
 {
     struct scene *s = b->s;
@@ -315,7 +275,7 @@ int scene_builder_end(struct scene_builder *b, char *msg)
             }
         }
     }
-    if (derive_triangle_data(s, msg) != 0 || build_emitters(s, msg) != 0)
+    if (derive_triangle_data(s, msg) != 0 || scene_lights_build(s, msg) != 0)
         return -1;
     double t0 = omp_get_wtime();
     int rc = scene_rt_build(s, msg);

@@ -1,11 +1,11 @@
-/* scene_hash.c: scene_content_hash (scene.h), which tells a resumed reference whether the scene it
- * continues is the one its checkpoint was rendered from. */
-#include "scene.h"
+/* scene_hash.c: scene_content_hash, which tells a resumed reference whether its scene is the one
+ * its checkpoint was rendered from. Must never hash what rendering does not read. */
+#include "scene/scene_hash.h"
 
 #include <assert.h>
 
 #include "core/hash.h"
-#include "texture.h"
+#include "scene/texture.h"
 
 /* Hashing the structs' bytes is only stable when they hold no padding: all 4-byte fields. */
 static_assert(sizeof(vec3) == 3 * sizeof(float), "vec3 must be three packed floats");

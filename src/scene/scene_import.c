@@ -1,19 +1,6 @@
-/* scene_import.c: mesh files through assimp's C API (glTF 2.0 .gltf/.glb, .obj, .ply and whatever
- * else assimp reads) into the scene builder: the node hierarchy's transforms, glTF
- * metallic-roughness materials and the file's first camera. The only file that includes assimp
- * headers. Never prints and never aborts on bad input: every problem goes into msg, naming the
- * file. */
-#include "scene_file.h"
-#include "scene_import.h"
-#include "scene_import_texture.h"
-
-#include <float.h>
-#include <limits.h>
-#include <math.h>
-#include <stdint.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
+/* scene_import.c: mesh files through assimp's C API (glTF 2.0, OBJ, PLY, ...) into the scene
+ * builder: node transforms, materials, the first camera. Must never print or abort on bad input. */
+#include "scene/scene_import.h"
 
 #include <assimp/camera.h>
 #include <assimp/cimport.h>
@@ -21,9 +8,21 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/version.h>
-#include <cJSON.h>
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
-#include "../core/check.h"
+#include "core/check.h"
+#include "scene/mat4d.h"
+#include "scene/scene_import_gltf.h"
+#include "scene/scene_import_precheck.h"
+#include "scene/scene_import_texture.h"
+#include "scene/scene_path.h"
+
+/* With scene_import_texture.c the only file that includes assimp headers. Every problem goes into
+ * msg, naming the file: a bad asset is user input, not a bug. */
 
 /* Deeper node hierarchies are refused rather than risking the stack (real assets have tens). */
 #define IMPORT_MAX_NODE_DEPTH 1024
@@ -31,21 +30,7 @@
  * capacity far from INT_MAX. */
 #define IMPORT_MAX_TRIS 100000000
 
-/* ---- 4x4 transforms ------------------------------------------------------------------------ */
-
-/* Row-major 4x4 in double (assimp's convention and ours: p' = M p for column vectors). Composed
- * in double so that a deep hierarchy does not accumulate float rounding; applied as an affine map
- * (the bottom row of node and user transforms is (0 0 0 1) in every format we read). */
-typedef struct {
-    double m[16];
-} mat4d;
-
-static mat4d mat4d_identity(void)
-{
-    mat4d r = {{0}};
-    r.m[0] = r.m[5] = r.m[10] = r.m[15] = 1.0;
-    return r;
-}
+/* ---- 4x4 transforms: assimp's as mat4d (mat4d.h) ------------------------------------------- */
 
 static mat4d mat4d_from_ai(const struct aiMatrix4x4 *a)
 {
@@ -54,63 +39,6 @@ static mat4d mat4d_from_ai(const struct aiMatrix4x4 *a)
     mat4d r;
     memcpy(r.m, v, sizeof(v));
     return r;
-}
-
-static mat4d mat4d_from_floats(const float *f)
-{
-    mat4d r;
-    for (int i = 0; i < 16; i++)
-        r.m[i] = f[i];
-    return r;
-}
-
-static mat4d mat4d_mul(const mat4d *a, const mat4d *b)
-{
-    mat4d r;
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++) {
-            double s = 0.0;
-            for (int k = 0; k < 4; k++)
-                s += a->m[4 * i + k] * b->m[4 * k + j];
-            r.m[4 * i + j] = s;
-        }
-    return r;
-}
-
-/* Determinant of the linear part: negative means the transform mirrors, which turns
- * counter-clockwise triangles clockwise. */
-static double mat4d_det3(const mat4d *t)
-{
-    const double *m = t->m;
-    return m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
-           m[2] * (m[4] * m[9] - m[5] * m[8]);
-}
-
-/* double to float without undefined behaviour: C leaves out-of-range conversions undefined, so
- * anything a float cannot hold becomes an infinity (or stays NaN), which the callers refuse. */
-static float to_float(double d)
-{
-    if (isnan(d))
-        return NAN;
-    if (d > (double)FLT_MAX)
-        return INFINITY;
-    if (d < -(double)FLT_MAX)
-        return -INFINITY;
-    return (float)d;
-}
-
-static vec3 mat4d_point(const mat4d *t, double x, double y, double z)
-{
-    const double *m = t->m;
-    return v3(to_float(m[0] * x + m[1] * y + m[2] * z + m[3]), to_float(m[4] * x + m[5] * y + m[6] * z + m[7]),
-              to_float(m[8] * x + m[9] * y + m[10] * z + m[11]));
-}
-
-static vec3 mat4d_dir(const mat4d *t, double x, double y, double z)
-{
-    const double *m = t->m;
-    return v3(to_float(m[0] * x + m[1] * y + m[2] * z), to_float(m[4] * x + m[5] * y + m[6] * z),
-              to_float(m[8] * x + m[9] * y + m[10] * z));
 }
 
 /* ---- small helpers ------------------------------------------------------------------------- */
@@ -133,207 +61,6 @@ static int ai_string_equal(const struct aiString *a, const struct aiString *b)
 static int is_gltf_path(const char *path)
 {
     return scene_path_has_suffix(path, ".gltf") || scene_path_has_suffix(path, ".glb");
-}
-
-/* ---- KHR_materials_emissive_strength for assimp 5.2 ----------------------------------------- */
-
-/* assimp 5.2 reads glTF's emissiveFactor (at most 1) but drops KHR_materials_emissive_strength;
- * 5.3 reports it as AI_MATKEY_EMISSIVE_INTENSITY. Without the strength every glTF emitter would be
- * capped at radiance 1, so when assimp reports no intensity we read the strength from the file's
- * JSON ourselves. Materials are matched by name: assimp orders them by first use, not by their
- * index in the file, so only uniquely named materials can be matched (exporters name them). */
-
-static uint32_t le32(const unsigned char *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
-/* The JSON text of a .gltf (the whole file) or .glb (its first chunk, which the format requires
- * to be JSON), malloc'ed, or NULL when it cannot be read. */
-static char *read_gltf_json(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    char *text = NULL;
-    long size = -1;
-    if (fseek(f, 0, SEEK_END) == 0)
-        size = ftell(f);
-    if (size <= 0 || size > (1L << 30) || fseek(f, 0, SEEK_SET) != 0)
-        goto done;
-    unsigned char head[20];
-    size_t got = fread(head, 1, sizeof head, f);
-    size_t start = 0, n = (size_t)size;
-    if (got == sizeof head && le32(head) == 0x46546C67u) { /* "glTF": binary container */
-        uint32_t chunk = le32(head + 12);
-        if (le32(head + 16) != 0x4E4F534Au || chunk > (uint32_t)size - 20u) /* "JSON" */
-            goto done;
-        start = 20;
-        n = chunk;
-    }
-    if (fseek(f, (long)start, SEEK_SET) != 0)
-        goto done;
-    text = malloc(n + 1);
-    if (!text)
-        goto done;
-    if (fread(text, 1, n, f) != n) {
-        free(text);
-        text = NULL;
-        goto done;
-    }
-    text[n] = '\0';
-    *len = n;
-done:
-    fclose(f);
-    return text;
-}
-
-/* KHR_materials_emissive_strength of the file's material named name, or 1 when the file has no
- * uniquely named material of that name or that material has no strength. */
-static float gltf_strength_by_name(const cJSON *materials, const char *name)
-{
-    const cJSON *found = NULL;
-    int count = 0;
-    const cJSON *m;
-    cJSON_ArrayForEach(m, materials)
-    {
-        const cJSON *nm = cJSON_GetObjectItemCaseSensitive(m, "name");
-        if (cJSON_IsString(nm) && strcmp(nm->valuestring, name) == 0) {
-            found = m;
-            count++;
-        }
-    }
-    if (count != 1)
-        return 1.0f;
-    const cJSON *ext = cJSON_GetObjectItemCaseSensitive(found, "extensions");
-    const cJSON *es = cJSON_GetObjectItemCaseSensitive(ext, "KHR_materials_emissive_strength");
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(es, "emissiveStrength");
-    return cJSON_IsNumber(v) ? to_float(v->valuedouble) : 1.0f;
-}
-
-/* ---- header counts a file cannot hold ------------------------------------------------------ */
-
-/* assimp 5.2 trusts the element counts of PLY and OFF headers and allocates (and zero-fills) that
- * many vertices and faces before reading any: the 309-byte invalid/OutOfMemory.off of
- * assimp-testmodels, whose vertex count wraps to 1.3e9, costs 16 GB and half a minute, and a
- * 200-byte PLY claiming 1e9 vertices 12 GB. Every element takes at least one byte of the file, so
- * a count above the file's size is refused before assimp sees the file. */
-
-#define PRECHECK_HEAD 65536 /* how much of the file's start the headers are looked for in */
-
-/* Next whitespace-separated token of [*p, end), '#' comments skipped (OFF allows them). */
-static int next_token(const char **p, const char *end, const char **tok, size_t *len)
-{
-    const char *q = *p;
-    for (;;) {
-        while (q < end && (*q == ' ' || *q == '\t' || *q == '\r' || *q == '\n'))
-            q++;
-        if (q < end && *q == '#') {
-            while (q < end && *q != '\n')
-                q++;
-            continue;
-        }
-        break;
-    }
-    if (q >= end)
-        return 0;
-    *tok = q;
-    while (q < end && *q != ' ' && *q != '\t' && *q != '\r' && *q != '\n')
-        q++;
-    *len = (size_t)(q - *tok);
-    *p = q;
-    return 1;
-}
-
-/* A decimal token as a count, saturating: these headers overflow 32 bits on purpose. */
-static int token_count(const char *tok, size_t len, unsigned long long *out)
-{
-    unsigned long long v = 0;
-    if (len == 0)
-        return 0;
-    for (size_t i = 0; i < len; i++) {
-        if (tok[i] < '0' || tok[i] > '9')
-            return 0;
-        v = v > ULLONG_MAX / 10 - 1 ? ULLONG_MAX / 10 : v * 10 + (unsigned long long)(tok[i] - '0');
-    }
-    *out = v;
-    return 1;
-}
-
-/* The largest element count of a PLY header ("element <name> <count>" lines up to end_header;
- * read line by line so that comment lines never count), 0 when none. */
-static unsigned long long ply_max_count(const char *p, const char *end)
-{
-    unsigned long long most = 0;
-    while (p < end) {
-        const char *eol = memchr(p, '\n', (size_t)(end - p));
-        const char *line_end = eol ? eol : end, *q = p, *tok;
-        size_t len;
-        if (next_token(&q, line_end, &tok, &len)) {
-            unsigned long long n;
-            if (len == 10 && memcmp(tok, "end_header", 10) == 0)
-                break;
-            if (len == 7 && memcmp(tok, "element", 7) == 0 && next_token(&q, line_end, &tok, &len) &&
-                next_token(&q, line_end, &tok, &len) && token_count(tok, len, &n) && n > most)
-                most = n;
-        }
-        p = eol ? eol + 1 : end;
-    }
-    return most;
-}
-
-/* The larger of an OFF header's vertex and face counts ([ST][C][N][4][n]OFF [dim] nv nf ne), 0
- * when the header is not of that form. */
-static unsigned long long off_max_count(const char *p, const char *end)
-{
-    const char *tok;
-    size_t len;
-    if (!next_token(&p, end, &tok, &len) || len < 3 || memcmp(tok + len - 3, "OFF", 3) != 0)
-        return 0;
-    unsigned long long nv, nf, dim;
-    const int has_dim = len >= 4 && tok[len - 4] == 'n'; /* nOFF: the dimension comes first */
-    if (has_dim && !(next_token(&p, end, &tok, &len) && token_count(tok, len, &dim)))
-        return 0;
-    if (!(next_token(&p, end, &tok, &len) && token_count(tok, len, &nv)))
-        return 0;
-    if (!(next_token(&p, end, &tok, &len) && token_count(tok, len, &nf)))
-        return nv;
-    return nv > nf ? nv : nf;
-}
-
-/* 0, or -1 with msg when a PLY or OFF header claims more elements than the file has bytes. Files
- * that cannot be opened are left to assimp, which says why. */
-static int precheck_counts(const char *path, char *msg)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return 0;
-    long size = -1;
-    if (fseek(f, 0, SEEK_END) == 0)
-        size = ftell(f);
-    char *head = NULL;
-    size_t n = 0;
-    if (size > 0 && fseek(f, 0, SEEK_SET) == 0) {
-        head = xmalloc(PRECHECK_HEAD);
-        n = fread(head, 1, PRECHECK_HEAD, f);
-    }
-    fclose(f);
-    unsigned long long most = 0;
-    const char *kind = NULL;
-    if (n >= 4 && memcmp(head, "ply", 3) == 0 && (head[3] == '\n' || head[3] == '\r')) {
-        most = ply_max_count(head + 3, head + n);
-        kind = "PLY";
-    } else if (n > 0) {
-        most = off_max_count(head, head + n);
-        kind = "OFF";
-    }
-    free(head);
-    if (most > (unsigned long long)size) {
-        snprintf(msg, RESTIR_MSG_LEN, "%s: the %s header claims %llu elements, more than the file's %ld bytes can hold",
-                 path, kind, most, size);
-        return -1;
-    }
-    return 0;
 }
 
 /* ---- the import ---------------------------------------------------------------------------- */
@@ -396,14 +123,9 @@ static float emissive_strength(struct importer *im, const struct aiMaterial *m, 
         return k;
     if (!im->gltf_tried) {
         im->gltf_tried = 1;
-        size_t len = 0;
-        char *text = read_gltf_json(im->path, &len);
-        if (text)
-            im->gltf = cJSON_ParseWithLength(text, len);
-        free(text);
+        im->gltf = import_gltf_read(im->path);
     }
-    const cJSON *materials = cJSON_GetObjectItemCaseSensitive(im->gltf, "materials");
-    return cJSON_IsArray(materials) ? gltf_strength_by_name(materials, name) : 1.0f;
+    return mat4d_to_float(import_gltf_strength(im->gltf, name));
 }
 
 /* Our material for file material idx. glTF metallic-roughness factors map one to one, and its
@@ -675,7 +397,7 @@ static int import_mesh(struct scene_builder *b, const char *path, const float *x
         snprintf(msg, RESTIR_MSG_LEN, "%s: material %d does not exist", path, material);
         return -1;
     }
-    if (precheck_counts(path, msg) != 0)
+    if (import_precheck_counts(path, msg) != 0)
         return -1;
     /* Triangulate: polygons to triangles in their own winding. SortByPType: points and lines in
      * meshes of their own. ValidateDataStructure: assimp's own consistency checks (indices in

@@ -1,9 +1,9 @@
 /* scene_import.h: mesh files through assimp (glTF 2.0 .gltf/.glb, .obj, .ply and whatever else
- * assimp reads). The only assimp user (scene_import.c). */
+ * assimp reads). Must never expose assimp types: only scene_import*.c include assimp headers. */
 #ifndef RESTIR_SCENE_SCENE_IMPORT_H
 #define RESTIR_SCENE_SCENE_IMPORT_H
 
-#include "scene.h"
+#include "scene/scene.h"
 
 /* A material of the file (by its name in the file) replaced by one of the builder's. */
 struct scene_material_override {

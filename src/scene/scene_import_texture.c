@@ -1,14 +1,13 @@
-/* scene_import_texture.c: resolving and decoding the textures an assimp material names: embedded
- * ones (glTF binary buffers, data URIs: compressed images or raw BGRA texels) and files beside the
- * model. Must never build geometry. */
-#include "scene_import_texture.h"
+/* scene_import_texture.c: the textures an assimp material names, embedded (glTF buffers, data URIs,
+ * raw BGRA texels) or files beside the model, resolved and decoded. Must never build geometry. */
+#include "scene/scene_import_texture.h"
 
 #include <assimp/texture.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/check.h"
+#include "core/check.h"
 
 /* The embedded texture a reference names: "*N", or (assimp 5.1+) the file name of one. */
 static const struct aiTexture *embedded(const struct aiScene *ai, const char *ref)

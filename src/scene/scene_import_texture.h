@@ -1,12 +1,12 @@
-/* scene_import_texture.h: the textures of an assimp material as texture maps of the builder
- * (internal to scene_import*.c, the only files that include assimp headers). */
+/* scene_import_texture.h: the textures of an assimp material as texture maps of the builder.
+ * Internal to scene_import*.c: must never be included outside them (it exposes assimp types). */
 #ifndef RESTIR_SCENE_SCENE_IMPORT_TEXTURE_H
 #define RESTIR_SCENE_SCENE_IMPORT_TEXTURE_H
 
 #include <assimp/material.h>
 #include <assimp/scene.h>
 
-#include "scene.h"
+#include "scene/scene.h"
 
 /* The map id (>= 1) of the first texture of m among types[0 .. ntypes-1], decoded as sRGB or
  * linear and added to the builder on first use (keyed by its resolved file, or the model's path and

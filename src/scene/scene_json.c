@@ -1,241 +1,68 @@
-/* scene_json.c: the JSON scene reader (format in docs/SCENES.md) and scene_load, the one entry
- * point for built-in names and scene files. Shapes go through the same builder calls the built-in
- * scenes make, so an exported built-in scene reads back bit for bit. Every error names the file and
- * the key; nothing is half-built on failure. */
-#include <cjson/cJSON.h>
-#include <errno.h>
+/* scene_json.c: the readers of our JSON scene format (docs/SCENES.md) and of camera files.
+ * Must never depend on the loader entry (scene_file.c): it dispatches to us, not back. */
+#include "scene/scene_json.h"
+
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/check.h"
-#include "scene_file.h"
-#include "scene_import.h"
+#include "core/check.h"
+#include "scene/scene_import.h"
+#include "scene/scene_json_reader.h"
+#include "scene/scene_path.h"
+#include "scene/texture.h"
 
-/* Largest scene file read into memory (the JSON itself; meshes it names are read by assimp). */
-#define SCENE_JSON_MAX_BYTES (1L << 30)
 /* Largest magnitude accepted for a coordinate or radiance: beyond it float math overflows. */
 #define SCENE_COORD_MAX 1e18
-
-struct reader {
-    const char *file;
-    char dir[4096]; /* directory of file, for relative mesh paths ("" = current) */
-    char *msg;
-    struct scene_builder *b;
-    cJSON *materials; /* the "materials" array (names resolve through it) */
-};
-
-/* vsnprintf into out: a message too long for the buffer is cut, never left unterminated. */
-static void msgf(char *out, size_t len, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(out, len, fmt, ap);
-    va_end(ap);
-}
-
-static int fail(struct reader *r, const char *key, const char *fmt, ...)
-{
-    char what[RESTIR_MSG_LEN];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(what, sizeof what, fmt, ap);
-    va_end(ap);
-    if (key && *key)
-        msgf(r->msg, RESTIR_MSG_LEN, "%s: %s: %s", r->file, key, what);
-    else
-        msgf(r->msg, RESTIR_MSG_LEN, "%s: %s", r->file, what);
-    return -1;
-}
-
-/* key of a child: "parent.name" or "parent[i]" */
-static void child_key(char *out, size_t len, const char *parent, const char *name, int index)
-{
-    int n = name ? snprintf(out, len, "%s%s%s", parent, *parent ? "." : "", name)
-                 : snprintf(out, len, "%s[%d]", parent, index);
-    if (n >= (int)len && len > 4)
-        memcpy(out + len - 4, "...", 4); /* a cut key says so */
-}
-
-/* An object whose keys must all be among allowed (NULL-terminated). */
-static int check_keys(struct reader *r, const cJSON *obj, const char *key, const char *const *allowed)
-{
-    if (!cJSON_IsObject(obj))
-        return fail(r, key, "must be an object");
-    for (const cJSON *c = obj->child; c; c = c->next) {
-        int known = 0;
-        for (int i = 0; allowed[i] && !known; i++)
-            known = strcmp(c->string, allowed[i]) == 0;
-        if (!known) {
-            char k[256];
-            child_key(k, sizeof k, key, c->string, 0);
-            return fail(r, k, "unknown key");
-        }
-    }
-    return 0;
-}
-
-/* The member name of obj (its key, for messages, into k): 1 with *v when present, 0 when absent
- * and optional, -1 (with the message) when absent and required. */
-static int member(struct reader *r, const cJSON *obj, const char *key, const char *name, int required, char *k,
-                  size_t klen, const cJSON **v)
-{
-    child_key(k, klen, key, name, 0);
-    *v = cJSON_GetObjectItemCaseSensitive(obj, name);
-    if (*v)
-        return 1;
-    return required ? fail(r, k, "missing") : 0;
-}
-
-static int get_number(struct reader *r, const cJSON *obj, const char *key, const char *name, int required,
-                      double lo, double hi, float fallback, float *out)
-{
-    char k[256];
-    const cJSON *v;
-    int has = member(r, obj, key, name, required, k, sizeof k, &v);
-    if (has <= 0) {
-        *out = fallback;
-        return has;
-    }
-    if (!cJSON_IsNumber(v))
-        return fail(r, k, "must be a number");
-    double d = v->valuedouble;
-    if (!isfinite(d) || d < lo || d > hi)
-        return fail(r, k, "%g is out of range [%g, %g]", d, lo, hi);
-    *out = (float)d;
-    return 0;
-}
-
-static int get_int(struct reader *r, const cJSON *obj, const char *key, const char *name, int lo, int hi,
-                   int fallback, int *out)
-{
-    float f;
-    if (get_number(r, obj, key, name, 0, lo, hi, (float)fallback, &f) != 0)
-        return -1;
-    if (f != floorf(f)) {
-        char k[256];
-        child_key(k, sizeof k, key, name, 0);
-        return fail(r, k, "must be an integer");
-    }
-    *out = (int)f;
-    return 0;
-}
-
-static int get_bool(struct reader *r, const cJSON *obj, const char *key, const char *name, int *out)
-{
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, name);
-    if (!v) {
-        *out = 0;
-        return 0;
-    }
-    if (!cJSON_IsBool(v)) {
-        char k[256];
-        child_key(k, sizeof k, key, name, 0);
-        return fail(r, k, "must be true or false");
-    }
-    *out = cJSON_IsTrue(v);
-    return 0;
-}
-
-/* A 3-vector from an array value v (key names it). */
-static int vec3_value(struct reader *r, const cJSON *v, const char *key, double lo, double hi, vec3 *out)
-{
-    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != 3)
-        return fail(r, key, "must be an array of 3 numbers");
-    float c[3];
-    int i = 0;
-    for (const cJSON *e = v->child; e; e = e->next, i++) {
-        if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble))
-            return fail(r, key, "must be an array of 3 finite numbers");
-        if (e->valuedouble < lo || e->valuedouble > hi)
-            return fail(r, key, "component %g is out of range [%g, %g]", e->valuedouble, lo, hi);
-        c[i] = (float)e->valuedouble;
-    }
-    *out = v3(c[0], c[1], c[2]);
-    return 0;
-}
-
-static int get_vec3(struct reader *r, const cJSON *obj, const char *key, const char *name, int required, double lo,
-                    double hi, vec3 fallback, vec3 *out)
-{
-    char k[256];
-    const cJSON *v;
-    int has = member(r, obj, key, name, required, k, sizeof k, &v);
-    if (has <= 0) {
-        *out = fallback;
-        return has;
-    }
-    return vec3_value(r, v, k, lo, hi, out);
-}
-
-static const cJSON *get_array(struct reader *r, const cJSON *obj, const char *key, const char *name, int required,
-                              int *ok)
-{
-    char k[256];
-    child_key(k, sizeof k, key, name, 0);
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, name);
-    *ok = 1;
-    if (!v) {
-        if (required)
-            *ok = fail(r, k, "missing") == 0;
-        return NULL;
-    }
-    if (!cJSON_IsArray(v)) {
-        *ok = fail(r, k, "must be an array") == 0;
-        return NULL;
-    }
-    return v;
-}
 
 /* ---- camera ---- */
 
 static const char *const camera_keys[] = {"position", "look_at", "up", "vfov", "frame", NULL};
 
-static int read_camera(struct reader *r, const cJSON *v, const char *key, int with_frame, struct camera *cam,
+static int read_camera(struct json_reader *r, const cJSON *v, const char *key, int with_frame, struct camera *cam,
                        float *frame)
 {
-    if (check_keys(r, v, key, camera_keys) != 0)
+    if (json_check_keys(r, v, key, camera_keys) != 0)
         return -1;
     if (!with_frame && cJSON_GetObjectItemCaseSensitive(v, "frame")) {
         char k[256];
-        child_key(k, sizeof k, key, "frame", 0);
-        return fail(r, k, "only camera_path keys have a frame");
+        json_child_key(k, sizeof k, key, "frame", 0);
+        return json_fail(r, k, "only camera_path keys have a frame");
     }
-    if (get_vec3(r, v, key, "position", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &cam->position) != 0 ||
-        get_vec3(r, v, key, "look_at", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &cam->target) != 0 ||
-        get_vec3(r, v, key, "up", 0, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3(0, 1, 0), &cam->up) != 0 ||
-        get_number(r, v, key, "vfov", 0, 1e-3, 179.0, 45.0f, &cam->vfov_deg) != 0)
+    if (json_get_vec3(r, v, key, "position", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &cam->position) != 0 ||
+        json_get_vec3(r, v, key, "look_at", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &cam->target) != 0 ||
+        json_get_vec3(r, v, key, "up", 0, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3(0, 1, 0), &cam->up) != 0 ||
+        json_get_number(r, v, key, "vfov", 0, 1e-3, 179.0, 45.0f, &cam->vfov_deg) != 0)
         return -1;
-    if (with_frame && get_number(r, v, key, "frame", 1, -1e9, 1e9, 0.0f, frame) != 0)
+    if (with_frame && json_get_number(r, v, key, "frame", 1, -1e9, 1e9, 0.0f, frame) != 0)
         return -1;
     vec3 view = v3_sub(cam->target, cam->position);
     if (!(v3_length(view) > 0.0f))
-        return fail(r, key, "degenerate camera: position equals look_at");
+        return json_fail(r, key, "degenerate camera: position equals look_at");
     vec3 side = v3_cross(view, cam->up);
     if (!(v3_length(side) > 1e-6f * v3_length(view) * v3_length(cam->up)))
-        return fail(r, key, "degenerate camera: up is zero or parallel to the view direction");
+        return json_fail(r, key, "degenerate camera: up is zero or parallel to the view direction");
     return 0;
 }
 
-static int read_camera_path(struct reader *r, const cJSON *path)
+static int read_camera_path(struct json_reader *r, const cJSON *path)
 {
     struct scene *s = r->b->s;
     const int n = cJSON_GetArraySize(path);
     if (n < 1)
-        return fail(r, "camera_path", "needs at least one key");
+        return json_fail(r, "camera_path", "needs at least one key");
     s->camera_path.keys = xcalloc((size_t)n, sizeof(struct camera_key));
     int i = 0;
     for (const cJSON *k = path->child; k; k = k->next, i++) {
         char key[64];
-        child_key(key, sizeof key, "camera_path", NULL, i);
+        json_child_key(key, sizeof key, "camera_path", NULL, i);
         struct camera_key *ck = &s->camera_path.keys[i];
         if (read_camera(r, k, key, 1, &ck->cam, &ck->frame) != 0)
             return -1;
         s->camera_path.num_keys = i + 1;
         if (i > 0 && !(ck->frame > s->camera_path.keys[i - 1].frame))
-            return fail(r, key, "frame must be larger than the previous key's");
+            return json_fail(r, key, "frame must be larger than the previous key's");
     }
     return 0;
 }
@@ -248,24 +75,24 @@ static const char *const material_keys[] = {"name", "base_color", "metallic", "r
 
 /* A path in the file: absolute, or relative to the file's folder. Returns -1 (msg naming key)
  * when it does not fit out. */
-static int resolve_path(struct reader *r, const char *key, const char *name, char *out, size_t len)
+static int resolve_path(struct json_reader *r, const char *key, const char *name, char *out, size_t len)
 {
     int n = name[0] == '/' || !*r->dir ? snprintf(out, len, "%s", name)
                                        : snprintf(out, len, "%s%s%s", r->dir, strcmp(r->dir, "/") ? "/" : "", name);
-    return n >= 0 && (size_t)n < len ? 0 : fail(r, key, "path too long");
+    return n >= 0 && (size_t)n < len ? 0 : json_fail(r, key, "path too long");
 }
 
 /* The texture map named by key of material object m (0 when absent), read on first use. */
-static int texture_map(struct reader *r, const cJSON *m, const char *mkey, const char *key, int srgb, int *map)
+static int texture_map(struct json_reader *r, const cJSON *m, const char *mkey, const char *key, int srgb, int *map)
 {
     char k[128];
-    child_key(k, sizeof k, mkey, key, 0);
+    json_child_key(k, sizeof k, mkey, key, 0);
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(m, key);
     *map = 0;
     if (!v)
         return 0;
     if (!cJSON_IsString(v) || !*v->valuestring)
-        return fail(r, k, "must be an image file name");
+        return json_fail(r, k, "must be an image file name");
     char path[4096];
     if (resolve_path(r, k, v->valuestring, path, sizeof path) != 0)
         return -1;
@@ -274,51 +101,51 @@ static int texture_map(struct reader *r, const cJSON *m, const char *mkey, const
     struct texture t;
     char tmsg[RESTIR_MSG_LEN];
     if (texture_load_file(path, srgb, &t, tmsg) != 0)
-        return fail(r, k, "%s", tmsg);
+        return json_fail(r, k, "%s", tmsg);
     *map = scene_add_texture(r->b, t, path, srgb);
     return 0;
 }
 
-static int read_materials(struct reader *r)
+static int read_materials(struct json_reader *r)
 {
     int i = 0;
     for (const cJSON *m = r->materials ? r->materials->child : NULL; m; m = m->next, i++) {
         char key[64];
-        child_key(key, sizeof key, "materials", NULL, i);
-        if (check_keys(r, m, key, material_keys) != 0)
+        json_child_key(key, sizeof key, "materials", NULL, i);
+        if (json_check_keys(r, m, key, material_keys) != 0)
             return -1;
         const cJSON *name = cJSON_GetObjectItemCaseSensitive(m, "name");
         if (!cJSON_IsString(name) || !*name->valuestring) {
             char k[80];
-            child_key(k, sizeof k, key, "name", 0);
-            return fail(r, k, name ? "must be a non-empty string" : "missing");
+            json_child_key(k, sizeof k, key, "name", 0);
+            return json_fail(r, k, name ? "must be a non-empty string" : "missing");
         }
         int j = 0;
         for (const cJSON *o = r->materials->child; o != m; o = o->next, j++) {
             const cJSON *on = cJSON_GetObjectItemCaseSensitive(o, "name");
             if (strcmp(on->valuestring, name->valuestring) == 0)
-                return fail(r, key, "material name '%s' already used by materials[%d]", name->valuestring, j);
+                return json_fail(r, key, "material name '%s' already used by materials[%d]", name->valuestring, j);
         }
         struct material mt = {0};
         float strength;
-        if (get_vec3(r, m, key, "base_color", 0, 0.0, 1.0, v3s(0.8f), &mt.base_color) != 0 ||
-            get_number(r, m, key, "metallic", 0, 0.0, 1.0, 0.0f, &mt.metallic) != 0 ||
-            get_number(r, m, key, "roughness", 0, 0.0, 1.0, 1.0f, &mt.roughness) != 0 ||
-            get_vec3(r, m, key, "emission", 0, 0.0, SCENE_COORD_MAX, v3s(0.0f), &mt.emission) != 0 ||
-            get_number(r, m, key, "emissive_strength", 0, 0.0, SCENE_COORD_MAX, 1.0f, &strength) != 0 ||
-            get_bool(r, m, key, "lambert", &mt.lambert_only) != 0)
+        if (json_get_vec3(r, m, key, "base_color", 0, 0.0, 1.0, v3s(0.8f), &mt.base_color) != 0 ||
+            json_get_number(r, m, key, "metallic", 0, 0.0, 1.0, 0.0f, &mt.metallic) != 0 ||
+            json_get_number(r, m, key, "roughness", 0, 0.0, 1.0, 1.0f, &mt.roughness) != 0 ||
+            json_get_vec3(r, m, key, "emission", 0, 0.0, SCENE_COORD_MAX, v3s(0.0f), &mt.emission) != 0 ||
+            json_get_number(r, m, key, "emissive_strength", 0, 0.0, SCENE_COORD_MAX, 1.0f, &strength) != 0 ||
+            json_get_bool(r, m, key, "lambert", &mt.lambert_only) != 0)
             return -1;
         if (strength != 1.0f) /* KHR_materials_emissive_strength: a multiplier of the colour */
             mt.emission = v3_scale(mt.emission, strength);
         if (v3_max_component(mt.emission) > 1e18f) {
             char k[80];
-            child_key(k, sizeof k, key, "emissive_strength", 0);
-            return fail(r, k, "emission times strength exceeds 1e18");
+            json_child_key(k, sizeof k, key, "emissive_strength", 0);
+            return json_fail(r, k, "emission times strength exceeds 1e18");
         }
         if (cJSON_GetObjectItemCaseSensitive(m, "emission_texture") && !(v3_max_component(mt.emission) > 0.0f)) {
             char k[80];
-            child_key(k, sizeof k, key, "emission_texture", 0);
-            return fail(r, k, "has no effect without \"emission\" (the map multiplies it, as in glTF)");
+            json_child_key(k, sizeof k, key, "emission_texture", 0);
+            return json_fail(r, k, "has no effect without \"emission\" (the map multiplies it, as in glTF)");
         }
         /* glTF 2.0 maps: colour images are sRGB-encoded, metallic-roughness (G, B) linear */
         if (texture_map(r, m, key, "base_color_texture", 1, &mt.base_color_map) != 0 ||
@@ -331,10 +158,10 @@ static int read_materials(struct reader *r)
 }
 
 /* Material id of the value v (a material name); key names v. */
-static int material_ref(struct reader *r, const cJSON *v, const char *key, int *id)
+static int material_ref(struct json_reader *r, const cJSON *v, const char *key, int *id)
 {
     if (!cJSON_IsString(v))
-        return fail(r, key, "must be a material name");
+        return json_fail(r, key, "must be a material name");
     int i = 0;
     for (const cJSON *m = r->materials ? r->materials->child : NULL; m; m = m->next, i++) {
         if (strcmp(cJSON_GetObjectItemCaseSensitive(m, "name")->valuestring, v->valuestring) == 0) {
@@ -342,27 +169,27 @@ static int material_ref(struct reader *r, const cJSON *v, const char *key, int *
             return 0;
         }
     }
-    return fail(r, key, "no material named '%s' in \"materials\"", v->valuestring);
+    return json_fail(r, key, "no material named '%s' in \"materials\"", v->valuestring);
 }
 
 /* ---- shapes ---- */
 
 /* Row-major 4x4 from "matrix" or from translate * rotate (z * y * x, degrees) * scale. */
-static int read_transform(struct reader *r, const cJSON *t, const char *key, float m[16])
+static int read_transform(struct json_reader *r, const cJSON *t, const char *key, float m[16])
 {
     static const char *const keys[] = {"matrix", "translate", "rotate", "scale", NULL};
-    if (check_keys(r, t, key, keys) != 0)
+    if (json_check_keys(r, t, key, keys) != 0)
         return -1;
     const cJSON *mat = cJSON_GetObjectItemCaseSensitive(t, "matrix");
     if (mat) {
         if (t->child->next)
-            return fail(r, key, "\"matrix\" cannot be combined with translate, rotate or scale");
+            return json_fail(r, key, "\"matrix\" cannot be combined with translate, rotate or scale");
         if (!cJSON_IsArray(mat) || cJSON_GetArraySize(mat) != 16)
-            return fail(r, key, "matrix must be an array of 16 numbers (row-major)");
+            return json_fail(r, key, "matrix must be an array of 16 numbers (row-major)");
         int i = 0;
         for (const cJSON *e = mat->child; e; e = e->next, i++) {
             if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble) || fabs(e->valuedouble) > SCENE_COORD_MAX)
-                return fail(r, key, "matrix[%d] must be a finite number", i);
+                return json_fail(r, key, "matrix[%d] must be a finite number", i);
             m[i] = (float)e->valuedouble;
         }
         return 0;
@@ -370,19 +197,19 @@ static int read_transform(struct reader *r, const cJSON *t, const char *key, flo
     vec3 tr, rot, sc;
     const cJSON *scale = cJSON_GetObjectItemCaseSensitive(t, "scale");
     char k[256];
-    child_key(k, sizeof k, key, "scale", 0);
+    json_child_key(k, sizeof k, key, "scale", 0);
     if (scale && cJSON_IsNumber(scale)) {
         float f;
-        if (get_number(r, t, key, "scale", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, 1.0f, &f) != 0)
+        if (json_get_number(r, t, key, "scale", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, 1.0f, &f) != 0)
             return -1;
         sc = v3s(f);
-    } else if (get_vec3(r, t, key, "scale", 0, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(1.0f), &sc) != 0) {
+    } else if (json_get_vec3(r, t, key, "scale", 0, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(1.0f), &sc) != 0) {
         return -1;
     }
     if (sc.x == 0.0f || sc.y == 0.0f || sc.z == 0.0f)
-        return fail(r, k, "a zero scale flattens the mesh");
-    if (get_vec3(r, t, key, "translate", 0, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0.0f), &tr) != 0 ||
-        get_vec3(r, t, key, "rotate", 0, -1e6, 1e6, v3s(0.0f), &rot) != 0)
+        return json_fail(r, k, "a zero scale flattens the mesh");
+    if (json_get_vec3(r, t, key, "translate", 0, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0.0f), &tr) != 0 ||
+        json_get_vec3(r, t, key, "rotate", 0, -1e6, 1e6, v3s(0.0f), &rot) != 0)
         return -1;
     const double d2r = 3.14159265358979323846 / 180.0;
     double cx = cos(rot.x * d2r), sx = sin(rot.x * d2r), cy = cos(rot.y * d2r), sy = sin(rot.y * d2r);
@@ -402,22 +229,22 @@ static int read_transform(struct reader *r, const cJSON *t, const char *key, flo
     return 0;
 }
 
-static int read_mesh(struct reader *r, const cJSON *sh, const char *key, int material, int object)
+static int read_mesh(struct json_reader *r, const cJSON *sh, const char *key, int material, int object)
 {
     static const char *const keys[] = {"type", "file", "transform", "material", "materials", "object", NULL};
-    if (check_keys(r, sh, key, keys) != 0)
+    if (json_check_keys(r, sh, key, keys) != 0)
         return -1;
     char k[256];
-    child_key(k, sizeof k, key, "file", 0);
+    json_child_key(k, sizeof k, key, "file", 0);
     const cJSON *file = cJSON_GetObjectItemCaseSensitive(sh, "file");
     if (!cJSON_IsString(file) || !*file->valuestring)
-        return fail(r, k, file ? "must be a file name" : "missing");
+        return json_fail(r, k, file ? "must be a file name" : "missing");
     char path[4096];
     if (resolve_path(r, k, file->valuestring, path, sizeof path) != 0)
         return -1;
     float m[16];
     const cJSON *t = cJSON_GetObjectItemCaseSensitive(sh, "transform");
-    child_key(k, sizeof k, key, "transform", 0);
+    json_child_key(k, sizeof k, key, "transform", 0);
     if (t && read_transform(r, t, k, m) != 0)
         return -1;
     /* "materials": {"name in the file": "our material"} */
@@ -425,14 +252,14 @@ static int read_mesh(struct reader *r, const cJSON *sh, const char *key, int mat
     struct scene_material_override ov[64];
     int nov = 0;
     if (map) {
-        child_key(k, sizeof k, key, "materials", 0);
+        json_child_key(k, sizeof k, key, "materials", 0);
         if (!cJSON_IsObject(map))
-            return fail(r, k, "must be an object mapping the file's material names to ours");
+            return json_fail(r, k, "must be an object mapping the file's material names to ours");
         for (const cJSON *e = map->child; e; e = e->next) {
             char ek[320];
-            child_key(ek, sizeof ek, k, e->string, 0);
+            json_child_key(ek, sizeof ek, k, e->string, 0);
             if (nov == 64)
-                return fail(r, k, "at most 64 material overrides per mesh");
+                return json_fail(r, k, "at most 64 material overrides per mesh");
             ov[nov].file_name = e->string;
             if (material_ref(r, e, ek, &ov[nov].material) != 0)
                 return -1;
@@ -441,35 +268,35 @@ static int read_mesh(struct reader *r, const cJSON *sh, const char *key, int mat
     }
     char imsg[RESTIR_MSG_LEN];
     if (scene_import_mesh(r->b, path, t ? m : NULL, material, ov, nov, object, imsg) < 0)
-        return fail(r, key, "%s", imsg);
+        return json_fail(r, key, "%s", imsg);
     return 0;
 }
 
 /* "vertices": [[x,y,z], ...] (triangles) or "quads": [[c0,c1,c2,c3], ...] */
-static int read_polygons(struct reader *r, const cJSON *sh, const char *key, int corners, int material, int object)
+static int read_polygons(struct json_reader *r, const cJSON *sh, const char *key, int corners, int material, int object)
 {
     static const char *const tri_keys[] = {"type", "vertices", "uvs", "material", "object", NULL};
     static const char *const quad_keys[] = {"type", "quads", "material", "object", NULL};
-    if (check_keys(r, sh, key, corners == 3 ? tri_keys : quad_keys) != 0)
+    if (json_check_keys(r, sh, key, corners == 3 ? tri_keys : quad_keys) != 0)
         return -1;
     int ok;
     const char *name = corners == 3 ? "vertices" : "quads";
-    const cJSON *list = get_array(r, sh, key, name, 1, &ok);
+    const cJSON *list = json_get_array(r, sh, key, name, 1, &ok);
     if (!ok)
         return -1;
     char k[256];
-    child_key(k, sizeof k, key, name, 0);
+    json_child_key(k, sizeof k, key, name, 0);
     const int n = cJSON_GetArraySize(list);
     if (n == 0 || (corners == 3 && n % 3 != 0))
-        return fail(r, k, corners == 3 ? "needs 3 vertices per triangle" : "is empty");
+        return json_fail(r, k, corners == 3 ? "needs 3 vertices per triangle" : "is empty");
     /* triangles: optional "uvs" [[u, v], ...], one per vertex; quads: the unit square, c0 at (0, 0) */
-    const cJSON *uvs = corners == 3 ? get_array(r, sh, key, "uvs", 0, &ok) : NULL;
+    const cJSON *uvs = corners == 3 ? json_get_array(r, sh, key, "uvs", 0, &ok) : NULL;
     if (!ok)
         return -1;
     if (uvs && cJSON_GetArraySize(uvs) != n) {
         char uk[256];
-        child_key(uk, sizeof uk, key, "uvs", 0);
-        return fail(r, uk, "needs one [u, v] per vertex (%d)", n);
+        json_child_key(uk, sizeof uk, key, "uvs", 0);
+        return json_fail(r, uk, "needs one [u, v] per vertex (%d)", n);
     }
     const cJSON *uv_item = uvs ? uvs->child : NULL;
     float uv[8];
@@ -477,19 +304,19 @@ static int read_polygons(struct reader *r, const cJSON *sh, const char *key, int
     int i = 0, c = 0;
     for (const cJSON *e = list->child; e; e = e->next, i++) {
         char ek[300];
-        child_key(ek, sizeof ek, k, NULL, i);
+        json_child_key(ek, sizeof ek, k, NULL, i);
         if (corners == 3) {
-            if (vec3_value(r, e, ek, -SCENE_COORD_MAX, SCENE_COORD_MAX, &p[c]) != 0)
+            if (json_vec3_value(r, e, ek, -SCENE_COORD_MAX, SCENE_COORD_MAX, &p[c]) != 0)
                 return -1;
             if (uv_item) {
                 char uk[300];
-                child_key(uk, sizeof uk, key, "uvs", 0);
-                child_key(ek, sizeof ek, uk, NULL, i);
+                json_child_key(uk, sizeof uk, key, "uvs", 0);
+                json_child_key(ek, sizeof ek, uk, NULL, i);
                 if (!cJSON_IsArray(uv_item) || cJSON_GetArraySize(uv_item) != 2 ||
                     !cJSON_IsNumber(uv_item->child) || !cJSON_IsNumber(uv_item->child->next) ||
                     !isfinite(uv_item->child->valuedouble) || !isfinite(uv_item->child->next->valuedouble) ||
                     fabs(uv_item->child->valuedouble) > 1e6 || fabs(uv_item->child->next->valuedouble) > 1e6)
-                    return fail(r, ek, "must be [u, v] (finite, at most 1e6)");
+                    return json_fail(r, ek, "must be [u, v] (finite, at most 1e6)");
                 uv[2 * c] = (float)uv_item->child->valuedouble;
                 uv[2 * c + 1] = (float)uv_item->child->next->valuedouble;
                 uv_item = uv_item->next;
@@ -503,12 +330,12 @@ static int read_polygons(struct reader *r, const cJSON *sh, const char *key, int
             continue;
         }
         if (!cJSON_IsArray(e) || cJSON_GetArraySize(e) != 4)
-            return fail(r, ek, "a quad is an array of 4 corners");
+            return json_fail(r, ek, "a quad is an array of 4 corners");
         int j = 0;
         for (const cJSON *q = e->child; q; q = q->next, j++) {
             char qk[320];
-            child_key(qk, sizeof qk, ek, NULL, j);
-            if (vec3_value(r, q, qk, -SCENE_COORD_MAX, SCENE_COORD_MAX, &p[j]) != 0)
+            json_child_key(qk, sizeof qk, ek, NULL, j);
+            if (json_vec3_value(r, q, qk, -SCENE_COORD_MAX, SCENE_COORD_MAX, &p[j]) != 0)
                 return -1;
         }
         scene_add_quad(r->b, p[0], p[1], p[2], p[3], material, object);
@@ -523,37 +350,38 @@ static int read_polygons(struct reader *r, const cJSON *sh, const char *key, int
     return 0;
 }
 
-static int read_box(struct reader *r, const cJSON *sh, const char *key, int material, int object)
+static int read_box(struct json_reader *r, const cJSON *sh, const char *key, int material, int object)
 {
     static const char *const keys[] = {"type", "min", "max", "rotate_y_rad", "material", "object", NULL};
     vec3 lo, hi;
     float angle;
-    if (check_keys(r, sh, key, keys) != 0 ||
-        get_vec3(r, sh, key, "min", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &lo) != 0 ||
-        get_vec3(r, sh, key, "max", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &hi) != 0 ||
-        get_number(r, sh, key, "rotate_y_rad", 0, -1e6, 1e6, 0.0f, &angle) != 0)
+    if (json_check_keys(r, sh, key, keys) != 0 ||
+        json_get_vec3(r, sh, key, "min", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &lo) != 0 ||
+        json_get_vec3(r, sh, key, "max", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &hi) != 0 ||
+        json_get_number(r, sh, key, "rotate_y_rad", 0, -1e6, 1e6, 0.0f, &angle) != 0)
         return -1;
     if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
-        return fail(r, key, "max must exceed min in x, y and z");
+        return json_fail(r, key, "max must exceed min in x, y and z");
     scene_add_box_rotated_y(r->b, lo, hi, angle, material, object);
     return 0;
 }
 
-static int read_sphere(struct reader *r, const cJSON *sh, const char *key, int material, int object)
+static int read_sphere(struct json_reader *r, const cJSON *sh, const char *key, int material, int object)
 {
     static const char *const keys[] = {"type", "center", "radius", "segments", "inward", "material", "object", NULL};
     vec3 c;
     float radius;
     int segments = 0, inward = 0;
-    if (check_keys(r, sh, key, keys) != 0 ||
-        get_vec3(r, sh, key, "center", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &c) != 0 ||
-        get_number(r, sh, key, "radius", 1, 0.0, SCENE_COORD_MAX, 1.0f, &radius) != 0 ||
-        get_int(r, sh, key, "segments", 3, 4096, 32, &segments) != 0 || get_bool(r, sh, key, "inward", &inward) != 0)
+    if (json_check_keys(r, sh, key, keys) != 0 ||
+        json_get_vec3(r, sh, key, "center", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &c) != 0 ||
+        json_get_number(r, sh, key, "radius", 1, 0.0, SCENE_COORD_MAX, 1.0f, &radius) != 0 ||
+        json_get_int(r, sh, key, "segments", 3, 4096, 32, &segments) != 0 ||
+        json_get_bool(r, sh, key, "inward", &inward) != 0)
         return -1;
     if (!(radius > 0.0f)) {
         char k[256];
-        child_key(k, sizeof k, key, "radius", 0);
-        return fail(r, k, "must be positive");
+        json_child_key(k, sizeof k, key, "radius", 0);
+        return json_fail(r, k, "must be positive");
     }
     scene_add_sphere(r->b, c, radius, segments, inward, material, object);
     return 0;
@@ -571,29 +399,29 @@ static int max_object_id(const cJSON *shapes)
     return max_id;
 }
 
-static int read_shapes(struct reader *r, const cJSON *shapes)
+static int read_shapes(struct json_reader *r, const cJSON *shapes)
 {
     r->b->s->num_objects = max_object_id(shapes) + 1;
     int i = 0;
     for (const cJSON *sh = shapes->child; sh; sh = sh->next, i++) {
         char key[64], k[96];
-        child_key(key, sizeof key, "shapes", NULL, i);
+        json_child_key(key, sizeof key, "shapes", NULL, i);
         if (!cJSON_IsObject(sh))
-            return fail(r, key, "must be an object");
+            return json_fail(r, key, "must be an object");
         const cJSON *type = cJSON_GetObjectItemCaseSensitive(sh, "type");
-        child_key(k, sizeof k, key, "type", 0);
+        json_child_key(k, sizeof k, key, "type", 0);
         if (!cJSON_IsString(type))
-            return fail(r, k, type ? "must be a string" : "missing (mesh, triangles, quads, box or sphere)");
+            return json_fail(r, k, type ? "must be a string" : "missing (mesh, triangles, quads, box or sphere)");
         const int is_mesh = strcmp(type->valuestring, "mesh") == 0;
         int object = -1, material = -1;
-        if (get_int(r, sh, key, "object", 0, 1000000, -1, &object) != 0)
+        if (json_get_int(r, sh, key, "object", 0, 1000000, -1, &object) != 0)
             return -1;
         const cJSON *mv = cJSON_GetObjectItemCaseSensitive(sh, "material");
-        child_key(k, sizeof k, key, "material", 0);
+        json_child_key(k, sizeof k, key, "material", 0);
         if (mv && material_ref(r, mv, k, &material) != 0)
             return -1;
         if (!mv && !is_mesh)
-            return fail(r, k, "missing");
+            return json_fail(r, k, "missing");
         if (object < 0 && !is_mesh)
             object = scene_new_object(r->b);
         int rc;
@@ -608,8 +436,8 @@ static int read_shapes(struct reader *r, const cJSON *shapes)
         else if (strcmp(type->valuestring, "sphere") == 0)
             rc = read_sphere(r, sh, key, material, object);
         else {
-            child_key(k, sizeof k, key, "type", 0);
-            rc = fail(r, k, "unknown shape type '%s' (mesh, triangles, quads, box or sphere)", type->valuestring);
+            json_child_key(k, sizeof k, key, "type", 0);
+            rc = json_fail(r, k, "unknown shape type '%s' (mesh, triangles, quads, box or sphere)", type->valuestring);
         }
         if (rc != 0)
             return -1;
@@ -619,87 +447,39 @@ static int read_shapes(struct reader *r, const cJSON *shapes)
     return 0;
 }
 
-/* ---- file ---- */
-
-static char *read_whole_file(const char *path, long *len, char *msg)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(msg, RESTIR_MSG_LEN, "%s: cannot open: %s", path, strerror(errno));
-        return NULL;
-    }
-    char *buf = NULL;
-    if (fseek(f, 0, SEEK_END) == 0 && (*len = ftell(f)) >= 0 && *len <= SCENE_JSON_MAX_BYTES &&
-        fseek(f, 0, SEEK_SET) == 0) {
-        buf = xmalloc((size_t)*len + 1);
-        if (fread(buf, 1, (size_t)*len, f) != (size_t)*len) {
-            free(buf);
-            buf = NULL;
-        }
-    }
-    fclose(f);
-    if (!buf)
-        snprintf(msg, RESTIR_MSG_LEN, "%s: cannot read (not a regular file, or over %ld bytes)", path,
-                 SCENE_JSON_MAX_BYTES);
-    else
-        buf[*len] = '\0';
-    return buf;
-}
-
-/* Line of the position where cJSON stopped parsing. */
-static int line_of(const char *text, const char *at)
-{
-    int line = 1;
-    for (const char *c = text; at && c < at && *c; c++)
-        line += *c == '\n';
-    return line;
-}
-
-void scene_file_stem(const char *path, char *out, size_t len)
-{
-    const char *base = strrchr(path, '/');
-    base = base ? base + 1 : path;
-    snprintf(out, len, "%s", base);
-    char *dot = strrchr(out, '.');
-    if (dot && dot != out)
-        *dot = '\0';
-    if (!out[0] && len > 5)
-        snprintf(out, len, "scene");
-}
-
 static const char *const top_keys[] = {"format", "name", "camera", "camera_path", "materials", "shapes", NULL};
 
-static int read_scene(struct reader *r, const cJSON *root)
+static int read_scene(struct json_reader *r, const cJSON *root)
 {
-    if (check_keys(r, root, "", top_keys) != 0)
+    if (json_check_keys(r, root, "", top_keys) != 0)
         return -1;
     const cJSON *format = cJSON_GetObjectItemCaseSensitive(root, "format");
     if (format && !(cJSON_IsString(format) && strcmp(format->valuestring, "restir-scene 1") == 0))
-        return fail(r, "format", "must be \"restir-scene 1\"");
+        return json_fail(r, "format", "must be \"restir-scene 1\"");
     const cJSON *name = cJSON_GetObjectItemCaseSensitive(root, "name");
     if (name && !cJSON_IsString(name))
-        return fail(r, "name", "must be a string");
+        return json_fail(r, "name", "must be a string");
     if (name) { /* it names output folders: one plain path component */
         const char *v = name->valuestring;
         int bad = !*v || strlen(v) >= sizeof r->b->s->name || strstr(v, "..") != NULL;
         for (const char *c = v; *c && !bad; c++)
             bad = *c == '/' || *c == '\\' || (unsigned char)*c < 32;
         if (bad)
-            return fail(r, "name", "must be 1 to 63 characters without '/', '\\', '..' or control characters");
+            return json_fail(r, "name", "must be 1 to 63 characters without '/', '\\', '..' or control characters");
     }
     if (name)
         snprintf(r->b->s->name, sizeof r->b->s->name, "%s", name->valuestring);
     int ok;
-    r->materials = (cJSON *)get_array(r, root, "", "materials", 0, &ok);
+    r->materials = (cJSON *)json_get_array(r, root, "", "materials", 0, &ok);
     if (!ok || read_materials(r) != 0)
         return -1;
     const cJSON *cam = cJSON_GetObjectItemCaseSensitive(root, "camera");
     if (!cam)
-        return fail(r, "camera", "missing");
+        return json_fail(r, "camera", "missing");
     float unused;
     if (read_camera(r, cam, "camera", 0, &r->b->s->camera, &unused) != 0)
         return -1;
-    const cJSON *path = get_array(r, root, "", "camera_path", 0, &ok);
+    const cJSON *path = json_get_array(r, root, "", "camera_path", 0, &ok);
     if (!ok || (path && read_camera_path(r, path) != 0))
         return -1;
     if (!path) { /* the path of a scene without one stands still */
@@ -707,29 +487,32 @@ static int read_scene(struct reader *r, const cJSON *root)
         r->b->s->camera_path.keys = xcalloc(1, sizeof(struct camera_key));
         r->b->s->camera_path.keys[0].cam = r->b->s->camera;
     }
-    const cJSON *shapes = get_array(r, root, "", "shapes", 1, &ok);
+    const cJSON *shapes = json_get_array(r, root, "", "shapes", 1, &ok);
     if (!ok || read_shapes(r, shapes) != 0)
         return -1;
     if (r->b->s->num_tris == 0)
-        return fail(r, "shapes", "no triangles");
+        return json_fail(r, "shapes", "no triangles");
     int emissive = 0;
     for (int t = 0; t < r->b->s->num_tris && !emissive; t++)
         emissive = v3_max_component(r->b->s->materials[r->b->s->tri_material[t]].emission) > 0.0f;
     if (!emissive)
-        return fail(r, "shapes", "no shape has an emissive material: add an emitter (a material with \"emission\")");
+        return json_fail(r, "shapes",
+                         "no shape has an emissive material: add an emitter (a material with \"emission\")");
     return 0;
 }
 
+/* Shapes go through the same builder calls the built-in scenes make, so an exported built-in scene
+ * reads back bit for bit. Nothing is half-built on failure. */
 int scene_json_parse(const char *text, size_t len, const char *file, const char *dir, struct scene *s, char *msg)
 {
     memset(s, 0, sizeof(*s)); /* empty on every failure, so scene_destroy is always safe */
-    struct reader r = {.file = file, .msg = msg};
+    struct json_reader r = {.file = file, .msg = msg};
     snprintf(r.dir, sizeof r.dir, "%s", dir ? dir : "");
     const char *end = NULL;
     /* text[len] must be the NUL that require_null_terminated looks for, hence len + 1 */
     cJSON *root = cJSON_ParseWithLengthOpts(text, len + 1, &end, 1);
     if (!root)
-        return fail(&r, NULL, "invalid JSON at line %d", line_of(text, end ? end : cJSON_GetErrorPtr()));
+        return json_fail(&r, NULL, "invalid JSON at line %d", json_line_of(text, end ? end : cJSON_GetErrorPtr()));
     char stem[64];
     scene_file_stem(file, stem, sizeof stem);
     struct scene_builder b;
@@ -740,7 +523,7 @@ int scene_json_parse(const char *text, size_t len, const char *file, const char 
     if (rc == 0 && scene_builder_end(&b, msg) != 0) {
         char inner[RESTIR_MSG_LEN];
         memcpy(inner, msg, sizeof inner);
-        msgf(msg, RESTIR_MSG_LEN, "%s: %s", file, inner);
+        json_msgf(msg, RESTIR_MSG_LEN, "%s: %s", file, inner);
         rc = -1;
     }
     if (rc != 0)
@@ -752,7 +535,7 @@ int scene_json_load(const char *path, struct scene *s, char *msg)
 {
     memset(s, 0, sizeof(*s));
     long len = 0;
-    char *text = read_whole_file(path, &len, msg);
+    char *text = scene_read_whole_file(path, &len, msg);
     if (!text)
         return -1;
     char dir[4096] = "";
@@ -771,67 +554,30 @@ int scene_json_load(const char *path, struct scene *s, char *msg)
     return rc;
 }
 
-int scene_path_has_suffix(const char *s, const char *suffix)
-{
-    size_t n = strlen(s), k = strlen(suffix);
-    if (n < k)
-        return 0;
-    for (size_t i = 0; i < k; i++) {
-        char c = s[n - k + i];
-        if (c >= 'A' && c <= 'Z')
-            c = (char)(c - 'A' + 'a');
-        if (c != suffix[i])
-            return 0;
-    }
-    return 1;
-}
-
-int scene_load(const char *name_or_path, struct scene *s, char *msg)
-{
-    memset(s, 0, sizeof(*s));
-    if (scene_is_builtin(name_or_path))
-        return scene_create_builtin(name_or_path, s, msg);
-    FILE *f = fopen(name_or_path, "rb");
-    if (!f) {
-        if (!strchr(name_or_path, '/') && !strchr(name_or_path, '.'))
-            return scene_create_builtin(name_or_path, s, msg); /* names the built-in scenes */
-        snprintf(msg, RESTIR_MSG_LEN, "scene '%s': no built-in scene of that name and cannot open it as a file: %s",
-                 name_or_path, strerror(errno));
-        return -1;
-    }
-    fclose(f);
-    if (scene_path_has_suffix(name_or_path, ".json"))
-        return scene_json_load(name_or_path, s, msg);
-    return scene_import_file(name_or_path, s, msg);
-}
-
-int scene_cameras_load(const char *path, struct camera **cams, int *n, char *msg)
+int scene_json_cameras_parse(const char *text, size_t len, const char *file, struct camera **cams, int *n,
+                             char *msg)
 {
     *cams = NULL;
     *n = 0;
-    long len = 0;
-    char *text = read_whole_file(path, &len, msg);
-    if (!text)
-        return -1;
-    struct reader r = {.file = path, .msg = msg};
+    struct json_reader r = {.file = file, .msg = msg};
     const char *end = NULL;
-    cJSON *root = cJSON_ParseWithLengthOpts(text, (size_t)len + 1, &end, 1);
+    cJSON *root = cJSON_ParseWithLengthOpts(text, len + 1, &end, 1);
     int rc = 0;
     static const char *const keys[] = {"format", "scene", "method", "width", "height", "seed", "cameras", NULL};
     if (!root)
-        rc = fail(&r, NULL, "invalid JSON at line %d", line_of(text, end ? end : cJSON_GetErrorPtr()));
-    else if (check_keys(&r, root, "", keys) != 0)
+        rc = json_fail(&r, NULL, "invalid JSON at line %d", json_line_of(text, end ? end : cJSON_GetErrorPtr()));
+    else if (json_check_keys(&r, root, "", keys) != 0)
         rc = -1;
     const cJSON *list = rc == 0 ? cJSON_GetObjectItemCaseSensitive(root, "cameras") : NULL;
     if (rc == 0 && (!cJSON_IsArray(list) || cJSON_GetArraySize(list) < 1))
-        rc = fail(&r, "cameras", "must be an array of at least one camera, one per frame");
+        rc = json_fail(&r, "cameras", "must be an array of at least one camera, one per frame");
     if (rc == 0) {
         *cams = xcalloc((size_t)cJSON_GetArraySize(list), sizeof(struct camera));
         int i = 0;
         for (const cJSON *c = list->child; c && rc == 0; c = c->next, i++) {
             char key[64];
             float unused;
-            child_key(key, sizeof key, "cameras", NULL, i);
+            json_child_key(key, sizeof key, "cameras", NULL, i);
             rc = read_camera(&r, c, key, 0, &(*cams)[i], &unused);
         }
         *n = i;
@@ -842,6 +588,5 @@ int scene_cameras_load(const char *path, struct camera **cams, int *n, char *msg
         }
     }
     cJSON_Delete(root);
-    free(text);
     return rc;
 }

@@ -1,15 +1,15 @@
-/* scene_rt.c: the Embree 3 back end: builds the BVH over the scene's triangles and answers
- * closest-hit and occlusion queries. The only file that includes embree3/rtcore.h. */
-#include "scene_rt.h"
+/* scene_rt.c: the Embree 3 back end: the BVH over the scene's triangles, closest-hit and occlusion
+ * queries. The only file that includes embree3/rtcore.h; must never expose its types. */
+#include "scene/scene_rt.h"
 
 #include <embree3/rtcore.h>
 #include <math.h>
-#include <stdio.h>
 #include <omp.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/check.h"
+#include "core/check.h"
 
 /* Per-thread append-only ray log (benchmarks only). */
 struct ray_log {

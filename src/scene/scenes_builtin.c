@@ -1,12 +1,14 @@
 /* scenes_builtin.c: the scenes made in code (cornell, ajar, many-lights, foliage, pillars, furnace),
  * each with a default static camera and camera path. Must never read files. */
+#include "scene/scenes_builtin.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/check.h"
-#include "../core/rng.h"
-#include "scene.h"
+#include "core/check.h"
+#include "core/rng.h"
+#include "scene/scene.h"
 
 const char *const scene_builtin_names[] = {"many-lights", "cornell", "ajar", "foliage", "pillars", "furnace",
                                             NULL};

@@ -1,6 +1,6 @@
 /* texture.c: texture decoding (stb_image, the Debian libstb build) and bilinear lookup.
  * Must never depend on materials or render code. */
-#include "texture.h"
+#include "scene/texture.h"
 
 #include <math.h>
 #include <stb/stb_image.h>
@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/check.h"
+#include "core/check.h"
 
 /* Largest texture accepted: per side, and in texels (12 bytes each decoded: 2^26 is 768 MB). Both
  * are checked from the image header, before anything is decoded. */

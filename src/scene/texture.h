@@ -1,11 +1,12 @@
-/* texture.h: images that modulate material factors (glTF 2.0 base colour, metallic-roughness and
- * emissive textures), decoded once to linear float RGB and looked up bilinearly with repeat
- * wrapping. UVs follow assimp's convention: (0, 0) is the image's bottom-left corner. */
+/* texture.h: images that modulate material factors (glTF 2.0 base colour, metallic-roughness, emissive).
+ * Must never depend on materials or render code. */
 #ifndef RESTIR_SCENE_TEXTURE_H
 #define RESTIR_SCENE_TEXTURE_H
 
-#include "../core/vec3.h"
+#include "core/vec3.h"
 
+/* Decoded once to linear float RGB and looked up bilinearly with repeat wrapping. UVs follow
+ * assimp's convention: (0, 0) is the image's bottom-left corner. */
 struct texture {
     int width, height;
     float *rgb; /* width * height * 3, linear, row 0 = the image's top row */

@@ -1,10 +1,10 @@
 /* bsdf.c: Lambert diffuse plus GGX specular (glTF metallic/roughness) with visible-normal
  * sampling. Must never depend on the ray tracer, lights or render passes. */
-#include "bsdf.h"
+#include "shading/bsdf.h"
 
 #include <math.h>
 
-#include "../core/sampling.h"
+#include "core/sampling.h"
 
 /* max_f / min_f with the variable first return the bound for a NaN x, as fmaxf / fminf do, but
  * compile to one instruction: without -ffinite-math-only fmaxf is a libm call, and these run for

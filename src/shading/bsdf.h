@@ -5,8 +5,8 @@
 #ifndef RESTIR_SHADING_BSDF_H
 #define RESTIR_SHADING_BSDF_H
 
-#include "../core/vec3.h"
-#include "../scene/scene.h"
+#include "core/vec3.h"
+#include "scene/scene.h"
 
 /* Minimum GGX alpha: keeps near-mirror lobes finite so eval/pdf stay well defined. */
 #define BSDF_MIN_ALPHA 0.0025f

@@ -1,13 +1,10 @@
-/* lights.c: emitter selection by power (the scene's alias table), uniform points on emissive
- * triangles, one-sided emission and area-to-solid-angle conversion. Must never depend on the
- * ray tracer or on render passes. */
-#include "lights.h"
+/* lights.c: emitter selection through the scene's alias table, uniform points on emissive triangles,
+ * one-sided emission, area-to-solid-angle conversion. Must never depend on the ray tracer or render. */
+#include "shading/lights.h"
 
 #include <math.h>
 
 static vec3 tri_vertex(const struct scene *s, int tri, int k) { return s->verts[s->indices[3 * tri + k]]; }
-
-static vec3 tri_emission(const struct scene *s, int tri) { return s->materials[s->tri_material[tri]].emission; }
 
 /* Emission at a point: the material's factor, times its emission texture there. */
 static vec3 point_emission(const struct scene *s, int tri, float b1, float b2)
@@ -17,13 +14,6 @@ static vec3 point_emission(const struct scene *s, int tri, float b1, float b2)
         return m->emission;
     struct material tmp;
     return scene_material_at(s, tri, b1, b2, &tmp)->emission;
-}
-
-/* Power of a Lambertian emitter of radiance L over area A: integral of L cos over the
- * hemisphere times A = pi L A (one-sided). Luminance collapses the colour for selection. */
-float lights_emitter_power(const struct scene *s, int tri)
-{
-    return v3_luminance(tri_emission(s, tri)) * s->tri_area[tri] * RESTIR_PI;
 }
 
 /* Area density of a point = P(choose triangle) * 1 / area (uniform on the triangle). */

@@ -1,11 +1,12 @@
-/* lights.h: emitter sampling: an emissive triangle chosen proportionally to power through the
- * scene's alias table, then a uniform point on it. Densities are in area measure on the light;
- * lights_pdf_solid_angle converts. Must never depend on render passes. */
+/* lights.h: emitter sampling through the scene's emitter table (scene/scene_lights.h): a triangle
+ * chosen by power, a uniform point on it, its emission. Must never depend on render passes. */
 #ifndef RESTIR_SHADING_LIGHTS_H
 #define RESTIR_SHADING_LIGHTS_H
 
-#include "../scene/scene.h"
+#include "scene/scene.h"
+#include "scene/scene_lights.h" /* lights_emitter_power: the scene builds the table with it */
 
+/* A point on a light. Densities are in area measure on the light; lights_pdf_solid_angle converts. */
 struct light_sample {
     int tri;        /* triangle index of the emitter */
     float b1, b2;   /* barycentrics of the point on the triangle */
@@ -15,8 +16,6 @@ struct light_sample {
     float pdf_area; /* density of choosing this point, area measure */
 };
 
-/* Emitter power used for selection: luminance(Le) * area * pi. */
-float lights_emitter_power(const struct scene *s, int tri);
 /* Samples a point on the emitters from three uniforms. Returns 0 when the scene has no lights. */
 int lights_sample(const struct scene *s, float u_select, float u1, float u2, struct light_sample *ls);
 /* Area density of producing the point on triangle tri (0 when tri is not an emitter). */

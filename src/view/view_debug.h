@@ -6,7 +6,7 @@
 #ifndef RESTIR_VIEW_VIEW_DEBUG_H
 #define RESTIR_VIEW_VIEW_DEBUG_H
 
-#include "render/renderer.h"
+#include "methods/renderer.h"
 
 enum view_mode { VIEW_IMAGE = 0, VIEW_CONFIDENCE, VIEW_ACCEPTANCE, VIEW_NEIGHBORS, VIEW_CELLS, VIEW_MODES };
 

@@ -1,5 +1,5 @@
 /* view_script.c: the --script reader of `restir view` (format in view_script.h). */
-#include "view_script.h"
+#include "view/view_script.h"
 
 #include <ctype.h>
 #include <stdio.h>

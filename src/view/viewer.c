@@ -4,8 +4,8 @@
  * in a debug view also writes that view (screenshot_NNNN_view.png). */
 #include "view/viewer.h"
 
-#include <SDL2/SDL.h>
 #include <math.h>
+#include <SDL2/SDL.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -9,7 +9,7 @@
 #ifndef RESTIR_VIEW_VIEWER_H
 #define RESTIR_VIEW_VIEWER_H
 
-#include "render/renderer.h"
+#include "methods/renderer.h"
 #include "scene/scene.h"
 
 struct view_options {

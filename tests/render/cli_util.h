@@ -218,4 +218,14 @@ static inline void cli_read_text(const char *path, char *buf, size_t n)
     fclose(f);
 }
 
+/* Writes text to path (replacing it). Returns 0, or -1 when it cannot be written. */
+static inline int cli_write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return -1;
+    int ok = fputs(text, f) >= 0;
+    return fclose(f) == 0 && ok ? 0 : -1;
+}
+
 #endif

@@ -3,8 +3,9 @@
 #include <dirent.h>
 
 #include "cli_util.h"
-#include "render/renderer.h"
+#include "methods/renderer.h"
 #include "scene/scene.h"
+#include "scene/scenes_builtin.h"
 #include "test_util.h"
 
 static char tmp[CLI_PATH_MAX];
@@ -278,12 +279,7 @@ static void check_list_and_help(void)
 /* Scene files: every command that takes --scene refuses a bad one before writing anything. */
 static void write_text(const char *path, const char *text)
 {
-    FILE *f = fopen(path, "wb");
-    EXPECT(f != NULL, "cannot write %s", path);
-    if (f) {
-        fputs(text, f);
-        fclose(f);
-    }
+    EXPECT(cli_write_text(path, text) == 0, "cannot write %s", path);
 }
 
 static void check_scene_files(void)

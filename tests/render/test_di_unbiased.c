@@ -4,10 +4,9 @@
  * temporal reuse merges history from other shading points. The default has visibility reuse with
  * ray-traced visibility in the MIS targets (di.visibility_reuse=on, di.visibility_mis=rays);
  * visibility_reuse=off is checked too, and visibility_mis=none's bias is measured. */
-#include <string.h>
-
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "unbiased_runs.h"
 

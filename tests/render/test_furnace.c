@@ -5,7 +5,8 @@
 #include <string.h>
 
 #include "core/check.h"
-#include "render/renderer.h"
+#include "methods/renderer.h"
+#include "scene/scenes_builtin.h"
 #include "shading/bsdf.h"
 #include "test_util.h"
 #include "unbiased_util.h"

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "gradient/grad_frame.h"
+#include "scene/scenes_builtin.h"
 #include "unbiased_runs.h"
 
 #define FRAMES 3

@@ -4,8 +4,9 @@
 #include <string.h>
 
 #include "cli_util.h"
-#include "render/renderer.h"
+#include "methods/renderer.h"
 #include "scene/scene.h"
+#include "scene/scenes_builtin.h"
 #include "test_util.h"
 
 static char text[1 << 16];

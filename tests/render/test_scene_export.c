@@ -7,6 +7,7 @@
 #include "cli_util.h"
 #include "core/check.h"
 #include "scene/scene_file.h"
+#include "scene/scenes_builtin.h"
 #include "test_util.h"
 
 #define SAME_ARRAY(a, b, n, what)                                                                  \

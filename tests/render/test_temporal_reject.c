@@ -3,7 +3,8 @@
 #include <string.h>
 
 #include "core/check.h"
-#include "render/renderer.h"
+#include "methods/renderer.h"
+#include "scene/scenes_builtin.h"
 #include "test_util.h"
 
 #define W 80

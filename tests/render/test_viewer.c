@@ -18,12 +18,7 @@ static long file_size(const char *path)
 
 static void write_text(const char *path, const char *text)
 {
-    FILE *f = fopen(path, "w");
-    EXPECT(f != NULL, "cannot write %s", path);
-    if (f) {
-        fputs(text, f);
-        fclose(f);
-    }
+    EXPECT(cli_write_text(path, text) == 0, "cannot write %s", path);
 }
 
 static void same_file(const char *a, const char *b)

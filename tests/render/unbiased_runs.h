@@ -6,8 +6,8 @@
 
 #include <string.h>
 
+#include "methods/renderer.h"
 #include "scene/scene_file.h"
-#include "render/renderer.h"
 #include "test_util.h"
 #include "unbiased_util.h"
 

@@ -1,5 +1,5 @@
 /* test_gradient_toy.c: the toy of 002 Figure 3 as a statistical test of the gradient arithmetic
- * (restir/gradient.h: paired-pixel integrand, balance weight Eq. 13, positivized targets) driven by
+ * (restir/paired_pixel.h: paired-pixel integrand, balance weight Eq. 13, positivized targets) driven by
  * the project's RIS / GRIS bookkeeping (restir/reservoir.h, restir/mis.h). Must never depend on
  * Embree, files or the renderer.
  *
@@ -48,16 +48,16 @@
  * of the two disjoint part strategies as if they overlapped) is detected as biased by the same
  * z-test, at the value the error predicts; with an unequal split (12 + 4 candidates) the correct
  * per-part weights stay unbiased while 1/M gives (12/16) int h(., 0) + (4/16) int h(., 1). */
+#include <math.h>
+#include <stdio.h>
+
 #include "accum.h"
 #include "chi2_util.h"
 #include "core/rng.h"
-#include "restir/gradient.h"
 #include "restir/mis.h"
+#include "restir/paired_pixel.h"
 #include "restir/reservoir.h"
 #include "test_util.h"
-
-#include <math.h>
-#include <stdio.h>
 
 #define TOY_PI 3.14159265358979323846
 #define TRIALS 200000

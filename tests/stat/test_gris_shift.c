@@ -19,6 +19,9 @@
  * so |dT/dx| is 0.6, 3 x and 1.6 (never 1) and every T_i covers only part of Omega_0.
  * No neighbour reaches the spike, neighbour 1 never reaches [0, 0.4) and, with RIS inputs,
  * neighbour 2 never reaches T_2([0.55, 0.65)): 1/M loses mass there (violates 004 Eq. 8). */
+#include <math.h>
+#include <stdint.h>
+
 #include "accum.h"
 #include "core/rng.h"
 #include "restir/mis.h"
@@ -26,9 +29,6 @@
 #include "synthetic_domains.h"
 #include "synthetic_integrand.h"
 #include "test_util.h"
-
-#include <math.h>
-#include <stdint.h>
 
 #define NDOM 4
 #define TRIALS 1000000L       /* per balance / pairwise row */

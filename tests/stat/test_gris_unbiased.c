@@ -1,12 +1,12 @@
 /* test_gris_unbiased.c: RIS and GRIS unbiasedness on 1-D integrands with known integrals, and the
  * measurable bias of 1/M weights (004 Eq. 5-12). Must never depend on Embree, files or renderer. */
+#include <math.h>
+
 #include "accum.h"
 #include "core/rng.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
 #include "test_util.h"
-
-#include <math.h>
 
 #define TRIALS 400000
 #define Z_MAX 4.5

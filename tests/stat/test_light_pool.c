@@ -13,6 +13,7 @@
 #include "core/check.h"
 #include "core/rng.h"
 #include "render/light_pool.h"
+#include "scene/scenes_builtin.h"
 #include "shading/lights.h"
 #include "test_util.h"
 

@@ -1,10 +1,10 @@
 /* test_wrs.c: statistical test of streaming weighted reservoir sampling and reservoir merging:
  * selection frequencies match w_i / sum w. Must never depend on Embree, files or the renderer. */
+#include <math.h>
+
 #include "core/rng.h"
 #include "restir/reservoir.h"
 #include "test_util.h"
-
-#include <math.h>
 
 #define NCAND 10
 #define TRIALS 1000000

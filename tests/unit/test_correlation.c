@@ -2,13 +2,13 @@
  * hard-pixel classification (000 Sec. 7) in restir/metrics.h: hand-computed tiny cases, a direct
  * evaluation of Eq. 16 on random data, noise with known (zero or perfect) correlation, and a
  * synthetic G-buffer. Must never depend on Embree or files. */
-#include "core/rng.h"
-#include "restir/metrics.h"
-#include "test_util.h"
-
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "core/rng.h"
+#include "restir/metrics.h"
+#include "test_util.h"
 
 #define EPS 1e-4f
 

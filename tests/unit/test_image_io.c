@@ -1,20 +1,19 @@
 /* test_image_io.c: unit tests for EXR (one and several layers) and PNG (sRGB and signed false
  * colour) image files, atomic commits and the CSV/JSON writers.
  * Must never depend on render code or scenes; writes only under a fresh /tmp directory. */
-#include "core/check.h"
-#include "io/image_io.h"
-#include "io/report.h"
-#include "test_util.h"
-
+#include <dirent.h>
 #include <openexr.h>
 #include <png.h>
-
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
+#include "core/check.h"
+#include "io/image_io.h"
+#include "io/report.h"
+#include "test_util.h"
 
 static char dir[64];
 

@@ -1,9 +1,9 @@
 /* test_metrics.c: unit tests for restir_error_compute on small images with hand-computed values.
  * Must never depend on src/ headers, files or the renderer; only on include/restir/metrics.h. */
+#include <string.h>
+
 #include "restir/metrics.h"
 #include "test_util.h"
-
-#include <string.h>
 
 /* Two pixels. Reference R and image I (all values exact in float):
  *   R0 = (1, 0, 2)      I0 = (1, 0.5, 1)     I0 - R0 = (0, 0.5, -1)

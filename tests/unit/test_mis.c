@@ -1,11 +1,11 @@
 /* test_mis.c: unit tests of resampling MIS weights: partition of unity (004 Eq. 8), zero
  * denominators, entries each mode reads, name parsing. Must never depend on Embree or files. */
+#include <math.h>
+#include <string.h>
+
 #include "core/rng.h"
 #include "restir/mis.h"
 #include "test_util.h"
-
-#include <math.h>
-#include <string.h>
 
 #define MAXN 16
 

@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "render/path_shift.h"
+#include "scene/scenes_builtin.h"
 #include "shading/bsdf.h"
 #include "test_util.h"
 

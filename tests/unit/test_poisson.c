@@ -2,12 +2,12 @@
  * data reconstructs the image, residuals, the alpha -> infinity limit, DCT against CG,
  * linearity, the energy minimum, L1 robustness to outliers, non-finite inputs, degenerate sizes
  * and bad arguments. Must never depend on src/ headers, files or the renderer. */
-#include "restir/poisson.h"
-#include "test_util.h"
-
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "restir/poisson.h"
+#include "test_util.h"
 
 static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
 

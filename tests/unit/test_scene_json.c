@@ -10,6 +10,7 @@
 
 #include "core/check.h"
 #include "scene/scene_file.h"
+#include "scene/scene_json.h"
 #include "test_util.h"
 
 static char dir[256];

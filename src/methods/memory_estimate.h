@@ -1,11 +1,11 @@
 /* memory_estimate.h: what a renderer will allocate, known before it does (issue 13: refuse what the
  * machine cannot hold instead of being killed half way). */
-#ifndef RESTIR_RENDER_MEMORY_ESTIMATE_H
-#define RESTIR_RENDER_MEMORY_ESTIMATE_H
+#ifndef RESTIR_METHODS_MEMORY_ESTIMATE_H
+#define RESTIR_METHODS_MEMORY_ESTIMATE_H
 
 #include <stddef.h>
 
-#include "renderer.h"
+#include "methods/renderer.h"
 
 /* Bytes a renderer of method with parameters p on scene s allocates, and per pixel. Measured, not
  * hand-counted: renderers are built at two small resolutions and the heap's growth (glibc's

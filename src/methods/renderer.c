@@ -1,81 +1,30 @@
 /* renderer.c: runs one frame of a method as a sequence of passes, keeps the ping-pong state
  * between frames, and times each pass. Must never read or write files. */
-#include "renderer.h"
+#include "methods/renderer.h"
 
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/check.h"
-#include "pt.h"
-#include "nonfinite.h"
-#include "restir_di.h"
-#include "restir_pt.h"
-#include "reuse_cells.h"
-#include "spatial_select.h"
 #include "core/lowdisc.h"
+#include "gradient/gpt.h"
 #include "gradient/grad_after.h"
 #include "gradient/grad_common.h"
 #include "gradient/grad_frame.h"
-#include "gradient/gpt.h"
 #include "gradient/grestir.h"
-
-const struct method_info method_table[METHOD_COUNT] = {
-    {"pt", "path tracing: NEE + BSDF sampling with MIS, Russian roulette (the reference method)", 0, 0},
-    {"ris-di", "direct lighting by initial RIS only, no reuse (the no-reuse baseline of 001)", 1, 0},
-    {"restir-di", "ReSTIR DI: initial RIS, temporal and spatial reuse by GRIS (pairwise MIS default)", 1, 0},
-    {"restir-pt", "ReSTIR PT: path resampling, temporal and spatial path reuse by GRIS with shift mappings "
-                  "(hybrid default) and sub-pixel reservoirs", 0, 0},
-    {"area-restir", "Area ReSTIR (002 B.3): restir-pt with 1 initial candidate and 2 spatial neighbors, "
-                    "sub-pixel reservoirs", 0, 0},
-    {"gpt", "gradient-domain path tracing (Kettunen et al. 2015, 002 B.2): pt base paths shifted to the 4 "
-            "neighbors (hybrid shift), Poisson reconstruction", 0, 1},
-    {"grad-after-restir", "Gradient after ReSTIR (002 B.1): area-ReSTIR primal, gradients from shifting each "
-                          "pixel's final path to its neighbors, Poisson reconstruction", 0, 1},
-    {"grestir-pt", "gradient-domain ReSTIR PT (002): area-ReSTIR primal, ReSTIR over paired-pixel samples with "
-                   "positivization, temporal and adaptive spatial reuse, Poisson reconstruction", 0, 1},
-};
-
-int method_runs_restir_pt(enum method_id m)
-{
-    return m == METHOD_RESTIR_PT || m == METHOD_AREA_RESTIR || m == METHOD_GRAD_AFTER_RESTIR ||
-           m == METHOD_GRESTIR_PT;
-}
-
-/* Methods without a G-buffer: they trace their own primary rays. */
-static int method_has_gbuffer(enum method_id m) { return m != METHOD_PT && m != METHOD_GPT; }
+#include "render/nonfinite.h"
+#include "render/pt.h"
+#include "render/restir_di.h"
+#include "render/restir_pt.h"
+#include "render/reuse_cells.h"
+#include "render/spatial_select.h"
 
 const char *const pass_names[PASS_COUNT] = {"gbuffer", "initial",         "temporal",    "select",
                                             "spatial", "cells",           "cell_search", "spmis_canonical",
                                             "spmis_reuse", "shade", "pt", "gpt", "grad_initial",
                                             "grad_temporal", "grad_select", "grad_spatial", "grad_shade",
                                             "recon_l2", "recon_l1"};
-
-int method_find(const char *name)
-{
-    for (int m = 0; m < METHOD_COUNT; m++)
-        if (strcmp(name, method_table[m].name) == 0)
-            return m;
-    return -1;
-}
-
-void renderer_reference_params(enum method_id method, struct render_params *p)
-{
-    if (method_table[method].direct_only)
-        p->max_bounces = 1;
-}
-
-void renderer_method_params(enum method_id method, struct render_params *p)
-{
-    if (method == METHOD_RIS_DI) {
-        p->temporal = 0;
-        p->spatial = 0;
-    }
-    /* Area ReSTIR's primal (002 Sec. 5): 1 initial candidate (the default) and 2 spatial neighbors. */
-    if ((method == METHOD_AREA_RESTIR || method == METHOD_GRAD_AFTER_RESTIR || method == METHOD_GRESTIR_PT) &&
-        p->spatial_neighbors == 0)
-        p->spatial_neighbors = 2;
-}
 
 void renderer_init(struct renderer *r, const struct scene *s, enum method_id method, const struct render_params *p)
 {

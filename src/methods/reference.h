@@ -1,13 +1,13 @@
 /* reference.h: a converged reference image as a running mean of pt chunks, resumable from its
  * state (the mean and the sample count) with bit-identical results (issue 13).
  * Must never depend on files or the command line: saving the state is the caller's job. */
-#ifndef RESTIR_RENDER_REFERENCE_H
-#define RESTIR_RENDER_REFERENCE_H
+#ifndef RESTIR_METHODS_REFERENCE_H
+#define RESTIR_METHODS_REFERENCE_H
 
 #include <stddef.h>
 
-#include "params.h"
-#include "renderer.h"
+#include "methods/method.h"
+#include "render/params.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 

@@ -1,11 +1,11 @@
 /* reference.c: the running-mean reference (reference.h). */
-#include "reference.h"
+#include "methods/reference.h"
 
 #include <stdio.h>
 #include <string.h>
 
 #include "core/check.h"
-#include "pt.h"
+#include "render/pt.h"
 
 void reference_accum_init(struct reference_accum *a, const struct scene *s, enum method_id method,
                           const struct render_params *p, const struct camera *cam, int spp)

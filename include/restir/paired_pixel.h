@@ -1,4 +1,4 @@
-/* restir/gradient.h: the arithmetic of gradient-domain reuse (002), independent of what a path is:
+/* restir/paired_pixel.h: the arithmetic of gradient-domain reuse (002), independent of what a path is:
  * the inner-shift MIS weight, one-sided differences, the paired-pixel integrand, its positivized
  * targets, and the G-buffer edge-pair test. Colours are RGB float triples.
  *
@@ -13,8 +13,8 @@
  *   h(x, 0) = -omega_ab(x) (f_a(x) - f_b(T x) |T'|)      (-omega* G of 002 Eq. 15-16, k = 0)
  *   h(x, 1) = +omega_ba(x) (f_b(x) - f_a(T x) |T'|)      (-omega* G, k = 1)
  * and d_ab = int_X h (002 Eq. 14). Must never depend on a ray tracer, files or the renderer. */
-#ifndef RESTIR_GRADIENT_H
-#define RESTIR_GRADIENT_H
+#ifndef RESTIR_PAIRED_PIXEL_H
+#define RESTIR_PAIRED_PIXEL_H
 
 #ifdef __cplusplus
 extern "C" {

@@ -1,7 +1,7 @@
-/* gradient.c: gradient-domain reuse arithmetic (see restir/gradient.h; 002 Eq. 13-26). */
-#include "restir/gradient.h"
-
+/* paired_pixel.c: the paired-pixel (gradient-domain) reuse arithmetic (see restir/paired_pixel.h; 002 Eq. 13-26). */
 #include <math.h>
+
+#include "restir/paired_pixel.h"
 
 float restir_grad_luminance(const float c[3]) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; }
 

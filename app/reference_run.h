@@ -1,14 +1,14 @@
-/* reference_cmd.h: what `restir reference` (cmd_reference.c) and its sharded form
- * (reference_shards.c: --shards N --plan DIR, restir job, --merge DIR) share. */
-#ifndef RESTIR_APP_REFERENCE_CMD_H
-#define RESTIR_APP_REFERENCE_CMD_H
+/* reference_run.h: what `restir reference` (cmd_reference.c) and its sharded form (reference_shards.c) share.
+ * Must never implement a method or call into cmd_reference.c or reference_shards.c. */
+#ifndef RESTIR_APP_REFERENCE_RUN_H
+#define RESTIR_APP_REFERENCE_RUN_H
 
+#include "methods/renderer.h"
 #include "options.h"
-#include "render/renderer.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 
-#define RUN_TEXT_MAX 1024
+#define RUN_TEXT_MAX 1024 /* a run description (reference_describe): restir.run */
 
 struct reference_setup {
     struct cli_options o;
@@ -28,9 +28,5 @@ int reference_setup(int argc, char **argv, int need_out, struct reference_setup 
 int reference_write_image(const char *path, const float *mean, int w, int h, int samples, int spp, const char *run,
                           const char *method, const char *scene, const char *extra_name, const char *extra_value,
                           char *msg);
-/* --shards N --plan DIR: writes the plan. Returns an exit code. */
-int reference_plan(const struct reference_setup *st, int argc, char **argv);
-/* --merge DIR --out FILE.exr. Returns an exit code. */
-int reference_merge(int argc, char **argv);
 
 #endif

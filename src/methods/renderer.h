@@ -1,42 +1,16 @@
-/* renderer.h: the methods (pt, ris-di, restir-di, restir-pt), the per-frame state they keep (ping-pong
- * G-buffers and reservoirs, cameras), and per-pass timings. Must never read or write files. */
-#ifndef RESTIR_RENDER_RENDERER_H
-#define RESTIR_RENDER_RENDERER_H
+/* renderer.h: runs a method frame by frame: the per-frame state its passes keep (ping-pong G-buffers
+ * and reservoirs, cameras) and per-pass timings. Must never read or write files. */
+#ifndef RESTIR_METHODS_RENDERER_H
+#define RESTIR_METHODS_RENDERER_H
 
-#include "di_sample.h"
-#include "gbuffer.h"
-#include "params.h"
-#include "restir_pt.h"
-#include "light_pool.h"
+#include "methods/method.h"
+#include "render/di_sample.h"
+#include "render/gbuffer.h"
+#include "render/light_pool.h"
+#include "render/params.h"
+#include "render/restir_pt.h"
 
 struct grad_frame;
-
-enum method_id {
-    METHOD_PT = 0,
-    METHOD_RIS_DI,
-    METHOD_RESTIR_DI,
-    METHOD_RESTIR_PT,
-    METHOD_AREA_RESTIR,      /* 002 B.3: restir-pt with 1 initial candidate and 2 spatial neighbors */
-    METHOD_GPT,              /* 002 B.2: gradient-domain path tracing */
-    METHOD_GRAD_AFTER_RESTIR, /* 002 B.1: gradients from shifting the final area-ReSTIR paths */
-    METHOD_GRESTIR_PT,       /* 002: Gradient with ReSTIR over paired-pixel samples */
-    METHOD_COUNT
-};
-
-struct method_info {
-    const char *name;
-    const char *description;
-    int direct_only; /* estimates direct lighting only: its reference is pt with 1 bounce */
-    int gradient;    /* renders primal + gradients and reconstructs (002) */
-};
-
-/* Methods that run the ReSTIR PT passes (restir-pt, area-restir, and the primal of grad-after-restir
- * and grestir-pt). */
-int method_runs_restir_pt(enum method_id m);
-
-extern const struct method_info method_table[METHOD_COUNT];
-/* Returns the method id, or -1 for an unknown name. */
-int method_find(const char *name);
 
 /* PASS_CELLS .. PASS_SPMIS_REUSE are spatial.reuse=spmis's passes, split as 004 Table 2: create
  * reuse cells (Algorithm 1), cell search (Algorithm 2 line 2, Sec. 5.1), the canonical weight
@@ -105,10 +79,6 @@ struct renderer {
                                      recon selects, L2 for recon=both) */
 };
 
-/* The method's own defaults on top of p (ris-di: no reuse; area-restir and the primal of
- * grad-after-restir and grestir-pt: 2 spatial neighbors unless spatial.neighbors is set).
- * renderer_init applies them; reports call it to say what ran. */
-void renderer_method_params(enum method_id method, struct render_params *p);
 /* p must have passed render_params_validate. */
 void renderer_init(struct renderer *r, const struct scene *s, enum method_id method, const struct render_params *p);
 void renderer_fini(struct renderer *r);
@@ -127,7 +97,5 @@ void renderer_reset(struct renderer *r);
 #define DISOCCLUSION_FRAMES 4 /* the window of the and 004 Sec. 6.2's disocclusion masks */
 long long renderer_disoccluded(const struct renderer *r, int frames, unsigned char *mask);
 
-/* The parameters a method's reference integrates with: pt with max_bounces = 1 for DI methods. */
-void renderer_reference_params(enum method_id method, struct render_params *p);
 
 #endif

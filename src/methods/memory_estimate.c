@@ -1,5 +1,5 @@
 /* memory_estimate.c: renderer memory from two small builds (memory_estimate.h). */
-#include "memory_estimate.h"
+#include "methods/memory_estimate.h"
 
 #include <malloc.h>
 #include <stdio.h>

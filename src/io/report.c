@@ -1,9 +1,6 @@
-/* json_csv.c: atomic CSV and JSON report files for the command line (see report.h).
+/* report.c: atomic CSV and JSON report files for the command line (report.h).
  * Must never depend on render code or scenes; only on cJSON and the C library. */
 #include "io/report.h"
-
-#include "core/check.h"
-#include "io/image_io.h"
 
 #include <errno.h>
 #include <stdarg.h>
@@ -11,28 +8,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Formats a message into msg (RESTIR_MSG_LEN bytes, may be NULL), truncating long paths. */
-#if defined(__GNUC__)
-__attribute__((format(printf, 2, 3)))
-#endif
-static void set_msg(char *msg, const char *fmt, ...)
-{
-    if (!msg)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, RESTIR_MSG_LEN, fmt, ap);
-    va_end(ap);
-}
+#include "io/atomic_file.h"
+#include "io/io_msg.h"
 
 static int report_check_path(const char *path, char *msg)
 {
     if (!path || !path[0]) {
-        set_msg(msg, "(empty path): cannot write report");
+        io_msg(msg, "(empty path): cannot write report");
         return -1;
     }
     if (strlen(path) >= REPORT_PATH_MAX) {
-        set_msg(msg, "%.200s...: output path is too long", path);
+        io_msg(msg, "%.200s...: output path is too long", path);
         return -1;
     }
     return 0;
@@ -44,14 +30,11 @@ int csv_open(struct csv_writer *w, const char *path, const char *header, char *m
     if (report_check_path(path, msg) != 0)
         return -1;
     snprintf(w->path, sizeof w->path, "%s", path);
-    io_temp_path(path, w->tmp, sizeof w->tmp);
-    w->f = fopen(w->tmp, "w");
-    if (!w->f) {
-        set_msg(msg, "%s: cannot create temporary file %.200s: %s", path, w->tmp, strerror(errno));
+    w->f = io_open_temp(path, w->tmp, sizeof w->tmp, "w", msg);
+    if (!w->f)
         return -1;
-    }
     if (fprintf(w->f, "%s\n", header ? header : "") < 0) {
-        set_msg(msg, "%s: cannot write CSV header: %s", path, strerror(errno));
+        io_msg(msg, "%s: cannot write CSV header: %s", path, strerror(errno));
         csv_abort(w);
         return -1;
     }
@@ -74,7 +57,7 @@ int csv_row(struct csv_writer *w, const char *fmt, ...)
 int csv_close(struct csv_writer *w, char *msg)
 {
     if (!w->f) {
-        set_msg(msg, "%.400s: CSV writer is not open", w->path);
+        io_msg(msg, "%.400s: CSV writer is not open", w->path);
         return -1;
     }
     int bad = ferror(w->f) != 0;
@@ -85,7 +68,7 @@ int csv_close(struct csv_writer *w, char *msg)
     }
     w->f = NULL;
     if (bad) {
-        set_msg(msg, "%.400s: writing CSV failed: %s", w->path, strerror(err));
+        io_msg(msg, "%.400s: writing CSV failed: %s", w->path, strerror(err));
         remove(w->tmp);
         return -1;
     }
@@ -107,14 +90,12 @@ int json_write_file(const char *path, const cJSON *root, char *msg)
         return -1;
     char *text = cJSON_Print(root);
     if (!text) {
-        set_msg(msg, "%s: cannot format JSON", path);
+        io_msg(msg, "%s: cannot format JSON", path);
         return -1;
     }
     char tmp[REPORT_PATH_MAX + 32];
-    io_temp_path(path, tmp, sizeof tmp);
-    FILE *f = fopen(tmp, "w");
+    FILE *f = io_open_temp(path, tmp, sizeof tmp, "w", msg);
     if (!f) {
-        set_msg(msg, "%s: cannot create temporary file %.200s: %s", path, tmp, strerror(errno));
         cJSON_free(text);
         return -1;
     }
@@ -126,8 +107,7 @@ int json_write_file(const char *path, const cJSON *root, char *msg)
         err = errno;
     }
     if (bad) {
-        set_msg(msg, "%s: writing JSON failed: %s", path,
-                 strerror(err ? err : EIO));
+        io_msg(msg, "%s: writing JSON failed: %s", path, strerror(err ? err : EIO));
         remove(tmp);
         return -1;
     }

@@ -1,0 +1,22 @@
+/* commands.h: the entry points of the `restir` subcommands (cmd_*.c), which main.c and
+ * `restir job` dispatch to. Must never hold state. */
+#ifndef RESTIR_APP_COMMANDS_H
+#define RESTIR_APP_COMMANDS_H
+
+struct plan;
+
+/* Each takes the arguments after its name and returns the process's exit code. */
+int cmd_render(int argc, char **argv);
+int cmd_reference(int argc, char **argv);
+int cmd_compare(int argc, char **argv);
+int cmd_study(int argc, char **argv);
+int cmd_scene(int argc, char **argv);
+int cmd_view(int argc, char **argv);
+int cmd_job(int argc, char **argv);
+
+/* Job k (0-based) of a study plan (plan.h): computes it into its output under runs/, or says it
+ * is done already. Returns an exit code. Compare's and reference's are in compare_plan.h and
+ * reference_shards.h. */
+int study_run_job(const struct plan *pl, int k);
+
+#endif

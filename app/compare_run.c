@@ -1,0 +1,355 @@
+/* compare_run.c: what `restir compare` and its planned form share (compare_run.h): specs, one method's
+ * run, the reference, the table. Must never implement a method or call into cmd_compare.c or compare_plan.c. */
+#include "compare_run.h"
+
+#include <omp.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "compare_report.h"
+#include "core/check.h"
+#include "gradient/grad_frame.h"
+#include "io/atomic_file.h"
+#include "io/report.h"
+#include "scene/scene_file.h"
+
+/* msg of render_params_set without its "--set" prefix, which
+ * would name an option the user did not give. */
+static const char *strip_set_prefix(const char *m)
+{
+    if (!strncmp(m, "--set: ", 7))
+        return m + 7;
+    if (!strncmp(m, "--set ", 6))
+        return m + 6;
+    return m;
+}
+
+/* Parses spec "NAME[:key=value]..." onto common parameters. Returns 0, or -1 with msg naming the
+ * spec and the problem (an unknown method, key or value). */
+static int parse_spec(const char *spec, const struct render_params *common, struct compare_spec *c, char *msg)
+{
+    char sub[RESTIR_MSG_LEN];
+    if (strlen(spec) > SPEC_MAX) {
+        snprintf(msg, RESTIR_MSG_LEN, "--methods spec '%.40s...' is longer than %d characters", spec, SPEC_MAX);
+        return -1;
+    }
+    snprintf(c->label, sizeof(c->label), "%s", spec);
+    char buf[SPEC_MAX + 1];
+    snprintf(buf, sizeof(buf), "%s", spec);
+    char *rest = strchr(buf, ':');
+    if (rest)
+        *rest++ = '\0';
+    int m = method_find(buf);
+    if (m < 0) {
+        if (rest)
+            snprintf(msg, RESTIR_MSG_LEN, "unknown method '%s' in --methods spec '%s' (see restir list)", buf, spec);
+        else
+            snprintf(msg, RESTIR_MSG_LEN, "unknown method '%s' in --methods (see restir list)", buf);
+        return -1;
+    }
+    c->method = (enum method_id)m;
+    c->p = *common;
+    if (rest && render_params_set_list(&c->p, rest, sub) != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "--methods spec '%.200s': %.280s", spec, strip_set_prefix(sub));
+        return -1;
+    }
+    /* One reference serves every row, so no row may change the integral it is measured against. */
+    if (c->p.max_bounces != common->max_bounces || c->p.jitter != common->jitter) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "--methods spec '%.200s' changes the integrand (pt.max_bounces or jitter), which every row "
+                 "shares with the reference: give it to all rows with --set",
+                 spec);
+        return -1;
+    }
+    return 0;
+}
+
+/* Folder names from labels: every character outside [A-Za-z0-9._-] becomes '_', and a name an
+ * earlier spec already took gets _2, _3, ... appended. */
+static void assign_dirs(struct compare_spec *c, int n)
+{
+    for (int k = 0; k < n; k++) {
+        char base[SPEC_MAX + 1];
+        size_t len = strlen(c[k].label);
+        for (size_t i = 0; i <= len; i++) {
+            char ch = c[k].label[i];
+            int ok = ch == '\0' || (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') ||
+                     ch == '.' || ch == '_' || ch == '-';
+            base[i] = ok ? ch : '_';
+        }
+        snprintf(c[k].dir, sizeof(c[k].dir), "%s", base);
+        for (int suffix = 2;; suffix++) {
+            int taken = 0;
+            for (int j = 0; j < k && !taken; j++)
+                taken = !strcmp(c[j].dir, c[k].dir);
+            if (!taken)
+                break;
+            snprintf(c[k].dir, sizeof(c[k].dir), "%s_%d", base, suffix);
+        }
+    }
+}
+
+/* Writes s as one CSV field: verbatim, or quoted (quotes doubled) when it holds a comma, a quote
+ * or a line break. */
+static void csv_field(char *out, size_t n, const char *s)
+{
+    int quote = strpbrk(s, ",\"\r\n") != NULL;
+    size_t o = 0;
+    if (quote)
+        out[o++] = '"';
+    for (; *s && o + 3 < n; s++) {
+        if (*s == '"')
+            out[o++] = '"';
+        out[o++] = *s;
+    }
+    if (quote)
+        out[o++] = '"';
+    out[o] = '\0';
+}
+
+int compare_budget_by_spp(enum method_id m) { return m == METHOD_PT || m == METHOD_GPT; }
+
+/* The instances average their last frames. For gradient methods the primal and gradient images
+ * are averaged and then reconstructed once (002 Sec. 5, Figure 8), and the frame time counts the
+ * instances' passes and one reconstruction. */
+int compare_run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
+                       int instances, const float *ref, const char *out_dir, int keep_image, struct compare_result *res,
+                       char *msg)
+{
+    enum method_id m = c->method;
+    struct renderer r[MAX_INSTANCES];
+    for (int k = 0; k < instances; k++) {
+        struct render_params q = *p;
+        q.seed = p->seed + 1000003ull * (uint64_t)k;
+        renderer_init(&r[k], s, m, &q);
+    }
+    double ms = 0.0;
+    struct progress pg;
+    progress_begin(&pg, c->label, frames);
+    for (int f = 0; f < frames; f++) {
+        if (cli_stop_signal) { /* stopped: this method's result would be incomplete, so none */
+            progress_end(&pg);
+            for (int k = 0; k < instances; k++)
+                renderer_fini(&r[k]);
+            return RUN_STOPPED;
+        }
+        struct camera cam = scene_camera_at(s, p->camera_path, (float)f);
+        for (int k = 0; k < instances; k++) {
+            struct frame_stats st;
+            renderer_render(&r[k], f, &cam, &st);
+            ms += st.ms_total - (k > 0 ? st.ms[PASS_RECON_L2] + st.ms[PASS_RECON_L1] : 0.0);
+        }
+        progress_update(&pg, f + 1);
+    }
+    progress_end(&pg);
+    const size_t n3 = 3 * (size_t)p->width * (size_t)p->height;
+    if (instances > 1) {
+        const float inv = 1.0f / (float)instances;
+        for (size_t i = 0; i < n3; i++) {
+            float sum[4] = {0, 0, 0, 0};
+            for (int k = 0; k < instances; k++) {
+                sum[0] += r[k].image[i];
+                if (r[k].grad) {
+                    sum[1] += r[k].grad->primal[i];
+                    sum[2] += r[k].grad->dx[i];
+                    sum[3] += r[k].grad->dy[i];
+                }
+            }
+            r[0].image[i] = sum[0] * inv;
+            if (r[0].grad) {
+                r[0].grad->primal[i] = sum[1] * inv;
+                r[0].grad->dx[i] = sum[2] * inv;
+                r[0].grad->dy[i] = sum[3] * inv;
+            }
+        }
+        if (r[0].grad) {
+            struct frame_stats st;
+            memset(&st, 0, sizeof(st));
+            renderer_reconstruct(&r[0], &st);
+        }
+    }
+    res->method = m;
+    res->ms_per_frame = ms / frames;
+    res->spp = compare_budget_by_spp(m) ? p->spp : 1;
+    res->instances = instances;
+    if (ref) /* a planned job measures nothing: the merge does, from the frame it writes */
+        restir_error_compute(r[0].image, ref, (size_t)p->width * (size_t)p->height, NULL, &res->err);
+    res->image = NULL;
+    if (keep_image) {
+        res->image = xmalloc(sizeof(float) * n3);
+        memcpy(res->image, r[0].image, sizeof(float) * n3);
+    }
+    char path[4400];
+    snprintf(path, sizeof(path), "%s/%s", out_dir, c->dir);
+    int rc = io_make_dirs(path, msg);
+    if (rc == 0)
+        rc = cli_write_frame(path, frames - 1, &r[0], msg);
+    for (int k = 0; k < instances; k++)
+        renderer_fini(&r[k]);
+    return rc;
+}
+
+static void compare_usage(void)
+{
+    printf("usage: restir compare --scene NAME --methods SPEC,SPEC,... [--equal-time] [--frames N] [--res WxH]\n"
+               "                      [--ref FILE.exr | --ref-spp N] [--camera static|path] [--out DIR] [--report]\n"
+               "                      [--seed N] [--threads N] [--set key=value]...\n"
+               "Each SPEC is NAME[:key=value]...: method NAME (see restir list) with the command's parameters,\n"
+               "then each key=value applied as by --set (see restir render --help) for that row only, e.g.\n"
+               "  --methods 'restir-pt,restir-pt:mis=balance:spatial.neighbors=5,pt'\n"
+               "The whole SPEC labels its row. Runs each SPEC for N frames (default 1) and measures the last\n"
+               "frame against the reference, rendered from the common parameters with --ref-spp paths\n"
+               "(default 1024) when --ref is absent. With --equal-time every row gets the frame time of the\n"
+               "first SPEC other than pt (gradient methods: L2 reconstruction included, 002 Sec. 5): pt and\n"
+               "gpt get as many paths per pixel as fit, the other methods average as many independently\n"
+               "seeded instances as fit (gradient methods average primal and gradients, then reconstruct\n"
+               "once). When DI methods are compared, pt estimates direct lighting only (1 bounce), like them.\n"
+               "Writes DIR/compare.csv (method = the SPEC, ms per frame, spp, instances, relmse, mape, smape,\n"
+               "luma_rmse)\n"
+               "and each row's last frame to DIR/FOLDER/, where FOLDER is the SPEC with every character other\n"
+               "than A-Z a-z 0-9 . _ - replaced by _ (and _2, _3, ... appended when two SPECs give the same\n"
+               "name). Default DIR: out/compare-SCENE.\n"
+               "--report also writes DIR/index.html: one self-contained page (no network) with the command,\n"
+               "commit and machine, the table, a relMSE plot, every image beside the reference in a viewer\n"
+               "(synchronized zoom and pan, A/B flip), relative-error heat maps and the crops where the first\n"
+               "two methods differ most.\n");
+}
+
+int compare_setup(int argc, char **argv, struct compare_setup *st)
+{
+    char msg[RESTIR_MSG_LEN];
+    struct cli_options *o = &st->o;
+    if (cli_parse_options("compare", argc, argv, o, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
+    if (o->help) {
+        compare_usage();
+        return -1;
+    }
+    if (!o->methods) {
+        cli_error("--methods SPEC,SPEC,... is required (see restir list)");
+        return EXIT_USAGE;
+    }
+    char list[MAX_METHODS * (SPEC_MAX + 1) + 64];
+    if (strlen(o->methods) >= sizeof(list)) {
+        cli_error("--methods is longer than %zu characters", sizeof(list) - 1);
+        return EXIT_USAGE;
+    }
+    snprintf(list, sizeof(list), "%s", o->methods);
+    st->n = 0;
+    st->any_direct = 0;
+    for (char *tok = strtok(list, ","); tok; tok = strtok(NULL, ",")) {
+        if (st->n == MAX_METHODS) {
+            cli_error("--methods lists more than %d methods", MAX_METHODS);
+            return EXIT_USAGE;
+        }
+        if (parse_spec(tok, &o->params, &st->specs[st->n], msg) != 0) {
+            cli_error("%s", msg);
+            return EXIT_USAGE;
+        }
+        st->any_direct |= method_table[st->specs[st->n].method].direct_only;
+        st->n++;
+    }
+    if (st->n == 0) {
+        cli_error("--methods lists no method (see restir list)");
+        return EXIT_USAGE;
+    }
+    st->p = o->params;
+    if (st->any_direct)
+        renderer_reference_params(METHOD_RESTIR_DI, &st->p); /* pt estimates the same integral */
+    for (int k = 0; k < st->n; k++) {
+        if (st->any_direct)
+            renderer_reference_params(METHOD_RESTIR_DI, &st->specs[k].p); /* as for --set */
+        if (render_params_validate(&st->specs[k].p, msg) != 0) {
+            cli_error("--methods spec '%s': %s", st->specs[k].label, msg);
+            return EXIT_USAGE;
+        }
+    }
+    assign_dirs(st->specs, st->n);
+    if (scene_load(o->scene, &st->s, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
+    for (int k = 0; k < st->n; k++) { /* each method's renderers exist one at a time */
+        if (cli_check_memory(&st->s, st->specs[k].method, &st->specs[k].p, o->max_memory_mb, msg) != 0) {
+            cli_error("--methods spec '%s': %s", st->specs[k].label, msg);
+            scene_destroy(&st->s);
+            return EXIT_RUNTIME;
+        }
+    }
+    if (o->params.threads > 0)
+        omp_set_num_threads(o->params.threads);
+    return 0;
+}
+
+float *compare_render_reference(const struct compare_setup *st)
+{
+    struct render_params rp = st->p;
+    rp.seed = st->p.seed ^ 0x7265666572656e63ull; /* independent of the compared runs */
+    struct camera cam = scene_camera_at(&st->s, st->p.camera_path, (float)(st->o.frames - 1));
+    return cli_render_reference(&st->s, st->any_direct ? METHOD_RESTIR_DI : METHOD_PT, &rp, &cam, st->o.ref_spp);
+}
+
+int compare_write_table(const struct compare_setup *st, const char *out_dir, const char *command,
+                        const struct compare_result *res, const float *ref)
+{
+    char msg[RESTIR_MSG_LEN];
+    const struct cli_options *o = &st->o;
+    const struct render_params *p = &st->p;
+    const struct compare_spec *specs = st->specs;
+    const int n = st->n;
+    int rc = 0;
+    char csv_path[4200];
+    snprintf(csv_path, sizeof(csv_path), "%s/compare.csv", out_dir);
+    struct csv_writer csv;
+    if (csv_open(&csv, csv_path, "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse", msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    int w = 12;
+    for (int k = 0; k < n; k++)
+        if ((int)strlen(specs[k].label) > w)
+            w = (int)strlen(specs[k].label);
+    printf("%s, %dx%d, %s camera, error at frame %d%s:\n", o->scene, p->width, p->height,
+           p->camera_path ? "moving" : "static", o->frames - 1, o->equal_time ? ", equal time" : "");
+    printf("%-*s %10s %6s %5s %12s %10s %8s %12s\n", w, "method", "ms/frame", "spp", "inst", "relMSE", "MAPE",
+           "SMAPE", "relMSE/first");
+    for (int k = 0; k < n; k++) {
+        const struct compare_result *c = &res[k];
+        printf("%-*s %10.2f %6d %5d %12.5g %10.5g %8.3f %12.3f\n", w, specs[k].label, c->ms_per_frame, c->spp,
+               c->instances, c->err.relmse, c->err.mape, c->err.smape,
+               res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0);
+        if (rc == 0) {
+            char field[2 * SPEC_MAX + 4];
+            csv_field(field, sizeof(field), specs[k].label);
+            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g", field, c->ms_per_frame, c->spp, c->instances,
+                    c->err.relmse, c->err.mape, c->err.smape, c->err.luma_rmse);
+        }
+    }
+    if (rc == 0 && csv_close(&csv, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    if (rc == 0 && o->report) {
+        char pngs[MAX_METHODS][SPEC_MAX + 40];
+        struct compare_report_method rm[MAX_METHODS];
+        for (int k = 0; k < n; k++) {
+            snprintf(pngs[k], sizeof pngs[k], "%s/frame_%04d.png", specs[k].dir, o->frames - 1);
+            rm[k] = (struct compare_report_method){specs[k].label, pngs[k], specs[k].dir, res[k].image,
+                                                   res[k].ms_per_frame, res[k].spp, res[k].instances, res[k].err};
+        }
+        const struct compare_report_run run = {out_dir, command, st->s.name, p->width, p->height, o->frames - 1,
+                                               p->camera_path, o->equal_time, ref};
+        if (compare_write_report(&run, n, rm, msg) != 0) {
+            cli_error("--report: %s", msg);
+            rc = EXIT_RUNTIME;
+        }
+    }
+    if (rc == 0)
+        printf("output: %s%s\n", out_dir, o->report ? " (report: index.html)" : "");
+    return rc;
+}

@@ -1,0 +1,22 @@
+/* atomic_file.h: atomic output files (a temporary sibling, then a rename) and output folders.
+ * Must never depend on image formats, report formats, scenes or render code. */
+#ifndef RESTIR_IO_ATOMIC_FILE_H
+#define RESTIR_IO_ATOMIC_FILE_H
+
+#include <stdio.h>
+
+/* Temporary sibling name for atomic writes: "<path>.tmp-<pid>". */
+void io_temp_path(const char *path, char *tmp, unsigned long tmp_len);
+/* Removes path's temporaries ("<path>.tmp-<pid>") whose writer process no longer exists, left by a
+ * process that was killed mid-write. Returns how many were removed. */
+int io_remove_stale_temporaries(const char *path);
+/* Renames tmp over path; returns 0, or -1 with msg (and removes tmp). */
+int io_commit(const char *tmp, const char *path, char *msg);
+/* Creates folder dir and its missing parents (mkdir -p). Returns 0, or -1 with msg naming the
+ * folder that could not be made, or dir when it exists but is not a folder. */
+int io_make_dirs(const char *dir, char *msg);
+/* Creates path's temporary sibling (io_temp_path into tmp, tmp_len bytes) and opens it with fopen
+ * mode. Returns the file, or NULL with msg naming path, the temporary and the reason. */
+FILE *io_open_temp(const char *path, char *tmp, unsigned long tmp_len, const char *mode, char *msg);
+
+#endif

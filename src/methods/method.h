@@ -1,0 +1,44 @@
+/* method.h: the table of methods (name, what it estimates, which passes it runs) and each method's
+ * own defaults on top of the settings. Must never depend on the passes or the ray tracer. */
+#ifndef RESTIR_METHODS_METHOD_H
+#define RESTIR_METHODS_METHOD_H
+
+#include "render/params.h"
+
+enum method_id {
+    METHOD_PT = 0,
+    METHOD_RIS_DI,
+    METHOD_RESTIR_DI,
+    METHOD_RESTIR_PT,
+    METHOD_AREA_RESTIR,       /* 002 B.3: restir-pt with 1 initial candidate and 2 spatial neighbors */
+    METHOD_GPT,               /* 002 B.2: gradient-domain path tracing */
+    METHOD_GRAD_AFTER_RESTIR, /* 002 B.1: gradients from shifting the final area-ReSTIR paths */
+    METHOD_GRESTIR_PT,        /* 002: Gradient with ReSTIR over paired-pixel samples */
+    METHOD_COUNT
+};
+
+struct method_info {
+    const char *name;
+    const char *description;
+    int direct_only; /* estimates direct lighting only: its reference is pt with 1 bounce */
+    int gradient;    /* renders primal + gradients and reconstructs (002) */
+};
+
+extern const struct method_info method_table[METHOD_COUNT];
+
+/* Returns the method id, or -1 for an unknown name. */
+int method_find(const char *name);
+/* Methods that run the ReSTIR PT passes (restir-pt, area-restir, and the primal of grad-after-restir
+ * and grestir-pt). */
+int method_runs_restir_pt(enum method_id m);
+/* Methods that trace their own primary rays instead of reading a G-buffer (pt, gpt). */
+int method_has_gbuffer(enum method_id m);
+
+/* The method's own defaults on top of p (ris-di: no reuse; area-restir and the primal of
+ * grad-after-restir and grestir-pt: 2 spatial neighbors unless spatial.neighbors is set).
+ * renderer_init applies them; reports call it to say what ran. */
+void renderer_method_params(enum method_id method, struct render_params *p);
+/* The parameters a method's reference integrates with: pt with max_bounces = 1 for DI methods. */
+void renderer_reference_params(enum method_id method, struct render_params *p);
+
+#endif

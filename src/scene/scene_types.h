@@ -1,0 +1,93 @@
+/* scene_types.h: the scene as plain data (triangles, materials, emitters, cameras), header-only.
+ * Must never declare functions: every scene module includes it, so it may depend on none of them. */
+#ifndef RESTIR_SCENE_SCENE_TYPES_H
+#define RESTIR_SCENE_SCENE_TYPES_H
+
+#include <stdint.h>
+
+#include "core/sampling.h"
+#include "core/vec3.h"
+#include "scene/texture.h"
+
+/* glTF-style metallic/roughness material; emission is one-sided (front = geometric normal). */
+struct material {
+    vec3 base_color;
+    float metallic;  /* 0 dielectric (diffuse + 4% specular), 1 conductor */
+    float roughness; /* perceptual roughness; GGX alpha = roughness^2 */
+    vec3 emission;   /* emitted radiance, W / (m^2 sr) */
+    int lambert_only; /* 1: no specular layer at all, a pure Lambertian of albedo base_color (what
+                         analytic test scenes need; glTF's KHR_materials_specular factor 0) */
+    /* Texture maps, glTF 2.0 style (0: none, else scene.textures[map - 1]): base_color and
+     * emission are multiplied by the map's RGB; metallic and roughness by its B and G. */
+    int base_color_map, metal_rough_map, emission_map;
+};
+
+struct camera {
+    vec3 position;
+    vec3 target;
+    vec3 up;
+    float vfov_deg; /* vertical field of view */
+};
+
+/* A camera path: keyframes at given frame numbers, interpolated by a cubic Hermite spline with
+ * Catmull-Rom tangents at interior keys (continuous velocity) and zero velocity at the first and
+ * last key (a two-key path is a smoothstep-eased straight line); frames outside the range clamp to
+ * the ends. */
+struct camera_key {
+    float frame;
+    struct camera cam;
+};
+
+struct camera_path {
+    int num_keys;
+    struct camera_key *keys;
+};
+
+struct scene_rt; /* Embree back end, opaque (scene_rt.c) */
+
+/* What sampling a point on an emissive triangle needs, in one cache-friendly record. */
+struct emitter {
+    vec3 v0, e1, e2; /* p = v0 + b1 e1 + b2 e2 */
+    vec3 n;          /* emitting (geometric) normal */
+    vec3 Le;         /* emitted radiance */
+    float pdf_area;  /* P(choose this emitter) / area */
+    int tri;
+    int textured;    /* 1: Le is modulated by an emission texture (scene_material_at) */
+};
+
+/* An indexed triangle soup with per-triangle material and object ids, its materials and textures,
+ * the emitter table (built by scene_lights.c), the default camera and camera path, and the opaque
+ * handle of the ray-tracing back end. */
+struct scene {
+    char name[64];
+    int num_verts;
+    vec3 *verts;
+    int num_tris;
+    uint32_t *indices;     /* 3 per triangle */
+    int *tri_material;     /* material id per triangle */
+    int *tri_object;       /* object id per triangle */
+    vec3 *tri_normal;      /* unit geometric normal per triangle (counter-clockwise winding) */
+    float *tri_area;
+    int *tri_emitter;      /* emitter index per triangle, -1 when not emissive */
+    int num_materials;
+    struct material *materials;
+    int num_objects;
+    float *uv;             /* 2 per vertex (assimp's convention, (0, 0) bottom-left), or NULL */
+    int num_textures;
+    struct texture *textures;
+    struct scene_texture_key *texture_keys; /* where each texture came from (scene_texture_find) */
+
+    /* Emitters: emissive triangles, chosen proportionally to power (alias table). */
+    int num_emitters;
+    int *emitter_tri;
+    struct emitter *emitters; /* compact copy of what light sampling reads, per emitter */
+    struct alias_table emitter_table;
+
+    struct camera camera;           /* default static camera */
+    struct camera_path camera_path; /* default moving camera */
+
+    struct scene_rt *rt;
+    double bvh_ms; /* time scene_builder_end spent building the Embree scenes */
+};
+
+#endif
