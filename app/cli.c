@@ -11,7 +11,8 @@
 
 #include "core/check.h"
 #include "gradient/grad_frame.h"
-#include "io/image_io.h"
+#include "io/exr.h"
+#include "io/png.h"
 #include "methods/memory_estimate.h"
 #include "methods/reference.h"
 

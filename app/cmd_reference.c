@@ -51,7 +51,7 @@ static void first_difference(const char *theirs, const char *ours, char *out, si
     snprintf(out, len, "(no difference found)");
 }
 
-/* Writes the running mean and its attributes to path (atomically: image_io.h). */
+/* Writes the running mean and its attributes to path (atomically: io/atomic_file.h). */
 static int write_state(const char *path, const struct reference_accum *a, const char *run, const char *method,
                        const char *scene, char *msg)
 {

@@ -11,7 +11,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "core/check.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
 #include "io/report.h"
 #include "options.h"
 #include "scene/scene_file.h"

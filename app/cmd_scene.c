@@ -9,7 +9,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "core/check.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
 #include "io/scene_export.h"
 #include "scene/scene_file.h"
 #include "scene/scenes_builtin.h"

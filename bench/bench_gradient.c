@@ -16,7 +16,9 @@
 #include "bench_common.h"
 #include "core/check.h"
 #include "gradient/grad_frame.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/exr.h"
+#include "io/png.h"
 #include "restir/metrics.h"
 
 #define IMAGE_DIR "docs/gradient"

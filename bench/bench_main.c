@@ -10,7 +10,7 @@
 
 #include "bench_common.h"
 #include "core/check.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
 #include "io/report.h"
 #include "methods/renderer.h"
 #include "render/pt.h"

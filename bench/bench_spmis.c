@@ -12,7 +12,7 @@
 
 #include "bench_common.h"
 #include "core/check.h"
-#include "io/image_io.h"
+#include "io/png.h"
 #include "restir/metrics.h"
 
 #define SPMIS_FRAMES 50

@@ -180,7 +180,7 @@ static int exr_write_body(exr_context_t ctxt, const char *path, const struct exr
     int part = 0;
     exr_result_t rv = exr_add_part(ctxt, NULL, EXR_STORAGE_SCANLINE, &part);
     if (rv == EXR_ERR_SUCCESS)
-        rv = exr_initialize_required_attr_simple(ctxt, part, w, h, EXR_COMPRESSION_RLE); /* image_io.h */
+        rv = exr_initialize_required_attr_simple(ctxt, part, w, h, EXR_COMPRESSION_RLE); /* exr.h */
     /* Names past 31 bytes need the file's long-name flag (OpenEXR 1.7+ readers); set it only
      * then, so files with short names stay readable everywhere. */
     int long_names = 0;

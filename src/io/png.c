@@ -178,7 +178,7 @@ static int png_cmp_float(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* The automatic scale of png_write_signed (see image_io.h): 1 / the 99th percentile (nearest
+/* The automatic scale of png_write_signed (see png.h): 1 / the 99th percentile (nearest
  * rank) of the finite |lum|, else 1 / their maximum, else 1. Returns -1 when out of memory. */
 static int png_signed_auto_scale(const float *rgb, size_t npix, float *scale)
 {

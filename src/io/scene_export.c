@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "core/check.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
 
 /* Shortest %g form of f that the reader (strtod, then a float conversion) turns back into f. */
 static void format_float(float f, char *out, size_t len)

@@ -2,7 +2,7 @@
  * index after the frame, so the last frame's buffers are at 1 - cur. */
 #include "view/view_debug.h"
 
-#include "io/image_io.h"
+#include "io/png.h"
 #include "render/restir_pt.h"
 #include "render/reuse_cells.h"
 

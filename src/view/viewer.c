@@ -11,7 +11,9 @@
 #include <string.h>
 
 #include "core/check.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/exr.h"
+#include "io/png.h"
 #include "io/scene_export.h"
 #include "view/view_debug.h"
 #include "view/view_script.h"

@@ -2,10 +2,10 @@
  * `restir render` and `restir compare`: the EXR layers (primal, dx, dy, the other reconstruction)
  * and PNGs, the recon=l2|l1|both switch and that L1 never changes the L2 image, thread-count
  * determinism, rejected parameters, compare.csv, list and --help. Must never render in-process:
- * it runs the binary ($RESTIR_BIN) and only reads the files it writes (image_io's EXR reader). */
+ * it runs the binary ($RESTIR_BIN) and only reads the files it writes (io/exr.h's reader). */
 #include "cli_util.h"
 #include "core/check.h"
-#include "io/image_io.h"
+#include "io/exr.h"
 #include "test_util.h"
 
 #define W 24

@@ -11,7 +11,7 @@
 #include <unistd.h>
 
 #include "cli_util.h"
-#include "io/image_io.h"
+#include "io/exr.h"
 #include "test_util.h"
 
 /* Starts a long render into dir, signals it once frame 2 is on disk, returns its exit status. */

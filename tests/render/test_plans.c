@@ -11,7 +11,7 @@
 #include <sys/stat.h>
 
 #include "cli_util.h"
-#include "io/image_io.h"
+#include "io/exr.h"
 #include "test_util.h"
 
 #define MSG_LEN 512

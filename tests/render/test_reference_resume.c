@@ -9,7 +9,7 @@
 #include <sys/wait.h>
 
 #include "cli_util.h"
-#include "io/image_io.h"
+#include "io/exr.h"
 #include "test_util.h"
 
 #define MSG_LEN 512 /* RESTIR_MSG_LEN: the test sees the program from outside */

@@ -7,7 +7,7 @@
 #include <sys/stat.h>
 
 #include "cli_util.h"
-#include "io/image_io.h"
+#include "io/exr.h"
 #include "test_util.h"
 
 static long file_size(const char *path)

@@ -11,7 +11,9 @@
 #include <unistd.h>
 
 #include "core/check.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/exr.h"
+#include "io/png.h"
 #include "io/report.h"
 #include "test_util.h"
 
