@@ -322,6 +322,27 @@ int render_params_validate(const struct render_params *p, char *msg)
                  p->ratio_hi);
         return -1;
     }
+    /* Every key's range or names, also for values set other than through --set (options of their
+     * own such as --spp, a study's radii, a method's defaults). */
+    for (size_t i = 0; i < NUM_PARAMS; i++) {
+        const struct param_def *d = &params[i];
+        const char *base = (const char *)p + d->offset;
+        if (d->type == P_INT || d->type == P_COUNT || d->type == P_BOOL || d->type == P_FLOAT) {
+            double v = d->type == P_FLOAT ? (double)*(const float *)(const void *)base : *(const int *)(const void *)base;
+            if (!(v >= d->lo && v <= d->hi) && !(d->type == P_COUNT && v == 0.0)) {
+                snprintf(msg, RESTIR_MSG_LEN, "%s = %g is out of range [%g, %g]", d->key, v, d->lo, d->hi);
+                return -1;
+            }
+        } else if (d->type == P_NAMES) {
+            int k = *(const int *)(const void *)base, count = 0;
+            while (d->names[count])
+                count++;
+            if (k < 0 || k >= count) {
+                snprintf(msg, RESTIR_MSG_LEN, "%s = %d is not one of its %d values", d->key, k, count);
+                return -1;
+            }
+        }
+    }
     return 0;
 }
 

@@ -75,5 +75,19 @@ int main(void)
     EXPECT(render_params_set(&r, "mis=sometimes", msg) != 0 && strstr(msg, "sometimes"), "MIS name: %s", msg);
     EXPECT(render_params_set(&r, "temporal=maybe", msg) != 0 && strstr(msg, "temporal"), "bool: %s", msg);
     EXPECT(memcmp(&r, &d, sizeof(r)) == 0, "a refused --set changed the settings");
+
+    /* Validation reads the table's ranges, also for values set without --set. */
+    r = d;
+    r.spp = 0;
+    EXPECT(render_params_validate(&r, msg) != 0 && strstr(msg, "spp"), "spp 0 valid: %s", msg);
+    r = d;
+    r.spatial_radius = NAN;
+    EXPECT(render_params_validate(&r, msg) != 0 && strstr(msg, "spatial.radius"), "NaN radius valid: %s", msg);
+    r = d;
+    r.spatial_select = (enum spatial_select_mode)7;
+    EXPECT(render_params_validate(&r, msg) != 0 && strstr(msg, "spatial.select"), "select 7 valid: %s", msg);
+    r = d;
+    r.spmis_candidates = 0; /* M: the whole cell */
+    EXPECT(render_params_validate(&r, msg) == 0, "spmis.candidates=M invalid: %s", msg);
     return test_finish();
 }
