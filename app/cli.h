@@ -67,7 +67,7 @@ void progress_end(struct progress *pg);
 int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *msg);
 
 /* Renders the converged image of what `method` estimates (pt with the method's integrand) with
- * spp samples per pixel from camera cam into a new malloc'ed RGB buffer (render/reference.h).
+ * spp samples per pixel from camera cam into a new malloc'ed RGB buffer (methods/reference.h).
  * Returns NULL, having stopped between chunks, when a stop signal arrived (cli_stop_signal). */
 float *cli_render_reference(const struct scene *s, enum method_id method, const struct render_params *p,
                             const struct camera *cam, int spp);

@@ -1,5 +1,5 @@
-/* reuse_cells.c: SPMIS reuse cells and cell search over the G-buffer (see reuse_cells.h; 004
- * Sec. 5, Algorithm 1, Sec. 5.1). Must never allocate per frame or read samples. */
+/* reuse_cells.c: SPMIS reuse cells, cell search and the canonical weight pass (see reuse_cells.h;
+ * 004 Sec. 5, Algorithms 1-2, Sec. 5.1). Must never allocate per frame or see a sample type. */
 #include "render/reuse_cells.h"
 
 #include <stdlib.h>
@@ -143,9 +143,9 @@ long long spmis_canonical_pass(struct spmis_frame *f, const struct render_params
             for (int d = 0; d < draws.count; d++) {
                 const int i = draws.pixel[d];
                 const float p_from = ops->target_from(ops->ctx, c, i, &rays);
-                m_c += restir_spmis_canonical_term(&k, f->conf[i], p_from, p_c, draws.factor[d]);
+                m_c += restir_spmis_canonical_term(&k, f->conf[i], p_from, p_c, draws.factor[d]); /* Eq. 19 */
             }
-            f->m_c[c] = (float)m_c;
+            f->m_c[c] = (float)m_c; /* Eq. 18 */
         }
     }
     return rays;

@@ -1,7 +1,9 @@
 /* reuse_cells.h: the method-independent passes of stochastic pairwise MIS (004 Sec. 5): reuse
- * cells built from the G-buffer with each pixel's confidence and Eq. 17 weight (Algorithm 1), and
- * the per-pixel cell search (Sec. 5.1). Must never depend on a sample type: methods fill conf and
- * weight, then run their own canonical and reuse passes (restir_di_spmis.c, restir_pt_spmis.c). */
+ * cells built from the G-buffer with each pixel's confidence and Eq. 17 weight (Algorithm 1), the
+ * per-pixel cell search (Sec. 5.1) and the canonical weight pass (Algorithm 2 lines 6-12), which
+ * reads samples only through the method's callbacks. Must never depend on a sample type: methods
+ * fill conf and weight, supply those callbacks and run their own reuse passes
+ * (restir_di_spmis.c, restir_pt_spmis.c). */
 #ifndef RESTIR_RENDER_REUSE_CELLS_H
 #define RESTIR_RENDER_REUSE_CELLS_H
 
