@@ -153,11 +153,17 @@ int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *
     return png_write_signed(path, g->dy, w, h, 0.0f, msg);
 }
 
+void cli_frame_cameras(const struct scene *s, int use_path, int frame, struct camera *cam, struct camera *open)
+{
+    *cam = scene_camera_at(s, use_path, (float)frame);
+    *open = scene_camera_at(s, use_path, (float)(frame > 0 ? frame - 1 : frame));
+}
+
 float *cli_render_reference(const struct scene *s, enum method_id method, const struct render_params *p,
-                            const struct camera *cam, int spp)
+                            const struct camera *cam, const struct camera *open, int spp)
 {
     struct reference_accum a;
-    reference_accum_init(&a, s, method, p, cam, spp);
+    reference_accum_init(&a, s, method, p, cam, open, spp);
     struct progress pg;
     progress_begin(&pg, "reference", spp);
     while (a.done < spp && !cli_stop_signal) {

@@ -67,9 +67,13 @@ void progress_end(struct progress *pg);
 int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *msg);
 
 /* Renders the converged image of what `method` estimates (pt with the method's integrand) with
- * spp samples per pixel from camera cam into a new malloc'ed RGB buffer (methods/reference.h).
- * Returns NULL, having stopped between chunks, when a stop signal arrived (cli_stop_signal). */
+ * spp samples per pixel from camera cam (shutter opening at `open`, NULL: cam) into a new
+ * malloc'ed RGB buffer (methods/reference.h). Returns NULL, having stopped between chunks, when a
+ * stop signal arrived (cli_stop_signal). */
 float *cli_render_reference(const struct scene *s, enum method_id method, const struct render_params *p,
-                            const struct camera *cam, int spp);
+                            const struct camera *cam, const struct camera *open, int spp);
+/* The camera at frame `frame` of a sequence (the default path, or the static camera) and where
+ * its shutter opens: the camera of the frame before, as renderer_render takes it. */
+void cli_frame_cameras(const struct scene *s, int use_path, int frame, struct camera *cam, struct camera *open);
 
 #endif

@@ -139,9 +139,9 @@ int cmd_reference(int argc, char **argv)
     const int spp = st.spp;
     struct scene s = st.s;
     const enum method_id method = st.method;
-    struct camera cam = st.cam;
+    struct camera cam = st.cam, open = st.cam_open;
     struct reference_accum a;
-    reference_accum_init(&a, &s, method, &o.params, &cam, spp);
+    reference_accum_init(&a, &s, method, &o.params, &cam, &open, spp);
     char run[RUN_TEXT_MAX], ckpt[4200];
     reference_describe(&a, run, sizeof run);
     checkpoint_path(o.out, ckpt, sizeof ckpt);

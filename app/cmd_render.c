@@ -109,6 +109,11 @@ int cmd_render(int argc, char **argv)
     int rc = open_scene_and_method(&o, &s, &method);
     if (rc != 0)
         return rc;
+    if (method_check_settings(method, &o.params, &s, msg) != 0) {
+        cli_error("%s", msg);
+        scene_destroy(&s);
+        return EXIT_USAGE;
+    }
     if (cli_check_memory(&s, method, &o.params, o.max_memory_mb, msg) != 0) {
         cli_error("%s", msg);
         scene_destroy(&s);
@@ -153,7 +158,8 @@ int cmd_render(int argc, char **argv)
     for (int q = 0; q < PASS_COUNT; q++)
         snprintf(header + strlen(header), sizeof(header) - strlen(header), ",ms_%s", pass_names[q]);
     snprintf(header + strlen(header), sizeof(header) - strlen(header), "%s",
-             ",rays,mrays_per_s,temporal_accept,disoccluded,relmse,mape,smape,luma_rmse,mape_disoccluded,ms_write,"
+             ",rays,mrays_per_s,temporal_accept,bp_received,bp_accepted,splat_received,splat_accepted,"
+             "disoccluded,relmse,mape,smape,luma_rmse,mape_disoccluded,ms_write,"
              "nonfinite");
     struct csv_writer csv;
     if (csv_open(&csv, csv_path, header, msg) != 0) {
@@ -187,7 +193,14 @@ int cmd_render(int argc, char **argv)
             err_sum.smape += err.smape;
             err_sum.luma_rmse += err.luma_rmse;
         }
-        double accept = st.valid_pixels > 0 ? (double)st.temporal_accepted / (double)st.valid_pixels : 0.0;
+        const double vp = (double)st.valid_pixels;
+        double accept = st.valid_pixels > 0 ? (double)st.temporal_accepted / vp : 0.0;
+        /* path reservoirs: shares of pixels offered / taking a temporal candidate per technique */
+        const struct temporal_counts *tc = &st.temporal;
+        double bp_rx = st.valid_pixels > 0 ? (double)tc->bp_received / vp : 0.0;
+        double bp_acc = st.valid_pixels > 0 ? (double)tc->bp_accepted / vp : 0.0;
+        double sp_rx = st.valid_pixels > 0 ? (double)tc->splat_received / vp : 0.0;
+        double sp_acc = st.valid_pixels > 0 ? (double)tc->splat_accepted / vp : 0.0;
         /* 004 Sec. 6.2: pixels whose history was rejected in any of the last DISOCCLUSION_FRAMES frames */
         double disoccluded = 0.0, mape_disoccluded = 0.0;
         if (method != METHOD_PT) {
@@ -211,8 +224,9 @@ int cmd_render(int argc, char **argv)
             }
             ms_write = 1e3 * (omp_get_wtime() - t0);
         }
-        csv_row(&csv, "%d,%.3f%s,%lld,%.3f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.3f,%lld", f, st.ms_total, passes,
-                st.rays, (double)st.rays / (st.ms_total * 1e3), accept, disoccluded, ref ? err.relmse : 0.0,
+        csv_row(&csv, "%d,%.3f%s,%lld,%.3f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.3f,%lld", f,
+                st.ms_total, passes, st.rays, (double)st.rays / (st.ms_total * 1e3), accept, bp_rx, bp_acc, sp_rx,
+                sp_acc, disoccluded, ref ? err.relmse : 0.0,
                 ref ? err.mape : 0.0, ref ? err.smape : 0.0, ref ? err.luma_rmse : 0.0, mape_disoccluded, ms_write,
                 st.nonfinite);
         nonfinite_sum += st.nonfinite;

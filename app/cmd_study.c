@@ -217,6 +217,11 @@ static int study_setup(int argc, char **argv, int need_out, struct study_setup *
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
+    if (method_check_settings(st->method, &o->params, &st->s, msg) != 0) {
+        cli_error("%s", msg);
+        scene_destroy(&st->s);
+        return EXIT_USAGE;
+    }
     if (cli_check_memory(&st->s, st->method, &o->params, o->max_memory_mb, msg) != 0) {
         cli_error("%s", msg);
         scene_destroy(&st->s);
@@ -232,7 +237,7 @@ static float *study_render_reference(const struct study_setup *st)
     struct render_params rp = st->o.params;
     rp.seed ^= 0x7265666572656e63ull;
     const struct camera cam = study_camera(&st->s);
-    return cli_render_reference(&st->s, st->method, &rp, &cam, st->o.ref_spp);
+    return cli_render_reference(&st->s, st->method, &rp, &cam, NULL, st->o.ref_spp); /* a still camera */
 }
 
 /* Writes the study's tables, plots and report into dir and prints its summary. */

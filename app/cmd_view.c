@@ -19,10 +19,13 @@ static void view_usage(FILE *out)
             "A window that renders frame after frame (default method restir-di, 640x360). Mouse drag turns\n"
             "the camera, W A S D move, Q E down and up; M next method (restir-di, restir-pt, pt, ris-di),\n"
             "T temporal reuse, Y spatial reuse, N neighbor selection, P spmis; V debug views (confidence,\n"
-            "temporal acceptance, selected-neighbor count, reuse cells); K screenshot (EXR and PNG),\n"
-            "C camera.json: the cameras since the last change of method or settings, which\n"
-            "`restir render --camera DIR/camera.json --method M --res WxH --seed N` replays exactly;\n"
-            "escape quits and writes DIR/last_frame.exr and .png. The title shows the per-pass times.\n"
+            "temporal acceptance, selected-neighbor count, reuse cells, temporal candidates per technique:\n"
+            "black none, dark red received but none accepted, green backprojection accepted, blue splat\n"
+            "accepted, cyan both); K screenshot (EXR and PNG, and DIR/screenshot_NNNN_view.png of a\n"
+            "debug view on screen), C camera.json: the cameras since the last change of method or\n"
+            "settings, which `restir render --camera DIR/camera.json --method M --res WxH --seed N`\n"
+            "replays exactly; escape quits and writes DIR/last_frame.exr and .png. The title shows the\n"
+            "per-pass times.\n"
             "--script FILE: timed input, one event per line ('F press KEY', 'F hold KEY N', 'F drag DX DY',\n"
             "'F quit'; F counts frames from the start). Default DIR: out/view-SCENE. Without a display it\n"
             "says so and exits 1.\n");
@@ -48,6 +51,11 @@ int cmd_view(int argc, char **argv)
     struct scene s;
     if (scene_load(o.scene, &s, msg) != 0) {
         cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
+    if (method_check_settings((enum method_id)m, &o.params, &s, msg) != 0) {
+        cli_error("%s", msg);
+        scene_destroy(&s);
         return EXIT_USAGE;
     }
     if (cli_check_memory(&s, (enum method_id)m, &o.params, o.max_memory_mb, msg) != 0) {

@@ -57,9 +57,12 @@ static int parse_spec(const char *spec, const struct render_params *common, stru
         return -1;
     }
     /* One reference serves every row, so no row may change the integral it is measured against. */
-    if (c->p.max_bounces != common->max_bounces || c->p.jitter != common->jitter) {
+    if (c->p.max_bounces != common->max_bounces || c->p.jitter != common->jitter ||
+        c->p.camera_shutter != common->camera_shutter || c->p.camera_aperture != common->camera_aperture ||
+        c->p.camera_focus != common->camera_focus) {
         snprintf(msg, RESTIR_MSG_LEN,
-                 "--methods spec '%.200s' changes the integrand (pt.max_bounces or jitter), which every row "
+                 "--methods spec '%.200s' changes the integrand (pt.max_bounces, jitter or a camera.* setting), "
+                 "which every row "
                  "shares with the reference: give it to all rows with --set",
                  spec);
         return -1;
@@ -275,6 +278,11 @@ int compare_setup(int argc, char **argv, struct compare_setup *st)
         return EXIT_USAGE;
     }
     for (int k = 0; k < st->n; k++) { /* each method's renderers exist one at a time */
+        if (method_check_settings(st->specs[k].method, &st->specs[k].p, &st->s, msg) != 0) {
+            cli_error("--methods spec '%s': %s", st->specs[k].label, msg);
+            scene_destroy(&st->s);
+            return EXIT_USAGE;
+        }
         if (cli_check_memory(&st->s, st->specs[k].method, &st->specs[k].p, o->max_memory_mb, msg) != 0) {
             cli_error("--methods spec '%s': %s", st->specs[k].label, msg);
             scene_destroy(&st->s);
@@ -290,8 +298,10 @@ float *compare_render_reference(const struct compare_setup *st)
 {
     struct render_params rp = st->p;
     rp.seed = st->p.seed ^ 0x7265666572656e63ull; /* independent of the compared runs */
-    struct camera cam = scene_camera_at(&st->s, st->p.camera_path, (float)(st->o.frames - 1));
-    return cli_render_reference(&st->s, st->any_direct ? METHOD_RESTIR_DI : METHOD_PT, &rp, &cam, st->o.ref_spp);
+    struct camera cam, open;
+    cli_frame_cameras(&st->s, st->p.camera_path, st->o.frames - 1, &cam, &open);
+    return cli_render_reference(&st->s, st->any_direct ? METHOD_RESTIR_DI : METHOD_PT, &rp, &cam, &open,
+                                st->o.ref_spp);
 }
 
 int compare_write_table(const struct compare_setup *st, const char *out_dir, const char *command,

@@ -79,6 +79,11 @@ int reference_setup(int argc, char **argv, int need_out, struct reference_setup 
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
+    if (method_check_settings(st->method, &o->params, &st->s, msg) != 0) {
+        cli_error("%s", msg);
+        scene_destroy(&st->s);
+        return EXIT_USAGE;
+    }
     /* the mean, the chunk and, while resuming or merging, one image read: three RGB float images */
     const double per_pixel = 3.0 * 3.0 * sizeof(float);
     if (cli_check_bytes("reference", o->params.width, o->params.height,
@@ -90,6 +95,6 @@ int reference_setup(int argc, char **argv, int need_out, struct reference_setup 
     st->spp = o->spp_given ? o->params.spp : 1024;
     if (o->params.threads > 0)
         omp_set_num_threads(o->params.threads);
-    st->cam = scene_camera_at(&st->s, o->params.camera_path, (float)o->frame);
+    cli_frame_cameras(&st->s, o->params.camera_path, o->frame, &st->cam, &st->cam_open);
     return 0;
 }

@@ -15,7 +15,7 @@ struct reference_setup {
     enum method_id method;
     struct scene s;
     int spp;
-    struct camera cam;
+    struct camera cam, cam_open; /* the frame's camera and where its shutter opens */
 };
 
 /* Parses and checks the options, loads the scene (st->s, to destroy) and checks memory; need_out:

@@ -40,7 +40,7 @@ static void shard_output(int s, char *out, size_t len)
 static void run_text(const struct reference_setup *st, char *run, size_t len)
 {
     struct reference_accum a;
-    reference_accum_init(&a, &st->s, st->method, &st->o.params, &st->cam, st->spp);
+    reference_accum_init(&a, &st->s, st->method, &st->o.params, &st->cam, &st->cam_open, st->spp);
     reference_describe(&a, run, len);
     reference_accum_fini(&a);
 }
@@ -146,7 +146,7 @@ int reference_run_job(const struct plan *pl, int k)
     snprintf(shard, sizeof shard, "%d+%d", c0, n);
     cli_catch_stop_signals();
     struct reference_accum a;
-    reference_accum_init_shard(&a, &st.s, st.method, &st.o.params, &st.cam, c0, n);
+    reference_accum_init_shard(&a, &st.s, st.method, &st.o.params, &st.cam, &st.cam_open, c0, n);
     while (a.done < a.spp && !cli_stop_signal)
         reference_accum_step(&a);
     if (a.done < a.spp) {

@@ -51,6 +51,11 @@ static cJSON *camera_json(const struct camera *c, const float *frame)
     cJSON_AddItemToObject(j, "look_at", vec(c->target));
     cJSON_AddItemToObject(j, "up", vec(c->up));
     cJSON_AddItemToObject(j, "vfov", number(c->vfov_deg));
+    /* only when set, so that pinhole cameras export as before */
+    if (c->aperture != 0.0f)
+        cJSON_AddItemToObject(j, "aperture", number(c->aperture));
+    if (c->focus_distance != 0.0f)
+        cJSON_AddItemToObject(j, "focus_distance", number(c->focus_distance));
     return j;
 }
 

@@ -2,7 +2,10 @@
  * Must never depend on the passes or the ray tracer. */
 #include "methods/method.h"
 
+#include <stdio.h>
 #include <string.h>
+
+#include "core/check.h"
 
 const struct method_info method_table[METHOD_COUNT] = {
     {"pt", "path tracing: NEE + BSDF sampling with MIS, Russian roulette (the reference method)", 0, 0},
@@ -52,4 +55,47 @@ void renderer_reference_params(enum method_id method, struct render_params *p)
 {
     if (method_table[method].direct_only)
         p->max_bounces = 1;
+}
+
+int method_has_camera_effects(enum method_id m)
+{
+    return m == METHOD_PT || m == METHOD_RESTIR_PT || m == METHOD_AREA_RESTIR;
+}
+
+/* The largest aperture of the scene's static camera and camera-path keys. */
+static float scene_aperture(const struct scene *s)
+{
+    float a = s->camera.aperture;
+    for (int k = 0; k < s->camera_path.num_keys; k++)
+        a = s->camera_path.keys[k].cam.aperture > a ? s->camera_path.keys[k].cam.aperture : a;
+    return a;
+}
+
+int method_check_settings(enum method_id m, const struct render_params *p, const struct scene *s, char *msg)
+{
+    const char *name = method_table[m].name;
+    if (p->temporal_reuse != TEMPORAL_BACKPROJECT && !method_runs_restir_pt(m)) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "temporal.reuse=%s: %s has no path reservoirs with primary hits to splat (restir-pt, "
+                 "area-restir, grad-after-restir and grestir-pt have)",
+                 p->temporal_reuse == TEMPORAL_SPLAT ? "splat" : "both", name);
+        return -1;
+    }
+    if (method_has_camera_effects(m))
+        return 0;
+    if (p->camera_shutter > 0.0f || p->camera_aperture > 0.0f) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "%s: %s does not render motion blur or depth of field (its samples do not carry the primary "
+                 "ray's time and lens point); pt, restir-pt and area-restir do",
+                 p->camera_shutter > 0.0f ? "camera.shutter" : "camera.aperture", name);
+        return -1;
+    }
+    if (s && scene_aperture(s) > 0.0f) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "scene %s: its camera has an aperture (depth of field), which %s does not render; pt, "
+                 "restir-pt and area-restir do",
+                 s->name, name);
+        return -1;
+    }
+    return 0;
 }

@@ -4,6 +4,7 @@
 #define RESTIR_METHODS_METHOD_H
 
 #include "render/params.h"
+#include "scene/scene_types.h"
 
 enum method_id {
     METHOD_PT = 0,
@@ -33,6 +34,14 @@ int method_find(const char *name);
 int method_runs_restir_pt(enum method_id m);
 /* Methods that trace their own primary rays instead of reading a G-buffer (pt, gpt). */
 int method_has_gbuffer(enum method_id m);
+
+/* Methods whose samples carry the primary ray's shutter time and lens point (pt, restir-pt,
+ * area-restir): the ones that render camera.shutter and camera.aperture. */
+int method_has_camera_effects(enum method_id m);
+/* Checks what depends on the method (and the scene, when s is not NULL): temporal.reuse=splat|both
+ * needs path reservoirs; motion blur and depth of field need method_has_camera_effects. Returns 0,
+ * or -1 with msg naming the key. */
+int method_check_settings(enum method_id m, const struct render_params *p, const struct scene *s, char *msg);
 
 /* The method's own defaults on top of p (ris-di: no reuse; area-restir and the primal of
  * grad-after-restir and grestir-pt: 2 spatial neighbors unless spatial.neighbors is set).

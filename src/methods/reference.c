@@ -5,16 +5,17 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "methods/renderer.h"
 #include "render/pt.h"
 
 void reference_accum_init(struct reference_accum *a, const struct scene *s, enum method_id method,
-                          const struct render_params *p, const struct camera *cam, int spp)
+                          const struct render_params *p, const struct camera *cam, const struct camera *open, int spp)
 {
     memset(a, 0, sizeof *a);
     a->scene = s;
     a->params = *p;
     renderer_reference_params(method, &a->params);
-    camera_view_init(&a->view, cam, a->params.width, a->params.height);
+    renderer_camera_view(&a->params, cam, open, &a->view);
     a->spp = spp;
     const size_t n = 3 * (size_t)a->params.width * (size_t)a->params.height;
     a->mean = xcalloc(n, sizeof(float));
@@ -22,9 +23,10 @@ void reference_accum_init(struct reference_accum *a, const struct scene *s, enum
 }
 
 void reference_accum_init_shard(struct reference_accum *a, const struct scene *s, enum method_id method,
-                                const struct render_params *p, const struct camera *cam, int first_chunk, int spp)
+                                const struct render_params *p, const struct camera *cam, const struct camera *open,
+                                int first_chunk, int spp)
 {
-    reference_accum_init(a, s, method, p, cam, spp);
+    reference_accum_init(a, s, method, p, cam, open, spp);
     a->first_chunk = first_chunk;
 }
 
@@ -73,4 +75,12 @@ void reference_describe(const struct reference_accum *a, char *out, size_t len)
              v->position.x, v->position.y, v->position.z, v->forward.x, v->forward.y, v->forward.z, v->right.x,
              v->right.y, v->right.z, v->up.x, v->up.y, v->up.z, v->tan_half_x, v->tan_half_y, p->max_bounces,
              p->rr_bounces, p->jitter, REFERENCE_CHUNK_SPP);
+    /* the lens and the shutter only where they are on, so earlier references keep their id */
+    size_t used = strlen(out);
+    if (v->lens_radius > 0.0f && used < len)
+        used += (size_t)snprintf(out + used, len - used, "; lens=%a,%a", v->lens_radius, v->focus_distance);
+    if (v->shutter > 0.0f && used < len)
+        snprintf(out + used, len - used, "; shutter=%a; open=%a,%a,%a/%a,%a,%a/%a,%a,%a/%a", v->shutter,
+                 v->open_position.x, v->open_position.y, v->open_position.z, v->open_forward.x, v->open_forward.y,
+                 v->open_forward.z, v->open_up.x, v->open_up.y, v->open_up.z, v->open_tan_half_y);
 }

@@ -29,12 +29,14 @@ struct reference_accum {
 };
 
 /* Prepares a reference of what method estimates (pt over the same integrand) from cam with spp
- * samples, starting empty. */
+ * samples, starting empty. open is the camera at the shutter opening (the previous frame's; NULL:
+ * cam), which camera.shutter > 0 blurs toward (renderer_camera_view). */
 void reference_accum_init(struct reference_accum *a, const struct scene *s, enum method_id method,
-                          const struct render_params *p, const struct camera *cam, int spp);
+                          const struct render_params *p, const struct camera *cam, const struct camera *open, int spp);
 /* The same for a shard: the samples of chunks first_chunk, first_chunk + 1, ... (spp of them). */
 void reference_accum_init_shard(struct reference_accum *a, const struct scene *s, enum method_id method,
-                                const struct render_params *p, const struct camera *cam, int first_chunk, int spp);
+                                const struct render_params *p, const struct camera *cam, const struct camera *open,
+                                int first_chunk, int spp);
 /* Continues from a saved state: mean (w*h*3, copied) holding done samples. done must be a chunk
  * boundary (a multiple of REFERENCE_CHUNK_SPP) or spp itself (reference_accum_can_resume). */
 void reference_accum_resume(struct reference_accum *a, const float *mean, int done);

@@ -15,6 +15,7 @@
 #include "gradient/grestir.h"
 #include "render/nonfinite.h"
 #include "render/pt.h"
+#include "render/pt_splat.h"
 #include "render/restir_di.h"
 #include "render/restir_pt.h"
 #include "render/reuse_cells.h"
@@ -61,6 +62,11 @@ void renderer_init(struct renderer *r, const struct scene *s, enum method_id met
         r->pt_hist[0] = xcalloc(n, sizeof(struct pt_reservoir));
         r->pt_hist[1] = xcalloc(n, sizeof(struct pt_reservoir));
         r->pt_emission = xcalloc(n, sizeof(vec3));
+        r->temporal_flags = xcalloc(n, 1);
+        if (p->temporal_reuse != TEMPORAL_BACKPROJECT) {
+            r->splat = xmalloc(sizeof(*r->splat));
+            pt_splat_buffers_init(r->splat, p->width, p->height, pt_splat_steps(p));
+        }
     }
     if (method_table[method].gradient) {
         r->grad = xmalloc(sizeof(*r->grad));
@@ -95,6 +101,11 @@ void renderer_fini(struct renderer *r)
     free(r->pt_hist[0]);
     free(r->pt_hist[1]);
     free(r->pt_emission);
+    free(r->temporal_flags);
+    if (r->splat) {
+        pt_splat_buffers_fini(r->splat);
+        free(r->splat);
+    }
     free(r->material_rough);
     free(r->neighbors);
     free(r->disk_offsets);
@@ -260,10 +271,19 @@ static void render_restir_pt(struct renderer *r, const struct camera_view *view,
           st->nonfinite += nonfinite_discard_pt(r->pt_work, n));
     if (r->grad && r->grad->base && p->grad_base) /* grestir-pt, grad.base=shared: the pairs' candidates */
         memcpy(r->grad->base, r->pt_work, sizeof(*out) * (size_t)g->width * (size_t)g->height);
+    memset(r->temporal_flags, 0, n);
     if (p->temporal && r->has_history)
-        TIMED(st, PASS_TEMPORAL,
-              st->rays += pt_temporal_pass(&fr, g, prev_g, prev_res, r->pt_work, &st->temporal_accepted);
-              st->nonfinite += nonfinite_discard_pt(r->pt_work, n));
+        TIMED(st, PASS_TEMPORAL, {
+            if (r->splat)
+                st->rays += pt_temporal_splat_pass(&fr, g, prev_g, prev_res, r->pt_work, r->splat, r->temporal_flags);
+            else
+                st->rays += pt_temporal_pass(&fr, g, prev_g, prev_res, r->pt_work, &st->temporal_accepted,
+                                             r->temporal_flags);
+            st->nonfinite += nonfinite_discard_pt(r->pt_work, n);
+        });
+    pt_temporal_counts(r->temporal_flags, (int)n, &st->temporal);
+    if (r->splat) /* pixels that reused history: a candidate of either technique shifted in */
+        st->temporal_accepted = temporal_counts_any_accepted(r->temporal_flags, (int)n);
     if (p->spatial && r->spmis) {
         struct spmis_frame *f = r->spmis;
         TIMED(st, PASS_CELLS, {
@@ -316,11 +336,32 @@ long long renderer_disoccluded(const struct renderer *r, int frames, unsigned ch
     return marked;
 }
 
+void renderer_camera_view(const struct render_params *p, const struct camera *cam, const struct camera *open,
+                          struct camera_view *v)
+{
+    struct camera c = *cam, o = open ? *open : *cam;
+    if (p->camera_aperture > 0.0f)
+        c.aperture = o.aperture = p->camera_aperture;
+    if (p->camera_focus > 0.0f)
+        c.focus_distance = o.focus_distance = p->camera_focus;
+    camera_view_init(v, &c, p->width, p->height);
+    if (p->camera_shutter > 0.0f)
+        camera_view_set_shutter(v, &o, p->camera_shutter);
+}
+
+void renderer_set_shutter_open(struct renderer *r, const struct camera *open)
+{
+    r->prev_cam = *open;
+    r->has_prev_cam = 1;
+}
+
 void renderer_render(struct renderer *r, int frame, const struct camera *cam, struct frame_stats *st)
 {
     memset(st, 0, sizeof(*st));
     struct camera_view view;
-    camera_view_init(&view, cam, r->p.width, r->p.height);
+    renderer_camera_view(&r->p, cam, r->has_prev_cam ? &r->prev_cam : NULL, &view);
+    r->prev_cam = *cam;
+    r->has_prev_cam = 1;
     double t0 = omp_get_wtime();
     r->frame = frame;
     if (r->method == METHOD_PT) {

@@ -8,6 +8,7 @@
 #include "render/gbuffer.h"
 #include "render/light_pool.h"
 #include "render/params.h"
+#include "render/pt_splat.h"
 #include "render/restir_pt.h"
 
 struct grad_frame;
@@ -50,6 +51,7 @@ struct frame_stats {
     long long pair_neighbors;    /* grestir-pt: neighbor pairs found */
     double l2_residual, l1_residual; /* gradient methods: relative residuals of the solves */
     long long nonfinite;             /* NaN / infinite reservoirs and radiance values discarded (nonfinite.h) */
+    struct temporal_counts temporal; /* path reservoirs: pixels with temporal candidates per technique */
 };
 
 struct renderer {
@@ -61,12 +63,16 @@ struct renderer {
     int frame;
     int has_history;
     struct camera_view prev_view;
+    struct camera prev_cam;       /* the last frame's camera: where the next frame's shutter opens */
+    int has_prev_cam;
     struct di_reservoir *work;    /* initial, then temporal outputs */
     struct di_reservoir *hist[2]; /* spatial outputs: this frame's and the previous frame's */
     struct light_pool lights;     /* DI methods: this frame's light candidates (initial RIS) */
     struct pt_reservoir *pt_work;    /* restir-pt: as work */
     struct pt_reservoir *pt_hist[2]; /* restir-pt: as hist */
     vec3 *pt_emission;               /* restir-pt: emission seen directly by the initial paths */
+    unsigned char *temporal_flags;   /* restir-pt: this frame's TEMPORAL_* bits per pixel (pt_splat.h) */
+    struct pt_splat_buffers *splat;  /* temporal.reuse=splat|both: landing buckets */
     float scene_diagonal;            /* scales shift.distance */
     unsigned char *material_rough;   /* restir-pt: hybrid shift's roughness class per material */
     int *neighbors;                  /* selection pass output: spatial neighbors per pixel */
@@ -83,7 +89,15 @@ struct renderer {
 void renderer_init(struct renderer *r, const struct scene *s, enum method_id method, const struct render_params *p);
 void renderer_fini(struct renderer *r);
 /* Renders frame number `frame` seen by cam into r->image. */
+/* The shutter opens at the previous frame's camera (camera.shutter > 0), or at cam for the first. */
 void renderer_render(struct renderer *r, int frame, const struct camera *cam, struct frame_stats *st);
+/* The camera the next frame's shutter opens at (instead of the last frame's camera): a single
+ * frame of a sequence rendered on its own, e.g. a reference, sees the same motion blur. */
+void renderer_set_shutter_open(struct renderer *r, const struct camera *open);
+/* The view a frame of p is rendered through: cam with p's lens settings over the scene camera's,
+ * and with camera.shutter > 0 the shutter opening at `open` (NULL: cam, no motion). */
+void renderer_camera_view(const struct render_params *p, const struct camera *cam, const struct camera *open,
+                          struct camera_view *v);
 /* Gradient methods: the screened Poisson reconstruction (L2; L1 too unless recon=l2) of
  * r->grad's primal and gradients into r->image, timed into st->ms. renderer_render calls it; call
  * it again after changing the inputs (e.g. averaging instances, 002 Sec. 5). */

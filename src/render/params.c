@@ -38,6 +38,7 @@ static const char *const base_names[] = {"independent", "shared", NULL};
 static const char *const recon_names[] = {"l2", "l1", "both", NULL};
 static const char *const solver_names[] = {"dct", "cg", NULL};
 static const char *const visibility_mis_names[] = {"rays", "none", NULL};
+static const char *const temporal_reuse_names[] = {"backproject", "splat", "both", NULL};
 static const char *const preset_names[] = {"fast", "balanced", "conservative", NULL};
 
 /* Index of val among the NULL-terminated names, or -1. */
@@ -56,6 +57,7 @@ _Static_assert(sizeof(enum spmis_search_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum grad_spatial_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum recon_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum di_visibility_mis) == sizeof(int), "enum size");
+_Static_assert(sizeof(enum temporal_reuse_mode) == sizeof(int), "enum size");
 
 #define F(field) offsetof(struct render_params, field)
 static const struct param_def params[] = {
@@ -105,6 +107,24 @@ static const struct param_def params[] = {
      "history rejected when the plane distance / depth is above", NULL},
     {"temporal.ratio_guard", P_BOOL, F(temporal_ratio_guard), 0, 1, "off", "on",
      "BIASED: reject history whose target ratio leaves [ratio_lo, ratio_hi] (001 Sec. 5)", NULL},
+    {"temporal.reuse", P_NAMES, F(temporal_reuse), 0, 0, "backproject", NULL,
+     "path reservoirs (restir-pt, area-restir, the gradient methods' primal): backproject (the previous "
+     "pixel under the backward motion vector, Area ReSTIR), splat (Liu et al. 2025: every previous "
+     "reservoir lands where its primary hit is seen now; needs jitter=on), or both, combined by balance "
+     "MIS (docs/RESTIR_PT.md); all unbiased with mis=pairwise or balance",
+     temporal_reuse_names},
+    {"temporal.splat_steps", P_INT, F(temporal_splat_steps), 1, 16, "2", NULL,
+     "splat with camera.shutter > 0: each previous reservoir is splatted into this many shutter-time strata "
+     "(1: it keeps its shutter time)", NULL},
+    {"camera.shutter", P_FLOAT, F(camera_shutter), 0, 1, "0", NULL,
+     "motion blur: the shutter is open for this fraction of a frame before each frame's instant, while the "
+     "camera moves from the previous frame's pose (0: off; pt, restir-pt, area-restir)", NULL},
+    {"camera.aperture", P_FLOAT, F(camera_aperture), 0, 1e30, "0", NULL,
+     "depth of field: thin-lens aperture radius in scene units (0: the scene camera's, a pinhole unless its "
+     "file sets aperture; pt, restir-pt, area-restir)", NULL},
+    {"camera.focus_distance", P_FLOAT, F(camera_focus), 0, 1e30, "0", NULL,
+     "thin lens: distance of the plane in focus along the view direction (0: the scene camera's "
+     "focus_distance, else the distance to its look_at point)", NULL},
     {"temporal.ratio_lo", P_FLOAT, F(ratio_lo), 0, 1e30, "0.1", NULL, "target-ratio guard lower bound", NULL},
     {"temporal.ratio_hi", P_FLOAT, F(ratio_hi), 0, 1e30, "10", NULL, "target-ratio guard upper bound", NULL},
     {"spatial.reuse", P_NAMES, F(spatial_reuse), 0, 0, "standard", NULL,
@@ -320,6 +340,13 @@ int render_params_validate(const struct render_params *p, char *msg)
     if (p->ratio_lo > p->ratio_hi) {
         snprintf(msg, RESTIR_MSG_LEN, "temporal.ratio_lo (%g) exceeds temporal.ratio_hi (%g)", p->ratio_lo,
                  p->ratio_hi);
+        return -1;
+    }
+    if (p->temporal_reuse != TEMPORAL_BACKPROJECT && !p->jitter) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "temporal.reuse=%s needs jitter=on: a splatted path lands anywhere inside its new pixel, which "
+                 "only a pixel integrated over its area (jitter) can receive",
+                 p->temporal_reuse == TEMPORAL_SPLAT ? "splat" : "both");
         return -1;
     }
     /* Every key's range or names, also for values set other than through --set (options of their

@@ -25,6 +25,10 @@ enum grad_spatial_mode { GRAD_SPATIAL_OFF = 0, GRAD_SPATIAL_DENSE, GRAD_SPATIAL_
  * rays traces a shadow ray for every cross-domain target (unbiased); none uses unshadowed ones
  * (BIASED: a domain that cannot see the sample still takes MIS weight). */
 enum di_visibility_mis { DI_VIS_MIS_RAYS = 0, DI_VIS_MIS_NONE };
+/* Temporal reuse of path reservoirs: the previous pixel under the backward motion vector (Area
+ * ReSTIR), reservoir splatting (Liu et al. 2025: each previous reservoir forward-projected by its
+ * primary hit), or both techniques combined by MIS. */
+enum temporal_reuse_mode { TEMPORAL_BACKPROJECT = 0, TEMPORAL_SPLAT, TEMPORAL_BOTH };
 /* Which screened Poisson reconstruction fills the image (the other one is written as a layer). */
 enum recon_mode { RECON_L2 = 0, RECON_L1, RECON_BOTH };
 /* Most cell-search taps spmis.search_steps takes (reuse_cells.c keeps this many uniforms). */
@@ -65,6 +69,13 @@ struct render_params {
     float temporal_plane;   /* ... or when the plane distance exceeds temporal_plane * depth */
     int temporal_ratio_guard; /* 001 Sec. 5 target-ratio guard (biased) */
     float ratio_lo, ratio_hi;
+    enum temporal_reuse_mode temporal_reuse; /* path reservoirs only (restir-pt and its relatives) */
+    int temporal_splat_steps; /* splat with motion blur: shutter-time strata per history reservoir */
+
+    /* camera (pt, restir-pt, area-restir: the methods whose samples carry the primary ray) */
+    float camera_shutter;  /* motion blur: fraction of a frame the shutter is open (0: off) */
+    float camera_aperture; /* thin-lens aperture radius (0: the scene camera's) */
+    float camera_focus;    /* focus distance (0: the scene camera's) */
 
     /* stochastic pairwise MIS with reuse cells (004) */
     enum spatial_reuse_mode spatial_reuse;

@@ -77,12 +77,21 @@ static vec3 reconnection_eval(const struct scene *s, const struct path_vertex *v
     return v3_mul(v3_scale(bsdf_eval(b, v->ns, v->wo, wk), cos_y), at_k);
 }
 
+static void keep_primary(struct path_sample *y, const struct path_vertex *x1)
+{
+    y->x1_p = x1->p;
+    y->x1_tri = x1->tri;
+    y->x1_b1 = x1->b1;
+    y->x1_b2 = x1->b2;
+}
+
 void path_sample_from_candidate(const struct scene *s, const struct shift_params *sp, const struct path_walk *w,
                                 const struct path_candidate *c, struct path_sample *out)
 {
     const int D = c->length, k = choose_rc(s, sp, w, D);
     out->length = D;
     out->rc = k;
+    keep_primary(out, &w->v[0]);
     if (k == D) {
         out->rc_p = c->light_p;
         out->rc_n = c->light_n;
@@ -141,33 +150,20 @@ static int fail(struct path_sample *y)
     return 0;
 }
 
-int path_shift(const struct scene *s, const struct shift_params *sp, const struct path_sample *x,
-               const struct pt_domain *from, const struct pt_domain *to, struct path_sample *y, float *jacobian,
-               long long *rays)
+/* The shift of x from its shifted primary vertex v = y_1 on: random replay of the directions
+ * sampled at y_1 .. y_{k-2}, through the same sampling routine as the walk (bsdf_frame_sample),
+ * so that an identity shift reproduces its densities bit for bit, then the reconnection of
+ * y_{k-1} to x_k. Writes the Jacobian of everything after the primary vertex to *jacobian. */
+static int shift_from_primary(const struct scene *s, const struct shift_params *sp, const struct path_sample *x,
+                              struct path_vertex v, struct path_sample *y, float *jacobian, long long *rays)
 {
-    *y = *x;
-    *jacobian = 0.0f;
-    if (x->length < 2)
-        return fail(y);
     const int D = x->length, k = x->rc;
     const int hybrid = sp->kind == SHIFT_HYBRID;
-    y->u[0] = translate_offset(x->u[0], from->origin[0] - to->origin[0]);
-    y->u[1] = translate_offset(x->u[1], from->origin[1] - to->origin[1]);
-    float px, py;
-    path_image_position(to->x, to->y, y->u, &px, &py);
-    vec3 dir = camera_view_ray(to->view, px, py);
     struct surface_hit h;
-    (*rays)++;
-    if (!scene_intersect(s, to->view->position, dir, 0.0f, INFINITY, &h))
-        return fail(y);
-    struct path_vertex v = path_vertex_from_hit(&h, dir);
     struct bsdf b;
     path_vertex_bsdf(s, &v, &b);
     vec3 F = v3s(1.0f);
     float prefix_pdf = 1.0f;
-    /* Random replay of the directions sampled at y_1 .. y_{k-2}, through the same sampling
-     * routine as the walk (bsdf_frame_sample), so that an identity shift reproduces its densities
-     * bit for bit. */
     for (int j = 1; j <= k - 2; j++) {
         pcg32 rng = path_rng(x->seed, j);
         float u0 = pcg32_float(&rng), u1 = pcg32_float(&rng), u2 = pcg32_float(&rng);
@@ -208,5 +204,93 @@ int path_shift(const struct scene *s, const struct shift_params *sp, const struc
     if (!(J > 0.0f) || !isfinite(J))
         return fail(y);
     *jacobian = J;
+    return 1;
+}
+
+int path_shift(const struct scene *s, const struct shift_params *sp, const struct path_sample *x,
+               const struct pt_domain *from, const struct pt_domain *to, struct path_sample *y, float *jacobian,
+               long long *rays)
+{
+    *y = *x;
+    *jacobian = 0.0f;
+    if (x->length < 2)
+        return fail(y);
+    y->u[0] = translate_offset(x->u[0], from->origin[0] - to->origin[0]);
+    y->u[1] = translate_offset(x->u[1], from->origin[1] - to->origin[1]);
+    float px, py;
+    path_image_position(to->x, to->y, y->u, &px, &py);
+    struct camera_pose pose;
+    camera_view_pose(to->view, y->time, &pose);
+    vec3 o, dir;
+    camera_pose_ray(to->view, &pose, px, py, y->lens, &o, &dir);
+    struct surface_hit h;
+    (*rays)++;
+    if (!scene_intersect(s, o, dir, 0.0f, INFINITY, &h))
+        return fail(y);
+    struct path_vertex v = path_vertex_from_hit(&h, dir);
+    keep_primary(y, &v);
+    return shift_from_primary(s, sp, x, v, y, jacobian, rays);
+}
+
+int path_splat_position(const struct path_sample *x, const struct camera_view *view, float time, float *px,
+                        float *py)
+{
+    struct camera_pose pose;
+    camera_view_pose(view, time, &pose);
+    vec3 o;
+    if (!camera_pose_project(view, &pose, x->x1_p, x->lens, px, py, &o))
+        return 0;
+    return *px >= 0.0f && *py >= 0.0f && *px < (float)view->width && *py < (float)view->height;
+}
+
+/* The fractional part of an image coordinate known to lie in [0, size): the sub-pixel offset. */
+static float sub_pixel(float p, int *cell)
+{
+    *cell = (int)p;
+    float u = p - (float)*cell;
+    return u < 1.0f ? u : 0x1.fffffep-1f;
+}
+
+int path_shift_splat(const struct scene *s, const struct shift_params *sp, const struct path_sample *x,
+                     const struct camera_view *from_view, const struct camera_view *to_view, float time,
+                     float time_scale, int *pixel, struct path_sample *y, float *jacobian, long long *rays)
+{
+    *y = *x;
+    *jacobian = 0.0f;
+    *pixel = -1;
+    if (x->length < 2)
+        return fail(y);
+    struct camera_pose to_pose, from_pose;
+    camera_view_pose(to_view, time, &to_pose);
+    camera_view_pose(from_view, x->time, &from_pose);
+    vec3 o, o_from;
+    float px, py, qx, qy;
+    if (!camera_pose_project(to_view, &to_pose, x->x1_p, x->lens, &px, &py, &o) ||
+        !(px >= 0.0f && py >= 0.0f && px < (float)to_view->width && py < (float)to_view->height) ||
+        !camera_pose_project(from_view, &from_pose, x->x1_p, x->lens, &qx, &qy, &o_from))
+        return fail(y);
+    int ix, iy;
+    y->u[0] = sub_pixel(px, &ix);
+    y->u[1] = sub_pixel(py, &iy);
+    y->time = time;
+    vec3 dir = v3_normalize(v3_sub(x->x1_p, o));
+    struct surface_hit h;
+    scene_surface_at(s, x->x1_tri, x->x1_b1, x->x1_b2, x->x1_p, dir, &h);
+    /* x_1 is kept: the shifted primary ray is o -> x_1, and it must reach x_1 unoccluded. */
+    (*rays)++;
+    if (!scene_visible(s, o, dir, x->x1_p, h.ng))
+        return fail(y);
+    /* The image-position part of |T'|: x_1 fixed, so d(image_to)/d(image_from) is the ratio of
+     * surface area per pixel seen from the old and the new lens point (camera.h). */
+    float a_from = camera_pose_area_per_pixel(from_view, &from_pose, o_from, x->x1_p, h.ng);
+    float a_to = camera_pose_area_per_pixel(to_view, &to_pose, o, x->x1_p, h.ng);
+    float J_rest;
+    if (!(a_from > 0.0f && a_to > 0.0f) || !shift_from_primary(s, sp, x, path_vertex_from_hit(&h, dir), y, &J_rest, rays))
+        return fail(y);
+    float J = a_from / a_to * J_rest * time_scale;
+    if (!(J > 0.0f) || !isfinite(J))
+        return fail(y);
+    *jacobian = J;
+    *pixel = iy * to_view->width + ix;
     return 1;
 }

@@ -35,7 +35,13 @@ struct path_sample {
     int length;          /* D; 0 = no sample */
     int rc;              /* reconnection vertex index k in [2, D] */
     float u[2];          /* sub-pixel offset of the primary ray, [0,1)^2 */
+    float lens[2];       /* thin-lens sample, [0,1)^2 (0 with a pinhole) */
+    float time;          /* shutter time, [0,1) (camera_view_pose; 0 without motion blur) */
     uint64_t seed;       /* per-vertex random streams */
+    vec3 x1_p;           /* the primary hit x_1 in the domain the path lives in (reservoir splatting
+                            keeps it): point, triangle and barycentrics */
+    int x1_tri;
+    float x1_b1, x1_b2;
     vec3 rc_p;           /* x_k */
     vec3 rc_n;           /* x_k's geometric normal on the side of x_{k-1} (emitting normal if k = D) */
     vec3 rc_w;           /* k < D: unit direction x_k -> x_{k+1} */
@@ -72,6 +78,24 @@ void path_sample_from_candidate(const struct scene *s, const struct shift_params
 int path_shift(const struct scene *s, const struct shift_params *sp, const struct path_sample *x,
                const struct pt_domain *from, const struct pt_domain *to, struct path_sample *y, float *jacobian,
                long long *rays);
+
+/* Reservoir splatting's shift (Liu et al. 2025): path x of the previous frame, seen through
+ * from_view at its shutter time, keeps its primary hit x_1 (and its lens sample) and moves to
+ * the current frame at shutter time `time`: its primary ray is the one from the same lens point
+ * through x_1, so the image position follows x_1's projection. The rest of the path is shifted
+ * from the kept x_1 as path_shift does from a traced one (replay to x_{k-1}, reconnect to x_k).
+ * Returns 1 with the pixel it lands in (*pixel, row-major in to_view's image), the shifted path in
+ * *y (u is its sub-pixel offset there) and |dT/dx| in *jacobian; 0 when x_1 projects outside the
+ * image, is hidden from the new lens point, or the shifted path contributes nothing. `time_scale`
+ * multiplies the Jacobian (the shutter-time map's; 1 when the time is kept). */
+int path_shift_splat(const struct scene *s, const struct shift_params *sp, const struct path_sample *x,
+                     const struct camera_view *from_view, const struct camera_view *to_view, float time,
+                     float time_scale, int *pixel, struct path_sample *y, float *jacobian, long long *rays);
+
+/* Where path x's primary hit lands in view at shutter time `time` (image position; no ray is
+ * traced). Returns 0 when it is behind the lens or outside the image. */
+int path_splat_position(const struct path_sample *x, const struct camera_view *view, float time, float *px,
+                        float *py);
 
 /* The image position of the primary ray of a path with offset u in pixel (x, y). */
 static inline void path_image_position(int x, int y, const float u[2], float *px, float *py)

@@ -44,8 +44,10 @@ long long pt_pass(const struct scene *s, const struct camera_view *view, const s
             for (int k = 0; k < spp; k++) {
                 float jx = p->jitter ? pcg32_float(&rng) : 0.5f, jy = p->jitter ? pcg32_float(&rng) : 0.5f;
                 uint64_t path_seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
-                vec3 d = camera_view_ray(view, (float)x + jx, (float)y + jy);
-                vec3 L = pt_trace(s, view->position, d, p->max_bounces, path_seed, p->rr_bounces, &rays);
+                struct camera_sample cs = camera_sample_draw(view, &rng);
+                vec3 o, d;
+                camera_sample_ray(view, &cs, (float)x + jx, (float)y + jy, &o, &d);
+                vec3 L = pt_trace(s, o, d, p->max_bounces, path_seed, p->rr_bounces, &rays);
                 if (v3_is_finite(L))
                     sum = v3_add(sum, L);
             }

@@ -4,6 +4,7 @@
  * Must never allocate per pixel. */
 #include "render/restir_pt.h"
 
+#include "render/temporal_flags.h"
 #include "render/tiles.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
@@ -91,12 +92,17 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
             for (int n = 0; n < p->pt_candidates; n++) {
                 ctx.trial.u[0] = p->jitter ? pcg32_float(&rng) : 0.5f;
                 ctx.trial.u[1] = p->jitter ? pcg32_float(&rng) : 0.5f;
+                const struct camera_sample cs = camera_sample_draw(fr->view, &rng);
+                ctx.trial.lens[0] = cs.lens[0];
+                ctx.trial.lens[1] = cs.lens[1];
+                ctx.trial.time = cs.time;
                 float px, py;
                 path_image_position(x, y, ctx.trial.u, &px, &py);
-                vec3 d = camera_view_ray(fr->view, px, py);
+                vec3 o, d;
+                camera_sample_ray(fr->view, &cs, px, py, &o, &d);
                 struct surface_hit hit;
                 rays++;
-                if (!scene_intersect(s, fr->view->position, d, 0.0f, INFINITY, &hit))
+                if (!scene_intersect(s, o, d, 0.0f, INFINITY, &hit))
                     continue;
                 if (s->tri_emitter[hit.tri] >= 0 && hit.front)
                     Le = v3_add(Le, lights_radiance(s, hit.tri, hit.b1, hit.b2, v3_neg(d)));
@@ -129,7 +135,8 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
  * forward shifts, the diagonal from the cached target over the forward Jacobian, the rest by
  * shifting Y_j back into domain k. */
 static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_domain *dom,
-                            const struct pt_reservoir *const *in, pcg32 *rng, struct pt_reservoir *out)
+                            const struct pt_reservoir *const *in, pcg32 *rng, struct pt_reservoir *out,
+                            unsigned *shifted)
 {
     const struct render_params *p = fr->p;
     long long rays = 0;
@@ -166,6 +173,11 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
             }
         }
     }
+    if (shifted) {
+        *shifted = 0;
+        for (int j = 0; j < n; j++)
+            *shifted |= Y[j].length ? 1u << j : 0u;
+    }
     restir_mis_weights(p->mis, n, c, P, m);
     struct restir_wrs wrs;
     restir_wrs_init(&wrs);
@@ -192,7 +204,8 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
 /* ---- temporal and spatial reuse ---------------------------------------------------------------- */
 
 long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct gbuffer *prev_g,
-                           const struct pt_reservoir *prev_res, struct pt_reservoir *io, long long *accepted)
+                           const struct pt_reservoir *prev_res, struct pt_reservoir *io, long long *accepted,
+                           unsigned char *flags)
 {
     const struct render_params *p = fr->p;
     long long rays = 0, acc = 0;
@@ -202,6 +215,7 @@ long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, c
         for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
             const int x = px.x, y = px.y, i = px.i;
             int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
+            flags[i] = 0;
             if (q < 0)
                 continue;
             struct pt_domain dom[2];
@@ -215,7 +229,9 @@ long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, c
             }
             pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_TEMPORAL);
             const struct pt_reservoir *in[2] = {&io[i], &prev_res[q]};
-            rays += gris_merge(fr, 2, dom, in, &rng, &io[i]);
+            unsigned shifted;
+            rays += gris_merge(fr, 2, dom, in, &rng, &io[i], &shifted);
+            flags[i] = (unsigned char)(TEMPORAL_BP_RECEIVED | (shifted & 2u ? TEMPORAL_BP_ACCEPTED : 0));
             acc++;
         }
     }
@@ -268,7 +284,7 @@ long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, co
                 dom[n] = pt_pixel_domain(fr->view, j % w, j / w);
                 src[n++] = &in[j];
             }
-            rays += gris_merge(fr, n, dom, src, &rng, &out[i]);
+            rays += gris_merge(fr, n, dom, src, &rng, &out[i], NULL);
         }
     }
     return rays;

@@ -58,12 +58,14 @@ void pt_shift_params(const struct render_params *p, float scene_diagonal, struct
 long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, struct pt_reservoir *out,
                           vec3 *emission);
 
-/* Temporal reuse: the previous pixel under the sub-pixel position plus backward motion
- * (validated on G-buffers as 001) is merged by GRIS with shifts between the two frames. io holds
- * the initial reservoirs on entry and the outputs on return. Returns rays traced; *accepted
- * counts pixels that reused history. */
+/* Temporal reuse by backprojection: the previous pixel under the sub-pixel position plus backward
+ * motion (validated on G-buffers as 001) is merged by GRIS with shifts between the two frames. io
+ * holds the initial reservoirs on entry and the outputs on return; flags (one per pixel) receive
+ * temporal_flags.h's TEMPORAL_BP_* bits. Returns rays traced; *accepted counts pixels that reused
+ * history. (Splatting: pt_splat.h.) */
 long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct gbuffer *prev_g,
-                           const struct pt_reservoir *prev_res, struct pt_reservoir *io, long long *accepted);
+                           const struct pt_reservoir *prev_res, struct pt_reservoir *io, long long *accepted,
+                           unsigned char *flags);
 
 /* Spatial reuse: GRIS merge with shifts of the neighbors listed by the selection pass
  * (render_params_spatial_neighbors(p, 1) per pixel, -1 for none). Returns rays traced. */

@@ -1,8 +1,11 @@
-/* camera.c: pinhole camera basis, primary rays, projection of world points (for reprojection),
- * and keyframed camera paths. Must never depend on the ray tracer or render passes. */
+/* camera.c: camera basis, primary rays of a pinhole or a thin lens at a time inside the shutter,
+ * projection of world points (reprojection and reservoir splatting) with their image-plane
+ * density, and keyframed camera paths. Must never depend on the ray tracer or render passes. */
 #include "scene/camera.h"
 
 #include <math.h>
+
+#include "core/sampling.h"
 
 void camera_view_init(struct camera_view *v, const struct camera *c, int width, int height)
 {
@@ -14,6 +17,145 @@ void camera_view_init(struct camera_view *v, const struct camera *c, int width, 
     v->tan_half_x = v->tan_half_y * (float)width / (float)height;
     v->width = width;
     v->height = height;
+    v->lens_radius = c->aperture;
+    v->focus_distance = c->focus_distance > 0.0f ? c->focus_distance : v3_length(v3_sub(c->target, c->position));
+    v->shutter = 0.0f;
+    v->open_position = v->position;
+    v->open_forward = v->forward;
+    v->open_up = v->up;
+    v->open_tan_half_y = v->tan_half_y;
+}
+
+void camera_view_set_shutter(struct camera_view *v, const struct camera *open, float shutter)
+{
+    struct camera_view o;
+    camera_view_init(&o, open, v->width, v->height);
+    v->shutter = shutter;
+    v->open_position = o.position;
+    v->open_forward = o.forward;
+    v->open_up = o.up;
+    v->open_tan_half_y = o.tan_half_y;
+}
+
+/* Spherical linear interpolation of unit vectors a -> b at t (nlerp where they nearly coincide). */
+static vec3 slerp_unit(vec3 a, vec3 b, float t)
+{
+    float c = v3_dot(a, b);
+    c = c > 1.0f ? 1.0f : (c < -1.0f ? -1.0f : c);
+    float angle = acosf(c);
+    if (angle < 1e-4f)
+        return v3_normalize(v3_lerp(a, b, t));
+    float sa = sinf(angle);
+    return v3_normalize(v3_add(v3_scale(a, sinf((1.0f - t) * angle) / sa), v3_scale(b, sinf(t * angle) / sa)));
+}
+
+void camera_view_pose(const struct camera_view *v, float time, struct camera_pose *out)
+{
+    const float a = v->shutter * time;
+    if (!(a > 0.0f)) {
+        *out = (struct camera_pose){v->position, v->forward, v->right, v->up, v->tan_half_y, v->tan_half_x};
+        return;
+    }
+    out->position = v3_lerp(v->position, v->open_position, a);
+    out->forward = slerp_unit(v->forward, v->open_forward, a);
+    vec3 up = v3_lerp(v->up, v->open_up, a);
+    out->right = v3_normalize(v3_cross(out->forward, up));
+    out->up = v3_cross(out->right, out->forward);
+    out->tan_half_y = v->tan_half_y + (v->open_tan_half_y - v->tan_half_y) * a;
+    out->tan_half_x = out->tan_half_y * (float)v->width / (float)v->height;
+}
+
+/* Image point -> tangent-plane coordinates at unit distance along the optical axis. */
+static void image_to_tangent(const struct camera_view *v, const struct camera_pose *pose, float px, float py,
+                             float *sx, float *sy)
+{
+    *sx = (2.0f * px / (float)v->width - 1.0f) * pose->tan_half_x;
+    *sy = (1.0f - 2.0f * py / (float)v->height) * pose->tan_half_y;
+}
+
+static vec3 lens_point(const struct camera_view *v, const struct camera_pose *pose, const float lens[2])
+{
+    float lx, ly;
+    warp_concentric_disk(lens[0], lens[1], &lx, &ly);
+    return v3_add(pose->position,
+                  v3_add(v3_scale(pose->right, lx * v->lens_radius), v3_scale(pose->up, ly * v->lens_radius)));
+}
+
+void camera_pose_ray(const struct camera_view *v, const struct camera_pose *pose, float px, float py,
+                     const float lens[2], vec3 *origin, vec3 *dir)
+{
+    float sx, sy;
+    image_to_tangent(v, pose, px, py, &sx, &sy);
+    vec3 axis = v3_add(pose->forward, v3_add(v3_scale(pose->right, sx), v3_scale(pose->up, sy)));
+    if (!(v->lens_radius > 0.0f)) {
+        *origin = pose->position;
+        *dir = v3_normalize(axis);
+        return;
+    }
+    /* Thin lens: every ray through image point (px, py) meets the focal plane in one point. */
+    vec3 focal = v3_madd(pose->position, axis, v->focus_distance);
+    *origin = lens_point(v, pose, lens);
+    *dir = v3_normalize(v3_sub(focal, *origin));
+}
+
+int camera_pose_project(const struct camera_view *v, const struct camera_pose *pose, vec3 p, const float lens[2],
+                        float *px, float *py, vec3 *origin)
+{
+    const int lens_on = v->lens_radius > 0.0f;
+    *origin = lens_on ? lens_point(v, pose, lens) : pose->position;
+    vec3 d = v3_sub(p, *origin);
+    float z = v3_dot(d, pose->forward);
+    if (!(z > 1e-6f))
+        return 0;
+    float sx, sy;
+    if (lens_on) {
+        /* where the ray origin -> p meets the focal plane, relative to the lens centre */
+        vec3 focal = v3_sub(v3_madd(*origin, d, v->focus_distance / z), pose->position);
+        sx = v3_dot(focal, pose->right) / v->focus_distance;
+        sy = v3_dot(focal, pose->up) / v->focus_distance;
+    } else {
+        sx = v3_dot(d, pose->right) / z;
+        sy = v3_dot(d, pose->up) / z;
+    }
+    *px = (sx / pose->tan_half_x + 1.0f) * 0.5f * (float)v->width;
+    *py = (1.0f - sy / pose->tan_half_y) * 0.5f * (float)v->height;
+    return 1;
+}
+
+struct camera_sample camera_sample_draw(const struct camera_view *v, pcg32 *rng)
+{
+    struct camera_sample cs = {{0.0f, 0.0f}, 0.0f};
+    if (v->lens_radius > 0.0f) {
+        cs.lens[0] = pcg32_float(rng);
+        cs.lens[1] = pcg32_float(rng);
+    }
+    if (v->shutter > 0.0f)
+        cs.time = pcg32_float(rng);
+    return cs;
+}
+
+void camera_sample_ray(const struct camera_view *v, const struct camera_sample *cs, float px, float py, vec3 *origin,
+                       vec3 *dir)
+{
+    struct camera_pose pose;
+    camera_view_pose(v, cs->time, &pose);
+    camera_pose_ray(v, &pose, px, py, cs->lens, origin, dir);
+}
+
+float camera_pose_area_per_pixel(const struct camera_view *v, const struct camera_pose *pose, vec3 origin, vec3 p,
+                                 vec3 n)
+{
+    vec3 d = v3_sub(p, origin);
+    float d2 = v3_length2(d);
+    if (!(d2 > 0.0f))
+        return 0.0f;
+    float inv = 1.0f / sqrtf(d2);
+    float cos_axis = v3_dot(d, pose->forward) * inv, cos_surface = fabsf(v3_dot(d, n)) * inv;
+    if (!(cos_axis > 0.0f) || !(cos_surface > 0.0f))
+        return 0.0f;
+    /* dA = d^2 / |cos_s| dw, dw = cos^3(theta) dsx dsy, dsx dsy = (2 tan_x / W)(2 tan_y / H) dpx dpy */
+    float pixel = (2.0f * pose->tan_half_x / (float)v->width) * (2.0f * pose->tan_half_y / (float)v->height);
+    return d2 * cos_axis * cos_axis * cos_axis / cos_surface * pixel;
 }
 
 vec3 camera_view_ray(const struct camera_view *v, float px, float py)
@@ -78,6 +220,8 @@ struct camera scene_camera_at(const struct scene *s, int use_path, float frame)
             c.target = v3_lerp(a->cam.target, b->cam.target, t);
             c.up = v3_normalize(v3_lerp(a->cam.up, b->cam.up, t));
             c.vfov_deg = a->cam.vfov_deg + (b->cam.vfov_deg - a->cam.vfov_deg) * t;
+            c.aperture = a->cam.aperture + (b->cam.aperture - a->cam.aperture) * t;
+            c.focus_distance = a->cam.focus_distance + (b->cam.focus_distance - a->cam.focus_distance) * t;
             return c;
         }
         const struct camera_key *pk = k > 0 ? &cp->keys[k - 1] : a, *nk = k + 2 < n ? &cp->keys[k + 2] : b;
@@ -92,6 +236,9 @@ struct camera scene_camera_at(const struct scene *s, int use_path, float frame)
         c.vfov_deg = fminf(fmaxf(hermite_f(&h, pk->cam.vfov_deg, a->cam.vfov_deg, b->cam.vfov_deg, nk->cam.vfov_deg),
                                  1e-3f),
                            179.0f);
+        /* the lens moves linearly between keys (no overshoot below 0) */
+        c.aperture = a->cam.aperture + (b->cam.aperture - a->cam.aperture) * u;
+        c.focus_distance = a->cam.focus_distance + (b->cam.focus_distance - a->cam.focus_distance) * u;
         return c;
     }
     return cp->keys[n - 1].cam;

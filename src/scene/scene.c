@@ -27,7 +27,7 @@ void scene_builder_begin(struct scene_builder *b, struct scene *s, const char *n
     memset(b, 0, sizeof(*b));
     b->s = s;
     snprintf(s->name, sizeof(s->name), "%s", name);
-    s->camera = (struct camera){v3(0, 1, 3), v3(0, 1, 0), v3(0, 1, 0), 45.0f};
+    s->camera = (struct camera){v3(0, 1, 3), v3(0, 1, 0), v3(0, 1, 0), 45.0f, 0.0f, 0.0f};
 }
 
 int scene_add_material(struct scene_builder *b, struct material m)

@@ -523,7 +523,7 @@ static int file_camera(const struct aiScene *ai, const char *path, vec3 centre, 
         float depth = v3_dot(v3_sub(centre, pos), fwd);
         if (!(depth > 1e-3f * diag))
             depth = diag > 0.0f ? 0.5f * diag : 1.0f;
-        *out = (struct camera){pos, v3_madd(pos, fwd, depth), up, camera_vfov_deg(c, is_gltf_path(path))};
+        *out = (struct camera){pos, v3_madd(pos, fwd, depth), up, camera_vfov_deg(c, is_gltf_path(path)), 0.0f, 0.0f};
         return 1;
     }
     return 0;
@@ -547,7 +547,7 @@ static struct camera fitted_camera(vec3 centre, float diag)
     float radius = diag > 0.0f ? 0.5f * diag : 1.0f;
     float dist = radius / sinf(0.5f * 45.0f * RESTIR_PI / 180.0f);
     vec3 dir = v3_normalize(v3(0.0f, 0.3f, 1.0f));
-    return (struct camera){v3_madd(centre, dir, dist), centre, v3(0, 1, 0), 45.0f};
+    return (struct camera){v3_madd(centre, dir, dist), centre, v3(0, 1, 0), 45.0f, 0.0f, 0.0f};
 }
 
 /* The default camera path: the camera at frame 0, moved sideways by a tenth of the bounds'

@@ -18,7 +18,8 @@
 
 /* ---- camera ---- */
 
-static const char *const camera_keys[] = {"position", "look_at", "up", "vfov", "frame", NULL};
+static const char *const camera_keys[] = {"position", "look_at", "up", "vfov", "aperture", "focus_distance", "frame",
+                                          NULL};
 
 static int read_camera(struct json_reader *r, const cJSON *v, const char *key, int with_frame, struct camera *cam,
                        float *frame)
@@ -33,7 +34,9 @@ static int read_camera(struct json_reader *r, const cJSON *v, const char *key, i
     if (json_get_vec3(r, v, key, "position", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &cam->position) != 0 ||
         json_get_vec3(r, v, key, "look_at", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &cam->target) != 0 ||
         json_get_vec3(r, v, key, "up", 0, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3(0, 1, 0), &cam->up) != 0 ||
-        json_get_number(r, v, key, "vfov", 0, 1e-3, 179.0, 45.0f, &cam->vfov_deg) != 0)
+        json_get_number(r, v, key, "vfov", 0, 1e-3, 179.0, 45.0f, &cam->vfov_deg) != 0 ||
+        json_get_number(r, v, key, "aperture", 0, 0.0, SCENE_COORD_MAX, 0.0f, &cam->aperture) != 0 ||
+        json_get_number(r, v, key, "focus_distance", 0, 0.0, SCENE_COORD_MAX, 0.0f, &cam->focus_distance) != 0)
         return -1;
     if (with_frame && json_get_number(r, v, key, "frame", 1, -1e9, 1e9, 0.0f, frame) != 0)
         return -1;

@@ -149,20 +149,26 @@ static int intersect_closest(RTCScene rtc_scene, vec3 o, vec3 d, float tmin, flo
     return (int)rh.hit.primID;
 }
 
-static void fill_hit(const struct scene *s, int tri, vec3 o, vec3 d, float t, float u, float v,
-                     struct surface_hit *hit)
+void scene_surface_at(const struct scene *s, int tri, float b1, float b2, vec3 p, vec3 d, struct surface_hit *hit)
 {
     vec3 n = s->tri_normal[tri];
-    hit->t = t;
-    hit->p = v3_madd(o, d, t);
+    hit->t = 0.0f;
+    hit->p = p;
     hit->front = v3_dot(n, d) < 0.0f;
     hit->ng = hit->front ? n : v3_neg(n);
     hit->ns = hit->ng;
     hit->tri = tri;
-    hit->b1 = u;
-    hit->b2 = v;
+    hit->b1 = b1;
+    hit->b2 = b2;
     hit->material = s->tri_material[tri];
     hit->object = s->tri_object[tri];
+}
+
+static void fill_hit(const struct scene *s, int tri, vec3 o, vec3 d, float t, float u, float v,
+                     struct surface_hit *hit)
+{
+    scene_surface_at(s, tri, u, v, v3_madd(o, d, t), d, hit);
+    hit->t = t;
 }
 
 int scene_intersect(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax, struct surface_hit *hit)

@@ -26,6 +26,10 @@ struct surface_hit {
     int front; /* 1 when the ray hit the front (emitting) side */
 };
 
+/* The surface point p on triangle tri (barycentrics b1, b2) as a ray of direction d would hit it
+ * (t = 0): what scene_intersect reports there, without tracing. */
+void scene_surface_at(const struct scene *s, int tri, float b1, float b2, vec3 p, vec3 d, struct surface_hit *hit);
+
 /* Ray queries. tmax may be INFINITY. */
 int scene_intersect(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax, struct surface_hit *hit);
 /* Closest hit among the emissive triangles only, ignoring every other surface. */

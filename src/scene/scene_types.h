@@ -27,6 +27,8 @@ struct camera {
     vec3 target;
     vec3 up;
     float vfov_deg; /* vertical field of view */
+    float aperture;       /* thin-lens aperture radius, scene units (0: pinhole) */
+    float focus_distance; /* distance to the plane in focus along the view direction (0: to target) */
 };
 
 /* A camera path: keyframes at given frame numbers, interpolated by a cubic Hermite spline with

@@ -79,9 +79,9 @@ static void build_cornell(struct scene_builder *b)
     add_rect(b, v3(0, 1.995f, 0), v3(0, -1, 0), v3(1, 0, 0), 0.25f, 0.2f, light, scene_new_object(b));
     scene_add_box_rotated_y(b, v3(-0.65f, 0, -0.55f), v3(-0.05f, 1.2f, 0.05f), 0.3f, white, scene_new_object(b));
     scene_add_box_rotated_y(b, v3(0.05f, 0, -0.05f), v3(0.65f, 0.6f, 0.55f), -0.3f, glossy, scene_new_object(b));
-    b->s->camera = (struct camera){v3(0, 1, 3.4f), v3(0, 1, 0), v3(0, 1, 0), 40.0f};
-    struct camera_key keys[2] = {{0, {v3(-0.3f, 1.0f, 3.4f), v3(0, 1, 0), v3(0, 1, 0), 40.0f}},
-                                 {64, {v3(0.3f, 1.1f, 3.2f), v3(0, 1, 0), v3(0, 1, 0), 40.0f}}};
+    b->s->camera = (struct camera){v3(0, 1, 3.4f), v3(0, 1, 0), v3(0, 1, 0), 40.0f, 0.0f, 0.0f};
+    struct camera_key keys[2] = {{0, {v3(-0.3f, 1.0f, 3.4f), v3(0, 1, 0), v3(0, 1, 0), 40.0f, 0.0f, 0.0f}},
+                                 {64, {v3(0.3f, 1.1f, 3.2f), v3(0, 1, 0), v3(0, 1, 0), 40.0f, 0.0f, 0.0f}}};
     set_path(b->s, 2, keys);
 }
 
@@ -158,10 +158,10 @@ static void build_ajar(struct scene_builder *b)
     scene_add_box_rotated_y(b, v3(-0.8f, 0, -2.4f), v3(-0.2f, 0.7f, -1.8f), 0.5f, red, scene_new_object(b));
     /* The camera looks at the slit from the side the wedge of light does not reach, so the emitter
      * stays hidden; the path is a slow dolly of about 0.25 m over 120 frames. */
-    b->s->camera = (struct camera){v3(-1.8f, 1.5f, 2.4f), v3(1.2f, 0.6f, -1.2f), v3(0, 1, 0), 55.0f};
-    struct camera_key keys[3] = {{0, {v3(-1.85f, 1.5f, 2.45f), v3(1.2f, 0.6f, -1.25f), v3(0, 1, 0), 55.0f}},
-                                 {60, {v3(-1.75f, 1.47f, 2.37f), v3(1.2f, 0.6f, -1.2f), v3(0, 1, 0), 55.0f}},
-                                 {120, {v3(-1.65f, 1.45f, 2.3f), v3(1.2f, 0.6f, -1.15f), v3(0, 1, 0), 55.0f}}};
+    b->s->camera = (struct camera){v3(-1.8f, 1.5f, 2.4f), v3(1.2f, 0.6f, -1.2f), v3(0, 1, 0), 55.0f, 0.0f, 0.0f};
+    struct camera_key keys[3] = {{0, {v3(-1.85f, 1.5f, 2.45f), v3(1.2f, 0.6f, -1.25f), v3(0, 1, 0), 55.0f, 0.0f, 0.0f}},
+                                 {60, {v3(-1.75f, 1.47f, 2.37f), v3(1.2f, 0.6f, -1.2f), v3(0, 1, 0), 55.0f, 0.0f, 0.0f}},
+                                 {120, {v3(-1.65f, 1.45f, 2.3f), v3(1.2f, 0.6f, -1.15f), v3(0, 1, 0), 55.0f, 0.0f, 0.0f}}};
     set_path(b->s, 3, keys);
 }
 
@@ -197,9 +197,9 @@ static void build_many_lights(struct scene_builder *b)
         /* counter-clockwise around n: t -> b */
         scene_add_triangle(b, p0, p1, p2, m, light_obj);
     }
-    b->s->camera = (struct camera){v3(0, 7, 15), v3(0, 0.5f, 0), v3(0, 1, 0), 50.0f};
-    struct camera_key keys[2] = {{0, {v3(-3, 7, 15), v3(-1, 0.5f, 0), v3(0, 1, 0), 50.0f}},
-                                 {64, {v3(3, 6, 13), v3(1, 0.5f, 0), v3(0, 1, 0), 50.0f}}};
+    b->s->camera = (struct camera){v3(0, 7, 15), v3(0, 0.5f, 0), v3(0, 1, 0), 50.0f, 0.0f, 0.0f};
+    struct camera_key keys[2] = {{0, {v3(-3, 7, 15), v3(-1, 0.5f, 0), v3(0, 1, 0), 50.0f, 0.0f, 0.0f}},
+                                 {64, {v3(3, 6, 13), v3(1, 0.5f, 0), v3(0, 1, 0), 50.0f, 0.0f, 0.0f}}};
     set_path(b->s, 2, keys);
 }
 
@@ -235,9 +235,9 @@ static void build_foliage(struct scene_builder *b)
     add_rect(b, v3(0, 6, 0), v3(0, -1, 0), v3(1, 0, 0), 3, 3, sky, scene_new_object(b));
     vec3 sun_n = v3_normalize(v3(-1, -1.2f, -0.6f));
     add_rect(b, v3(5, 5, 3), sun_n, frame_from_normal(sun_n).t, 0.5f, 0.5f, sun, scene_new_object(b));
-    b->s->camera = (struct camera){v3(0, 1.7f, 5.0f), v3(0, 1.6f, -0.5f), v3(0, 1, 0), 45.0f};
-    struct camera_key keys[2] = {{0, {v3(-0.6f, 1.7f, 5.0f), v3(0, 1.6f, -0.5f), v3(0, 1, 0), 45.0f}},
-                                 {64, {v3(0.6f, 1.8f, 4.6f), v3(0, 1.6f, -0.5f), v3(0, 1, 0), 45.0f}}};
+    b->s->camera = (struct camera){v3(0, 1.7f, 5.0f), v3(0, 1.6f, -0.5f), v3(0, 1, 0), 45.0f, 0.0f, 0.0f};
+    struct camera_key keys[2] = {{0, {v3(-0.6f, 1.7f, 5.0f), v3(0, 1.6f, -0.5f), v3(0, 1, 0), 45.0f, 0.0f, 0.0f}},
+                                 {64, {v3(0.6f, 1.8f, 4.6f), v3(0, 1.6f, -0.5f), v3(0, 1, 0), 45.0f, 0.0f, 0.0f}}};
     set_path(b->s, 2, keys);
 }
 
@@ -261,9 +261,9 @@ static void build_pillars(struct scene_builder *b)
         add_rect(b, v3(x, 4.6f, -1.2f), down_back, v3(1, 0, 0), 0.9f, 0.1f, i % 2 ? cool : warm,
                  scene_new_object(b));
     }
-    b->s->camera = (struct camera){v3(-1, 1.6f, 6), v3(-1, 1.6f, -2.5f), v3(0, 1, 0), 50.0f};
-    struct camera_key keys[2] = {{0, {v3(-4, 1.6f, 6), v3(-4, 1.6f, -2.5f), v3(0, 1, 0), 50.0f}},
-                                 {64, {v3(4, 1.6f, 6), v3(4, 1.6f, -2.5f), v3(0, 1, 0), 50.0f}}};
+    b->s->camera = (struct camera){v3(-1, 1.6f, 6), v3(-1, 1.6f, -2.5f), v3(0, 1, 0), 50.0f, 0.0f, 0.0f};
+    struct camera_key keys[2] = {{0, {v3(-4, 1.6f, 6), v3(-4, 1.6f, -2.5f), v3(0, 1, 0), 50.0f, 0.0f, 0.0f}},
+                                 {64, {v3(4, 1.6f, 6), v3(4, 1.6f, -2.5f), v3(0, 1, 0), 50.0f, 0.0f, 0.0f}}};
     set_path(b->s, 2, keys);
 }
 
@@ -273,9 +273,9 @@ static void build_furnace(struct scene_builder *b)
     int m = scene_add_material(
         b, (struct material){.base_color = v3s(0.5f), .roughness = 1.0f, .emission = v3s(0.5f), .lambert_only = 1});
     scene_add_sphere(b, v3(0, 0, 0), 1.0f, 48, 1, m, scene_new_object(b));
-    b->s->camera = (struct camera){v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), 60.0f};
-    struct camera_key keys[2] = {{0, {v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), 60.0f}},
-                                 {64, {v3(0.2f, 0, 0), v3(1, 0, 1), v3(0, 1, 0), 60.0f}}};
+    b->s->camera = (struct camera){v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), 60.0f, 0.0f, 0.0f};
+    struct camera_key keys[2] = {{0, {v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), 60.0f, 0.0f, 0.0f}},
+                                 {64, {v3(0.2f, 0, 0), v3(1, 0, 1), v3(0, 1, 0), 60.0f, 0.0f, 0.0f}}};
     set_path(b->s, 2, keys);
 }
 

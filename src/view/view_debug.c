@@ -3,11 +3,28 @@
 #include "view/view_debug.h"
 
 #include "io/png.h"
+#include "render/pt_splat.h"
 #include "render/restir_pt.h"
 #include "render/reuse_cells.h"
 
-const char *const view_mode_names[VIEW_MODES] = {"image", "confidence", "temporal acceptance",
-                                                 "selected neighbors", "reuse cells"};
+const char *const view_mode_names[VIEW_MODES] = {"image", "confidence", "temporal acceptance", "selected neighbors",
+                                                 "reuse cells", "temporal candidates per technique"};
+
+/* VIEW_TEMPORAL_CANDIDATES: one pixel's TEMPORAL_* flags, black without a candidate, dark red
+ * where candidates came but none shifted in, else green (backprojection) plus blue (splat) for each
+ * technique that did (both: cyan). */
+static const unsigned char temporal_none[3] = {0, 0, 0}, temporal_rejected[3] = {128, 0, 0},
+                           temporal_bp[3] = {0, 255, 0}, temporal_splat[3] = {0, 0, 255};
+
+static void temporal_color(unsigned char flags, unsigned char *out)
+{
+    const int bp = (flags & TEMPORAL_BP_ACCEPTED) != 0, splat = (flags & TEMPORAL_SPLAT_ACCEPTED) != 0;
+    const int received = (flags & (TEMPORAL_BP_RECEIVED | TEMPORAL_SPLAT_RECEIVED)) != 0;
+    for (int k = 0; k < 3; k++)
+        out[k] = bp || splat ? (unsigned char)(bp * temporal_bp[k] + splat * temporal_splat[k])
+                 : received  ? temporal_rejected[k]
+                             : temporal_none[k];
+}
 
 /* Distinct colours for cell ids (an integer hash to a hue-ish RGB). */
 static void cell_color(int id, unsigned char *out)
@@ -23,11 +40,13 @@ int view_debug_rgb8(const struct renderer *r, enum view_mode mode, unsigned char
     const int n = r->p.width * r->p.height, last = 1 - r->cur, pt = method_runs_restir_pt(r->method);
     const int m = render_params_spatial_neighbors(&r->p, pt);
     const int has_conf = pt ? r->pt_hist[last] != NULL : r->hist[last] != NULL;
-    const int ok = mode == VIEW_CONFIDENCE   ? has_conf
-                   : mode == VIEW_ACCEPTANCE ? r->age[last] != NULL
-                   : mode == VIEW_NEIGHBORS  ? r->neighbors != NULL && r->p.spatial && r->p.spatial_reuse == REUSE_STANDARD && m > 0
-                   : mode == VIEW_CELLS      ? r->spmis != NULL && r->p.spatial_reuse == REUSE_SPMIS
-                                             : 0;
+    const int ok = mode == VIEW_CONFIDENCE            ? has_conf
+                   : mode == VIEW_ACCEPTANCE          ? r->age[last] != NULL
+                   : mode == VIEW_NEIGHBORS           ? r->neighbors != NULL && r->p.spatial &&
+                                                  r->p.spatial_reuse == REUSE_STANDARD && m > 0
+                   : mode == VIEW_CELLS               ? r->spmis != NULL && r->p.spatial_reuse == REUSE_SPMIS
+                   : mode == VIEW_TEMPORAL_CANDIDATES ? r->temporal_flags != NULL
+                                                      : 0;
     if (!ok) {
         encode_srgb8(r->image, 3 * (size_t)n, 0.0f, rgb8);
         return 0;
@@ -44,6 +63,9 @@ int view_debug_rgb8(const struct renderer *r, enum view_mode mode, unsigned char
             for (int k = 0; k < m; k++)
                 count += r->neighbors[(size_t)i * m + k] >= 0;
             heat_color((float)count / (float)m, o);
+        } else if (mode == VIEW_TEMPORAL_CANDIDATES) {
+            /* a single buffer, not ping-pong: always the last frame's */
+            temporal_color(r->temporal_flags[i], o);
         } else {
             /* the cell a pixel belongs to (tile, object, quantized normal: 004 Algorithm 1) */
             if (r->spmis->cell[i] < 0)

@@ -40,7 +40,7 @@ struct view {
 static struct camera current_camera(const struct view *v)
 {
     vec3 dir = v3(cosf(v->pitch) * sinf(v->yaw), sinf(v->pitch), -cosf(v->pitch) * cosf(v->yaw));
-    return (struct camera){v->position, v3_add(v->position, dir), v3(0, 1, 0), v->vfov};
+    return (struct camera){v->position, v3_add(v->position, dir), v3(0, 1, 0), v->vfov, 0.0f, 0.0f};
 }
 
 /* The spec the camera file names: method[:key=value]... of what differs from the defaults. */

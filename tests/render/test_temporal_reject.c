@@ -118,7 +118,7 @@ int main(void)
      * on surfaces frame 0 saw from the other side (normals opposite) or behind a block (other
      * plane), so no history may survive. A cut to a view that shares surfaces with frame 0 would
      * legitimately keep history there: reprojection finds the same surface point. */
-    struct camera behind = {v3(0.2f, 1.1f, -3.0f), v3(0.0f, 1.0f, 0.0f), v3(0.0f, 1.0f, 0.0f), 40.0f};
+    struct camera behind = {v3(0.2f, 1.1f, -3.0f), v3(0.0f, 1.0f, 0.0f), v3(0.0f, 1.0f, 0.0f), 40.0f, 0.0f, 0.0f};
     render_two(&s, &p, &cam, &behind, -1, 0, &b);
     double rate_b = b.valid > 0 ? (double)b.accepted / (double)b.valid : 1.0;
     printf("(b) camera cut: %lld of %lld valid pixels accepted history (%.4f)\n", b.accepted, b.valid, rate_b);

@@ -1,8 +1,13 @@
 /* test_viewer.c: `restir view` under Xvfb with a script: it opens the window, moves and turns the
  * camera, switches method, saves a screenshot and the camera path, and quits; the screenshot is a
  * rendered image of the scene, and `restir render --camera` of the recorded path reproduces the
- * screenshot's frame and the viewer's last frame byte for byte with the same seed. Without a display
- * the viewer says so, exits 1 and writes nothing; a bad script is refused naming its line. */
+ * screenshot's frame and the viewer's last frame byte for byte with the same seed. V cycles the
+ * debug views to the last, temporal candidates per technique, whose screenshot_NNNN_view.png holds
+ * only its colours: backprojection's green with temporal.reuse=backproject, splat's blue and both's
+ * cyan with temporal.reuse=both. Without a display the viewer says so, exits 1 and writes nothing;
+ * a bad script is refused naming its line. */
+#include <png.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -29,6 +34,38 @@ static void same_file(const char *a, const char *b)
     printf("%s == %s: %s\n", a, b, same == 1 ? "identical" : "DIFFERENT");
 }
 
+/* The colours of the temporal-candidates view (view_debug.c) in an 8-bit RGB PNG. */
+enum { TC_BLACK, TC_RECEIVED, TC_BP, TC_SPLAT, TC_BOTH, TC_OTHER, TC_COLOURS };
+static const unsigned char tc_rgb[TC_OTHER][3] = {{0, 0, 0}, {128, 0, 0}, {0, 255, 0}, {0, 0, 255}, {0, 255, 255}};
+static const char *const tc_names[TC_COLOURS] = {"black", "dark red", "green", "blue", "cyan", "other"};
+
+/* Counts path's pixels per colour of the view; 0, or -1 when it cannot be read at 64x36. */
+static int count_temporal_view(const char *path, long counts[TC_COLOURS])
+{
+    png_image im;
+    memset(&im, 0, sizeof im);
+    im.version = PNG_IMAGE_VERSION;
+    memset(counts, 0, TC_COLOURS * sizeof(long));
+    if (!png_image_begin_read_from_file(&im, path))
+        return -1;
+    im.format = PNG_FORMAT_RGB;
+    unsigned char *px = malloc(PNG_IMAGE_SIZE(im));
+    int ok = px && im.width == 64 && im.height == 36 && png_image_finish_read(&im, NULL, px, 0, NULL);
+    png_image_free(&im);
+    for (size_t i = 0; ok && i < (size_t)im.width * im.height; i++) {
+        int c = 0;
+        while (c < TC_OTHER && memcmp(px + 3 * i, tc_rgb[c], 3) != 0)
+            c++;
+        counts[c]++;
+    }
+    printf("%s:", path);
+    for (int c = 0; c < TC_COLOURS; c++)
+        printf(" %ld %s", counts[c], tc_names[c]);
+    printf("\n");
+    free(px);
+    return ok ? 0 : -1;
+}
+
 int main(void)
 {
     char tmp[CLI_PATH_MAX], script[2 * CLI_PATH_MAX], dir[2 * CLI_PATH_MAX], replay[2 * CLI_PATH_MAX];
@@ -38,7 +75,9 @@ int main(void)
         return test_finish();
     }
     snprintf(script, sizeof script, "%s/session.txt", tmp);
-    /* ticks 0-5 with restir-di, then restir-pt from tick 6: its frames 0..6, screenshot before frame 6 */
+    /* ticks 0-5 with restir-di, then restir-pt from tick 6: its frames 0..6, screenshot before frame 6;
+     * five V presses: confidence, temporal acceptance, selected neighbors, reuse cells, temporal
+     * candidates per technique, the view on screen at the screenshot */
     write_text(script, "# walk, turn, switch method, screenshot, save the path\n"
                        "0 hold w 3\n1 press v\n2 press v\n3 drag 30 -10\n3 press v\n4 hold d 2\n4 press v\n"
                        "5 press v\n6 press m\n7 hold a 4\n10 drag -20 5\n"
@@ -97,6 +136,31 @@ int main(void)
         EXPECT(w == 64 && h == 36 && red > 20 && green > 20, "the screenshot does not show the Cornell box");
         free(img);
     }
+    /* the debug view on screen: restir-pt's temporal candidates, all backprojected (the default) */
+    long tc[TC_COLOURS];
+    snprintf(out, sizeof out, "%s/screenshot_0000_view.png", dir);
+    EXPECT(count_temporal_view(out, tc) == 0, "cannot read %s at 64x36", out);
+    EXPECT(tc[TC_OTHER] == 0 && tc[TC_SPLAT] == 0 && tc[TC_BOTH] == 0 && tc[TC_BP] > 64 * 36 / 4,
+           "%s: the temporal-candidates view of temporal.reuse=backproject is not mostly green", out);
+    /* temporal.reuse=both: splatted candidates too, alone (blue) or with backprojection (cyan) */
+    char both[2 * CLI_PATH_MAX];
+    snprintf(out, sizeof out, "%s/both.txt", tmp);
+    write_text(out, "0 hold d 4\n0 press v\n0 press v\n0 press v\n0 press v\n0 press v\n5 press k\n6 quit\n");
+    snprintf(both, sizeof both, "%s/both", tmp);
+    snprintf(full, sizeof full,
+             "timeout 300 xvfb-run -a '%s' view --scene cornell --method restir-pt --res 64x36 --seed 5 --set "
+             "temporal.reuse=both --script '%s' --out '%s' > '%s/xvfb-both.log' 2>&1",
+             cli_bin(), out, both, tmp);
+    status = system(full);
+    snprintf(out, sizeof out, "%s/xvfb-both.log", tmp);
+    cli_read_text(out, err, sizeof err);
+    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 0, "the temporal.reuse=both viewer exited %d:\n%s",
+           WEXITSTATUS(status), err);
+    snprintf(out, sizeof out, "%s/screenshot_0000_view.png", both);
+    EXPECT(count_temporal_view(out, tc) == 0, "cannot read %s at 64x36", out);
+    EXPECT(tc[TC_OTHER] == 0 && tc[TC_BOTH] + tc[TC_SPLAT] > 64 * 36 / 4,
+           "%s: the temporal-candidates view of temporal.reuse=both shows no splatted candidates", out);
+
     /* replay the recorded path: restir-pt (one M press from restir-di), same seed and size */
     snprintf(replay, sizeof replay, "%s/replay", tmp);
     snprintf(args, sizeof args,

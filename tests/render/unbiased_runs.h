@@ -30,9 +30,11 @@ static inline void unbiased_run_method(const struct scene *s, enum method_id m, 
     }
 }
 
-/* The reference of method m (pt over the same integrand) with spp paths per run. */
+/* The reference of method m (pt over the same integrand) with spp paths per run, seen from
+ * camera-path frame camera_frame with the shutter opening at frame open_frame. */
 static inline void unbiased_run_reference(const struct scene *s, enum method_id m, const struct render_params *base,
-                                          int runs, int spp, float camera_frame, struct pixel_stats *st)
+                                          int runs, int spp, float camera_frame, float open_frame,
+                                          struct pixel_stats *st)
 {
     struct render_params rp = *base;
     renderer_reference_params(m, &rp);
@@ -43,7 +45,8 @@ static inline void unbiased_run_reference(const struct scene *s, enum method_id 
         struct renderer r;
         renderer_init(&r, s, METHOD_PT, &q);
         struct frame_stats fs;
-        struct camera cam = scene_camera_at(s, 1, camera_frame);
+        struct camera cam = scene_camera_at(s, 1, camera_frame), open = scene_camera_at(s, 1, open_frame);
+        renderer_set_shutter_open(&r, &open);
         renderer_render(&r, 0, &cam, &fs);
         pixel_stats_add(st, r.image);
         renderer_fini(&r);
@@ -78,7 +81,9 @@ static inline int unbiased_check(const struct unbiased_case *c, const char *cons
     struct pixel_stats ref, m;
     pixel_stats_init(&ref, c->width * c->height);
     pixel_stats_init(&m, c->width * c->height);
-    unbiased_run_reference(&s, c->method, &p, c->runs, c->ref_spp, (float)((c->frames - 1) * c->frame_step), &ref);
+    const int last = (c->frames - 1) * c->frame_step;
+    unbiased_run_reference(&s, c->method, &p, c->runs, c->ref_spp, (float)last,
+                           (float)(c->frames > 1 ? last - c->frame_step : last), &ref);
     unbiased_run_method(&s, c->method, &p, 1000, c->runs, c->frames, c->frame_step, &m);
     printf("%s %dx%d %s, %d runs of %d frames:", c->scene, c->width, c->height, method_table[c->method].name,
            c->runs, c->frames);

@@ -9,7 +9,7 @@
 
 static struct camera cam(float x, float y, float z, float fov)
 {
-    return (struct camera){v3(x, y, z), v3(0, 0, -5), v3(0, 1, 0), fov};
+    return (struct camera){v3(x, y, z), v3(0, 0, -5), v3(0, 1, 0), fov, 0.0f, 0.0f};
 }
 
 static float dist(vec3 a, vec3 b) { return v3_length(v3_sub(a, b)); }

@@ -1,7 +1,8 @@
 /* test_scene_json.c: the JSON scene reader: a scene with every shape type (a mesh file relative
  * to the JSON file, with a transform and a material override) loads with the expected triangles,
- * materials, objects and cameras; every kind of bad input is refused with a message that names the
- * file and the key, and leaves nothing allocated (run under ASan to see that). */
+ * materials, objects and cameras (thin-lens keys included, also in camera files); every kind of
+ * bad input is refused with a message that names the file and the key, and leaves nothing
+ * allocated (run under ASan to see that). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,6 +10,7 @@
 #include <unistd.h>
 
 #include "core/check.h"
+#include "io/scene_export.h"
 #include "scene/scene_file.h"
 #include "scene/scene_json.h"
 #include "test_util.h"
@@ -111,6 +113,9 @@ static void test_good_scene(void)
            v1.z);
     EXPECT(s.camera_path.num_keys == 2 && s.camera_path.keys[1].frame == 10.0f, "camera path read");
     EXPECT(s.camera.vfov_deg == 40.0f && s.camera.up.y == 1.0f, "camera read (up defaults to +y)");
+    EXPECT(s.camera.aperture == 0.0f && s.camera.focus_distance == 0.0f &&
+               s.camera_path.keys[1].cam.aperture == 0.0f && s.camera_path.keys[1].cam.focus_distance == 0.0f,
+           "aperture and focus_distance default to 0 (a pinhole focused at look_at)");
     EXPECT(strcmp(s.name, "good") == 0, "scene named after the file: %s", s.name);
     scene_destroy(&s);
 }
@@ -174,6 +179,43 @@ static void test_errors(void)
              "{\"camera\": {\"position\": [0, 0, 1], \"look_at\": [0, 0, 0], \"vfov\": 200}, %s, \"shapes\": [%s]}",
              good_materials, quad);
     expect_error(t, "camera.vfov", "range");
+    /* thin-lens keys: negative, non-number and non-finite values name the key */
+    snprintf(t, sizeof t,
+             "{\"camera\": {\"position\": [0, 0, 1], \"look_at\": [0, 0, 0], \"aperture\": -1}, %s, \"shapes\": "
+             "[%s]}",
+             good_materials, quad);
+    expect_error(t, "camera.aperture", "range");
+    snprintf(t, sizeof t,
+             "{\"camera\": {\"position\": [0, 0, 1], \"look_at\": [0, 0, 0], \"focus_distance\": -0.5}, %s, "
+             "\"shapes\": [%s]}",
+             good_materials, quad);
+    expect_error(t, "camera.focus_distance", "range");
+    snprintf(t, sizeof t,
+             "{\"camera\": {\"position\": [0, 0, 1], \"look_at\": [0, 0, 0], \"aperture\": \"wide\"}, %s, "
+             "\"shapes\": [%s]}",
+             good_materials, quad);
+    expect_error(t, "camera.aperture", "number");
+    snprintf(t, sizeof t,
+             "{\"camera\": {\"position\": [0, 0, 1], \"look_at\": [0, 0, 0], \"focus_distance\": \"far\"}, %s, "
+             "\"shapes\": [%s]}",
+             good_materials, quad);
+    expect_error(t, "camera.focus_distance", "number");
+    snprintf(t, sizeof t,
+             "{\"camera\": {\"position\": [0, 0, 1], \"look_at\": [0, 0, 0], \"aperture\": 1e400}, %s, "
+             "\"shapes\": [%s]}",
+             good_materials, quad);
+    expect_error(t, "camera.aperture", "range");
+    snprintf(t, sizeof t,
+             "{%s, %s, \"camera_path\": [{\"frame\": 0, \"position\": [0, 0, 1], \"look_at\": [0, 0, 0], "
+             "\"aperture\": -1}], \"shapes\": [%s]}",
+             good_camera, good_materials, quad);
+    expect_error(t, "camera_path[0].aperture", "range");
+    snprintf(t, sizeof t,
+             "{%s, %s, \"camera_path\": [{\"frame\": 0, \"position\": [0, 0, 1], \"look_at\": [0, 0, 0]}, "
+             "{\"frame\": 1, \"position\": [0, 0, 2], \"look_at\": [0, 0, 0], \"focus_distance\": -0.5}], "
+             "\"shapes\": [%s]}",
+             good_camera, good_materials, quad);
+    expect_error(t, "camera_path[1].focus_distance", "range");
     snprintf(t, sizeof t, "{%s, \"shapes\": [%s]}", good_materials, quad);
     expect_error(t, "camera", "missing");
     snprintf(t, sizeof t, "{%s, \"materials\": [{\"name\": \"a\", \"roughness\": 2}], \"shapes\": []}", good_camera);
@@ -208,6 +250,85 @@ static void test_errors(void)
              good_camera, good_materials);
     expect_error(t, "more than 100 triangles", NULL);
     scene_set_max_triangles(1 << 26);
+}
+
+/* The thin-lens keys: read for the static camera, every camera_path key and camera files, and
+ * written back by the camera writer only when non-zero (so pinhole cameras write as before). */
+static void test_lens(void)
+{
+    const char *quad = "{\"type\": \"quads\", \"material\": \"lamp\", \"quads\": [[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]]}";
+    char text[4096];
+    snprintf(text, sizeof text,
+             "{\"camera\": {\"position\": [0, 1, 4], \"look_at\": [0, 1, 0], \"aperture\": 0.05, "
+             "\"focus_distance\": 3.5}, %s,\n"
+             " \"camera_path\": [{\"frame\": 0, \"position\": [0, 1, 4], \"look_at\": [0, 1, 0], \"aperture\": 0},"
+             " {\"frame\": 10, \"position\": [1, 1, 4], \"look_at\": [0, 1, 0], \"aperture\": 0.125,"
+             " \"focus_distance\": 2}],\n"
+             " \"shapes\": [%s]}\n",
+             good_materials, quad);
+    struct scene s;
+    expect_loads("lens.json", text, &s);
+    if (!s.num_tris)
+        return;
+    EXPECT(s.camera.aperture == 0.05f && s.camera.focus_distance == 3.5f, "static camera lens: aperture %g, focus %g",
+           s.camera.aperture, s.camera.focus_distance);
+    EXPECT(s.camera_path.num_keys == 2, "lens path keys %d", s.camera_path.num_keys);
+    if (s.camera_path.num_keys == 2) {
+        const struct camera *k0 = &s.camera_path.keys[0].cam, *k1 = &s.camera_path.keys[1].cam;
+        EXPECT(k0->aperture == 0.0f && k0->focus_distance == 0.0f, "path key 0 lens: aperture %g, focus %g",
+               k0->aperture, k0->focus_distance);
+        EXPECT(k1->aperture == 0.125f && k1->focus_distance == 2.0f, "path key 1 lens: aperture %g, focus %g",
+               k1->aperture, k1->focus_distance);
+    }
+
+    /* camera files: the same reader, and the writer's output reads back bit for bit */
+    struct camera cams[2] = {s.camera, s.camera};
+    cams[1].aperture = 0.0f;
+    cams[1].focus_distance = 0.0f;
+    cams[1].vfov_deg = 30.0f;
+    scene_destroy(&s);
+    char path[512], msg[RESTIR_MSG_LEN];
+    snprintf(path, sizeof path, "%s/lens-cameras.json", dir);
+    EXPECT(cameras_write_json(path, cams, 2, "lens", "pt", 64, 32, 1, msg) == 0, "cameras_write_json: %s", msg);
+    struct camera *back = NULL;
+    int n = 0;
+    int rc = scene_cameras_load(path, &back, &n, msg);
+    EXPECT(rc == 0 && n == 2, "camera file with lens keys should load (%d cameras): %s", n, rc == 0 ? "" : msg);
+    if (rc == 0 && n == 2) {
+        EXPECT(back[0].aperture == cams[0].aperture && back[0].focus_distance == cams[0].focus_distance,
+               "camera file lens round trip: aperture %g, focus %g", back[0].aperture, back[0].focus_distance);
+        EXPECT(back[1].aperture == 0.0f && back[1].focus_distance == 0.0f && back[1].vfov_deg == 30.0f,
+               "camera file pinhole round trip");
+    }
+    free(back);
+    /* a pinhole camera writes no lens keys; the lens camera writes both */
+    FILE *f = fopen(path, "rb");
+    EXPECT(f != NULL, "cannot read %s", path);
+    if (f) {
+        static char written[1 << 14];
+        size_t len = fread(written, 1, sizeof written - 1, f);
+        fclose(f);
+        written[len] = '\0';
+        int apertures = 0, focuses = 0;
+        for (const char *p = written; (p = strstr(p, "\"aperture\"")); p++)
+            apertures++;
+        for (const char *p = written; (p = strstr(p, "\"focus_distance\"")); p++)
+            focuses++;
+        EXPECT(apertures == 1 && focuses == 1,
+               "camera file has %d aperture and %d focus_distance keys, expected 1 and 1", apertures, focuses);
+    }
+    /* a bad lens key in a camera file names the file and the key */
+    snprintf(path, sizeof path, "%s/bad-lens-cameras.json", dir);
+    write_file("bad-lens-cameras.json", "{\"format\": \"restir-cameras 1\", \"cameras\": [{\"position\": [0, 0, 1], "
+                                        "\"look_at\": [0, 0, 0], \"focus_distance\": -0.5}]}");
+    back = NULL;
+    rc = scene_cameras_load(path, &back, &n, msg);
+    EXPECT(rc != 0 && strstr(msg, path) && strstr(msg, "cameras[0].focus_distance"),
+           "camera file with focus_distance -0.5 should be refused naming the file and key: %s", rc ? msg : "loaded");
+    if (rc == 0)
+        free(back);
+    else
+        printf("refused as expected: %s\n", msg);
 }
 
 /* The complete example of docs/SCENES.md (its first json block) loads and renders what it says. */
@@ -254,6 +375,7 @@ int main(void)
     }
     test_good_scene();
     test_errors();
+    test_lens();
     test_docs_example();
     char cmd[400];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
