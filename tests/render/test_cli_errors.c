@@ -125,7 +125,6 @@ static void check_bad_render_input(void)
     expect_failure("output under a regular file", fmt, 1, path, NULL);
     snprintf(fmt, sizeof(fmt), "%s --out '%s'", base, path);
     expect_failure("output is a regular file", fmt, 1, path, NULL);
-#undef RENDER_ARGS
 }
 
 /* A write that fails mid-run (frame 1's EXR path is taken by a folder): exit 1 naming the file, no
@@ -245,6 +244,39 @@ static void check_study(void)
     expect_failure("spmis tile too large",
                    "render --scene cornell --method restir-di --set spmis.tile=64 --res 16x16 --out '%1$s'", 2,
                    "spmis.tile", NULL);
+    /* issue 22: camera effects and reservoir splatting */
+    expect_failure("shutter above 1", RENDER_ARGS("--set camera.shutter=1.5"), 2, "camera.shutter", "1.5");
+    expect_failure("negative shutter", RENDER_ARGS("--set camera.shutter=-0.1"), 2, "camera.shutter", NULL);
+    expect_failure("negative aperture", RENDER_ARGS("--set camera.aperture=-1"), 2, "camera.aperture", "-1");
+    expect_failure("negative focus distance", RENDER_ARGS("--set camera.focus_distance=-2"), 2,
+                   "camera.focus_distance", NULL);
+    expect_failure("NaN aperture", RENDER_ARGS("--set camera.aperture=nan"), 2, "camera.aperture", NULL);
+    expect_failure("unknown temporal reuse", RENDER_ARGS("--set temporal.reuse=forward"), 2, "temporal.reuse",
+                   "forward");
+    expect_failure("splat with restir-di",
+                   "render --scene cornell --method restir-di --set temporal.reuse=splat --res 16x16 --out '%1$s'", 2,
+                   "temporal.reuse=splat", "restir-di");
+    expect_failure("both with pt",
+                   "render --scene cornell --method pt --set temporal.reuse=both --res 16x16 --out '%1$s'", 2,
+                   "temporal.reuse=both", "pt");
+    expect_failure("splat without jitter",
+                   "render --scene cornell --method restir-pt --set temporal.reuse=splat --set jitter=off --res 16x16 "
+                   "--out '%1$s'",
+                   2, "temporal.reuse=splat", "jitter");
+    expect_failure("aperture with restir-di",
+                   "render --scene cornell --method restir-di --set camera.aperture=0.1 --res 16x16 --out '%1$s'", 2,
+                   "camera.aperture", "restir-di");
+    expect_failure("shutter with gpt",
+                   "render --scene cornell --method gpt --set camera.shutter=0.5 --res 16x16 --out '%1$s'", 2,
+                   "camera.shutter", "gpt");
+    expect_failure("compare spec that changes the shutter",
+                   "compare --scene cornell --res 16x12 --frames 1 --ref-spp 1 "
+                   "--methods 'pt,restir-pt:camera.shutter=0.5' --out '%1$s'",
+                   2, "integrand", NULL);
+    expect_failure("reference of restir-di with a lens",
+                   "reference --scene cornell --method restir-di --set camera.aperture=0.1 --res 16x16 --spp 1 "
+                   "--out '%1$s/r.exr'",
+                   2, "camera.aperture", NULL);
 }
 
 static void check_list_and_help(void)
