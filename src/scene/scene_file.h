@@ -11,8 +11,8 @@
 int scene_load(const char *name_or_path, struct scene *s, char *msg);
 
 /* A camera file (`restir view` records them; `render --camera FILE` replays them): one camera per
- * frame, {"format": "restir-cameras 1", "cameras": [{position, look_at, up, vfov, aperture, focus_distance}, ...]} with
- * optional "scene", "method", "width", "height", "seed" describing the run that recorded it.
+ * frame, {"format": "restir-cameras 1", "cameras": [{position, look_at, up, vfov, aperture,
+ * focus_distance}, ...]} with optional "scene", "method", "width", "height", "seed" describing the run that recorded it.
  * Returns 0 with *cams (malloc'ed) and *n, or -1 with msg naming the file and the key. */
 int scene_cameras_load(const char *path, struct camera **cams, int *n, char *msg);
 
