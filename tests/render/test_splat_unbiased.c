@@ -12,23 +12,11 @@
 #include "unbiased_runs.h"
 
 #define RUNS 2048
-#define FRAMES 4
-#define FRAME_STEP 6
-#define REF_SPP 8
-
-/* Pass rate: family-wise alpha = 0.01 over all pixels per case, and pooled |z| < 4.5 (~1e-5);
- * the seeds are fixed, so the outcome is deterministic. */
-#define ALPHA 0.01
-#define POOLED_Z_MAX 4.5
 
 static int check(const char *scene_name, enum method_id m, int runs, const char *const *sets, int nsets,
                  int expect_unbiased)
 {
-    const struct unbiased_case c = {scene_name, m, 20, 12, runs, FRAMES, FRAME_STEP, REF_SPP, ALPHA, POOLED_Z_MAX};
-    const char *all[16] = {"pt.max_bounces=4"};
-    for (int k = 0; k < nsets && k < 15; k++)
-        all[k + 1] = sets[k];
-    return unbiased_check(&c, all, nsets + 1, expect_unbiased);
+    return unbiased_check_path(scene_name, m, runs, sets, nsets, expect_unbiased);
 }
 
 int main(int argc, char **argv)
