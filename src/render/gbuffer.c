@@ -118,8 +118,7 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
     return rays;
 }
 
-int gbuffer_history_pixel(const struct gbuffer *g, int i, const struct gbuffer *prev_g, float normal_min,
-                          float plane_max)
+int gbuffer_motion_pixel(const struct gbuffer *g, int i, const struct gbuffer *prev_g)
 {
     if (!g->valid[i] || g->motion[2 * i] == GBUFFER_NO_MOTION)
         return -1;
@@ -127,7 +126,14 @@ int gbuffer_history_pixel(const struct gbuffer *g, int i, const struct gbuffer *
     if (!(qx >= 0.0f && qy >= 0.0f && qx < (float)prev_g->width && qy < (float)prev_g->height))
         return -1;
     int q = (int)qy * prev_g->width + (int)qx;
-    if (!prev_g->valid[q] || prev_g->material[q] != g->material[i])
+    return prev_g->valid[q] ? q : -1;
+}
+
+int gbuffer_history_pixel(const struct gbuffer *g, int i, const struct gbuffer *prev_g, float normal_min,
+                          float plane_max)
+{
+    int q = gbuffer_motion_pixel(g, i, prev_g);
+    if (q < 0 || prev_g->material[q] != g->material[i])
         return -1;
     if (v3_dot(g->normal[i], prev_g->normal[q]) < normal_min)
         return -1;

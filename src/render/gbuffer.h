@@ -52,6 +52,10 @@ void gbuffer_fini(struct gbuffer *g);
 long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct camera_view *view,
                        const struct camera_view *prev_view, int jitter, uint64_t seed, int frame);
 
+/* The previous-frame pixel under pixel i's sub-pixel position moved by its backward motion vector,
+ * when it is inside the image and valid there (no surface test); -1 otherwise. */
+int gbuffer_motion_pixel(const struct gbuffer *g, int i, const struct gbuffer *prev_g);
+
 /* Temporal reprojection with validation (001 Sec. 5): the previous-frame pixel under pixel i's
  * sub-pixel position moved by its backward motion vector, when it shows the same surface
  * (same material, n . n_prev >= normal_min, plane distance <= plane_max * depth). Reads only

@@ -232,15 +232,23 @@ int path_shift(const struct scene *s, const struct shift_params *sp, const struc
     return shift_from_primary(s, sp, x, v, y, jacobian, rays);
 }
 
+/* x's primary hit projected from its lens point through view at `time`: the pose, the image
+ * position and the lens point; 0 when behind the lens or outside the image. */
+static int splat_project(const struct path_sample *x, const struct camera_view *view, float time,
+                         struct camera_pose *pose, float *px, float *py, vec3 *origin)
+{
+    camera_view_pose(view, time, pose);
+    if (!camera_pose_project(view, pose, x->x1_p, x->lens, px, py, origin))
+        return 0;
+    return *px >= 0.0f && *py >= 0.0f && *px < (float)view->width && *py < (float)view->height;
+}
+
 int path_splat_position(const struct path_sample *x, const struct camera_view *view, float time, float *px,
                         float *py)
 {
     struct camera_pose pose;
-    camera_view_pose(view, time, &pose);
     vec3 o;
-    if (!camera_pose_project(view, &pose, x->x1_p, x->lens, px, py, &o))
-        return 0;
-    return *px >= 0.0f && *py >= 0.0f && *px < (float)view->width && *py < (float)view->height;
+    return splat_project(x, view, time, &pose, px, py, &o);
 }
 
 /* The fractional part of an image coordinate known to lie in [0, size): the sub-pixel offset. */
@@ -261,12 +269,10 @@ int path_shift_splat(const struct scene *s, const struct shift_params *sp, const
     if (x->length < 2)
         return fail(y);
     struct camera_pose to_pose, from_pose;
-    camera_view_pose(to_view, time, &to_pose);
     camera_view_pose(from_view, x->time, &from_pose);
     vec3 o, o_from;
     float px, py, qx, qy;
-    if (!camera_pose_project(to_view, &to_pose, x->x1_p, x->lens, &px, &py, &o) ||
-        !(px >= 0.0f && py >= 0.0f && px < (float)to_view->width && py < (float)to_view->height) ||
+    if (!splat_project(x, to_view, time, &to_pose, &px, &py, &o) ||
         !camera_pose_project(from_view, &from_pose, x->x1_p, x->lens, &qx, &qy, &o_from))
         return fail(y);
     int ix, iy;

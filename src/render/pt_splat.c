@@ -172,18 +172,13 @@ static void offer(struct pixel_merge *m, int own, float own_term, float c_own, c
 }
 
 /* The history confidence a merged pixel adds: that of the previous pixel under its G-buffer
- * motion vector (in the image and valid there). A function of G-buffers only, like every
- * confidence here, so the MIS weights that read confidences stay unbiased. */
+ * motion vector (gbuffer_motion_pixel). A function of G-buffers only, like every confidence
+ * here, so the MIS weights that read confidences stay unbiased. */
 static float history_confidence(const struct gbuffer *g, const struct gbuffer *prev_g, const struct pt_reservoir *prev_res,
                                 int i)
 {
-    if (!g->valid[i] || g->motion[2 * i] == GBUFFER_NO_MOTION)
-        return 0.0f;
-    float qx = g->sub_pixel[i].x + g->motion[2 * i], qy = g->sub_pixel[i].y + g->motion[2 * i + 1];
-    if (!(qx >= 0.0f && qy >= 0.0f && qx < (float)prev_g->width && qy < (float)prev_g->height))
-        return 0.0f;
-    int q = (int)qy * prev_g->width + (int)qx;
-    return prev_g->valid[q] ? prev_res[q].c : 0.0f;
+    int q = gbuffer_motion_pixel(g, i, prev_g);
+    return q >= 0 ? prev_res[q].c : 0.0f;
 }
 
 static void merge_pixel(struct pixel_merge *m, const struct gbuffer *g, const struct gbuffer *prev_g,
