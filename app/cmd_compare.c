@@ -88,6 +88,30 @@ int cmd_compare(int argc, char **argv)
     snprintf(ref_path, sizeof(ref_path), "%s/reference.exr", out_dir);
     if (!o.ref && exr_write_rgb(ref_path, ref, p.width, p.height, msg) != 0)
         cli_error("warning: %s", msg);
+    /* --ref-every: the earlier frames' references, written as reference_NNNN.exr */
+    struct compare_track track;
+    compare_track_init(&track, o.frames, o.runs, o.ref_every, p.width, p.height, ref);
+    for (int k = 0; k + 1 < track.nref; k++) {
+        if (!(track.ref[k] = compare_render_reference_at(&st, track.ref_frame[k]))) {
+            cli_error("interrupted by %s while rendering the reference of frame %d; kept in %s: the references "
+                      "finished before it",
+                      cli_stop_signal_name(), track.ref_frame[k], out_dir);
+            compare_track_fini(&track);
+            free(ref);
+            scene_destroy(&st.s);
+            return 128 + (int)cli_stop_signal;
+        }
+        snprintf(ref_path, sizeof(ref_path), "%s/reference_%04d.exr", out_dir, track.ref_frame[k]);
+        if (exr_write_rgb(ref_path, track.ref[k], p.width, p.height, msg) != 0)
+            cli_error("warning: %s", msg);
+    }
+    if (compare_track_open(&track, out_dir, msg) != 0) {
+        cli_error("%s", msg);
+        compare_track_fini(&track);
+        free(ref);
+        scene_destroy(&st.s);
+        return EXIT_RUNTIME;
+    }
     /* The first spec other than pt sets the equal-time budget (its frame time, reconstruction
      * included); pt and gpt then fit it by paths per pixel, the others by averaging instances. */
     struct compare_result res[MAX_METHODS] = {0};
@@ -98,7 +122,8 @@ int cmd_compare(int argc, char **argv)
             first = k;
     int stopped_at = -1; /* the spec a stop signal interrupted */
     if (first >= 0) {
-        rc = compare_run_method(&st.s, &specs[first], &specs[first].p, o.frames, 1, ref, out_dir, o.report, &res[first], msg);
+        rc = compare_run_spec(&st.s, &specs[first], &specs[first].p, o.frames, 1, o.runs, ref, out_dir, o.report, &track,
+                              &res[first], msg);
         stopped_at = rc == RUN_STOPPED ? first : -1;
         budget = res[first].ms_per_frame;
     }
@@ -113,7 +138,8 @@ int cmd_compare(int argc, char **argv)
             } else {
                 /* one instance's time from a short run, then as many as fit (at least 1) */
                 struct compare_result probe;
-                rc = compare_run_method(&st.s, &specs[k], &q, o.frames < 3 ? o.frames : 3, 1, ref, out_dir, 0, &probe, msg);
+                rc = compare_run_method(&st.s, &specs[k], &q, o.frames < 3 ? o.frames : 3, 1, ref, out_dir, 0, NULL, 0,
+                                        &probe, msg);
                 if (rc != 0) {
                     stopped_at = rc == RUN_STOPPED ? k : -1;
                     break;
@@ -122,7 +148,8 @@ int cmd_compare(int argc, char **argv)
                 instances = instances < 1 ? 1 : instances > MAX_INSTANCES ? MAX_INSTANCES : instances;
             }
         }
-        rc = compare_run_method(&st.s, &specs[k], &q, o.frames, instances, ref, out_dir, o.report, &res[k], msg);
+        rc = compare_run_spec(&st.s, &specs[k], &q, o.frames, instances, o.runs, ref, out_dir, o.report, &track, &res[k],
+                              msg);
         stopped_at = rc == RUN_STOPPED ? k : -1;
     }
     if (rc == RUN_STOPPED) { /* the finished methods' frames and the reference stay; no table */
@@ -138,6 +165,9 @@ int cmd_compare(int argc, char **argv)
     } else if (rc != 0) {
         rc = EXIT_RUNTIME;
     }
+    if (rc == 0 && compare_track_close(&track, msg) != 0)
+        rc = EXIT_RUNTIME;
+    compare_track_fini(&track);
     if (rc != 0) {
         if (rc == EXIT_RUNTIME)
             cli_error("%s", msg);

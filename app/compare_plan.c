@@ -3,6 +3,7 @@
 #include "compare_plan.h"
 
 #include <dirent.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -40,6 +41,11 @@ int compare_plan(const struct compare_setup *st, int argc, char **argv)
     if (st->o.equal_time) {
         cli_error("compare: --equal-time cannot be planned: its budget is one method's frame time, which only "
                   "means something for methods timed on the same machine; run it unsplit");
+        return EXIT_USAGE;
+    }
+    if (st->o.runs > 1 || st->o.ref_every > 0) {
+        cli_error("compare: --runs and --ref-every cannot be planned: a job holds one run's last frame; run it "
+                  "unsplit");
         return EXIT_USAGE;
     }
     char name[96], rel[PLAN_PATH_MAX];
@@ -130,7 +136,8 @@ int compare_run_job(const struct plan *pl, int k)
     } else {
         struct compare_result res;
         memset(&res, 0, sizeof res);
-        rc = compare_run_method(&st.s, &st.specs[spec], &st.specs[spec].p, st.o.frames, 1, NULL, runs, 0, &res, msg);
+        rc = compare_run_method(&st.s, &st.specs[spec], &st.specs[spec].p, st.o.frames, 1, NULL, runs, 0, NULL, 0, &res,
+                                msg);
         if (rc == RUN_STOPPED) {
             cli_error("interrupted by %s; no result written", cli_stop_signal_name());
             rc = 128 + (int)cli_stop_signal;
@@ -223,6 +230,8 @@ int compare_merge(const char *dir)
         res[k].ms_per_frame = t.ms_per_frame;
         res[k].spp = t.spp;
         res[k].instances = t.instances;
+        res[k].runs = 1;
+        res[k].temporal_cov = NAN;
         restir_error_compute(image, ref, npix, NULL, &res[k].err);
         if (st.o.report)
             res[k].image = image;

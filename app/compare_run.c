@@ -2,6 +2,7 @@
  * run, the reference, the table. Must never implement a method or call into cmd_compare.c or compare_plan.c. */
 #include "compare_run.h"
 
+#include <math.h>
 #include <omp.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -95,32 +96,29 @@ static void assign_dirs(struct compare_spec *c, int n)
     }
 }
 
-/* Writes s as one CSV field: verbatim, or quoted (quotes doubled) when it holds a comma, a quote
- * or a line break. */
-static void csv_field(char *out, size_t n, const char *s)
-{
-    int quote = strpbrk(s, ",\"\r\n") != NULL;
-    size_t o = 0;
-    if (quote)
-        out[o++] = '"';
-    for (; *s && o + 3 < n; s++) {
-        if (*s == '"')
-            out[o++] = '"';
-        out[o++] = *s;
-    }
-    if (quote)
-        out[o++] = '"';
-    out[o] = '\0';
-}
-
 int compare_budget_by_spp(enum method_id m) { return m == METHOD_PT || m == METHOD_GPT; }
 
 /* The instances average their last frames. For gradient methods the primal and gradient images
  * are averaged and then reconstructed once (002 Sec. 5, Figure 8), and the frame time counts the
  * instances' passes and one reconstruction. */
+/* The instances' average image of a frame before the last (the last frame averages in place). */
+static const float *instances_mean(const struct renderer *r, int instances, size_t n3, float *scratch)
+{
+    if (instances == 1)
+        return r[0].image;
+    const float inv = 1.0f / (float)instances;
+    for (size_t i = 0; i < n3; i++) {
+        float sum = 0.0f;
+        for (int k = 0; k < instances; k++)
+            sum += r[k].image[i];
+        scratch[i] = sum * inv;
+    }
+    return scratch;
+}
+
 int compare_run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
-                       int instances, const float *ref, const char *out_dir, int keep_image, struct compare_result *res,
-                       char *msg)
+                       int instances, const float *ref, const char *out_dir, int keep_image, struct compare_track *track,
+                       int run, struct compare_result *res, char *msg)
 {
     enum method_id m = c->method;
     struct renderer r[MAX_INSTANCES];
@@ -129,6 +127,8 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
         q.seed = p->seed + 1000003ull * (uint64_t)k;
         renderer_init(&r[k], s, m, &q);
     }
+    const size_t n3 = 3 * (size_t)p->width * (size_t)p->height;
+    float *scratch = track && instances > 1 ? xmalloc(sizeof(float) * n3) : NULL;
     double ms = 0.0;
     struct progress pg;
     progress_begin(&pg, c->label, frames);
@@ -137,18 +137,29 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
             progress_end(&pg);
             for (int k = 0; k < instances; k++)
                 renderer_fini(&r[k]);
+            free(scratch);
             return RUN_STOPPED;
         }
         struct camera cam = scene_camera_at(s, p->camera_path, (float)f);
+        struct frame_stats st0;
+        double ms_frame = 0.0;
         for (int k = 0; k < instances; k++) {
             struct frame_stats st;
             renderer_render(&r[k], f, &cam, &st);
-            ms += st.ms_total - (k > 0 ? st.ms[PASS_RECON_L2] + st.ms[PASS_RECON_L1] : 0.0);
+            ms_frame += st.ms_total - (k > 0 ? st.ms[PASS_RECON_L2] + st.ms[PASS_RECON_L1] : 0.0);
+            if (k == 0)
+                st0 = st;
+        }
+        ms += ms_frame;
+        if (track) {
+            compare_track_stats(track, f, ms_frame, &st0);
+            if (f < frames - 1 && compare_track_wants_image(track, f))
+                compare_track_image(track, run, f, instances_mean(r, instances, n3, scratch));
         }
         progress_update(&pg, f + 1);
     }
     progress_end(&pg);
-    const size_t n3 = 3 * (size_t)p->width * (size_t)p->height;
+    free(scratch);
     if (instances > 1) {
         const float inv = 1.0f / (float)instances;
         for (size_t i = 0; i < n3; i++) {
@@ -174,6 +185,8 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
             renderer_reconstruct(&r[0], &st);
         }
     }
+    if (track && compare_track_wants_image(track, frames - 1))
+        compare_track_image(track, run, frames - 1, r[0].image);
     res->method = m;
     res->ms_per_frame = ms / frames;
     res->spp = compare_budget_by_spp(m) ? p->spp : 1;
@@ -181,6 +194,11 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     if (ref) /* a planned job measures nothing: the merge does, from the frame it writes */
         restir_error_compute(r[0].image, ref, (size_t)p->width * (size_t)p->height, NULL, &res->err);
     res->image = NULL;
+    if (run > 0) { /* a later run is measured only: run 0's frame is the one written */
+        for (int k = 0; k < instances; k++)
+            renderer_fini(&r[k]);
+        return 0;
+    }
     if (keep_image) {
         res->image = xmalloc(sizeof(float) * n3);
         memcpy(res->image, r[0].image, sizeof(float) * n3);
@@ -199,7 +217,7 @@ static void compare_usage(void)
 {
     printf("usage: restir compare --scene NAME --methods SPEC,SPEC,... [--equal-time] [--frames N] [--res WxH]\n"
                "                      [--ref FILE.exr | --ref-spp N] [--camera static|path] [--out DIR] [--report]\n"
-               "                      [--seed N] [--threads N] [--set key=value]...\n"
+               "                      [--seed N] [--threads N] [--runs N] [--ref-every K] [--set key=value]...\n"
                "Each SPEC is NAME[:key=value]...: method NAME (see restir list) with the command's parameters,\n"
                "then each key=value applied as by --set (see restir render --help) for that row only, e.g.\n"
                "  --methods 'restir-pt,restir-pt:mis=balance:spatial.neighbors=5,pt'\n"
@@ -211,10 +229,20 @@ static void compare_usage(void)
                "seeded instances as fit (gradient methods average primal and gradients, then reconstruct\n"
                "once). When DI methods are compared, pt estimates direct lighting only (1 bounce), like them.\n"
                "Writes DIR/compare.csv (method = the SPEC, ms per frame, spp, instances, relmse, mape, smape,\n"
-               "luma_rmse)\n"
+               "luma_rmse, runs, temporal_cov)\n"
                "and each row's last frame to DIR/FOLDER/, where FOLDER is the SPEC with every character other\n"
                "than A-Z a-z 0-9 . _ - replaced by _ (and _2, _3, ... appended when two SPECs give the same\n"
                "name). Default DIR: out/compare-SCENE.\n"
+               "DIR/frames.csv has a row per SPEC and frame: frame time, temporal pass time, the shares of\n"
+               "valid pixels whose history shifted in (temporal_accept) and, for path reservoirs, that were\n"
+               "offered / took a backprojected or a splatted candidate (as restir render's metrics.csv), and\n"
+               "the error of the frames that have a reference: the last, and with --ref-every K also frames\n"
+               "K-1, 2K-1, ..., each against its own reference (--ref-spp paths from that frame's camera;\n"
+               "--ref gives the last frame's only).\n"
+               "--runs N (default 1) runs every SPEC as N independently seeded sequences: errors are means\n"
+               "over the runs, and temporal_cov is 000's relative autocovariance (Appendix A, Eq. 17) at a\n"
+               "lag of 3 frames over the second half of the frames (at least 8 frames); run 0's frames are\n"
+               "the ones written. Neither can be planned (--plan).\n"
                "--report also writes DIR/index.html: one self-contained page (no network) with the command,\n"
                "commit and machine, the table, a relMSE plot, every image beside the reference in a viewer\n"
                "(synchronized zoom and pan, A/B flip), relative-error heat maps and the crops where the first\n"
@@ -294,12 +322,53 @@ int compare_setup(int argc, char **argv, struct compare_setup *st)
     return 0;
 }
 
+int compare_run_spec(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
+                     int instances, int runs, const float *ref, const char *out_dir, int keep_image,
+                     struct compare_track *track, struct compare_result *res, char *msg)
+{
+    struct restir_error sum = {0, 0, 0, 0};
+    if (track)
+        compare_track_begin(track);
+    for (int n = 0; n < runs; n++) {
+        struct render_params q = *p;
+        q.seed = p->seed + COMPARE_RUN_SEED_STRIDE * (uint64_t)n;
+        struct compare_result one;
+        int rc = compare_run_method(s, c, &q, frames, instances, ref, out_dir, keep_image, track, n,
+                                    n == 0 ? res : &one, msg);
+        if (rc != 0) {
+            if (n > 0) {
+                free(res->image);
+                res->image = NULL;
+            }
+            return rc;
+        }
+        const struct restir_error *e = n == 0 ? &res->err : &one.err;
+        sum.relmse += e->relmse;
+        sum.mape += e->mape;
+        sum.smape += e->smape;
+        sum.luma_rmse += e->luma_rmse;
+    }
+    if (runs > 1) /* one run keeps its error bit for bit */
+        res->err = (struct restir_error){sum.relmse / runs, sum.mape / runs, sum.smape / runs, sum.luma_rmse / runs};
+    res->runs = runs;
+    res->temporal_cov = track ? compare_track_end(track, c->label) : NAN;
+    return 0;
+}
+
 float *compare_render_reference(const struct compare_setup *st)
 {
+    return compare_render_reference_at(st, st->o.frames - 1);
+}
+
+float *compare_render_reference_at(const struct compare_setup *st, int frame)
+{
     struct render_params rp = st->p;
-    rp.seed = st->p.seed ^ 0x7265666572656e63ull; /* independent of the compared runs */
+    /* independent of the compared runs and of the other frames' references */
+    rp.seed = st->p.seed ^ 0x7265666572656e63ull;
+    if (frame != st->o.frames - 1)
+        rp.seed += 0x2545F4914F6CDD1Dull * (uint64_t)(frame + 1);
     struct camera cam, open;
-    cli_frame_cameras(&st->s, st->p.camera_path, st->o.frames - 1, &cam, &open);
+    cli_frame_cameras(&st->s, st->p.camera_path, frame, &cam, &open);
     return cli_render_reference(&st->s, st->any_direct ? METHOD_RESTIR_DI : METHOD_PT, &rp, &cam, &open,
                                 st->o.ref_spp);
 }
@@ -316,7 +385,8 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
     char csv_path[4200];
     snprintf(csv_path, sizeof(csv_path), "%s/compare.csv", out_dir);
     struct csv_writer csv;
-    if (csv_open(&csv, csv_path, "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse", msg) != 0) {
+    if (csv_open(&csv, csv_path, "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse,runs,temporal_cov",
+                 msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }
@@ -326,18 +396,27 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
             w = (int)strlen(specs[k].label);
     printf("%s, %dx%d, %s camera, error at frame %d%s:\n", o->scene, p->width, p->height,
            p->camera_path ? "moving" : "static", o->frames - 1, o->equal_time ? ", equal time" : "");
-    printf("%-*s %10s %6s %5s %12s %10s %8s %12s\n", w, "method", "ms/frame", "spp", "inst", "relMSE", "MAPE",
-           "SMAPE", "relMSE/first");
+    const int runs = o->runs > 1;
+    if (runs)
+        printf("(errors: means of %d independently seeded runs; tcov: 000 Eq. 17 at lag %d over frames %d-%d)\n",
+               o->runs, COMPARE_COV_LAG, o->frames / 2, o->frames - 1);
+    printf("%-*s %10s %6s %5s %12s %10s %8s %12s%s\n", w, "method", "ms/frame", "spp", "inst", "relMSE", "MAPE",
+           "SMAPE", "relMSE/first", runs ? "         tcov" : "");
     for (int k = 0; k < n; k++) {
         const struct compare_result *c = &res[k];
-        printf("%-*s %10.2f %6d %5d %12.5g %10.5g %8.3f %12.3f\n", w, specs[k].label, c->ms_per_frame, c->spp,
+        char tcov[32] = "";
+        if (runs)
+            snprintf(tcov, sizeof tcov, " %12.5g", c->temporal_cov);
+        printf("%-*s %10.2f %6d %5d %12.5g %10.5g %8.3f %12.3f%s\n", w, specs[k].label, c->ms_per_frame, c->spp,
                c->instances, c->err.relmse, c->err.mape, c->err.smape,
-               res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0);
+               res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0, tcov);
         if (rc == 0) {
-            char field[2 * SPEC_MAX + 4];
+            char field[2 * SPEC_MAX + 4], cov[32] = "";
             csv_field(field, sizeof(field), specs[k].label);
-            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g", field, c->ms_per_frame, c->spp, c->instances,
-                    c->err.relmse, c->err.mape, c->err.smape, c->err.luma_rmse);
+            if (isfinite(c->temporal_cov))
+                snprintf(cov, sizeof cov, "%.6g", c->temporal_cov);
+            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s", field, c->ms_per_frame, c->spp, c->instances,
+                    c->err.relmse, c->err.mape, c->err.smape, c->err.luma_rmse, c->runs > 0 ? c->runs : 1, cov);
         }
     }
     if (rc == 0 && csv_close(&csv, msg) != 0) {

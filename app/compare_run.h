@@ -3,6 +3,7 @@
 #ifndef RESTIR_APP_COMPARE_RUN_H
 #define RESTIR_APP_COMPARE_RUN_H
 
+#include "compare_track.h"
 #include "methods/renderer.h"
 #include "options.h"
 #include "restir/metrics.h"
@@ -25,8 +26,10 @@ struct compare_result {
     enum method_id method;
     double ms_per_frame;
     int spp;
-    int instances;           /* independently seeded runs averaged (equal time) */
-    struct restir_error err; /* of the last frame */
+    int instances;           /* independently seeded renderers averaged per run (equal time) */
+    int runs;                /* independently seeded runs measured (--runs) */
+    struct restir_error err; /* of the last frame, the mean over the runs */
+    double temporal_cov;     /* 000 Eq. 17 over the runs (compare_track.h); NaN with one run */
     float *image;            /* the last frame, kept for --report (else NULL) */
 };
 
@@ -54,11 +57,21 @@ int compare_setup(int argc, char **argv, struct compare_setup *st);
 float *compare_render_reference(const struct compare_setup *st);
 /* Runs `frames` frames of spec c with parameters p (c->p, or with an equal-time spp) as `instances`
  * (at most MAX_INSTANCES) independently seeded renderers, measures the average of their last frames
- * against ref (none when ref is NULL) and writes it under out_dir/c->dir. Returns 0, -1 with msg
- * (the frame cannot be written), or RUN_STOPPED having written nothing. */
+ * against ref (none when ref is NULL) and, for run 0, writes it under out_dir/c->dir. With a track
+ * (may be NULL) every frame's statistics and the frames it asks for go to it as run `run`.
+ * Returns 0, -1 with msg (the frame cannot be written), or RUN_STOPPED having written nothing. */
 int compare_run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
-                       int instances, const float *ref, const char *out_dir, int keep_image, struct compare_result *res,
-                       char *msg);
+                       int instances, const float *ref, const char *out_dir, int keep_image, struct compare_track *track,
+                       int run, struct compare_result *res, char *msg);
+/* --runs runs of spec c (compare_run_method with seed + n COMPARE_RUN_SEED_STRIDE for run n): res
+ * gets run 0's frame and time, the last-frame error averaged over the runs and the temporal
+ * autocovariance; the track's rows for c go to frames.csv. Returns as compare_run_method. */
+int compare_run_spec(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
+                     int instances, int runs, const float *ref, const char *out_dir, int keep_image,
+                     struct compare_track *track, struct compare_result *res, char *msg);
+/* The comparison's reference at frame `frame` (the last frame's: compare_render_reference), or NULL
+ * when a stop signal arrived. */
+float *compare_render_reference_at(const struct compare_setup *st, int frame);
 /* Prints the table, writes out_dir/compare.csv and, with --report, index.html. Returns an exit
  * code. */
 int compare_write_table(const struct compare_setup *st, const char *out_dir, const char *command,

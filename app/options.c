@@ -100,7 +100,7 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
     o->frames = 1;
     o->ref_spp = 1024;
     o->save_all = 1;
-    o->runs = 8;
+    o->runs = strcmp(command, "compare") ? 8 : 1;
     o->warmup = 40; /* 000 Sec. 7 */
     o->checkpoint_every = -1.0;
     int frames_given = 0;
@@ -197,9 +197,13 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
         } else if (!strcmp(a, "--radii")) {
             o->radii = val;
         } else if (!strcmp(a, "--runs")) {
-            if (cli_parse_int(a, val, 2, 100000, &v, msg) != 0)
+            if (cli_parse_int(a, val, strcmp(command, "compare") ? 2 : 1, 100000, &v, msg) != 0)
                 return -1;
             o->runs = (int)v;
+        } else if (!strcmp(a, "--ref-every") && !strcmp(command, "compare")) {
+            if (cli_parse_int(a, val, 1, 100000, &v, msg) != 0)
+                return -1;
+            o->ref_every = (int)v;
         } else if (!strcmp(a, "--warmup")) {
             if (cli_parse_int(a, val, 0, 100000, &v, msg) != 0)
                 return -1;

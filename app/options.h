@@ -26,7 +26,8 @@ struct cli_options {
     int res_given;
     const char *configs; /* study: comma-separated configurations */
     const char *radii;   /* study: comma-separated radii */
-    int runs;            /* study: independent sequences per configuration */
+    int runs;            /* study: independent sequences per configuration; compare: per spec */
+    int ref_every;       /* compare: also measure frames K-1, 2K-1, ... against their own references */
     int warmup;          /* study: frames before measuring */
     double checkpoint_every; /* reference: seconds between checkpoints (< 0: none, 0: every chunk) */
     const char *plan;        /* study, reference, compare: write jobs into this folder instead of running */

@@ -113,3 +113,21 @@ int json_write_file(const char *path, const cJSON *root, char *msg)
     }
     return io_commit(tmp, path, msg);
 }
+
+/* Writes s as one CSV field: verbatim, or quoted (quotes doubled) when it holds a comma, a quote
+ * or a line break. */
+void csv_field(char *out, size_t n, const char *s)
+{
+    int quote = strpbrk(s, ",\"\r\n") != NULL;
+    size_t o = 0;
+    if (quote)
+        out[o++] = '"';
+    for (; *s && o + 3 < n; s++) {
+        if (*s == '"')
+            out[o++] = '"';
+        out[o++] = *s;
+    }
+    if (quote)
+        out[o++] = '"';
+    out[o] = '\0';
+}

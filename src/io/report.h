@@ -29,6 +29,10 @@ int csv_close(struct csv_writer *w, char *msg);
 /* Closes and removes the temporary file; path is left untouched. Safe on a closed writer. */
 void csv_abort(struct csv_writer *w);
 
+/* s as one CSV field into out (n bytes): verbatim, or quoted (quotes doubled) when it holds a
+ * comma, a quote or a line break. */
+void csv_field(char *out, size_t n, const char *s);
+
 /* Writes cJSON_Print(root) and a newline to path atomically. Returns 0, or -1 with msg. */
 int json_write_file(const char *path, const cJSON *root, char *msg);
 

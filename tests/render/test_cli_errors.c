@@ -151,6 +151,16 @@ static void check_failed_write(void)
 static void check_compare(void)
 {
     char fmt[4 * CLI_PATH_MAX], out[2 * CLI_PATH_MAX], blocker[3 * CLI_PATH_MAX], err[CLI_ERR_MAX];
+    expect_failure("compare with no runs", "compare --scene cornell --methods pt --runs 0 --res 16x16 --out '%1$s'", 2,
+                   "--runs", NULL);
+    expect_failure("compare with --ref-every 0",
+                   "compare --scene cornell --methods pt --ref-every 0 --res 16x16 --out '%1$s'", 2, "--ref-every",
+                   NULL);
+    expect_failure("compare --runs planned",
+                   "compare --scene cornell --methods pt --runs 2 --res 16x16 --plan '%1$s'", 2, "--runs", "unsplit");
+    expect_failure("study with --ref-every",
+                   "study --scene cornell --method restir-pt --configs bitterli --ref-every 4 --res 16x16 --out '%1$s'",
+                   2, "--ref-every", NULL);
     expect_failure("compare with an empty method list", "compare --scene cornell --methods '' --res 16x16 --out '%1$s'",
                    2, "--methods", NULL);
     expect_failure("compare with only commas", "compare --scene cornell --methods , --res 16x16 --out '%1$s'", 2,
@@ -210,7 +220,8 @@ static void check_compare_specs(void)
         int frames = cli_count_entries(path, "frame_0001.exr");
         EXPECT(frames == 1, "no last frame in %s (%d)", path, frames);
     }
-    EXPECT(cli_count_entries(dir, "") == 5, "%s holds %d entries, want compare.csv, reference.exr and 3 folders", dir,
+    EXPECT(cli_count_entries(dir, "") == 6,
+           "%s holds %d entries, want compare.csv, frames.csv, reference.exr and 3 folders", dir,
            cli_count_entries(dir, ""));
 }
 

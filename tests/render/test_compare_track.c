@@ -1,0 +1,140 @@
+/* test_compare_track.c: `restir compare` along a sequence (--ref-every, --runs; app/compare_track.c).
+ * frames.csv holds one row per spec and frame, with errors exactly at frames K-1, 2K-1, ... and the
+ * last (each against its own reference file), and its last-frame errors are compare.csv's; run 0
+ * of --runs N writes the frame a single run writes, byte for byte; 000's autocovariance (Eq. 17)
+ * is near 0 for pt, whose frames are independent, and clearly positive for restir-pt, whose
+ * reservoirs carry history; splat rows count splats and no backprojection. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_util.h"
+#include "test_util.h"
+
+#define COMMON "compare --scene cornell --camera path --res 24x16 --frames 12 --ref-spp 16 --seed 5 --threads 1"
+#define SPECS "restir-pt,restir-pt:temporal.reuse=splat,pt"
+
+static char tmp[CLI_PATH_MAX];
+
+/* Field `col` (0-based) of a CSV line without quoted fields, into out (empty when missing). */
+static void field(const char *line, int col, char *out, size_t n)
+{
+    out[0] = '\0';
+    for (int c = 0; c < col && line; c++) {
+        line = strchr(line, ',');
+        line = line ? line + 1 : NULL;
+    }
+    if (!line)
+        return;
+    size_t len = strcspn(line, ",\n");
+    if (len >= n)
+        len = n - 1;
+    memcpy(out, line, len);
+    out[len] = '\0';
+}
+
+/* The line of csv that starts with `prefix` (NULL when none). */
+static const char *row(const char *csv, const char *prefix)
+{
+    size_t len = strlen(prefix);
+    for (const char *l = csv; l && *l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : NULL)
+        if (!strncmp(l, prefix, len))
+            return l;
+    return NULL;
+}
+
+static double number(const char *line, int col)
+{
+    char f[64];
+    field(line, col, f, sizeof f);
+    return f[0] ? strtod(f, NULL) : NAN;
+}
+
+int main(void)
+{
+    static char csv[CLI_ERR_MAX], frames[4 * CLI_ERR_MAX];
+    char dir[2 * CLI_PATH_MAX], one[2 * CLI_PATH_MAX], args[8 * CLI_PATH_MAX], path[3 * CLI_PATH_MAX],
+        path2[3 * CLI_PATH_MAX], err[CLI_ERR_MAX], prefix[128], a[64], b[64];
+    if (cli_make_temp_dir(tmp) != 0)
+        return test_skip("cannot create a temporary folder");
+    snprintf(dir, sizeof dir, "%s/runs", tmp);
+    snprintf(args, sizeof args, COMMON " --runs 4 --ref-every 4 --methods " SPECS " --out '%s'", dir);
+    int rc = cli_run(tmp, args, err);
+    EXPECT(rc == 0, "compare --runs 4 --ref-every 4 exited %d: %s", rc, err);
+
+    /* references: frames 3 and 7 on their own, frame 11 is the comparison's reference.exr */
+    EXPECT(cli_count_entries(dir, "reference") == 3, "want reference.exr, reference_0003.exr, reference_0007.exr");
+    snprintf(path, sizeof path, "%s/reference_0003.exr", dir);
+    EXPECT(cli_count_entries(dir, "reference_0003.exr") == 1 && cli_count_entries(dir, "reference_0007.exr") == 1,
+           "no %s or its frame-7 sibling", path);
+
+    snprintf(path, sizeof path, "%s/compare.csv", dir);
+    cli_read_text(path, csv, sizeof csv);
+    snprintf(path, sizeof path, "%s/frames.csv", dir);
+    cli_read_text(path, frames, sizeof frames);
+    EXPECT(!strncmp(frames, "method,frame,runs,ms_frame,ms_temporal,temporal_accept,bp_received,bp_accepted,"
+                            "splat_received,splat_accepted,relmse,mape,smape,luma_rmse\n", 120),
+           "frames.csv header: %.200s", frames);
+    const char *specs[] = {"restir-pt", "restir-pt:temporal.reuse=splat", "pt"};
+    double tcov[3];
+    for (int k = 0; k < 3; k++) {
+        for (int f = 0; f < 12; f++) {
+            snprintf(prefix, sizeof prefix, "%s,%d,4,", specs[k], f);
+            const char *l = row(frames, prefix);
+            EXPECT(l != NULL, "frames.csv has no row %s", prefix);
+            if (!l)
+                continue;
+            const int measured = f == 3 || f == 7 || f == 11;
+            field(l, 11, a, sizeof a);
+            EXPECT(measured == (a[0] != '\0'), "%s: MAPE '%s' where %s", prefix, a, measured ? "wanted" : "none wanted");
+            if (measured)
+                EXPECT(number(l, 11) > 0.0 && number(l, 11) < 5.0, "%s: MAPE %g", prefix, number(l, 11));
+            EXPECT(number(l, 3) > 0.0, "%s: frame time %g", prefix, number(l, 3));
+            if (k == 1 && f > 0)
+                EXPECT(number(l, 8) > 0.5 && number(l, 6) == 0.0,
+                       "%s: splat rows must receive splats (%g) and no backprojection (%g)", prefix, number(l, 8),
+                       number(l, 6));
+            if (k == 0 && f > 0)
+                EXPECT(number(l, 6) > 0.5 && number(l, 8) == 0.0, "%s: backproject shares %g / splat %g", prefix,
+                       number(l, 6), number(l, 8));
+            if (f == 11) { /* the last frame's errors are compare.csv's, as written */
+                snprintf(prefix, sizeof prefix, "\n%s,", specs[k]);
+                const char *c = strstr(csv, prefix);
+                EXPECT(c != NULL, "compare.csv has no row %s", specs[k]);
+                for (int col = 0; c && col < 4; col++) {
+                    field(c + 1, 4 + col, a, sizeof a);
+                    field(l, 10 + col, b, sizeof b);
+                    EXPECT(!strcmp(a, b), "%s: compare.csv column %d '%s', frames.csv '%s'", specs[k], 4 + col, a, b);
+                }
+                tcov[k] = c ? number(c + 1, 9) : NAN;
+                EXPECT(c && number(c + 1, 8) == 4.0, "%s: runs column", specs[k]);
+            }
+        }
+    }
+    printf("temporal autocovariance (lag 3, frames 6-11, 4 runs): restir-pt %.4f, splat %.4f, pt %.4f\n", tcov[0],
+           tcov[1], tcov[2]);
+    EXPECT(fabs(tcov[2]) < 0.03, "pt's frames are independent: autocovariance %g", tcov[2]);
+    EXPECT(tcov[0] > 0.03 && tcov[0] > 3.0 * fabs(tcov[2]), "restir-pt carries history: %g (pt %g)", tcov[0], tcov[2]);
+    EXPECT(tcov[1] > 0.03, "splat carries history: %g", tcov[1]);
+
+    /* run 0 is the single run: same frame, bytes and all; a single run has no autocovariance */
+    snprintf(one, sizeof one, "%s/one", tmp);
+    snprintf(args, sizeof args, COMMON " --methods " SPECS " --ref '%s/reference.exr' --out '%s'", dir, one);
+    rc = cli_run(tmp, args, err);
+    EXPECT(rc == 0, "single run exited %d: %s", rc, err);
+    for (int k = 0; k < 2; k++) {
+        const char *folder = k ? "restir-pt_temporal.reuse_splat" : "restir-pt";
+        snprintf(path, sizeof path, "%s/%s/frame_0011.exr", dir, folder);
+        snprintf(path2, sizeof path2, "%s/%s/frame_0011.exr", one, folder);
+        long size = 0;
+        EXPECT(cli_files_equal(path, path2, &size) == 1 && size > 0, "run 0's %s differs from the single run's",
+               folder);
+    }
+    snprintf(path, sizeof path, "%s/compare.csv", one);
+    cli_read_text(path, csv, sizeof csv);
+    const char *c = strstr(csv, "\nrestir-pt,");
+    field(c ? c + 1 : "", 9, a, sizeof a);
+    EXPECT(c && number(c + 1, 8) == 1.0 && a[0] == '\0', "a single run: runs 1, no temporal_cov ('%s')", a);
+    cli_remove_tree(tmp);
+    return test_finish();
+}
