@@ -46,6 +46,13 @@ static int scene_info(const char *name)
         texels += (size_t)s.textures[t].width * (size_t)s.textures[t].height;
     printf("triangles %d\nemitters %d\nmaterials %d\ntextures %d (%.3g Mtexels)\nobjects %d\n", s.num_tris,
            s.num_emitters, s.num_materials, s.num_textures, (double)texels * 1e-6, s.num_objects);
+    int smooth = 0; /* triangles with a shading normal at every corner */
+    for (int t = 0; s.normals && t < s.num_tris; t++) {
+        const uint32_t *ix = &s.indices[3 * t];
+        smooth += v3_length2(s.normals[ix[0]]) > 0.0f && v3_length2(s.normals[ix[1]]) > 0.0f &&
+                  v3_length2(s.normals[ix[2]]) > 0.0f;
+    }
+    printf("shading normals on %d of %d triangles (the rest flat)\n", smooth, s.num_tris);
     printf("bounds [%g, %g, %g] .. [%g, %g, %g]\n", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
     printf("camera position [%g, %g, %g] look_at [%g, %g, %g] vfov %g\n", s.camera.position.x,
            s.camera.position.y, s.camera.position.z, s.camera.target.x, s.camera.target.y, s.camera.target.z,

@@ -129,8 +129,10 @@ static cJSON *shapes_json(const struct scene_shape_record *r, int n)
             cJSON_AddItemToObject(j, "center", vec(r[i].p[0]));
             cJSON_AddItemToObject(j, "radius", number(r[i].f));
             cJSON_AddNumberToObject(j, "segments", r[i].segments);
-            if (r[i].inward_facing)
+            if (r[i].sphere_flags & SPHERE_INWARD)
                 cJSON_AddBoolToObject(j, "inward", 1);
+            if (r[i].sphere_flags & SPHERE_SMOOTH)
+                cJSON_AddBoolToObject(j, "smooth", 1);
         }
         cJSON_AddItemToArray(shapes, j);
         i++;

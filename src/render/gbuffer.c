@@ -56,9 +56,9 @@ static void shading_point_init(struct shading_point *sp, const struct material *
 {
     sp->valid = 1;
     sp->p = p;
-    sp->n = n;
     sp->ng = ng;
     sp->wo = v3_normalize(v3_sub(camera, p));
+    sp->n = n = bsdf_shading_normal(n, ng, sp->wo);
     struct bsdf b;
     bsdf_from_material(m, &b);
     bsdf_frame_init(&sp->bf, &b, n, sp->wo);

@@ -1,7 +1,9 @@
 /* path_shift.c: reconnection, random replay and hybrid shift mappings between pixel domains, with
  * their Jacobian determinants (see path_shift.h; 000 Eq. 1 and 6, Lin et al. 2022 Sec. 7).
- * Shading normals equal geometric normals in this renderer (flat shading), so x_k's BSDF is
- * evaluated with its stored geometric normal. Must never depend on reservoirs. */
+ * Every BSDF is evaluated with the vertex's shading normal for its own outgoing direction
+ * (bsdf_shading_normal), x_k's too, rebuilt from its triangle and barycentrics because its
+ * outgoing direction changes with the shift; geometric normals give the side tests and the
+ * Jacobians' area measure (issue 23). Must never depend on reservoirs. */
 #include "render/path_shift.h"
 
 #include "shading/bsdf.h"
@@ -61,7 +63,8 @@ static vec3 reconnection_eval(const struct scene *s, const struct path_vertex *v
     if (!(dist2 > 0.0f))
         return v3s(0.0f);
     vec3 wk = v3_scale(to_k, 1.0f / sqrtf(dist2));
-    float cos_y = v3_dot(v->ns, wk), ck = -v3_dot(x->rc_n, wk);
+    const vec3 n_v = bsdf_shading_normal(v->ns, v->ng, v->wo);
+    float cos_y = v3_dot(n_v, wk), ck = -v3_dot(x->rc_n, wk);
     if (cos_y <= 0.0f || v3_dot(v->ng, wk) <= 0.0f || ck <= 0.0f)
         return v3s(0.0f);
     vec3 at_k = x->rc_L;
@@ -69,12 +72,15 @@ static vec3 reconnection_eval(const struct scene *s, const struct path_vertex *v
         struct bsdf bk;
         struct material tmp;
         bsdf_from_material(scene_material_at(s, x->rc_tri, x->rc_b1, x->rc_b2, &tmp), &bk);
-        vec3 fk = bsdf_eval(&bk, x->rc_n, v3_neg(wk), x->rc_w);
-        at_k = v3_mul(at_k, v3_scale(fk, fabsf(v3_dot(x->rc_n, x->rc_w))));
+        const vec3 wo_k = v3_neg(wk);
+        const vec3 n_k = bsdf_shading_normal(scene_shading_normal(s, x->rc_tri, x->rc_b1, x->rc_b2, x->rc_n),
+                                             x->rc_n, wo_k);
+        vec3 fk = bsdf_eval(&bk, n_k, wo_k, x->rc_w);
+        at_k = v3_mul(at_k, v3_scale(fk, fabsf(v3_dot(n_k, x->rc_w))));
     }
     *cos_k = ck;
     *d2 = dist2;
-    return v3_mul(v3_scale(bsdf_eval(b, v->ns, v->wo, wk), cos_y), at_k);
+    return v3_mul(v3_scale(bsdf_eval(b, n_v, v->wo, wk), cos_y), at_k);
 }
 
 static void keep_primary(struct path_sample *y, const struct path_vertex *x1)
@@ -170,10 +176,11 @@ static int shift_from_primary(const struct scene *s, const struct shift_params *
         vec3 wi, f;
         float pdf;
         struct bsdf_frame bf;
-        bsdf_frame_init(&bf, &b, v.ns, v.wo);
+        const vec3 n = bsdf_shading_normal(v.ns, v.ng, v.wo);
+        bsdf_frame_init(&bf, &b, n, v.wo);
         if (!bsdf_frame_sample(&bf, u0, u1, u2, &wi, &pdf, &f) || v3_dot(wi, v.ng) <= 0.0f)
             return fail(y);
-        F = v3_mul(F, v3_scale(f, v3_dot(v.ns, wi)));
+        F = v3_mul(F, v3_scale(f, v3_dot(n, wi)));
         prefix_pdf *= pdf;
         (*rays)++;
         if (!scene_intersect(s, scene_offset_point(v.p, v.ng, wi), wi, 0.0f, INFINITY, &h))

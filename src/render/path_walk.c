@@ -35,7 +35,7 @@ void path_vertex_bsdf(const struct scene *s, const struct path_vertex *v, struct
 /* NEE at x (the last vertex of the walk, BSDF prepared for x->wo in bf): one light point,
  * reported as a candidate of length nv + 1 when it contributes. prefix_f / prefix_pdf describe
  * x_1 .. x. */
-static long long next_event(const struct scene *s, const struct path_walk *w, const struct bsdf_frame *bf,
+static long long next_event(const struct scene *s, const struct path_walk *w, const struct bsdf_frame *bf, vec3 n,
                             vec3 prefix_f, float prefix_pdf, pcg32 *rng, path_candidate_fn emit, void *ctx)
 {
     const struct path_vertex *x = &w->v[w->nv - 1];
@@ -48,7 +48,7 @@ static long long next_event(const struct scene *s, const struct path_walk *w, co
     if (!(d2 > 0.0f))
         return 0;
     vec3 wi = v3_scale(to, 1.0f / sqrtf(d2));
-    float cos_l = -v3_dot(ls.n, wi), cos_x = v3_dot(x->ns, wi);
+    float cos_l = -v3_dot(ls.n, wi), cos_x = v3_dot(n, wi);
     if (cos_l <= 0.0f || cos_x <= 0.0f || v3_dot(x->ng, wi) <= 0.0f)
         return 0;
     float pdf_bsdf;
@@ -95,8 +95,9 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
         struct bsdf b;
         struct bsdf_frame bf;
         path_vertex_bsdf(s, x, &b);
-        bsdf_frame_init(&bf, &b, x->ns, x->wo);
-        rays += next_event(s, w, &bf, prefix_f, prefix_pdf, &rng, emit, ctx);
+        const vec3 n = bsdf_shading_normal(x->ns, x->ng, x->wo);
+        bsdf_frame_init(&bf, &b, n, x->wo);
+        rays += next_event(s, w, &bf, n, prefix_f, prefix_pdf, &rng, emit, ctx);
         float u_rr = pcg32_float(&rng);
         vec3 wi, f;
         float pdf;
@@ -106,7 +107,7 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
         if (v3_dot(wi, x->ng) <= 0.0f)
             break;
         x->w_next = wi;
-        x->fcos = v3_scale(f, v3_dot(x->ns, wi));
+        x->fcos = v3_scale(f, v3_dot(n, wi));
         x->pdf_dir = pdf;
         prefix_f = v3_mul(prefix_f, x->fcos);
         prefix_pdf *= pdf;

@@ -80,4 +80,18 @@ static inline vec3 mat4d_dir(const mat4d *t, double x, double y, double z)
               mat4d_to_float(m[8] * x + m[9] * y + m[10] * z));
 }
 
+/* A normal under t: the inverse transpose of the linear part applied to (x, y, z), computed as
+ * the cofactor matrix times sign(det) (the inverse transpose up to the positive factor |det|),
+ * not normalized. Tangent planes map to tangent planes, so it stays perpendicular to the surface
+ * under non-uniform scales and shears. */
+static inline vec3 mat4d_normal(const mat4d *t, double x, double y, double z)
+{
+    const double *m = t->m;
+    const double a = m[0], b = m[1], c = m[2], d = m[4], e = m[5], f = m[6], g = m[8], h = m[9], i = m[10];
+    const double s = mat4d_det3(t) < 0.0 ? -1.0 : 1.0;
+    return v3(mat4d_to_float(s * ((e * i - f * h) * x - (d * i - f * g) * y + (d * h - e * g) * z)),
+              mat4d_to_float(s * (-(b * i - c * h) * x + (a * i - c * g) * y - (a * h - b * g) * z)),
+              mat4d_to_float(s * ((b * f - c * e) * x - (a * f - c * d) * y + (a * e - b * d) * z)));
+}
+
 #endif

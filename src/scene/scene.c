@@ -2,6 +2,7 @@
  * Must never include embree headers (scene_rt.c owns the back end) nor anything from shading up. */
 #include "scene/scene.h"
 
+#include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -87,6 +88,21 @@ void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6])
         memcpy(s->uv + 2 * (size_t)s->indices[3 * tri + k], uv + 2 * k, 2 * sizeof(float));
 }
 
+void scene_set_normals(struct scene_builder *b, int tri, const vec3 n[3])
+{
+    struct scene *s = b->s;
+    if (b->over_budget)
+        return;
+    RESTIR_CHECK(tri >= 0 && tri < s->num_tris);
+    if (!s->normals) /* first normals: every other vertex shades flat */
+        s->normals = xcalloc((size_t)b->cap_verts, sizeof(vec3));
+    for (int k = 0; k < 3; k++) {
+        float len = v3_length(n[k]);
+        vec3 u = len > 1e-20f && isfinite(len) ? v3_scale(n[k], 1.0f / len) : v3s(0.0f);
+        s->normals[s->indices[3 * tri + k]] = v3_is_finite(u) ? u : v3s(0.0f);
+    }
+}
+
 /* Appends a record when recording and this is an outermost shape call (a box's quads and a quad's
  * triangles are not recorded again); every shape function brackets its work with depth. */
 static void record_shape(struct scene_builder *b, struct scene_shape_record r)
@@ -122,6 +138,10 @@ void scene_add_triangle(struct scene_builder *b, vec3 a, vec3 c, vec3 d, int mat
         if (s->uv) {
             s->uv = grow_to(s->uv, 2 * b->cap_verts, sizeof(float));
             memset(s->uv + 2 * (size_t)old_cap, 0, 2 * sizeof(float) * (size_t)(b->cap_verts - old_cap));
+        }
+        if (s->normals) {
+            s->normals = grow_to(s->normals, b->cap_verts, sizeof(vec3));
+            memset(s->normals + old_cap, 0, sizeof(vec3) * (size_t)(b->cap_verts - old_cap));
         }
     }
     uint32_t base = (uint32_t)s->num_verts;
@@ -186,35 +206,39 @@ void scene_add_box(struct scene_builder *b, vec3 lo, vec3 hi, int material, int 
     scene_add_box_rotated_y(b, lo, hi, 0.0f, material, object);
 }
 
-void scene_add_sphere(struct scene_builder *b, vec3 center, float radius, int segments, int inward_facing,
+void scene_add_sphere(struct scene_builder *b, vec3 center, float radius, int segments, int flags,
                       int material, int object)
 {
     record_shape(b, (struct scene_shape_record){.kind = SHAPE_SPHERE, .p = {center}, .f = radius,
-                                                .segments = segments, .inward_facing = inward_facing,
+                                                .segments = segments, .sphere_flags = flags,
                                                 .material = material, .object = object});
     b->depth++;
+    const int inward = flags & SPHERE_INWARD, smooth = flags & SPHERE_SMOOTH;
     int rings = segments / 2 > 2 ? segments / 2 : 2;
     for (int i = 0; i < rings; i++) {
         float t0 = RESTIR_PI * (float)i / (float)rings, t1 = RESTIR_PI * (float)(i + 1) / (float)rings;
         for (int j = 0; j < segments; j++) {
             float p0 = 2.0f * RESTIR_PI * (float)j / (float)segments;
             float p1 = 2.0f * RESTIR_PI * (float)(j + 1) / (float)segments;
-#define SPHERE_POINT(t, p) v3_madd(center, v3(sinf(t) * cosf(p), cosf(t), sinf(t) * sinf(p)), radius)
-            vec3 a = SPHERE_POINT(t0, p0), c = SPHERE_POINT(t0, p1);
-            vec3 d = SPHERE_POINT(t1, p1), e = SPHERE_POINT(t1, p0);
-#undef SPHERE_POINT
+#define SPHERE_DIR(t, p) v3(sinf(t) * cosf(p), cosf(t), sinf(t) * sinf(p))
+            vec3 na = SPHERE_DIR(t0, p0), nc = SPHERE_DIR(t0, p1), nd = SPHERE_DIR(t1, p1), ne = SPHERE_DIR(t1, p0);
+#undef SPHERE_DIR
+            vec3 a = v3_madd(center, na, radius), c = v3_madd(center, nc, radius);
+            vec3 d = v3_madd(center, nd, radius), e = v3_madd(center, ne, radius);
             /* The tangent along theta crossed with the one along phi points inward, so a, c, d, e
              * winds outward and a, e, d, c inward. Poles degenerate to triangles. */
-            if (inward_facing) {
-                if (i != 0)
-                    scene_add_triangle(b, a, d, c, material, object);
-                if (i != rings - 1)
-                    scene_add_triangle(b, a, e, d, material, object);
-            } else {
-                if (i != 0)
-                    scene_add_triangle(b, a, c, d, material, object);
-                if (i != rings - 1)
-                    scene_add_triangle(b, a, d, e, material, object);
+            const float sign = inward ? -1.0f : 1.0f;
+            vec3 n1[3] = {v3_scale(na, sign), v3_scale(inward ? nd : nc, sign), v3_scale(inward ? nc : nd, sign)};
+            vec3 n2[3] = {v3_scale(na, sign), v3_scale(inward ? ne : nd, sign), v3_scale(inward ? nd : ne, sign)};
+            if (i != 0) {
+                scene_add_triangle(b, a, inward ? d : c, inward ? c : d, material, object);
+                if (smooth)
+                    scene_set_normals(b, b->s->num_tris - 1, n1);
+            }
+            if (i != rings - 1) {
+                scene_add_triangle(b, a, inward ? e : d, inward ? d : e, material, object);
+                if (smooth)
+                    scene_set_normals(b, b->s->num_tris - 1, n2);
             }
         }
     }
@@ -298,6 +322,7 @@ void scene_destroy(struct scene *s)
     free(s->materials);
     free(s->camera_path.keys);
     free(s->uv);
+    free(s->normals);
     for (int t = 0; t < s->num_textures; t++) {
         texture_fini(&s->textures[t]);
         free(s->texture_keys[t].key);

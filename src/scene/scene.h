@@ -18,7 +18,7 @@ struct scene_shape_record {
     enum scene_shape_kind kind;
     vec3 p[4];  /* triangle: 3 corners; quad: 4 corners; box: lo, hi; sphere: center */
     float f;    /* box: rotation about y in radians; sphere: radius */
-    int segments, inward_facing; /* sphere */
+    int segments, sphere_flags; /* sphere: SPHERE_INWARD | SPHERE_SMOOTH */
     int material, object;
 };
 
@@ -46,6 +46,9 @@ int scene_texture_find(const struct scene *s, const char *key, int srgb);
 void scene_set_max_triangles(int n);
 /* The UVs (u0 v0 u1 v1 u2 v2) of triangle tri, already added. */
 void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6]);
+/* The shading normals of triangle tri's corners, already added (scene_shading_normal). Normalized
+ * here; a zero, non-finite or NaN normal is stored as zero and shades that corner flat. */
+void scene_set_normals(struct scene_builder *b, int tri, const vec3 n[3]);
 int scene_new_object(struct scene_builder *b);
 void scene_add_triangle(struct scene_builder *b, vec3 a, vec3 c, vec3 d, int material, int object);
 /* Quad a-b-c-d (counter-clockwise seen from the front) as two triangles. */
@@ -55,8 +58,10 @@ void scene_add_box(struct scene_builder *b, vec3 lo, vec3 hi, int material, int 
 /* Box rotated by angle_rad about the y axis through its center. */
 void scene_add_box_rotated_y(struct scene_builder *b, vec3 lo, vec3 hi, float angle_rad, int material,
                              int object);
-/* Closed UV sphere; inward_facing flips the winding so the front faces the center. */
-void scene_add_sphere(struct scene_builder *b, vec3 center, float radius, int segments, int inward_facing,
+/* Closed UV sphere. Flags: SPHERE_INWARD flips the winding so the front faces the center;
+ * SPHERE_SMOOTH gives every corner the sphere's exact normal as its shading normal. */
+enum { SPHERE_INWARD = 1, SPHERE_SMOOTH = 2 };
+void scene_add_sphere(struct scene_builder *b, vec3 center, float radius, int segments, int flags,
                       int material, int object);
 /* Finishes derived data (normals, areas, emitters, alias table) and builds the Embree scene.
  * Returns 0 on success, -1 with msg filled (e.g. no geometry, NaN vertex). */

@@ -23,6 +23,8 @@ uint64_t scene_content_hash(const struct scene *s)
     h = fnv1a64(h, s->tri_object, sizeof(int) * (size_t)s->num_tris);
     if (s->uv)
         h = fnv1a64(h, s->uv, 2 * sizeof(float) * (size_t)s->num_verts);
+    if (s->normals)
+        h = fnv1a64(h, s->normals, sizeof(vec3) * (size_t)s->num_verts);
     h = fnv1a64(h, s->materials, sizeof(struct material) * (size_t)s->num_materials);
     for (int t = 0; t < s->num_textures; t++) {
         const struct texture *x = &s->textures[t];

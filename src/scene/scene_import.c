@@ -76,6 +76,7 @@ struct importer {
     cJSON *gltf;              /* the glTF JSON, parsed on first need (emissive strength) */
     int gltf_tried;
     vec3 *verts;              /* one mesh's vertices after the transform (scratch) */
+    vec3 *normals;            /* ... and its vertex normals, when it has them (scratch) */
     unsigned cap_verts;
     int added;                /* triangles added */
     char *msg;
@@ -257,12 +258,16 @@ static int add_mesh(struct importer *im, unsigned mesh_index, const mat4d *t, in
     }
     if (mesh->mNumVertices > im->cap_verts) {
         free(im->verts);
+        free(im->normals);
         im->cap_verts = mesh->mNumVertices;
         im->verts = xmalloc(sizeof(vec3) * im->cap_verts);
+        im->normals = xmalloc(sizeof(vec3) * im->cap_verts);
     }
     for (unsigned v = 0; v < mesh->mNumVertices; v++) {
         const struct aiVector3D *p = &mesh->mVertices[v];
         im->verts[v] = mat4d_point(t, p->x, p->y, p->z);
+        if (mesh->mNormals) /* glTF NORMAL, OBJ vn, PLY nx ny nz; non-finite ones shade flat */
+            im->normals[v] = mat4d_normal(t, mesh->mNormals[v].x, mesh->mNormals[v].y, mesh->mNormals[v].z);
     }
     const int flip = mat4d_det3(t) < 0.0; /* a mirror: swap two corners so fronts stay fronts */
     for (unsigned f = 0; f < mesh->mNumFaces; f++) {
@@ -318,6 +323,12 @@ static int add_mesh(struct importer *im, unsigned mesh_index, const mat4d *t, in
                 uv[2 * k + 1] = isfinite(c->y) ? (float)c->y : 0.0f;
             }
             scene_set_uvs(im->b, im->b->s->num_tris - 1, uv);
+        }
+        if (mesh->mNormals) {
+            vec3 n[3];
+            for (int k = 0; k < 3; k++)
+                n[k] = im->normals[face->mIndices[flip && k ? 3 - k : k]];
+            scene_set_normals(im->b, im->b->s->num_tris - 1, n);
         }
         im->added++;
     }
@@ -434,6 +445,7 @@ static int import_mesh(struct scene_builder *b, const char *path, const float *x
     free(im.builder_material);
     free(im.override_material);
     free(im.verts);
+    free(im.normals);
     cJSON_Delete(im.gltf);
     if (rc == 0 && keep)
         *keep = ai;

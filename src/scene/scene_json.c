@@ -278,7 +278,7 @@ static int read_mesh(struct json_reader *r, const cJSON *sh, const char *key, in
 /* "vertices": [[x,y,z], ...] (triangles) or "quads": [[c0,c1,c2,c3], ...] */
 static int read_polygons(struct json_reader *r, const cJSON *sh, const char *key, int corners, int material, int object)
 {
-    static const char *const tri_keys[] = {"type", "vertices", "uvs", "material", "object", NULL};
+    static const char *const tri_keys[] = {"type", "vertices", "uvs", "normals", "material", "object", NULL};
     static const char *const quad_keys[] = {"type", "quads", "material", "object", NULL};
     if (json_check_keys(r, sh, key, corners == 3 ? tri_keys : quad_keys) != 0)
         return -1;
@@ -301,8 +301,17 @@ static int read_polygons(struct json_reader *r, const cJSON *sh, const char *key
         json_child_key(uk, sizeof uk, key, "uvs", 0);
         return json_fail(r, uk, "needs one [u, v] per vertex (%d)", n);
     }
-    const cJSON *uv_item = uvs ? uvs->child : NULL;
+    /* triangles: optional "normals" [[x, y, z], ...], one shading normal per vertex */
+    const cJSON *normals = corners == 3 ? json_get_array(r, sh, key, "normals", 0, &ok) : NULL;
+    if (!ok)
+        return -1;
+    char nk[256];
+    json_child_key(nk, sizeof nk, key, "normals", 0);
+    if (normals && cJSON_GetArraySize(normals) != n)
+        return json_fail(r, nk, "needs one [x, y, z] per vertex (%d)", n);
+    const cJSON *uv_item = uvs ? uvs->child : NULL, *n_item = normals ? normals->child : NULL;
     float uv[8];
+    vec3 nrm[3];
     vec3 p[4];
     int i = 0, c = 0;
     for (const cJSON *e = list->child; e; e = e->next, i++) {
@@ -324,10 +333,20 @@ static int read_polygons(struct json_reader *r, const cJSON *sh, const char *key
                 uv[2 * c + 1] = (float)uv_item->child->next->valuedouble;
                 uv_item = uv_item->next;
             }
+            if (n_item) {
+                json_child_key(ek, sizeof ek, nk, NULL, i);
+                if (json_vec3_value(r, n_item, ek, -1e6f, 1e6f, &nrm[c]) != 0)
+                    return -1;
+                if (!(v3_length(nrm[c]) > 1e-6f))
+                    return json_fail(r, ek, "must be a non-zero direction");
+                n_item = n_item->next;
+            }
             if (++c == 3) {
                 scene_add_triangle(r->b, p[0], p[1], p[2], material, object);
                 if (uvs)
                     scene_set_uvs(r->b, r->b->s->num_tris - 1, uv);
+                if (normals)
+                    scene_set_normals(r->b, r->b->s->num_tris - 1, nrm);
                 c = 0;
             }
             continue;
@@ -371,22 +390,24 @@ static int read_box(struct json_reader *r, const cJSON *sh, const char *key, int
 
 static int read_sphere(struct json_reader *r, const cJSON *sh, const char *key, int material, int object)
 {
-    static const char *const keys[] = {"type", "center", "radius", "segments", "inward", "material", "object", NULL};
+    static const char *const keys[] = {"type",   "center",   "radius", "segments", "inward",
+                                       "smooth", "material", "object", NULL};
     vec3 c;
     float radius;
-    int segments = 0, inward = 0;
+    int segments = 0, inward = 0, smooth = 0;
     if (json_check_keys(r, sh, key, keys) != 0 ||
         json_get_vec3(r, sh, key, "center", 1, -SCENE_COORD_MAX, SCENE_COORD_MAX, v3s(0), &c) != 0 ||
         json_get_number(r, sh, key, "radius", 1, 0.0, SCENE_COORD_MAX, 1.0f, &radius) != 0 ||
         json_get_int(r, sh, key, "segments", 3, 4096, 32, &segments) != 0 ||
-        json_get_bool(r, sh, key, "inward", &inward) != 0)
+        json_get_bool(r, sh, key, "inward", &inward) != 0 || json_get_bool(r, sh, key, "smooth", &smooth) != 0)
         return -1;
     if (!(radius > 0.0f)) {
         char k[256];
         json_child_key(k, sizeof k, key, "radius", 0);
         return json_fail(r, k, "must be positive");
     }
-    scene_add_sphere(r->b, c, radius, segments, inward, material, object);
+    scene_add_sphere(r->b, c, radius, segments, (inward ? SPHERE_INWARD : 0) | (smooth ? SPHERE_SMOOTH : 0), material,
+                     object);
     return 0;
 }
 

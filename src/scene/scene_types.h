@@ -75,6 +75,8 @@ struct scene {
     struct material *materials;
     int num_objects;
     float *uv;             /* 2 per vertex (assimp's convention, (0, 0) bottom-left), or NULL */
+    vec3 *normals;         /* per vertex: the file's shading normal (unit; zero where it had none
+                              usable), or NULL: flat shading (scene_shading_normal) */
     int num_textures;
     struct texture *textures;
     struct scene_texture_key *texture_keys; /* where each texture came from (scene_texture_find) */

@@ -70,6 +70,16 @@ void bsdf_from_material(const struct material *m, struct bsdf *b)
         b->p_spec = clampf(ls / (ls + ld), 0.1f, 0.9f);
 }
 
+vec3 bsdf_shading_normal(vec3 ns, vec3 ng, vec3 wo)
+{
+    const float c = v3_dot(ns, wo), cg = v3_dot(ng, wo);
+    if (c >= BSDF_SHADING_COS_MIN || (ns.x == ng.x && ns.y == ng.y && ns.z == ng.z) || !(cg > 0.0f))
+        return ns;
+    vec3 n = v3_madd(ns, ng, (BSDF_SHADING_COS_MIN - c) / cg);
+    float len2 = v3_length2(n);
+    return len2 > 0.0f && isfinite(len2) ? v3_scale(n, 1.0f / sqrtf(len2)) : ng;
+}
+
 vec3 bsdf_eval(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi)
 {
     struct bsdf_frame bf;

@@ -20,6 +20,18 @@ struct bsdf {
 
 void bsdf_from_material(const struct material *m, struct bsdf *b);
 
+/* Shading normals (issue 23). The BSDF's normal at a point is the interpolated shading normal ns
+ * (scene_shading_normal, on the side of the geometric normal ng facing wo), bent toward ng where wo
+ * would be below or grazing it: ns' = normalize(ns + t ng) with t = (c_min - ns.wo) / (ng.wo),
+ * so ns'.wo > 0 (the "black facet" a view below the interpolated hemisphere would see; the bend
+ * of Keller et al. 2017, "The Iray light transport simulation and rendering system", Sec. A.3,
+ * in its simplest form). A function of (ns, ng, wo) only: every estimator and shift evaluates f at
+ * a vertex through it with that vertex's own wo, so they integrate the same f. Light leaks are the
+ * callers' geometric test: directions must leave on ng's side (wi.ng > 0) as well as on ns''s.
+ * Returns ns unchanged where ns == ng (flat shading) or ns.wo >= c_min. */
+#define BSDF_SHADING_COS_MIN 0.01f
+vec3 bsdf_shading_normal(vec3 ns, vec3 ng, vec3 wo);
+
 /* f_r(wo, wi) for normal n (n on the side of wo; zero when either direction is below). */
 vec3 bsdf_eval(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi);
 /* Solid-angle density with which bsdf_sample produces wi. */

@@ -93,6 +93,10 @@ int main(int argc, char **argv)
         char textured[1024];
         snprintf(textured, sizeof textured, "%s/scenes/textured.json", data);
         check_scene(textured, 24, 16, pairwise, 1, 1);
+        /* Shading normals (tests/data/scenes/smooth.json: coarse spheres with smooth normals and
+         * a triangle whose normals lean 45 degrees apart), evaluated at every shading point. */
+        snprintf(textured, sizeof textured, "%s/scenes/smooth.json", data);
+        check_scene(textured, 24, 16, pairwise, 1, 1);
     }
     /* ris-di has no reuse: none is exact there (and skips the shading ray). */
     const char *ris_none[] = {"di.visibility_mis=none"};

@@ -49,6 +49,12 @@ int main(int argc, char **argv)
         /* base colour, metallic-roughness and emission maps (shading varies inside triangles) */
         snprintf(real, sizeof real, "%s/scenes/textured.json", data);
         check(real, RUNS, sets, 2, 1);
+        /* shading normals (smooth.json): at every vertex, and at the reconnection vertex x_k,
+         * whose normal the shift rebuilds for its new outgoing direction */
+        snprintf(real, sizeof real, "%s/scenes/smooth.json", data);
+        check(real, RUNS, sets, 2, 1);
+        const char *rc_sets[] = {"shift=reconnection", "mis=pairwise"};
+        check(real, RUNS, rc_sets, 2, 1);
     }
     /* The test has power: the BIASED 1/M weights are caught on the same setup. */
     const char *uniform[] = {"shift=hybrid", "mis=1/M"};
