@@ -103,6 +103,24 @@ void scene_set_normals(struct scene_builder *b, int tri, const vec3 n[3])
     }
 }
 
+void scene_set_tangents(struct scene_builder *b, int tri, const float t[12])
+{
+    struct scene *s = b->s;
+    if (b->over_budget)
+        return;
+    RESTIR_CHECK(tri >= 0 && tri < s->num_tris);
+    if (!s->tangents) /* first tangents: every other vertex has none (UV derivatives are used) */
+        s->tangents = xcalloc(4 * (size_t)b->cap_verts, sizeof(float));
+    for (int k = 0; k < 3; k++) {
+        const float *c = &t[4 * k];
+        const int ok = isfinite(c[0]) && isfinite(c[1]) && isfinite(c[2]);
+        float *out = &s->tangents[4 * (size_t)s->indices[3 * tri + k]];
+        for (int i = 0; i < 3; i++)
+            out[i] = ok ? c[i] : 0.0f;
+        out[3] = c[3] < 0.0f ? -1.0f : 1.0f;
+    }
+}
+
 /* Appends a record when recording and this is an outermost shape call (a box's quads and a quad's
  * triangles are not recorded again); every shape function brackets its work with depth. */
 static void record_shape(struct scene_builder *b, struct scene_shape_record r)
@@ -142,6 +160,10 @@ void scene_add_triangle(struct scene_builder *b, vec3 a, vec3 c, vec3 d, int mat
         if (s->normals) {
             s->normals = grow_to(s->normals, b->cap_verts, sizeof(vec3));
             memset(s->normals + old_cap, 0, sizeof(vec3) * (size_t)(b->cap_verts - old_cap));
+        }
+        if (s->tangents) {
+            s->tangents = grow_to(s->tangents, 4 * b->cap_verts, sizeof(float));
+            memset(s->tangents + 4 * (size_t)old_cap, 0, 4 * sizeof(float) * (size_t)(b->cap_verts - old_cap));
         }
     }
     uint32_t base = (uint32_t)s->num_verts;
@@ -323,6 +345,7 @@ void scene_destroy(struct scene *s)
     free(s->camera_path.keys);
     free(s->uv);
     free(s->normals);
+    free(s->tangents);
     for (int t = 0; t < s->num_textures; t++) {
         texture_fini(&s->textures[t]);
         free(s->texture_keys[t].key);
@@ -345,30 +368,4 @@ float scene_diagonal(const struct scene *s)
         hi = v3(fmaxf(hi.x, v.x), fmaxf(hi.y, v.y), fmaxf(hi.z, v.z));
     }
     return v3_length(v3_sub(hi, lo));
-}
-
-const struct material *scene_material_at(const struct scene *s, int tri, float b1, float b2, struct material *tmp)
-{
-    const struct material *m = &s->materials[s->tri_material[tri]];
-    if (!(m->base_color_map | m->metal_rough_map | m->emission_map))
-        return m;
-    float u = 0.0f, v = 0.0f; /* a mesh without UVs reads its textures at (0, 0), as glTF does */
-    if (s->uv) {
-        const float *uv = s->uv;
-        const uint32_t *ix = &s->indices[3 * tri];
-        float b0 = 1.0f - b1 - b2;
-        u = b0 * uv[2 * ix[0]] + b1 * uv[2 * ix[1]] + b2 * uv[2 * ix[2]];
-        v = b0 * uv[2 * ix[0] + 1] + b1 * uv[2 * ix[1] + 1] + b2 * uv[2 * ix[2] + 1];
-    }
-    *tmp = *m;
-    if (m->base_color_map)
-        tmp->base_color = v3_mul(m->base_color, texture_sample(&s->textures[m->base_color_map - 1], u, v));
-    if (m->metal_rough_map) {
-        vec3 t = texture_sample(&s->textures[m->metal_rough_map - 1], u, v);
-        tmp->roughness = m->roughness * t.y;
-        tmp->metallic = m->metallic * t.z;
-    }
-    if (m->emission_map)
-        tmp->emission = v3_mul(m->emission, texture_sample(&s->textures[m->emission_map - 1], u, v));
-    return tmp;
 }

@@ -8,6 +8,7 @@
 #include "scene/camera.h"
 #include "scene/scene_hash.h"
 #include "scene/scene_rt.h"
+#include "scene/scene_surface.h"
 #include "scene/scene_types.h"
 #include "scene/texture.h"
 
@@ -49,6 +50,9 @@ void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6]);
 /* The shading normals of triangle tri's corners, already added (scene_shading_normal). Normalized
  * here; a zero, non-finite or NaN normal is stored as zero and shades that corner flat. */
 void scene_set_normals(struct scene_builder *b, int tri, const vec3 n[3]);
+/* The tangents of triangle tri's corners (x y z w each, w = handedness, glTF TANGENT), already
+ * added; a non-finite tangent is stored as zero (that corner takes the UV derivatives). */
+void scene_set_tangents(struct scene_builder *b, int tri, const float t[12]);
 int scene_new_object(struct scene_builder *b);
 void scene_add_triangle(struct scene_builder *b, vec3 a, vec3 c, vec3 d, int material, int object);
 /* Quad a-b-c-d (counter-clockwise seen from the front) as two triangles. */
@@ -68,10 +72,6 @@ void scene_add_sphere(struct scene_builder *b, vec3 center, float radius, int se
 int scene_builder_end(struct scene_builder *b, char *msg);
 
 void scene_destroy(struct scene *s);
-
-/* The material at a point of triangle tri (barycentrics b1, b2): its factors times its textures
- * there. Returns the scene's own material when it has no textures, else fills and returns tmp. */
-const struct material *scene_material_at(const struct scene *s, int tri, float b1, float b2, struct material *tmp);
 
 /* Length of the diagonal of the scene's bounding box (scale for distance thresholds). */
 float scene_diagonal(const struct scene *s);

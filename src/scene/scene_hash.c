@@ -9,7 +9,7 @@
 
 /* Hashing the structs' bytes is only stable when they hold no padding: all 4-byte fields. */
 static_assert(sizeof(vec3) == 3 * sizeof(float), "vec3 must be three packed floats");
-static_assert(sizeof(struct material) == 12 * 4, "struct material must be 4-byte fields without padding");
+static_assert(sizeof(struct material) == 14 * 4, "struct material must be 4-byte fields without padding");
 
 
 uint64_t scene_content_hash(const struct scene *s)
@@ -25,6 +25,8 @@ uint64_t scene_content_hash(const struct scene *s)
         h = fnv1a64(h, s->uv, 2 * sizeof(float) * (size_t)s->num_verts);
     if (s->normals)
         h = fnv1a64(h, s->normals, sizeof(vec3) * (size_t)s->num_verts);
+    if (s->tangents)
+        h = fnv1a64(h, s->tangents, 4 * sizeof(float) * (size_t)s->num_verts);
     h = fnv1a64(h, s->materials, sizeof(struct material) * (size_t)s->num_materials);
     for (int t = 0; t < s->num_textures; t++) {
         const struct texture *x = &s->textures[t];

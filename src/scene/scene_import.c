@@ -2,6 +2,7 @@
  * builder: node transforms, materials, the first camera. Must never print or abort on bad input. */
 #include "scene/scene_import.h"
 
+#include <assimp/GltfMaterial.h>
 #include <assimp/camera.h>
 #include <assimp/cimport.h>
 #include <assimp/material.h>
@@ -77,6 +78,7 @@ struct importer {
     int gltf_tried;
     vec3 *verts;              /* one mesh's vertices after the transform (scratch) */
     vec3 *normals;            /* ... and its vertex normals, when it has them (scratch) */
+    float *tangents;          /* ... and tangents (xyz, handedness), when it has them (scratch) */
     unsigned cap_verts;
     int added;                /* triangles added */
     char *msg;
@@ -181,6 +183,7 @@ static int make_material(struct importer *im, unsigned idx, struct material *out
     static const enum aiTextureType base_types[] = {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE};
     static const enum aiTextureType mr_types[] = {aiTextureType_UNKNOWN, aiTextureType_METALNESS};
     static const enum aiTextureType emissive_types[] = {aiTextureType_EMISSIVE};
+    static const enum aiTextureType normal_types[] = {aiTextureType_NORMALS};
     out->base_color_map = import_texture_map(im->b, im->ai, m, im->path, base_types, 2, 1, im->msg);
     if (out->base_color_map < 0)
         return -1;
@@ -194,6 +197,23 @@ static int make_material(struct importer *im, unsigned idx, struct material *out
             import_texture_map(im->b, im->ai, m, im->path, emissive_types, 1, 1, im->msg);
         if (out->emission_map < 0)
             return -1;
+    }
+    /* glTF normalTexture (linear) and its scale (assimp files it as the texture's scale key) */
+    out->normal_map = import_texture_map(im->b, im->ai, m, im->path, normal_types, 1, 0, im->msg);
+    if (out->normal_map < 0)
+        return -1;
+    ai_real scale = 1;
+    unsigned max = 1;
+    out->normal_scale = 1.0f;
+    if (aiGetMaterialFloatArray(m, AI_MATKEY_GLTF_TEXTURE_SCALE(aiTextureType_NORMALS, 0), &scale, &max) ==
+            aiReturn_SUCCESS &&
+        max == 1) {
+        if (!isfinite(scale) || fabs(scale) > 100.0) {
+            snprintf(im->msg, RESTIR_MSG_LEN, "%s: material '%s': normalTexture.scale %g is not in [-100, 100]",
+                     im->path, name, (double)scale);
+            return -1;
+        }
+        out->normal_scale = (float)scale;
     }
     return 0;
 }
@@ -259,15 +279,27 @@ static int add_mesh(struct importer *im, unsigned mesh_index, const mat4d *t, in
     if (mesh->mNumVertices > im->cap_verts) {
         free(im->verts);
         free(im->normals);
+        free(im->tangents);
         im->cap_verts = mesh->mNumVertices;
         im->verts = xmalloc(sizeof(vec3) * im->cap_verts);
         im->normals = xmalloc(sizeof(vec3) * im->cap_verts);
+        im->tangents = xmalloc(4 * sizeof(float) * im->cap_verts);
     }
     for (unsigned v = 0; v < mesh->mNumVertices; v++) {
         const struct aiVector3D *p = &mesh->mVertices[v];
         im->verts[v] = mat4d_point(t, p->x, p->y, p->z);
         if (mesh->mNormals) /* glTF NORMAL, OBJ vn, PLY nx ny nz; non-finite ones shade flat */
             im->normals[v] = mat4d_normal(t, mesh->mNormals[v].x, mesh->mNormals[v].y, mesh->mNormals[v].z);
+        if (mesh->mNormals && mesh->mTangents && mesh->mBitangents) { /* glTF TANGENT: xyz, w handedness */
+            const struct aiVector3D *tv = &mesh->mTangents[v], *bv = &mesh->mBitangents[v], *nv = &mesh->mNormals[v];
+            vec3 tn = v3(tv->x, tv->y, tv->z), bn = v3(bv->x, bv->y, bv->z), nn = v3(nv->x, nv->y, nv->z);
+            vec3 tw = mat4d_dir(t, tn.x, tn.y, tn.z); /* a tangent moves with the surface */
+            float w = v3_dot(v3_cross(nn, tn), bn) < 0.0f ? -1.0f : 1.0f;
+            im->tangents[4 * v] = tw.x;
+            im->tangents[4 * v + 1] = tw.y;
+            im->tangents[4 * v + 2] = tw.z;
+            im->tangents[4 * v + 3] = w * (mat4d_det3(t) < 0.0 ? -1.0f : 1.0f); /* a mirror flips the frame */
+        }
     }
     const int flip = mat4d_det3(t) < 0.0; /* a mirror: swap two corners so fronts stay fronts */
     for (unsigned f = 0; f < mesh->mNumFaces; f++) {
@@ -329,6 +361,12 @@ static int add_mesh(struct importer *im, unsigned mesh_index, const mat4d *t, in
             for (int k = 0; k < 3; k++)
                 n[k] = im->normals[face->mIndices[flip && k ? 3 - k : k]];
             scene_set_normals(im->b, im->b->s->num_tris - 1, n);
+        }
+        if (mesh->mNormals && mesh->mTangents && mesh->mBitangents) {
+            float tg[12];
+            for (int k = 0; k < 3; k++)
+                memcpy(&tg[4 * k], &im->tangents[4 * face->mIndices[flip && k ? 3 - k : k]], 4 * sizeof(float));
+            scene_set_tangents(im->b, im->b->s->num_tris - 1, tg);
         }
         im->added++;
     }
@@ -446,6 +484,7 @@ static int import_mesh(struct scene_builder *b, const char *path, const float *x
     free(im.override_material);
     free(im.verts);
     free(im.normals);
+    free(im.tangents);
     cJSON_Delete(im.gltf);
     if (rc == 0 && keep)
         *keep = ai;

@@ -74,7 +74,8 @@ static int read_camera_path(struct json_reader *r, const cJSON *path)
 
 static const char *const material_keys[] = {"name", "base_color", "metallic", "roughness", "emission",
                                             "emissive_strength", "lambert", "base_color_texture",
-                                            "metallic_roughness_texture", "emission_texture", NULL};
+                                            "metallic_roughness_texture", "emission_texture", "normal_texture",
+                                            "normal_scale", NULL};
 
 /* A path in the file: absolute, or relative to the file's folder. Returns -1 (msg naming key)
  * when it does not fit out. */
@@ -136,7 +137,8 @@ static int read_materials(struct json_reader *r)
             json_get_number(r, m, key, "roughness", 0, 0.0, 1.0, 1.0f, &mt.roughness) != 0 ||
             json_get_vec3(r, m, key, "emission", 0, 0.0, SCENE_COORD_MAX, v3s(0.0f), &mt.emission) != 0 ||
             json_get_number(r, m, key, "emissive_strength", 0, 0.0, SCENE_COORD_MAX, 1.0f, &strength) != 0 ||
-            json_get_bool(r, m, key, "lambert", &mt.lambert_only) != 0)
+            json_get_bool(r, m, key, "lambert", &mt.lambert_only) != 0 ||
+            json_get_number(r, m, key, "normal_scale", 0, 0.0, 100.0, 1.0f, &mt.normal_scale) != 0)
             return -1;
         if (strength != 1.0f) /* KHR_materials_emissive_strength: a multiplier of the colour */
             mt.emission = v3_scale(mt.emission, strength);
@@ -153,7 +155,8 @@ static int read_materials(struct json_reader *r)
         /* glTF 2.0 maps: colour images are sRGB-encoded, metallic-roughness (G, B) linear */
         if (texture_map(r, m, key, "base_color_texture", 1, &mt.base_color_map) != 0 ||
             texture_map(r, m, key, "metallic_roughness_texture", 0, &mt.metal_rough_map) != 0 ||
-            texture_map(r, m, key, "emission_texture", 1, &mt.emission_map) != 0)
+            texture_map(r, m, key, "emission_texture", 1, &mt.emission_map) != 0 ||
+            texture_map(r, m, key, "normal_texture", 0, &mt.normal_map) != 0)
             return -1;
         scene_add_material(r->b, mt);
     }
@@ -362,7 +365,7 @@ static int read_polygons(struct json_reader *r, const cJSON *sh, const char *key
         }
         scene_add_quad(r->b, p[0], p[1], p[2], p[3], material, object);
         const struct material *qm = &r->b->s->materials[material];
-        if (qm->base_color_map | qm->metal_rough_map | qm->emission_map) {
+        if (qm->base_color_map | qm->metal_rough_map | qm->emission_map | qm->normal_map) {
             /* a textured quad gets the unit square: triangles c0 c1 c2 and c0 c2 c3 */
             const float first[6] = {0, 0, 1, 0, 1, 1}, second[6] = {0, 0, 1, 1, 0, 1};
             scene_set_uvs(r->b, r->b->s->num_tris - 2, first);

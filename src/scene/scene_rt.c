@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "scene/scene_surface.h"
 
 /* Per-thread append-only ray log (benchmarks only). */
 struct ray_log {
@@ -147,22 +148,6 @@ static int intersect_closest(RTCScene rtc_scene, vec3 o, vec3 d, float tmin, flo
     *u = rh.hit.u;
     *v = rh.hit.v;
     return (int)rh.hit.primID;
-}
-
-vec3 scene_shading_normal(const struct scene *s, int tri, float b1, float b2, vec3 ng)
-{
-    if (!s->normals)
-        return ng;
-    const uint32_t *ix = &s->indices[3 * tri];
-    const vec3 n0 = s->normals[ix[0]], n1 = s->normals[ix[1]], n2 = s->normals[ix[2]];
-    if (v3_length2(n0) == 0.0f || v3_length2(n1) == 0.0f || v3_length2(n2) == 0.0f)
-        return ng;
-    vec3 n = v3_add(v3_add(v3_scale(n0, 1.0f - b1 - b2), v3_scale(n1, b1)), v3_scale(n2, b2));
-    float len2 = v3_length2(n);
-    if (!(len2 > 1e-12f))
-        return ng;
-    n = v3_scale(n, 1.0f / sqrtf(len2));
-    return v3_dot(n, ng) < 0.0f ? v3_neg(n) : n;
 }
 
 void scene_surface_at(const struct scene *s, int tri, float b1, float b2, vec3 p, vec3 d, struct surface_hit *hit)

@@ -17,7 +17,7 @@ void scene_rt_destroy(struct scene *s);
 struct surface_hit {
     vec3 p;
     vec3 ng;   /* geometric normal, unit, facing the incoming ray */
-    vec3 ns;   /* shading normal on ng's side (scene_shading_normal), before bsdf_shading_normal */
+    vec3 ns;   /* shading normal on ng's side (scene_surface.h), before bsdf_shading_normal */
     float t;
     int tri;
     float b1, b2; /* barycentrics of p: p = (1-b1-b2) v0 + b1 v1 + b2 v2 */
@@ -25,11 +25,6 @@ struct surface_hit {
     int object;
     int front; /* 1 when the ray hit the front (emitting) side */
 };
-
-/* The shading normal at barycentrics (b1, b2) of triangle tri: its corners' normals interpolated
- * and normalized, turned to the side of ng (the geometric normal as the caller faces it); ng itself
- * when the scene or a corner has no normal or the interpolation vanishes (flat shading). */
-vec3 scene_shading_normal(const struct scene *s, int tri, float b1, float b2, vec3 ng);
 
 /* The surface point p on triangle tri (barycentrics b1, b2) as a ray of direction d would hit it
  * (t = 0): what scene_intersect reports there, without tracing. */

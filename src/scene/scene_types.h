@@ -20,6 +20,8 @@ struct material {
     /* Texture maps, glTF 2.0 style (0: none, else scene.textures[map - 1]): base_color and
      * emission are multiplied by the map's RGB; metallic and roughness by its B and G. */
     int base_color_map, metal_rough_map, emission_map;
+    int normal_map;     /* glTF normalTexture (linear RGB): the shading normal in the tangent frame */
+    float normal_scale; /* glTF normalTexture.scale: multiplies the map's x and y */
 };
 
 struct camera {
@@ -77,6 +79,8 @@ struct scene {
     float *uv;             /* 2 per vertex (assimp's convention, (0, 0) bottom-left), or NULL */
     vec3 *normals;         /* per vertex: the file's shading normal (unit; zero where it had none
                               usable), or NULL: flat shading (scene_shading_normal) */
+    float *tangents;       /* 4 per vertex: the file's tangent xyz and handedness w (glTF TANGENT),
+                              or NULL: normal maps take the UV derivatives */
     int num_textures;
     struct texture *textures;
     struct scene_texture_key *texture_keys; /* where each texture came from (scene_texture_find) */

@@ -4,7 +4,9 @@
  * above it, bends it in the plane of ns and ng where wo is below (so ns'.wo > 0), and never touches
  * flat shading; with the geometric side test every path vertex applies, an albedo-1 Lambertian and
  * white GGX lobes reflect at most the energy they receive (quadrature over the sphere); normals
- * follow non-uniform transforms (mat4d_normal); the JSON reader takes "normals" and "smooth". */
+ * follow non-uniform transforms (mat4d_normal); the JSON reader takes "normals" and "smooth"; a
+ * normal map tilts the normal toward dp/du for red and dp/dv for green, scaled by normal_scale,
+ * with UV-derived or the file's tangents (whose handedness flips the bitangent). */
 #include <math.h>
 #include <string.h>
 
@@ -223,8 +225,68 @@ static void test_json(void)
         scene_destroy(&s);
 }
 
+/* A quad in the z = 0 plane (front +z) with UVs u along +x and v along +y, whose material has a
+ * 1x1 normal map of tangent-space normal `local` (encoded as texel 0.5 local + 0.5) and scale. */
+static int mapped_quad(struct scene *s, vec3 local, float scale, const float *tangents)
+{
+    struct scene_builder b;
+    char msg[RESTIR_MSG_LEN];
+    scene_builder_begin(&b, s, "mapped");
+    struct texture t = {1, 1, NULL};
+    t.rgb = xmalloc(3 * sizeof(float));
+    t.rgb[0] = 0.5f * local.x + 0.5f;
+    t.rgb[1] = 0.5f * local.y + 0.5f;
+    t.rgb[2] = 0.5f * local.z + 0.5f;
+    int map = scene_add_texture(&b, t, "normal-map", 0);
+    int m = scene_add_material(&b, (struct material){.base_color = v3s(0.5f), .roughness = 1.0f, .normal_map = map,
+                                                     .normal_scale = scale});
+    int l = scene_add_material(&b, (struct material){.emission = v3s(1.0f), .roughness = 1.0f});
+    scene_add_triangle(&b, v3(0, 0, 0), v3(2, 0, 0), v3(2, 1, 0), m, scene_new_object(&b));
+    const float uv[6] = {0, 0, 1, 0, 1, 1};
+    scene_set_uvs(&b, 0, uv);
+    if (tangents)
+        scene_set_tangents(&b, 0, tangents);
+    scene_add_triangle(&b, v3(0, 0, 2), v3(0, 1, 2), v3(1, 0, 2), l, scene_new_object(&b));
+    int rc = scene_builder_end(&b, msg);
+    EXPECT(rc == 0, "builder: %s", msg);
+    return rc;
+}
+
+static void expect_mapped(vec3 local, float scale, const float *tangents, vec3 want, const char *what)
+{
+    struct scene s;
+    if (mapped_quad(&s, local, scale, tangents) != 0)
+        return;
+    want = v3_normalize(want);
+    vec3 got = scene_shading_normal(&s, 0, 0.3f, 0.2f, v3(0, 0, 1));
+    EXPECT(v3_length(v3_sub(got, want)) < 1e-5f, "%s: (%g %g %g), want (%g %g %g)", what, got.x, got.y, got.z, want.x,
+           want.y, want.z);
+    vec3 back = scene_shading_normal(&s, 0, 0.3f, 0.2f, v3(0, 0, -1));
+    EXPECT(v3_length(v3_add(back, got)) < 1e-6f, "%s: a back hit mirrors the mapped normal", what);
+    scene_destroy(&s);
+}
+
+static void test_normal_map(void)
+{
+    const float s45 = 0.70710678f;
+    /* the triangle's UV derivatives: dp/du = (2, 0, 0), dp/dv = (0, 1, 0) */
+    expect_mapped(v3(s45, 0, s45), 1.0f, NULL, v3(1, 0, 1), "red tilts toward dp/du");
+    expect_mapped(v3(0, s45, s45), 1.0f, NULL, v3(0, 1, 1), "green tilts toward dp/dv");
+    expect_mapped(v3(0, 0, 1), 1.0f, NULL, v3(0, 0, 1), "a flat map keeps the normal");
+    expect_mapped(v3(s45, 0, s45), 0.5f, NULL, v3(0.5f, 0, 1), "normal_scale multiplies x and y");
+    expect_mapped(v3(s45, 0, s45), 0.0f, NULL, v3(0, 0, 1), "normal_scale 0 switches the map off");
+    /* the file's tangents: +x with handedness +1 gives bitangent n x t = +y; -1 gives -y */
+    const float plus[12] = {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1};
+    const float minus[12] = {1, 0, 0, -1, 1, 0, 0, -1, 1, 0, 0, -1};
+    expect_mapped(v3(0, s45, s45), 1.0f, plus, v3(0, 1, 1), "file tangent, w = +1");
+    expect_mapped(v3(0, s45, s45), 1.0f, minus, v3(0, -1, 1), "file tangent, w = -1");
+    const float tilted[12] = {1, 0, 1, 1, 1, 0, 1, 1, 1, 0, 1, 1}; /* not orthogonal to n */
+    expect_mapped(v3(s45, 0, s45), 1.0f, tilted, v3(1, 0, 1), "the tangent is made orthogonal to the normal");
+}
+
 int main(void)
 {
+    test_normal_map();
     test_interpolation();
     test_bend();
     test_no_energy_gain();

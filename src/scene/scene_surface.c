@@ -1,0 +1,122 @@
+/* scene_surface.c: texture coordinates, textured materials and shading normals at surface points
+ * (scene_surface.h). Must never trace rays or build scenes. */
+#include "scene/scene_surface.h"
+
+#include <math.h>
+
+#include "scene/texture.h"
+
+void scene_uv_at(const struct scene *s, int tri, float b1, float b2, float *u, float *v)
+{
+    *u = *v = 0.0f;
+    if (!s->uv)
+        return;
+    const float *uv = s->uv;
+    const uint32_t *ix = &s->indices[3 * tri];
+    const float b0 = 1.0f - b1 - b2;
+    *u = b0 * uv[2 * ix[0]] + b1 * uv[2 * ix[1]] + b2 * uv[2 * ix[2]];
+    *v = b0 * uv[2 * ix[0] + 1] + b1 * uv[2 * ix[1] + 1] + b2 * uv[2 * ix[2] + 1];
+}
+
+const struct material *scene_material_at(const struct scene *s, int tri, float b1, float b2, struct material *tmp)
+{
+    const struct material *m = &s->materials[s->tri_material[tri]];
+    if (!(m->base_color_map | m->metal_rough_map | m->emission_map))
+        return m;
+    float u, v;
+    scene_uv_at(s, tri, b1, b2, &u, &v);
+    *tmp = *m;
+    if (m->base_color_map)
+        tmp->base_color = v3_mul(m->base_color, texture_sample(&s->textures[m->base_color_map - 1], u, v));
+    if (m->metal_rough_map) {
+        vec3 t = texture_sample(&s->textures[m->metal_rough_map - 1], u, v);
+        tmp->roughness = m->roughness * t.y;
+        tmp->metallic = m->metallic * t.z;
+    }
+    if (m->emission_map)
+        tmp->emission = v3_mul(m->emission, texture_sample(&s->textures[m->emission_map - 1], u, v));
+    return tmp;
+}
+
+/* The interpolated vertex normal in the file's orientation, or 0 when a corner has none. */
+static vec3 vertex_normal(const struct scene *s, const uint32_t *ix, float b1, float b2)
+{
+    const vec3 n0 = s->normals[ix[0]], n1 = s->normals[ix[1]], n2 = s->normals[ix[2]];
+    if (v3_length2(n0) == 0.0f || v3_length2(n1) == 0.0f || v3_length2(n2) == 0.0f)
+        return v3s(0.0f);
+    vec3 n = v3_add(v3_add(v3_scale(n0, 1.0f - b1 - b2), v3_scale(n1, b1)), v3_scale(n2, b2));
+    float len2 = v3_length2(n);
+    return len2 > 1e-12f ? v3_scale(n, 1.0f / sqrtf(len2)) : v3s(0.0f);
+}
+
+/* The tangent (xyz, handedness in *w) at the point: the file's, interpolated, or else the
+ * triangle's dp/du from its UVs with w making (t, w n x t) follow increasing u and v. Returns 0
+ * when there is none (no UVs, degenerate UVs). */
+static int tangent_at(const struct scene *s, int tri, const uint32_t *ix, float b1, float b2, vec3 n, vec3 *t,
+                      float *w)
+{
+    if (s->tangents) {
+        const float *t0 = &s->tangents[4 * ix[0]], *t1 = &s->tangents[4 * ix[1]], *t2 = &s->tangents[4 * ix[2]];
+        const float b0 = 1.0f - b1 - b2;
+        *t = v3(b0 * t0[0] + b1 * t1[0] + b2 * t2[0], b0 * t0[1] + b1 * t1[1] + b2 * t2[1],
+                b0 * t0[2] + b1 * t1[2] + b2 * t2[2]);
+        *w = t0[3] < 0.0f ? -1.0f : 1.0f;
+        if (v3_length2(*t) > 1e-12f)
+            return 1;
+    }
+    if (!s->uv)
+        return 0;
+    const vec3 e1 = v3_sub(s->verts[ix[1]], s->verts[ix[0]]), e2 = v3_sub(s->verts[ix[2]], s->verts[ix[0]]);
+    const float *uv = s->uv;
+    const float du1 = uv[2 * ix[1]] - uv[2 * ix[0]], dv1 = uv[2 * ix[1] + 1] - uv[2 * ix[0] + 1];
+    const float du2 = uv[2 * ix[2]] - uv[2 * ix[0]], dv2 = uv[2 * ix[2] + 1] - uv[2 * ix[0] + 1];
+    const float det = du1 * dv2 - du2 * dv1;
+    if (!(fabsf(det) > 1e-12f) || !isfinite(det))
+        return 0;
+    const vec3 dpdu = v3_scale(v3_sub(v3_scale(e1, dv2), v3_scale(e2, dv1)), 1.0f / det);
+    const vec3 dpdv = v3_scale(v3_sub(v3_scale(e2, du1), v3_scale(e1, du2)), 1.0f / det);
+    (void)tri;
+    *t = dpdu;
+    *w = v3_dot(v3_cross(n, dpdu), dpdv) < 0.0f ? -1.0f : 1.0f;
+    return v3_length2(dpdu) > 1e-20f;
+}
+
+/* n moved by the normal map of material m at (u, v); n unchanged where the frame is degenerate. */
+static vec3 apply_normal_map(const struct scene *s, const struct material *m, int tri, const uint32_t *ix, float b1,
+                             float b2, vec3 n)
+{
+    vec3 t;
+    float w;
+    if (!tangent_at(s, tri, ix, b1, b2, n, &t, &w))
+        return n;
+    t = v3_sub(t, v3_scale(n, v3_dot(n, t))); /* Gram-Schmidt against the shading normal */
+    float len2 = v3_length2(t);
+    if (!(len2 > 1e-12f))
+        return n;
+    t = v3_scale(t, 1.0f / sqrtf(len2));
+    const vec3 b = v3_scale(v3_cross(n, t), w);
+    float u, v;
+    scene_uv_at(s, tri, b1, b2, &u, &v);
+    const vec3 c = texture_sample(&s->textures[m->normal_map - 1], u, v);
+    const vec3 local = v3((2.0f * c.x - 1.0f) * m->normal_scale, (2.0f * c.y - 1.0f) * m->normal_scale, 2.0f * c.z - 1.0f);
+    vec3 mapped = v3_add(v3_add(v3_scale(t, local.x), v3_scale(b, local.y)), v3_scale(n, local.z));
+    len2 = v3_length2(mapped);
+    return len2 > 1e-12f && isfinite(len2) ? v3_scale(mapped, 1.0f / sqrtf(len2)) : n;
+}
+
+vec3 scene_shading_normal(const struct scene *s, int tri, float b1, float b2, vec3 ng)
+{
+    const struct material *m = &s->materials[s->tri_material[tri]];
+    if (!s->normals && !m->normal_map)
+        return ng;
+    const uint32_t *ix = &s->indices[3 * tri];
+    vec3 n = s->normals ? vertex_normal(s, ix, b1, b2) : v3s(0.0f);
+    if (v3_length2(n) == 0.0f) {
+        if (!m->normal_map)
+            return ng;
+        n = s->tri_normal[tri]; /* the file's orientation: the winding's side */
+    }
+    if (m->normal_map)
+        n = apply_normal_map(s, m, tri, ix, b1, b2, n);
+    return v3_dot(n, ng) < 0.0f ? v3_neg(n) : n;
+}

@@ -1,0 +1,26 @@
+/* scene_surface.h: what a point of a triangle looks like to shading: its texture coordinates, its
+ * material with the texture maps applied, and its shading normal (vertex normals, normal map).
+ * Must never trace rays or include the builder (scene_surface.c reads finished scenes only). */
+#ifndef RESTIR_SCENE_SCENE_SURFACE_H
+#define RESTIR_SCENE_SCENE_SURFACE_H
+
+#include "scene/scene_types.h"
+
+/* The texture coordinates at barycentrics (b1, b2) of triangle tri ((0, 0) when the scene has
+ * none, as glTF reads textures of a mesh without UVs). */
+void scene_uv_at(const struct scene *s, int tri, float b1, float b2, float *u, float *v);
+
+/* The material at a point of triangle tri (barycentrics b1, b2): its factors times its textures
+ * there. Returns the scene's own material when it has no textures, else fills and returns tmp. */
+const struct material *scene_material_at(const struct scene *s, int tri, float b1, float b2, struct material *tmp);
+
+/* The shading normal at barycentrics (b1, b2) of triangle tri, turned to the side of ng (the
+ * geometric normal as the caller faces it): the corners' normals interpolated and normalized
+ * (the triangle's own normal where the scene or a corner has none), then the material's normal
+ * map applied in the tangent frame there (glTF 2.0 normalTexture: n_t = 2 texel - 1 with x, y
+ * times normal_scale; tangent from the file's TANGENT, else from the triangle's UV derivatives,
+ * made orthogonal to the normal; bitangent = w cross(n, t)). Exactly ng for flat shading without a
+ * normal map. */
+vec3 scene_shading_normal(const struct scene *s, int tri, float b1, float b2, vec3 ng);
+
+#endif
