@@ -9,7 +9,7 @@
 
 /* Hashing the structs' bytes is only stable when they hold no padding: all 4-byte fields. */
 static_assert(sizeof(vec3) == 3 * sizeof(float), "vec3 must be three packed floats");
-static_assert(sizeof(struct material) == 14 * 4, "struct material must be 4-byte fields without padding");
+static_assert(sizeof(struct material) == 17 * 4, "struct material must be 4-byte fields without padding");
 
 
 uint64_t scene_content_hash(const struct scene *s)

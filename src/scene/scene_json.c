@@ -75,7 +75,23 @@ static int read_camera_path(struct json_reader *r, const cJSON *path)
 static const char *const material_keys[] = {"name", "base_color", "metallic", "roughness", "emission",
                                             "emissive_strength", "lambert", "base_color_texture",
                                             "metallic_roughness_texture", "emission_texture", "normal_texture",
-                                            "normal_scale", NULL};
+                                            "normal_scale", "alpha", "alpha_mode", "alpha_cutoff", NULL};
+
+/* glTF alphaMode: "opaque" (default), "mask", or "blend" (read as mask, cutoff 0.5 unless given). */
+static int read_alpha(struct json_reader *r, const cJSON *m, const char *key, struct material *mt)
+{
+    char k[96];
+    json_child_key(k, sizeof k, key, "alpha_mode", 0);
+    const cJSON *mode = cJSON_GetObjectItemCaseSensitive(m, "alpha_mode");
+    if (mode && (!cJSON_IsString(mode) || (strcmp(mode->valuestring, "opaque") && strcmp(mode->valuestring, "mask") &&
+                                           strcmp(mode->valuestring, "blend"))))
+        return json_fail(r, k, "must be \"opaque\", \"mask\" or \"blend\"");
+    mt->alpha_mask = mode && strcmp(mode->valuestring, "opaque") != 0;
+    return json_get_number(r, m, key, "alpha", 0, 0.0, 1.0, 1.0f, &mt->base_alpha) != 0 ||
+                   json_get_number(r, m, key, "alpha_cutoff", 0, 0.0, 1.0, 0.5f, &mt->alpha_cutoff) != 0
+               ? -1
+               : 0;
+}
 
 /* A path in the file: absolute, or relative to the file's folder. Returns -1 (msg naming key)
  * when it does not fit out. */
@@ -138,7 +154,8 @@ static int read_materials(struct json_reader *r)
             json_get_vec3(r, m, key, "emission", 0, 0.0, SCENE_COORD_MAX, v3s(0.0f), &mt.emission) != 0 ||
             json_get_number(r, m, key, "emissive_strength", 0, 0.0, SCENE_COORD_MAX, 1.0f, &strength) != 0 ||
             json_get_bool(r, m, key, "lambert", &mt.lambert_only) != 0 ||
-            json_get_number(r, m, key, "normal_scale", 0, 0.0, 100.0, 1.0f, &mt.normal_scale) != 0)
+            json_get_number(r, m, key, "normal_scale", 0, 0.0, 100.0, 1.0f, &mt.normal_scale) != 0 ||
+            read_alpha(r, m, key, &mt) != 0)
             return -1;
         if (strength != 1.0f) /* KHR_materials_emissive_strength: a multiplier of the colour */
             mt.emission = v3_scale(mt.emission, strength);

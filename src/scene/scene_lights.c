@@ -49,7 +49,8 @@ int scene_lights_build(struct scene *s, char *msg)
         em->e2 = v3_sub(s->verts[s->indices[3 * t + 2]], em->v0);
         em->n = s->tri_normal[t];
         em->Le = s->materials[s->tri_material[t]].emission;
-        em->textured = s->materials[s->tri_material[t]].emission_map != 0;
+        /* per-point radiance: an emission map, or an alpha mask that cuts parts of it away */
+        em->textured = s->materials[s->tri_material[t]].emission_map != 0 || s->materials[s->tri_material[t]].alpha_mask;
         em->pdf_area = s->emitter_table.pmf[e] / s->tri_area[t];
         em->tri = t;
     }

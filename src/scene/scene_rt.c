@@ -20,8 +20,17 @@ struct ray_log {
 
 #define RAY_LOG_MAX_THREADS 256
 
+/* What an alpha filter needs: a shallow copy of the finished scene (its arrays do not move after
+ * the build, while the struct itself may be copied by its owner) and the triangle of each
+ * primitive (NULL: primitive = triangle). */
+struct alpha_filter {
+    struct scene s;
+    const int *tris;
+};
+
 struct scene_rt {
     int logging;
+    struct alpha_filter alpha_all, alpha_emitters;
     struct ray_log logs[RAY_LOG_MAX_THREADS];
     RTCDevice device;
     RTCScene scene;
@@ -34,7 +43,29 @@ static void embree_error(void *user, enum RTCError code, const char *str)
     fprintf(stderr, "embree error %d: %s\n", (int)code, str ? str : "");
 }
 
-static RTCScene build_triangles(RTCDevice device, const struct scene *s, const int *tris, int count)
+/* Embree filter (intersection and occlusion): a candidate hit on a cut-out texel of an
+ * alpha-masked material is rejected, so every ray (camera, BSDF, NEE, shadow, every shift's
+ * replay and reconnection) passes through it as if it were not there (glTF alphaMode MASK). */
+static void alpha_filter(const struct RTCFilterFunctionNArguments *args)
+{
+    const struct alpha_filter *f = args->geometryUserPtr;
+    /* RTCHitN is N-wide structure of arrays: Ng x, y, z, u, v, primID, ... (rtcore_ray.h; its
+     * accessors are C++ only) */
+    const unsigned n = args->N;
+    const float *hf = (const float *)args->hit;
+    const unsigned *hu = (const unsigned *)args->hit;
+    for (unsigned i = 0; i < n; i++) {
+        if (args->valid[i] != -1)
+            continue;
+        const unsigned prim = hu[5 * n + i];
+        const int tri = f->tris ? f->tris[prim] : (int)prim;
+        if (scene_alpha_cut(&f->s, tri, hf[3 * n + i], hf[4 * n + i]))
+            args->valid[i] = 0;
+    }
+}
+
+static RTCScene build_triangles(RTCDevice device, const struct scene *s, const int *tris, int count,
+                                struct alpha_filter *filter)
 {
     RTCScene scene = rtcNewScene(device);
     rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
@@ -59,6 +90,13 @@ static RTCScene build_triangles(RTCDevice device, const struct scene *s, const i
             ib[3 * i + k] = (unsigned)(3 * i + k);
         }
     }
+    if (filter) {
+        filter->s = *s;
+        filter->tris = tris;
+        rtcSetGeometryUserData(geom, filter);
+        rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
+        rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
+    }
     rtcCommitGeometry(geom);
     rtcAttachGeometry(scene, geom);
     rtcReleaseGeometry(geom);
@@ -77,8 +115,13 @@ int scene_rt_build(struct scene *s, char *msg)
         return -1;
     }
     rtcSetDeviceErrorFunction(rt->device, embree_error, NULL);
-    rt->scene = build_triangles(rt->device, s, NULL, s->num_tris);
-    rt->emitters = s->num_emitters > 0 ? build_triangles(rt->device, s, s->emitter_tri, s->num_emitters) : NULL;
+    int masked = 0; /* filters only where some material is alpha-masked: they cost every hit a call */
+    for (int m = 0; m < s->num_materials; m++)
+        masked |= s->materials[m].alpha_mask;
+    rt->scene = build_triangles(rt->device, s, NULL, s->num_tris, masked ? &rt->alpha_all : NULL);
+    rt->emitters = s->num_emitters > 0 ? build_triangles(rt->device, s, s->emitter_tri, s->num_emitters,
+                                                         masked ? &rt->alpha_emitters : NULL)
+                                       : NULL;
     if (!rt->scene || (s->num_emitters > 0 && !rt->emitters)) {
         snprintf(msg, RESTIR_MSG_LEN, "scene '%s': Embree BVH construction failed", s->name);
         if (rt->scene)

@@ -18,10 +18,24 @@ void scene_uv_at(const struct scene *s, int tri, float b1, float b2, float *u, f
     *v = b0 * uv[2 * ix[0] + 1] + b1 * uv[2 * ix[1] + 1] + b2 * uv[2 * ix[2] + 1];
 }
 
+int scene_alpha_cut(const struct scene *s, int tri, float b1, float b2)
+{
+    const struct material *m = &s->materials[s->tri_material[tri]];
+    if (!m->alpha_mask)
+        return 0;
+    float a = m->base_alpha;
+    if (m->base_color_map) {
+        float u, v;
+        scene_uv_at(s, tri, b1, b2, &u, &v);
+        a *= texture_sample_alpha(&s->textures[m->base_color_map - 1], u, v);
+    }
+    return a < m->alpha_cutoff;
+}
+
 const struct material *scene_material_at(const struct scene *s, int tri, float b1, float b2, struct material *tmp)
 {
     const struct material *m = &s->materials[s->tri_material[tri]];
-    if (!(m->base_color_map | m->metal_rough_map | m->emission_map))
+    if (!(m->base_color_map | m->metal_rough_map | m->emission_map | m->alpha_mask))
         return m;
     float u, v;
     scene_uv_at(s, tri, b1, b2, &u, &v);
@@ -35,6 +49,8 @@ const struct material *scene_material_at(const struct scene *s, int tri, float b
     }
     if (m->emission_map)
         tmp->emission = v3_mul(m->emission, texture_sample(&s->textures[m->emission_map - 1], u, v));
+    if (scene_alpha_cut(s, tri, b1, b2))
+        tmp->emission = v3s(0.0f);
     return tmp;
 }
 

@@ -14,6 +14,11 @@ void scene_uv_at(const struct scene *s, int tri, float b1, float b2, float *u, f
  * there. Returns the scene's own material when it has no textures, else fills and returns tmp. */
 const struct material *scene_material_at(const struct scene *s, int tri, float b1, float b2, struct material *tmp);
 
+/* 1 where the point is cut out of an alpha-masked material (glTF alphaMode MASK: coverage =
+ * base_alpha times the base colour map's alpha, bilinear, below alpha_cutoff): every ray passes
+ * through it (scene_rt.c's Embree filter) and it emits nothing (scene_material_at). */
+int scene_alpha_cut(const struct scene *s, int tri, float b1, float b2);
+
 /* The shading normal at barycentrics (b1, b2) of triangle tri, turned to the side of ng (the
  * geometric normal as the caller faces it): the corners' normals interpolated and normalized
  * (the triangle's own normal where the scene or a corner has none), then the material's normal

@@ -22,6 +22,10 @@ struct material {
     int base_color_map, metal_rough_map, emission_map;
     int normal_map;     /* glTF normalTexture (linear RGB): the shading normal in the tangent frame */
     float normal_scale; /* glTF normalTexture.scale: multiplies the map's x and y */
+    /* glTF alphaMode MASK (BLEND is read as MASK at 0.5): where base_alpha times the base colour
+     * map's alpha is below alpha_cutoff the surface does not exist for any ray (scene_alpha_cut) */
+    int alpha_mask;
+    float alpha_cutoff, base_alpha;
 };
 
 struct camera {

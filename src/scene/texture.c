@@ -21,6 +21,21 @@ static float srgb_to_linear(float c)
     return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
 }
 
+/* t->alpha from 8-bit texels (byte offset alpha_at of `channels`), kept only when some texel is
+ * not opaque. */
+static void alpha_from_bytes(const unsigned char *px, int w, int h, int channels, int alpha_at, struct texture *t)
+{
+    const size_t n = (size_t)w * (size_t)h;
+    size_t i = 0;
+    while (i < n && px[(size_t)channels * i + (size_t)alpha_at] == 255)
+        i++;
+    if (i == n)
+        return;
+    t->alpha = xmalloc(sizeof(float) * n);
+    for (i = 0; i < n; i++)
+        t->alpha[i] = (float)px[(size_t)channels * i + (size_t)alpha_at] / 255.0f;
+}
+
 /* Fills t from 8-bit texels with `channels` bytes each at the given byte offsets of R, G, B. */
 static void from_bytes(const unsigned char *px, int w, int h, int channels, const int rgb_at[3], int srgb,
                        struct texture *t)
@@ -68,9 +83,12 @@ static int decoded(unsigned char *px, int w, int h, int channels, int srgb, cons
         snprintf(msg, RESTIR_MSG_LEN, "texture %s: cannot decode: %s", name, failure_reason());
         return -1;
     }
-    /* grey and grey-alpha images replicate their one channel */
+    /* grey and grey-alpha images replicate their one channel; alpha is the last of 2 or 4 */
     const int grey[3] = {0, 0, 0}, colour[3] = {0, 1, 2};
     from_bytes(px, w, h, channels, channels < 3 ? grey : colour, srgb, t);
+    t->alpha = NULL;
+    if (channels == 2 || channels == 4)
+        alpha_from_bytes(px, w, h, channels, channels - 1, t);
     stbi_image_free(px);
     return 0;
 }
@@ -105,17 +123,20 @@ void texture_from_bgra8(const unsigned char *bgra, int width, int height, int sr
 {
     const int order[3] = {2, 1, 0};
     from_bytes(bgra, width, height, 4, order, srgb, t);
+    t->alpha = NULL;
+    alpha_from_bytes(bgra, width, height, 4, 3, t);
 }
 
 void texture_fini(struct texture *t)
 {
     free(t->rgb);
+    free(t->alpha);
     memset(t, 0, sizeof(*t));
 }
 
-static vec3 texel(const struct texture *t, int x, int y)
+static vec3 texel(const struct texture *t, size_t i)
 {
-    const float *p = t->rgb + 3 * ((size_t)y * (size_t)t->width + (size_t)x);
+    const float *p = t->rgb + 3 * i;
     return v3(p[0], p[1], p[2]);
 }
 
@@ -126,18 +147,47 @@ static int wrap(int i, int n)
     return r < 0 ? r + n : r;
 }
 
-vec3 texture_sample(const struct texture *t, float u, float v)
+/* The four texels around (u, v) and the bilinear weights between them. */
+struct bilinear {
+    size_t i00, i10, i01, i11;
+    float ax, ay;
+};
+
+static struct bilinear bilinear_at(const struct texture *t, float u, float v)
 {
+    struct bilinear b = {0, 0, 0, 0, 0.0f, 0.0f};
     if (!isfinite(u) || !isfinite(v))
-        return texel(t, 0, 0);
+        return b;
     /* texel centres at (i + 0.5) / width; v = 0 is the bottom row, i.e. image row height - 1 */
     float fx = (u - floorf(u)) * (float)t->width - 0.5f;
     float fy = (1.0f - (v - floorf(v))) * (float)t->height - 0.5f;
     float x0f = floorf(fx), y0f = floorf(fy);
-    float ax = fx - x0f, ay = fy - y0f;
+    b.ax = fx - x0f;
+    b.ay = fy - y0f;
     int x0 = wrap((int)x0f, t->width), y0 = wrap((int)y0f, t->height);
     int x1 = wrap(x0 + 1, t->width), y1 = wrap(y0 + 1, t->height);
-    vec3 top = v3_lerp(texel(t, x0, y0), texel(t, x1, y0), ax);
-    vec3 bottom = v3_lerp(texel(t, x0, y1), texel(t, x1, y1), ax);
-    return v3_lerp(top, bottom, ay);
+    const size_t w = (size_t)t->width;
+    b.i00 = (size_t)y0 * w + (size_t)x0;
+    b.i10 = (size_t)y0 * w + (size_t)x1;
+    b.i01 = (size_t)y1 * w + (size_t)x0;
+    b.i11 = (size_t)y1 * w + (size_t)x1;
+    return b;
+}
+
+vec3 texture_sample(const struct texture *t, float u, float v)
+{
+    const struct bilinear b = bilinear_at(t, u, v);
+    vec3 top = v3_lerp(texel(t, b.i00), texel(t, b.i10), b.ax);
+    vec3 bottom = v3_lerp(texel(t, b.i01), texel(t, b.i11), b.ax);
+    return v3_lerp(top, bottom, b.ay);
+}
+
+float texture_sample_alpha(const struct texture *t, float u, float v)
+{
+    if (!t->alpha)
+        return 1.0f;
+    const struct bilinear b = bilinear_at(t, u, v);
+    const float *a = t->alpha;
+    float top = a[b.i00] + (a[b.i10] - a[b.i00]) * b.ax, bottom = a[b.i01] + (a[b.i11] - a[b.i01]) * b.ax;
+    return top + (bottom - top) * b.ay;
 }

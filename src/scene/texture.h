@@ -10,6 +10,8 @@
 struct texture {
     int width, height;
     float *rgb; /* width * height * 3, linear, row 0 = the image's top row */
+    float *alpha; /* width * height coverage in [0, 1] (linear), or NULL: the image has no alpha or
+                     every texel is opaque */
 };
 
 /* Decodes an image file (PNG, JPEG, TGA, BMP, ... through stb_image). srgb: the file stores
@@ -24,5 +26,7 @@ void texture_fini(struct texture *t);
 
 /* Bilinear lookup at (u, v), repeat wrapping. */
 vec3 texture_sample(const struct texture *t, float u, float v);
+/* The alpha channel at (u, v), bilinear as texture_sample; 1 without one. */
+float texture_sample_alpha(const struct texture *t, float u, float v);
 
 #endif

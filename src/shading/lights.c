@@ -6,11 +6,12 @@
 
 static vec3 tri_vertex(const struct scene *s, int tri, int k) { return s->verts[s->indices[3 * tri + k]]; }
 
-/* Emission at a point: the material's factor, times its emission texture there. */
+/* Emission at a point: the material's factor, times its emission texture there; none where an
+ * alpha mask cuts the point away (scene_material_at). */
 static vec3 point_emission(const struct scene *s, int tri, float b1, float b2)
 {
     const struct material *m = &s->materials[s->tri_material[tri]];
-    if (!m->emission_map) /* other maps do not change emission */
+    if (!m->emission_map && !m->alpha_mask) /* other maps do not change emission */
         return m->emission;
     struct material tmp;
     return scene_material_at(s, tri, b1, b2, &tmp)->emission;

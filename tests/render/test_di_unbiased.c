@@ -97,6 +97,10 @@ int main(int argc, char **argv)
          * a triangle whose normals lean 45 degrees apart), evaluated at every shading point. */
         snprintf(textured, sizeof textured, "%s/scenes/smooth.json", data);
         check_scene(textured, 24, 16, pairwise, 1, 1);
+        /* Alpha-masked leaf cards and an alpha-masked lamp (leaves.json): every candidate, shadow
+         * and BSDF ray passes through the cut-outs, and the cut part of the lamp emits nothing. */
+        snprintf(textured, sizeof textured, "%s/scenes/leaves.json", data);
+        check_scene(textured, 24, 16, pairwise, 1, 1);
     }
     /* ris-di has no reuse: none is exact there (and skips the shading ray). */
     const char *ris_none[] = {"di.visibility_mis=none"};

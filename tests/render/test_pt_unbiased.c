@@ -55,6 +55,9 @@ int main(int argc, char **argv)
         check(real, RUNS, sets, 2, 1);
         const char *rc_sets[] = {"shift=reconnection", "mis=pairwise"};
         check(real, RUNS, rc_sets, 2, 1);
+        /* alpha cutouts (leaves.json): alpha-masked leaf cards and lamp */
+        snprintf(real, sizeof real, "%s/scenes/leaves.json", data);
+        check(real, RUNS, sets, 2, 1);
     }
     /* The test has power: the BIASED 1/M weights are caught on the same setup. */
     const char *uniform[] = {"shift=hybrid", "mis=1/M"};

@@ -437,7 +437,12 @@ static void base64(const unsigned char *in, size_t n, char *out)
 /* A floor quad (two triangles, material "Floor") and a downward-facing lamp triangle (material
  * "Lamp": emissive factor (1, 0.5, 0.25) times KHR_materials_emissive_strength 4), optionally with
  * a perspective camera at (0, 1, 5) looking down -z (yfov 0.7, aspect 1.5). */
-static void write_lamp_gltf(const char *path, int with_camera)
+static void write_lamp_gltf_floor(const char *path, int with_camera, const char *floor_alpha);
+
+static void write_lamp_gltf(const char *path, int with_camera) { write_lamp_gltf_floor(path, with_camera, ""); }
+
+/* floor_alpha: "" or glTF keys added to the Floor material, e.g. "\"alphaMode\":\"MASK\"," */
+static void write_lamp_gltf_floor(const char *path, int with_camera, const char *floor_alpha)
 {
     static const float pos[9][3] = {
         {-1, 0, -1},       {-1, 0, 1},       {1, 0, 1},    {-1, 0, -1}, {1, 0, 1}, {1, 0, -1}, /* floor, facing +y */
@@ -455,7 +460,7 @@ static void write_lamp_gltf(const char *path, int with_camera)
              "%s"
              "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"material\":0},"
              "{\"attributes\":{\"POSITION\":1},\"material\":1}]}],"
-             "\"materials\":[{\"name\":\"Floor\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.2,0.4,0.6,1],"
+             "\"materials\":[{\"name\":\"Floor\",%s\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.2,0.4,0.6,0.75],"
              "\"metallicFactor\":0.25,\"roughnessFactor\":0.5}},"
              "{\"name\":\"Lamp\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1]},"
              "\"emissiveFactor\":[1,0.5,0.25],"
@@ -471,7 +476,7 @@ static void write_lamp_gltf(const char *path, int with_camera)
              with_camera ? "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.7,"
                            "\"aspectRatio\":1.5,\"znear\":0.01,\"zfar\":100}}],"
                          : "",
-             sizeof pos, b64);
+             floor_alpha, sizeof pos, b64);
     write_file(path, json);
 }
 
@@ -539,6 +544,36 @@ static void test_whole_scene(const char *dir)
         }
     }
     scene_destroy(&s);
+
+    /* glTF alpha (issue 23): OPAQUE ignores baseColorFactor's alpha; MASK keeps its cutoff and that
+     * alpha; BLEND is read as MASK at 0.5; a cutoff outside [0, 1] is refused by name. */
+    const struct {
+        const char *keys;
+        int mask;
+        float cutoff, alpha;
+    } alpha_cases[] = {{"", 0, 0.5f, 1.0f},
+                       {"\"alphaMode\":\"MASK\",\"alphaCutoff\":0.3,", 1, 0.3f, 0.75f},
+                       {"\"alphaMode\":\"BLEND\",", 1, 0.5f, 0.75f}};
+    for (int k = 0; k < 3; k++) {
+        snprintf(path, sizeof path, "%s/alpha%d.gltf", dir, k);
+        write_lamp_gltf_floor(path, 0, alpha_cases[k].keys);
+        rc = scene_import_file(path, &s, msg);
+        EXPECT(rc == 0, "%s: %s", path, msg);
+        if (rc != 0)
+            continue;
+        const struct material *floor = &s.materials[s.tri_material[0]];
+        EXPECT(floor->alpha_mask == alpha_cases[k].mask &&
+                   (!floor->alpha_mask ||
+                    (floor->alpha_cutoff == alpha_cases[k].cutoff && floor->base_alpha == alpha_cases[k].alpha)),
+               "alpha case %d: mask %d cutoff %g alpha %g", k, floor->alpha_mask, (double)floor->alpha_cutoff,
+               (double)floor->base_alpha);
+        scene_destroy(&s);
+    }
+    snprintf(path, sizeof path, "%s/alpha-bad.gltf", dir);
+    write_lamp_gltf_floor(path, 0, "\"alphaMode\":\"MASK\",\"alphaCutoff\":2,");
+    rc = scene_import_file(path, &s, msg);
+    EXPECT(rc != 0 && strstr(msg, path) && strstr(msg, "alphaCutoff") && strstr(msg, "Floor"),
+           "alphaCutoff 2 must be refused naming the file, material and key: %s", msg);
 
     /* Without a camera: one fitted to the bounds, looking at the centre from +z, above. */
     snprintf(path, sizeof path, "%s/lamp-nocam.gltf", dir);

@@ -232,7 +232,7 @@ static int mapped_quad(struct scene *s, vec3 local, float scale, const float *ta
     struct scene_builder b;
     char msg[RESTIR_MSG_LEN];
     scene_builder_begin(&b, s, "mapped");
-    struct texture t = {1, 1, NULL};
+    struct texture t = {1, 1, NULL, NULL};
     t.rgb = xmalloc(3 * sizeof(float));
     t.rgb[0] = 0.5f * local.x + 0.5f;
     t.rgb[1] = 0.5f * local.y + 0.5f;
