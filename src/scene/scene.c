@@ -76,17 +76,20 @@ static int max_triangles = 1 << 26;
 
 void scene_set_max_triangles(int n) { max_triangles = n > 0 ? n : 1; }
 
-void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6])
+void scene_set_uv_set(struct scene_builder *b, int tri, int set, const float uv[6])
 {
     struct scene *s = b->s;
     if (b->over_budget) /* the triangle was refused; scene_builder_end will fail */
         return;
-    RESTIR_CHECK(tri >= 0 && tri < s->num_tris);
-    if (!s->uv) /* first UVs: every other vertex gets (0, 0) */
-        s->uv = xcalloc(2 * (size_t)b->cap_verts, sizeof(float));
+    RESTIR_CHECK(tri >= 0 && tri < s->num_tris && (set == 0 || set == 1));
+    float **dst = set ? &s->uv1 : &s->uv;
+    if (!*dst) /* first UVs: every other vertex gets (0, 0) */
+        *dst = xcalloc(2 * (size_t)b->cap_verts, sizeof(float));
     for (int k = 0; k < 3; k++)
-        memcpy(s->uv + 2 * (size_t)s->indices[3 * tri + k], uv + 2 * k, 2 * sizeof(float));
+        memcpy(*dst + 2 * (size_t)s->indices[3 * tri + k], uv + 2 * k, 2 * sizeof(float));
 }
+
+void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6]) { scene_set_uv_set(b, tri, 0, uv); }
 
 void scene_set_normals(struct scene_builder *b, int tri, const vec3 n[3])
 {
@@ -153,10 +156,12 @@ void scene_add_triangle(struct scene_builder *b, vec3 a, vec3 c, vec3 d, int mat
         int old_cap = b->cap_verts;
         b->cap_verts = b->cap_verts ? 2 * b->cap_verts : 768;
         s->verts = grow_to(s->verts, b->cap_verts, sizeof(*s->verts));
-        if (s->uv) {
-            s->uv = grow_to(s->uv, 2 * b->cap_verts, sizeof(float));
-            memset(s->uv + 2 * (size_t)old_cap, 0, 2 * sizeof(float) * (size_t)(b->cap_verts - old_cap));
-        }
+        float **sets[2] = {&s->uv, &s->uv1};
+        for (int k = 0; k < 2; k++)
+            if (*sets[k]) {
+                *sets[k] = grow_to(*sets[k], 2 * b->cap_verts, sizeof(float));
+                memset(*sets[k] + 2 * (size_t)old_cap, 0, 2 * sizeof(float) * (size_t)(b->cap_verts - old_cap));
+            }
         if (s->normals) {
             s->normals = grow_to(s->normals, b->cap_verts, sizeof(vec3));
             memset(s->normals + old_cap, 0, sizeof(vec3) * (size_t)(b->cap_verts - old_cap));
@@ -344,6 +349,7 @@ void scene_destroy(struct scene *s)
     free(s->materials);
     free(s->camera_path.keys);
     free(s->uv);
+    free(s->uv1);
     free(s->normals);
     free(s->tangents);
     for (int t = 0; t < s->num_textures; t++) {

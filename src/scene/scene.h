@@ -45,8 +45,9 @@ int scene_texture_find(const struct scene *s, const char *key, int srgb);
 /* The most triangles a scene may have (default 1 << 26, about 16 GB with its BVH): a builder past
  * it stops adding and scene_builder_end fails saying so. Fuzzing lowers it. */
 void scene_set_max_triangles(int n);
-/* The UVs (u0 v0 u1 v1 u2 v2) of triangle tri, already added. */
+/* The UVs (u0 v0 u1 v1 u2 v2) of triangle tri, already added: set 0 (scene_set_uvs) or 1. */
 void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6]);
+void scene_set_uv_set(struct scene_builder *b, int tri, int set, const float uv[6]);
 /* The shading normals of triangle tri's corners, already added (scene_shading_normal). Normalized
  * here; a zero, non-finite or NaN normal is stored as zero and shades that corner flat. */
 void scene_set_normals(struct scene_builder *b, int tri, const vec3 n[3]);

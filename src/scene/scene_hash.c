@@ -9,7 +9,7 @@
 
 /* Hashing the structs' bytes is only stable when they hold no padding: all 4-byte fields. */
 static_assert(sizeof(vec3) == 3 * sizeof(float), "vec3 must be three packed floats");
-static_assert(sizeof(struct material) == 17 * 4, "struct material must be 4-byte fields without padding");
+static_assert(sizeof(struct material) == 57 * 4, "struct material must be 4-byte fields without padding");
 
 
 uint64_t scene_content_hash(const struct scene *s)
@@ -23,6 +23,8 @@ uint64_t scene_content_hash(const struct scene *s)
     h = fnv1a64(h, s->tri_object, sizeof(int) * (size_t)s->num_tris);
     if (s->uv)
         h = fnv1a64(h, s->uv, 2 * sizeof(float) * (size_t)s->num_verts);
+    if (s->uv1)
+        h = fnv1a64(h, s->uv1, 2 * sizeof(float) * (size_t)s->num_verts);
     if (s->normals)
         h = fnv1a64(h, s->normals, sizeof(vec3) * (size_t)s->num_verts);
     if (s->tangents)

@@ -79,6 +79,16 @@ static void material_name(const struct aiMaterial *m, char *out, size_t cap)
 
 static float clamp01(float x) { return x < 0.0f ? 0.0f : x > 1.0f ? 1.0f : x; }
 
+/* The glTF file's own JSON, parsed on first need (NULL for other formats or when unreadable). */
+static const cJSON *gltf_json(struct importer *im)
+{
+    if (!im->gltf_tried && is_gltf_path(im->path)) {
+        im->gltf_tried = 1;
+        im->gltf = import_gltf_read(im->path);
+    }
+    return im->gltf;
+}
+
 /* Emission multiplier of file material idx: assimp's intensity (glTF emissive strength from 5.3
  * on), else the strength read from the glTF JSON (assimp 5.2), else 1. */
 static float emissive_strength(struct importer *im, const struct aiMaterial *m, const char *name)
@@ -87,11 +97,7 @@ static float emissive_strength(struct importer *im, const struct aiMaterial *m, 
     float k = mat_float(m, AI_MATKEY_EMISSIVE_INTENSITY, 1.0f, &present);
     if (present || !is_gltf_path(im->path) || !*name)
         return k;
-    if (!im->gltf_tried) {
-        im->gltf_tried = 1;
-        im->gltf = import_gltf_read(im->path);
-    }
-    return mat4d_to_float(import_gltf_strength(im->gltf, name));
+    return mat4d_to_float(import_gltf_strength(gltf_json(im), name));
 }
 
 /* glTF alphaMode, alphaCutoff and baseColorFactor's alpha (BLEND is read as MASK at the cutoff,
@@ -189,6 +195,12 @@ static int make_material(struct importer *im, unsigned idx, struct material *out
     }
     if (import_alpha(im, m, name, out) != 0)
         return -1;
+    /* texCoord, sampler wrap modes and KHR_texture_transform, by material name from the JSON */
+    char inner[RESTIR_MSG_LEN];
+    if (*name && gltf_json(im) && import_gltf_lookups(im->gltf, name, out, inner) != 0) {
+        snprintf(im->msg, RESTIR_MSG_LEN, "%.200s: %.300s", im->path, inner);
+        return -1;
+    }
     /* glTF normalTexture (linear) and its scale (assimp files it as the texture's scale key) */
     out->normal_map = import_texture_map(im->b, im->ai, m, im->path, normal_types, 1, 0, im->msg);
     if (out->normal_map < 0)
@@ -346,6 +358,15 @@ static int add_mesh(struct importer *im, unsigned mesh_index, const mat4d *t, in
                 uv[2 * k + 1] = isfinite(c->y) ? (float)c->y : 0.0f;
             }
             scene_set_uvs(im->b, im->b->s->num_tris - 1, uv);
+        }
+        if (mesh->mTextureCoords[1]) { /* glTF TEXCOORD_1, for maps whose texCoord is 1 */
+            float uv[6];
+            for (int k = 0; k < 3; k++) {
+                const struct aiVector3D *c = &mesh->mTextureCoords[1][face->mIndices[flip && k ? 3 - k : k]];
+                uv[2 * k] = isfinite(c->x) ? (float)c->x : 0.0f;
+                uv[2 * k + 1] = isfinite(c->y) ? (float)c->y : 0.0f;
+            }
+            scene_set_uv_set(im->b, im->b->s->num_tris - 1, 1, uv);
         }
         if (mesh->mNormals) {
             vec3 n[3];

@@ -1,11 +1,14 @@
-/* scene_import_gltf.c: KHR_materials_emissive_strength read from a glTF file's own JSON, for
- * assimp versions that drop it. Must never depend on assimp: it reads the file beside it. */
+/* scene_import_gltf.c: a glTF material's emissive strength and texture lookups read from the file's
+ * own JSON (scene_import_gltf.h). Must never depend on assimp: it reads the file beside it. */
 #include "scene/scene_import_gltf.h"
 
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "core/check.h"
 
 /* assimp 5.2 reads glTF's emissiveFactor (at most 1) but drops KHR_materials_emissive_strength;
  * 5.3 reports it as AI_MATKEY_EMISSIVE_INTENSITY. Without the strength every glTF emitter would be
@@ -58,7 +61,8 @@ done:
     return text;
 }
 
-static double strength_by_name(const cJSON *materials, const char *name)
+/* The material named name, when exactly one has that name (else NULL). */
+static const cJSON *material_by_name(const cJSON *materials, const char *name)
 {
     const cJSON *found = NULL;
     int count = 0;
@@ -71,7 +75,13 @@ static double strength_by_name(const cJSON *materials, const char *name)
             count++;
         }
     }
-    if (count != 1)
+    return count == 1 ? found : NULL;
+}
+
+static double strength_by_name(const cJSON *materials, const char *name)
+{
+    const cJSON *found = material_by_name(materials, name);
+    if (!found)
         return 1.0;
     const cJSON *ext = cJSON_GetObjectItemCaseSensitive(found, "extensions");
     const cJSON *es = cJSON_GetObjectItemCaseSensitive(ext, "KHR_materials_emissive_strength");
@@ -92,4 +102,87 @@ double import_gltf_strength(const cJSON *gltf, const char *name)
 {
     const cJSON *materials = cJSON_GetObjectItemCaseSensitive(gltf, "materials");
     return cJSON_IsArray(materials) ? strength_by_name(materials, name) : 1.0;
+}
+
+/* A glTF sampler wrap mode as enum texture_wrap (REPEAT 10497 and anything unknown: repeat). */
+static int wrap_of(const cJSON *v)
+{
+    if (!cJSON_IsNumber(v))
+        return WRAP_REPEAT;
+    return v->valueint == 33071 ? WRAP_CLAMP : v->valueint == 33648 ? WRAP_MIRROR : WRAP_REPEAT;
+}
+
+/* Number `key` of obj, or def; -1 when present but not a finite number. */
+static int number_or(const cJSON *obj, const char *key, int index, double def, double *out)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (index >= 0)
+        v = cJSON_IsArray(v) ? cJSON_GetArrayItem(v, index) : NULL;
+    *out = def;
+    if (!v)
+        return 0;
+    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) || fabs(v->valuedouble) > 1e6)
+        return -1;
+    *out = v->valuedouble;
+    return 0;
+}
+
+/* One textureInfo: its texCoord, its texture's sampler, its KHR_texture_transform. */
+static int read_lookup(const cJSON *gltf, const cJSON *info, const char *mname, const char *which,
+                       struct texture_lookup *l, char *msg)
+{
+    if (!cJSON_IsObject(info))
+        return 0;
+    double tc = 0.0, ox, oy, rot, sx, sy;
+    const cJSON *ext = cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(info, "extensions"),
+                                                        "KHR_texture_transform");
+    if (number_or(info, "texCoord", -1, 0.0, &tc) != 0 || number_or(ext, "texCoord", -1, tc, &tc) != 0 ||
+        number_or(ext, "offset", 0, 0.0, &ox) != 0 || number_or(ext, "offset", 1, 0.0, &oy) != 0 ||
+        number_or(ext, "rotation", -1, 0.0, &rot) != 0 || number_or(ext, "scale", 0, 1.0, &sx) != 0 ||
+        number_or(ext, "scale", 1, 1.0, &sy) != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "material '%.200s': %s: texCoord or KHR_texture_transform is not a finite number",
+                 mname, which);
+        return -1;
+    }
+    if (tc != 0.0 && tc != 1.0) {
+        snprintf(msg, RESTIR_MSG_LEN, "material '%.200s': %s: texCoord %g (sets 0 and 1 are read)", mname, which, tc);
+        return -1;
+    }
+    l->uv_set = (int)tc;
+    if (ext) { /* glTF: uv' = T R S uv with v down; assimp's v_a = 1 - v (see the header) */
+        const double a = cos(rot) * sx, b = sin(rot) * sy, c = -sin(rot) * sx, d = cos(rot) * sy;
+        const double m[6] = {a, -b, b + ox, -c, d, 1.0 - d - oy};
+        l->has_xform = 1;
+        for (int i = 0; i < 6; i++)
+            l->xform[i] = (float)m[i];
+    }
+    const cJSON *index = cJSON_GetObjectItemCaseSensitive(info, "index");
+    const cJSON *tex = cJSON_IsNumber(index) ? cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(gltf, "textures"),
+                                                                  index->valueint)
+                                             : NULL;
+    const cJSON *sampler = cJSON_GetObjectItemCaseSensitive(tex, "sampler");
+    const cJSON *smp = cJSON_IsNumber(sampler)
+                           ? cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(gltf, "samplers"), sampler->valueint)
+                           : NULL;
+    l->wrap_u = wrap_of(cJSON_GetObjectItemCaseSensitive(smp, "wrapS"));
+    l->wrap_v = wrap_of(cJSON_GetObjectItemCaseSensitive(smp, "wrapT"));
+    return 0;
+}
+
+int import_gltf_lookups(const cJSON *gltf, const char *name, struct material *m, char *msg)
+{
+    const cJSON *mat = material_by_name(cJSON_GetObjectItemCaseSensitive(gltf, "materials"), name);
+    if (!mat)
+        return 0;
+    const cJSON *pbr = cJSON_GetObjectItemCaseSensitive(mat, "pbrMetallicRoughness");
+    return read_lookup(gltf, cJSON_GetObjectItemCaseSensitive(pbr, "baseColorTexture"), name, "baseColorTexture",
+                       &m->base_color_lookup, msg) != 0 ||
+                   read_lookup(gltf, cJSON_GetObjectItemCaseSensitive(pbr, "metallicRoughnessTexture"), name,
+                               "metallicRoughnessTexture", &m->metal_rough_lookup, msg) != 0 ||
+                   read_lookup(gltf, cJSON_GetObjectItemCaseSensitive(mat, "emissiveTexture"), name, "emissiveTexture",
+                               &m->emission_lookup, msg) != 0 ||
+                   read_lookup(gltf, cJSON_GetObjectItemCaseSensitive(mat, "normalTexture"), name, "normalTexture",
+                               &m->normal_lookup, msg) != 0
+               ? -1
+               : 0;
 }

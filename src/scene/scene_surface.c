@@ -6,16 +6,42 @@
 
 #include "scene/texture.h"
 
-void scene_uv_at(const struct scene *s, int tri, float b1, float b2, float *u, float *v)
+/* Set `set` of the UVs at the point ((0, 0) when the scene has none). */
+static void uv_set_at(const struct scene *s, int set, int tri, float b1, float b2, float *u, float *v)
 {
     *u = *v = 0.0f;
-    if (!s->uv)
+    const float *uv = set ? s->uv1 : s->uv;
+    if (!uv)
         return;
-    const float *uv = s->uv;
     const uint32_t *ix = &s->indices[3 * tri];
     const float b0 = 1.0f - b1 - b2;
     *u = b0 * uv[2 * ix[0]] + b1 * uv[2 * ix[1]] + b2 * uv[2 * ix[2]];
     *v = b0 * uv[2 * ix[0] + 1] + b1 * uv[2 * ix[1] + 1] + b2 * uv[2 * ix[2] + 1];
+}
+
+void scene_uv_at(const struct scene *s, int tri, float b1, float b2, float *u, float *v)
+{
+    uv_set_at(s, 0, tri, b1, b2, u, v);
+}
+
+/* The coordinates map `l` reads at the point: its UV set, through its transform. */
+static void lookup_uv(const struct scene *s, const struct texture_lookup *l, int tri, float b1, float b2, float *u,
+                      float *v)
+{
+    uv_set_at(s, l->uv_set, tri, b1, b2, u, v);
+    if (l->has_xform) {
+        const float *m = l->xform, x = *u, y = *v;
+        *u = m[0] * x + m[1] * y + m[2];
+        *v = m[3] * x + m[4] * y + m[5];
+    }
+}
+
+/* Texture `map` (>= 1) read through lookup l at the point. */
+static vec3 map_sample(const struct scene *s, int map, const struct texture_lookup *l, int tri, float b1, float b2)
+{
+    float u, v;
+    lookup_uv(s, l, tri, b1, b2, &u, &v);
+    return texture_sample_wrap(&s->textures[map - 1], u, v, l->wrap_u, l->wrap_v);
 }
 
 int scene_alpha_cut(const struct scene *s, int tri, float b1, float b2)
@@ -25,9 +51,10 @@ int scene_alpha_cut(const struct scene *s, int tri, float b1, float b2)
         return 0;
     float a = m->base_alpha;
     if (m->base_color_map) {
+        const struct texture_lookup *l = &m->base_color_lookup;
         float u, v;
-        scene_uv_at(s, tri, b1, b2, &u, &v);
-        a *= texture_sample_alpha(&s->textures[m->base_color_map - 1], u, v);
+        lookup_uv(s, l, tri, b1, b2, &u, &v);
+        a *= texture_sample_alpha_wrap(&s->textures[m->base_color_map - 1], u, v, l->wrap_u, l->wrap_v);
     }
     return a < m->alpha_cutoff;
 }
@@ -37,18 +64,16 @@ const struct material *scene_material_at(const struct scene *s, int tri, float b
     const struct material *m = &s->materials[s->tri_material[tri]];
     if (!(m->base_color_map | m->metal_rough_map | m->emission_map | m->alpha_mask))
         return m;
-    float u, v;
-    scene_uv_at(s, tri, b1, b2, &u, &v);
     *tmp = *m;
     if (m->base_color_map)
-        tmp->base_color = v3_mul(m->base_color, texture_sample(&s->textures[m->base_color_map - 1], u, v));
+        tmp->base_color = v3_mul(m->base_color, map_sample(s, m->base_color_map, &m->base_color_lookup, tri, b1, b2));
     if (m->metal_rough_map) {
-        vec3 t = texture_sample(&s->textures[m->metal_rough_map - 1], u, v);
+        vec3 t = map_sample(s, m->metal_rough_map, &m->metal_rough_lookup, tri, b1, b2);
         tmp->roughness = m->roughness * t.y;
         tmp->metallic = m->metallic * t.z;
     }
     if (m->emission_map)
-        tmp->emission = v3_mul(m->emission, texture_sample(&s->textures[m->emission_map - 1], u, v));
+        tmp->emission = v3_mul(m->emission, map_sample(s, m->emission_map, &m->emission_lookup, tri, b1, b2));
     if (scene_alpha_cut(s, tri, b1, b2))
         tmp->emission = v3s(0.0f);
     return tmp;
@@ -68,8 +93,8 @@ static vec3 vertex_normal(const struct scene *s, const uint32_t *ix, float b1, f
 /* The tangent (xyz, handedness in *w) at the point: the file's, interpolated, or else the
  * triangle's dp/du from its UVs with w making (t, w n x t) follow increasing u and v. Returns 0
  * when there is none (no UVs, degenerate UVs). */
-static int tangent_at(const struct scene *s, int tri, const uint32_t *ix, float b1, float b2, vec3 n, vec3 *t,
-                      float *w)
+static int tangent_at(const struct scene *s, const struct texture_lookup *l, int tri, const uint32_t *ix, float b1,
+                      float b2, vec3 n, vec3 *t, float *w)
 {
     if (s->tangents) {
         const float *t0 = &s->tangents[4 * ix[0]], *t1 = &s->tangents[4 * ix[1]], *t2 = &s->tangents[4 * ix[2]];
@@ -80,18 +105,20 @@ static int tangent_at(const struct scene *s, int tri, const uint32_t *ix, float 
         if (v3_length2(*t) > 1e-12f)
             return 1;
     }
-    if (!s->uv)
+    if (!(l->uv_set ? s->uv1 : s->uv))
         return 0;
     const vec3 e1 = v3_sub(s->verts[ix[1]], s->verts[ix[0]]), e2 = v3_sub(s->verts[ix[2]], s->verts[ix[0]]);
-    const float *uv = s->uv;
-    const float du1 = uv[2 * ix[1]] - uv[2 * ix[0]], dv1 = uv[2 * ix[1] + 1] - uv[2 * ix[0] + 1];
-    const float du2 = uv[2 * ix[2]] - uv[2 * ix[0]], dv2 = uv[2 * ix[2] + 1] - uv[2 * ix[0] + 1];
+    /* the map's own coordinates at the corners (its UV set through its transform) */
+    float cu[3], cv[3];
+    lookup_uv(s, l, tri, 0.0f, 0.0f, &cu[0], &cv[0]);
+    lookup_uv(s, l, tri, 1.0f, 0.0f, &cu[1], &cv[1]);
+    lookup_uv(s, l, tri, 0.0f, 1.0f, &cu[2], &cv[2]);
+    const float du1 = cu[1] - cu[0], dv1 = cv[1] - cv[0], du2 = cu[2] - cu[0], dv2 = cv[2] - cv[0];
     const float det = du1 * dv2 - du2 * dv1;
     if (!(fabsf(det) > 1e-12f) || !isfinite(det))
         return 0;
     const vec3 dpdu = v3_scale(v3_sub(v3_scale(e1, dv2), v3_scale(e2, dv1)), 1.0f / det);
     const vec3 dpdv = v3_scale(v3_sub(v3_scale(e2, du1), v3_scale(e1, du2)), 1.0f / det);
-    (void)tri;
     *t = dpdu;
     *w = v3_dot(v3_cross(n, dpdu), dpdv) < 0.0f ? -1.0f : 1.0f;
     return v3_length2(dpdu) > 1e-20f;
@@ -103,7 +130,7 @@ static vec3 apply_normal_map(const struct scene *s, const struct material *m, in
 {
     vec3 t;
     float w;
-    if (!tangent_at(s, tri, ix, b1, b2, n, &t, &w))
+    if (!tangent_at(s, &m->normal_lookup, tri, ix, b1, b2, n, &t, &w))
         return n;
     t = v3_sub(t, v3_scale(n, v3_dot(n, t))); /* Gram-Schmidt against the shading normal */
     float len2 = v3_length2(t);
@@ -111,9 +138,7 @@ static vec3 apply_normal_map(const struct scene *s, const struct material *m, in
         return n;
     t = v3_scale(t, 1.0f / sqrtf(len2));
     const vec3 b = v3_scale(v3_cross(n, t), w);
-    float u, v;
-    scene_uv_at(s, tri, b1, b2, &u, &v);
-    const vec3 c = texture_sample(&s->textures[m->normal_map - 1], u, v);
+    const vec3 c = map_sample(s, m->normal_map, &m->normal_lookup, tri, b1, b2);
     const vec3 local = v3((2.0f * c.x - 1.0f) * m->normal_scale, (2.0f * c.y - 1.0f) * m->normal_scale, 2.0f * c.z - 1.0f);
     vec3 mapped = v3_add(v3_add(v3_scale(t, local.x), v3_scale(b, local.y)), v3_scale(n, local.z));
     len2 = v3_length2(mapped);

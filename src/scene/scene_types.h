@@ -9,6 +9,18 @@
 #include "core/vec3.h"
 #include "scene/texture.h"
 
+/* How a material reads one of its texture maps (glTF textureInfo, its sampler and
+ * KHR_texture_transform): which UV set, an affine map of it (u' = m0 u + m1 v + m2, v' = m3 u +
+ * m4 v + m5, in assimp's UV space where v runs up) and the wrap mode per axis. All zero is UV set
+ * 0, no transform, repeat: what a map without these reads. */
+enum texture_wrap { WRAP_REPEAT = 0, WRAP_CLAMP = 1, WRAP_MIRROR = 2 };
+struct texture_lookup {
+    int uv_set;       /* 0 or 1 */
+    int has_xform;    /* 0: identity */
+    float xform[6];
+    int wrap_u, wrap_v; /* enum texture_wrap */
+};
+
 /* glTF-style metallic/roughness material; emission is one-sided (front = geometric normal). */
 struct material {
     vec3 base_color;
@@ -26,6 +38,8 @@ struct material {
      * map's alpha is below alpha_cutoff the surface does not exist for any ray (scene_alpha_cut) */
     int alpha_mask;
     float alpha_cutoff, base_alpha;
+    /* how each map is read (the alpha channel through base_color_lookup) */
+    struct texture_lookup base_color_lookup, metal_rough_lookup, emission_lookup, normal_lookup;
 };
 
 struct camera {
@@ -81,6 +95,7 @@ struct scene {
     struct material *materials;
     int num_objects;
     float *uv;             /* 2 per vertex (assimp's convention, (0, 0) bottom-left), or NULL */
+    float *uv1;            /* the second UV set (glTF TEXCOORD_1), 2 per vertex, or NULL */
     vec3 *normals;         /* per vertex: the file's shading normal (unit; zero where it had none
                               usable), or NULL: flat shading (scene_shading_normal) */
     float *tangents;       /* 4 per vertex: the file's tangent xyz and handedness w (glTF TANGENT),

@@ -153,19 +153,34 @@ struct bilinear {
     float ax, ay;
 };
 
-static struct bilinear bilinear_at(const struct texture *t, float u, float v)
+/* Texel index i of n under a wrap mode: repeat (the unit-square fraction was taken before),
+ * clamp to the edge, or mirrored repeat (period 2n: 0 .. n-1, n-1 .. 0). */
+static int wrap_mode(int i, int n, int mode)
+{
+    if (mode == 1)
+        return i < 0 ? 0 : i >= n ? n - 1 : i;
+    if (mode == 2) {
+        int r = wrap(i, 2 * n);
+        return r < n ? r : 2 * n - 1 - r;
+    }
+    return wrap(i, n);
+}
+
+static struct bilinear bilinear_wrap(const struct texture *t, float u, float v, int wu, int wv)
 {
     struct bilinear b = {0, 0, 0, 0, 0.0f, 0.0f};
-    if (!isfinite(u) || !isfinite(v))
+    /* clamp and mirror index with u as is: keep it where int conversion is defined */
+    if (!isfinite(u) || !isfinite(v) || (wu && fabsf(u) > 1e6f) || (wv && fabsf(v) > 1e6f))
         return b;
-    /* texel centres at (i + 0.5) / width; v = 0 is the bottom row, i.e. image row height - 1 */
-    float fx = (u - floorf(u)) * (float)t->width - 0.5f;
-    float fy = (1.0f - (v - floorf(v))) * (float)t->height - 0.5f;
+    /* texel centres at (i + 0.5) / width; v = 0 is the bottom row, i.e. image row height - 1.
+     * Repeat takes the fraction first, exactly as before wrap modes existed. */
+    float fx = (wu ? u : u - floorf(u)) * (float)t->width - 0.5f;
+    float fy = (1.0f - (wv ? v : v - floorf(v))) * (float)t->height - 0.5f;
     float x0f = floorf(fx), y0f = floorf(fy);
     b.ax = fx - x0f;
     b.ay = fy - y0f;
-    int x0 = wrap((int)x0f, t->width), y0 = wrap((int)y0f, t->height);
-    int x1 = wrap(x0 + 1, t->width), y1 = wrap(y0 + 1, t->height);
+    int x0 = wrap_mode((int)x0f, t->width, wu), y0 = wrap_mode((int)y0f, t->height, wv);
+    int x1 = wrap_mode((int)x0f + 1, t->width, wu), y1 = wrap_mode((int)y0f + 1, t->height, wv);
     const size_t w = (size_t)t->width;
     b.i00 = (size_t)y0 * w + (size_t)x0;
     b.i10 = (size_t)y0 * w + (size_t)x1;
@@ -174,9 +189,11 @@ static struct bilinear bilinear_at(const struct texture *t, float u, float v)
     return b;
 }
 
-vec3 texture_sample(const struct texture *t, float u, float v)
+vec3 texture_sample(const struct texture *t, float u, float v) { return texture_sample_wrap(t, u, v, 0, 0); }
+
+vec3 texture_sample_wrap(const struct texture *t, float u, float v, int wrap_u, int wrap_v)
 {
-    const struct bilinear b = bilinear_at(t, u, v);
+    const struct bilinear b = bilinear_wrap(t, u, v, wrap_u, wrap_v);
     vec3 top = v3_lerp(texel(t, b.i00), texel(t, b.i10), b.ax);
     vec3 bottom = v3_lerp(texel(t, b.i01), texel(t, b.i11), b.ax);
     return v3_lerp(top, bottom, b.ay);
@@ -184,9 +201,14 @@ vec3 texture_sample(const struct texture *t, float u, float v)
 
 float texture_sample_alpha(const struct texture *t, float u, float v)
 {
+    return texture_sample_alpha_wrap(t, u, v, 0, 0);
+}
+
+float texture_sample_alpha_wrap(const struct texture *t, float u, float v, int wrap_u, int wrap_v)
+{
     if (!t->alpha)
         return 1.0f;
-    const struct bilinear b = bilinear_at(t, u, v);
+    const struct bilinear b = bilinear_wrap(t, u, v, wrap_u, wrap_v);
     const float *a = t->alpha;
     float top = a[b.i00] + (a[b.i10] - a[b.i00]) * b.ax, bottom = a[b.i01] + (a[b.i11] - a[b.i01]) * b.ax;
     return top + (bottom - top) * b.ay;

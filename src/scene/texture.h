@@ -28,5 +28,9 @@ void texture_fini(struct texture *t);
 vec3 texture_sample(const struct texture *t, float u, float v);
 /* The alpha channel at (u, v), bilinear as texture_sample; 1 without one. */
 float texture_sample_alpha(const struct texture *t, float u, float v);
+/* The same with a wrap mode per axis (enum texture_wrap of scene_types.h: 0 repeat, 1 clamp to
+ * the edge texels, 2 mirrored repeat), as glTF samplers define them. */
+vec3 texture_sample_wrap(const struct texture *t, float u, float v, int wrap_u, int wrap_v);
+float texture_sample_alpha_wrap(const struct texture *t, float u, float v, int wrap_u, int wrap_v);
 
 #endif

@@ -480,6 +480,53 @@ static void write_lamp_gltf_floor(const char *path, int with_camera, const char 
     write_file(path, json);
 }
 
+/* KHR_texture_transform, texCoord and sampler wraps (issue 23) on the glTF sample that tests them:
+ * the lookups of "Offset U" and "Rotation" against glTF's formula by hand, CLAMP_TO_EDGE read. */
+static void test_texture_transform(void)
+{
+    const char *path = MODELS "/glTF2/textureTransform/TextureTransformTest.gltf";
+    if (!file_exists(path)) {
+        EXPECT(0, "%s is missing (make test installs assimp-testmodels)", path);
+        return;
+    }
+    struct scene s;
+    struct scene_builder b;
+    char msg[RESTIR_MSG_LEN];
+    scene_builder_begin(&b, &s, "tt");
+    int n = scene_import_mesh(&b, path, NULL, -1, NULL, 0, -1, msg);
+    EXPECT(n > 0, "%s: %s", path, msg);
+    int offset_u = -1, rotation = -1;
+    for (int t = 0; t < s.num_tris; t++) {
+        const struct material *m = &s.materials[s.tri_material[t]];
+        const float *x = m->base_color_lookup.xform;
+        if (!m->base_color_lookup.has_xform)
+            continue;
+        if (x[0] == 1.0f && x[2] == 0.5f && x[5] == 0.0f) /* offset [0.5, 0] and nothing else */
+            offset_u = s.tri_material[t];
+        if (fabsf(x[0] - 0.92387953f) < 1e-6f && fabsf(x[2] - 0.38268343f) < 1e-6f) /* rotation pi/8 alone */
+            rotation = s.tri_material[t];
+    }
+    EXPECT(offset_u >= 0 && rotation >= 0, "materials with offset %d / rotation %d", offset_u, rotation);
+    if (offset_u >= 0) { /* offset [0.5, 0]: u + 0.5, v unchanged (both UV spaces) */
+        const struct texture_lookup *l = &s.materials[offset_u].base_color_lookup;
+        const float want[6] = {1, 0, 0.5f, 0, 1, 0};
+        for (int i = 0; i < 6; i++)
+            EXPECT(fabsf(l->xform[i] - want[i]) < 1e-6f, "Offset U xform[%d] = %g, want %g", i, l->xform[i], want[i]);
+        EXPECT(l->wrap_u == WRAP_CLAMP && l->wrap_v == WRAP_CLAMP && l->uv_set == 0, "sampler 0 clamps (33071)");
+    }
+    if (rotation >= 0) { /* glTF: u' = cos r u + sin r v, v' = -sin r u + cos r v with v down, r = 0.39 */
+        const struct texture_lookup *l = &s.materials[rotation].base_color_lookup;
+        const double r = 0.39269908169872414, u = 0.3, vg = 0.2; /* vg: glTF's v; assimp's is 1 - vg */
+        const double ug2 = cos(r) * u + sin(r) * vg, vg2 = -sin(r) * u + cos(r) * vg;
+        const float ua = l->xform[0] * 0.3f + l->xform[1] * 0.8f + l->xform[2];
+        const float va = l->xform[3] * 0.3f + l->xform[4] * 0.8f + l->xform[5];
+        EXPECT(fabs(ua - ug2) < 1e-5 && fabs(va - (1.0 - vg2)) < 1e-5, "Rotation maps (0.3, 0.8) to (%g, %g), want (%g, %g)",
+               ua, va, ug2, 1.0 - vg2);
+    }
+    scene_builder_end(&b, msg);
+    scene_destroy(&s);
+}
+
 static void test_whole_scene(const char *dir)
 {
     char msg[RESTIR_MSG_LEN], path[512];
@@ -618,6 +665,7 @@ int main(void)
     test_gltf2_samples();
     test_broken_files();
     test_obj(dir);
+    test_texture_transform();
     test_whole_scene(dir);
 
     /* Remove what we wrote (the folder holds only our files). */

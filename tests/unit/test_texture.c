@@ -96,8 +96,37 @@ static void test_scene_textures(const char *data)
     scene_destroy(&s);
 }
 
+/* glTF sampler wrap modes on a 4x1 ramp (texel i holds i): repeat, clamp to edge, mirrored repeat
+ * at texel centres outside [0, 1], by hand; and clamp along v on a 1x4 column. */
+static void test_wrap_modes(void)
+{
+    struct texture t = {4, 1, NULL, NULL};
+    t.rgb = calloc(12, sizeof(float));
+    for (int i = 0; i < 4; i++)
+        t.rgb[3 * i] = (float)i;
+    const float us[3] = {-0.125f, 1.125f, 1.375f}; /* texel centres -1, 4, 5 */
+    const float want[3][3] = {{3, 0, 1}, {0, 3, 3}, {0, 3, 2}}; /* [mode][u]: repeat, clamp, mirror */
+    for (int mode = 0; mode < 3; mode++)
+        for (int k = 0; k < 3; k++) {
+            float got = texture_sample_wrap(&t, us[k], 0.5f, mode, mode).x;
+            EXPECT(fabsf(got - want[mode][k]) < 1e-6f, "wrap mode %d at u %g: %g, want %g", mode, us[k], got,
+                   want[mode][k]);
+        }
+    EXPECT(texture_sample(&t, 1.125f, 0.5f).x == texture_sample_wrap(&t, 1.125f, 0.5f, 0, 0).x,
+           "texture_sample repeats");
+    texture_fini(&t);
+    struct texture c = {1, 4, NULL, NULL}; /* row 0 (the image's top, v = 1) holds 0, row 3 holds 3 */
+    c.rgb = calloc(12, sizeof(float));
+    for (int i = 0; i < 4; i++)
+        c.rgb[3 * i] = (float)i;
+    EXPECT(texture_sample_wrap(&c, 0.5f, 1.125f, 1, 1).x == 0.0f && texture_sample_wrap(&c, 0.5f, -0.125f, 1, 1).x == 3.0f,
+           "clamp along v keeps the top and bottom rows");
+    texture_fini(&c);
+}
+
 int main(void)
 {
+    test_wrap_modes();
     const char *data = getenv("RESTIR_TEST_DATA");
     if (!data) {
         EXPECT(0, "RESTIR_TEST_DATA is not set (run through ctest)");
