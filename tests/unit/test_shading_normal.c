@@ -177,6 +177,25 @@ static void test_transform(void)
     EXPECT(worst < 1e-4f, "transformed normals must stay perpendicular to transformed edges: %g", worst);
 }
 
+/* A lamp triangle whose "normals" are `normals` must be refused with a message naming the file, the
+ * key and `why`. */
+static void expect_normals_refused(const char *normals, const char *why)
+{
+    char text[1024], msg[RESTIR_MSG_LEN];
+    snprintf(text, sizeof text,
+             "{\"format\": \"restir-scene 1\", \"camera\": {\"position\": [0, 0, 3], \"look_at\": [0, 0, 0]},"
+             " \"materials\": [{\"name\": \"lamp\", \"emission\": [1, 1, 1]}],"
+             " \"shapes\": [{\"type\": \"triangles\", \"material\": \"lamp\", \"vertices\": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],"
+             " \"normals\": %s}]}",
+             normals);
+    struct scene s;
+    int rc = scene_json_parse(text, strlen(text), "bad-normals.json", NULL, &s, msg);
+    EXPECT(rc != 0 && strstr(msg, "normals") && strstr(msg, "bad-normals.json") && strstr(msg, why),
+           "normals %s must be refused (%s): %s", normals, why, msg);
+    if (rc == 0)
+        scene_destroy(&s);
+}
+
 static void test_json(void)
 {
     const char *text =
@@ -205,24 +224,8 @@ static void test_json(void)
         }
     EXPECT(worst < 1e-5f, "smooth sphere normals off the radial direction by %g", worst);
     scene_destroy(&s);
-    const char *zero =
-        "{\"format\": \"restir-scene 1\", \"camera\": {\"position\": [0, 0, 3], \"look_at\": [0, 0, 0]},"
-        " \"materials\": [{\"name\": \"lamp\", \"emission\": [1, 1, 1]}],"
-        " \"shapes\": [{\"type\": \"triangles\", \"material\": \"lamp\", \"vertices\": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],"
-        " \"normals\": [[0, 0, 1], [0, 0, 0], [0, 0, 1]]}]}";
-    rc = scene_json_parse(zero, strlen(zero), "zero.json", NULL, &s, msg);
-    EXPECT(rc != 0 && strstr(msg, "normals") && strstr(msg, "zero.json"), "a zero normal refused by key: %s", msg);
-    if (rc == 0)
-        scene_destroy(&s);
-    const char *count =
-        "{\"format\": \"restir-scene 1\", \"camera\": {\"position\": [0, 0, 3], \"look_at\": [0, 0, 0]},"
-        " \"materials\": [{\"name\": \"lamp\", \"emission\": [1, 1, 1]}],"
-        " \"shapes\": [{\"type\": \"triangles\", \"material\": \"lamp\", \"vertices\": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],"
-        " \"normals\": [[0, 0, 1]]}]}";
-    rc = scene_json_parse(count, strlen(count), "count.json", NULL, &s, msg);
-    EXPECT(rc != 0 && strstr(msg, "normals") && strstr(msg, "per vertex"), "a short normals list refused: %s", msg);
-    if (rc == 0)
-        scene_destroy(&s);
+    expect_normals_refused("[[0, 0, 1], [0, 0, 0], [0, 0, 1]]", "non-zero");
+    expect_normals_refused("[[0, 0, 1]]", "per vertex");
 }
 
 /* A quad in the z = 0 plane (front +z) with UVs u along +x and v along +y, whose material has a
