@@ -15,6 +15,7 @@
 #include "io/png.h"
 #include "methods/memory_estimate.h"
 #include "methods/reference.h"
+#include "scene/scene_file.h"
 
 void cli_error(const char *fmt, ...)
 {
@@ -238,4 +239,10 @@ void cli_catch_stop_signals(void)
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+}
+
+int cli_scene_load(const struct cli_options *o, const char *name, struct scene *s, char *msg)
+{
+    scene_set_missing_textures_warn(o->params.missing_textures_warn);
+    return scene_load(name, s, msg);
 }

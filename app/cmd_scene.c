@@ -16,7 +16,7 @@
 
 static void scene_usage(FILE *out)
 {
-    fprintf(out, "usage: restir scene info NAME|FILE\n"
+    fprintf(out, "usage: restir scene info NAME|FILE [--set scene.missing_textures=warn]\n"
                  "       restir scene export NAME --out DIR\n"
                  "info: triangles, emitters, materials, textures, bounds, load and BVH build time of a\n"
                  "      built-in scene or a scene file (.json, .gltf, .glb, .obj, .ply; docs/SCENES.md).\n"
@@ -24,12 +24,18 @@ static void scene_usage(FILE *out)
                  "      same images as the built-in scene, bit for bit with the same seed.\n");
 }
 
-static int scene_info(const char *name)
+static int scene_info(int argc, char **argv)
 {
-    struct scene s;
+    struct cli_options o;
     char msg[RESTIR_MSG_LEN];
+    if (cli_parse_options("scene info", argc - 1, argv + 1, &o, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
+    const char *name = argv[0];
+    struct scene s;
     double t0 = omp_get_wtime();
-    if (scene_load(name, &s, msg) != 0) {
+    if (cli_scene_load(&o, name, &s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
@@ -113,8 +119,8 @@ int cmd_scene(int argc, char **argv)
         scene_usage(argc < 1 ? stderr : stdout);
         return argc < 1 ? EXIT_USAGE : 0;
     }
-    if (!strcmp(argv[0], "info") && argc == 2)
-        return scene_info(argv[1]);
+    if (!strcmp(argv[0], "info") && argc >= 2 && argv[1][0] != '-')
+        return scene_info(argc - 1, argv + 1);
     if (!strcmp(argv[0], "export"))
         return scene_export(argc - 1, argv + 1);
     cli_error("scene: expected 'info NAME|FILE' or 'export NAME --out DIR'");

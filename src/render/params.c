@@ -39,6 +39,7 @@ static const char *const recon_names[] = {"l2", "l1", "both", NULL};
 static const char *const solver_names[] = {"dct", "cg", NULL};
 static const char *const visibility_mis_names[] = {"rays", "none", NULL};
 static const char *const temporal_reuse_names[] = {"backproject", "splat", "both", NULL};
+static const char *const missing_texture_names[] = {"error", "warn", NULL};
 static const char *const preset_names[] = {"fast", "balanced", "conservative", NULL};
 
 /* Index of val among the NULL-terminated names, or -1. */
@@ -113,6 +114,10 @@ static const struct param_def params[] = {
      "reservoir lands where its primary hit is seen now; needs jitter=on), or both, combined by balance "
      "MIS (docs/RESTIR_PT.md); all unbiased with mis=pairwise or balance",
      temporal_reuse_names},
+    {"scene.missing_textures", P_NAMES, F(missing_textures_warn), 0, 0, "error", NULL,
+     "a texture a scene file names that cannot be read: error (refuse the scene, naming the file) or warn "
+     "(say so on stderr and use the material's factor instead of the map)",
+     missing_texture_names},
     {"temporal.splat_steps", P_INT, F(temporal_splat_steps), 1, 16, "2", NULL,
      "splat with camera.shutter > 0: each previous reservoir is splatted into this many shutter-time strata "
      "(1: it keeps its shutter time)", NULL},

@@ -76,6 +76,20 @@ static int max_triangles = 1 << 26;
 
 void scene_set_max_triangles(int n) { max_triangles = n > 0 ? n : 1; }
 
+static int missing_textures_warn;
+
+void scene_set_missing_textures_warn(int warn) { missing_textures_warn = warn != 0; }
+
+int scene_texture_unreadable(const char *why)
+{
+    if (!missing_textures_warn)
+        return -1;
+    fprintf(stderr, "restir: warning: %s; the material's factor is used instead of the map "
+                    "(scene.missing_textures=warn)\n",
+            why);
+    return 0;
+}
+
 void scene_set_uv_set(struct scene_builder *b, int tri, int set, const float uv[6])
 {
     struct scene *s = b->s;

@@ -45,6 +45,11 @@ int scene_texture_find(const struct scene *s, const char *key, int srgb);
 /* The most triangles a scene may have (default 1 << 26, about 16 GB with its BVH): a builder past
  * it stops adding and scene_builder_end fails saying so. Fuzzing lowers it. */
 void scene_set_max_triangles(int n);
+/* What loading does with a texture that cannot be read (missing, undecodable): refuse the scene
+ * (default) or, with warn set, say why on stderr and go on without the map. Loaders call
+ * scene_texture_unreadable(why): -1 to refuse, 0 after the warning. */
+void scene_set_missing_textures_warn(int warn);
+int scene_texture_unreadable(const char *why);
 /* The UVs (u0 v0 u1 v1 u2 v2) of triangle tri, already added: set 0 (scene_set_uvs) or 1. */
 void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6]);
 void scene_set_uv_set(struct scene_builder *b, int tri, int set, const float uv[6]);

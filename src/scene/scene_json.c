@@ -120,8 +120,11 @@ static int texture_map(struct json_reader *r, const cJSON *m, const char *mkey, 
         return 0; /* read already, by this or another material */
     struct texture t;
     char tmsg[RESTIR_MSG_LEN];
-    if (texture_load_file(path, srgb, &t, tmsg) != 0)
-        return json_fail(r, k, "%s", tmsg);
+    if (texture_load_file(path, srgb, &t, tmsg) != 0) {
+        char why[2 * RESTIR_MSG_LEN];
+        snprintf(why, sizeof why, "%s: %s: %s", r->file, k, tmsg);
+        return scene_texture_unreadable(why) == 0 ? 0 : json_fail(r, k, "%s", tmsg);
+    }
     *map = scene_add_texture(r->b, t, path, srgb);
     return 0;
 }

@@ -348,6 +348,26 @@ static void check_scene_files(void)
     expect_failure("scene info of a missing file", "scene info /nonexistent/room.gltf", 2, "/nonexistent/room.gltf",
                    NULL);
     expect_failure("export of an unknown scene", "scene export no-such-scene --out '%1$s'", 2, "no-such-scene", NULL);
+    /* A texture that cannot be read: refused by default; scene.missing_textures=warn renders with
+     * the factor, saying which file on stderr (issue 23). */
+    char missing[2 * CLI_PATH_MAX], out[3 * CLI_PATH_MAX], err[CLI_ERR_MAX];
+    snprintf(missing, sizeof missing, "%s/missing-texture.json", tmp);
+    write_text(missing, "{\"format\": \"restir-scene 1\", \"camera\": {\"position\": [0, 1, 3], \"look_at\": [0, 0.5, 0]},"
+                        " \"materials\": [{\"name\": \"wall\", \"base_color_texture\": \"no-such-image.png\"},"
+                        " {\"name\": \"lamp\", \"emission\": [1, 1, 1]}], \"shapes\": ["
+                        " {\"type\": \"quads\", \"material\": \"wall\", \"quads\": [[[-1, 0, -1], [1, 0, -1], [1, 2, -1], [-1, 2, -1]]]},"
+                        " {\"type\": \"quads\", \"material\": \"lamp\", \"quads\": [[[-1, 2, 1], [1, 2, 1], [1, 2, -1], [-1, 2, -1]]]}]}");
+    snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --out '%%1$s'", missing);
+    expect_failure("scene with a missing texture", fmt, 2, "no-such-image.png", "base_color_texture");
+    snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --set scene.missing_textures=warn --out '%s/warned'",
+             missing, tmp);
+    int rc = cli_run(tmp, fmt, err);
+    EXPECT(rc == 0 && strstr(err, "warning") && strstr(err, "no-such-image.png"),
+           "scene.missing_textures=warn must render and warn naming the file: exit %d, %s", rc, err);
+    snprintf(out, sizeof out, "%s/warned", tmp);
+    EXPECT(cli_count_entries(out, "frame_0000.exr") == 1, "the warned render wrote no frame");
+    snprintf(fmt, sizeof fmt, "scene info '%s' --set scene.missing_textures=warn", missing);
+    EXPECT(cli_run(tmp, fmt, err) == 0 && strstr(err, "no-such-image.png"), "scene info with warn: %s", err);
 }
 
 /* Every deliberately broken file of assimp-testmodels: `restir scene info` exits 1 or 2 with a
