@@ -241,8 +241,8 @@ void cli_catch_stop_signals(void)
     sigaction(SIGTERM, &sa, NULL);
 }
 
-int cli_scene_load(const struct cli_options *o, const char *name, struct scene *s, char *msg)
+int cli_scene_load(const struct render_params *p, const char *name, struct scene *s, char *msg)
 {
-    scene_set_missing_textures_warn(o->params.missing_textures_warn);
+    scene_set_missing_textures_warn(p->missing_textures_warn);
     return scene_load(name, s, msg);
 }

@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "io/atomic_file.h"
 #include "io/scene_export.h"
+#include "options.h"
 #include "scene/scene_file.h"
 #include "scene/scenes_builtin.h"
 
@@ -35,7 +36,7 @@ static int scene_info(int argc, char **argv)
     const char *name = argv[0];
     struct scene s;
     double t0 = omp_get_wtime();
-    if (cli_scene_load(&o, name, &s, msg) != 0) {
+    if (cli_scene_load(&o.params, name, &s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
