@@ -15,6 +15,8 @@
 #include "io/png.h"
 #include "methods/memory_estimate.h"
 #include "methods/reference.h"
+#include "scene/environment.h"
+#include "scene/scene_env.h"
 #include "scene/scene_file.h"
 
 void cli_error(const char *fmt, ...)
@@ -241,8 +243,33 @@ void cli_catch_stop_signals(void)
     sigaction(SIGTERM, &sa, NULL);
 }
 
-int cli_scene_load(const struct render_params *p, const char *name, struct scene *s, char *msg)
+int cli_scene_load(const struct render_params *p, const char *env, const char *name, struct scene *s, char *msg)
 {
     scene_set_missing_textures_warn(p->missing_textures_warn);
-    return scene_load(name, s, msg);
+    if (scene_load(name, s, msg) != 0)
+        return -1;
+    if (!env)
+        return 0;
+    struct environment *e = NULL;
+    if (strcmp(env, "none") != 0) {
+        e = xcalloc(1, sizeof *e);
+        if (environment_load("--env", env, 1.0f, 0.0f, e, msg) != 0) {
+            free(e);
+            scene_destroy(s);
+            return -1;
+        }
+    }
+    char inner[RESTIR_MSG_LEN];
+    if (scene_set_environment(s, e, inner) != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "--env %.200s: %.250s", env, inner);
+        scene_destroy(s);
+        return -1;
+    }
+    if (!s->env && s->num_emitters == 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "--env none: scene %.100s has no emitter either, so nothing would light it",
+                 s->name);
+        scene_destroy(s);
+        return -1;
+    }
+    return 0;
 }

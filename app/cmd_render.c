@@ -54,7 +54,7 @@ static int open_scene_and_method(const struct cli_options *o, struct scene *s, e
         return EXIT_USAGE;
     }
     *method = (enum method_id)m;
-    if (cli_scene_load(&o->params, o->scene, s, msg) != 0) {
+    if (cli_scene_load(&o->params, o->env, o->scene, s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }

@@ -36,7 +36,7 @@ static int scene_info(int argc, char **argv)
     const char *name = argv[0];
     struct scene s;
     double t0 = omp_get_wtime();
-    if (cli_scene_load(&o.params, name, &s, msg) != 0) {
+    if (cli_scene_load(&o.params, o.env, name, &s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }

@@ -213,7 +213,7 @@ static int study_setup(int argc, char **argv, int need_out, struct study_setup *
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
-    if (cli_scene_load(&o->params, o->scene, &st->s, msg) != 0) {
+    if (cli_scene_load(&o->params, o->env, o->scene, &st->s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }

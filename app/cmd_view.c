@@ -49,7 +49,7 @@ int cmd_view(int argc, char **argv)
         return EXIT_USAGE;
     }
     struct scene s;
-    if (cli_scene_load(&o.params, o.scene, &s, msg) != 0) {
+    if (cli_scene_load(&o.params, o.env, o.scene, &s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }

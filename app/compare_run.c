@@ -301,7 +301,7 @@ int compare_setup(int argc, char **argv, struct compare_setup *st)
         }
     }
     assign_dirs(st->specs, st->n);
-    if (cli_scene_load(&o->params, o->scene, &st->s, msg) != 0) {
+    if (cli_scene_load(&o->params, o->env, o->scene, &st->s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }

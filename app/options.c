@@ -136,6 +136,8 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
             o->ref = val;
         else if (!strcmp(a, "--out"))
             o->out = val;
+        else if (!strcmp(a, "--env"))
+            o->env = val;
         else if (!strcmp(a, "--script") && !strcmp(command, "view"))
             o->script = val;
         else if (!strcmp(a, "--res")) {

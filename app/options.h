@@ -16,6 +16,7 @@ struct cli_options {
     int equal_time;
     int report;          /* compare, study: write DIR/index.html */
     const char *camera_file; /* render: --camera FILE, one camera per frame (restir view records them) */
+    const char *env;         /* --env FILE|none: the environment light replacing the scene's own */
     const char *script;      /* view: timed input (src/view/view_script.h) */
     long long max_memory_mb; /* --max-memory: refuse renders estimated above it (0: what the system has) */
     int frames_given;

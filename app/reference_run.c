@@ -75,7 +75,7 @@ int reference_setup(int argc, char **argv, int need_out, struct reference_setup 
         return EXIT_USAGE;
     }
     st->method = (enum method_id)method_find(o->method);
-    if (cli_scene_load(&o->params, o->scene, &st->s, msg) != 0) {
+    if (cli_scene_load(&o->params, o->env, o->scene, &st->s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
     }

@@ -3,6 +3,7 @@
  * complete path as a candidate. Must never depend on reservoirs. */
 #include "render/path_walk.h"
 
+#include "scene/env_light.h"
 #include "shading/bsdf.h"
 #include "shading/lights.h"
 
@@ -32,6 +33,38 @@ void path_vertex_bsdf(const struct scene *s, const struct path_vertex *v, struct
     bsdf_from_material(scene_material_at(s, v->tri, v->b1, v->b2, &tmp), b);
 }
 
+/* NEE toward the environment (issue 23): a direction from its importance sampler, chosen with
+ * probability s->env_prob; reported like a light point at infinity (no distance term). */
+static long long next_event_env(const struct scene *s, const struct path_walk *w, const struct bsdf_frame *bf, vec3 n,
+                                vec3 prefix_f, float prefix_pdf, float u1, float u2, path_candidate_fn emit, void *ctx)
+{
+    const struct path_vertex *x = &w->v[w->nv - 1];
+    float pdf_env;
+    vec3 wi = env_sample(s->env_sampler, u1, u2, &pdf_env);
+    const float pdf_light = s->env_prob * pdf_env, cos_x = v3_dot(n, wi);
+    if (!(pdf_light > 0.0f) || cos_x <= 0.0f || v3_dot(x->ng, wi) <= 0.0f)
+        return 0;
+    float pdf_bsdf;
+    vec3 f = bsdf_frame_eval(bf, wi, &pdf_bsdf);
+    if (v3_max_component(f) <= 0.0f)
+        return 0;
+    if (scene_occluded(s, scene_offset_point(x->p, x->ng, wi), wi, 0.0f, INFINITY))
+        return 1;
+    struct path_candidate c;
+    c.length = w->nv + 1;
+    c.via_nee = 1;
+    c.light_p = v3_add(x->p, wi); /* a direction, not a point: callers that need x_D refuse environments */
+    c.light_n = v3_neg(wi);
+    c.Le = environment_radiance(s->env, wi);
+    c.w_last = wi;
+    c.fcos_last = v3_scale(f, cos_x);
+    c.f = v3_mul(v3_mul(prefix_f, c.fcos_last), c.Le);
+    c.pdf = prefix_pdf * pdf_light;
+    c.mis = power_heuristic(pdf_light, pdf_bsdf);
+    emit(ctx, w, &c);
+    return 1;
+}
+
 /* NEE at x (the last vertex of the walk, BSDF prepared for x->wo in bf): one light point,
  * reported as a candidate of length nv + 1 when it contributes. prefix_f / prefix_pdf describe
  * x_1 .. x. */
@@ -41,6 +74,13 @@ static long long next_event(const struct scene *s, const struct path_walk *w, co
     const struct path_vertex *x = &w->v[w->nv - 1];
     struct light_sample ls;
     float u0 = pcg32_float(rng), u1 = pcg32_float(rng), u2 = pcg32_float(rng);
+    float emitter_share = 1.0f; /* the probability of sampling an emitter rather than the environment */
+    if (s->env) {
+        if (u0 < s->env_prob)
+            return next_event_env(s, w, bf, n, prefix_f, prefix_pdf, u1, u2, emit, ctx);
+        emitter_share = 1.0f - s->env_prob;
+        u0 = (u0 - s->env_prob) / emitter_share;
+    }
     if (!lights_sample(s, u0, u1, u2, &ls))
         return 0;
     vec3 to = v3_sub(ls.p, x->p);
@@ -57,7 +97,7 @@ static long long next_event(const struct scene *s, const struct path_walk *w, co
         return 0;
     if (!scene_visible(s, x->p, x->ng, ls.p, ls.n))
         return 1;
-    float pdf_light = ls.pdf_area * d2 / cos_l;
+    float pdf_light = ls.pdf_area * d2 / cos_l * emitter_share;
     struct path_candidate c;
     c.length = w->nv + 1;
     c.via_nee = 1;
@@ -123,8 +163,23 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
         struct surface_hit h;
         rays++;
         vec3 o = scene_offset_point(x->p, x->ng, wi);
-        if (!scene_intersect(s, o, wi, 0.0f, INFINITY, &h))
+        if (!scene_intersect(s, o, wi, 0.0f, INFINITY, &h)) {
+            if (s->env) { /* the path escapes to the environment: its BSDF-sampled light strategy */
+                struct path_candidate c;
+                c.length = j + 1;
+                c.via_nee = 0;
+                c.light_p = v3_add(x->p, wi);
+                c.light_n = v3_neg(wi);
+                c.Le = environment_radiance(s->env, wi);
+                c.w_last = wi;
+                c.fcos_last = x->fcos;
+                c.f = v3_mul(prefix_f, c.Le);
+                c.pdf = prefix_pdf;
+                c.mis = power_heuristic(pdf, s->env_prob * env_pdf(s->env_sampler, wi));
+                emit(ctx, w, &c);
+            }
             break;
+        }
         int emitter = s->tri_emitter[h.tri];
         if (emitter >= 0 && h.front) {
             struct path_candidate c;
@@ -138,7 +193,7 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
             c.f = v3_mul(prefix_f, c.Le);
             c.pdf = prefix_pdf;
             float cos_l = fabsf(v3_dot(c.light_n, wi));
-            float pdf_light = lights_pdf_area(s, h.tri) * h.t * h.t / max_f(cos_l, 1e-12f);
+            float pdf_light = lights_pdf_area(s, h.tri) * h.t * h.t / max_f(cos_l, 1e-12f) * (1.0f - s->env_prob);
             c.mis = power_heuristic(pdf, pdf_light);
             emit(ctx, w, &c);
         }

@@ -28,7 +28,7 @@
  * at rotation r. (For the right-handed convention about +y, that is a turn by -r.)
  *
  * Lookups are NEAREST (the texel containing (u, v)): radiance is piecewise constant over texels,
- * so a piecewise-constant sampling density built from the same texels (shading/env_light.h) is
+ * so a piecewise-constant sampling density built from the same texels (scene/env_light.h) is
  * zero exactly where the radiance is zero and positive wherever it is not, with no bilinear
  * footprint that would leak light into a texel the density gives no probability. */
 struct environment {

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "scene/scene_env.h"
 #include "scene/scene_lights.h"
 #include "scene/scene_rt.h"
 
@@ -351,6 +352,7 @@ int scene_builder_end(struct scene_builder *b, char *msg)
 void scene_destroy(struct scene *s)
 {
     scene_rt_destroy(s);
+    scene_env_free(s);
     free(s->verts);
     free(s->indices);
     free(s->tri_material);

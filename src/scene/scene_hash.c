@@ -5,6 +5,7 @@
 #include <assert.h>
 
 #include "core/hash.h"
+#include "scene/environment.h"
 #include "scene/texture.h"
 
 /* Hashing the structs' bytes is only stable when they hold no padding: all 4-byte fields. */
@@ -30,6 +31,15 @@ uint64_t scene_content_hash(const struct scene *s)
     if (s->tangents)
         h = fnv1a64(h, s->tangents, 4 * sizeof(float) * (size_t)s->num_verts);
     h = fnv1a64(h, s->materials, sizeof(struct material) * (size_t)s->num_materials);
+    if (s->env) { /* the environment light: its image, or colour, and how it is scaled and turned */
+        const struct environment *e = s->env;
+        const int size[2] = {e->width, e->height};
+        const float k[5] = {e->constant.x, e->constant.y, e->constant.z, e->intensity, e->rotation};
+        h = fnv1a64(h, size, sizeof size);
+        h = fnv1a64(h, k, sizeof k);
+        if (e->rgb)
+            h = fnv1a64(h, e->rgb, 3 * sizeof(float) * (size_t)e->width * (size_t)e->height);
+    }
     for (int t = 0; t < s->num_textures; t++) {
         const struct texture *x = &s->textures[t];
         const int size[2] = {x->width, x->height};

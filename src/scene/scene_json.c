@@ -8,6 +8,8 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "scene/environment.h"
+#include "scene/scene_env.h"
 #include "scene/scene_import.h"
 #include "scene/scene_json_reader.h"
 #include "scene/scene_path.h"
@@ -494,7 +496,42 @@ static int read_shapes(struct json_reader *r, const cJSON *shapes)
     return 0;
 }
 
-static const char *const top_keys[] = {"format", "name", "camera", "camera_path", "materials", "shapes", NULL};
+static const char *const top_keys[] = {"format",    "name",   "camera",      "camera_path",
+                                       "materials", "shapes", "environment", NULL};
+
+/* "environment": {"image": FILE, "intensity": k, "rotation": degrees} or {"color": [r, g, b],
+ * "intensity": k} (issue 23). */
+static int read_environment(struct json_reader *r, const cJSON *v)
+{
+    static const char *const keys[] = {"image", "color", "intensity", "rotation", NULL};
+    if (!cJSON_IsObject(v))
+        return json_fail(r, "environment", "must be an object with \"image\" or \"color\"");
+    if (json_check_keys(r, v, "environment", keys) != 0)
+        return -1;
+    float k, deg;
+    vec3 color;
+    const cJSON *image = cJSON_GetObjectItemCaseSensitive(v, "image");
+    const int has_color = cJSON_GetObjectItemCaseSensitive(v, "color") != NULL;
+    if (json_get_number(r, v, "environment", "intensity", 0, 0.0, SCENE_COORD_MAX, 1.0f, &k) != 0 ||
+        json_get_number(r, v, "environment", "rotation", 0, -360.0, 360.0, 0.0f, &deg) != 0 ||
+        json_get_vec3(r, v, "environment", "color", 0, 0.0, SCENE_COORD_MAX, v3s(1.0f), &color) != 0)
+        return -1;
+    if (!image == !has_color)
+        return json_fail(r, "environment", "needs exactly one of \"image\" and \"color\"");
+    char inner[RESTIR_MSG_LEN], path[4096];
+    r->env = xcalloc(1, sizeof *r->env);
+    int rc;
+    if (image) {
+        if (!cJSON_IsString(image) || !*image->valuestring)
+            return json_fail(r, "environment.image", "must be an image file name (.hdr or .exr)");
+        if (resolve_path(r, "environment.image", image->valuestring, path, sizeof path) != 0)
+            return -1;
+        rc = environment_load("environment.image", path, k, deg * (float)(RESTIR_PI / 180.0), r->env, inner);
+    } else {
+        rc = environment_constant("environment.color", color, k, r->env, inner);
+    }
+    return rc == 0 ? 0 : json_fail(r, "environment", "%s", inner);
+}
 
 static int read_scene(struct json_reader *r, const cJSON *root)
 {
@@ -539,12 +576,16 @@ static int read_scene(struct json_reader *r, const cJSON *root)
         return -1;
     if (r->b->s->num_tris == 0)
         return json_fail(r, "shapes", "no triangles");
+    const cJSON *env = cJSON_GetObjectItemCaseSensitive(root, "environment");
+    if (env)
+        return read_environment(r, env);
     int emissive = 0;
     for (int t = 0; t < r->b->s->num_tris && !emissive; t++)
         emissive = v3_max_component(r->b->s->materials[r->b->s->tri_material[t]].emission) > 0.0f;
     if (!emissive)
         return json_fail(r, "shapes",
-                         "no shape has an emissive material: add an emitter (a material with \"emission\")");
+                         "no shape has an emissive material: add an emitter (a material with \"emission\") "
+                         "or an \"environment\"");
     return 0;
 }
 
@@ -572,6 +613,16 @@ int scene_json_parse(const char *text, size_t len, const char *file, const char 
         memcpy(inner, msg, sizeof inner);
         json_msgf(msg, RESTIR_MSG_LEN, "%s: %s", file, inner);
         rc = -1;
+    }
+    if (r.env && rc == 0) {
+        char inner[RESTIR_MSG_LEN];
+        if (scene_set_environment(s, r.env, inner) != 0) {
+            json_msgf(msg, RESTIR_MSG_LEN, "%s: environment: %s", file, inner);
+            rc = -1;
+        }
+    } else if (r.env) {
+        environment_fini(r.env);
+        free(r.env);
     }
     if (rc != 0)
         scene_destroy(s);

@@ -18,6 +18,7 @@ struct json_reader {
     char *msg;
     struct scene_builder *b;
     cJSON *materials; /* the "materials" array (names resolve through it) */
+    struct environment *env; /* the "environment", read (attached after the build), or NULL */
 };
 
 /* vsnprintf into out: a message too long for the buffer is cut, never left unterminated. */

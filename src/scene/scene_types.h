@@ -66,6 +66,8 @@ struct camera_path {
 };
 
 struct scene_rt; /* Embree back end, opaque (scene_rt.c) */
+struct environment;  /* environment.h */
+struct env_sampler;  /* env_light.h */
 
 /* What sampling a point on an emissive triangle needs, in one cache-friendly record. */
 struct emitter {
@@ -109,6 +111,12 @@ struct scene {
     int *emitter_tri;
     struct emitter *emitters; /* compact copy of what light sampling reads, per emitter */
     struct alias_table emitter_table;
+
+    /* Environment light (scene_env.h): radiance from infinitely far away, or NULL; its sampler;
+     * the probability that a light sample picks it rather than an emitter. */
+    struct environment *env;
+    struct env_sampler *env_sampler;
+    float env_prob;
 
     struct camera camera;           /* default static camera */
     struct camera_path camera_path; /* default moving camera */

@@ -1,4 +1,4 @@
-/* test_env_chi2.c: statistical tests of environment sampling (shading/env_light.h) on a synthetic
+/* test_env_chi2.c: statistical tests of environment sampling (scene/env_light.h) on a synthetic
  * 32x16 map (a bright "sun" block, a gradient, blocks and a row of zero texels, a blue-only texel)
  * and on a constant environment: the density integrates to 1, samples fit it (chi-square over a
  * binning of the sphere that does not line up with the texels), env_pdf agrees with env_sample and
@@ -15,7 +15,7 @@
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "scene/environment.h"
-#include "shading/env_light.h"
+#include "scene/env_light.h"
 #include "test_util.h"
 
 #define W 32

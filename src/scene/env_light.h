@@ -1,8 +1,8 @@
 /* env_light.h: importance sampling of directions toward an environment (scene/environment.h):
  * a piecewise-constant 2-D distribution over its texels, or the uniform sphere for a constant one.
  * Must never depend on render passes or the ray tracer. */
-#ifndef RESTIR_SHADING_ENV_LIGHT_H
-#define RESTIR_SHADING_ENV_LIGHT_H
+#ifndef RESTIR_SCENE_ENV_LIGHT_H
+#define RESTIR_SCENE_ENV_LIGHT_H
 
 #include "scene/environment.h"
 

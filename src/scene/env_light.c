@@ -3,7 +3,7 @@
  * Rendering", 3rd ed., Sec. 13.6.7 for the 2-D distribution and Sec. 14.2.4 for its use with
  * infinite lights), and uniform sphere sampling for a constant environment.
  * Must never depend on render passes or the ray tracer. */
-#include "shading/env_light.h"
+#include "scene/env_light.h"
 
 #include <math.h>
 #include <stdlib.h>
