@@ -23,10 +23,12 @@ static void render_usage(FILE *out)
     fprintf(out,
             "usage: restir render --scene NAME --method NAME [--res WxH] [--frames N] [--spp N] [--seed N]\n"
             "                     [--threads N] [--camera static|path|FILE] [--ref FILE.exr] [--out DIR]\n"
-            "                     [--save all|last] [--params FILE.json] [--set key=value]...\n"
+            "                     [--save all|last] [--params FILE.json] [--env FILE|none] [--set key=value]...\n"
             "Writes DIR/frame_NNNN.exr and .png, DIR/metrics.csv (per frame: times per pass, rays, and\n"
             "error metrics when --ref is given) and DIR/summary.json. Default DIR: out/SCENE-METHOD.\n"
             "ReSTIR methods render 1 sample per pixel per frame; --spp applies to pt and gpt.\n"
+            "--env FILE (.hdr or .exr, equirectangular) gives the scene that environment light, replacing its\n"
+            "own; --env none removes it (every command that takes --scene reads --env; pt only renders it).\n"
             "--params FILE reads settings in order with the other options: a summary.json reruns that run\n"
             "(scene, method, resolution, frames, seed, camera and every setting; later options override),\n"
             "a plain JSON object of --set keys ({\"mis\": \"balance\", \"spatial.radius\": 50}) sets those.\n"
@@ -85,6 +87,12 @@ static cJSON *params_json(const struct cli_options *o, enum method_id method)
     if (o->camera_file && !realpath(o->camera_file, camera))
         snprintf(camera, sizeof(camera), "%s", o->camera_file);
     cJSON_AddStringToObject(j, "camera", o->camera_file ? camera : p.camera_path ? "path" : "static");
+    if (o->env) { /* --env, by absolute path, so that --params replays the same light */
+        char env[4096];
+        if (strcmp(o->env, "none") == 0 || !realpath(o->env, env))
+            snprintf(env, sizeof(env), "%s", o->env);
+        cJSON_AddStringToObject(j, "env", env);
+    }
     cJSON_AddItemToObject(j, "settings", settings_json(&p));
     char biased[RESTIR_MSG_LEN];
     render_params_biased(&p, biased, sizeof(biased));

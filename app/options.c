@@ -57,6 +57,10 @@ static int apply_run_description(const char *path, const cJSON *root, struct cli
         } else
             o->params.seed = (uint64_t)n;
     }
+    if ((v = cJSON_GetObjectItemCaseSensitive(root, "env")) && cJSON_IsString(v)) {
+        snprintf(o->params_env, sizeof(o->params_env), "%s", v->valuestring);
+        o->env = o->params_env;
+    }
     if ((v = cJSON_GetObjectItemCaseSensitive(root, "camera")) && cJSON_IsString(v)) {
         if (!strcmp(v->valuestring, "static") || !strcmp(v->valuestring, "path")) {
             o->params.camera_path = !strcmp(v->valuestring, "path");

@@ -36,7 +36,7 @@ struct cli_options {
     int shards;              /* reference --plan: jobs the samples are split into (0: not given) */
     struct render_params params;
     /* --params FILE: the strings it names (scene, method, camera file) live here */
-    char params_scene[4096], params_method[128], params_camera[4096];
+    char params_scene[4096], params_method[128], params_camera[4096], params_env[4096];
 };
 
 /* Parses argv[first..argc) for `command`. Returns 0, or -1 with msg naming the bad option. */
