@@ -266,8 +266,7 @@ int cli_scene_load(const struct render_params *p, const char *env, const char *n
         return -1;
     }
     if (!s->env && s->num_emitters == 0) {
-        snprintf(msg, RESTIR_MSG_LEN, "--env none: scene %.100s has no emitter either, so nothing would light it",
-                 s->name);
+        snprintf(msg, RESTIR_MSG_LEN, "--env none: %.300s has no emitter either, so nothing would light it", name);
         scene_destroy(s);
         return -1;
     }

@@ -565,3 +565,19 @@ vec3 environment_radiance(const struct environment *env, vec3 dir)
     environment_texel_of(env, dir, &x, &y);
     return v3_scale(environment_texel(env, x, y), env->intensity);
 }
+
+void environment_default_sky(struct environment *env)
+{
+    enum { W = 64, H = 32 };
+    static float rgb[H][W][3];
+    const float zenith[3] = {0.35f, 0.55f, 0.95f}, horizon[3] = {0.9f, 0.93f, 1.0f}, ground[3] = {0.3f, 0.28f, 0.25f};
+    for (int y = 0; y < H; y++) {
+        const float t = ((float)y + 0.5f) / (H / 2); /* 0 at the zenith, 1 at the horizon */
+        for (int x = 0; x < W; x++)
+            for (int c = 0; c < 3; c++)
+                rgb[y][x][c] = y < H / 2 ? zenith[c] + (horizon[c] - zenith[c]) * t * t : ground[c];
+    }
+    char msg[RESTIR_MSG_LEN];
+    const int rc = environment_from_rgb("default sky", "built in", &rgb[0][0][0], W, H, 1.0f, 0.0f, env, msg);
+    RESTIR_CHECK(rc == 0);
+}

@@ -58,6 +58,9 @@ int environment_from_rgb(const char *key, const char *name, const float *rgb, in
  * that is not finite and non-negative. Returns 0, or -1 with *env zeroed. */
 int environment_constant(const char *key, vec3 c, float intensity, struct environment *env, char *msg);
 void environment_fini(struct environment *env);
+/* The sky a mesh file without emitters is lit by (scene_import_file): 64 x 32 texels, a blue
+ * zenith fading to a pale horizon over a grey-brown ground, radiance around 1. */
+void environment_default_sky(struct environment *env);
 
 /* (u, v) of direction dir as described above. A direction with a NaN reads (0, 0). */
 void environment_dir_to_uv(const struct environment *env, vec3 dir, float *u, float *v);

@@ -16,7 +16,9 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "scene/environment.h"
 #include "scene/mat4d.h"
+#include "scene/scene_env.h"
 #include "scene/scene_import_ai.h"
 #include "scene/scene_import_camera.h"
 #include "scene/scene_import_gltf.h"
@@ -533,15 +535,8 @@ int scene_import_file(const char *path, struct scene *s, char *msg)
         return -1;
     }
     int rc = 0;
-    if (!has_emissive_triangle(s)) {
-        snprintf(msg, RESTIR_MSG_LEN,
-                 "%s: no emissive material; a mesh file on its own must bring its lights: write a JSON "
-                 "scene (docs/SCENES.md) that adds emitters around it",
-                 path);
-        rc = -1;
-    }
-    if (rc == 0)
-        import_cameras(ai, path, s);
+    const int unlit = !has_emissive_triangle(s);
+    import_cameras(ai, path, s);
     aiReleaseImport(ai);
     if (rc == 0) {
         char inner[RESTIR_MSG_LEN];
@@ -552,6 +547,15 @@ int scene_import_file(const char *path, struct scene *s, char *msg)
             snprintf(msg + used, RESTIR_MSG_LEN - used, "%s", inner);
             rc = -1;
         }
+    }
+    if (rc == 0 && unlit) { /* as glTF viewers do: a sky, said on stderr (--env replaces or removes it) */
+        struct environment *sky = xcalloc(1, sizeof *sky);
+        environment_default_sky(sky);
+        rc = scene_set_environment(s, sky, msg);
+        if (rc == 0)
+            fprintf(stderr, "restir: %s has no emissive material: lit by the default sky (--env FILE to choose "
+                            "another, --env none to refuse the file)\n",
+                    path);
     }
     if (rc != 0)
         scene_destroy(s);

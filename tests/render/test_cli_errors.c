@@ -339,8 +339,8 @@ static void check_scene_files(void)
     expect_failure("JSON scene with an unknown key", fmt, 2, "typo.json", "materails");
     snprintf(fmt, sizeof fmt, "compare --scene '%s' --methods pt --res 16x16 --out '%%1$s'", bad);
     expect_failure("compare of a JSON scene with an unknown key", fmt, 2, "typo.json", "materails");
-    snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --out '%%1$s'", dark);
-    expect_failure("mesh file without emitters", fmt, 2, "dark.obj", "emissive");
+    snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --env none --out '%%1$s'", dark);
+    expect_failure("mesh file without emitters, --env none", fmt, 2, "dark", "no emitter");
     snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --out '%%1$s'", junk);
     expect_failure("broken mesh file", fmt, 2, "junk.ply", NULL);
     expect_failure("missing scene file", "render --scene /nonexistent/room.json --method pt --res 16x16 --out '%1$s'",
@@ -407,7 +407,9 @@ static void check_broken_assets(void)
             if (e->d_name[0] == '.' || !dot || !strcmp(dot, ".bin") || !strcmp(dot, ".png") || !strcmp(dot, ".jpg"))
                 continue;
             char args[2 * CLI_PATH_MAX], out[CLI_ERR_MAX], err[CLI_ERR_MAX];
-            snprintf(args, sizeof args, "scene info '%s/%s'", dir, e->d_name);
+            /* --env none: a file assimp reads in part but that has no emitter is refused as before
+             * the default sky (issue 23) lit such files */
+            snprintf(args, sizeof args, "scene info '%s/%s' --env none", dir, e->d_name);
             int rc = cli_run_capture(tmp, args, out, err);
             files++;
             EXPECT(rc == 1 || rc == 2, "restir %s exited %d (want 1 or 2): %s", args, rc, err);
