@@ -74,10 +74,10 @@ static float scene_aperture(const struct scene *s)
 int method_check_settings(enum method_id m, const struct render_params *p, const struct scene *s, char *msg)
 {
     const char *name = method_table[m].name;
-    if (s && s->env && m != METHOD_PT) {
+    if (s && s->env && m != METHOD_PT && m != METHOD_RIS_DI && m != METHOD_RESTIR_DI) {
         snprintf(msg, RESTIR_MSG_LEN,
-                 "scene %s has an environment light, which only pt renders so far (ReSTIR DI and PT "
-                 "reservoirs cannot hold a direction yet); render it with --method pt, or --env none",
+                 "scene %s has an environment light, which pt, ris-di and restir-di render so far (ReSTIR "
+                 "PT's path reservoirs cannot end in a direction yet); use one of them, or --env none",
                  s->name);
         return -1;
     }

@@ -9,6 +9,7 @@
 #include "render/restir_di.h"
 #include "render/tiles.h"
 #include "restir/reservoir.h"
+#include "scene/env_light.h"
 #include "shading/lights.h"
 
 /* Light candidates are evaluated in batches of at most DI_BATCH. */
@@ -48,9 +49,13 @@ static void light_batch_fill(const struct light_pool *lp, int first, const struc
 {
     const float *restrict px = lp->px + first, *restrict py = lp->py + first, *restrict pz = lp->pz + first;
     const float *restrict nx = lp->nx + first, *restrict ny = lp->ny + first, *restrict nz = lp->nz + first;
+    const float *restrict at_point = lp->at_point + first;
     const vec3 x = sp->p, n_s = sp->n, n_g = sp->ng;
     for (int k = 0; k < n; k++) {
-        float dx = px[k] - x.x, dy = py[k] - x.y, dz = pz[k] - x.z;
+        /* an environment entry (at_point 0) holds its direction: x drops out, d2 ~ 1, cos_y = 1,
+         * so to_area is 1 and its weights stay in solid angle, the measure of its pdf */
+        const float m = at_point[k];
+        float dx = px[k] - x.x * m, dy = py[k] - x.y * m, dz = pz[k] - x.z * m;
         float d2 = max_f(dx * dx + dy * dy + dz * dz, 1e-30f), inv_d = 1.0f / sqrtf(d2);
         dx *= inv_d;
         dy *= inv_d;
@@ -109,7 +114,7 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
     struct restir_wrs wrs;
     restir_wrs_init(&wrs);
     di_reservoir_clear(r, 1.0f);
-    const int nl = s->num_emitters > 0 ? p->light_candidates : 0, nb = p->bsdf_candidates;
+    const int nl = s->num_emitters > 0 || s->env ? p->light_candidates : 0, nb = p->bsdf_candidates;
     struct light_batch lb;
     const int offset = nl ? light_pool_offset(pcg32_float(rng)) : 0; /* this pixel's nl pool entries */
     for (int done = 0; done < nl; done += DI_BATCH) {
@@ -144,12 +149,28 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
             float target = v3_luminance(di_unshadowed_pdf(sp, &y, &p_bsdf));
             if (target <= 0.0f)
                 continue;
-            float p_light = nl ? lights_pdf_area(s, h.tri) : 0.0f;
+            float p_light = nl ? lights_pdf_area(s, h.tri) * (1.0f - s->env_prob) : 0.0f;
             float w = target / ((float)nl * p_light + (float)nb * p_bsdf);
             if (restir_wrs_offer(&wrs, w, pcg32_float(rng)))
                 r->y = y;
         }
         (*rays)++; /* the final ray that left the emitters */
+        if (s->env) { /* the direction itself is the BSDF strategy's environment candidate */
+            struct di_sample y;
+            y.tri = DI_ENV_TRI;
+            y.b1 = y.b2 = 0.0f;
+            y.p = wi;
+            y.n = v3_neg(wi);
+            y.Le = environment_radiance(s->env, wi);
+            float p_bsdf;
+            float target = v3_luminance(di_unshadowed_pdf(sp, &y, &p_bsdf));
+            if (target > 0.0f) {
+                float p_light = nl ? s->env_prob * env_pdf(s->env_sampler, wi) : 0.0f;
+                float w = target / ((float)nl * p_light + (float)nb * p_bsdf);
+                if (restir_wrs_offer(&wrs, w, pcg32_float(rng)))
+                    r->y = y;
+            }
+        }
     }
     if (wrs.selected < 0)
         return;

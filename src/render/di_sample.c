@@ -10,11 +10,12 @@ vec3 di_unshadowed_pdf(const struct shading_point *sp, const struct di_sample *y
         *bsdf_pdf_area = 0.0f;
     if (!sp->valid || y->tri < 0)
         return v3s(0.0f);
-    vec3 to = v3_sub(y->p, sp->p);
-    float d2 = v3_length2(to);
+    const int env = y->tri == DI_ENV_TRI;
+    vec3 to = env ? y->p : v3_sub(y->p, sp->p);
+    float d2 = env ? 1.0f : v3_length2(to);
     if (!(d2 > 0.0f))
         return v3s(0.0f);
-    vec3 wi = v3_scale(to, 1.0f / sqrtf(d2));
+    vec3 wi = env ? to : v3_scale(to, 1.0f / sqrtf(d2));
     float cos_x = v3_dot(sp->n, wi), cos_y = -v3_dot(y->n, wi);
     if (cos_x <= 0.0f || cos_y <= 0.0f || v3_dot(sp->ng, wi) <= 0.0f)
         return v3s(0.0f);

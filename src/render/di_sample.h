@@ -7,11 +7,17 @@
 #include "render/gbuffer.h"
 
 struct di_sample {
-    int tri;          /* emissive triangle, -1 for "no sample" */
+    int tri;          /* emissive triangle, -1 for "no sample", DI_ENV_TRI for the environment */
     float b1, b2;     /* barycentrics on it */
-    vec3 p, n;        /* point and emitting normal (cached from tri, b1, b2) */
+    vec3 p, n;        /* point and emitting normal (cached from tri, b1, b2); for the environment
+                         p is the unit direction toward it and n = -p (issue 23) */
     vec3 Le;          /* emitted radiance (front side) */
 };
+
+/* The tri of an environment sample: a direction, measured in solid angle where an emitter point is
+ * measured in area (the sample space is the union of both; every pdf and target of a sample is in
+ * its own part's measure, and reuse maps a sample to itself, so GRIS needs nothing more). */
+#define DI_ENV_TRI 0x7fffffff
 
 /* A reservoir (004 Sec. 2.6): sample, unbiased contribution weight W, confidence c, and the
  * cached target of the sample at the pixel that owns the reservoir. */
@@ -34,7 +40,8 @@ static inline void di_reservoir_clear(struct di_reservoir *r, float c)
  * shading point; zero when y is behind x's surface or x behind y's emitting side. */
 vec3 di_unshadowed(const struct shading_point *sp, const struct di_sample *y);
 /* di_unshadowed, and the area density with which BSDF sampling at sp produces y (solid-angle
- * pdf times cos_y / d^2, no visibility term), 0 where the contribution is 0. */
+ * pdf times cos_y / d^2, no visibility term), 0 where the contribution is 0. For an environment
+ * sample: the contribution Le f cos_x and the solid-angle density. */
 vec3 di_unshadowed_pdf(const struct shading_point *sp, const struct di_sample *y, float *bsdf_pdf_area);
 /* Target function p_hat(x, y) = luminance of di_unshadowed (001 Sec. 1). */
 float di_target(const struct shading_point *sp, const struct di_sample *y);

@@ -3,6 +3,8 @@
 
 int di_sample_visible(const struct scene *s, const struct shading_point *sp, const struct di_sample *y)
 {
+    if (y->tri == DI_ENV_TRI) /* a direction: nothing in the scene along it */
+        return !scene_occluded(s, scene_offset_point(sp->p, sp->ng, y->p), y->p, 0.0f, INFINITY);
     return scene_visible(s, sp->p, sp->ng, y->p, y->n);
 }
 

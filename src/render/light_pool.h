@@ -24,14 +24,18 @@ struct light_pool {
     float *px, *py, *pz; /* point on the light */
     float *nx, *ny, *nz; /* its emitting normal */
     float *Lr, *Lg, *Lb; /* its radiance */
-    float *pdf;          /* its area density under light sampling */
+    float *pdf;          /* its area density under light sampling (solid angle for the environment) */
+    float *at_point;     /* 1 for a point on an emitter, 0 for an environment direction (p is then
+                            the direction, n = -p): light_batch_fill measures both with one formula */
 };
 
 /* Allocates a pool for windows of up to `window` (<= LIGHT_POOL_SIZE) candidates. */
 void light_pool_init(struct light_pool *lp, int window);
 void light_pool_fini(struct light_pool *lp);
 /* Draws the frame's pool (seeded by seed and frame, whatever the thread count); a scene without
- * emitters, or a pool for windows of 0 candidates, is left as it is (nothing reads it). */
+ * emitters or environment, or a pool for windows of 0 candidates, is left as it is (nothing reads
+ * it). With an environment each entry is a direction from its sampler with probability
+ * s->env_prob (pdf env_prob times its solid-angle density), else an emitter point as before. */
 void light_pool_fill(struct light_pool *lp, const struct scene *s, uint64_t seed, int frame);
 /* Entry i as a ReSTIR DI light sample (what lights_point gives for it, bit for bit). */
 static inline void light_pool_entry(const struct light_pool *lp, int i, int *tri, float *b1, float *b2, vec3 *p,

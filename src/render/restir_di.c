@@ -150,7 +150,7 @@ long long di_shade_pass(const struct scene *s, const struct render_params *p, co
     for (int t = 0; t < ntiles; t++) {
         for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
             const int i = px.i;
-            vec3 L = g->valid[i] ? g->emission[i] : v3s(0.0f);
+            vec3 L = g->emission[i]; /* emitters seen directly, or the environment where the ray left */
             const struct di_reservoir *rv = &res[i];
             if (g->valid[i] && rv->y.tri >= 0 && rv->W > 0.0f) {
                 const struct shading_point *sp = gbuffer_shading(g, i);
