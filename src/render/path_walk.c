@@ -33,6 +33,25 @@ void path_vertex_bsdf(const struct scene *s, const struct path_vertex *v, struct
     bsdf_from_material(scene_material_at(s, v->tri, v->b1, v->b2, &tmp), b);
 }
 
+/* Reports the NEE path ending at light point (or direction) light_p with the given radiance and
+ * densities: f = prefix f_s cos Le, pdf = prefix * light pdf, power heuristic against the BSDF. */
+static void emit_nee(const struct path_walk *w, vec3 light_p, vec3 light_n, vec3 Le, vec3 wi, vec3 f, float cos_x,
+                     vec3 prefix_f, float prefix_pdf, float pdf_light, float pdf_bsdf, path_candidate_fn emit, void *ctx)
+{
+    struct path_candidate c;
+    c.length = w->nv + 1;
+    c.via_nee = 1;
+    c.light_p = light_p;
+    c.light_n = light_n;
+    c.Le = Le;
+    c.w_last = wi;
+    c.fcos_last = v3_scale(f, cos_x);
+    c.f = v3_mul(v3_mul(prefix_f, c.fcos_last), Le);
+    c.pdf = prefix_pdf * pdf_light;
+    c.mis = power_heuristic(pdf_light, pdf_bsdf);
+    emit(ctx, w, &c);
+}
+
 /* NEE toward the environment (issue 23): a direction from its importance sampler, chosen with
  * probability s->env_prob; reported like a light point at infinity (no distance term). */
 static long long next_event_env(const struct scene *s, const struct path_walk *w, const struct bsdf_frame *bf, vec3 n,
@@ -50,18 +69,9 @@ static long long next_event_env(const struct scene *s, const struct path_walk *w
         return 0;
     if (scene_occluded(s, scene_offset_point(x->p, x->ng, wi), wi, 0.0f, INFINITY))
         return 1;
-    struct path_candidate c;
-    c.length = w->nv + 1;
-    c.via_nee = 1;
-    c.light_p = v3_add(x->p, wi); /* a direction, not a point: callers that need x_D refuse environments */
-    c.light_n = v3_neg(wi);
-    c.Le = environment_radiance(s->env, wi);
-    c.w_last = wi;
-    c.fcos_last = v3_scale(f, cos_x);
-    c.f = v3_mul(v3_mul(prefix_f, c.fcos_last), c.Le);
-    c.pdf = prefix_pdf * pdf_light;
-    c.mis = power_heuristic(pdf_light, pdf_bsdf);
-    emit(ctx, w, &c);
+    /* x_D is a direction, not a point: callers that need one refuse environment-lit scenes */
+    emit_nee(w, v3_add(x->p, wi), v3_neg(wi), environment_radiance(s->env, wi), wi, f, cos_x, prefix_f, prefix_pdf,
+             pdf_light, pdf_bsdf, emit, ctx);
     return 1;
 }
 
@@ -98,18 +108,7 @@ static long long next_event(const struct scene *s, const struct path_walk *w, co
     if (!scene_visible(s, x->p, x->ng, ls.p, ls.n))
         return 1;
     float pdf_light = ls.pdf_area * d2 / cos_l * emitter_share;
-    struct path_candidate c;
-    c.length = w->nv + 1;
-    c.via_nee = 1;
-    c.light_p = ls.p;
-    c.light_n = ls.n;
-    c.Le = ls.Le;
-    c.w_last = wi;
-    c.fcos_last = v3_scale(f, cos_x);
-    c.f = v3_mul(v3_mul(prefix_f, c.fcos_last), ls.Le);
-    c.pdf = prefix_pdf * pdf_light;
-    c.mis = power_heuristic(pdf_light, pdf_bsdf);
-    emit(ctx, w, &c);
+    emit_nee(w, ls.p, ls.n, ls.Le, wi, f, cos_x, prefix_f, prefix_pdf, pdf_light, pdf_bsdf, emit, ctx);
     return 1;
 }
 
