@@ -108,7 +108,7 @@ static void test_bend(void)
  * ns'). */
 static double reflected(const struct bsdf *b, vec3 ns, vec3 ng, vec3 wo)
 {
-    enum { NMU = 400, NPHI = 800 };
+    enum { NMU = 200, NPHI = 400 };
     const vec3 n = bsdf_shading_normal(ns, ng, wo);
     frame fr = frame_from_normal(ng);
     double sum = 0.0;
@@ -138,7 +138,7 @@ static void test_no_energy_gain(void)
         struct bsdf b;
         bsdf_from_material(&mats[m], &b);
         double worst = 0.0, flat_worst = 0.0;
-        for (int k = 0; k < 24; k++) {
+        for (int k = 0; k < 16; k++) {
             vec3 ng = random_dir(&rng);
             frame fr = frame_from_normal(ng);
             /* shading normals up to 60 degrees off, views down to grazing, half of them below ns */
