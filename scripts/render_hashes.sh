@@ -32,9 +32,7 @@ for v in "${variants[@]}"; do
 done
 here=$(cd "$(dirname "$0")/.." && pwd)
 for f in "$here"/tests/data/scenes/*.json; do
-  # restir-pt, or pt for the scenes under an environment light that restir-pt refuses
-  "$bin" render --scene "$f" --method restir-pt "${common[@]}" --out "$out/file-$(basename "$f" .json)" > /dev/null \
-    2>&1 || "$bin" render --scene "$f" --method pt "${common[@]}" --out "$out/file-$(basename "$f" .json)" > /dev/null
+  "$bin" render --scene "$f" --method restir-pt "${common[@]}" --out "$out/file-$(basename "$f" .json)" > /dev/null
 done
 gltf=/usr/share/assimp/models/glTF2/ClearCoat-glTF/ClearCoatTest.gltf
 if [ -f "$gltf" ]; then

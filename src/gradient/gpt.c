@@ -17,6 +17,7 @@
 #include "gradient/grad_common.h"
 #include "render/path_walk.h"
 #include "render/tiles.h"
+#include "scene/scene_env.h"
 #include "shading/lights.h"
 
 struct gpt_ctx {
@@ -68,8 +69,10 @@ long long gpt_pass(const struct scene *s, const struct shift_params *sp, const s
                 vec3 d = camera_view_ray(view, fx, fy);
                 struct surface_hit hit;
                 ctx.rays++;
-                if (!scene_intersect(s, view->position, d, 0.0f, INFINITY, &hit))
+                if (!scene_intersect(s, view->position, d, 0.0f, INFINITY, &hit)) {
+                    Le = v3_add(Le, v3_scale(scene_env_radiance(s, d), ctx.inv_spp)); /* the sky seen */
                     continue;
+                }
                 if (s->tri_emitter[hit.tri] >= 0 && hit.front)
                     Le = v3_add(Le, v3_scale(lights_radiance(s, hit.tri, hit.b1, hit.b2, v3_neg(d)), ctx.inv_spp));
                 struct path_vertex x1 = path_vertex_from_hit(&hit, d);

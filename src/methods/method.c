@@ -74,13 +74,6 @@ static float scene_aperture(const struct scene *s)
 int method_check_settings(enum method_id m, const struct render_params *p, const struct scene *s, char *msg)
 {
     const char *name = method_table[m].name;
-    if (s && s->env && m != METHOD_PT && m != METHOD_RIS_DI && m != METHOD_RESTIR_DI) {
-        snprintf(msg, RESTIR_MSG_LEN,
-                 "scene %s has an environment light, which pt, ris-di and restir-di render so far (ReSTIR "
-                 "PT's path reservoirs cannot end in a direction yet); use one of them, or --env none",
-                 s->name);
-        return -1;
-    }
     if (p->temporal_reuse != TEMPORAL_BACKPROJECT && !method_runs_restir_pt(m)) {
         snprintf(msg, RESTIR_MSG_LEN,
                  "temporal.reuse=%s: %s has no path reservoirs with primary hits to splat (restir-pt, "

@@ -8,7 +8,7 @@
 #include "core/check.h"
 #include "core/rng.h"
 #include "render/tiles.h"
-#include "scene/environment.h"
+#include "scene/scene_env.h"
 #include "shading/lights.h"
 
 void gbuffer_init(struct gbuffer *g, int width, int height, int with_shading)
@@ -86,7 +86,7 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
             if (!scene_intersect(s, view->position, dir, 0.0f, INFINITY, &h)) {
                 memset(key, 0, sizeof(float) * GBUFFER_KEY);
                 g->valid[i] = 0;
-                g->emission[i] = s->env ? environment_radiance(s->env, dir) : v3s(0.0f); /* the sky seen */
+                g->emission[i] = scene_env_radiance(s, dir); /* the sky seen */
                 g->material[i] = g->object[i] = -1;
                 g->depth[i] = INFINITY;
                 if (g->shading)

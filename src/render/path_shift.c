@@ -58,13 +58,20 @@ static vec3 reconnection_eval(const struct scene *s, const struct path_vertex *v
 {
     *cos_k = 0.0f;
     *d2 = 0.0f;
-    vec3 to_k = v3_sub(x->rc_p, v->p);
-    float dist2 = v3_length2(to_k);
-    if (!(dist2 > 0.0f))
-        return v3s(0.0f);
-    vec3 wk = v3_scale(to_k, 1.0f / sqrtf(dist2));
+    vec3 wk;
+    float dist2 = 1.0f, ck = 1.0f; /* a direction of the environment: no distance, no cosine */
+    if (x->rc_env) {
+        wk = x->rc_w;
+    } else {
+        vec3 to_k = v3_sub(x->rc_p, v->p);
+        dist2 = v3_length2(to_k);
+        if (!(dist2 > 0.0f))
+            return v3s(0.0f);
+        wk = v3_scale(to_k, 1.0f / sqrtf(dist2));
+        ck = -v3_dot(x->rc_n, wk);
+    }
     const vec3 n_v = bsdf_shading_normal(v->ns, v->ng, v->wo);
-    float cos_y = v3_dot(n_v, wk), ck = -v3_dot(x->rc_n, wk);
+    float cos_y = v3_dot(n_v, wk);
     if (cos_y <= 0.0f || v3_dot(v->ng, wk) <= 0.0f || ck <= 0.0f)
         return v3s(0.0f);
     vec3 at_k = x->rc_L;
@@ -97,12 +104,13 @@ void path_sample_from_candidate(const struct scene *s, const struct shift_params
     const int D = c->length, k = choose_rc(s, sp, w, D);
     out->length = D;
     out->rc = k;
+    out->rc_env = k == D && c->at_env;
     keep_primary(out, &w->v[0]);
     if (k == D) {
         out->rc_p = c->light_p;
         out->rc_n = c->light_n;
         out->rc_L = c->Le;
-        out->rc_w = v3s(0.0f);
+        out->rc_w = out->rc_env ? c->w_last : v3s(0.0f);
         out->rc_material = -1;
         out->rc_tri = -1;
         out->rc_b1 = out->rc_b2 = 0.0f;
@@ -156,6 +164,15 @@ static int fail(struct path_sample *y)
     return 0;
 }
 
+/* Is x's reconnection vertex seen from v? A direction of the environment is when the ray along it
+ * escapes the scene. */
+static int reconnection_visible(const struct scene *s, const struct path_vertex *v, const struct path_sample *x)
+{
+    if (x->rc_env)
+        return !scene_occluded(s, scene_offset_point(v->p, v->ng, x->rc_w), x->rc_w, 0.0f, INFINITY);
+    return scene_visible(s, v->p, v->ng, x->rc_p, x->rc_n);
+}
+
 /* The shift of x from its shifted primary vertex v = y_1 on: random replay of the directions
  * sampled at y_1 .. y_{k-2}, through the same sampling routine as the walk (bsdf_frame_sample),
  * so that an identity shift reproduces its densities bit for bit, then the reconnection of
@@ -200,7 +217,7 @@ static int shift_from_primary(const struct scene *s, const struct shift_params *
     if (!(v3_max_component(f) > 0.0f) || !v3_is_finite(f))
         return fail(y);
     (*rays)++;
-    if (!scene_visible(s, v.p, v.ng, x->rc_p, x->rc_n))
+    if (!reconnection_visible(s, &v, x))
         return fail(y);
     y->rc_cos = cos_k;
     y->rc_dist2 = d2;

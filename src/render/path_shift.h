@@ -12,7 +12,13 @@
  * (replayed solid-angle densities, then the solid angle of x_k seen from the new y_{k-1}).
  * The shift kind fixes k: reconnection k = 2, replay k = D, hybrid k = the first j in [2, D-1]
  * where x_{j-1} and x_j are both rough and farther apart than a distance threshold, else D. The
- * target re-checks that rule so the shift stays a bijection. Must never depend on reservoirs. */
+ * target re-checks that rule so the shift stays a bijection.
+ *
+ * Environment light (issue 23): a path may end in a direction w of the environment, a vertex at
+ * infinity. When it is the reconnection vertex (k = D), the shift keeps the direction: y_{k-1}
+ * connects along w, the ray must escape the scene, and the direction's solid-angle measure does
+ * not depend on the point it is seen from, so the reconnection factor of |T'| is 1 (no distance
+ * or cosine term; the replayed density ratio stays). Must never depend on reservoirs. */
 #ifndef RESTIR_RENDER_PATH_SHIFT_H
 #define RESTIR_RENDER_PATH_SHIFT_H
 
@@ -34,6 +40,7 @@ void path_shift_rough_table(const struct scene *s, const struct shift_params *sp
 struct path_sample {
     int length;          /* D; 0 = no sample */
     int rc;              /* reconnection vertex index k in [2, D] */
+    int rc_env;          /* k = D and x_D is the environment in direction rc_w (rc_p is unused) */
     float u[2];          /* sub-pixel offset of the primary ray, [0,1)^2 */
     float lens[2];       /* thin-lens sample, [0,1)^2 (0 with a pinhole) */
     float time;          /* shutter time, [0,1) (camera_view_pose; 0 without motion blur) */
@@ -44,14 +51,14 @@ struct path_sample {
     float x1_b1, x1_b2;
     vec3 rc_p;           /* x_k */
     vec3 rc_n;           /* x_k's geometric normal on the side of x_{k-1} (emitting normal if k = D) */
-    vec3 rc_w;           /* k < D: unit direction x_k -> x_{k+1} */
+    vec3 rc_w;           /* k < D: unit direction x_k -> x_{k+1}; rc_env: direction x_{D-1} -> x_D */
     vec3 rc_L;           /* k < D: radiance arriving at x_k along rc_w; k = D: Le of x_D */
     int rc_material;     /* k < D: material at x_k */
     int rc_tri;          /* k < D: x_k's triangle and barycentrics (textures are read there) */
     float rc_b1, rc_b2;
     /* Jacobian terms of this path in the domain it lives in: */
-    float rc_cos;        /* |rc_n . (x_{k-1} - x_k)| / |x_{k-1} - x_k| */
-    float rc_dist2;      /* |x_k - x_{k-1}|^2 */
+    float rc_cos;        /* |rc_n . (x_{k-1} - x_k)| / |x_{k-1} - x_k| (1 if rc_env) */
+    float rc_dist2;      /* |x_k - x_{k-1}|^2 (1 if rc_env) */
     float prefix_pdf;    /* prod of solid-angle densities of w_1 .. w_{k-2} */
     vec3 f;              /* contribution in its domain */
 };

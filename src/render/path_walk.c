@@ -35,12 +35,14 @@ void path_vertex_bsdf(const struct scene *s, const struct path_vertex *v, struct
 
 /* Reports the NEE path ending at light point (or direction) light_p with the given radiance and
  * densities: f = prefix f_s cos Le, pdf = prefix * light pdf, power heuristic against the BSDF. */
-static void emit_nee(const struct path_walk *w, vec3 light_p, vec3 light_n, vec3 Le, vec3 wi, vec3 f, float cos_x,
-                     vec3 prefix_f, float prefix_pdf, float pdf_light, float pdf_bsdf, path_candidate_fn emit, void *ctx)
+static void emit_nee(const struct path_walk *w, int at_env, vec3 light_p, vec3 light_n, vec3 Le, vec3 wi, vec3 f,
+                     float cos_x, vec3 prefix_f, float prefix_pdf, float pdf_light, float pdf_bsdf,
+                     path_candidate_fn emit, void *ctx)
 {
     struct path_candidate c;
     c.length = w->nv + 1;
     c.via_nee = 1;
+    c.at_env = at_env;
     c.light_p = light_p;
     c.light_n = light_n;
     c.Le = Le;
@@ -69,8 +71,7 @@ static long long next_event_env(const struct scene *s, const struct path_walk *w
         return 0;
     if (scene_occluded(s, scene_offset_point(x->p, x->ng, wi), wi, 0.0f, INFINITY))
         return 1;
-    /* x_D is a direction, not a point: callers that need one refuse environment-lit scenes */
-    emit_nee(w, v3_add(x->p, wi), v3_neg(wi), environment_radiance(s->env, wi), wi, f, cos_x, prefix_f, prefix_pdf,
+    emit_nee(w, 1, v3_add(x->p, wi), v3_neg(wi), environment_radiance(s->env, wi), wi, f, cos_x, prefix_f, prefix_pdf,
              pdf_light, pdf_bsdf, emit, ctx);
     return 1;
 }
@@ -108,7 +109,7 @@ static long long next_event(const struct scene *s, const struct path_walk *w, co
     if (!scene_visible(s, x->p, x->ng, ls.p, ls.n))
         return 1;
     float pdf_light = ls.pdf_area * d2 / cos_l * emitter_share;
-    emit_nee(w, ls.p, ls.n, ls.Le, wi, f, cos_x, prefix_f, prefix_pdf, pdf_light, pdf_bsdf, emit, ctx);
+    emit_nee(w, 0, ls.p, ls.n, ls.Le, wi, f, cos_x, prefix_f, prefix_pdf, pdf_light, pdf_bsdf, emit, ctx);
     return 1;
 }
 
@@ -167,6 +168,7 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
                 struct path_candidate c;
                 c.length = j + 1;
                 c.via_nee = 0;
+                c.at_env = 1;
                 c.light_p = v3_add(x->p, wi);
                 c.light_n = v3_neg(wi);
                 c.Le = environment_radiance(s->env, wi);
@@ -184,6 +186,7 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
             struct path_candidate c;
             c.length = j + 1;
             c.via_nee = 0;
+            c.at_env = 0;
             c.light_p = h.p;
             c.light_n = s->tri_normal[h.tri];
             c.Le = lights_radiance(s, h.tri, h.b1, h.b2, v3_neg(wi));

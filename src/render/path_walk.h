@@ -35,12 +35,14 @@ struct path_vertex {
     float pdf_dir; /* solid-angle density of w_next (BSDF lobe mixture) */
 };
 
-/* A complete path x_1 .. x_D, D >= 2, whose last vertex x_D is on an emitter. Vertices x_1 ..
- * x_{D-1} are walk->v[0 .. D-2]; the last segment is described here because for NEE it is not
- * the BSDF-sampled continuation of x_{D-1}. */
+/* A complete path x_1 .. x_D, D >= 2, whose last vertex x_D is on an emitter or is a direction of
+ * the environment light (a vertex at infinity). Vertices x_1 .. x_{D-1} are walk->v[0 .. D-2];
+ * the last segment is described here because for NEE it is not the BSDF-sampled continuation of
+ * x_{D-1}. */
 struct path_candidate {
     int length;       /* D */
     int via_nee;      /* 1: x_D from light sampling, 0: hit by the BSDF-sampled ray */
+    int at_env;       /* 1: x_D is the environment in direction w_last; light_p and light_n are unused */
     vec3 light_p;     /* x_D */
     vec3 light_n;     /* emitting normal at x_D */
     vec3 Le;          /* radiance emitted from x_D toward x_{D-1} */

@@ -3,8 +3,8 @@
 #include "render/pt.h"
 
 #include "render/path_walk.h"
-#include "scene/environment.h"
 #include "render/tiles.h"
+#include "scene/scene_env.h"
 #include "shading/lights.h"
 
 static void accumulate(void *ctx, const struct path_walk *w, const struct path_candidate *c)
@@ -21,7 +21,7 @@ vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, uint64_t p
     struct surface_hit h;
     (*rays)++;
     if (!scene_intersect(s, o, d, 0.0f, INFINITY, &h))
-        return s->env ? environment_radiance(s->env, d) : v3s(0.0f);
+        return scene_env_radiance(s, d);
     vec3 L = v3s(0.0f);
     if (s->tri_emitter[h.tri] >= 0 && h.front)
         L = lights_radiance(s, h.tri, h.b1, h.b2, v3_neg(d));

@@ -8,6 +8,7 @@
 #include "render/tiles.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
+#include "scene/scene_env.h"
 #include "shading/lights.h"
 
 /* Canonical domain + at most 5 spatial neighbors. */
@@ -102,8 +103,10 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
                 camera_sample_ray(fr->view, &cs, px, py, &o, &d);
                 struct surface_hit hit;
                 rays++;
-                if (!scene_intersect(s, o, d, 0.0f, INFINITY, &hit))
+                if (!scene_intersect(s, o, d, 0.0f, INFINITY, &hit)) {
+                    Le = v3_add(Le, scene_env_radiance(s, d)); /* the sky seen through the pixel */
                     continue;
+                }
                 if (s->tri_emitter[hit.tri] >= 0 && hit.front)
                     Le = v3_add(Le, lights_radiance(s, hit.tri, hit.b1, hit.b2, v3_neg(d)));
                 struct path_vertex x1 = path_vertex_from_hit(&hit, d);

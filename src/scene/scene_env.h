@@ -13,6 +13,12 @@
  * need a scene scale the two do not share). Returns 0, or -1 with msg when the environment has no
  * direction of positive radiance. */
 int scene_set_environment(struct scene *s, struct environment *env, char *msg);
+/* Radiance arriving from direction d at infinity (a ray that escapes): the environment's, or black
+ * without one. */
+static inline vec3 scene_env_radiance(const struct scene *s, vec3 d)
+{
+    return s->env ? environment_radiance(s->env, d) : v3s(0.0f);
+}
 /* Frees the environment and its sampler (scene_destroy calls it). */
 void scene_env_free(struct scene *s);
 

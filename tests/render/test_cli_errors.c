@@ -368,8 +368,8 @@ static void check_scene_files(void)
     EXPECT(cli_count_entries(out, "frame_0000.exr") == 1, "the warned render wrote no frame");
     snprintf(fmt, sizeof fmt, "scene info '%s' --set scene.missing_textures=warn", missing);
     EXPECT(cli_run(tmp, fmt, err) == 0 && strstr(err, "no-such-image.png"), "scene info with warn: %s", err);
-    /* Environment light (issue 23): an unreadable --env names the file; methods other than pt
-     * refuse an environment-lit scene by name; pt renders it. */
+    /* Environment light (issue 23): an unreadable --env names the file; every kind of method
+     * renders an environment-lit scene. */
     expect_failure("--env of a missing image", "render --scene cornell --method pt --res 16x16 --env /nonexistent/sky.hdr "
                    "--out '%1$s'", 2, "/nonexistent/sky.hdr", "--env");
     char sky[2 * CLI_PATH_MAX];
@@ -378,12 +378,14 @@ static void check_scene_files(void)
                     " \"environment\": {\"color\": [0.5, 0.6, 0.8], \"intensity\": 2},"
                     " \"materials\": [{\"name\": \"ground\", \"base_color\": [0.5, 0.5, 0.5]}],"
                     " \"shapes\": [{\"type\": \"quads\", \"material\": \"ground\", \"quads\": [[[-1, 0, 1], [1, 0, 1], [1, 0, -1], [-1, 0, -1]]]}]}");
-    snprintf(fmt, sizeof fmt, "render --scene '%s' --method restir-pt --res 16x16 --out '%%1$s'", sky);
-    expect_failure("restir-pt under an environment light", fmt, 2, "environment", "pt");
     snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --env none --out '%%1$s'", sky);
     expect_failure("--env none leaving no light", fmt, 2, "--env none", NULL);
-    snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --out '%s/sky'", sky, tmp);
-    EXPECT(cli_run(tmp, fmt, err) == 0, "pt under the scene's environment: %s", err);
+    const char *methods[] = {"pt", "restir-di", "restir-pt", "grestir-pt"};
+    for (int m = 0; m < 4; m++) {
+        snprintf(fmt, sizeof fmt, "render --scene '%s' --method %s --res 16x16 --out '%s/sky-%s'", sky, methods[m],
+                 tmp, methods[m]);
+        EXPECT(cli_run(tmp, fmt, err) == 0, "%s under the scene's environment: %s", methods[m], err);
+    }
 }
 
 /* Every deliberately broken file of assimp-testmodels: `restir scene info` exits 1 or 2 with a

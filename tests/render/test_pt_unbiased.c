@@ -58,6 +58,18 @@ int main(int argc, char **argv)
         /* alpha cutouts (leaves.json): alpha-masked leaf cards and lamp */
         snprintf(real, sizeof real, "%s/scenes/leaves.json", data);
         check(real, RUNS, sets, 2, 1);
+        /* Environment light (issue 23): paths ending in a direction, reconnected to it with no
+         * distance term, under every shift (sky_only.json: a sky map with a sun, no emitter), and
+         * next to an emitter with temporal splatting (leaves_sky.json). Treating the direction as
+         * a point one unit away fails the sky-only case (8 pixels, pooled z -5.5; checked). */
+        snprintf(real, sizeof real, "%s/scenes/sky_only.json", data);
+        for (int k = 0; k < 3; k++) {
+            const char *env_sets[] = {shifts[k], "mis=pairwise"};
+            check(real, RUNS, env_sets, 2, 1);
+        }
+        snprintf(real, sizeof real, "%s/scenes/leaves_sky.json", data);
+        const char *splat[] = {"shift=reconnection", "temporal.reuse=both"};
+        check(real, RUNS, splat, 2, 1);
     }
     /* The test has power: the BIASED 1/M weights are caught on the same setup. */
     const char *uniform[] = {"shift=hybrid", "mis=1/M"};
