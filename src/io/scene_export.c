@@ -183,6 +183,15 @@ int cameras_write_json(const char *path, const struct camera *cams, int n, const
 int scene_export_json(const struct scene *s, const struct scene_shape_record *records, int n, const char *path,
                       char *msg)
 {
+    /* The records hold shapes and materials; what the builder adds beside them is not written
+     * yet, and a file without it would render another scene. */
+    if (s->num_textures > 0 || s->env || s->uv || s->normals || s->tangents) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "scene %s has generated textures, UVs, shading normals or an environment, which export does not "
+                 "write yet (it would write a different scene); render it by name",
+                 s->name);
+        return -1;
+    }
     cJSON *root = cJSON_CreateObject();
     cJSON_AddStringToObject(root, "format", "restir-scene 1");
     cJSON_AddStringToObject(root, "name", s->name);

@@ -9,7 +9,8 @@
  * a JSON scene at path (written to a temporary name, then renamed). Numbers are written with the
  * fewest digits that read back to the same float, and the shapes are the builder calls that made
  * the scene, so loading the file rebuilds the same triangles, materials and cameras bit for bit.
- * Returns 0, or -1 with msg filled. */
+ * A scene with textures, UVs, shading normals or an environment (the forest) is refused: the
+ * records do not hold them. Returns 0, or -1 with msg filled. */
 int scene_export_json(const struct scene *s, const struct scene_shape_record *records, int n, const char *path,
                       char *msg);
 

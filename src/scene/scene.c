@@ -332,8 +332,8 @@ int scene_builder_end(struct scene_builder *b, char *msg)
                      s->name, m);
             return -1;
         }
-        const int maps[3] = {mt->base_color_map, mt->metal_rough_map, mt->emission_map};
-        for (int k = 0; k < 3; k++) {
+        const int maps[4] = {mt->base_color_map, mt->metal_rough_map, mt->emission_map, mt->normal_map};
+        for (int k = 0; k < 4; k++) {
             if (maps[k] < 0 || maps[k] > s->num_textures) {
                 snprintf(msg, RESTIR_MSG_LEN, "scene '%s': material %d names texture %d of %d", s->name, m, maps[k],
                          s->num_textures);

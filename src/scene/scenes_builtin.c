@@ -1,4 +1,5 @@
-/* scenes_builtin.c: the scenes made in code (cornell, ajar, many-lights, foliage, pillars, furnace),
+/* scenes_builtin.c: the scenes made in code (cornell, ajar, many-lights, foliage, pillars, furnace;
+ * forest in scenes_forest.c),
  * each with a default static camera and camera path. Must never read files. */
 #include "scene/scenes_builtin.h"
 
@@ -6,12 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/check.h"
-#include "core/rng.h"
-#include "scene/scene.h"
+#include "scene/builtin_shapes.h"
+#include "scene/scenes_forest.h"
 
-const char *const scene_builtin_names[] = {"many-lights", "cornell", "ajar", "foliage", "pillars", "furnace",
-                                            NULL};
+const char *const scene_builtin_names[] = {"many-lights", "cornell", "ajar",    "foliage",
+                                            "pillars",     "furnace", "forest", NULL};
 const char *const scene_builtin_descriptions[] = {
     "floor and occluders lit by 1200 small emissive triangles of varied colour and power (default)",
     "Cornell box with a ceiling light, a diffuse block and a glossy metal block",
@@ -19,34 +19,8 @@ const char *const scene_builtin_descriptions[] = {
     "thousands of thin leaf quads on a few stems over a ground, lit by two area lights (hard pixels)",
     "a row of pillars before a lit wall; the camera path strafes sideways (disocclusion)",
     "closed sphere of albedo 0.5 and emission 0.5 seen from inside: radiance is exactly 1 (test)",
+    "25 trees with 75000 alpha-masked leaf cards and normal-mapped trunks under a sky with a sun (walk)",
     NULL};
-
-static struct material surface(vec3 base, float metallic, float roughness)
-{
-    return (struct material){.base_color = base, .metallic = metallic, .roughness = roughness};
-}
-
-static struct material diffuse(float r, float g, float b) { return surface(v3(r, g, b), 0.0f, 1.0f); }
-
-static struct material emitter(vec3 e) { return (struct material){.roughness = 1.0f, .emission = e}; }
-
-/* Rectangle centred at c with unit normal n, unit tangent t, half extents hu (along t) and hv. */
-static void add_rect(struct scene_builder *b, vec3 c, vec3 n, vec3 t, float hu, float hv, int mat, int obj)
-{
-    vec3 u = v3_scale(t, hu), v = v3_scale(v3_cross(n, t), hv);
-    vec3 p0 = v3_sub(v3_sub(c, u), v), p1 = v3_sub(v3_add(c, u), v);
-    vec3 p2 = v3_add(v3_add(c, u), v), p3 = v3_add(v3_sub(c, u), v);
-    scene_add_quad(b, p0, p1, p2, p3, mat, obj);
-}
-
-static void set_path(struct scene *s, int n, const struct camera_key *keys)
-{
-    s->camera_path.num_keys = n;
-    s->camera_path.keys = xmalloc(sizeof(*keys) * (size_t)n);
-    memcpy(s->camera_path.keys, keys, sizeof(*keys) * (size_t)n);
-}
-
-static float rnd(pcg32 *r, float lo, float hi) { return lo + (hi - lo) * pcg32_float(r); }
 
 static vec3 hue_color(float h)
 {
@@ -56,33 +30,26 @@ static vec3 hue_color(float h)
     return v3_lerp(c, v3s(1.0f), 0.25f);
 }
 
-static vec3 random_unit(pcg32 *r)
-{
-    float z = rnd(r, -1.0f, 1.0f), phi = rnd(r, 0.0f, 2.0f * RESTIR_PI);
-    float s = sqrtf(fmaxf(0.0f, 1.0f - z * z));
-    return v3(s * cosf(phi), s * sinf(phi), z);
-}
-
 static void build_cornell(struct scene_builder *b)
 {
-    int white = scene_add_material(b, diffuse(0.73f, 0.73f, 0.73f));
-    int red = scene_add_material(b, diffuse(0.65f, 0.05f, 0.05f));
-    int green = scene_add_material(b, diffuse(0.12f, 0.45f, 0.15f));
-    int glossy = scene_add_material(b, surface(v3(0.95f, 0.64f, 0.54f), 1.0f, 0.25f));
-    int light = scene_add_material(b, emitter(v3(17.0f, 12.0f, 4.0f)));
+    int white = scene_add_material(b, builtin_diffuse(0.73f, 0.73f, 0.73f));
+    int red = scene_add_material(b, builtin_diffuse(0.65f, 0.05f, 0.05f));
+    int green = scene_add_material(b, builtin_diffuse(0.12f, 0.45f, 0.15f));
+    int glossy = scene_add_material(b, builtin_surface(v3(0.95f, 0.64f, 0.54f), 1.0f, 0.25f));
+    int light = scene_add_material(b, builtin_emitter(v3(17.0f, 12.0f, 4.0f)));
     int room = scene_new_object(b);
-    add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 1, 1, white, room);    /* floor */
-    add_rect(b, v3(0, 2, 0), v3(0, -1, 0), v3(1, 0, 0), 1, 1, white, room);   /* ceiling */
-    add_rect(b, v3(0, 1, -1), v3(0, 0, 1), v3(1, 0, 0), 1, 1, white, room);   /* back */
-    add_rect(b, v3(-1, 1, 0), v3(1, 0, 0), v3(0, 0, 1), 1, 1, red, room);     /* left */
-    add_rect(b, v3(1, 1, 0), v3(-1, 0, 0), v3(0, 0, 1), 1, 1, green, room);   /* right */
-    add_rect(b, v3(0, 1.995f, 0), v3(0, -1, 0), v3(1, 0, 0), 0.25f, 0.2f, light, scene_new_object(b));
+    builtin_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 1, 1, white, room);    /* floor */
+    builtin_rect(b, v3(0, 2, 0), v3(0, -1, 0), v3(1, 0, 0), 1, 1, white, room);   /* ceiling */
+    builtin_rect(b, v3(0, 1, -1), v3(0, 0, 1), v3(1, 0, 0), 1, 1, white, room);   /* back */
+    builtin_rect(b, v3(-1, 1, 0), v3(1, 0, 0), v3(0, 0, 1), 1, 1, red, room);     /* left */
+    builtin_rect(b, v3(1, 1, 0), v3(-1, 0, 0), v3(0, 0, 1), 1, 1, green, room);   /* right */
+    builtin_rect(b, v3(0, 1.995f, 0), v3(0, -1, 0), v3(1, 0, 0), 0.25f, 0.2f, light, scene_new_object(b));
     scene_add_box_rotated_y(b, v3(-0.65f, 0, -0.55f), v3(-0.05f, 1.2f, 0.05f), 0.3f, white, scene_new_object(b));
     scene_add_box_rotated_y(b, v3(0.05f, 0, -0.05f), v3(0.65f, 0.6f, 0.55f), -0.3f, glossy, scene_new_object(b));
     b->s->camera = (struct camera){v3(0, 1, 3.4f), v3(0, 1, 0), v3(0, 1, 0), 40.0f, 0.0f, 0.0f};
     struct camera_key keys[2] = {{0, {v3(-0.3f, 1.0f, 3.4f), v3(0, 1, 0), v3(0, 1, 0), 40.0f, 0.0f, 0.0f}},
                                  {64, {v3(0.3f, 1.1f, 3.2f), v3(0, 1, 0), v3(0, 1, 0), 40.0f, 0.0f, 0.0f}}};
-    set_path(b->s, 2, keys);
+    builtin_set_path(b->s, 2, keys);
 }
 
 /* A closed room lit only through a door left ajar. The room spans x in [-2.5, 2.5], y in [0, 2.6],
@@ -98,49 +65,49 @@ static void build_ajar(struct scene_builder *b)
     const float dz0 = -1.5f, dz1 = -0.6f, dh = 2.1f;        /* door opening */
     const float vx1 = 4.65f, vz0 = -2.5f, vz1 = 0.5f;       /* vestibule far wall and sides */
     const float ox = rx + wt, dcz = 0.5f * (dz0 + dz1), dhw = 0.5f * (dz1 - dz0);
-    int wall_warm = scene_add_material(b, diffuse(0.72f, 0.67f, 0.6f));
-    int wall_cool = scene_add_material(b, diffuse(0.62f, 0.66f, 0.72f));
-    int ceiling = scene_add_material(b, diffuse(0.74f, 0.74f, 0.72f));
-    int floor_mat = scene_add_material(b, surface(v3(0.62f, 0.56f, 0.5f), 0.0f, 0.2f));
-    int outside = scene_add_material(b, diffuse(0.75f, 0.75f, 0.75f));
-    int door_mat = scene_add_material(b, diffuse(0.6f, 0.45f, 0.32f));
-    int steel = scene_add_material(b, surface(v3(0.86f, 0.87f, 0.9f), 1.0f, 0.35f));
-    int gold = scene_add_material(b, surface(v3(0.95f, 0.78f, 0.45f), 1.0f, 0.4f));
-    int red = scene_add_material(b, diffuse(0.65f, 0.2f, 0.15f));
-    int blue = scene_add_material(b, diffuse(0.2f, 0.35f, 0.6f));
-    int light = scene_add_material(b, emitter(v3(120.0f, 110.0f, 95.0f)));
+    int wall_warm = scene_add_material(b, builtin_diffuse(0.72f, 0.67f, 0.6f));
+    int wall_cool = scene_add_material(b, builtin_diffuse(0.62f, 0.66f, 0.72f));
+    int ceiling = scene_add_material(b, builtin_diffuse(0.74f, 0.74f, 0.72f));
+    int floor_mat = scene_add_material(b, builtin_surface(v3(0.62f, 0.56f, 0.5f), 0.0f, 0.2f));
+    int outside = scene_add_material(b, builtin_diffuse(0.75f, 0.75f, 0.75f));
+    int door_mat = scene_add_material(b, builtin_diffuse(0.6f, 0.45f, 0.32f));
+    int steel = scene_add_material(b, builtin_surface(v3(0.86f, 0.87f, 0.9f), 1.0f, 0.35f));
+    int gold = scene_add_material(b, builtin_surface(v3(0.95f, 0.78f, 0.45f), 1.0f, 0.4f));
+    int red = scene_add_material(b, builtin_diffuse(0.65f, 0.2f, 0.15f));
+    int blue = scene_add_material(b, builtin_diffuse(0.2f, 0.35f, 0.6f));
+    int light = scene_add_material(b, builtin_emitter(v3(120.0f, 110.0f, 95.0f)));
     /* Room, all faces inward. */
     int room = scene_new_object(b);
-    add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), rx, rz, floor_mat, room);
-    add_rect(b, v3(0, h, 0), v3(0, -1, 0), v3(1, 0, 0), rx, rz, ceiling, room);
-    add_rect(b, v3(0, h / 2, -rz), v3(0, 0, 1), v3(1, 0, 0), rx, h / 2, wall_warm, room);  /* back */
-    add_rect(b, v3(0, h / 2, rz), v3(0, 0, -1), v3(1, 0, 0), rx, h / 2, wall_warm, room);  /* front */
-    add_rect(b, v3(-rx, h / 2, 0), v3(1, 0, 0), v3(0, 0, 1), rz, h / 2, wall_cool, room); /* left */
+    builtin_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), rx, rz, floor_mat, room);
+    builtin_rect(b, v3(0, h, 0), v3(0, -1, 0), v3(1, 0, 0), rx, rz, ceiling, room);
+    builtin_rect(b, v3(0, h / 2, -rz), v3(0, 0, 1), v3(1, 0, 0), rx, h / 2, wall_warm, room);  /* back */
+    builtin_rect(b, v3(0, h / 2, rz), v3(0, 0, -1), v3(1, 0, 0), rx, h / 2, wall_warm, room);  /* front */
+    builtin_rect(b, v3(-rx, h / 2, 0), v3(1, 0, 0), v3(0, 0, 1), rz, h / 2, wall_cool, room); /* left */
     /* Door wall: inner face (x = rx, facing -x) and outer face (x = ox, facing +x) around the
      * opening, the jambs, the lintel's underside and the threshold. */
     for (int side = 0; side < 2; side++) {
         float x = side ? ox : rx, z0 = side ? vz0 : -rz, z1 = side ? vz1 : rz;
         vec3 n = v3(side ? 1.0f : -1.0f, 0, 0);
         int m = side ? outside : wall_warm;
-        add_rect(b, v3(x, h / 2, 0.5f * (z0 + dz0)), n, v3(0, 0, 1), 0.5f * (dz0 - z0), h / 2, m, room);
-        add_rect(b, v3(x, h / 2, 0.5f * (dz1 + z1)), n, v3(0, 0, 1), 0.5f * (z1 - dz1), h / 2, m, room);
-        add_rect(b, v3(x, 0.5f * (dh + h), dcz), n, v3(0, 0, 1), dhw, 0.5f * (h - dh), m, room);
+        builtin_rect(b, v3(x, h / 2, 0.5f * (z0 + dz0)), n, v3(0, 0, 1), 0.5f * (dz0 - z0), h / 2, m, room);
+        builtin_rect(b, v3(x, h / 2, 0.5f * (dz1 + z1)), n, v3(0, 0, 1), 0.5f * (z1 - dz1), h / 2, m, room);
+        builtin_rect(b, v3(x, 0.5f * (dh + h), dcz), n, v3(0, 0, 1), dhw, 0.5f * (h - dh), m, room);
     }
-    add_rect(b, v3(rx + wt / 2, dh / 2, dz0), v3(0, 0, 1), v3(1, 0, 0), wt / 2, dh / 2, wall_warm, room);
-    add_rect(b, v3(rx + wt / 2, dh / 2, dz1), v3(0, 0, -1), v3(1, 0, 0), wt / 2, dh / 2, wall_warm, room);
-    add_rect(b, v3(rx + wt / 2, dh, dcz), v3(0, -1, 0), v3(1, 0, 0), wt / 2, dhw, wall_warm, room);
-    add_rect(b, v3(rx + wt / 2, 0, dcz), v3(0, 1, 0), v3(1, 0, 0), wt / 2, dhw, floor_mat, room);
+    builtin_rect(b, v3(rx + wt / 2, dh / 2, dz0), v3(0, 0, 1), v3(1, 0, 0), wt / 2, dh / 2, wall_warm, room);
+    builtin_rect(b, v3(rx + wt / 2, dh / 2, dz1), v3(0, 0, -1), v3(1, 0, 0), wt / 2, dh / 2, wall_warm, room);
+    builtin_rect(b, v3(rx + wt / 2, dh, dcz), v3(0, -1, 0), v3(1, 0, 0), wt / 2, dhw, wall_warm, room);
+    builtin_rect(b, v3(rx + wt / 2, 0, dcz), v3(0, 1, 0), v3(1, 0, 0), wt / 2, dhw, floor_mat, room);
     /* Vestibule beyond the door, faces inward, with the emitter just in front of its far wall. */
     int vest = scene_new_object(b);
     float vcx = 0.5f * (ox + vx1), vhx = 0.5f * (vx1 - ox), vcz = 0.5f * (vz0 + vz1), vhz = 0.5f * (vz1 - vz0);
-    add_rect(b, v3(vcx, 0, vcz), v3(0, 1, 0), v3(1, 0, 0), vhx, vhz, outside, vest);
-    add_rect(b, v3(vcx, h, vcz), v3(0, -1, 0), v3(1, 0, 0), vhx, vhz, outside, vest);
-    add_rect(b, v3(vcx, h / 2, vz0), v3(0, 0, 1), v3(1, 0, 0), vhx, h / 2, outside, vest);
-    add_rect(b, v3(vcx, h / 2, vz1), v3(0, 0, -1), v3(1, 0, 0), vhx, h / 2, outside, vest);
-    add_rect(b, v3(vx1, h / 2, vcz), v3(-1, 0, 0), v3(0, 0, 1), vhz, h / 2, outside, vest);
+    builtin_rect(b, v3(vcx, 0, vcz), v3(0, 1, 0), v3(1, 0, 0), vhx, vhz, outside, vest);
+    builtin_rect(b, v3(vcx, h, vcz), v3(0, -1, 0), v3(1, 0, 0), vhx, vhz, outside, vest);
+    builtin_rect(b, v3(vcx, h / 2, vz0), v3(0, 0, 1), v3(1, 0, 0), vhx, h / 2, outside, vest);
+    builtin_rect(b, v3(vcx, h / 2, vz1), v3(0, 0, -1), v3(1, 0, 0), vhx, h / 2, outside, vest);
+    builtin_rect(b, v3(vx1, h / 2, vcz), v3(-1, 0, 0), v3(0, 0, 1), vhz, h / 2, outside, vest);
     /* Emitter z in [-1.3, 0]: its light reaches the slit at shallow angles, while the camera's view
      * through the slit lands on the plain wall further toward -z. */
-    add_rect(b, v3(vx1 - 0.01f, 1.3f, -0.65f), v3(-1, 0, 0), v3(0, 0, 1), 0.65f, 1.0f, light,
+    builtin_rect(b, v3(vx1 - 0.01f, 1.3f, -0.65f), v3(-1, 0, 0), v3(0, 0, 1), 0.65f, 1.0f, light,
              scene_new_object(b));
     /* Door panel: closed it would fill x in [rx - dt, rx]; rotated about its center so that the
      * hinge corner (rx, dz0) stays put while the free edge swings 18 degrees into the room. */
@@ -162,36 +129,36 @@ static void build_ajar(struct scene_builder *b)
     struct camera_key keys[3] = {{0, {v3(-1.85f, 1.5f, 2.45f), v3(1.2f, 0.6f, -1.25f), v3(0, 1, 0), 55.0f, 0.0f, 0.0f}},
                                  {60, {v3(-1.75f, 1.47f, 2.37f), v3(1.2f, 0.6f, -1.2f), v3(0, 1, 0), 55.0f, 0.0f, 0.0f}},
                                  {120, {v3(-1.65f, 1.45f, 2.3f), v3(1.2f, 0.6f, -1.15f), v3(0, 1, 0), 55.0f, 0.0f, 0.0f}}};
-    set_path(b->s, 3, keys);
+    builtin_set_path(b->s, 3, keys);
 }
 
 static void build_many_lights(struct scene_builder *b)
 {
     pcg32 r = pcg32_make(7, 11);
-    int floor_mat = scene_add_material(b, diffuse(0.6f, 0.6f, 0.6f));
-    int box_mat = scene_add_material(b, diffuse(0.7f, 0.68f, 0.62f));
-    int metal = scene_add_material(b, surface(v3(0.9f, 0.9f, 0.92f), 1.0f, 0.3f));
-    add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 12, 12, floor_mat, scene_new_object(b));
+    int floor_mat = scene_add_material(b, builtin_diffuse(0.6f, 0.6f, 0.6f));
+    int box_mat = scene_add_material(b, builtin_diffuse(0.7f, 0.68f, 0.62f));
+    int metal = scene_add_material(b, builtin_surface(v3(0.9f, 0.9f, 0.92f), 1.0f, 0.3f));
+    builtin_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 12, 12, floor_mat, scene_new_object(b));
     for (int i = 0; i < 5; i++) {
         for (int j = 0; j < 5; j++) {
-            float x = -8.0f + 4.0f * (float)i + rnd(&r, -0.6f, 0.6f);
-            float z = -8.0f + 4.0f * (float)j + rnd(&r, -0.6f, 0.6f);
-            float h = rnd(&r, 0.4f, 2.5f), w = rnd(&r, 0.3f, 0.9f);
-            scene_add_box_rotated_y(b, v3(x - w, 0, z - w), v3(x + w, h, z + w), rnd(&r, 0, 1.5f),
+            float x = -8.0f + 4.0f * (float)i + builtin_rnd(&r, -0.6f, 0.6f);
+            float z = -8.0f + 4.0f * (float)j + builtin_rnd(&r, -0.6f, 0.6f);
+            float h = builtin_rnd(&r, 0.4f, 2.5f), w = builtin_rnd(&r, 0.3f, 0.9f);
+            scene_add_box_rotated_y(b, v3(x - w, 0, z - w), v3(x + w, h, z + w), builtin_rnd(&r, 0, 1.5f),
                                     (i + j) % 3 == 0 ? metal : box_mat, scene_new_object(b));
         }
     }
     /* 1200 small one-sided emitters facing mostly downward, power spread over two decades. */
     int light_obj = scene_new_object(b);
     for (int i = 0; i < 1200; i++) {
-        vec3 c = v3(rnd(&r, -11, 11), rnd(&r, 0.4f, 4.0f), rnd(&r, -11, 11));
-        vec3 n = random_unit(&r);
+        vec3 c = v3(builtin_rnd(&r, -11, 11), builtin_rnd(&r, 0.4f, 4.0f), builtin_rnd(&r, -11, 11));
+        vec3 n = builtin_random_unit(&r);
         n.y = -fabsf(n.y) - 0.5f;
         n = v3_normalize(n);
         frame f = frame_from_normal(n);
-        float size = rnd(&r, 0.08f, 0.25f);
-        float power = expf(rnd(&r, logf(0.5f), logf(40.0f)));
-        int m = scene_add_material(b, emitter(v3_scale(hue_color(pcg32_float(&r)), power)));
+        float size = builtin_rnd(&r, 0.08f, 0.25f);
+        float power = expf(builtin_rnd(&r, logf(0.5f), logf(40.0f)));
+        int m = scene_add_material(b, builtin_emitter(v3_scale(hue_color(pcg32_float(&r)), power)));
         vec3 p0 = v3_madd(c, f.t, size), p1 = v3_madd(c, v3_add(v3_scale(f.t, -0.5f), v3_scale(f.b, 0.866f)), size);
         vec3 p2 = v3_madd(c, v3_add(v3_scale(f.t, -0.5f), v3_scale(f.b, -0.866f)), size);
         /* counter-clockwise around n: t -> b */
@@ -200,20 +167,20 @@ static void build_many_lights(struct scene_builder *b)
     b->s->camera = (struct camera){v3(0, 7, 15), v3(0, 0.5f, 0), v3(0, 1, 0), 50.0f, 0.0f, 0.0f};
     struct camera_key keys[2] = {{0, {v3(-3, 7, 15), v3(-1, 0.5f, 0), v3(0, 1, 0), 50.0f, 0.0f, 0.0f}},
                                  {64, {v3(3, 6, 13), v3(1, 0.5f, 0), v3(0, 1, 0), 50.0f, 0.0f, 0.0f}}};
-    set_path(b->s, 2, keys);
+    builtin_set_path(b->s, 2, keys);
 }
 
 static void build_foliage(struct scene_builder *b)
 {
     pcg32 r = pcg32_make(3, 5);
-    int ground = scene_add_material(b, diffuse(0.35f, 0.28f, 0.2f));
-    int bark = scene_add_material(b, diffuse(0.3f, 0.2f, 0.12f));
-    int leaf[3] = {scene_add_material(b, diffuse(0.25f, 0.5f, 0.12f)),
-                   scene_add_material(b, diffuse(0.35f, 0.55f, 0.1f)),
-                   scene_add_material(b, surface(v3(0.2f, 0.45f, 0.1f), 0.0f, 0.35f))};
-    int sky = scene_add_material(b, emitter(v3(6.0f, 6.0f, 5.5f)));
-    int sun = scene_add_material(b, emitter(v3(40.0f, 34.0f, 26.0f)));
-    add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 8, 8, ground, scene_new_object(b));
+    int ground = scene_add_material(b, builtin_diffuse(0.35f, 0.28f, 0.2f));
+    int bark = scene_add_material(b, builtin_diffuse(0.3f, 0.2f, 0.12f));
+    int leaf[3] = {scene_add_material(b, builtin_diffuse(0.25f, 0.5f, 0.12f)),
+                   scene_add_material(b, builtin_diffuse(0.35f, 0.55f, 0.1f)),
+                   scene_add_material(b, builtin_surface(v3(0.2f, 0.45f, 0.1f), 0.0f, 0.35f))};
+    int sky = scene_add_material(b, builtin_emitter(v3(6.0f, 6.0f, 5.5f)));
+    int sun = scene_add_material(b, builtin_emitter(v3(40.0f, 34.0f, 26.0f)));
+    builtin_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 8, 8, ground, scene_new_object(b));
     const vec3 stems[3] = {v3(-1.3f, 0, -0.5f), v3(0.2f, 0, -1.2f), v3(1.4f, 0, -0.2f)};
     for (int s = 0; s < 3; s++) {
         float h = 2.2f + 0.3f * (float)s;
@@ -223,33 +190,33 @@ static void build_foliage(struct scene_builder *b)
         int obj = scene_new_object(b);
         for (int i = 0; i < 1500; i++) {
             /* Leaves fill an ellipsoidal crown around the top of the stem. */
-            vec3 d = random_unit(&r);
+            vec3 d = builtin_random_unit(&r);
             float rad = cbrtf(pcg32_float(&r));
             vec3 c = v3(base.x + 0.9f * rad * d.x, h - 0.5f + 0.8f * rad * d.y, base.z + 0.9f * rad * d.z);
-            vec3 n = random_unit(&r);
+            vec3 n = builtin_random_unit(&r);
             frame f = frame_from_normal(n);
-            float len = rnd(&r, 0.06f, 0.12f), wid = rnd(&r, 0.025f, 0.05f);
-            add_rect(b, c, n, f.t, len, wid, leaf[i % 3], obj);
+            float len = builtin_rnd(&r, 0.06f, 0.12f), wid = builtin_rnd(&r, 0.025f, 0.05f);
+            builtin_rect(b, c, n, f.t, len, wid, leaf[i % 3], obj);
         }
     }
-    add_rect(b, v3(0, 6, 0), v3(0, -1, 0), v3(1, 0, 0), 3, 3, sky, scene_new_object(b));
+    builtin_rect(b, v3(0, 6, 0), v3(0, -1, 0), v3(1, 0, 0), 3, 3, sky, scene_new_object(b));
     vec3 sun_n = v3_normalize(v3(-1, -1.2f, -0.6f));
-    add_rect(b, v3(5, 5, 3), sun_n, frame_from_normal(sun_n).t, 0.5f, 0.5f, sun, scene_new_object(b));
+    builtin_rect(b, v3(5, 5, 3), sun_n, frame_from_normal(sun_n).t, 0.5f, 0.5f, sun, scene_new_object(b));
     b->s->camera = (struct camera){v3(0, 1.7f, 5.0f), v3(0, 1.6f, -0.5f), v3(0, 1, 0), 45.0f, 0.0f, 0.0f};
     struct camera_key keys[2] = {{0, {v3(-0.6f, 1.7f, 5.0f), v3(0, 1.6f, -0.5f), v3(0, 1, 0), 45.0f, 0.0f, 0.0f}},
                                  {64, {v3(0.6f, 1.8f, 4.6f), v3(0, 1.6f, -0.5f), v3(0, 1, 0), 45.0f, 0.0f, 0.0f}}};
-    set_path(b->s, 2, keys);
+    builtin_set_path(b->s, 2, keys);
 }
 
 static void build_pillars(struct scene_builder *b)
 {
-    int white = scene_add_material(b, diffuse(0.75f, 0.75f, 0.72f));
-    int floor_mat = scene_add_material(b, surface(v3(0.5f, 0.5f, 0.55f), 0.0f, 0.3f));
-    int stone = scene_add_material(b, diffuse(0.55f, 0.45f, 0.35f));
-    int warm = scene_add_material(b, emitter(v3(30.0f, 20.0f, 10.0f)));
-    int cool = scene_add_material(b, emitter(v3(8.0f, 14.0f, 30.0f)));
-    add_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 10, 6, floor_mat, scene_new_object(b));
-    add_rect(b, v3(0, 2.5f, -2.5f), v3(0, 0, 1), v3(1, 0, 0), 10, 2.5f, white, scene_new_object(b));
+    int white = scene_add_material(b, builtin_diffuse(0.75f, 0.75f, 0.72f));
+    int floor_mat = scene_add_material(b, builtin_surface(v3(0.5f, 0.5f, 0.55f), 0.0f, 0.3f));
+    int stone = scene_add_material(b, builtin_diffuse(0.55f, 0.45f, 0.35f));
+    int warm = scene_add_material(b, builtin_emitter(v3(30.0f, 20.0f, 10.0f)));
+    int cool = scene_add_material(b, builtin_emitter(v3(8.0f, 14.0f, 30.0f)));
+    builtin_rect(b, v3(0, 0, 0), v3(0, 1, 0), v3(1, 0, 0), 10, 6, floor_mat, scene_new_object(b));
+    builtin_rect(b, v3(0, 2.5f, -2.5f), v3(0, 0, 1), v3(1, 0, 0), 10, 2.5f, white, scene_new_object(b));
     for (int i = 0; i < 7; i++) {
         float x = -6.0f + 2.0f * (float)i;
         scene_add_box(b, v3(x - 0.25f, 0, -0.25f), v3(x + 0.25f, 3.5f, 0.25f), stone, scene_new_object(b));
@@ -258,13 +225,13 @@ static void build_pillars(struct scene_builder *b)
     vec3 down_back = v3_normalize(v3(0, -1, -0.6f));
     for (int i = 0; i < 4; i++) {
         float x = -6.0f + 4.0f * (float)i;
-        add_rect(b, v3(x, 4.6f, -1.2f), down_back, v3(1, 0, 0), 0.9f, 0.1f, i % 2 ? cool : warm,
+        builtin_rect(b, v3(x, 4.6f, -1.2f), down_back, v3(1, 0, 0), 0.9f, 0.1f, i % 2 ? cool : warm,
                  scene_new_object(b));
     }
     b->s->camera = (struct camera){v3(-1, 1.6f, 6), v3(-1, 1.6f, -2.5f), v3(0, 1, 0), 50.0f, 0.0f, 0.0f};
     struct camera_key keys[2] = {{0, {v3(-4, 1.6f, 6), v3(-4, 1.6f, -2.5f), v3(0, 1, 0), 50.0f, 0.0f, 0.0f}},
                                  {64, {v3(4, 1.6f, 6), v3(4, 1.6f, -2.5f), v3(0, 1, 0), 50.0f, 0.0f, 0.0f}}};
-    set_path(b->s, 2, keys);
+    builtin_set_path(b->s, 2, keys);
 }
 
 static void build_furnace(struct scene_builder *b)
@@ -276,7 +243,7 @@ static void build_furnace(struct scene_builder *b)
     b->s->camera = (struct camera){v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), 60.0f, 0.0f, 0.0f};
     struct camera_key keys[2] = {{0, {v3(0, 0, 0), v3(0, 0, 1), v3(0, 1, 0), 60.0f, 0.0f, 0.0f}},
                                  {64, {v3(0.2f, 0, 0), v3(1, 0, 1), v3(0, 1, 0), 60.0f, 0.0f, 0.0f}}};
-    set_path(b->s, 2, keys);
+    builtin_set_path(b->s, 2, keys);
 }
 
 static int find_builtin(const char *name)
@@ -293,7 +260,10 @@ static int create_builtin(const char *name, struct scene *s, struct scene_shape_
                           char *msg)
 {
     static void (*const builders[])(struct scene_builder *) = {build_many_lights, build_cornell, build_ajar,
-                                                               build_foliage, build_pillars, build_furnace};
+                                                               build_foliage,     build_pillars, build_furnace,
+                                                               scene_build_forest};
+    /* Lights that need the finished scene (an environment's share depends on the emitters). */
+    static int (*const lights[])(struct scene *, char *) = {NULL, NULL, NULL, NULL, NULL, NULL, scene_light_forest};
     const int i = find_builtin(name);
     if (i < 0) {
         int n = snprintf(msg, RESTIR_MSG_LEN, "unknown scene '%s' (built-in scenes:", name);
@@ -307,7 +277,7 @@ static int create_builtin(const char *name, struct scene *s, struct scene_shape_
     scene_builder_begin(&b, s, name);
     b.record = records != NULL;
     builders[i](&b);
-    if (scene_builder_end(&b, msg) != 0) {
+    if (scene_builder_end(&b, msg) != 0 || (lights[i] && lights[i](s, msg) != 0)) {
         free(b.records);
         scene_destroy(s);
         return -1;

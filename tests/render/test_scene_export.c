@@ -81,6 +81,11 @@ int main(void)
         char args[2 * CLI_PATH_MAX], err[CLI_ERR_MAX], file[2 * CLI_PATH_MAX], msg[RESTIR_MSG_LEN];
         snprintf(args, sizeof args, "scene export %s --out '%s/scenes'", name, tmp);
         int rc = cli_run(tmp, args, err);
+        if (strcmp(name, "forest") == 0) { /* its textures, UVs, normals and sky are not written yet */
+            EXPECT(rc != 0 && strstr(err, "does not write yet") != NULL,
+                   "scene export forest: exit %d, not refused by name:\n%s", rc, err);
+            continue;
+        }
         EXPECT(rc == 0, "restir %s exited %d:\n%s", args, rc, err);
         snprintf(file, sizeof file, "%s/scenes/%s.json", tmp, name);
         struct scene a, b;
