@@ -109,6 +109,9 @@ int main(int argc, char **argv)
         snprintf(textured, sizeof textured, "%s/scenes/sky_only.json", data);
         check_scene(textured, 24, 16, pairwise, 1, 1);
     }
+    /* The built-in forest along its walk: leaf cut-outs in every shadow ray, a sky with a sun as
+     * the only light (issue 23). */
+    check_scene("forest", 24, 16, pairwise, 1, 1);
     /* ris-di has no reuse: none is exact there (and skips the shading ray). */
     const char *ris_none[] = {"di.visibility_mis=none"};
     check_method(METHOD_RIS_DI, "pillars", 24, 16, ris_none, 1, 1);

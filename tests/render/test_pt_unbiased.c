@@ -67,10 +67,18 @@ int main(int argc, char **argv)
             const char *env_sets[] = {shifts[k], "mis=pairwise"};
             check(real, RUNS, env_sets, 2, 1);
         }
+        /* A real asset's smooth vertex normals and its own normal maps (tangents computed from
+         * its UVs), lit by a sky: assimp-testmodels' ClearCoatTest.gltf (clearcoat_sky.json). */
+        snprintf(real, sizeof real, "%s/scenes/clearcoat_sky.json", data);
+        check(real, RUNS, sets, 2, 1);
         snprintf(real, sizeof real, "%s/scenes/leaves_sky.json", data);
         const char *splat[] = {"shift=reconnection", "temporal.reuse=both"};
         check(real, RUNS, splat, 2, 1);
     }
+    /* The built-in forest (issue 23): alpha-masked leaf cards, normal-mapped trunks and a sky with
+     * a sun as the only light, along its walk. */
+    const char *forest[] = {"shift=hybrid", "mis=pairwise"};
+    check("forest", RUNS, forest, 2, 1);
     /* The test has power: the BIASED 1/M weights are caught on the same setup. */
     const char *uniform[] = {"shift=hybrid", "mis=1/M"};
     EXPECT(check("cornell", RUNS, uniform, 2, 0) > 0, "1/M weights were not detected as biased");
