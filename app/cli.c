@@ -246,6 +246,7 @@ void cli_catch_stop_signals(void)
 int cli_scene_load(const struct render_params *p, const char *env, const char *name, struct scene *s, char *msg)
 {
     scene_set_missing_textures_warn(p->missing_textures_warn);
+    scene_set_alpha_masks(p->alpha_masks);
     if (scene_load(name, s, msg) != 0)
         return -1;
     if (!env)

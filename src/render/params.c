@@ -114,6 +114,9 @@ static const struct param_def params[] = {
      "reservoir lands where its primary hit is seen now; needs jitter=on), or both, combined by balance "
      "MIS (docs/RESTIR_PT.md); all unbiased with mis=pairwise or balance",
      temporal_reuse_names},
+    {"scene.alpha", P_BOOL, F(alpha_masks), 0, 1, "on", NULL,
+     "off: every alpha-masked material (glTF alphaMode MASK or BLEND) is opaque. This CHANGES THE SCENE "
+     "(leaf cards become quads): for measuring what the masks cost, never for comparing images", NULL},
     {"scene.missing_textures", P_NAMES, F(missing_textures_warn), 0, 0, "error", NULL,
      "a texture a scene file names that cannot be read: error (refuse the scene, naming the file) or warn "
      "(say so on stderr and use the material's factor instead of the map)",

@@ -50,6 +50,9 @@ void scene_set_max_triangles(int n);
  * scene_texture_unreadable(why): -1 to refuse, 0 after the warning. */
 void scene_set_missing_textures_warn(int warn);
 int scene_texture_unreadable(const char *why);
+/* With on = 0, scene_builder_end makes every alpha-masked material opaque (scene.alpha=off: what
+ * the masks cost is measured on the same geometry). Default on. */
+void scene_set_alpha_masks(int on);
 /* The UVs (u0 v0 u1 v1 u2 v2) of triangle tri, already added: set 0 (scene_set_uvs) or 1. */
 void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6]);
 void scene_set_uv_set(struct scene_builder *b, int tri, int set, const float uv[6]);

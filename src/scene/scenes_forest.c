@@ -102,7 +102,7 @@ static struct texture bark_normal_texture(void)
 }
 
 /* The sun: its direction, angular radius (larger than the real 0.27 degrees so that the 512 x
- * 256 map resolves it in about 20 texels) and radiance (about 7 W/m^2 on the ground against 2.5
+ * 256 map resolves it in about 20 texels) and radiance (6.4 W/m^2 on open ground against 1.85
  * from the sky: hard, dappled shadows). */
 #define SUN_DIR v3(-0.8f, 0.9f, 0.5f)
 #define SUN_RADIUS_DEG 1.5f

@@ -386,6 +386,19 @@ static void check_scene_files(void)
                  tmp, methods[m]);
         EXPECT(cli_run(tmp, fmt, err) == 0, "%s under the scene's environment: %s", methods[m], err);
     }
+    /* scene.alpha=off makes the leaf cards of leaves.json opaque: another image; on is the default. */
+    const char *data = getenv("RESTIR_TEST_DATA");
+    const char *alpha[] = {"", "--set scene.alpha=on", "--set scene.alpha=off"};
+    char frames[3][3 * CLI_PATH_MAX];
+    for (int k = 0; data && k < 3; k++) {
+        snprintf(fmt, sizeof fmt, "render --scene '%s/scenes/leaves.json' --method pt --res 24x16 %s --out '%s/alpha-%d'",
+                 data, alpha[k], tmp, k);
+        EXPECT(cli_run(tmp, fmt, err) == 0, "restir %s: %s", fmt, err);
+        snprintf(frames[k], sizeof frames[k], "%s/alpha-%d/frame_0000.exr", tmp, k);
+    }
+    long size;
+    EXPECT(!data || cli_files_equal(frames[0], frames[1], &size) == 1, "scene.alpha=on is not the default");
+    EXPECT(!data || cli_files_equal(frames[0], frames[2], &size) == 0, "scene.alpha=off changed nothing");
 }
 
 /* Every deliberately broken file of assimp-testmodels: `restir scene info` exits 1 or 2 with a
