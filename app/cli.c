@@ -247,6 +247,7 @@ int cli_scene_load(const struct render_params *p, const char *env, const char *n
 {
     scene_set_missing_textures_warn(p->missing_textures_warn);
     scene_set_alpha_masks(p->alpha_masks);
+    scene_set_shading_normals(p->shading_normals);
     if (scene_load(name, s, msg) != 0)
         return -1;
     if (!env)

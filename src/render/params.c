@@ -114,6 +114,9 @@ static const struct param_def params[] = {
      "reservoir lands where its primary hit is seen now; needs jitter=on), or both, combined by balance "
      "MIS (docs/RESTIR_PT.md); all unbiased with mis=pairwise or balance",
      temporal_reuse_names},
+    {"scene.shading_normals", P_BOOL, F(shading_normals), 0, 1, "on", NULL,
+     "off: every triangle shades with its geometric normal (no vertex normals, no normal maps), as before "
+     "issue 23. This CHANGES THE SCENE: for looking at what they do, never for comparing images", NULL},
     {"scene.alpha", P_BOOL, F(alpha_masks), 0, 1, "on", NULL,
      "off: every alpha-masked material (glTF alphaMode MASK or BLEND) is opaque. This CHANGES THE SCENE "
      "(leaf cards become quads): for measuring what the masks cost, never for comparing images", NULL},

@@ -70,6 +70,7 @@ struct render_params {
     int temporal_ratio_guard; /* 001 Sec. 5 target-ratio guard (biased) */
     float ratio_lo, ratio_hi;
     enum temporal_reuse_mode temporal_reuse; /* path reservoirs only (restir-pt and its relatives) */
+    int shading_normals;       /* scene.shading_normals: vertex normals and normal maps (1) or flat (0) */
     int alpha_masks;           /* scene.alpha: honour alpha-masked materials (1) or make every one opaque (0) */
     int missing_textures_warn; /* scene files: a texture that cannot be read is an error (0) or a warning (1) */
     int temporal_splat_steps; /* splat with motion blur: shutter-time strata per history reservoir */

@@ -80,7 +80,10 @@ void scene_set_max_triangles(int n) { max_triangles = n > 0 ? n : 1; }
 static int missing_textures_warn;
 static int alpha_masks = 1;
 
+static int shading_normals = 1;
+
 void scene_set_alpha_masks(int on) { alpha_masks = on != 0; }
+void scene_set_shading_normals(int on) { shading_normals = on != 0; }
 
 void scene_set_missing_textures_warn(int warn) { missing_textures_warn = warn != 0; }
 
@@ -330,6 +333,8 @@ int scene_builder_end(struct scene_builder *b, char *msg)
     for (int m = 0; m < s->num_materials; m++) {
         if (!alpha_masks)
             s->materials[m].alpha_mask = 0;
+        if (!shading_normals)
+            s->materials[m].normal_map = 0;
         const struct material *mt = &s->materials[m];
         if (!v3_is_finite(mt->base_color) || !v3_is_finite(mt->emission) || !isfinite(mt->metallic) ||
             !isfinite(mt->roughness) || v3_max_component(v3_neg(mt->emission)) > 0.0f) {
@@ -345,6 +350,12 @@ int scene_builder_end(struct scene_builder *b, char *msg)
                 return -1;
             }
         }
+    }
+    if (!shading_normals) {
+        free(s->normals);
+        free(s->tangents);
+        s->normals = NULL;
+        s->tangents = NULL;
     }
     if (derive_triangle_data(s, msg) != 0 || scene_lights_build(s, msg) != 0)
         return -1;

@@ -53,6 +53,9 @@ int scene_texture_unreadable(const char *why);
 /* With on = 0, scene_builder_end makes every alpha-masked material opaque (scene.alpha=off: what
  * the masks cost is measured on the same geometry). Default on. */
 void scene_set_alpha_masks(int on);
+/* With on = 0, scene_builder_end drops vertex normals, tangents and normal maps: every triangle
+ * shades flat (scene.shading_normals=off). Default on. */
+void scene_set_shading_normals(int on);
 /* The UVs (u0 v0 u1 v1 u2 v2) of triangle tri, already added: set 0 (scene_set_uvs) or 1. */
 void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6]);
 void scene_set_uv_set(struct scene_builder *b, int tri, int set, const float uv[6]);

@@ -386,19 +386,26 @@ static void check_scene_files(void)
                  tmp, methods[m]);
         EXPECT(cli_run(tmp, fmt, err) == 0, "%s under the scene's environment: %s", methods[m], err);
     }
-    /* scene.alpha=off makes the leaf cards of leaves.json opaque: another image; on is the default. */
+    /* scene.alpha=off makes the leaf cards of leaves.json opaque, scene.shading_normals=off shades
+     * smooth.json flat: other images; on is the default. */
     const char *data = getenv("RESTIR_TEST_DATA");
-    const char *alpha[] = {"", "--set scene.alpha=on", "--set scene.alpha=off"};
-    char frames[3][3 * CLI_PATH_MAX];
-    for (int k = 0; data && k < 3; k++) {
-        snprintf(fmt, sizeof fmt, "render --scene '%s/scenes/leaves.json' --method pt --res 24x16 %s --out '%s/alpha-%d'",
-                 data, alpha[k], tmp, k);
-        EXPECT(cli_run(tmp, fmt, err) == 0, "restir %s: %s", fmt, err);
-        snprintf(frames[k], sizeof frames[k], "%s/alpha-%d/frame_0000.exr", tmp, k);
+    const char *const knobs[2][2] = {{"alpha", "leaves"}, {"shading_normals", "smooth"}};
+    for (int o = 0; data && o < 2; o++) {
+        const char *value[] = {NULL, "on", "off"};
+        char frames[3][3 * CLI_PATH_MAX];
+        for (int k = 0; k < 3; k++) {
+            char set[128] = "";
+            if (value[k])
+                snprintf(set, sizeof set, "--set scene.%s=%s", knobs[o][0], value[k]);
+            snprintf(fmt, sizeof fmt, "render --scene '%s/scenes/%s.json' --method pt --res 24x16 %s --out '%s/%s-%d'",
+                     data, knobs[o][1], set, tmp, knobs[o][0], k);
+            EXPECT(cli_run(tmp, fmt, err) == 0, "restir %s: %s", fmt, err);
+            snprintf(frames[k], sizeof frames[k], "%s/%s-%d/frame_0000.exr", tmp, knobs[o][0], k);
+        }
+        long size;
+        EXPECT(cli_files_equal(frames[0], frames[1], &size) == 1, "scene.%s=on is not the default", knobs[o][0]);
+        EXPECT(cli_files_equal(frames[0], frames[2], &size) == 0, "scene.%s=off changed nothing", knobs[o][0]);
     }
-    long size;
-    EXPECT(!data || cli_files_equal(frames[0], frames[1], &size) == 1, "scene.alpha=on is not the default");
-    EXPECT(!data || cli_files_equal(frames[0], frames[2], &size) == 0, "scene.alpha=off changed nothing");
 }
 
 /* Every deliberately broken file of assimp-testmodels: `restir scene info` exits 1 or 2 with a
