@@ -30,7 +30,11 @@ struct alpha_filter {
 
 struct scene_rt {
     int logging;
-    struct alpha_filter alpha_all, alpha_emitters;
+    struct alpha_filter alpha_masked, alpha_emitters;
+    /* The main scene holds the opaque triangles as geometry 0 and, where some material is
+     * alpha-masked, the masked ones as geometry 1, so that only hits on those call the filter.
+     * geom_tris[g][primID] is the triangle (NULL: primID is the triangle). */
+    int *geom_tris[2];
     struct ray_log logs[RAY_LOG_MAX_THREADS];
     RTCDevice device;
     RTCScene scene;
@@ -64,11 +68,11 @@ static void alpha_filter(const struct RTCFilterFunctionNArguments *args)
     }
 }
 
-static RTCScene build_triangles(RTCDevice device, const struct scene *s, const int *tris, int count,
-                                struct alpha_filter *filter)
+/* Attaches triangles tris[0 .. count-1] of s (NULL: all, in order) to scene as geometry id, with
+ * the alpha filter when filter is not NULL. Returns 0, or -1 when Embree cannot allocate. */
+static int attach_triangles(RTCDevice device, RTCScene scene, unsigned id, const struct scene *s, const int *tris,
+                            int count, struct alpha_filter *filter)
 {
-    RTCScene scene = rtcNewScene(device);
-    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     float *vb = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
                                         3 * (size_t)count);
@@ -76,8 +80,7 @@ static RTCScene build_triangles(RTCDevice device, const struct scene *s, const i
                                            3 * sizeof(unsigned), (size_t)count);
     if (!vb || !ib) {
         rtcReleaseGeometry(geom);
-        rtcReleaseScene(scene);
-        return NULL;
+        return -1;
     }
     /* Un-indexed copy: three vertices per triangle, in the order of tris[] (or all triangles). */
     for (int i = 0; i < count; i++) {
@@ -98,8 +101,60 @@ static RTCScene build_triangles(RTCDevice device, const struct scene *s, const i
         rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
     }
     rtcCommitGeometry(geom);
-    rtcAttachGeometry(scene, geom);
+    rtcAttachGeometryByID(scene, geom, id);
     rtcReleaseGeometry(geom);
+    return 0;
+}
+
+static RTCScene new_scene(RTCDevice device)
+{
+    RTCScene scene = rtcNewScene(device);
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+    return scene;
+}
+
+/* The main scene: all triangles as one geometry when nothing is masked, else the opaque ones
+ * (geometry 0) apart from the masked ones (geometry 1, filtered). */
+static RTCScene build_main(struct scene_rt *rt, const struct scene *s)
+{
+    int masked = 0;
+    for (int t = 0; t < s->num_tris; t++)
+        masked += s->materials[s->tri_material[t]].alpha_mask != 0;
+    RTCScene scene = new_scene(rt->device);
+    int rc = 0;
+    if (masked == 0) {
+        rc = attach_triangles(rt->device, scene, 0, s, NULL, s->num_tris, NULL);
+    } else {
+        const int opaque = s->num_tris - masked;
+        rt->geom_tris[0] = xmalloc(sizeof(int) * (size_t)(opaque > 0 ? opaque : 1));
+        rt->geom_tris[1] = xmalloc(sizeof(int) * (size_t)masked);
+        int n[2] = {0, 0};
+        for (int t = 0; t < s->num_tris; t++) {
+            const int g = s->materials[s->tri_material[t]].alpha_mask != 0;
+            rt->geom_tris[g][n[g]++] = t;
+        }
+        if (opaque > 0)
+            rc = attach_triangles(rt->device, scene, 0, s, rt->geom_tris[0], opaque, NULL);
+        if (rc == 0)
+            rc = attach_triangles(rt->device, scene, 1, s, rt->geom_tris[1], masked, &rt->alpha_masked);
+    }
+    if (rc != 0) {
+        rtcReleaseScene(scene);
+        return NULL;
+    }
+    rtcCommitScene(scene);
+    return scene;
+}
+
+/* The emissive triangles alone (primID = emitter index), filtered when any material is masked. */
+static RTCScene build_emitters(struct scene_rt *rt, const struct scene *s, int masked)
+{
+    RTCScene scene = new_scene(rt->device);
+    if (attach_triangles(rt->device, scene, 0, s, s->emitter_tri, s->num_emitters,
+                         masked ? &rt->alpha_emitters : NULL) != 0) {
+        rtcReleaseScene(scene);
+        return NULL;
+    }
     rtcCommitScene(scene);
     return scene;
 }
@@ -118,15 +173,15 @@ int scene_rt_build(struct scene *s, char *msg)
     int masked = 0; /* filters only where some material is alpha-masked: they cost every hit a call */
     for (int m = 0; m < s->num_materials; m++)
         masked |= s->materials[m].alpha_mask;
-    rt->scene = build_triangles(rt->device, s, NULL, s->num_tris, masked ? &rt->alpha_all : NULL);
-    rt->emitters = s->num_emitters > 0 ? build_triangles(rt->device, s, s->emitter_tri, s->num_emitters,
-                                                         masked ? &rt->alpha_emitters : NULL)
-                                       : NULL;
+    rt->scene = build_main(rt, s);
+    rt->emitters = s->num_emitters > 0 ? build_emitters(rt, s, masked) : NULL;
     if (!rt->scene || (s->num_emitters > 0 && !rt->emitters)) {
         snprintf(msg, RESTIR_MSG_LEN, "scene '%s': Embree BVH construction failed", s->name);
         if (rt->scene)
             rtcReleaseScene(rt->scene);
         rtcReleaseDevice(rt->device);
+        free(rt->geom_tris[0]);
+        free(rt->geom_tris[1]);
         free(rt);
         return -1;
     }
@@ -144,6 +199,8 @@ void scene_rt_destroy(struct scene *s)
     if (s->rt->emitters)
         rtcReleaseScene(s->rt->emitters);
     rtcReleaseDevice(s->rt->device);
+    free(s->rt->geom_tris[0]);
+    free(s->rt->geom_tris[1]);
     free(s->rt);
     s->rt = NULL;
 }
@@ -163,9 +220,10 @@ static void log_ray(const struct scene *s, vec3 o, vec3 d, float tmin, float tma
     lg->rays[lg->count++] = (struct ray_record){o, d, tmin, tmax, kind};
 }
 
-/* Closest hit in rtc_scene; returns the primitive id or -1, with the distance and barycentrics. */
-static int intersect_closest(RTCScene rtc_scene, vec3 o, vec3 d, float tmin, float tmax, float *t, float *u,
-                             float *v)
+/* Closest hit in rtc_scene; returns the triangle (geom_tris[geomID][primID], or primID where
+ * geom_tris or its entry is NULL) or -1, with the distance and barycentrics. */
+static int intersect_closest(RTCScene rtc_scene, int *const *geom_tris, vec3 o, vec3 d, float tmin, float tmax,
+                             float *t, float *u, float *v)
 {
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -190,7 +248,8 @@ static int intersect_closest(RTCScene rtc_scene, vec3 o, vec3 d, float tmin, flo
     *t = rh.ray.tfar;
     *u = rh.hit.u;
     *v = rh.hit.v;
-    return (int)rh.hit.primID;
+    const int *map = geom_tris ? geom_tris[rh.hit.geomID] : NULL;
+    return map ? map[rh.hit.primID] : (int)rh.hit.primID;
 }
 
 void scene_surface_at(const struct scene *s, int tri, float b1, float b2, vec3 p, vec3 d, struct surface_hit *hit)
@@ -220,7 +279,7 @@ int scene_intersect(const struct scene *s, vec3 o, vec3 d, float tmin, float tma
     float t, u, v;
     if (s->rt->logging)
         log_ray(s, o, d, tmin, tmax, RAY_CLOSEST);
-    int tri = intersect_closest(s->rt->scene, o, d, tmin, tmax, &t, &u, &v);
+    int tri = intersect_closest(s->rt->scene, s->rt->geom_tris, o, d, tmin, tmax, &t, &u, &v);
     if (tri < 0)
         return 0;
     fill_hit(s, tri, o, d, t, u, v, hit);
@@ -235,7 +294,7 @@ int scene_intersect_emitters(const struct scene *s, vec3 o, vec3 d, float tmin, 
     float t, u, v;
     if (s->rt->logging)
         log_ray(s, o, d, tmin, tmax, RAY_EMITTERS);
-    int e = intersect_closest(s->rt->emitters, o, d, tmin, tmax, &t, &u, &v);
+    int e = intersect_closest(s->rt->emitters, NULL, o, d, tmin, tmax, &t, &u, &v);
     if (e < 0)
         return 0;
     fill_hit(s, s->emitter_tri[e], o, d, t, u, v, hit);
@@ -306,8 +365,9 @@ double scene_ray_replay(const struct scene *s, const struct ray_record *rays, si
         if (r->kind == RAY_OCCLUDED)
             hits += occluded(s->rt->scene, r->o, r->d, r->tmin, r->tmax);
         else
-            hits += intersect_closest(r->kind == RAY_EMITTERS ? s->rt->emitters : s->rt->scene, r->o, r->d,
-                                      r->tmin, r->tmax, &t, &u, &v) >= 0;
+            hits += intersect_closest(r->kind == RAY_EMITTERS ? s->rt->emitters : s->rt->scene,
+                                      r->kind == RAY_EMITTERS ? NULL : s->rt->geom_tris, r->o, r->d, r->tmin, r->tmax,
+                                      &t, &u, &v) >= 0;
     }
     (void)hits;
     return 1e3 * (omp_get_wtime() - t0);
