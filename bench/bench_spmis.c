@@ -376,10 +376,10 @@ void bench_spmis(const struct bench_spmis_options *o)
     printf("\n## Stochastic pairwise MIS (004), %dx%d, %s (8x8 tiles, %g px radii), confidence cap 20\n", c.width,
            c.height, o->scale_radii ? "pixel radii scaled by height / 1080" : "paper pixel parameters kept", radius);
     if (o->main) {
-        const char *const pt_scenes[] = {"pillars", "ajar", "foliage", "cornell"};
-        compare_scenes(&c, METHOD_RESTIR_PT, pt_scenes, 4);
-        const char *const di_scenes[] = {"pillars", "many-lights"};
-        compare_scenes(&c, METHOD_RESTIR_DI, di_scenes, 2);
+        const char *const pt_scenes[] = {"pillars", "ajar", "foliage", "cornell", "forest"};
+        compare_scenes(&c, METHOD_RESTIR_PT, pt_scenes, 5);
+        const char *const di_scenes[] = {"pillars", "many-lights", "forest"};
+        compare_scenes(&c, METHOD_RESTIR_DI, di_scenes, 3);
     }
     if (o->ablations) {
         struct bench_spmis_cfg a = c;
