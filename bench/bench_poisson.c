@@ -86,7 +86,8 @@ int bench_poisson(int argc, char **argv)
         }
     }
     static const int res[2][2] = {{640, 360}, {1920, 1080}};
-    static const char *const names[3] = {"L2 DCT", "L2 CG (tol 1e-6)", "L1 IRLS (20 x 50 CG)"};
+    static const char *const names[4] = {"L2 DCT", "L2 CG (tol 1e-6)", "L1 IRLS (20 x 50 Jacobi CG)",
+                                         "L1 IRLS (20 x 4 multigrid CG)"};
     printf("\n### Poisson reconstruction, synthetic noisy image, median of %d runs (%d threads)\n\n", runs,
            omp_get_max_threads());
     printf("| resolution | solver | median ms | min ms | iterations | residual | rel. RMS error vs clean |\n"
@@ -100,13 +101,14 @@ int bench_poisson(int argc, char **argv)
         float *clean = bp_alloc(m), *P = bp_alloc(m), *dx = bp_alloc(m), *dy = bp_alloc(m), *out = bp_alloc(m);
         bp_scene(w, h, clean, P, dx, dy);
         printf("| %dx%d | primal (noisy input) | | | | | %.4f |\n", w, h, bp_rel_rms(P, clean, m));
-        for (int s = 0; s < 3; s++) {
+        for (int s = 0; s < 4; s++) {
             struct restir_poisson_stats st = {0, 0.0, 0.0};
             for (int k = 0; k < runs; k++) {
                 int rc;
-                if (s == 2)
+                if (s >= 2)
                     rc = restir_poisson_l1(w, h, P, dx, dy, RESTIR_POISSON_ALPHA, RESTIR_POISSON_L1_ITERATIONS,
-                                           RESTIR_POISSON_L1_CG_STEPS, out, &st);
+                                           s == 2 ? RESTIR_POISSON_PRECOND_JACOBI : RESTIR_POISSON_PRECOND_MULTIGRID,
+                                           s == 2 ? RESTIR_POISSON_L1_CG_STEPS : RESTIR_POISSON_L1_MG_STEPS, out, &st);
                 else
                     rc = restir_poisson_l2(w, h, P, dx, dy, RESTIR_POISSON_ALPHA,
                                            s ? RESTIR_POISSON_CG : RESTIR_POISSON_DCT, RESTIR_POISSON_TOL, 10000,

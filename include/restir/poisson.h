@@ -36,7 +36,8 @@ extern "C" {
 #define RESTIR_POISSON_ALPHA 0.2f   /* G-PT's primal weight */
 #define RESTIR_POISSON_TOL 1e-6     /* CG relative residual */
 #define RESTIR_POISSON_L1_ITERATIONS 20
-#define RESTIR_POISSON_L1_CG_STEPS 50
+#define RESTIR_POISSON_L1_CG_STEPS 50 /* per reweighting, Jacobi preconditioner */
+#define RESTIR_POISSON_L1_MG_STEPS 4  /* per reweighting, multigrid preconditioner */
 
 struct restir_poisson_stats {
     int iterations;  /* CG iterations (the maximum over channels); 0 for the DCT solve; for L1 the
@@ -64,6 +65,17 @@ int restir_poisson_l2(int w, int h, const float *primal, const float *dx, const 
                       enum restir_poisson_solver solver, double tol, int max_iters, float *out,
                       struct restir_poisson_stats *st);
 
+/* Preconditioner of the L1 solve's inner CG. */
+enum restir_poisson_precond {
+    /* One multigrid V-cycle per CG step: 2x2 aggregation down to 4 x 4, Galerkin coarse
+     * operators (sums of the fine weights), one red-black Gauss-Seidel pair before and after the
+     * coarse correction (recon/poisson_mg.h). Smooth error, which Jacobi removes one pixel per
+     * step, is corrected on the coarse grids: 3-4x fewer steps to a given residual. */
+    RESTIR_POISSON_PRECOND_MULTIGRID = 0,
+    /* 1 / diag(A), the public G-PT solver's choice (there without preconditioning at all). */
+    RESTIR_POISSON_PRECOND_JACOBI
+};
+
 /* L1 reconstruction by iteratively reweighted least squares, after the public G-PT solver
  * (Kettunen et al. 2015, preset "L1D"): starting from the exact L2 solution (DCT), `iterations`
  * reweightings k = 1..iterations; each sets on every row (primal and gradient rows) the weight
@@ -72,14 +84,26 @@ int restir_poisson_l2(int w, int h, const float *primal, const float *dx, const 
  * Euclidean length over RGB, so one weight is shared by the three channels; weights are then
  * scaled to mean 1 over all rows. The weighted normal equations
  *   (alpha^2 Wp + Dx^T Wx Dx + Dy^T Wy Dy) I = alpha^2 Wp P + Dx^T Wx Gx + Dy^T Wy Gy
- * get cg_steps Jacobi-preconditioned CG steps warm-started from the previous solution.
+ * get cg_steps preconditioned CG steps (precond) warm-started from the previous solution (fewer
+ * where a channel's residual reaches rounding level, 1e-14 relative).
  * Differences from the public code: it counts its first, unweighted CG solve (50 steps from the
  * primal) as IRLS iteration 1, so its 20 iterations are 19 reweightings, and it uses plain CG
  * and averages the weights over its 3N rows including the ignored last-column / last-row ones.
- * Defaults: RESTIR_POISSON_L1_ITERATIONS, RESTIR_POISSON_L1_CG_STEPS; iterations >= 0 (0 gives
- * the L2 solution), cg_steps >= 1. */
+ * Defaults: RESTIR_POISSON_L1_ITERATIONS and RESTIR_POISSON_L1_MG_STEPS (multigrid) or
+ * RESTIR_POISSON_L1_CG_STEPS (Jacobi); iterations >= 0 (0 gives the L2 solution), cg_steps >= 1.
+ * Both preconditioners converge to the same IRLS iterates; at the defaults they reach the same
+ * L1 energy to 0.03-0.15% on ajar (docs/BENCHMARKS.md, "Issue 24: L1 reconstruction with a
+ * multigrid-preconditioned CG"). */
 int restir_poisson_l1(int w, int h, const float *primal, const float *dx, const float *dy, float alpha,
-                      int iterations, int cg_steps, float *out, struct restir_poisson_stats *st);
+                      int iterations, enum restir_poisson_precond precond, int cg_steps, float *out,
+                      struct restir_poisson_stats *st);
+
+/* The L1 energy restir_poisson_l1 minimizes, of the image x: alpha |x_p - P_p| summed over the
+ * pixels plus |x_q - x_p - G_p| over the pixel pairs, |.| the Euclidean length over RGB (non-
+ * finite inputs read as 0, as in the solves). For comparing L1 solves. Returns the energy, or
+ * NaN on bad input (the argument rules of the solves). */
+double restir_poisson_l1_energy(int w, int h, const float *primal, const float *dx, const float *dy, float alpha,
+                                const float *x);
 
 #ifdef __cplusplus
 }

@@ -64,7 +64,11 @@ void grad_reconstruct_l1(const struct render_params *p, struct grad_frame *g)
 {
     if (!g->l1)
         g->l1 = xcalloc(3 * (size_t)g->width * (size_t)g->height, sizeof(float));
+    const enum restir_poisson_precond pre = (enum restir_poisson_precond)p->recon_l1_precond;
+    const int steps = p->recon_l1_cg > 0                           ? p->recon_l1_cg
+                      : pre == RESTIR_POISSON_PRECOND_MULTIGRID ? RESTIR_POISSON_L1_MG_STEPS
+                                                                : RESTIR_POISSON_L1_CG_STEPS;
     int rc = restir_poisson_l1(g->width, g->height, g->primal, g->dx, g->dy, p->recon_alpha, p->recon_l1_iterations,
-                               p->recon_l1_cg, g->l1, &g->l1_stats);
+                               pre, steps, g->l1, &g->l1_stats);
     RESTIR_CHECK(rc == 0);
 }

@@ -4,6 +4,8 @@
 #include <omp.h>
 #include <stdlib.h>
 
+#include "recon/poisson_cg.h"
+#include "recon/poisson_mg.h"
 #include "recon/poisson_ops.h"
 #include "restir/poisson.h"
 
@@ -60,17 +62,22 @@ static void rp_weights(const struct rp_sys *s, double alpha, const float *primal
 }
 
 int restir_poisson_l1(int w, int h, const float *primal, const float *dx, const float *dy, float alpha,
-                      int iterations, int cg_steps, float *out, struct restir_poisson_stats *st)
+                      int iterations, enum restir_poisson_precond precond, int cg_steps, float *out,
+                      struct restir_poisson_stats *st)
 {
     const double t0 = omp_get_wtime();
-    if (rp_check(w, h, primal, dx, dy, alpha, out) != 0 || iterations < 0 || cg_steps < 1)
+    if (rp_check(w, h, primal, dx, dy, alpha, out) != 0 || iterations < 0 || cg_steps < 1 ||
+        (precond != RESTIR_POISSON_PRECOND_MULTIGRID && precond != RESTIR_POISSON_PRECOND_JACOBI))
         return -1;
+    struct rp_mg mg = {0};
+    struct rp_cg_work work = {0};
+    struct rp_mg *pre = precond == RESTIR_POISSON_PRECOND_MULTIGRID ? &mg : NULL;
     const size_t n = (size_t)w * (size_t)h;
     struct rp_sys s = {w, h, n, (double)alpha * (double)alpha, NULL, NULL, NULL, rp_alloc(RP_ROW_SUMS * (size_t)h)};
     double *b = rp_alloc(3 * n), *x = rp_alloc(3 * n);
     double *wp = rp_alloc(n), *wx = rp_alloc(n), *wy = rp_alloc(n);
     int rc = -1, total = 0;
-    if (!b || !x || !wp || !wx || !wy || !s.rows)
+    if (!b || !x || !wp || !wx || !wy || !s.rows || rp_cg_work_alloc(&work, n) != 0)
         goto done;
     rp_rhs(&s, primal, dx, dy, b);
     if (rp_dct_solve(w, h, s.a2, b, x) != 0)
@@ -80,7 +87,9 @@ int restir_poisson_l1(int w, int h, const float *primal, const float *dx, const 
         rp_weights(&s, alpha, primal, dx, dy, x, reg, wp, wx, wy);
         s.wp = wp, s.wx = wx, s.wy = wy;
         rp_rhs(&s, primal, dx, dy, b);
-        const int it = rp_cg(&s, b, x, 0.0, cg_steps);
+        if (pre && rp_mg_build(pre, &s, RP_MG_SWEEPS) != 0)
+            goto done;
+        const int it = rp_cg(&s, b, x, 0.0, cg_steps, pre, &work);
         if (it < 0)
             goto done;
         total += it;
@@ -95,6 +104,32 @@ int restir_poisson_l1(int w, int h, const float *primal, const float *dx, const 
     }
     rc = 0;
 done:;
+    rp_mg_free(&mg);
+    rp_cg_work_free(&work);
     free(b), free(x), free(wp), free(wx), free(wy), free(s.rows);
     return rc;
+}
+
+double restir_poisson_l1_energy(int w, int h, const float *primal, const float *dx, const float *dy, float alpha,
+                                const float *x)
+{
+    if (rp_check(w, h, primal, dx, dy, alpha, x) != 0)
+        return NAN;
+    double e = 0.0;
+    for (int j = 0; j < h; j++) {
+        for (int i = 0; i < w; i++) {
+            const size_t k = 3 * ((size_t)j * (size_t)w + (size_t)i), q = k + 3 * (size_t)w;
+            e += alpha * rp_len3(rp_in(x[k]) - rp_in(primal[k]), rp_in(x[k + 1]) - rp_in(primal[k + 1]),
+                                 rp_in(x[k + 2]) - rp_in(primal[k + 2]));
+            if (i + 1 < w)
+                e += rp_len3(rp_in(x[k + 3]) - rp_in(x[k]) - rp_in(dx[k]),
+                             rp_in(x[k + 4]) - rp_in(x[k + 1]) - rp_in(dx[k + 1]),
+                             rp_in(x[k + 5]) - rp_in(x[k + 2]) - rp_in(dx[k + 2]));
+            if (j + 1 < h)
+                e += rp_len3(rp_in(x[q]) - rp_in(x[k]) - rp_in(dy[k]),
+                             rp_in(x[q + 1]) - rp_in(x[k + 1]) - rp_in(dy[k + 1]),
+                             rp_in(x[q + 2]) - rp_in(x[k + 2]) - rp_in(dy[k + 2]));
+        }
+    }
+    return e;
 }

@@ -5,6 +5,7 @@
 #include <omp.h>
 #include <stdlib.h>
 
+#include "recon/poisson_cg.h"
 #include "recon/poisson_ops.h"
 #include "restir/poisson.h"
 
@@ -101,7 +102,7 @@ int restir_poisson_l2(int w, int h, const float *primal, const float *dx, const 
 #pragma omp parallel for schedule(static)
         for (long k = 0; k < m; k++)
             x[k] = rp_in(primal[k]);
-        iters = rp_cg(&s, b, x, tol, max_iters);
+        iters = rp_cg(&s, b, x, tol, max_iters, NULL, NULL);
         if (iters < 0)
             goto done;
     }

@@ -37,6 +37,7 @@ static const char *const grad_spatial_names[] = {"off", "dense", "adaptive", NUL
 static const char *const base_names[] = {"independent", "shared", NULL};
 static const char *const recon_names[] = {"l2", "l1", "both", NULL};
 static const char *const solver_names[] = {"dct", "cg", NULL};
+static const char *const precond_names[] = {"multigrid", "jacobi", NULL}; /* enum restir_poisson_precond */
 static const char *const visibility_mis_names[] = {"rays", "none", NULL};
 static const char *const temporal_reuse_names[] = {"backproject", "splat", "both", NULL};
 static const char *const missing_texture_names[] = {"error", "warn", NULL};
@@ -206,7 +207,10 @@ static const struct param_def params[] = {
     {"recon.solver", P_NAMES, F(recon_solver), 0, 0, "dct", NULL,
      "L2 solver: dct (direct, exact) or cg (conjugate gradient to a relative residual of 1e-6)", solver_names},
     {"recon.l1_iterations", P_INT, F(recon_l1_iterations), 1, 1000, "20", NULL, "L1: IRLS reweighting iterations", NULL},
-    {"recon.l1_cg", P_INT, F(recon_l1_cg), 1, 100000, "50", NULL, "L1: conjugate-gradient steps per reweighting", NULL},
+    {"recon.l1_precond", P_NAMES, F(recon_l1_precond), 0, 0, "multigrid", NULL,
+     "L1: preconditioner of the inner CG: multigrid (V-cycle) or jacobi (the public G-PT solver's kind)", precond_names},
+    {"recon.l1_cg", P_INT, F(recon_l1_cg), 0, 100000, "0", NULL,
+     "L1: conjugate-gradient steps per reweighting; 0: the preconditioner's default (multigrid 4, jacobi 50)", NULL},
 };
 #undef F
 #define NUM_PARAMS (sizeof(params) / sizeof(params[0]))

@@ -114,7 +114,8 @@ struct render_params {
     enum recon_mode recon;
     float recon_alpha;      /* screened Poisson weight alpha of the primal (0.2) */
     int recon_solver;       /* enum restir_poisson_solver: dct or cg for L2 */
-    int recon_l1_iterations, recon_l1_cg; /* IRLS reweightings and CG steps per reweighting */
+    int recon_l1_iterations, recon_l1_cg; /* IRLS reweightings and CG steps per reweighting (0: default) */
+    int recon_l1_precond;   /* enum restir_poisson_precond of the L1 solve's CG */
 };
 
 /* Spatial neighbors a method tries: spatial.neighbors, or when 0 the default of 001 for ReSTIR DI

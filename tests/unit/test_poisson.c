@@ -1,7 +1,8 @@
-/* test_poisson.c: unit tests for the screened Poisson reconstruction (restir/poisson.h): exact
- * data reconstructs the image, residuals, the alpha -> infinity limit, DCT against CG,
- * linearity, the energy minimum, L1 robustness to outliers, non-finite inputs, degenerate sizes
- * and bad arguments. Must never depend on src/ headers, files or the renderer. */
+/* test_poisson.c: unit tests for the screened Poisson reconstruction (restir/poisson.h): exact data
+ * reconstructs the image, residuals, the alpha -> infinity limit, DCT against CG, linearity, the
+ * energy minimum, L1 robustness to outliers, L1's two preconditioners, non-finite inputs,
+ * degenerate sizes and bad arguments. Must never depend on src/ headers, files or the renderer. */
+#include <omp.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -135,8 +136,8 @@ static int l2(int w, int h, const float *P, const float *dx, const float *dy, fl
 static int l1(int w, int h, const float *P, const float *dx, const float *dy, float alpha, float *out,
               struct restir_poisson_stats *st)
 {
-    return restir_poisson_l1(w, h, P, dx, dy, alpha, RESTIR_POISSON_L1_ITERATIONS, RESTIR_POISSON_L1_CG_STEPS, out,
-                             st);
+    return restir_poisson_l1(w, h, P, dx, dy, alpha, RESTIR_POISSON_L1_ITERATIONS, RESTIR_POISSON_PRECOND_MULTIGRID,
+                             RESTIR_POISSON_L1_MG_STEPS, out, st);
 }
 
 /* (a) exact primal and gradients give back the image; (b) CG's residual; CG against DCT with
@@ -366,6 +367,77 @@ static void test_thin(void)
     }
 }
 
+/* The L1 energy on a 2x1 image by hand: alpha (|x0 - P0| + |x1 - P1|) + |x1 - x0 - G|, lengths over
+ * RGB; a NaN input reads as 0; bad arguments give NaN. */
+static void test_l1_energy(void)
+{
+    const float P[6] = {1, 1, 1, 0, 0, 0}, x[6] = {1, 1, 2, 3, 0, 4}, dy[6] = {0};
+    const float dx[6] = {1, NAN, 0, 9, 9, 9}; /* dx of the last column is ignored */
+    /* |x0 - P0| = 1, |x1 - P1| = 5, |x1 - x0 - G| = |(1, -1, 2)| = sqrt 6 */
+    const double want = 0.5 * 6.0 + sqrt(6.0);
+    const double got = restir_poisson_l1_energy(2, 1, P, dx, dy, 0.5f, x);
+    EXPECT(fabs(got - want) < 1e-12, "l1 energy %.17g, want %.17g", got, want);
+    EXPECT(isnan(restir_poisson_l1_energy(2, 1, P, dx, dy, 0.0f, x)), "alpha 0");
+    EXPECT(isnan(restir_poisson_l1_energy(2, 1, P, dx, dy, 0.5f, NULL)), "NULL image");
+}
+
+/* (h) the two preconditioners of L1's CG: solved far enough, they give the same IRLS iterates (the
+ * preconditioner changes how CG gets there, not where); at their defaults the L1 energy is the same
+ * to a fraction of a percent; multigrid is bit-identical on 1 and 2 threads; odd, thin and tiny
+ * sizes (levels of 1-wide blocks) work. Inputs: a noisy image with outlier gradients, as in (f). */
+static void test_l1_preconditioners(void)
+{
+    const int sizes[7][2] = {{1, 1}, {1, 17}, {23, 1}, {5, 3}, {37, 23}, {64, 48}, {97, 61}};
+    const enum restir_poisson_precond J = RESTIR_POISSON_PRECOND_JACOBI, M = RESTIR_POISSON_PRECOND_MULTIGRID;
+    for (int k = 0; k < 7; k++) {
+        const int w = sizes[k][0], h = sizes[k][1];
+        const size_t m = (size_t)w * h * 3;
+        float *img = synthetic(w, h), *P = falloc(m), *dx = falloc(m), *dy = falloc(m);
+        float *oj = falloc(m), *om = falloc(m), *o1 = falloc(m);
+        gradients(w, h, img, dx, dy);
+        for (size_t i = 0; i < m; i++) {
+            P[i] = img[i] + (float)(0.2 * (rnd() - 0.5));
+            if (rnd() < 0.03)
+                dx[i] += (float)(8.0 * (rnd() - 0.5));
+        }
+        const float a = RESTIR_POISSON_ALPHA;
+        struct restir_poisson_stats sj, sm;
+        /* Converged: 12 reweightings (reg down to 2.4e-5, weights spanning 1e4), each solved to a
+         * residual far below the defaults'. */
+        EXPECT(restir_poisson_l1(w, h, P, dx, dy, a, 12, J, 4000, oj, &sj) == 0, "jacobi %dx%d", w, h);
+        EXPECT(restir_poisson_l1(w, h, P, dx, dy, a, 12, M, 200, om, &sm) == 0, "multigrid %dx%d", w, h);
+        const double converged = rel_err(om, oj, m);
+        EXPECT(converged < 1e-5, "%dx%d converged multigrid vs jacobi: %g (residuals %g, %g)", w, h, converged,
+               sm.residual, sj.residual);
+        EXPECT(sm.residual < 1e-8, "%dx%d multigrid residual %g", w, h, sm.residual);
+        /* Defaults. */
+        EXPECT(restir_poisson_l1(w, h, P, dx, dy, a, RESTIR_POISSON_L1_ITERATIONS, J, RESTIR_POISSON_L1_CG_STEPS,
+                                 oj, &sj) == 0,
+               "jacobi default");
+        EXPECT(restir_poisson_l1(w, h, P, dx, dy, a, RESTIR_POISSON_L1_ITERATIONS, M, RESTIR_POISSON_L1_MG_STEPS,
+                                 om, &sm) == 0,
+               "multigrid default");
+        const double ej = restir_poisson_l1_energy(w, h, P, dx, dy, a, oj);
+        const double em = restir_poisson_l1_energy(w, h, P, dx, dy, a, om);
+        printf("l1 preconditioners %dx%d: converged |mg - jacobi| %.2g, default L1 energy mg %.8g, jacobi %.8g\n",
+               w, h, converged, em, ej);
+        EXPECT(em <= ej * 1.005, "%dx%d default L1 energy: multigrid %.8g, jacobi %.8g", w, h, em, ej);
+        EXPECT(sm.iterations <= RESTIR_POISSON_L1_ITERATIONS * RESTIR_POISSON_L1_MG_STEPS, "multigrid steps %d",
+               sm.iterations);
+        /* Thread count. */
+        omp_set_num_threads(1);
+        EXPECT(restir_poisson_l1(w, h, P, dx, dy, a, RESTIR_POISSON_L1_ITERATIONS, M, RESTIR_POISSON_L1_MG_STEPS,
+                                 o1, NULL) == 0,
+               "1 thread");
+        omp_set_num_threads(2);
+        EXPECT(restir_poisson_l1(w, h, P, dx, dy, a, RESTIR_POISSON_L1_ITERATIONS, M, RESTIR_POISSON_L1_MG_STEPS,
+                                 om, NULL) == 0,
+               "2 threads");
+        EXPECT(memcmp(o1, om, m * sizeof(float)) == 0, "%dx%d multigrid differs between 1 and 2 threads", w, h);
+        free(img), free(P), free(dx), free(dy), free(oj), free(om), free(o1);
+    }
+}
+
 /* (g) bad input returns -1 and leaves out alone. */
 static void test_bad_input(void)
 {
@@ -394,11 +466,18 @@ static void test_bad_input(void)
     EXPECT(restir_poisson_l2(w, h, P, dx, dy, 0.2f, C, NAN, 100, out, &st) == -1, "tol NaN");
     EXPECT(restir_poisson_l2(w, h, P, dx, dy, 0.2f, C, tol, 0, out, &st) == -1, "max_iters 0");
     EXPECT(restir_poisson_l2(1 << 30, 1 << 30, P, dx, dy, 0.2f, C, tol, 10, out, &st) == -1, "huge");
-    EXPECT(restir_poisson_l1(w, 0, P, dx, dy, 0.2f, 20, 50, out, &st) == -1, "l1 h = 0");
-    EXPECT(restir_poisson_l1(w, h, P, dx, dy, 0.0f, 20, 50, out, &st) == -1, "l1 alpha 0");
-    EXPECT(restir_poisson_l1(w, h, P, NULL, dy, 0.2f, 20, 50, out, &st) == -1, "l1 NULL dx");
-    EXPECT(restir_poisson_l1(w, h, P, dx, dy, 0.2f, -1, 50, out, &st) == -1, "l1 iterations < 0");
-    EXPECT(restir_poisson_l1(w, h, P, dx, dy, 0.2f, 20, 0, out, &st) == -1, "l1 cg_steps 0");
+    EXPECT(restir_poisson_l1(w, 0, P, dx, dy, 0.2f, 20, RESTIR_POISSON_PRECOND_JACOBI, 50, out, &st) == -1,
+           "l1 h = 0");
+    EXPECT(restir_poisson_l1(w, h, P, dx, dy, 0.0f, 20, RESTIR_POISSON_PRECOND_JACOBI, 50, out, &st) == -1,
+           "l1 alpha 0");
+    EXPECT(restir_poisson_l1(w, h, P, NULL, dy, 0.2f, 20, RESTIR_POISSON_PRECOND_JACOBI, 50, out, &st) == -1,
+           "l1 NULL dx");
+    EXPECT(restir_poisson_l1(w, h, P, dx, dy, 0.2f, -1, RESTIR_POISSON_PRECOND_JACOBI, 50, out, &st) == -1,
+           "l1 iterations < 0");
+    EXPECT(restir_poisson_l1(w, h, P, dx, dy, 0.2f, 20, RESTIR_POISSON_PRECOND_JACOBI, 0, out, &st) == -1,
+           "l1 cg_steps 0");
+    EXPECT(restir_poisson_l1(w, h, P, dx, dy, 0.2f, 20, (enum restir_poisson_precond)9, 4, out, &st) == -1,
+           "l1 bad preconditioner");
     int untouched = 1;
     for (size_t i = 0; i < m; i++)
         untouched &= out[i] == 42.0f;
@@ -407,7 +486,9 @@ static void test_bad_input(void)
     /* The valid neighbours of those calls work; L1 with 0 reweightings is the L2 solution. */
     float *o2 = falloc(m);
     EXPECT(restir_poisson_l2(w, h, P, dx, dy, 0.2f, D, tol, 100, o2, NULL) == 0, "valid l2");
-    EXPECT(restir_poisson_l1(w, h, P, dx, dy, 0.2f, 0, 50, out, &st) == 0 && st.iterations == 0, "l1 0 iters");
+    EXPECT(restir_poisson_l1(w, h, P, dx, dy, 0.2f, 0, RESTIR_POISSON_PRECOND_JACOBI, 50, out, &st) == 0 &&
+               st.iterations == 0,
+           "l1 0 iters");
     EXPECT(rel_err(out, o2, m) == 0.0, "l1 with 0 iterations: %g", rel_err(out, o2, m));
     free(o2);
     free(P), free(dx), free(dy), free(out);
@@ -424,6 +505,8 @@ int main(void)
     test_l1_outliers();
     test_nonfinite();
     test_thin();
+    test_l1_energy();
+    test_l1_preconditioners();
     test_bad_input();
     return test_finish();
 }
