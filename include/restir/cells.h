@@ -41,7 +41,19 @@ struct restir_cells {
                            weights within its cell */
     double *conf_cdf;   /* per entry: inclusive prefix sum of the confidences within its cell */
     uint32_t *key;      /* per cell: the key its pixels share */
+    struct restir_cell_tap *tap; /* per pixel: what a search tap reads (restir_cells_pack_taps) */
     int n_cells;
+};
+
+/* Everything the cell search reads of a tapped pixel q, in one 32-byte record (one cache line
+ * per tap instead of one in each of cell_of, object, normal and conf_sum: the search is 12 random
+ * taps per pixel, bound by those misses). */
+struct restir_cell_tap {
+    int32_t cell;     /* cell_of[q] */
+    int32_t object;   /* object id of q */
+    float conf_sum;   /* conf_sum of q's cell (0 when q is in no cell) */
+    float normal[3];  /* q's shading normal */
+    uint32_t pad[2];
 };
 
 /* Sizes the arrays for width x height pixels and tile x tile tiles (1 <= tile <= 16).
@@ -55,6 +67,10 @@ void restir_cells_fini(struct restir_cells *c);
  * in parallel over tiles. */
 void restir_cells_build(struct restir_cells *c, const uint32_t *key, const unsigned char *valid, const float *conf,
                         const float *weight);
+
+/* Fills c->tap from the cells just built and the G-buffer's normals (3 floats per pixel) and
+ * object ids, for restir_cell_search_packed. Runs in parallel over pixels. */
+void restir_cells_pack_taps(struct restir_cells *c, const float *normal, const int *object);
 
 /* M of a merge: the number of pixels of `cell` other than `exclude` (exclude may be -1 or a
  * pixel outside the cell). */
@@ -95,6 +111,10 @@ struct restir_cell_search {
  * pixel) and object ids, never samples, so the choice cannot bias GRIS (004 Sec. 5.1). */
 int restir_cell_search(const struct restir_cells *c, const struct restir_cell_search *s, int pixel,
                        const float *normal, const int *object, const float *u);
+/* The same search reading c->tap (restir_cells_pack_taps after the build) instead of the separate
+ * arrays: the same cell for the same u, bit for bit. */
+int restir_cell_search_packed(const struct restir_cells *c, const struct restir_cell_search *s, int pixel,
+                              const float *u);
 
 #ifdef __cplusplus
 }

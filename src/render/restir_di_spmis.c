@@ -70,6 +70,7 @@ long long di_spmis_reuse_pass(const struct scene *s, const struct render_params 
             struct restir_spmis_conf k;
             float merged_c;
             pcg32 rng = spmis_neighbor_plan(f, p, frame, c, &k, &merged_c, &draws);
+            spmis_prefetch_draws(&draws, in, sizeof in[0]);
             struct restir_wrs wrs;
             restir_wrs_init(&wrs);
             struct di_reservoir result;

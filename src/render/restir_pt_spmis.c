@@ -78,6 +78,7 @@ long long pt_spmis_reuse_pass(const struct pt_frame *fr, const struct gbuffer *g
             struct restir_spmis_conf k;
             float merged_c;
             pcg32 rng = spmis_neighbor_plan(f, p, fr->frame, c, &k, &merged_c, &draws);
+            spmis_prefetch_draws(&draws, in, sizeof in[0]);
             struct restir_wrs wrs;
             restir_wrs_init(&wrs);
             struct pt_reservoir result;

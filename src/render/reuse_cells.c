@@ -52,6 +52,7 @@ void spmis_cells_pass(struct spmis_frame *f, const struct render_params *p, cons
         f->key[i] = restir_cell_key(t, g->object[i], n3, p->spmis_normal_bins);
     }
     restir_cells_build(&f->cells, f->key, g->valid, f->conf, f->weight);
+    restir_cells_pack_taps(&f->cells, (const float *)(const void *)g->normal, g->object); /* vec3: 3 floats */
 }
 
 void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g, int frame)
@@ -59,28 +60,31 @@ void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, con
     const struct restir_cells *cells = &f->cells;
     const struct restir_cell_search s = {p->spmis_search_steps, p->spmis_search_radius, p->spmis_search_growth,
                                          p->spmis_search_normal};
-    const int n = g->width * g->height;
-    const float *normals = (const float *)(const void *)g->normal; /* vec3 is three packed floats */
-#pragma omp parallel for schedule(dynamic, 64)
-    for (int i = 0; i < n; i++) {
-        int own = cells->cell_of[i];
-        if (own < 0 || s.steps == 0) {
-            f->cell[i] = own;
-            continue;
+    const int w = g->width, h = g->height, ntiles = tile_count(w, h);
+    /* In tiles (64 x 4 pixels), so that neighbouring pixels' near taps share cache lines; each
+     * pixel's draws come from its own stream, so the order changes no result. */
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int t = 0; t < ntiles; t++) {
+        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+            const int i = px.i, own = cells->cell_of[i];
+            if (own < 0 || s.steps == 0) {
+                f->cell[i] = own;
+                continue;
+            }
+            if (p->spmis_search == SPMIS_SEARCH_SPARSE && cells->contributing[own] > p->spmis_sparse_count) {
+                f->cell[i] = own; /* BIASED: the count depends on the samples (params help) */
+                continue;
+            }
+            if (p->spmis_search == SPMIS_SEARCH_LOW_CONFIDENCE &&
+                cells->conf_sum[own] >= p->spmis_search_confidence * (float)cells->count[own]) {
+                f->cell[i] = own; /* the own cell holds history: no need to look farther (reads c only) */
+                continue;
+            }
+            float u[3 * SPMIS_MAX_SEARCH_STEPS];
+            pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_CELL_SEARCH);
+            uniforms(&rng, 3 * s.steps, u, 3 * SPMIS_MAX_SEARCH_STEPS);
+            f->cell[i] = restir_cell_search_packed(cells, &s, i, u);
         }
-        if (p->spmis_search == SPMIS_SEARCH_SPARSE && cells->contributing[own] > p->spmis_sparse_count) {
-            f->cell[i] = own; /* BIASED: the count depends on the samples (params help) */
-            continue;
-        }
-        if (p->spmis_search == SPMIS_SEARCH_LOW_CONFIDENCE &&
-            cells->conf_sum[own] >= p->spmis_search_confidence * (float)cells->count[own]) {
-            f->cell[i] = own; /* the own cell holds history: no need to look farther (reads c only) */
-            continue;
-        }
-        float u[3 * SPMIS_MAX_SEARCH_STEPS];
-        pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_CELL_SEARCH);
-        uniforms(&rng, 3 * s.steps, u, 3 * SPMIS_MAX_SEARCH_STEPS);
-        f->cell[i] = restir_cell_search(cells, &s, i, normals, g->object, u);
     }
 }
 

@@ -55,8 +55,10 @@ int restir_cells_init(struct restir_cells *c, int width, int height, int tile)
     c->cdf = malloc(sizeof(double) * n);
     c->conf_cdf = malloc(sizeof(double) * n);
     c->key = malloc(sizeof(uint32_t) * n);
+    /* 32-byte records on 32-byte boundaries: a tap never straddles two cache lines */
+    c->tap = aligned_alloc(32, sizeof(struct restir_cell_tap) * n);
     if (!c->tile_base || !c->entry || !c->cell_of || !c->slot_of || !c->count || !c->contributing ||
-        !c->conf_sum || !c->cdf || !c->conf_cdf || !c->key) {
+        !c->conf_sum || !c->cdf || !c->conf_cdf || !c->key || !c->tap) {
         restir_cells_fini(c);
         return -1;
     }
@@ -85,6 +87,7 @@ void restir_cells_fini(struct restir_cells *c)
     free(c->cdf);
     free(c->conf_cdf);
     free(c->key);
+    free(c->tap);
     memset(c, 0, sizeof(*c));
 }
 
@@ -275,38 +278,92 @@ int restir_cells_pick_confidence(const struct restir_cells *c, int cell, int exc
     return pick_from_cdf(c, c->conf_cdf, cell, cell >= 0 ? c->count[cell] : 0, exclude, u, prob);
 }
 
-int restir_cell_search(const struct restir_cells *c, const struct restir_cell_search *s, int pixel,
-                       const float *normal, const int *object, const float *u)
+void restir_cells_pack_taps(struct restir_cells *c, const float *normal, const int *object)
+{
+    const long n = (long)c->width * (long)c->height;
+#pragma omp parallel for schedule(static)
+    for (long q = 0; q < n; q++) {
+        struct restir_cell_tap *t = &c->tap[q];
+        const int cell = c->cell_of[q];
+        t->cell = cell;
+        t->object = object[q];
+        t->conf_sum = cell >= 0 ? c->conf_sum[cell] : 0.0f;
+        t->normal[0] = normal[3 * q], t->normal[1] = normal[3 * q + 1], t->normal[2] = normal[3 * q + 2];
+        t->pad[0] = t->pad[1] = 0;
+    }
+}
+
+/* What a tap sees of pixel q: from the packed records when tap is not NULL, else from the arrays. */
+static inline struct restir_cell_tap tap_at(const struct restir_cells *c, const struct restir_cell_tap *tap,
+                                            const float *normal, const int *object, int q)
+{
+    if (tap)
+        return tap[q];
+    struct restir_cell_tap t = {c->cell_of[q], object[q], 0.0f, {normal[3 * (size_t)q], normal[3 * (size_t)q + 1],
+                                                                   normal[3 * (size_t)q + 2]}, {0, 0}};
+    t.conf_sum = t.cell >= 0 ? c->conf_sum[t.cell] : 0.0f;
+    return t;
+}
+
+/* The search of restir_cell_search over either data layout (tap_at). */
+static inline int cell_search(const struct restir_cells *c, const struct restir_cell_search *s, int pixel,
+                              const struct restir_cell_tap *tap, const float *normal, const int *object,
+                              const float *u)
 {
     if (pixel < 0 || pixel >= c->width * c->height || c->cell_of[pixel] < 0)
         return -1;
     const int x = pixel % c->width, y = pixel / c->width;
-    const float *n = &normal[3 * (size_t)pixel];
+    const struct restir_cell_tap me = tap_at(c, tap, normal, object, pixel);
     double w_sum = 0.0;
     int chosen = -1;
     /* The radius stops growing at 1e7 px, far beyond any image, so the tap law is unchanged in
      * practice while lrintf stays defined (growth^steps can overflow a float). */
     const float r_max = 1e7f;
+    /* Taps go in chunks: first each tap's pixel (-1 outside the image), prefetching the packed
+     * records, then the tests, so the taps' cache misses overlap instead of waiting on each other
+     * behind the data-dependent branches of the tests. */
+    enum { CHUNK = 16 };
+    int qs[CHUNK];
     float radius = fminf(s->radius, r_max);
-    for (int t = 0; t < s->steps; t++, radius = fminf(radius * s->growth, r_max)) {
-        /* A uniform point in the disk (polar map: r = R sqrt(u), area-uniform). */
-        float r = radius * sqrtf(u[3 * t]), phi = 6.28318530717958647f * u[3 * t + 1];
-        int qx = x + (int)lrintf(r * cosf(phi)), qy = y + (int)lrintf(r * sinf(phi));
-        if (qx < 0 || qy < 0 || qx >= c->width || qy >= c->height)
-            continue;
-        int q = qy * c->width + qx;
-        int cell = c->cell_of[q];
-        if (cell < 0 || object[q] != object[pixel])
-            continue;
-        const float *nq = &normal[3 * (size_t)q];
-        if (n[0] * nq[0] + n[1] * nq[1] + n[2] * nq[2] < s->normal_min)
-            continue;
-        double w = c->conf_sum[cell];
-        if (!(w > 0.0))
-            continue;
-        w_sum += w;
-        if ((double)u[3 * t + 2] * w_sum < w) /* Chao 1982 streaming WRS */
-            chosen = cell;
+    for (int t0 = 0; t0 < s->steps; t0 += CHUNK) {
+        const int t1 = s->steps - t0 < CHUNK ? s->steps : t0 + CHUNK;
+        for (int t = t0; t < t1; t++, radius = fminf(radius * s->growth, r_max)) {
+            /* A uniform point in the disk (polar map: r = R sqrt(u), area-uniform). */
+            float r = radius * sqrtf(u[3 * t]), phi = 6.28318530717958647f * u[3 * t + 1];
+            int qx = x + (int)lrintf(r * cosf(phi)), qy = y + (int)lrintf(r * sinf(phi));
+            const int q = qx < 0 || qy < 0 || qx >= c->width || qy >= c->height ? -1 : qy * c->width + qx;
+            qs[t - t0] = q;
+            if (tap && q >= 0)
+                __builtin_prefetch(&tap[q]);
+        }
+        for (int t = t0; t < t1; t++) {
+            if (qs[t - t0] < 0)
+                continue;
+            const struct restir_cell_tap q = tap_at(c, tap, normal, object, qs[t - t0]);
+            if (q.cell < 0 || q.object != me.object)
+                continue;
+            if (me.normal[0] * q.normal[0] + me.normal[1] * q.normal[1] + me.normal[2] * q.normal[2] <
+                s->normal_min)
+                continue;
+            double w = q.conf_sum;
+            if (!(w > 0.0))
+                continue;
+            w_sum += w;
+            if ((double)u[3 * t + 2] * w_sum < w) /* Chao 1982 streaming WRS */
+                chosen = q.cell;
+        }
     }
     return chosen >= 0 ? chosen : c->cell_of[pixel];
+}
+
+int restir_cell_search(const struct restir_cells *c, const struct restir_cell_search *s, int pixel,
+                       const float *normal, const int *object, const float *u)
+{
+    return cell_search(c, s, pixel, NULL, normal, object, u);
+}
+
+int restir_cell_search_packed(const struct restir_cells *c, const struct restir_cell_search *s, int pixel,
+                              const float *u)
+{
+    return cell_search(c, s, pixel, c->tap, NULL, NULL, u);
 }

@@ -1130,6 +1130,47 @@ static void test_search_growth(void)
     scene_free(&s);
 }
 
+/* (f) The packed search (restir_cells_pack_taps + restir_cell_search_packed, what the renderer
+ * runs) returns exactly the cell of the reference search over the separate arrays, for every
+ * pixel of a scene with a second object on 15% of the pixels, random normals (some below the 0.9
+ * similarity), invalid pixels, zero and positive confidences, odd size and tiles; on 1 and 2
+ * threads of the packing. */
+static void test_search_packed(void)
+{
+    struct scene s;
+    scene_alloc(&s, 77, 41, 8);
+    pcg32 rng = rng_for(83u, 0u, 0u, 0u);
+    for (int p = 0; p < 77 * 41; p++) {
+        s.object[p] = pcg32_float(&rng) < 0.15f ? 2 : 1;
+        float nx = 0.6f * (pcg32_float(&rng) - 0.5f), ny = 0.6f * (pcg32_float(&rng) - 0.5f), nz = 1.0f;
+        float len = sqrtf(nx * nx + ny * ny + nz * nz);
+        s.normal[3 * p] = nx / len, s.normal[3 * p + 1] = ny / len, s.normal[3 * p + 2] = nz / len;
+        s.g.valid[p] = pcg32_float(&rng) < 0.9f;
+        s.g.conf[p] = pcg32_float(&rng) < 0.2f ? 0.0f : 20.0f * pcg32_float(&rng);
+    }
+    scene_build(&s);
+    const struct restir_cell_search sp = {12, 30.0f, 1.25f, 0.9f};
+    float u[36];
+    long differ = 0, own = 0, searched = 0;
+    for (int threads = 1; threads <= 2; threads++) {
+        omp_set_num_threads(threads);
+        restir_cells_pack_taps(&s.c, s.normal, s.object);
+        for (int rep = 0; rep < 4; rep++)
+            for (int p = 0; p < 77 * 41; p++) {
+                random_u(&rng, u, 12);
+                const int a = restir_cell_search(&s.c, &sp, p, s.normal, s.object, u);
+                const int b = restir_cell_search_packed(&s.c, &sp, p, u);
+                differ += a != b;
+                own += a >= 0 && a == s.c.cell_of[p];
+                searched += a >= 0;
+            }
+    }
+    printf("search (f): packed vs arrays: %ld of %ld searches differ (%ld kept the own cell)\n", differ, searched, own);
+    EXPECT(differ == 0, "(f) the packed search differs in %ld searches", differ);
+    EXPECT(own < searched / 2 && own > 0, "(f) the scene does not exercise the search (%ld own of %ld)", own, searched);
+    scene_free(&s);
+}
+
 int main(void)
 {
     alpha_i = chi2_sidak(FAMILY_ALPHA, NUM_TESTS);
@@ -1139,5 +1180,6 @@ int main(void)
     test_search_fallback();
     test_search_law();
     test_search_growth();
+    test_search_packed();
     return test_finish();
 }
