@@ -57,6 +57,7 @@ void grestir_state_init(struct grestir_state *st, int width, int height)
             st->work[d][s] = xcalloc(n, sizeof(struct pair_reservoir));
         }
         st->neighbor[d] = xcalloc(n, sizeof(int));
+        st->edge[d] = xcalloc(n, 1);
     }
     st->base_other = xcalloc(n * 3 * GRAD_DIRS, sizeof(float));
 }
@@ -70,6 +71,7 @@ void grestir_state_fini(struct grestir_state *st)
             free(st->work[d][s]);
         }
         free(st->neighbor[d]);
+        free(st->edge[d]);
     }
     free(st->base_other);
     memset(st, 0, sizeof(*st));
@@ -351,10 +353,63 @@ static int gb_edge(const struct render_params *p, const struct gbuffer *g, int i
     return restir_grad_edge(&t, g->valid[i], A, N, g->depth[i], g->valid[j], B, M, g->depth[j]);
 }
 
+/* Whether pair (c, d) may serve pair (a, b) (both along dir): similar to it pixel by pixel, and
+ * for adaptive reuse an edge pair itself (the table first: the cheapest test). */
+static int candidate_ok(const struct render_params *p, const struct gbuffer *g, const struct grestir_state *st,
+                        int a, int b, int c, int d, int dir)
+{
+    if (p->grad_spatial == GRAD_SPATIAL_ADAPTIVE && !st->edge[dir][c])
+        return 0;
+    return !gb_edge(p, g, a, c) && !gb_edge(p, g, b, d);
+}
+
+/* Whether any pair the search's taps can reach from pair (x, y) passes candidate_ok. A tap lands
+ * at (lrint(r cos phi), lrint(r sin phi)) with r <= grad.radius, so within grad.radius + sqrt(1/2)
+ * of the pair; when no pair there passes, every tap fails and the search's answer is -1 without
+ * drawing a tap (the search's random stream serves nothing else, so skipping it changes no
+ * result). Many edge pairs have no such neighbor (thin features, silhouettes), and their 256
+ * taps were most of the pass. */
+static int any_candidate(const struct render_params *p, const struct gbuffer *g, const struct grestir_state *st,
+                         int x, int y, int dir)
+{
+    const int w = g->width, h = g->height;
+    int ex, ey;
+    pair_offset(dir, &ex, &ey);
+    const int a = y * w + x, b = a + ex + ey * w;
+    const float reach = p->grad_radius + 0.71f; /* a little over sqrt(1/2): a superset is safe */
+    const int R = (int)ceilf(reach);
+    for (int dy = -R; dy <= R; dy++) {
+        for (int dx = -R; dx <= R; dx++) {
+            const int cx = x + dx, cy = y + dy;
+            if ((dx == 0 && dy == 0) || (float)(dx * dx + dy * dy) > reach * reach ||
+                !pair_inside(w, h, cx, cy, dir))
+                continue;
+            const int c = cy * w + cx;
+            if (candidate_ok(p, g, st, a, b, c, c + ex + ey * w, dir))
+                return 1;
+        }
+    }
+    return 0;
+}
+
 void grestir_select_pass(const struct pt_frame *fr, const struct gbuffer *g, struct grestir_state *st)
 {
     const struct render_params *p = fr->p;
     const int w = g->width, h = g->height;
+    const int adaptive = p->grad_spatial == GRAD_SPATIAL_ADAPTIVE;
+    /* Every pair's edge test once: the search below asks it of up to grad.search candidate pairs
+     * per pair, most of them many times over (the disk of radius 4 holds ~50 pixels). */
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            const int a = y * w + x;
+            for (int dir = 0; dir < GRAD_PAIR_DIRS; dir++) {
+                int ex, ey;
+                pair_offset(dir, &ex, &ey);
+                st->edge[dir][a] = pair_inside(w, h, x, y, dir) && gb_edge(p, g, a, a + ex + ey * w);
+            }
+        }
+    }
     long long edges = 0, found = 0;
 #pragma omp parallel for schedule(static) reduction(+ : edges, found)
     for (int y = 0; y < h; y++) {
@@ -367,10 +422,11 @@ void grestir_select_pass(const struct pt_frame *fr, const struct gbuffer *g, str
                 int ex, ey;
                 pair_offset(dir, &ex, &ey);
                 const int b = a + ex + ey * w;
-                const int adaptive = p->grad_spatial == GRAD_SPATIAL_ADAPTIVE;
-                if (adaptive && !gb_edge(p, g, a, b))
+                if (adaptive && !st->edge[dir][a])
                     continue; /* interior pair: keeps its temporal result (Sec. 4.3.2) */
                 edges++;
+                if (!any_candidate(p, g, st, x, y, dir))
+                    continue; /* no tap could be accepted: the search below would return -1 */
                 pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)a * 2 + (uint64_t)dir,
                                     RNG_PASS_GRAD_SELECT);
                 for (int tap = 0; tap < p->grad_search; tap++) {
@@ -379,8 +435,7 @@ void grestir_select_pass(const struct pt_frame *fr, const struct gbuffer *g, str
                     if ((cx == x && cy == y) || !pair_inside(w, h, cx, cy, dir))
                         continue;
                     const int c = cy * w + cx, d = c + ex + ey * w;
-                    /* similar to the current pair pixel by pixel; for adaptive reuse an edge pair too */
-                    if (gb_edge(p, g, a, c) || gb_edge(p, g, b, d) || (adaptive && !gb_edge(p, g, c, d)))
+                    if (!candidate_ok(p, g, st, a, b, c, d, dir))
                         continue;
                     st->neighbor[dir][a] = c;
                     found++;

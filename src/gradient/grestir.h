@@ -32,6 +32,7 @@ struct grestir_state {
     struct pair_reservoir *hist[2][GRAD_PAIR_DIRS][GRAD_SIGNS]; /* ping-pong: spatial outputs */
     struct pair_reservoir *work[GRAD_PAIR_DIRS][GRAD_SIGNS];    /* initial, then temporal outputs */
     int *neighbor[GRAD_PAIR_DIRS]; /* the spatial neighbor pair of each pair (-1: none) */
+    unsigned char *edge[GRAD_PAIR_DIRS]; /* per pair: an edge pair (Sec. 4.3.2), of the last select pass */
     float *base_other;             /* per pixel and direction: f(T x) |T'| of its initial path */
     long long edge_pairs, neighbors_found; /* of the last select pass */
 };
