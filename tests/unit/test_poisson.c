@@ -161,7 +161,7 @@ static void test_exact(int w, int h)
 
     EXPECT(l1(w, h, img, dx, dy, alpha, out, &st) == 0, "l1 %dx%d", w, h);
     EXPECT(rel_err(out, img, m) < 1e-5, "%dx%d l1 error %g", w, h, rel_err(out, img, m));
-    EXPECT(st.iterations > 0 && st.iterations <= RESTIR_POISSON_L1_ITERATIONS * RESTIR_POISSON_L1_CG_STEPS,
+    EXPECT(st.iterations > 0 && st.iterations <= RESTIR_POISSON_L1_ITERATIONS * RESTIR_POISSON_L1_MG_STEPS,
            "l1 iterations %d", st.iterations);
 
     /* Exact gradients, a flat grey primal: CG (from the grey start) has to work, and matches
