@@ -72,18 +72,31 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
     const int ntiles = tile_count(g->width, g->height);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
+        /* The tile's camera rays first, traced together as one coherent stream (they share the
+         * camera's origin), then each pixel's G-buffer entry from its hit. */
+        int pixel[RESTIR_TILE_W * RESTIR_TILE_H], n = 0;
+        struct ray_query q[RESTIR_TILE_W * RESTIR_TILE_H];
+        struct surface_hit hits[RESTIR_TILE_W * RESTIR_TILE_H];
+        unsigned char hit[RESTIR_TILE_W * RESTIR_TILE_H];
         for (struct tile_pixel px = tile_first_pixel(g->width, g->height, t); px.i >= 0; tile_advance(&px)) {
-            const int x = px.x, y = px.y, i = px.i;
+            const int i = px.i;
             pcg32 rng = rng_for(seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_GBUFFER);
             float jx = jitter ? pcg32_float(&rng) : 0.5f, jy = jitter ? pcg32_float(&rng) : 0.5f;
-            float px = (float)x + jx, py = (float)y + jy;
-            vec3 dir = camera_view_ray(view, px, py);
-            struct surface_hit h;
-            rays++;
-            g->sub_pixel[i] = v3(px, py, 0.0f);
+            g->sub_pixel[i] = v3((float)px.x + jx, (float)px.y + jy, 0.0f);
+            q[n] = (struct ray_query){view->position, camera_view_ray(view, g->sub_pixel[i].x, g->sub_pixel[i].y),
+                                      0.0f, INFINITY};
+            pixel[n++] = i;
+        }
+        scene_intersect_batch(s, q, n, 1, hits, hit);
+        rays += n;
+        for (int k = 0; k < n; k++) {
+            const int i = pixel[k];
+            const float px = g->sub_pixel[i].x, py = g->sub_pixel[i].y;
+            const vec3 dir = q[k].d;
+            const struct surface_hit h = hits[k];
             g->motion[2 * i] = g->motion[2 * i + 1] = prev_view ? GBUFFER_NO_MOTION : 0.0f;
             float *key = &g->select_key[(size_t)i * GBUFFER_KEY];
-            if (!scene_intersect(s, view->position, dir, 0.0f, INFINITY, &h)) {
+            if (!hit[k]) {
                 memset(key, 0, sizeof(float) * GBUFFER_KEY);
                 g->valid[i] = 0;
                 g->emission[i] = scene_env_radiance(s, dir); /* the sky seen */

@@ -373,6 +373,181 @@ double scene_ray_replay(const struct scene *s, const struct ray_record *rays, si
     return 1e3 * (omp_get_wtime() - t0);
 }
 
+/* Embree's stream calls take at most this many rays per call here (stack arrays). */
+#define RAY_STREAM_MAX 64
+
+static void fill_ray(struct RTCRay *ray, const struct ray_query *q)
+{
+    ray->org_x = q->o.x;
+    ray->org_y = q->o.y;
+    ray->org_z = q->o.z;
+    ray->tnear = q->tmin;
+    ray->dir_x = q->d.x;
+    ray->dir_y = q->d.y;
+    ray->dir_z = q->d.z;
+    ray->time = 0.0f;
+    ray->tfar = q->tmax;
+    ray->mask = 0xffffffffu;
+    ray->id = 0;
+    ray->flags = 0;
+}
+
+/* Closest hits of q[0 .. n-1] (n <= RAY_STREAM_MAX) in rtc_scene through one rtcIntersect1M call:
+ * tri[k] as intersect_closest returns it, with t, u, v. */
+static void intersect_stream(RTCScene rtc_scene, int *const *geom_tris, const struct ray_query *q, int n, int coherent,
+                             int *tri, float *t, float *u, float *v)
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    struct RTCRayHit rh[RAY_STREAM_MAX];
+    for (int k = 0; k < n; k++) {
+        fill_ray(&rh[k].ray, &q[k]);
+        rh[k].hit.geomID = rh[k].hit.primID = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect1M(rtc_scene, &ctx, rh, (unsigned)n, sizeof(rh[0]));
+    for (int k = 0; k < n; k++) {
+        tri[k] = -1;
+        if (rh[k].hit.geomID == RTC_INVALID_GEOMETRY_ID)
+            continue;
+        const int *map = geom_tris ? geom_tris[rh[k].hit.geomID] : NULL;
+        tri[k] = map ? map[rh[k].hit.primID] : (int)rh[k].hit.primID;
+        t[k] = rh[k].ray.tfar;
+        u[k] = rh[k].hit.u;
+        v[k] = rh[k].hit.v;
+    }
+}
+
+/* Occlusion of q[0 .. n-1] (n <= RAY_STREAM_MAX) through one rtcOccluded1M call. */
+static void occluded_stream(RTCScene rtc_scene, const struct ray_query *q, int n, int coherent, unsigned char *occ)
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    struct RTCRay ray[RAY_STREAM_MAX];
+    for (int k = 0; k < n; k++)
+        fill_ray(&ray[k], &q[k]);
+    rtcOccluded1M(rtc_scene, &ctx, ray, (unsigned)n, sizeof(ray[0]));
+    for (int k = 0; k < n; k++)
+        occ[k] = ray[k].tfar == -INFINITY;
+}
+
+void scene_intersect_batch(const struct scene *s, const struct ray_query *q, int n, int coherent,
+                           struct surface_hit *hits, unsigned char *hit)
+{
+    for (int first = 0; first < n; first += RAY_STREAM_MAX) {
+        const int m = n - first < RAY_STREAM_MAX ? n - first : RAY_STREAM_MAX;
+        int tri[RAY_STREAM_MAX];
+        float t[RAY_STREAM_MAX], u[RAY_STREAM_MAX], v[RAY_STREAM_MAX];
+        if (s->rt->logging)
+            for (int k = 0; k < m; k++)
+                log_ray(s, q[first + k].o, q[first + k].d, q[first + k].tmin, q[first + k].tmax, RAY_CLOSEST);
+        intersect_stream(s->rt->scene, s->rt->geom_tris, q + first, m, coherent, tri, t, u, v);
+        for (int k = 0; k < m; k++) {
+            const struct ray_query *r = &q[first + k];
+            hit[first + k] = tri[k] >= 0;
+            if (tri[k] >= 0)
+                fill_hit(s, tri[k], r->o, r->d, t[k], u[k], v[k], &hits[first + k]);
+        }
+    }
+}
+
+void scene_occluded_batch(const struct scene *s, const struct ray_query *q, int n, unsigned char *occluded)
+{
+    for (int first = 0; first < n; first += RAY_STREAM_MAX) {
+        const int m = n - first < RAY_STREAM_MAX ? n - first : RAY_STREAM_MAX;
+        if (s->rt->logging)
+            for (int k = 0; k < m; k++)
+                log_ray(s, q[first + k].o, q[first + k].d, q[first + k].tmin, q[first + k].tmax, RAY_OCCLUDED);
+        occluded_stream(s->rt->scene, q + first, m, 0, occluded + first);
+    }
+}
+
+/* One group of same-kind rays (at most 16 for packets, 64 for streams) traced through Embree in one
+ * call; returns the number of hits / occluded rays. */
+#define RAY_GROUP_MAX RAY_STREAM_MAX
+static long long trace_group(const struct scene *s, const struct ray_record *r, int n, enum ray_batch batch)
+{
+    RTCScene sc = r[0].kind == RAY_EMITTERS ? s->rt->emitters : s->rt->scene;
+    const int occ = r[0].kind == RAY_OCCLUDED;
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    long long hits = 0;
+    if (batch == RAY_BATCH_PACKET8 || batch == RAY_BATCH_PACKET16) {
+        /* RTCRayHit16's and RTCRay16's leading members are the ray's SoA arrays, 16 wide; the 8-wide
+         * structs have the same layout at width 8: fill both through one SoA float view. */
+        RTC_ALIGN(64) struct RTCRayHit16 rh;
+        RTC_ALIGN(64) int valid[16];
+        const int w = batch == RAY_BATCH_PACKET8 ? 8 : 16;
+        float *f = (float *)&rh;
+        unsigned *u = (unsigned *)&rh;
+        for (int i = 0; i < w; i++) {
+            const struct ray_record *q = &r[i < n ? i : 0];
+            valid[i] = i < n ? -1 : 0;
+            f[0 * w + i] = q->o.x, f[1 * w + i] = q->o.y, f[2 * w + i] = q->o.z, f[3 * w + i] = q->tmin;
+            f[4 * w + i] = q->d.x, f[5 * w + i] = q->d.y, f[6 * w + i] = q->d.z, f[7 * w + i] = 0.0f;
+            f[8 * w + i] = q->tmax;
+            u[9 * w + i] = 0xffffffffu, u[10 * w + i] = 0, u[11 * w + i] = 0;
+            u[18 * w + i] = RTC_INVALID_GEOMETRY_ID; /* hit.geomID: after 12 ray arrays, Ng xyz, u, v, primID */
+        }
+        if (w == 8) {
+            if (occ)
+                rtcOccluded8(valid, sc, &ctx, (struct RTCRay8 *)&rh);
+            else
+                rtcIntersect8(valid, sc, &ctx, (struct RTCRayHit8 *)&rh);
+        } else {
+            if (occ)
+                rtcOccluded16(valid, sc, &ctx, &rh.ray);
+            else
+                rtcIntersect16(valid, sc, &ctx, &rh);
+        }
+        for (int i = 0; i < n; i++)
+            hits += occ ? f[8 * w + i] == -INFINITY : u[18 * w + i] != RTC_INVALID_GEOMETRY_ID;
+        return hits;
+    }
+    const int coherent = batch == RAY_BATCH_STREAM_COHERENT;
+    struct ray_query rq[RAY_STREAM_MAX];
+    for (int i = 0; i < n; i++)
+        rq[i] = (struct ray_query){r[i].o, r[i].d, r[i].tmin, r[i].tmax};
+    if (occ) {
+        unsigned char o[RAY_STREAM_MAX];
+        occluded_stream(sc, rq, n, coherent, o);
+        for (int i = 0; i < n; i++)
+            hits += o[i];
+    } else {
+        int tri[RAY_STREAM_MAX];
+        float t[RAY_STREAM_MAX], u[RAY_STREAM_MAX], v[RAY_STREAM_MAX];
+        intersect_stream(sc, r[0].kind == RAY_EMITTERS ? NULL : s->rt->geom_tris, rq, n, coherent, tri, t, u, v);
+        for (int i = 0; i < n; i++)
+            hits += tri[i] >= 0;
+    }
+    return hits;
+}
+
+double scene_ray_replay_batched(const struct scene *s, const struct ray_record *rays, size_t count,
+                                enum ray_batch batch)
+{
+    if (batch == RAY_BATCH_SINGLE)
+        return scene_ray_replay(s, rays, count);
+    const int w = batch == RAY_BATCH_PACKET8 ? 8 : batch == RAY_BATCH_PACKET16 ? 16 : RAY_GROUP_MAX;
+    const long long chunk = 4096, nchunks = ((long long)count + chunk - 1) / chunk;
+    long long hits = 0;
+    double t0 = omp_get_wtime();
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : hits)
+    for (long long c = 0; c < nchunks; c++) {
+        const long long end = (c + 1) * chunk < (long long)count ? (c + 1) * chunk : (long long)count;
+        for (long long i = c * chunk; i < end;) {
+            int n = 1;
+            while (n < w && i + n < end && rays[i + n].kind == rays[i].kind)
+                n++;
+            hits += trace_group(s, &rays[i], n, batch);
+            i += n;
+        }
+    }
+    (void)hits;
+    return 1e3 * (omp_get_wtime() - t0);
+}
+
 /* Offset scale for self-intersection: relative to the coordinates' magnitude, so it tracks float
  * precision whatever the scene's size. */
 static float ray_epsilon(vec3 p)
@@ -386,7 +561,7 @@ vec3 scene_offset_point(vec3 p, vec3 n, vec3 toward)
     return v3_madd(p, n, v3_dot(n, toward) >= 0.0f ? e : -e);
 }
 
-int scene_visible(const struct scene *s, vec3 p0, vec3 n0, vec3 p1, vec3 n1)
+int scene_visibility_query(vec3 p0, vec3 n0, vec3 p1, vec3 n1, struct ray_query *q)
 {
     vec3 d = v3_sub(p1, p0);
     vec3 o = scene_offset_point(p0, n0, d);
@@ -394,6 +569,15 @@ int scene_visible(const struct scene *s, vec3 p0, vec3 n0, vec3 p1, vec3 n1)
     vec3 od = v3_sub(e, o);
     float dist = v3_length(od);
     if (!(dist > 0.0f))
+        return 0;
+    *q = (struct ray_query){o, v3_scale(od, 1.0f / dist), 0.0f, dist * (1.0f - 1e-4f)};
+    return 1;
+}
+
+int scene_visible(const struct scene *s, vec3 p0, vec3 n0, vec3 p1, vec3 n1)
+{
+    struct ray_query q;
+    if (!scene_visibility_query(p0, n0, p1, n1, &q))
         return 1;
-    return !scene_occluded(s, o, v3_scale(od, 1.0f / dist), 0.0f, dist * (1.0f - 1e-4f));
+    return !scene_occluded(s, q.o, q.d, q.tmin, q.tmax);
 }

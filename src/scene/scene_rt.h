@@ -41,6 +41,23 @@ vec3 scene_offset_point(vec3 p, vec3 n, vec3 toward);
 /* Visibility between two surface points with normals, offsetting both ends. */
 int scene_visible(const struct scene *s, vec3 p0, vec3 n0, vec3 p1, vec3 n1);
 
+/* A ray of the batched queries: origin, unit direction, interval. */
+struct ray_query {
+    vec3 o, d;
+    float tmin, tmax;
+};
+/* The shadow ray scene_visible traces between p0 and p1; 0 when the points coincide (visible,
+ * nothing to trace). */
+int scene_visibility_query(vec3 p0, vec3 n0, vec3 p1, vec3 n1, struct ray_query *q);
+/* Batched queries: the same answers as scene_intersect / scene_occluded ray by ray (Embree's
+ * stream traversal: hit distances and barycentrics may differ from single rays' in the last
+ * bits), at lower cost per ray where many are traced together: primary rays of a tile
+ * (coherent = 1: they share the camera's origin) and shadow rays of a tile (measured in
+ * docs/BENCHMARKS.md, "Issue 24, ray streams"). hit[k] / occluded[k] are 0 or 1. */
+void scene_intersect_batch(const struct scene *s, const struct ray_query *q, int n, int coherent,
+                           struct surface_hit *hits, unsigned char *hit);
+void scene_occluded_batch(const struct scene *s, const struct ray_query *q, int n, unsigned char *occluded);
+
 /* Ray logging for benchmarks: while a log is active every query is recorded (per thread, no
  * locks), so a frame's rays can be replayed through Embree alone to separate ray-tracing time
  * from shading time. */
@@ -55,5 +72,18 @@ void scene_ray_log_begin(const struct scene *s);
 struct ray_record *scene_ray_log_end(const struct scene *s, size_t *count);
 /* Traces the recorded rays again in parallel; returns the elapsed milliseconds. */
 double scene_ray_replay(const struct scene *s, const struct ray_record *rays, size_t count);
+/* The same rays traced in groups of consecutive same-kind rays (the order in which one thread
+ * traced them): Embree packets of 8 / 16 or streams (rtcIntersect1M / rtcOccluded1M, groups of
+ * 64, with the coherent or incoherent hint). Measures what batching a pass's rays could save. */
+enum ray_batch {
+    RAY_BATCH_SINGLE = 0,
+    RAY_BATCH_PACKET8,
+    RAY_BATCH_PACKET16,
+    RAY_BATCH_STREAM,
+    RAY_BATCH_STREAM_COHERENT,
+    RAY_BATCH_COUNT
+};
+double scene_ray_replay_batched(const struct scene *s, const struct ray_record *rays, size_t count,
+                                enum ray_batch batch);
 
 #endif
