@@ -178,18 +178,8 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
      * so the cached value and every later evaluation agree exactly. */
     r->target = di_target(sp, &r->y);
     r->W = restir_gris_contribution_weight(&wrs, r->target);
-    if (r->W <= 0.0f) {
+    if (r->W <= 0.0f)
         di_reservoir_clear(r, 1.0f);
-        return;
-    }
-    /* Visibility reuse (Bitterli et al. 2020, Alg. 5): a one-candidate resampling step to the
-     * target p_hat V. A visible Y keeps W (p_hat V = p_hat there); an occluded one is dropped while
-     * the confidence stays 1, so W remains an unbiased contribution weight for p_hat V. */
-    if (p->di_visibility_reuse) {
-        (*rays)++;
-        if (!di_sample_visible(s, sp, &r->y))
-            di_reservoir_clear(r, 1.0f);
-    }
 }
 
 long long di_initial_pass(const struct scene *s, const struct light_pool *lp, const struct render_params *p, int frame,
@@ -200,6 +190,8 @@ long long di_initial_pass(const struct scene *s, const struct light_pool *lp, co
     const int ntiles = tile_count(g->width, g->height);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
+        int pixel[RESTIR_TILE_W * RESTIR_TILE_H], n = 0;
+        struct ray_query q[RESTIR_TILE_W * RESTIR_TILE_H];
         for (struct tile_pixel px = tile_first_pixel(g->width, g->height, t); px.i >= 0; tile_advance(&px)) {
             const int i = px.i;
             const struct shading_point *sp = gbuffer_shading(g, i);
@@ -209,7 +201,21 @@ long long di_initial_pass(const struct scene *s, const struct light_pool *lp, co
             }
             pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_INITIAL);
             initial_pixel(s, lp, p, sp, &rng, &out[i], &rays);
+            /* Visibility reuse (Bitterli et al. 2020, Alg. 5): a one-candidate resampling step to
+             * the target p_hat V. A visible Y keeps W (p_hat V = p_hat there); an occluded one is
+             * dropped while the confidence stays 1, so W remains an unbiased contribution weight
+             * for p_hat V. The tile's shadow rays are traced together, as one stream, below. */
+            if (p->di_visibility_reuse && out[i].W > 0.0f) {
+                rays++;
+                if (di_visibility_query(sp, &out[i].y, &q[n]))
+                    pixel[n++] = i;
+            }
         }
+        unsigned char occluded[RESTIR_TILE_W * RESTIR_TILE_H];
+        scene_occluded_batch(s, q, n, occluded);
+        for (int k = 0; k < n; k++)
+            if (occluded[k])
+                di_reservoir_clear(&out[pixel[k]], 1.0f);
     }
     return rays;
 }

@@ -20,6 +20,9 @@ static inline int di_targets_visible(const struct render_params *p)
 
 /* 1 when the light point y is unoccluded from sp (one shadow ray). */
 int di_sample_visible(const struct scene *s, const struct shading_point *sp, const struct di_sample *y);
+/* The shadow ray di_sample_visible traces, for batched tracing; 0 when there is none to trace
+ * (the points coincide: visible). */
+int di_visibility_query(const struct shading_point *sp, const struct di_sample *y, struct ray_query *q);
 
 /* The target of domain sp at y as the reservoirs define it: p_hat(y) V(x, y) when
  * with_visibility, else the unshadowed p_hat(y). The shadow ray is traced (and counted in *rays)

@@ -1,9 +1,12 @@
 /* restir_di.c: ReSTIR DI reuse and shading passes: temporal reuse with reprojection and
  * validation (001), spatial reuse with Bitterli's neighbor test (000 Eq. 7), GRIS merges with
  * selectable resampling MIS (004 Eq. 5-12), and shading (initial RIS is in di_initial.c).
- * Must never allocate per pixel. */
+ * Must never allocate per pixel (one merge batch per thread and pass). */
 #include "render/restir_di.h"
 
+#include <stdlib.h>
+
+#include "core/check.h"
 #include "core/rng.h"
 #include "render/di_visibility.h"
 #include "render/tiles.h"
@@ -13,56 +16,115 @@
 /* Canonical domain + at most 5 spatial neighbors. */
 #define DI_MAX_DOMAINS 6
 
-/* One GRIS merge (004 Eq. 5-7) into domain 0 (canonical). For DI the sample space is the same
- * in every pixel (points on lights, area measure), so every shift is the identity with Jacobian 1
- * and p_hat_{<-k}(y) is simply domain k's target at y (004 Eq. 10), with visibility when the
- * reservoirs' targets have it (di_visibility.h). Returns the shadow rays traced. */
-static long long gris_merge(const struct scene *s, const struct render_params *p, int n,
-                            const struct shading_point *const *sp, const struct di_reservoir *const *in, pcg32 *rng,
-                            struct di_reservoir *out)
+/* One GRIS merge (004 Eq. 5-7) into domain 0 (canonical), split around its shadow rays so that
+ * the rays of many pixels' merges are traced together as one stream (merge_begin, then
+ * merge_batch_flush). For DI the sample space is the same in every pixel (points on lights, area
+ * measure), so every shift is the identity with Jacobian 1 and p_hat_{<-k}(y) is simply domain
+ * k's target at y (004 Eq. 10), with visibility when the reservoirs' targets have it
+ * (di_visibility.h). */
+struct di_merge {
+    int n;
+    const struct di_reservoir *in[DI_MAX_DOMAINS];
+    float c[DI_MAX_DOMAINS], P[DI_MAX_DOMAINS * DI_MAX_DOMAINS];
+    pcg32 rng;
+    struct di_reservoir *out;
+};
+
+/* Merges waiting for their shadow rays: at most DI_BATCH_MERGES, each with at most
+ * DI_MAX_DOMAINS * (DI_MAX_DOMAINS - 1) rays (one per off-diagonal P entry). */
+#define DI_BATCH_MERGES 64
+#define DI_BATCH_RAYS (DI_BATCH_MERGES * DI_MAX_DOMAINS * (DI_MAX_DOMAINS - 1))
+struct di_merge_batch {
+    int merges, rays;
+    struct di_merge mg[DI_BATCH_MERGES];
+    struct ray_query q[DI_BATCH_RAYS];
+    float *zero_if_occluded[DI_BATCH_RAYS]; /* the P entry each ray decides */
+    unsigned char occluded[DI_BATCH_RAYS];
+};
+
+/* The merge's targets without visibility, its shadow rays queued; returns the rays counted. */
+static long long merge_begin(struct di_merge_batch *b, const struct render_params *p, int n,
+                             const struct shading_point *const *sp, const struct di_reservoir *const *in, pcg32 rng,
+                             struct di_reservoir *out)
 {
     const int with_visibility = di_targets_visible(p);
+    struct di_merge *mg = &b->mg[b->merges++];
     long long rays = 0;
-    float c[DI_MAX_DOMAINS] = {0}, P[DI_MAX_DOMAINS * DI_MAX_DOMAINS] = {0}, m[DI_MAX_DOMAINS] = {0};
-    float c_sum = 0.0f;
+    mg->n = n;
+    mg->rng = rng;
+    mg->out = out;
     for (int j = 0; j < n; j++) {
-        c[j] = fminf(in[j]->c, p->confidence_cap);
-        c_sum += c[j];
+        mg->in[j] = in[j];
+        mg->c[j] = fminf(in[j]->c, p->confidence_cap);
     }
     for (int k = 0; k < n; k++) {
         for (int j = 0; j < n; j++) {
+            float *P = &mg->P[k * n + j];
+            *P = 0.0f;
             /* Row 0 (canonical target of every sample) is needed for the resampling weights. */
-            if (k != 0 && !restir_mis_needs(p->mis, k, j))
+            if ((k != 0 && !restir_mis_needs(p->mis, k, j)) || in[j]->y.tri < 0)
                 continue;
-            if (in[j]->y.tri < 0)
-                P[k * n + j] = 0.0f;
-            else if (k == j)
-                P[k * n + j] = in[j]->target; /* cached p_hat_j(Y_j) */
-            else
-                P[k * n + j] = di_domain_target(s, with_visibility, sp[k], &in[j]->y, &rays);
+            if (k == j) {
+                *P = in[j]->target; /* cached p_hat_j(Y_j) */
+                continue;
+            }
+            *P = di_target(sp[k], &in[j]->y);
+            if (!with_visibility || !(*P > 0.0f))
+                continue;
+            rays++; /* as di_domain_target counts it */
+            if (di_visibility_query(sp[k], &in[j]->y, &b->q[b->rays]))
+                b->zero_if_occluded[b->rays++] = P;
         }
     }
-    restir_mis_weights(p->mis, n, c, P, m);
+    return rays;
+}
+
+/* The GRIS resampling of a merge whose targets are final. */
+static void merge_end(const struct render_params *p, struct di_merge *mg)
+{
+    const int n = mg->n;
+    float m[DI_MAX_DOMAINS] = {0}, c_sum = 0.0f;
+    for (int j = 0; j < n; j++)
+        c_sum += mg->c[j];
+    restir_mis_weights(p->mis, n, mg->c, mg->P, m);
     struct restir_wrs wrs;
     restir_wrs_init(&wrs);
     int chosen = -1;
     for (int j = 0; j < n; j++) {
         /* 004 Eq. 6 with |dT/dX| = 1 */
-        float w = in[j]->y.tri >= 0 ? m[j] * P[j] * in[j]->W : 0.0f;
-        if (restir_wrs_offer(&wrs, w, pcg32_float(rng)))
+        float w = mg->in[j]->y.tri >= 0 ? m[j] * mg->P[j] * mg->in[j]->W : 0.0f;
+        if (restir_wrs_offer(&wrs, w, pcg32_float(&mg->rng)))
             chosen = j;
     }
     struct di_reservoir result;
     di_reservoir_clear(&result, restir_confidence_merge(c_sum, p->confidence_cap));
     if (chosen >= 0) {
-        result.y = in[chosen]->y;
-        result.target = P[chosen];
+        result.y = mg->in[chosen]->y;
+        result.target = mg->P[chosen];
         result.W = restir_gris_contribution_weight(&wrs, result.target); /* 004 Eq. 7 */
         if (result.W <= 0.0f)
             di_reservoir_clear(&result, result.c);
     }
-    *out = result;
-    return rays;
+    *mg->out = result;
+}
+
+/* Traces the queued shadow rays as one stream, then finishes every queued merge in order. */
+static void merge_batch_flush(struct di_merge_batch *b, const struct scene *s, const struct render_params *p)
+{
+    scene_occluded_batch(s, b->q, b->rays, b->occluded);
+    for (int r = 0; r < b->rays; r++)
+        if (b->occluded[r])
+            *b->zero_if_occluded[r] = 0.0f;
+    for (int k = 0; k < b->merges; k++)
+        merge_end(p, &b->mg[k]);
+    b->merges = b->rays = 0;
+}
+
+/* Room for one more merge of any size. */
+static void merge_batch_reserve(struct di_merge_batch *b, const struct scene *s, const struct render_params *p)
+{
+    if (b->merges == DI_BATCH_MERGES || b->rays > DI_BATCH_RAYS - DI_MAX_DOMAINS * (DI_MAX_DOMAINS - 1))
+        merge_batch_flush(b, s, p);
 }
 
 long long di_temporal_pass(const struct scene *s, const struct render_params *p, int frame,
@@ -71,26 +133,34 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
 {
     long long accepted = 0, traced = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : accepted, traced)
-    for (int t = 0; t < ntiles; t++) {
-        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
-            const int i = px.i;
-            int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
-            if (q < 0)
-                continue;
-            const struct shading_point *sp[2] = {gbuffer_shading(g, i), gbuffer_shading(prev_g, q)};
-            const struct di_reservoir *hist = &prev_res[q];
-            if (p->temporal_ratio_guard && hist->y.tri >= 0) {
-                /* 001 Sec. 5 guard: depends on the sample, hence BIASED (documented in --help). */
-                float ratio = di_target(sp[0], &hist->y) / hist->target;
-                if (!(ratio >= p->ratio_lo && ratio <= p->ratio_hi))
+#pragma omp parallel reduction(+ : accepted, traced)
+    {
+        struct di_merge_batch *b = xmalloc(sizeof(*b)); /* one per thread and pass */
+        b->merges = b->rays = 0;
+#pragma omp for schedule(dynamic, 1)
+        for (int t = 0; t < ntiles; t++) {
+            for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+                const int i = px.i;
+                int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
+                if (q < 0)
                     continue;
+                const struct shading_point *sp[2] = {gbuffer_shading(g, i), gbuffer_shading(prev_g, q)};
+                const struct di_reservoir *hist = &prev_res[q];
+                if (p->temporal_ratio_guard && hist->y.tri >= 0) {
+                    /* 001 Sec. 5 guard: depends on the sample, hence BIASED (documented in --help). */
+                    float ratio = di_target(sp[0], &hist->y) / hist->target;
+                    if (!(ratio >= p->ratio_lo && ratio <= p->ratio_hi))
+                        continue;
+                }
+                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_TEMPORAL);
+                const struct di_reservoir *in[2] = {&io[i], hist};
+                merge_batch_reserve(b, s, p);
+                traced += merge_begin(b, p, 2, sp, in, rng, &io[i]);
+                accepted++;
             }
-            pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_TEMPORAL);
-            const struct di_reservoir *in[2] = {&io[i], hist};
-            traced += gris_merge(s, p, 2, sp, in, &rng, &io[i]);
-            accepted++;
+            merge_batch_flush(b, s, p);
         }
+        free(b);
     }
     *rays += traced;
     return accepted;
@@ -102,39 +172,47 @@ long long di_spatial_pass(const struct scene *s, const struct render_params *p, 
     long long rays = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
     const int m = render_params_spatial_neighbors(p, 0); /* at most 5 = DI_MAX_DOMAINS - 1 */
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
-    for (int t = 0; t < ntiles; t++) {
-        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
-            const int i = px.i;
-            /* Neighbors sit at random within the radius: their reservoirs and shading points
-             * miss the cache, so the next pixel's are fetched while this one merges. */
-            int next = tile_peek(&px);
-            for (int k = 0; next >= 0 && k < m; k++) {
-                int j = neighbors[(size_t)next * m + k];
-                if (j >= 0) {
-                    prefetch_bytes(&in[j], sizeof(in[j]));
-                    prefetch_bytes(gbuffer_shading(g, j), sizeof(struct shading_point));
+#pragma omp parallel reduction(+ : rays)
+    {
+        struct di_merge_batch *b = xmalloc(sizeof(*b)); /* one per thread and pass */
+        b->merges = b->rays = 0;
+#pragma omp for schedule(dynamic, 1)
+        for (int t = 0; t < ntiles; t++) {
+            for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+                const int i = px.i;
+                /* Neighbors sit at random within the radius: their reservoirs and shading points
+                 * miss the cache, so the next pixel's are fetched while this one merges. */
+                int next = tile_peek(&px);
+                for (int k = 0; next >= 0 && k < m; k++) {
+                    int j = neighbors[(size_t)next * m + k];
+                    if (j >= 0) {
+                        prefetch_bytes(&in[j], sizeof(in[j]));
+                        prefetch_bytes(gbuffer_shading(g, j), sizeof(struct shading_point));
+                    }
                 }
-            }
-            if (!g->valid[i]) {
-                out[i] = in[i];
-                continue;
-            }
-            pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_SPATIAL);
-            const struct shading_point *sp[DI_MAX_DOMAINS];
-            const struct di_reservoir *src[DI_MAX_DOMAINS];
-            sp[0] = gbuffer_shading(g, i);
-            src[0] = &in[i];
-            int n = 1;
-            for (int k = 0; k < m; k++) {
-                int j = neighbors[(size_t)i * m + k];
-                if (j < 0)
+                if (!g->valid[i]) {
+                    out[i] = in[i];
                     continue;
-                sp[n] = gbuffer_shading(g, j);
-                src[n++] = &in[j];
+                }
+                pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_SPATIAL);
+                const struct shading_point *sp[DI_MAX_DOMAINS];
+                const struct di_reservoir *src[DI_MAX_DOMAINS];
+                sp[0] = gbuffer_shading(g, i);
+                src[0] = &in[i];
+                int n = 1;
+                for (int k = 0; k < m; k++) {
+                    int j = neighbors[(size_t)i * m + k];
+                    if (j < 0)
+                        continue;
+                    sp[n] = gbuffer_shading(g, j);
+                    src[n++] = &in[j];
+                }
+                merge_batch_reserve(b, s, p);
+                rays += merge_begin(b, p, n, sp, src, rng, &out[i]);
             }
-            rays += gris_merge(s, p, n, sp, src, &rng, &out[i]);
+            merge_batch_flush(b, s, p);
         }
+        free(b);
     }
     return rays;
 }
