@@ -362,6 +362,7 @@ void renderer_render(struct renderer *r, int frame, const struct camera *cam, st
     renderer_camera_view(&r->p, cam, r->has_prev_cam ? &r->prev_cam : NULL, &view);
     r->prev_cam = *cam;
     r->has_prev_cam = 1;
+    scene_ray_streams(r->scene, r->p.ray_streams); /* the scene may be shared with other renderers */
     double t0 = omp_get_wtime();
     r->frame = frame;
     if (r->method == METHOD_PT) {

@@ -121,6 +121,10 @@ static const struct param_def params[] = {
     {"scene.alpha", P_BOOL, F(alpha_masks), 0, 1, "on", NULL,
      "off: every alpha-masked material (glTF alphaMode MASK or BLEND) is opaque. This CHANGES THE SCENE "
      "(leaf cards become quads): for measuring what the masks cost, never for comparing images", NULL},
+    {"rays.streams", P_BOOL, F(ray_streams), 0, 1, "on", NULL,
+     "trace the G-buffer's camera rays and restir-di's shadow rays tile by tile as Embree streams "
+     "(rtcIntersect1M / rtcOccluded1M); off: one Embree call per ray. The same images either way, only the "
+     "time differs (docs/BENCHMARKS.md, issue 24)", NULL},
     {"scene.missing_textures", P_NAMES, F(missing_textures_warn), 0, 0, "error", NULL,
      "a texture a scene file names that cannot be read: error (refuse the scene, naming the file) or warn "
      "(say so on stderr and use the material's factor instead of the map)",

@@ -72,6 +72,7 @@ struct render_params {
     enum temporal_reuse_mode temporal_reuse; /* path reservoirs only (restir-pt and its relatives) */
     int shading_normals;       /* scene.shading_normals: vertex normals and normal maps (1) or flat (0) */
     int alpha_masks;           /* scene.alpha: honour alpha-masked materials (1) or make every one opaque (0) */
+    int ray_streams;           /* rays.streams: batched passes trace through Embree streams (1) or ray by ray */
     int missing_textures_warn; /* scene files: a texture that cannot be read is an error (0) or a warning (1) */
     int temporal_splat_steps; /* splat with motion blur: shutter-time strata per history reservoir */
 

@@ -30,6 +30,7 @@ struct alpha_filter {
 
 struct scene_rt {
     int logging;
+    int streams; /* scene_ray_streams */
     struct alpha_filter alpha_masked, alpha_emitters;
     /* The main scene holds the opaque triangles as geometry 0 and, where some material is
      * alpha-masked, the masked ones as geometry 1, so that only hits on those call the filter.
@@ -170,6 +171,7 @@ int scene_rt_build(struct scene *s, char *msg)
         return -1;
     }
     rtcSetDeviceErrorFunction(rt->device, embree_error, NULL);
+    rt->streams = 1;
     int masked = 0; /* filters only where some material is alpha-masked: they cost every hit a call */
     for (int m = 0; m < s->num_materials; m++)
         masked |= s->materials[m].alpha_mask;
@@ -432,9 +434,19 @@ static void occluded_stream(RTCScene rtc_scene, const struct ray_query *q, int n
         occ[k] = ray[k].tfar == -INFINITY;
 }
 
+void scene_ray_streams(const struct scene *s, int on)
+{
+    s->rt->streams = on;
+}
+
 void scene_intersect_batch(const struct scene *s, const struct ray_query *q, int n, int coherent,
                            struct surface_hit *hits, unsigned char *hit)
 {
+    if (!s->rt->streams) {
+        for (int k = 0; k < n; k++)
+            hit[k] = (unsigned char)scene_intersect(s, q[k].o, q[k].d, q[k].tmin, q[k].tmax, &hits[k]);
+        return;
+    }
     for (int first = 0; first < n; first += RAY_STREAM_MAX) {
         const int m = n - first < RAY_STREAM_MAX ? n - first : RAY_STREAM_MAX;
         int tri[RAY_STREAM_MAX];
@@ -454,6 +466,11 @@ void scene_intersect_batch(const struct scene *s, const struct ray_query *q, int
 
 void scene_occluded_batch(const struct scene *s, const struct ray_query *q, int n, unsigned char *occluded)
 {
+    if (!s->rt->streams) {
+        for (int k = 0; k < n; k++)
+            occluded[k] = (unsigned char)scene_occluded(s, q[k].o, q[k].d, q[k].tmin, q[k].tmax);
+        return;
+    }
     for (int first = 0; first < n; first += RAY_STREAM_MAX) {
         const int m = n - first < RAY_STREAM_MAX ? n - first : RAY_STREAM_MAX;
         if (s->rt->logging)

@@ -57,6 +57,8 @@ int scene_visibility_query(vec3 p0, vec3 n0, vec3 p1, vec3 n1, struct ray_query 
 void scene_intersect_batch(const struct scene *s, const struct ray_query *q, int n, int coherent,
                            struct surface_hit *hits, unsigned char *hit);
 void scene_occluded_batch(const struct scene *s, const struct ray_query *q, int n, unsigned char *occluded);
+/* on = 0: the batched queries trace ray by ray (the renderer sets it from rays.streams each frame). */
+void scene_ray_streams(const struct scene *s, int on);
 
 /* Ray logging for benchmarks: while a log is active every query is recorded (per thread, no
  * locks), so a frame's rays can be replayed through Embree alone to separate ray-tracing time
