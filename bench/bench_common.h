@@ -24,6 +24,8 @@ void bench_di_visibility(const char *scene, int width, int height, int frames, i
 int bench_poisson(int argc, char **argv);
 /* The `gradient` section (bench_gradient.c): argv[0] is "gradient", then its options. */
 int bench_gradient(int argc, char **argv);
+/* The `streams` section (bench_streams.c): argv[0] is "streams", then its options. */
+int bench_streams(int argc, char **argv);
 /* The `l1-bias` section (bench_l1_bias.c): argv[0] is "l1-bias", then FRAME.exr REF.exr. */
 int bench_l1_bias(int argc, char **argv);
 
