@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "core/lowdisc.h"
+#include "core/simd.h"
 #include "gradient/gpt.h"
 #include "gradient/grad_after.h"
 #include "gradient/grad_common.h"
@@ -363,6 +364,7 @@ void renderer_render(struct renderer *r, int frame, const struct camera *cam, st
     r->prev_cam = *cam;
     r->has_prev_cam = 1;
     scene_ray_streams(r->scene, r->p.ray_streams); /* the scene may be shared with other renderers */
+    simd_allow(r->p.simd);                         /* process-wide */
     double t0 = omp_get_wtime();
     r->frame = frame;
     if (r->method == METHOD_PT) {

@@ -4,6 +4,7 @@
  * for SIMD. Must never allocate per pixel. */
 #include "core/check.h"
 #include "core/rng.h"
+#include "core/simd.h"
 #include "render/di_visibility.h"
 #include "render/light_pool.h"
 #include "render/restir_di.h"
@@ -44,8 +45,8 @@ static void sample_at_hit(const struct scene *s, int tri, float b1, float b2, st
  * unshadowed, their MIS weights sum to one wherever p_hat > 0, and W is valid on p_hat's whole
  * support (visibility reuse then narrows it to that of p_hat V). The loops read only contiguous
  * arrays, so they vectorize. */
-static void light_batch_fill(const struct light_pool *lp, int first, const struct shading_point *sp, int n, int nl,
-                             int nb, struct light_batch *lb)
+SIMD_INLINE void light_batch_fill_body(const struct light_pool *lp, int first, const struct shading_point *sp,
+                                       int n, int nl, int nb, struct light_batch *lb)
 {
     const float *restrict px = lp->px + first, *restrict py = lp->py + first, *restrict pz = lp->pz + first;
     const float *restrict nx = lp->nx + first, *restrict ny = lp->ny + first, *restrict nz = lp->nz + first;
@@ -88,7 +89,7 @@ static void light_batch_fill(const struct light_pool *lp, int first, const struc
  * k is the number of prefix sums at or below u * total (a zero weight never ends the count), or
  * the last positive weight when rounding puts u * total past the float sum. Writes the total;
  * returns -1 when it is 0. */
-static int pick_by_weight(const float *w, int n, float u, float *total)
+SIMD_INLINE int pick_by_weight_body(const float *w, int n, float u, float *total)
 {
     RESTIR_CHECK(n <= DI_BATCH);
     float acc[DI_BATCH], sum = 0.0f;
@@ -106,6 +107,46 @@ static int pick_by_weight(const float *w, int n, float u, float *total)
     for (int k = 0; k < n; k++)
         below += acc[k] <= x;
     return below < n ? below : last;
+}
+
+/* The two kernels above for the build's baseline and for AVX2, chosen at run time (core/simd.h):
+ * the same operations, so the same bits. */
+static void light_batch_fill_baseline(const struct light_pool *lp, int first, const struct shading_point *sp, int n,
+                                      int nl, int nb, struct light_batch *lb)
+{
+    light_batch_fill_body(lp, first, sp, n, nl, nb, lb);
+}
+
+SIMD_TARGET_AVX2 static void light_batch_fill_avx2(const struct light_pool *lp, int first,
+                                                   const struct shading_point *sp, int n, int nl, int nb,
+                                                   struct light_batch *lb)
+{
+    light_batch_fill_body(lp, first, sp, n, nl, nb, lb);
+}
+
+static void light_batch_fill(const struct light_pool *lp, int first, const struct shading_point *sp, int n, int nl,
+                             int nb, struct light_batch *lb)
+{
+    if (simd_isa_active() == SIMD_ISA_AVX2)
+        light_batch_fill_avx2(lp, first, sp, n, nl, nb, lb);
+    else
+        light_batch_fill_baseline(lp, first, sp, n, nl, nb, lb);
+}
+
+static int pick_by_weight_baseline(const float *w, int n, float u, float *total)
+{
+    return pick_by_weight_body(w, n, u, total);
+}
+
+SIMD_TARGET_AVX2 static int pick_by_weight_avx2(const float *w, int n, float u, float *total)
+{
+    return pick_by_weight_body(w, n, u, total);
+}
+
+static int pick_by_weight(const float *w, int n, float u, float *total)
+{
+    return simd_isa_active() == SIMD_ISA_AVX2 ? pick_by_weight_avx2(w, n, u, total)
+                                              : pick_by_weight_baseline(w, n, u, total);
 }
 
 static void initial_pixel(const struct scene *s, const struct light_pool *lp, const struct render_params *p,

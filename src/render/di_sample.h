@@ -45,5 +45,8 @@ vec3 di_unshadowed(const struct shading_point *sp, const struct di_sample *y);
 vec3 di_unshadowed_pdf(const struct shading_point *sp, const struct di_sample *y, float *bsdf_pdf_area);
 /* Target function p_hat(x, y) = luminance of di_unshadowed (001 Sec. 1). */
 float di_target(const struct shading_point *sp, const struct di_sample *y);
+/* out[k] = di_target(sp[k], y[k]) for n pairs, bit for bit, evaluated across the pairs with
+ * vector instructions (SIMD across pixels: the reuse merges' targets; core/simd.h). */
+void di_target_many(int n, const struct shading_point *const *sp, const struct di_sample *const *y, float *out);
 
 #endif

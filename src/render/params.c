@@ -125,6 +125,10 @@ static const struct param_def params[] = {
      "trace the G-buffer's camera rays and restir-di's shadow rays tile by tile as Embree streams "
      "(rtcIntersect1M / rtcOccluded1M); off: one Embree call per ray. The same images either way, only the "
      "time differs (docs/BENCHMARKS.md, issue 24)", NULL},
+    {"simd", P_BOOL, F(simd), 0, 1, "on", NULL,
+     "vector kernels (initial RIS candidates, restir-di merge targets across pixels): on = AVX2 where the "
+     "CPU has it, chosen at run time; off = the build's baseline (SSE2 on x86-64). The same images either "
+     "way, only the time differs", NULL},
     {"scene.missing_textures", P_NAMES, F(missing_textures_warn), 0, 0, "error", NULL,
      "a texture a scene file names that cannot be read: error (refuse the scene, naming the file) or warn "
      "(say so on stderr and use the material's factor instead of the map)",

@@ -73,6 +73,7 @@ struct render_params {
     int shading_normals;       /* scene.shading_normals: vertex normals and normal maps (1) or flat (0) */
     int alpha_masks;           /* scene.alpha: honour alpha-masked materials (1) or make every one opaque (0) */
     int ray_streams;           /* rays.streams: batched passes trace through Embree streams (1) or ray by ray */
+    int simd;                  /* simd: AVX2 kernels where the CPU has them (1) or the baseline ones (0) */
     int missing_textures_warn; /* scene files: a texture that cannot be read is an error (0) or a warning (1) */
     int temporal_splat_steps; /* splat with motion blur: shutter-time strata per history reservoir */
 

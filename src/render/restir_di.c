@@ -16,10 +16,10 @@
 /* Canonical domain + at most 5 spatial neighbors. */
 #define DI_MAX_DOMAINS 6
 
-/* One GRIS merge (004 Eq. 5-7) into domain 0 (canonical), split around its shadow rays so that
- * the rays of many pixels' merges are traced together as one stream (merge_begin, then
- * merge_batch_flush). For DI the sample space is the same in every pixel (points on lights, area
- * measure), so every shift is the identity with Jacobian 1 and p_hat_{<-k}(y) is simply domain
+/* One GRIS merge (004 Eq. 5-7) into domain 0 (canonical), split around its cross-domain targets
+ * and shadow rays so that those of many pixels' merges are evaluated together, across pixels with
+ * vector instructions, and traced together as one stream (merge_begin, then merge_batch_flush).
+ * For DI the sample space is the same in every pixel (points on lights, area measure), so every shift is the identity with Jacobian 1 and p_hat_{<-k}(y) is simply domain
  * k's target at y (004 Eq. 10), with visibility when the reservoirs' targets have it
  * (di_visibility.h). */
 struct di_merge {
@@ -30,26 +30,30 @@ struct di_merge {
     struct di_reservoir *out;
 };
 
-/* Merges waiting for their shadow rays: at most DI_BATCH_MERGES, each with at most
- * DI_MAX_DOMAINS * (DI_MAX_DOMAINS - 1) rays (one per off-diagonal P entry). */
+/* Merges waiting for their cross-domain targets and shadow rays: at most DI_BATCH_MERGES, each
+ * with at most DI_MAX_DOMAINS * (DI_MAX_DOMAINS - 1) off-diagonal P entries to evaluate (one
+ * target, and with visibility one ray, each). */
 #define DI_BATCH_MERGES 64
-#define DI_BATCH_RAYS (DI_BATCH_MERGES * DI_MAX_DOMAINS * (DI_MAX_DOMAINS - 1))
+#define DI_BATCH_ENTRIES (DI_BATCH_MERGES * DI_MAX_DOMAINS * (DI_MAX_DOMAINS - 1))
 struct di_merge_batch {
-    int merges, rays;
+    int merges, entries, rays;
     struct di_merge mg[DI_BATCH_MERGES];
-    struct ray_query q[DI_BATCH_RAYS];
-    float *zero_if_occluded[DI_BATCH_RAYS]; /* the P entry each ray decides */
-    unsigned char occluded[DI_BATCH_RAYS];
+    /* entry e: P entry *entry_P[e] = p_hat of domain entry_sp[e] at sample entry_y[e] */
+    const struct shading_point *entry_sp[DI_BATCH_ENTRIES];
+    const struct di_sample *entry_y[DI_BATCH_ENTRIES];
+    float *entry_P[DI_BATCH_ENTRIES];
+    float target[DI_BATCH_ENTRIES];
+    struct ray_query q[DI_BATCH_ENTRIES];
+    float *zero_if_occluded[DI_BATCH_ENTRIES]; /* the P entry each ray decides */
+    unsigned char occluded[DI_BATCH_ENTRIES];
 };
 
-/* The merge's targets without visibility, its shadow rays queued; returns the rays counted. */
-static long long merge_begin(struct di_merge_batch *b, const struct render_params *p, int n,
-                             const struct shading_point *const *sp, const struct di_reservoir *const *in, pcg32 rng,
-                             struct di_reservoir *out)
+/* Queues the merge: its cached targets set, its cross-domain ones queued. */
+static void merge_begin(struct di_merge_batch *b, const struct render_params *p, int n,
+                        const struct shading_point *const *sp, const struct di_reservoir *const *in, pcg32 rng,
+                        struct di_reservoir *out)
 {
-    const int with_visibility = di_targets_visible(p);
     struct di_merge *mg = &b->mg[b->merges++];
-    long long rays = 0;
     mg->n = n;
     mg->rng = rng;
     mg->out = out;
@@ -68,15 +72,11 @@ static long long merge_begin(struct di_merge_batch *b, const struct render_param
                 *P = in[j]->target; /* cached p_hat_j(Y_j) */
                 continue;
             }
-            *P = di_target(sp[k], &in[j]->y);
-            if (!with_visibility || !(*P > 0.0f))
-                continue;
-            rays++; /* as di_domain_target counts it */
-            if (di_visibility_query(sp[k], &in[j]->y, &b->q[b->rays]))
-                b->zero_if_occluded[b->rays++] = P;
+            b->entry_sp[b->entries] = sp[k];
+            b->entry_y[b->entries] = &in[j]->y;
+            b->entry_P[b->entries++] = P;
         }
     }
-    return rays;
 }
 
 /* The GRIS resampling of a merge whose targets are final. */
@@ -108,23 +108,38 @@ static void merge_end(const struct render_params *p, struct di_merge *mg)
     *mg->out = result;
 }
 
-/* Traces the queued shadow rays as one stream, then finishes every queued merge in order. */
-static void merge_batch_flush(struct di_merge_batch *b, const struct scene *s, const struct render_params *p)
+/* Evaluates the queued targets across the merges at once (SIMD across pixels, di_target_many),
+ * traces the shadow rays of the positive ones as one stream (with visibility in the targets, as
+ * di_domain_target), then finishes every queued merge in order. Returns the rays counted. */
+static long long merge_batch_flush(struct di_merge_batch *b, const struct scene *s, const struct render_params *p)
 {
+    di_target_many(b->entries, b->entry_sp, b->entry_y, b->target);
+    long long rays = 0;
+    const int with_visibility = di_targets_visible(p);
+    for (int e = 0; e < b->entries; e++) {
+        *b->entry_P[e] = b->target[e];
+        if (!with_visibility || !(b->target[e] > 0.0f))
+            continue;
+        rays++;
+        if (di_visibility_query(b->entry_sp[e], b->entry_y[e], &b->q[b->rays]))
+            b->zero_if_occluded[b->rays++] = b->entry_P[e];
+    }
     scene_occluded_batch(s, b->q, b->rays, b->occluded);
     for (int r = 0; r < b->rays; r++)
         if (b->occluded[r])
             *b->zero_if_occluded[r] = 0.0f;
     for (int k = 0; k < b->merges; k++)
         merge_end(p, &b->mg[k]);
-    b->merges = b->rays = 0;
+    b->merges = b->entries = b->rays = 0;
+    return rays;
 }
 
-/* Room for one more merge of any size. */
-static void merge_batch_reserve(struct di_merge_batch *b, const struct scene *s, const struct render_params *p)
+/* Room for one more merge of any size; returns the rays of a flush it needed. */
+static long long merge_batch_reserve(struct di_merge_batch *b, const struct scene *s, const struct render_params *p)
 {
-    if (b->merges == DI_BATCH_MERGES || b->rays > DI_BATCH_RAYS - DI_MAX_DOMAINS * (DI_MAX_DOMAINS - 1))
-        merge_batch_flush(b, s, p);
+    if (b->merges == DI_BATCH_MERGES || b->entries > DI_BATCH_ENTRIES - DI_MAX_DOMAINS * (DI_MAX_DOMAINS - 1))
+        return merge_batch_flush(b, s, p);
+    return 0;
 }
 
 long long di_temporal_pass(const struct scene *s, const struct render_params *p, int frame,
@@ -136,7 +151,7 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
 #pragma omp parallel reduction(+ : accepted, traced)
     {
         struct di_merge_batch *b = xmalloc(sizeof(*b)); /* one per thread and pass */
-        b->merges = b->rays = 0;
+        b->merges = b->entries = b->rays = 0;
 #pragma omp for schedule(dynamic, 1)
         for (int t = 0; t < ntiles; t++) {
             for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
@@ -154,11 +169,11 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
                 }
                 pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_TEMPORAL);
                 const struct di_reservoir *in[2] = {&io[i], hist};
-                merge_batch_reserve(b, s, p);
-                traced += merge_begin(b, p, 2, sp, in, rng, &io[i]);
+                traced += merge_batch_reserve(b, s, p);
+                merge_begin(b, p, 2, sp, in, rng, &io[i]);
                 accepted++;
             }
-            merge_batch_flush(b, s, p);
+            traced += merge_batch_flush(b, s, p);
         }
         free(b);
     }
@@ -175,7 +190,7 @@ long long di_spatial_pass(const struct scene *s, const struct render_params *p, 
 #pragma omp parallel reduction(+ : rays)
     {
         struct di_merge_batch *b = xmalloc(sizeof(*b)); /* one per thread and pass */
-        b->merges = b->rays = 0;
+        b->merges = b->entries = b->rays = 0;
 #pragma omp for schedule(dynamic, 1)
         for (int t = 0; t < ntiles; t++) {
             for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
@@ -207,10 +222,10 @@ long long di_spatial_pass(const struct scene *s, const struct render_params *p, 
                     sp[n] = gbuffer_shading(g, j);
                     src[n++] = &in[j];
                 }
-                merge_batch_reserve(b, s, p);
-                rays += merge_begin(b, p, n, sp, src, rng, &out[i]);
+                rays += merge_batch_reserve(b, s, p);
+                merge_begin(b, p, n, sp, src, rng, &out[i]);
             }
-            merge_batch_flush(b, s, p);
+            rays += merge_batch_flush(b, s, p);
         }
         free(b);
     }

@@ -5,6 +5,7 @@
 #include <math.h>
 
 #include "core/sampling.h"
+#include "core/simd.h"
 
 /* max_f / min_f with the variable first return the bound for a NaN x, as fmaxf / fminf do, but
  * compile to one instruction: without -ffinite-math-only fmaxf is a libm call, and these run for
@@ -246,9 +247,9 @@ int bsdf_frame_sample(const struct bsdf_frame *bf, float u0, float u1, float u2,
     return 1;
 }
 
-void bsdf_frame_eval_batch(const struct bsdf_frame *bf, int n, const float *restrict wx,
-                           const float *restrict wy, const float *restrict wz, float *restrict fr,
-                           float *restrict fg, float *restrict fb, float *restrict pdf)
+SIMD_INLINE void eval_batch_body(const struct bsdf_frame *bf, int n, const float *restrict wx,
+                                 const float *restrict wy, const float *restrict wz, float *restrict fr,
+                                 float *restrict fg, float *restrict fb, float *restrict pdf)
 {
     const struct bsdf *b = &bf->b;
     const frame fr_ = bf->fr;
@@ -296,6 +297,111 @@ void bsdf_frame_eval_batch(const struct bsdf_frame *bf, int n, const float *rest
         float wo_h = ox * hx + oy * hy + oz * hz;
         pdf[k] = above * (dpdf * lz + (wo_h > 0.0f ? spec_pdf * s * f_den : 0.0f));
     }
+}
+
+static void eval_batch_baseline(const struct bsdf_frame *bf, int n, const float *wx, const float *wy,
+                                const float *wz, float *fr, float *fg, float *fb, float *pdf)
+{
+    eval_batch_body(bf, n, wx, wy, wz, fr, fg, fb, pdf);
+}
+
+SIMD_TARGET_AVX2 static void eval_batch_avx2(const struct bsdf_frame *bf, int n, const float *wx, const float *wy,
+                                             const float *wz, float *fr, float *fg, float *fb, float *pdf)
+{
+    eval_batch_body(bf, n, wx, wy, wz, fr, fg, fb, pdf);
+}
+
+void bsdf_frame_eval_batch(const struct bsdf_frame *bf, int n, const float *restrict wx,
+                           const float *restrict wy, const float *restrict wz, float *restrict fr,
+                           float *restrict fg, float *restrict fb, float *restrict pdf)
+{
+    if (simd_isa_active() == SIMD_ISA_AVX2)
+        eval_batch_avx2(bf, n, wx, wy, wz, fr, fg, fb, pdf);
+    else
+        eval_batch_baseline(bf, n, wx, wy, wz, fr, fg, fb, pdf);
+}
+
+/* bsdf_frame_eval_lanes over at most BSDF_LANES lanes: the frames' parameters gathered into
+ * arrays, then one branch-free loop that mirrors bsdf_frame_eval's operations and their order
+ * (selects where it branches), so every lane gets bsdf_frame_eval's bits. */
+#define BSDF_LANES 64
+SIMD_INLINE void eval_lanes_chunk(int n, const struct bsdf_frame *const *bf, const float *restrict wx,
+                                  const float *restrict wy, const float *restrict wz, float *restrict fr,
+                                  float *restrict fg, float *restrict fb)
+{
+    float tx[BSDF_LANES], ty[BSDF_LANES], tz[BSDF_LANES], bx[BSDF_LANES], by[BSDF_LANES], bz[BSDF_LANES];
+    float nx[BSDF_LANES], ny[BSDF_LANES], nz[BSDF_LANES], ox[BSDF_LANES], oy[BSDF_LANES], oz[BSDF_LANES];
+    float lambda_o[BSDF_LANES], dscale[BSDF_LANES], inv_a2[BSDF_LANES], alpha[BSDF_LANES], p_spec[BSDF_LANES];
+    float kdr[BSDF_LANES], kdg[BSDF_LANES], kdb[BSDF_LANES], f0r[BSDF_LANES], f0g[BSDF_LANES], f0b[BSDF_LANES];
+    int valid[BSDF_LANES];
+    for (int k = 0; k < n; k++) {
+        const struct bsdf_frame *f = bf[k];
+        tx[k] = f->fr.t.x, ty[k] = f->fr.t.y, tz[k] = f->fr.t.z;
+        bx[k] = f->fr.b.x, by[k] = f->fr.b.y, bz[k] = f->fr.b.z;
+        nx[k] = f->fr.n.x, ny[k] = f->fr.n.y, nz[k] = f->fr.n.z;
+        ox[k] = f->wo_local.x, oy[k] = f->wo_local.y, oz[k] = f->wo_local.z;
+        lambda_o[k] = f->lambda_o, dscale[k] = f->diffuse_scale, inv_a2[k] = f->inv_alpha2;
+        alpha[k] = f->b.alpha, p_spec[k] = f->b.p_spec, valid[k] = f->valid;
+        kdr[k] = f->b.diffuse.x, kdg[k] = f->b.diffuse.y, kdb[k] = f->b.diffuse.z;
+        f0r[k] = f->b.f0.x, f0g[k] = f->b.f0.y, f0b[k] = f->b.f0.z;
+    }
+    for (int k = 0; k < n; k++) {
+        const float lx = wx[k] * tx[k] + wy[k] * ty[k] + wz[k] * tz[k]; /* frame_to_local */
+        const float ly = wx[k] * bx[k] + wy[k] * by[k] + wz[k] * bz[k];
+        const float lz = wx[k] * nx[k] + wy[k] * ny[k] + wz[k] * nz[k];
+        const int has_d = p_spec[k] < 1.0f, has_s = p_spec[k] > 0.0f;
+        /* diffuse: diffuse_scale, times 1 - F(cos_i) for mixed materials */
+        const float m = clampf(1.0f - lz, 0.0f, 1.0f), m2 = m * m, w_i = m2 * m2 * m;
+        const float scale = has_s ? dscale[k] * (1.0f - (DIELECTRIC_F0 + (1.0f - DIELECTRIC_F0) * w_i)) : dscale[k];
+        const float dr = has_d ? kdr[k] * scale : 0.0f, dg = has_d ? kdg[k] * scale : 0.0f;
+        const float db = has_d ? kdb[k] * scale : 0.0f;
+        /* specular */
+        const float hx = ox[k] + lx, hy = oy[k] + ly, hz = oz[k] + lz;
+        const float h2 = hx * hx + hy * hy + hz * hz, h4 = h2 * h2;
+        const float a2 = alpha[k] * alpha[k];
+        const float t = (hx * hx + hy * hy) * inv_a2[k] + hz * hz;
+        const float S = sqrtf(lz * lz + a2 * (lx * lx + ly * ly));
+        const float g2_cos_i = lz * (0.5f + lambda_o[k]) + 0.5f * S;
+        const float d_den = RESTIR_PI * a2 * t * t, f_den = 4.0f * oz[k] * g2_cos_i;
+        const float r = 1.0f / (d_den * f_den);
+        const float mh = clampf(1.0f - (lx * hx + ly * hy + lz * hz) / sqrtf(h2), 0.0f, 1.0f);
+        const float mh2 = mh * mh, w_h = mh2 * mh2 * mh, s = h4 * r;
+        const float sr = (f0r[k] + (1.0f - f0r[k]) * w_h) * s, sg = (f0g[k] + (1.0f - f0g[k]) * w_h) * s;
+        const float sb = (f0b[k] + (1.0f - f0b[k]) * w_h) * s;
+        const int above = valid[k] && !(lz <= 0.0f); /* as bsdf_frame_eval's test, NaN included */
+        fr[k] = above ? (has_s ? dr + sr : dr) : 0.0f;
+        fg[k] = above ? (has_s ? dg + sg : dg) : 0.0f;
+        fb[k] = above ? (has_s ? db + sb : db) : 0.0f;
+    }
+}
+
+SIMD_INLINE void eval_lanes(int n, const struct bsdf_frame *const *bf, const float *wx, const float *wy,
+                            const float *wz, float *fr, float *fg, float *fb)
+{
+    for (int first = 0; first < n; first += BSDF_LANES)
+        eval_lanes_chunk(n - first < BSDF_LANES ? n - first : BSDF_LANES, bf + first, wx + first, wy + first,
+                         wz + first, fr + first, fg + first, fb + first);
+}
+
+static void eval_lanes_baseline(int n, const struct bsdf_frame *const *bf, const float *wx, const float *wy,
+                                const float *wz, float *fr, float *fg, float *fb)
+{
+    eval_lanes(n, bf, wx, wy, wz, fr, fg, fb);
+}
+
+SIMD_TARGET_AVX2 static void eval_lanes_avx2(int n, const struct bsdf_frame *const *bf, const float *wx,
+                                             const float *wy, const float *wz, float *fr, float *fg, float *fb)
+{
+    eval_lanes(n, bf, wx, wy, wz, fr, fg, fb);
+}
+
+void bsdf_frame_eval_lanes(int n, const struct bsdf_frame *const *bf, const float *wx, const float *wy,
+                           const float *wz, float *fr, float *fg, float *fb)
+{
+    if (simd_isa_active() == SIMD_ISA_AVX2)
+        eval_lanes_avx2(n, bf, wx, wy, wz, fr, fg, fb);
+    else
+        eval_lanes_baseline(n, bf, wx, wy, wz, fr, fg, fb);
 }
 
 /* Heuristic for ReSTIR PT's hybrid shift (Lin et al. 2022, "Generalized Resampled Importance

@@ -70,6 +70,12 @@ void bsdf_frame_eval_batch(const struct bsdf_frame *bf, int n, const float *rest
                            const float *restrict wy, const float *restrict wz, float *restrict fr,
                            float *restrict fg, float *restrict fb, float *restrict pdf);
 
+/* f_r of n (frame, direction) pairs, one frame per lane (SIMD across shading points: each lane a
+ * different pixel's frame): fr/fg/fb[k] = bsdf_frame_eval(bf[k], (wx, wy, wz)[k], NULL), bit for
+ * bit, on the baseline and the AVX2 path alike (core/simd.h). */
+void bsdf_frame_eval_lanes(int n, const struct bsdf_frame *const *bf, const float *wx, const float *wy,
+                           const float *wz, float *fr, float *fg, float *fb);
+
 /* Roughness measure used by path-space heuristics (GGX alpha; 1 for pure diffuse). */
 float bsdf_roughness(const struct bsdf *b);
 
