@@ -134,6 +134,13 @@ static long long merge_batch_flush(struct di_merge_batch *b, const struct scene 
     return rays;
 }
 
+static struct di_merge_batch *merge_batch_new(void)
+{
+    struct di_merge_batch *b = xmalloc(sizeof(*b));
+    b->merges = b->entries = b->rays = 0;
+    return b;
+}
+
 /* Room for one more merge of any size; returns the rays of a flush it needed. */
 static long long merge_batch_reserve(struct di_merge_batch *b, const struct scene *s, const struct render_params *p)
 {
@@ -150,8 +157,7 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
 #pragma omp parallel reduction(+ : accepted, traced)
     {
-        struct di_merge_batch *b = xmalloc(sizeof(*b)); /* one per thread and pass */
-        b->merges = b->entries = b->rays = 0;
+        struct di_merge_batch *b = merge_batch_new(); /* one per thread and pass */
 #pragma omp for schedule(dynamic, 1)
         for (int t = 0; t < ntiles; t++) {
             for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
@@ -189,8 +195,7 @@ long long di_spatial_pass(const struct scene *s, const struct render_params *p, 
     const int m = render_params_spatial_neighbors(p, 0); /* at most 5 = DI_MAX_DOMAINS - 1 */
 #pragma omp parallel reduction(+ : rays)
     {
-        struct di_merge_batch *b = xmalloc(sizeof(*b)); /* one per thread and pass */
-        b->merges = b->entries = b->rays = 0;
+        struct di_merge_batch *b = merge_batch_new(); /* one per thread and pass */
 #pragma omp for schedule(dynamic, 1)
         for (int t = 0; t < ntiles; t++) {
             for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
