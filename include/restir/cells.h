@@ -95,20 +95,35 @@ int restir_cells_pick_confidence(const struct restir_cells *c, int cell, int exc
  * when no other pixel contributes. */
 int restir_cells_pick_weighted(const struct restir_cells *c, int cell, int exclude, float u, double *prob);
 
+/* What an accepted tap's cell weighs in the search. */
+enum restir_cell_score {
+    RESTIR_CELL_SCORE_CONFIDENCE = 0, /* its confidence sum (004 Sec. 5.1) */
+    /* its confidence sum times 000's compatibility (Eq. 14-15) of the tapped pixel's primary hit
+     * with the searching pixel's: a variant of ours, in neither paper */
+    RESTIR_CELL_SCORE_COMPAT,
+};
+
 /* Cell search (004 Sec. 5.1). */
 struct restir_cell_search {
     int steps;        /* taps (12) */
     float radius;     /* initial disk radius in pixels (30) */
     float growth;     /* radius factor per tap (1.25) */
     float normal_min; /* a tap is rejected when its shading normal . the pixel's is below */
+    enum restir_cell_score score;
+    /* RESTIR_CELL_SCORE_COMPAT only: every pixel's primary hit (3 floats) and its distance from the
+     * camera, and 000's omega and beta (restir_compat_score) */
+    const float *position, *depth;
+    float omega, beta;
 };
 
 /* Weighted reservoir sampling over s->steps taps: tap t is a pixel uniform in the disk of radius
  * radius * growth^t around `pixel` (u[3t], u[3t+1]); a tap outside the image, in no cell, on
  * another object or with a dissimilar normal is rejected; otherwise its cell is a candidate of
- * weight conf_sum (u[3t+2] drives the WRS). Returns the chosen cell, or the pixel's own cell when
- * no tap is accepted (-1 if the pixel is in no cell). Reads only cells, normals (3 floats per
- * pixel) and object ids, never samples, so the choice cannot bias GRIS (004 Sec. 5.1). */
+ * weight conf_sum, times the compatibility score of the tapped pixel with `pixel` under
+ * RESTIR_CELL_SCORE_COMPAT (u[3t+2] drives the WRS; a weight of 0 rejects the tap). Returns the
+ * chosen cell, or the pixel's own cell when no tap is accepted (-1 if the pixel is in no cell).
+ * Reads only cells, confidences and G-buffer data (normals, object ids, positions, depths), never
+ * samples, so the choice cannot bias GRIS (004 Sec. 5.1). */
 int restir_cell_search(const struct restir_cells *c, const struct restir_cell_search *s, int pixel,
                        const float *normal, const int *object, const float *u);
 /* The same search reading c->tap (restir_cells_pack_taps after the build) instead of the separate

@@ -32,6 +32,7 @@ static const char *const select_names[] = {"bitterli", "compat", "compat-binary"
 static const char *const reuse_names[] = {"standard", "spmis", NULL};
 static const char *const search_names[] = {"always", "sparse", "low-confidence", NULL};
 static const char *const pick_names[] = {"uniform", "confidence", NULL};
+static const char *const search_score_names[] = {"confidence", "compat", NULL}; /* enum restir_cell_score */
 static const char *const history_names[] = {"spatial", "temporal", NULL};
 static const char *const grad_spatial_names[] = {"off", "dense", "adaptive", NULL};
 static const char *const base_names[] = {"independent", "shared", NULL};
@@ -56,6 +57,7 @@ static int name_index(const char *const *names, const char *val)
 _Static_assert(sizeof(enum spatial_select_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum spatial_reuse_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum spmis_search_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(enum restir_cell_score) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum grad_spatial_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum recon_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum di_visibility_mis) == sizeof(int), "enum size");
@@ -170,6 +172,12 @@ static const struct param_def params[] = {
      "low-confidence (unbiased: search only where the own cell's mean confidence is below "
      "spmis.search_confidence, e.g. after a disocclusion)",
      search_names},
+    {"spmis.search_score", P_NAMES, F(spmis_search_score), 0, 0, "confidence", NULL,
+     "spmis: what an accepted search tap's cell weighs: confidence (its confidence sum, 004 Sec. 5.1) or "
+     "compat (ours, in neither paper: the confidence sum times 000's compatibility score, Eq. 14-15 with "
+     "spatial.omega and spatial.beta, of the tapped pixel's primary hit with the pixel's, so the cell is "
+     "chosen by sample compatibility too); both read only the G-buffer and confidences (unbiased)",
+     search_score_names},
     {"spmis.sparse_count", P_INT, F(spmis_sparse_count), 0, 256, "2", NULL, "spmis: threshold of the sparse search", NULL},
     {"spmis.search_confidence", P_FLOAT, F(spmis_search_confidence), 0, 1e9, "4", NULL,
      "spmis: threshold of the low-confidence search (mean c of the own cell)", NULL},

@@ -58,8 +58,15 @@ void spmis_cells_pass(struct spmis_frame *f, const struct render_params *p, cons
 void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g, int frame)
 {
     const struct restir_cells *cells = &f->cells;
-    const struct restir_cell_search s = {p->spmis_search_steps, p->spmis_search_radius, p->spmis_search_growth,
-                                         p->spmis_search_normal};
+    const struct restir_cell_search s = {p->spmis_search_steps,
+                                         p->spmis_search_radius,
+                                         p->spmis_search_growth,
+                                         p->spmis_search_normal,
+                                         p->spmis_search_score,
+                                         (const float *)(const void *)g->position, /* vec3: 3 floats */
+                                         g->depth,
+                                         p->spatial_omega,
+                                         p->spatial_beta};
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
     /* In tiles (64 x 4 pixels), so that neighbouring pixels' near taps share cache lines; each
      * pixel's draws come from its own stream, so the order changes no result. */

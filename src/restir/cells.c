@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "restir/cells.h"
+#include "restir/neighbors.h"
 
 uint32_t restir_pcg_hash(uint32_t v)
 {
@@ -314,6 +315,11 @@ static inline int cell_search(const struct restir_cells *c, const struct restir_
         return -1;
     const int x = pixel % c->width, y = pixel / c->width;
     const struct restir_cell_tap me = tap_at(c, tap, normal, object, pixel);
+    const int compat = s->score == RESTIR_CELL_SCORE_COMPAT;
+    struct restir_compat_scorer scorer;
+    if (compat)
+        restir_compat_scorer_init(&scorer, s->position + 3 * (size_t)pixel, me.normal, s->depth[pixel], s->omega,
+                                  s->beta);
     double w_sum = 0.0;
     int chosen = -1;
     /* The radius stops growing at 1e7 px, far beyond any image, so the tap law is unchanged in
@@ -335,6 +341,8 @@ static inline int cell_search(const struct restir_cells *c, const struct restir_
             qs[t - t0] = q;
             if (tap && q >= 0)
                 __builtin_prefetch(&tap[q]);
+            if (compat && q >= 0)
+                __builtin_prefetch(s->position + 3 * (size_t)q);
         }
         for (int t = t0; t < t1; t++) {
             if (qs[t - t0] < 0)
@@ -346,6 +354,8 @@ static inline int cell_search(const struct restir_cells *c, const struct restir_
                 s->normal_min)
                 continue;
             double w = q.conf_sum;
+            if (compat)
+                w *= restir_compat_scorer_score(&scorer, s->position + 3 * (size_t)qs[t - t0], q.normal);
             if (!(w > 0.0))
                 continue;
             w_sum += w;

@@ -2,8 +2,9 @@
  * reuse cell) is unbiased in restir-pt and restir-di with temporal and spatial reuse on: the mean
  * of K independently seeded camera-path runs matches K runs of the path tracer per pixel (Welch,
  * Sidak-corrected) and over the image (pooled z), with the confidence adjustment on and off, with
- * N = 1, N = N_c = M, confidence-proportional canonical draws, the low-confidence search and the
- * history taken before spatial reuse, on `pillars` (disocclusion) and `cornell`. The BIASED
+ * N = 1, N = N_c = M, confidence-proportional canonical draws, the low-confidence search, the
+ * compatibility-scored search (spmis.search_score=compat, ours) and the history taken before
+ * spatial reuse, on `pillars` (disocclusion) and `cornell`. The BIASED
  * sparse search is measured and reported, not asserted.
  * Usage for experiments: render_test_spmis_unbiased pt|di SCENE RUNS key=value... */
 #include <stdlib.h>
@@ -48,6 +49,7 @@ int main(int argc, char **argv)
     /* A 4 px start growing by 1.5 per tap keeps most taps inside 24 x 16, so pixels really move to
      * other cells (with the paper's 30 px most taps fall outside and the own cell is the fallback). */
     const char *far_cells[] = {"spmis.search_radius=4", "spmis.search_growth=1.5"};
+    const char *compat[] = {"spmis.search_radius=4", "spmis.search_growth=1.5", "spmis.search_score=compat"};
 
     check(METHOD_RESTIR_PT, "pillars", 4096, none, 1, 1); /* worst |t| 4.17 at 2048 runs: heavy tails */
     check(METHOD_RESTIR_PT, "cornell", 1024, none, 1, 1);
@@ -67,6 +69,8 @@ int main(int argc, char **argv)
     check(METHOD_RESTIR_DI, "cornell", 4096, by_conf, 2, 1); /* worst |t| 5.5 at 1024 runs, 3.6 at 4096 */
     check(METHOD_RESTIR_PT, "pillars", 1024, low_conf, 2, 1);
     check(METHOD_RESTIR_DI, "pillars", 2048, hist_temporal, 1, 1);
+    check(METHOD_RESTIR_PT, "pillars", 1024, compat, 3, 1);
+    check(METHOD_RESTIR_DI, "pillars", 2048, compat, 3, 1);
     /* BIASED option: its bias is printed (pooled z, relative bias of the image mean), not asserted. */
     check(METHOD_RESTIR_DI, "pillars", 2048, sparse, 1, 0);
     return test_finish();

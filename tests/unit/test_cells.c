@@ -9,6 +9,7 @@
 
 #include "core/rng.h"
 #include "restir/cells.h"
+#include "restir/neighbors.h"
 #include "stat/chi2_util.h"
 #include "test_util.h"
 
@@ -16,8 +17,8 @@
 #define CONTROL_P 1e-6
 #define DRAWS 1000000
 #define SEARCH_DRAWS 400000
-/* Chi-square tests in the family: 5 weighted picks, 2 confidence picks, 4 uniform picks, 2 search laws. */
-#define NUM_TESTS 13
+/* Chi-square tests in the family: 5 weighted picks, 2 confidence picks, 4 uniform picks, 3 search laws. */
+#define NUM_TESTS 14
 #define TWO_PI 6.28318530717958647692
 
 static double alpha_i;
@@ -852,7 +853,7 @@ static void test_search_fallback(void)
                 s.g.valid[y * 32 + x] = 0;
             }
     scene_build(&s);
-    struct restir_cell_search sp = {12, 30.0f, 1.25f, 0.9f};
+    struct restir_cell_search sp = {12, 30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
     float u[3 * 12];
     pcg32 rng = rng_for(51u, 0u, 0u, 0u);
     int bad_corner = 0, bad_centre = 0;
@@ -939,7 +940,7 @@ static void test_search_law(void)
     }
     scene_build(&s);
     const int x0 = 20, y0 = 12, pixel = y0 * 48 + x0; /* tile (2, 1) */
-    struct restir_cell_search sp = {7, 10.0f, 1.25f, 0.9f};
+    struct restir_cell_search sp = {7, 10.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
     float rt[12], r = sp.radius;
     for (int t = 0; t < 12; t++, r *= sp.growth)
         rt[t] = r;
@@ -1024,7 +1025,7 @@ static void test_search_law(void)
 
     /* Membership over fully random u arrays, 12 taps; and steps = 1 exactness. Confidences > 0
      * everywhere, so every accepted tap is a candidate of positive weight. */
-    struct restir_cell_search sp12 = {12, 30.0f, 1.25f, 0.9f};
+    struct restir_cell_search sp12 = {12, 30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
     float rt12[12];
     r = sp12.radius;
     for (int t = 0; t < 12; t++, r *= sp12.growth)
@@ -1105,7 +1106,8 @@ static void test_search_growth(void)
         if (p % 200 < 100 && p != pixel)
             s.object[p] = 2;
     scene_build(&s);
-    struct restir_cell_search grow = {6, 10.0f, 2.0f, 0.9f}, fixed = {6, 10.0f, 1.0f, 0.9f};
+    struct restir_cell_search grow = {6, 10.0f, 2.0f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f},
+                              fixed = {6, 10.0f, 1.0f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
     float u[18];
     pcg32 rng = rng_for(71u, 0u, 0u, 0u);
     long far_grow = 0, far_fixed = 0, too_far = 0;
@@ -1149,7 +1151,7 @@ static void test_search_packed(void)
         s.g.conf[p] = pcg32_float(&rng) < 0.2f ? 0.0f : 20.0f * pcg32_float(&rng);
     }
     scene_build(&s);
-    const struct restir_cell_search sp = {12, 30.0f, 1.25f, 0.9f};
+    const struct restir_cell_search sp = {12, 30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
     float u[36];
     long differ = 0, own = 0, searched = 0;
     for (int threads = 1; threads <= 2; threads++) {
@@ -1171,6 +1173,124 @@ static void test_search_packed(void)
     scene_free(&s);
 }
 
+/* (g) spmis.search_score=compat: with fixed taps, the WRS law is conf_sum times 000's score of the
+ * tapped pixel (Eq. 14-15, positions on a tilted plane, one depth) over the accepted taps; a tap
+ * whose score is 0 (normal facing away, still similar enough to pass normal_min -1) is rejected;
+ * and the packed search equals the array search for every pixel of a random scene. */
+static void test_search_compat(void)
+{
+    struct scene s;
+    scene_alloc(&s, 48, 24, 8);
+    float *pos = calloc(3 * 48 * 24, sizeof(float)), *depth = calloc(48 * 24, sizeof(float));
+    for (int p = 0; p < 48 * 24; p++) {
+        const int x = p % 48, y = p / 48;
+        s.g.conf[p] = 1.0f + (float)(tile_of(48, 8, p) % 4);
+        pos[3 * p] = 0.1f * (float)x, pos[3 * p + 1] = 0.1f * (float)y, pos[3 * p + 2] = 0.03f * (float)(x + y);
+        depth[p] = 10.0f;
+        if (x < 8 && y >= 16) { /* facing away: passes normal_min = -1, scores 0 */
+            s.normal[3 * p + 2] = -1.0f;
+        }
+    }
+    scene_build(&s);
+    const int x0 = 20, y0 = 12, pixel = y0 * 48 + x0;
+    struct restir_cell_search sp = {7, 10.0f, 1.25f, -1.0f, RESTIR_CELL_SCORE_COMPAT, pos, depth, 0.05f, 8.0f};
+    float rt[12], r = sp.radius;
+    for (int t = 0; t < 12; t++, r *= sp.growth)
+        rt[t] = r;
+    /* Taps: 0 -> tile (1,1), 1 -> tile (3,1), 2 -> own tile, 3 -> tile (1,1) again farther, 4 -> far
+     * tile (5,0), 5 -> the facing-away block (score 0), 6 -> outside the image. */
+    static const int off[7][2] = {{-6, 0}, {7, 2}, {2, -2}, {-9, 3}, {21, -8}, {-17, 8}, {0, 14}};
+    float u[3 * 12];
+    for (int t = 0; t < 7; t++)
+        aim_tap(u, t, rt[t], off[t][0], off[t][1]);
+    int ucell[7], nu = 0, accepted = 0;
+    double pw[7] = {0}, wtot = 0.0;
+    for (int t = 0; t < 7; t++) {
+        int q[4];
+        EXPECT(tap_pixels(&s, pixel, rt[t], u, t, q) == 1, "compat: aimed tap %d is unambiguous", t);
+        if (!tap_accepted(&s, &sp, pixel, q[0]))
+            continue;
+        const double w = s.c.conf_sum[s.c.cell_of[q[0]]] *
+                         restir_compat_score(&pos[3 * pixel], &s.normal[3 * pixel], depth[pixel], &pos[3 * q[0]],
+                                             &s.normal[3 * q[0]], sp.omega, sp.beta);
+        if (!(w > 0.0))
+            continue;
+        accepted++;
+        int k = 0;
+        while (k < nu && ucell[k] != s.c.cell_of[q[0]])
+            k++;
+        if (k == nu)
+            ucell[nu++] = s.c.cell_of[q[0]];
+        pw[k] += w;
+        wtot += w;
+    }
+    EXPECT(accepted == 5 && nu == 4, "compat: %d taps with a positive weight over %d cells, planned 5 over 4",
+           accepted, nu);
+    for (int k = 0; k < nu; k++)
+        pw[k] /= wtot;
+    double count[7] = {0};
+    long other = 0;
+    pcg32 rng = rng_for(67u, 0u, 0u, 0u);
+    for (long d = 0; d < SEARCH_DRAWS; d++) {
+        for (int t = 0; t < 7; t++)
+            u[3 * t + 2] = pcg32_float(&rng);
+        const int res = restir_cell_search(&s.c, &sp, pixel, s.normal, s.object, u);
+        int k = 0;
+        while (k < nu && ucell[k] != res)
+            k++;
+        if (k == nu)
+            other++;
+        else
+            count[k] += 1.0;
+    }
+    EXPECT(other == 0, "compat law: %ld results outside the positive taps' cells", other);
+    int dof;
+    const double p = chi2_counts(count, pw, nu, SEARCH_DRAWS, &dof);
+    printf("search (g) compat law, %d taps over %d cells (expected", accepted, nu);
+    for (int k = 0; k < nu; k++)
+        printf(" %.4f/%.4f", pw[k], count[k] / SEARCH_DRAWS);
+    printf("): p = %.4f (dof %d, alpha %.3g)\n", p, dof, alpha_i);
+    EXPECT(p >= alpha_i, "compat search law chi-square p %g < %g", p, alpha_i);
+    free(pos), free(depth);
+    scene_free(&s);
+    /* Packed = arrays under compat, random scene. */
+    scene_alloc(&s, 77, 41, 8);
+    pos = calloc(3 * 77 * 41, sizeof(float)), depth = calloc(77 * 41, sizeof(float));
+    rng = rng_for(89u, 0u, 0u, 0u);
+    for (int q = 0; q < 77 * 41; q++) {
+        s.object[q] = pcg32_float(&rng) < 0.15f ? 2 : 1;
+        float nx = 0.6f * (pcg32_float(&rng) - 0.5f), ny = 0.6f * (pcg32_float(&rng) - 0.5f), nz = 1.0f;
+        float len = sqrtf(nx * nx + ny * ny + nz * nz);
+        s.normal[3 * q] = nx / len, s.normal[3 * q + 1] = ny / len, s.normal[3 * q + 2] = nz / len;
+        s.g.valid[q] = pcg32_float(&rng) < 0.9f;
+        s.g.conf[q] = pcg32_float(&rng) < 0.2f ? 0.0f : 20.0f * pcg32_float(&rng);
+        pos[3 * q] = 0.05f * (float)(q % 77), pos[3 * q + 1] = 0.05f * (float)(q / 77),
+                pos[3 * q + 2] = pcg32_float(&rng);
+        depth[q] = 2.0f + 8.0f * pcg32_float(&rng);
+    }
+    scene_build(&s);
+    restir_cells_pack_taps(&s.c, s.normal, s.object);
+    const struct restir_cell_search cs = {12,  30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_COMPAT,
+                                          pos, depth, 0.05f, 8.0f};
+    const struct restir_cell_search conf = {12, 30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0, 0};
+    long differ = 0, searched = 0, law_differs = 0;
+    float uu[36];
+    for (int q = 0; q < 77 * 41; q++) {
+        random_u(&rng, uu, 12);
+        const int a = restir_cell_search(&s.c, &cs, q, s.normal, s.object, uu);
+        differ += a != restir_cell_search_packed(&s.c, &cs, q, uu);
+        law_differs += a != restir_cell_search(&s.c, &conf, q, s.normal, s.object, uu);
+        searched += a >= 0;
+    }
+    printf("search (g) compat: packed vs arrays: %ld of %ld searches differ; %ld differ from the confidence "
+           "search\n",
+           differ, searched, law_differs);
+    EXPECT(differ == 0, "(g) the packed compat search differs in %ld searches", differ);
+    EXPECT(law_differs > searched / 20, "(g) compat scores change only %ld of %ld choices", law_differs, searched);
+    free(pos), free(depth);
+    scene_free(&s);
+}
+
 int main(void)
 {
     alpha_i = chi2_sidak(FAMILY_ALPHA, NUM_TESTS);
@@ -1181,5 +1301,6 @@ int main(void)
     test_search_law();
     test_search_growth();
     test_search_packed();
+    test_search_compat();
     return test_finish();
 }
