@@ -229,7 +229,8 @@ static void compare_usage(void)
                "seeded instances as fit (gradient methods average primal and gradients, then reconstruct\n"
                "once). When DI methods are compared, pt estimates direct lighting only (1 bounce), like them.\n"
                "Writes DIR/compare.csv (method = the SPEC, ms per frame, spp, instances, relmse, mape, smape,\n"
-               "luma_rmse, runs, temporal_cov)\n"
+               "luma_rmse, runs, temporal_cov, and with --runs the standard errors relmse_sem, mape_sem,\n"
+               "smape_sem)\n"
                "and each row's last frame to DIR/FOLDER/, where FOLDER is the SPEC with every character other\n"
                "than A-Z a-z 0-9 . _ - replaced by _ (and _2, _3, ... appended when two SPECs give the same\n"
                "name). Default DIR: out/compare-SCENE.\n"
@@ -240,9 +241,10 @@ static void compare_usage(void)
                "K-1, 2K-1, ..., each against its own reference (--ref-spp paths from that frame's camera;\n"
                "--ref gives the last frame's only).\n"
                "--runs N (default 1) runs every SPEC as N independently seeded sequences: errors are means\n"
-               "over the runs, and temporal_cov is 000's relative autocovariance (Appendix A, Eq. 17) at a\n"
-               "lag of 3 frames over the second half of the frames (at least 8 frames); run 0's frames are\n"
-               "the ones written. Neither can be planned (--plan).\n"
+               "over the runs with their standard errors (sd / sqrt N, printed after +-), and temporal_cov\n"
+               "is 000's relative autocovariance (Appendix A, Eq. 17) at a lag of 3 frames over the second\n"
+               "half of the frames (at least 8 frames); run 0's frames are the ones written. Neither can be\n"
+               "planned (--plan).\n"
                "--report also writes DIR/index.html: one self-contained page (no network) with the command,\n"
                "commit and machine, the table, a relMSE plot, every image beside the reference in a viewer\n"
                "(synchronized zoom and pan, A/B flip), relative-error heat maps and the crops where the first\n"
@@ -326,7 +328,8 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
                      int instances, int runs, const float *ref, const char *out_dir, int keep_image,
                      struct compare_track *track, struct compare_result *res, char *msg)
 {
-    struct restir_error sum = {0, 0, 0, 0};
+    /* Welford's running mean and sum of squared deviations of each metric over the runs */
+    double mean[4] = {0, 0, 0, 0}, m2[4] = {0, 0, 0, 0};
     if (track)
         compare_track_begin(track);
     for (int n = 0; n < runs; n++) {
@@ -343,13 +346,19 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
             return rc;
         }
         const struct restir_error *e = n == 0 ? &res->err : &one.err;
-        sum.relmse += e->relmse;
-        sum.mape += e->mape;
-        sum.smape += e->smape;
-        sum.luma_rmse += e->luma_rmse;
+        const double x[4] = {e->relmse, e->mape, e->smape, e->luma_rmse};
+        for (int k = 0; k < 4; k++) {
+            const double d = x[k] - mean[k];
+            mean[k] += d / (n + 1);
+            m2[k] += d * (x[k] - mean[k]);
+        }
     }
+    double sem[4];
+    for (int k = 0; k < 4; k++)
+        sem[k] = runs > 1 ? sqrt(m2[k] / (runs - 1) / runs) : NAN;
     if (runs > 1) /* one run keeps its error bit for bit */
-        res->err = (struct restir_error){sum.relmse / runs, sum.mape / runs, sum.smape / runs, sum.luma_rmse / runs};
+        res->err = (struct restir_error){mean[0], mean[1], mean[2], mean[3]};
+    res->sem = (struct restir_error){sem[0], sem[1], sem[2], sem[3]};
     res->runs = runs;
     res->temporal_cov = track ? compare_track_end(track, c->label) : NAN;
     return 0;
@@ -385,7 +394,9 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
     char csv_path[4200];
     snprintf(csv_path, sizeof(csv_path), "%s/compare.csv", out_dir);
     struct csv_writer csv;
-    if (csv_open(&csv, csv_path, "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse,runs,temporal_cov",
+    if (csv_open(&csv, csv_path,
+                 "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse,runs,temporal_cov,relmse_sem,mape_sem,"
+                 "smape_sem",
                  msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
@@ -398,25 +409,37 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
            p->camera_path ? "moving" : "static", o->frames - 1, o->equal_time ? ", equal time" : "");
     const int runs = o->runs > 1;
     if (runs)
-        printf("(errors: means of %d independently seeded runs; tcov: 000 Eq. 17 at lag %d over frames %d-%d)\n",
+        printf("(errors: means of %d independently seeded runs, +- their standard error; tcov: 000 Eq. 17 at lag %d "
+               "over frames %d-%d)\n",
                o->runs, COMPARE_COV_LAG, o->frames / 2, o->frames - 1);
-    printf("%-*s %10s %6s %5s %12s %10s %8s %12s%s\n", w, "method", "ms/frame", "spp", "inst", "relMSE", "MAPE",
-           "SMAPE", "relMSE/first", runs ? "         tcov" : "");
+    printf("%-*s %10s %6s %5s %12s%s %10s%s %8s%s %12s%s\n", w, "method", "ms/frame", "spp", "inst", "relMSE",
+           runs ? "       +-" : "", "MAPE", runs ? "       +-" : "", "SMAPE", runs ? "     +-" : "", "relMSE/first",
+           runs ? "         tcov" : "");
     for (int k = 0; k < n; k++) {
         const struct compare_result *c = &res[k];
-        char tcov[32] = "";
-        if (runs)
+        char tcov[32] = "", se[3][32] = {"", "", ""};
+        if (runs) {
             snprintf(tcov, sizeof tcov, " %12.5g", c->temporal_cov);
-        printf("%-*s %10.2f %6d %5d %12.5g %10.5g %8.3f %12.3f%s\n", w, specs[k].label, c->ms_per_frame, c->spp,
-               c->instances, c->err.relmse, c->err.mape, c->err.smape,
+            snprintf(se[0], sizeof se[0], " %8.2g", c->sem.relmse);
+            snprintf(se[1], sizeof se[1], " %8.2g", c->sem.mape);
+            snprintf(se[2], sizeof se[2], " %6.2g", c->sem.smape);
+        }
+        printf("%-*s %10.2f %6d %5d %12.5g%s %10.5g%s %8.3f%s %12.3f%s\n", w, specs[k].label, c->ms_per_frame, c->spp,
+               c->instances, c->err.relmse, se[0], c->err.mape, se[1], c->err.smape, se[2],
                res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0, tcov);
         if (rc == 0) {
-            char field[2 * SPEC_MAX + 4], cov[32] = "";
+            char field[2 * SPEC_MAX + 4], cov[32] = "", sem[3][32] = {"", "", ""};
             csv_field(field, sizeof(field), specs[k].label);
             if (isfinite(c->temporal_cov))
                 snprintf(cov, sizeof cov, "%.6g", c->temporal_cov);
-            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s", field, c->ms_per_frame, c->spp, c->instances,
-                    c->err.relmse, c->err.mape, c->err.smape, c->err.luma_rmse, c->runs > 0 ? c->runs : 1, cov);
+            if (c->runs > 1) {
+                snprintf(sem[0], sizeof sem[0], "%.6g", c->sem.relmse);
+                snprintf(sem[1], sizeof sem[1], "%.6g", c->sem.mape);
+                snprintf(sem[2], sizeof sem[2], "%.6g", c->sem.smape);
+            }
+            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s", field, c->ms_per_frame, c->spp,
+                    c->instances, c->err.relmse, c->err.mape, c->err.smape, c->err.luma_rmse,
+                    c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2]);
         }
     }
     if (rc == 0 && csv_close(&csv, msg) != 0) {

@@ -29,6 +29,7 @@ struct compare_result {
     int instances;           /* independently seeded renderers averaged per run (equal time) */
     int runs;                /* independently seeded runs measured (--runs) */
     struct restir_error err; /* of the last frame, the mean over the runs */
+    struct restir_error sem; /* the standard error of that mean over the runs (NaN with one run) */
     double temporal_cov;     /* 000 Eq. 17 over the runs (compare_track.h); NaN with one run */
     float *image;            /* the last frame, kept for --report (else NULL) */
 };

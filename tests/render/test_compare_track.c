@@ -3,7 +3,8 @@
  * last (each against its own reference file), and its last-frame errors are compare.csv's; run 0
  * of --runs N writes the frame a single run writes, byte for byte; 000's autocovariance (Eq. 17)
  * is near 0 for pt, whose frames are independent, and clearly positive for restir-pt, whose
- * reservoirs carry history; splat rows count splats and no backprojection. */
+ * reservoirs carry history; splat rows count splats and no backprojection; the standard errors of
+ * --runs are those of the runs' errors. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -135,6 +136,27 @@ int main(void)
     const char *c = strstr(csv, "\nrestir-pt,");
     field(c ? c + 1 : "", 9, a, sizeof a);
     EXPECT(c && number(c + 1, 8) == 1.0 && a[0] == '\0', "a single run: runs 1, no temporal_cov ('%s')", a);
+    field(c ? c + 1 : "", 10, a, sizeof a);
+    EXPECT(c && a[0] == '\0', "a single run has no standard error ('%s')", a);
+    const double x0[3] = {c ? number(c + 1, 4) : NAN, c ? number(c + 1, 5) : NAN, c ? number(c + 1, 6) : NAN};
+
+    /* --runs 2: run 0 is the single run (x0), so the mean m and the standard error of two runs,
+     * |x1 - x0| / 2, must satisfy sem = |m - x0| for relMSE, MAPE and SMAPE. */
+    char two[2 * CLI_PATH_MAX];
+    snprintf(two, sizeof two, "%s/two", tmp);
+    snprintf(args, sizeof args, COMMON " --methods restir-pt --runs 2 --ref '%s/reference.exr' --out '%s'", dir, two);
+    rc = cli_run(tmp, args, err);
+    EXPECT(rc == 0, "compare --runs 2 exited %d: %s", rc, err);
+    snprintf(path, sizeof path, "%s/compare.csv", two);
+    cli_read_text(path, csv, sizeof csv);
+    EXPECT(strstr(csv, "temporal_cov,relmse_sem,mape_sem,smape_sem\n") != NULL, "compare.csv header: %.200s", csv);
+    c = strstr(csv, "\nrestir-pt,");
+    for (int k = 0; k < 3; k++) {
+        const double m = c ? number(c + 1, 4 + k) : NAN, sem = c ? number(c + 1, 10 + k) : NAN;
+        const double want = fabs(m - x0[k]), tol = 2e-5 * (fabs(m) + fabs(x0[k])) + 1e-5 * want;
+        printf("--runs 2, metric %d: mean %.6g, run 0 %.6g, standard error %.6g (want %.6g)\n", k, m, x0[k], sem, want);
+        EXPECT(fabs(sem - want) <= tol && want > 0.0, "metric %d: standard error %g, |mean - run 0| = %g", k, sem, want);
+    }
     cli_remove_tree(tmp);
     return test_finish();
 }
