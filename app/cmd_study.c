@@ -38,6 +38,8 @@ static void study_usage(FILE *out)
             "curves). Spatial neighbors M: --set spatial.neighbors=M. Default --res 320x180, --runs 8.\n"
             "Writes DIR/study.csv, study.md, pareto.svg, hard_pixels.png, strip.png; with --report also\n"
             "DIR/index.html, one self-contained page showing them with the command, commit and machine.\n"
+            "SMAPE (all and hard pixels) comes with its standard error over the runs (smape_all_sem,\n"
+            "smape_hard_sem: the runs' SMAPEs, each the mean over its frames).\n"
             "--plan DIR (instead of --out) writes DIR/jobs.txt (one command per configuration and run, and\n"
             "one for the reference without --ref), DIR/plan.json and DIR/slurm.sh (sbatch --array) instead\n"
             "of running; run the jobs in any order and anywhere (`parallel -j N < DIR/jobs.txt`, `sbatch\n"
@@ -54,13 +56,14 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
     snprintf(path, sizeof(path), "%s/study.csv", dir);
     struct csv_writer csv;
     if (csv_open(&csv, path,
-                 "config,radius,K,M,smape_all,smape_hard,temporal_cov,spatial_cov,ms_select,ms_spatial,ms_frame",
+                 "config,radius,K,M,smape_all,smape_hard,temporal_cov,spatial_cov,ms_select,ms_spatial,ms_frame,"
+                 "smape_all_sem,smape_hard_sem",
                  msg) != 0)
         return -1;
     for (int k = 0; k < n; k++)
-        csv_row(&csv, "%s,%g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f", cfg[k].name, cfg[k].radius,
+        csv_row(&csv, "%s,%g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g", cfg[k].name, cfg[k].radius,
                 cfg[k].candidates, m, res[k].smape_all, res[k].smape_hard, res[k].temporal_cov, res[k].spatial_cov,
-                res[k].ms_select, res[k].ms_spatial, res[k].ms_frame);
+                res[k].ms_select, res[k].ms_spatial, res[k].ms_frame, res[k].smape_all_sem, res[k].smape_hard_sem);
     if (csv_close(&csv, msg) != 0)
         return -1;
     snprintf(path, sizeof(path), "%s/study.md", dir);
@@ -79,10 +82,12 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
     fprintf(f, "| config | R | K | M | SMAPE all | SMAPE hard | temporal cov | spatial cov | select ms | spatial ms "
                "| frame ms |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < n; k++) {
-        fprintf(f, "| %s | %g | %d | %d | %.3f | %.3f | %.4g | %.4g | %.2f | %.2f | %.2f |\n", cfg[k].name,
-                cfg[k].radius, cfg[k].candidates, m, res[k].smape_all, res[k].smape_hard, res[k].temporal_cov,
-                res[k].spatial_cov, res[k].ms_select, res[k].ms_spatial, res[k].ms_frame);
+        fprintf(f, "| %s | %g | %d | %d | %.3f +- %.2g | %.3f +- %.2g | %.4g | %.4g | %.2f | %.2f | %.2f |\n",
+                cfg[k].name, cfg[k].radius, cfg[k].candidates, m, res[k].smape_all, res[k].smape_all_sem,
+                res[k].smape_hard, res[k].smape_hard_sem, res[k].temporal_cov, res[k].spatial_cov, res[k].ms_select,
+                res[k].ms_spatial, res[k].ms_frame);
     }
+    fprintf(f, "\nSMAPE: mean over the runs +- its standard error (the runs' SMAPEs, each over its frames).\n");
     if (base >= 0) {
         const struct study_result *b = &res[base];
         fprintf(f, "\nChange against %s: SMAPE all, SMAPE hard, temporal covariance, frame time; "
@@ -264,10 +269,10 @@ static int study_write_outputs(const struct study_setup *st, const char *dir, co
         printf("study of %s on %s, %dx%d, %d runs, %d warm-up + %d frames, %d hard pixels (row %d in strip.png)\n",
                o->method, o->scene, w, h, o->runs, o->warmup, o->frames, nhard, strip_y);
         for (int k = 0; k < st->ncfg; k++)
-            printf("  %-16s R %-5g SMAPE %.3f hard %.3f  temporal cov %.4g  spatial cov %.4g  select %.2f ms  "
-                   "frame %.2f ms\n",
-                   st->cfg[k].name, st->cfg[k].radius, res[k].smape_all, res[k].smape_hard, res[k].temporal_cov,
-                   res[k].spatial_cov, res[k].ms_select, res[k].ms_frame);
+            printf("  %-16s R %-5g SMAPE %.3f +- %.2g hard %.3f +- %.2g  temporal cov %.4g  spatial cov %.4g  "
+                   "select %.2f ms  frame %.2f ms\n",
+                   st->cfg[k].name, st->cfg[k].radius, res[k].smape_all, res[k].smape_all_sem, res[k].smape_hard,
+                   res[k].smape_hard_sem, res[k].temporal_cov, res[k].spatial_cov, res[k].ms_select, res[k].ms_frame);
         printf("output: %s\n", dir);
     }
     if (rc == 0 && o->report) {

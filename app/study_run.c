@@ -3,6 +3,7 @@
 #include "study_run.h"
 
 #include <stdio.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -216,6 +217,7 @@ void study_row_begin(struct study_row *row, int runs, int frames, int w, int h)
     row->w = w;
     row->h = h;
     row->seq = xmalloc(sizeof(float) * (size_t)w * h * (size_t)runs * (size_t)frames);
+    row->run_smape = xcalloc(2 * (size_t)runs, sizeof(double));
 }
 
 void study_row_add(struct study_row *row, const struct study_unit *u, const float *ref, const unsigned char *hard,
@@ -234,6 +236,8 @@ void study_row_add(struct study_row *row, const struct study_unit *u, const floa
             hard_smape = 0.0;
         res->smape_all += all * k;
         res->smape_hard += hard_smape * k;
+        row->run_smape[2 * n] += all / frames;
+        row->run_smape[2 * n + 1] += hard_smape / frames;
         res->ms_select += u->ms[3 * t] * k;
         res->ms_spatial += u->ms[3 * t + 1] * k;
         res->ms_frame += u->ms[3 * t + 2] * k;
@@ -252,6 +256,17 @@ void study_row_end(struct study_row *row, struct study_result *res)
     const size_t npix = (size_t)w * h;
     RESTIR_CHECK(row->added == runs);
     *res = row->res;
+    double sem[2];
+    for (int c = 0; c < 2; c++) { /* sd of the runs' SMAPEs / sqrt(runs), about their own mean */
+        double mean = 0.0, ss = 0.0;
+        for (int n = 0; n < runs; n++)
+            mean += row->run_smape[2 * n + c] / runs;
+        for (int n = 0; n < runs; n++)
+            ss += (row->run_smape[2 * n + c] - mean) * (row->run_smape[2 * n + c] - mean);
+        sem[c] = runs > 1 ? sqrt(ss / (runs - 1) / runs) : NAN;
+    }
+    res->smape_all_sem = sem[0];
+    res->smape_hard_sem = sem[1];
     res->temporal_cov = restir_temporal_autocovariance(row->seq, runs, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
     /* Spatial covariance of each measured frame across runs, averaged over frames. */
     float *at_t = xmalloc(sizeof(float) * npix * (size_t)runs);
@@ -267,5 +282,7 @@ void study_row_end(struct study_row *row, struct study_result *res)
 void study_row_free(struct study_row *row)
 {
     free(row->seq);
+    free(row->run_smape);
     row->seq = NULL;
+    row->run_smape = NULL;
 }

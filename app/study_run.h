@@ -27,6 +27,9 @@ struct study_config {
 
 struct study_result {
     double smape_all, smape_hard, temporal_cov, spatial_cov, ms_select, ms_spatial, ms_frame;
+    /* standard errors of smape_all and smape_hard over the runs (each run's SMAPE its frames' mean;
+     * NaN with one run) */
+    double smape_all_sem, smape_hard_sem;
 };
 
 /* One run of one configuration: what its measured frames leave for the study's statistics. */
@@ -65,7 +68,8 @@ int study_unit_read(const char *path, uint64_t id, int frames, size_t npix, stru
  * (frames * w). */
 struct study_row {
     int runs, frames, w, h, added;
-    float *seq; /* runs * frames * w * h, run-major then frame */
+    float *seq;       /* runs * frames * w * h, run-major then frame */
+    double *run_smape; /* runs * 2: each run's SMAPE all and hard, means over its frames */
     struct study_result res;
 };
 void study_row_begin(struct study_row *row, int runs, int frames, int w, int h);
