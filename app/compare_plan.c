@@ -23,12 +23,13 @@
  * frames; the times are the jobs' own). --equal-time is refused: its budget is one method's time on
  * the machine that runs the others. */
 
-static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '1'};
+static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '2'};
 
-/* What a SPEC's job measured: its frame time, paths per pixel and instances. */
+/* What a SPEC's job measured: its frame time, paths per pixel and instances; has_mask: the record
+ * goes on with the last frame's disocclusion mask (width x height bytes, compare_run.h). */
 struct job_timing {
     double ms_per_frame;
-    int32_t spp, instances;
+    int32_t spp, instances, has_mask, unused;
 };
 
 static int spec_of_job(const struct compare_setup *st, int k)
@@ -65,8 +66,11 @@ int compare_plan(const struct compare_setup *st, int argc, char **argv)
 
 /* Job k's result: the reference image, or a SPEC's timing and last frame. */
 static int read_job(const struct plan *pl, const struct compare_setup *st, int k, struct job_timing *timing,
-                    float **image, char *why)
+                    float **image, unsigned char **mask, char *why)
 {
+    const size_t npix = (size_t)st->p.width * (size_t)st->p.height;
+    if (mask)
+        *mask = NULL;
     char path[2 * PLAN_PATH_MAX];
     plan_output_path(pl, k, path, sizeof path);
     const int spec = spec_of_job(st, k);
@@ -79,17 +83,29 @@ static int read_job(const struct plan *pl, const struct compare_setup *st, int k
         size_t size = 0;
         if (plan_blob_read(path, result_magic, pl->id, &data, &size, why) != 0)
             return -1;
-        if (size != sizeof(struct job_timing)) {
+        struct job_timing t;
+        if (size >= sizeof t)
+            memcpy(&t, data, sizeof t);
+        if (size < sizeof t || size != sizeof t + (t.has_mask ? npix : 0)) {
             snprintf(why, RESTIR_MSG_LEN, "%.300s: not a timing record", path);
             free(data);
             return -1;
         }
         if (timing)
-            memcpy(timing, data, sizeof *timing);
+            *timing = t;
+        if (mask && t.has_mask) {
+            *mask = xmalloc(npix);
+            memcpy(*mask, (const char *)data + sizeof t, npix);
+        }
         free(data);
         snprintf(path, sizeof path, "%s/runs/%s/frame_%04d.exr", pl->dir, st->specs[spec].dir, st->o.frames - 1);
-        if (cli_load_reference(path, st->p.width, st->p.height, &img, why) != 0)
+        if (cli_load_reference(path, st->p.width, st->p.height, &img, why) != 0) {
+            if (mask) {
+                free(*mask);
+                *mask = NULL;
+            }
             return -1;
+        }
     }
     if (image)
         *image = img;
@@ -100,7 +116,7 @@ static int read_job(const struct plan *pl, const struct compare_setup *st, int k
 
 static int job_valid(const struct plan *pl, int k, char *why, void *ctx)
 {
-    return read_job(pl, ctx, k, NULL, NULL, why);
+    return read_job(pl, ctx, k, NULL, NULL, NULL, why);
 }
 
 int compare_run_job(const struct plan *pl, int k)
@@ -116,7 +132,7 @@ int compare_run_job(const struct plan *pl, int k)
     char path[PLAN_PATH_MAX + 200], runs[PLAN_PATH_MAX + 16], msg[RESTIR_MSG_LEN];
     plan_output_path(pl, k, path, sizeof path);
     snprintf(runs, sizeof runs, "%s/runs", pl->dir);
-    if (read_job(pl, &st, k, NULL, NULL, msg) == 0) {
+    if (read_job(pl, &st, k, NULL, NULL, NULL, msg) == 0) {
         printf("job %d of %d (%s): already done: %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
         scene_destroy(&st.s);
         return 0;
@@ -146,14 +162,15 @@ int compare_run_job(const struct plan *pl, int k)
             rc = EXIT_RUNTIME;
         } else {
             /* written after the frame: a result file means the frame is there */
-            const struct job_timing t = {res.ms_per_frame, res.spp, res.instances};
-            const void *parts[1] = {&t};
-            const size_t sizes[1] = {sizeof t};
-            if (plan_blob_write(path, result_magic, pl->id, parts, sizes, 1, msg) != 0) {
+            const struct job_timing t = {res.ms_per_frame, res.spp, res.instances, res.mask != NULL, 0};
+            const void *parts[2] = {&t, res.mask};
+            const size_t sizes[2] = {sizeof t, (size_t)st.p.width * (size_t)st.p.height};
+            if (plan_blob_write(path, result_magic, pl->id, parts, sizes, res.mask ? 2 : 1, msg) != 0) {
                 cli_error("%s", msg);
                 rc = EXIT_RUNTIME;
             }
         }
+        free(res.mask);
     }
     if (rc == 0)
         printf("job %d of %d (%s): %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
@@ -221,7 +238,8 @@ int compare_merge(const char *dir)
         const int job = k + (st.o.ref ? 0 : 1);
         struct job_timing t;
         float *image = NULL;
-        if (read_job(&pl, &st, job, &t, &image, msg) != 0) {
+        unsigned char *mask = NULL;
+        if (read_job(&pl, &st, job, &t, &image, &mask, msg) != 0) {
             cli_error("cannot merge: %s", msg);
             rc = EXIT_RUNTIME;
             break;
@@ -233,6 +251,9 @@ int compare_merge(const char *dir)
         res[k].runs = 1;
         res[k].temporal_cov = NAN;
         restir_error_compute(image, ref, npix, NULL, &res[k].err);
+        compare_disoccluded_error(image, ref, mask, npix, &res[k].mape_dis, &res[k].dis_share);
+        res[k].mape_dis_sem = NAN;
+        free(mask);
         if (st.o.report)
             res[k].image = image;
         else

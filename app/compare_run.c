@@ -116,6 +116,21 @@ static const float *instances_mean(const struct renderer *r, int instances, size
     return scratch;
 }
 
+void compare_disoccluded_error(const float *image, const float *ref, const unsigned char *mask, size_t npix,
+                               double *mape, double *share)
+{
+    *mape = *share = NAN;
+    if (!mask)
+        return;
+    size_t marked = 0;
+    for (size_t i = 0; i < npix; i++)
+        marked += mask[i] != 0;
+    *share = npix ? (double)marked / (double)npix : NAN;
+    struct restir_error e;
+    if (marked > 0 && restir_error_compute(image, ref, npix, mask, &e) == 0)
+        *mape = e.mape;
+}
+
 int compare_run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
                        int instances, const float *ref, const char *out_dir, int keep_image, struct compare_track *track,
                        int run, struct compare_result *res, char *msg)
@@ -191,8 +206,20 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     res->ms_per_frame = ms / frames;
     res->spp = compare_budget_by_spp(m) ? p->spp : 1;
     res->instances = instances;
-    if (ref) /* a planned job measures nothing: the merge does, from the frame it writes */
-        restir_error_compute(r[0].image, ref, (size_t)p->width * (size_t)p->height, NULL, &res->err);
+    const size_t npix = (size_t)p->width * (size_t)p->height;
+    unsigned char *mask = NULL;
+    if (method_has_gbuffer(m)) { /* the first instance's history decides (004 Sec. 6.2) */
+        mask = xmalloc(npix);
+        renderer_disoccluded(&r[0], DISOCCLUSION_FRAMES, mask);
+    }
+    res->mask = NULL;
+    if (ref) { /* a planned job measures nothing: the merge does, from the frame and mask it writes */
+        restir_error_compute(r[0].image, ref, npix, NULL, &res->err);
+        compare_disoccluded_error(r[0].image, ref, mask, npix, &res->mape_dis, &res->dis_share);
+        free(mask);
+    } else {
+        res->mask = mask;
+    }
     res->image = NULL;
     if (run > 0) { /* a later run is measured only: run 0's frame is the one written */
         for (int k = 0; k < instances; k++)
@@ -230,7 +257,9 @@ static void compare_usage(void)
                "once). When DI methods are compared, pt estimates direct lighting only (1 bounce), like them.\n"
                "Writes DIR/compare.csv (method = the SPEC, ms per frame, spp, instances, relmse, mape, smape,\n"
                "luma_rmse, runs, temporal_cov, and with --runs the standard errors relmse_sem, mape_sem,\n"
-               "smape_sem)\n"
+               "smape_sem; then mape_disoccluded, its mape_disoccluded_sem and disoccluded_share: 004 Sec.\n"
+               "6.2's MAPE over the pixels whose history was rejected in any of the last 4 frames, for the\n"
+               "methods with a G-buffer history)\n"
                "and each row's last frame to DIR/FOLDER/, where FOLDER is the SPEC with every character other\n"
                "than A-Z a-z 0-9 . _ - replaced by _ (and _2, _3, ... appended when two SPECs give the same\n"
                "name). Default DIR: out/compare-SCENE.\n"
@@ -328,8 +357,9 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
                      int instances, int runs, const float *ref, const char *out_dir, int keep_image,
                      struct compare_track *track, struct compare_result *res, char *msg)
 {
-    /* Welford's running mean and sum of squared deviations of each metric over the runs */
-    double mean[4] = {0, 0, 0, 0}, m2[4] = {0, 0, 0, 0};
+    /* Welford's running mean and sum of squared deviations of each metric over the runs: relMSE,
+     * MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share */
+    double mean[6] = {0, 0, 0, 0, 0, 0}, m2[6] = {0, 0, 0, 0, 0, 0};
     if (track)
         compare_track_begin(track);
     for (int n = 0; n < runs; n++) {
@@ -345,20 +375,25 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
             }
             return rc;
         }
-        const struct restir_error *e = n == 0 ? &res->err : &one.err;
-        const double x[4] = {e->relmse, e->mape, e->smape, e->luma_rmse};
-        for (int k = 0; k < 4; k++) {
+        const struct compare_result *o = n == 0 ? res : &one;
+        const struct restir_error *e = &o->err;
+        const double x[6] = {e->relmse, e->mape, e->smape, e->luma_rmse, o->mape_dis, o->dis_share};
+        for (int k = 0; k < 6; k++) {
             const double d = x[k] - mean[k];
             mean[k] += d / (n + 1);
             m2[k] += d * (x[k] - mean[k]);
         }
     }
-    double sem[4];
-    for (int k = 0; k < 4; k++)
+    double sem[6];
+    for (int k = 0; k < 6; k++)
         sem[k] = runs > 1 ? sqrt(m2[k] / (runs - 1) / runs) : NAN;
-    if (runs > 1) /* one run keeps its error bit for bit */
+    if (runs > 1) { /* one run keeps its error bit for bit */
         res->err = (struct restir_error){mean[0], mean[1], mean[2], mean[3]};
+        res->mape_dis = mean[4];
+        res->dis_share = mean[5];
+    }
     res->sem = (struct restir_error){sem[0], sem[1], sem[2], sem[3]};
+    res->mape_dis_sem = sem[4];
     res->runs = runs;
     res->temporal_cov = track ? compare_track_end(track, c->label) : NAN;
     return 0;
@@ -396,7 +431,7 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
     struct csv_writer csv;
     if (csv_open(&csv, csv_path,
                  "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse,runs,temporal_cov,relmse_sem,mape_sem,"
-                 "smape_sem",
+                 "smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share",
                  msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
@@ -412,23 +447,25 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
         printf("(errors: means of %d independently seeded runs, +- their standard error; tcov: 000 Eq. 17 at lag %d "
                "over frames %d-%d)\n",
                o->runs, COMPARE_COV_LAG, o->frames / 2, o->frames - 1);
-    printf("%-*s %10s %6s %5s %12s%s %10s%s %8s%s %12s%s\n", w, "method", "ms/frame", "spp", "inst", "relMSE",
-           runs ? "       +-" : "", "MAPE", runs ? "       +-" : "", "SMAPE", runs ? "     +-" : "", "relMSE/first",
-           runs ? "         tcov" : "");
+    printf("%-*s %10s %6s %5s %12s%s %10s%s %8s%s %12s %10s%s %6s%s\n", w, "method", "ms/frame", "spp", "inst",
+           "relMSE", runs ? "       +-" : "", "MAPE", runs ? "       +-" : "", "SMAPE", runs ? "     +-" : "",
+           "relMSE/first", "MAPE dis", runs ? "       +-" : "", "dis", runs ? "         tcov" : "");
     for (int k = 0; k < n; k++) {
         const struct compare_result *c = &res[k];
-        char tcov[32] = "", se[3][32] = {"", "", ""};
+        char tcov[32] = "", se[4][32] = {"", "", "", ""};
         if (runs) {
             snprintf(tcov, sizeof tcov, " %12.5g", c->temporal_cov);
             snprintf(se[0], sizeof se[0], " %8.2g", c->sem.relmse);
             snprintf(se[1], sizeof se[1], " %8.2g", c->sem.mape);
             snprintf(se[2], sizeof se[2], " %6.2g", c->sem.smape);
+            snprintf(se[3], sizeof se[3], " %8.2g", c->mape_dis_sem);
         }
-        printf("%-*s %10.2f %6d %5d %12.5g%s %10.5g%s %8.3f%s %12.3f%s\n", w, specs[k].label, c->ms_per_frame, c->spp,
-               c->instances, c->err.relmse, se[0], c->err.mape, se[1], c->err.smape, se[2],
-               res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0, tcov);
+        printf("%-*s %10.2f %6d %5d %12.5g%s %10.5g%s %8.3f%s %12.3f %10.5g%s %6.3f%s\n", w, specs[k].label,
+               c->ms_per_frame, c->spp, c->instances, c->err.relmse, se[0], c->err.mape, se[1], c->err.smape, se[2],
+               res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0, c->mape_dis, se[3], c->dis_share,
+               tcov);
         if (rc == 0) {
-            char field[2 * SPEC_MAX + 4], cov[32] = "", sem[3][32] = {"", "", ""};
+            char field[2 * SPEC_MAX + 4], cov[32] = "", sem[4][32] = {"", "", "", ""}, dis[2][32] = {"", ""};
             csv_field(field, sizeof(field), specs[k].label);
             if (isfinite(c->temporal_cov))
                 snprintf(cov, sizeof cov, "%.6g", c->temporal_cov);
@@ -436,10 +473,16 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                 snprintf(sem[0], sizeof sem[0], "%.6g", c->sem.relmse);
                 snprintf(sem[1], sizeof sem[1], "%.6g", c->sem.mape);
                 snprintf(sem[2], sizeof sem[2], "%.6g", c->sem.smape);
+                if (isfinite(c->mape_dis_sem))
+                    snprintf(sem[3], sizeof sem[3], "%.6g", c->mape_dis_sem);
             }
-            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s", field, c->ms_per_frame, c->spp,
+            if (isfinite(c->mape_dis))
+                snprintf(dis[0], sizeof dis[0], "%.6g", c->mape_dis);
+            if (isfinite(c->dis_share))
+                snprintf(dis[1], sizeof dis[1], "%.6g", c->dis_share);
+            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s", field, c->ms_per_frame, c->spp,
                     c->instances, c->err.relmse, c->err.mape, c->err.smape, c->err.luma_rmse,
-                    c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2]);
+                    c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1]);
         }
     }
     if (rc == 0 && csv_close(&csv, msg) != 0) {

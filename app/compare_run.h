@@ -30,6 +30,12 @@ struct compare_result {
     int runs;                /* independently seeded runs measured (--runs) */
     struct restir_error err; /* of the last frame, the mean over the runs */
     struct restir_error sem; /* the standard error of that mean over the runs (NaN with one run) */
+    /* 004 Sec. 6.2: MAPE over the last frame's disoccluded pixels (renderer_disoccluded: history
+     * rejected in any of the last DISOCCLUSION_FRAMES frames), its standard error over the runs, and
+     * the disoccluded share of the image's pixels (mean over the runs); NaN for methods without a
+     * G-buffer history (pt, gpt), MAPE also when no pixel is disoccluded */
+    double mape_dis, mape_dis_sem, dis_share;
+    unsigned char *mask; /* a planned job's disocclusion mask for the merge (else NULL; caller frees) */
     double temporal_cov;     /* 000 Eq. 17 over the runs (compare_track.h); NaN with one run */
     float *image;            /* the last frame, kept for --report (else NULL) */
 };
@@ -46,6 +52,11 @@ struct compare_setup {
 /* 1 for the methods that reach a time budget by paths per pixel (pt, gpt); the others do by
  * averaging independently seeded instances (002 Sec. 5). */
 int compare_budget_by_spp(enum method_id m);
+
+/* MAPE of image over the pixels mask marks (NaN when mask is NULL or marks none) and the share of
+ * the npix pixels it marks (NaN when mask is NULL), into *mape and *share. */
+void compare_disoccluded_error(const float *image, const float *ref, const unsigned char *mask, size_t npix,
+                               double *mape, double *share);
 
 /* compare_run_method's result when a stop signal arrived before the method's last frame. */
 #define RUN_STOPPED 1

@@ -138,7 +138,17 @@ int main(void)
     EXPECT(c && number(c + 1, 8) == 1.0 && a[0] == '\0', "a single run: runs 1, no temporal_cov ('%s')", a);
     field(c ? c + 1 : "", 10, a, sizeof a);
     EXPECT(c && a[0] == '\0', "a single run has no standard error ('%s')", a);
-    const double x0[3] = {c ? number(c + 1, 4) : NAN, c ? number(c + 1, 5) : NAN, c ? number(c + 1, 6) : NAN};
+    const double x0[4] = {c ? number(c + 1, 4) : NAN, c ? number(c + 1, 5) : NAN, c ? number(c + 1, 6) : NAN,
+                          c ? number(c + 1, 13) : NAN};
+    /* 004 Sec. 6.2's disocclusion columns: a share in (0, 1) and a MAPE for restir-pt along the
+     * camera path; nothing for pt, which keeps no G-buffer history. */
+    const double share = c ? number(c + 1, 15) : NAN;
+    printf("single run: restir-pt disoccluded share %.4f, MAPE there %.4f (all pixels %.4f)\n", share, x0[3], x0[1]);
+    EXPECT(share > 0.0 && share < 1.0 && x0[3] > 0.0, "restir-pt: disoccluded share %g, MAPE %g", share, x0[3]);
+    const char *pt_row = strstr(csv, "\npt,");
+    field(pt_row ? pt_row + 1 : "", 13, a, sizeof a);
+    field(pt_row ? pt_row + 1 : "", 15, b, sizeof b);
+    EXPECT(pt_row && a[0] == '\0' && b[0] == '\0', "pt has no disocclusion columns ('%s', '%s')", a, b);
 
     /* --runs 2: run 0 is the single run (x0), so the mean m and the standard error of two runs,
      * |x1 - x0| / 2, must satisfy sem = |m - x0| for relMSE, MAPE and SMAPE. */
@@ -149,10 +159,13 @@ int main(void)
     EXPECT(rc == 0, "compare --runs 2 exited %d: %s", rc, err);
     snprintf(path, sizeof path, "%s/compare.csv", two);
     cli_read_text(path, csv, sizeof csv);
-    EXPECT(strstr(csv, "temporal_cov,relmse_sem,mape_sem,smape_sem\n") != NULL, "compare.csv header: %.200s", csv);
+    EXPECT(strstr(csv, "temporal_cov,relmse_sem,mape_sem,smape_sem,mape_disoccluded,mape_disoccluded_sem,"
+                       "disoccluded_share\n") != NULL,
+           "compare.csv header: %.300s", csv);
     c = strstr(csv, "\nrestir-pt,");
-    for (int k = 0; k < 3; k++) {
-        const double m = c ? number(c + 1, 4 + k) : NAN, sem = c ? number(c + 1, 10 + k) : NAN;
+    static const int mean_col[4] = {4, 5, 6, 13}, sem_col[4] = {10, 11, 12, 14};
+    for (int k = 0; k < 4; k++) {
+        const double m = c ? number(c + 1, mean_col[k]) : NAN, sem = c ? number(c + 1, sem_col[k]) : NAN;
         const double want = fabs(m - x0[k]), tol = 2e-5 * (fabs(m) + fabs(x0[k])) + 1e-5 * want;
         printf("--runs 2, metric %d: mean %.6g, run 0 %.6g, standard error %.6g (want %.6g)\n", k, m, x0[k], sem, want);
         EXPECT(fabs(sem - want) <= tol && want > 0.0, "metric %d: standard error %g, |mean - run 0| = %g", k, sem, want);
