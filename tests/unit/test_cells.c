@@ -921,6 +921,40 @@ static void test_search_fallback(void)
     scene_free(&s);
 }
 
+/* The 7 taps the law tests (c) and (g) aim from pixel (20, 12) of a 48 x 24 scene, as offsets. */
+static const int law_off[7][2] = {{-6, 0}, {7, 2}, {2, -2}, {-9, 3}, {21, -8}, {-17, 8}, {0, 14}};
+
+/* rt[t]: sp's disk radius at tap t (12 taps); u: taps 0..6 aimed at law_off. */
+static void aim_law_taps(const struct restir_cell_search *sp, float *rt, float *u)
+{
+    float r = sp->radius;
+    for (int t = 0; t < 12; t++, r *= sp->growth)
+        rt[t] = r;
+    for (int t = 0; t < 7; t++)
+        aim_tap(u, t, rt[t], law_off[t][0], law_off[t][1]);
+}
+
+/* SEARCH_DRAWS searches from `pixel` with the taps of u and fresh WRS numbers u[3t+2] (t < 7) from
+ * rng: count[k] += 1 for each result ucell[k]; returns the number of results that are none of them. */
+static long count_search_results(const struct scene *s, const struct restir_cell_search *sp, int pixel, float *u,
+                                 const int *ucell, int nu, pcg32 *rng, double *count)
+{
+    long other = 0;
+    for (long d = 0; d < SEARCH_DRAWS; d++) {
+        for (int t = 0; t < 7; t++)
+            u[3 * t + 2] = pcg32_float(rng);
+        const int res = restir_cell_search(&s->c, sp, pixel, s->normal, s->object, u);
+        int k = 0;
+        while (k < nu && ucell[k] != res)
+            k++;
+        if (k == nu)
+            other++;
+        else
+            count[k] += 1.0;
+    }
+    return other;
+}
+
 /* (c) The WRS law for fixed tap positions, and membership for random taps. */
 static void test_search_law(void)
 {
@@ -941,15 +975,11 @@ static void test_search_law(void)
     scene_build(&s);
     const int x0 = 20, y0 = 12, pixel = y0 * 48 + x0; /* tile (2, 1) */
     struct restir_cell_search sp = {7, 10.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
-    float rt[12], r = sp.radius;
-    for (int t = 0; t < 12; t++, r *= sp.growth)
-        rt[t] = r;
     /* Taps: 0 -> tile (1,1), 1 -> tile (3,1), 2 -> own tile, 3 -> tile (1,1) again, 4 -> object 2
      * (rejected), 5 -> dissimilar normal (rejected) , 6 -> outside the image (rejected). */
-    static const int off[7][2] = {{-6, 0}, {7, 2}, {2, -2}, {-9, 3}, {21, -8}, {-17, 8}, {0, 14}};
-    float u[3 * 12];
-    for (int t = 0; t < 7; t++)
-        aim_tap(u, t, rt[t], off[t][0], off[t][1]);
+    const int (*off)[2] = law_off;
+    float rt[12], u[3 * 12];
+    aim_law_taps(&sp, rt, u);
     int cells[7], acc[7];
     for (int t = 0; t < 7; t++) {
         int q[4];
@@ -979,20 +1009,8 @@ static void test_search_law(void)
         pw[k] /= wtot;
     for (int law = 0; law < 2; law++) {
         double count[7] = {0};
-        long other = 0;
         pcg32 rng = rng_for(61u, (uint64_t)law, 0u, 0u);
-        for (long d = 0; d < SEARCH_DRAWS; d++) {
-            for (int t = 0; t < 7; t++)
-                u[3 * t + 2] = pcg32_float(&rng);
-            int res = restir_cell_search(&s.c, &sp, pixel, s.normal, s.object, u);
-            int k = 0;
-            while (k < nu && ucell[k] != res)
-                k++;
-            if (k == nu)
-                other++;
-            else
-                count[k] += 1.0;
-        }
+        const long other = count_search_results(&s, &sp, pixel, u, ucell, nu, &rng, count);
         EXPECT(other == 0, "law %d: %ld results outside the accepted taps' cells", law, other);
         int dof;
         double p = chi2_counts(count, pw, nu, SEARCH_DRAWS, &dof);
@@ -1026,8 +1044,7 @@ static void test_search_law(void)
     /* Membership over fully random u arrays, 12 taps; and steps = 1 exactness. Confidences > 0
      * everywhere, so every accepted tap is a candidate of positive weight. */
     struct restir_cell_search sp12 = {12, 30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
-    float rt12[12];
-    r = sp12.radius;
+    float rt12[12], r = sp12.radius;
     for (int t = 0; t < 12; t++, r *= sp12.growth)
         rt12[t] = r;
     pcg32 rng = rng_for(62u, 0u, 0u, 0u);
@@ -1132,6 +1149,22 @@ static void test_search_growth(void)
     scene_free(&s);
 }
 
+/* A 77 x 41 scene (tile 8) with a second object on 15% of the pixels, random normals (some below
+ * the 0.9 similarity), invalid pixels, zero and positive confidences; built. */
+static void random_scene(struct scene *s, pcg32 *rng)
+{
+    scene_alloc(s, 77, 41, 8);
+    for (int p = 0; p < 77 * 41; p++) {
+        s->object[p] = pcg32_float(rng) < 0.15f ? 2 : 1;
+        float nx = 0.6f * (pcg32_float(rng) - 0.5f), ny = 0.6f * (pcg32_float(rng) - 0.5f), nz = 1.0f;
+        float len = sqrtf(nx * nx + ny * ny + nz * nz);
+        s->normal[3 * p] = nx / len, s->normal[3 * p + 1] = ny / len, s->normal[3 * p + 2] = nz / len;
+        s->g.valid[p] = pcg32_float(rng) < 0.9f;
+        s->g.conf[p] = pcg32_float(rng) < 0.2f ? 0.0f : 20.0f * pcg32_float(rng);
+    }
+    scene_build(s);
+}
+
 /* (f) The packed search (restir_cells_pack_taps + restir_cell_search_packed, what the renderer
  * runs) returns exactly the cell of the reference search over the separate arrays, for every
  * pixel of a scene with a second object on 15% of the pixels, random normals (some below the 0.9
@@ -1140,17 +1173,8 @@ static void test_search_growth(void)
 static void test_search_packed(void)
 {
     struct scene s;
-    scene_alloc(&s, 77, 41, 8);
     pcg32 rng = rng_for(83u, 0u, 0u, 0u);
-    for (int p = 0; p < 77 * 41; p++) {
-        s.object[p] = pcg32_float(&rng) < 0.15f ? 2 : 1;
-        float nx = 0.6f * (pcg32_float(&rng) - 0.5f), ny = 0.6f * (pcg32_float(&rng) - 0.5f), nz = 1.0f;
-        float len = sqrtf(nx * nx + ny * ny + nz * nz);
-        s.normal[3 * p] = nx / len, s.normal[3 * p + 1] = ny / len, s.normal[3 * p + 2] = nz / len;
-        s.g.valid[p] = pcg32_float(&rng) < 0.9f;
-        s.g.conf[p] = pcg32_float(&rng) < 0.2f ? 0.0f : 20.0f * pcg32_float(&rng);
-    }
-    scene_build(&s);
+    random_scene(&s, &rng);
     const struct restir_cell_search sp = {12, 30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
     float u[36];
     long differ = 0, own = 0, searched = 0;
@@ -1194,15 +1218,10 @@ static void test_search_compat(void)
     scene_build(&s);
     const int x0 = 20, y0 = 12, pixel = y0 * 48 + x0;
     struct restir_cell_search sp = {7, 10.0f, 1.25f, -1.0f, RESTIR_CELL_SCORE_COMPAT, pos, depth, 0.05f, 8.0f};
-    float rt[12], r = sp.radius;
-    for (int t = 0; t < 12; t++, r *= sp.growth)
-        rt[t] = r;
-    /* Taps: 0 -> tile (1,1), 1 -> tile (3,1), 2 -> own tile, 3 -> tile (1,1) again farther, 4 -> far
-     * tile (5,0), 5 -> the facing-away block (score 0), 6 -> outside the image. */
-    static const int off[7][2] = {{-6, 0}, {7, 2}, {2, -2}, {-9, 3}, {21, -8}, {-17, 8}, {0, 14}};
-    float u[3 * 12];
-    for (int t = 0; t < 7; t++)
-        aim_tap(u, t, rt[t], off[t][0], off[t][1]);
+    /* Taps (law_off): 0 -> tile (1,1), 1 -> tile (3,1), 2 -> own tile, 3 -> tile (1,1) again
+     * farther, 4 -> far tile (5,0), 5 -> the facing-away block (score 0), 6 -> outside the image. */
+    float rt[12], u[3 * 12];
+    aim_law_taps(&sp, rt, u);
     int ucell[7], nu = 0, accepted = 0;
     double pw[7] = {0}, wtot = 0.0;
     for (int t = 0; t < 7; t++) {
@@ -1229,20 +1248,8 @@ static void test_search_compat(void)
     for (int k = 0; k < nu; k++)
         pw[k] /= wtot;
     double count[7] = {0};
-    long other = 0;
     pcg32 rng = rng_for(67u, 0u, 0u, 0u);
-    for (long d = 0; d < SEARCH_DRAWS; d++) {
-        for (int t = 0; t < 7; t++)
-            u[3 * t + 2] = pcg32_float(&rng);
-        const int res = restir_cell_search(&s.c, &sp, pixel, s.normal, s.object, u);
-        int k = 0;
-        while (k < nu && ucell[k] != res)
-            k++;
-        if (k == nu)
-            other++;
-        else
-            count[k] += 1.0;
-    }
+    const long other = count_search_results(&s, &sp, pixel, u, ucell, nu, &rng, count);
     EXPECT(other == 0, "compat law: %ld results outside the positive taps' cells", other);
     int dof;
     const double p = chi2_counts(count, pw, nu, SEARCH_DRAWS, &dof);
@@ -1254,21 +1261,14 @@ static void test_search_compat(void)
     free(pos), free(depth);
     scene_free(&s);
     /* Packed = arrays under compat, random scene. */
-    scene_alloc(&s, 77, 41, 8);
-    pos = calloc(3 * 77 * 41, sizeof(float)), depth = calloc(77 * 41, sizeof(float));
     rng = rng_for(89u, 0u, 0u, 0u);
+    random_scene(&s, &rng);
+    pos = calloc(3 * 77 * 41, sizeof(float)), depth = calloc(77 * 41, sizeof(float));
     for (int q = 0; q < 77 * 41; q++) {
-        s.object[q] = pcg32_float(&rng) < 0.15f ? 2 : 1;
-        float nx = 0.6f * (pcg32_float(&rng) - 0.5f), ny = 0.6f * (pcg32_float(&rng) - 0.5f), nz = 1.0f;
-        float len = sqrtf(nx * nx + ny * ny + nz * nz);
-        s.normal[3 * q] = nx / len, s.normal[3 * q + 1] = ny / len, s.normal[3 * q + 2] = nz / len;
-        s.g.valid[q] = pcg32_float(&rng) < 0.9f;
-        s.g.conf[q] = pcg32_float(&rng) < 0.2f ? 0.0f : 20.0f * pcg32_float(&rng);
         pos[3 * q] = 0.05f * (float)(q % 77), pos[3 * q + 1] = 0.05f * (float)(q / 77),
                 pos[3 * q + 2] = pcg32_float(&rng);
         depth[q] = 2.0f + 8.0f * pcg32_float(&rng);
     }
-    scene_build(&s);
     restir_cells_pack_taps(&s.c, s.normal, s.object);
     const struct restir_cell_search cs = {12,  30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_COMPAT,
                                           pos, depth, 0.05f, 8.0f};
