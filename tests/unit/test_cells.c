@@ -1175,7 +1175,8 @@ static void test_search_packed(void)
     struct scene s;
     pcg32 rng = rng_for(83u, 0u, 0u, 0u);
     random_scene(&s, &rng);
-    const struct restir_cell_search sp = {12, 30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
+    const struct restir_cell_search sp = {12,   30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE,
+                                          NULL, NULL,  0.0f,  0.0f};
     float u[36];
     long differ = 0, own = 0, searched = 0;
     for (int threads = 1; threads <= 2; threads++) {
