@@ -412,7 +412,8 @@ static void check_compare(void)
     EXPECT(rc == 0, "compare exited %d: %s", rc, err);
     snprintf(path, sizeof(path), "%s/compare.csv", dir);
     cli_read_text(path, csv, sizeof(csv));
-    const char *header = "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse,runs,temporal_cov\n";
+    const char *header = "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse,runs,temporal_cov,relmse_sem,"
+                         "mape_sem,smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share\n";
     EXPECT(strncmp(csv, header, strlen(header)) == 0, "%s: wrong header:\n%s", path, csv);
     int rows = 0;
     for (const char *line = next_line(csv); line; line = next_line(line)) {
