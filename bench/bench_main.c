@@ -70,6 +70,19 @@ static void bench_csv_close(void)
     passes_csv = equal_csv = NULL;
 }
 
+/* Embree-only ms of the rays in each batching (scene_ray_replay_batched), twice in alternating
+ * rounds (this machine's speed drifts), the best of each into best[]. */
+static void replay_best(const struct scene *s, const struct ray_record *rays, size_t n, double *best)
+{
+    for (int b = 0; b < RAY_BATCH_COUNT; b++)
+        best[b] = INFINITY;
+    for (int round = 0; round < 2; round++)
+        for (int b = 0; b < RAY_BATCH_COUNT; b++) {
+            const double t = scene_ray_replay_batched(s, rays, n, (enum ray_batch)b);
+            best[b] = t < best[b] ? t : best[b];
+        }
+}
+
 /* Per-pass timing over frames 1..N-1 (frame 0 has no history), rays per second, and the last
  * frame's rays replayed through Embree alone. Pass columns: those any of the methods ran. */
 #define BENCH_MAX_METHODS 4
@@ -78,7 +91,8 @@ static void bench_passes(const struct bench_config *c, const enum method_id *met
     struct scene s = bench_load_scene(c->scene);
     double ms[BENCH_MAX_METHODS][PASS_COUNT] = {{0}}, total[BENCH_MAX_METHODS] = {0}, rays[BENCH_MAX_METHODS] = {0};
     double replay_ms[BENCH_MAX_METHODS] = {0}, frame_ms[BENCH_MAX_METHODS] = {0}, rays_px[BENCH_MAX_METHODS] = {0};
-    double batch_ms[BENCH_MAX_METHODS][RAY_BATCH_COUNT] = {{0}};
+    double batch_ms[BENCH_MAX_METHODS][RAY_BATCH_COUNT] = {{0}}, kind_ms[BENCH_MAX_METHODS][3][RAY_BATCH_COUNT];
+    size_t kind_count[BENCH_MAX_METHODS][3] = {{0}};
     RESTIR_CHECK(nmethods <= BENCH_MAX_METHODS);
     for (int k = 0; k < nmethods; k++) {
         struct render_params p = base_params(c);
@@ -104,30 +118,19 @@ static void bench_passes(const struct bench_config *c, const enum method_id *met
         renderer_render(&r, c->frames, &cam, &st);
         size_t nrays;
         struct ray_record *log = scene_ray_log_end(&s, &nrays);
-        /* Each batching twice, in alternating rounds (this machine's speed drifts): the best of
-         * each. Single rays are what the renderer traces. */
         double best[RAY_BATCH_COUNT];
-        for (int b = 0; b < RAY_BATCH_COUNT; b++)
-            best[b] = INFINITY;
-        for (int round = 0; round < 2; round++)
-            for (int b = 0; b < RAY_BATCH_COUNT; b++) {
-                double t = scene_ray_replay_batched(&s, log, nrays, (enum ray_batch)b);
-                best[b] = t < best[b] ? t : best[b];
-            }
-        if (getenv("BENCH_KINDS"))
-            for (int kind = 0; kind < 3; kind++) {
-                struct ray_record *sub = xmalloc(sizeof(*sub) * (nrays ? nrays : 1));
-                size_t m = 0;
-                for (size_t i = 0; i < nrays; i++)
-                    if (log[i].kind == kind)
-                        sub[m++] = log[i];
-                printf("kind %d: %zu rays:", kind, m);
-                for (int round = 0; round < 2; round++)
-                    for (int b = 0; b < RAY_BATCH_COUNT; b++)
-                        printf(" %.2f", scene_ray_replay_batched(&s, sub, m, (enum ray_batch)b));
-                printf("\n");
-                free(sub);
-            }
+        replay_best(&s, log, nrays, best);
+        /* The same by kind of ray (one logged frame's, unscaled): where batching pays. */
+        struct ray_record *sub = xmalloc(sizeof(*sub) * (nrays ? nrays : 1));
+        for (int kind = 0; kind < 3; kind++) {
+            size_t m = 0;
+            for (size_t i = 0; i < nrays; i++)
+                if (log[i].kind == kind)
+                    sub[m++] = log[i];
+            kind_count[k][kind] = m;
+            replay_best(&s, sub, m, kind_ms[k][kind]);
+        }
+        free(sub);
         const double mean_rays = rays[k] / (c->frames - 1);
         const double scale = nrays ? mean_rays / (double)nrays : 1.0;
         replay_ms[k] = best[RAY_BATCH_SINGLE] * scale;
@@ -173,6 +176,19 @@ static void bench_passes(const struct bench_config *c, const enum method_id *met
             printf(" %.2f |", batch_ms[k][b]);
         printf("\n");
     }
+    static const char *const kind_names[3] = {"closest hits", "occlusion", "emitters only"};
+    printf("\nThe same by kind of ray (one frame's rays, ms; each kind's rays in the order traced):\n\n"
+           "| method | rays | count | single | packet 8 | packet 16 | stream 64 | stream 64 coherent |\n"
+           "|---|---|---|---|---|---|---|---|\n");
+    for (int k = 0; k < nmethods; k++)
+        for (int kind = 0; kind < 3; kind++) {
+            if (!kind_count[k][kind])
+                continue;
+            printf("| %s | %s | %zu |", method_table[methods[k]].name, kind_names[kind], kind_count[k][kind]);
+            for (int b = 0; b < RAY_BATCH_COUNT; b++)
+                printf(" %.2f |", kind_ms[k][kind][b]);
+            printf("\n");
+        }
     scene_destroy(&s);
 }
 
