@@ -405,7 +405,7 @@ static void intersect_stream(RTCScene rtc_scene, int *const *geom_tris, const st
     struct RTCRayHit rh[RAY_STREAM_MAX];
     for (int k = 0; k < n; k++) {
         fill_ray(&rh[k].ray, &q[k]);
-        rh[k].hit.geomID = rh[k].hit.primID = RTC_INVALID_GEOMETRY_ID;
+        rh[k].hit.geomID = rh[k].hit.primID = rh[k].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     }
     rtcIntersect1M(rtc_scene, &ctx, rh, (unsigned)n, sizeof(rh[0]));
     for (int k = 0; k < n; k++) {
