@@ -16,25 +16,36 @@
 #include "io/exr.h"
 #include "plan.h"
 
-/* `restir compare ... --plan DIR` plans one job per SPEC (and one for the reference without --ref);
- * `restir job` runs a SPEC's frames and writes its last frame and its timing under DIR/runs/FOLDER/;
+/* `restir compare ... --plan DIR` plans one job per SPEC and run (and one for the reference without
+ * --ref); `restir job` runs a SPEC's frames and writes its last frame and its timing under
+ * DIR/runs/FOLDER/ (run 0; a later run n writes its record, mask and last frame to run_N.bin);
  * `restir compare --merge DIR` measures every last frame against the reference and writes what the
  * unsplit compare writes into DIR (the same errors, bit for bit: they are computed from the same
  * frames; the times are the jobs' own). --equal-time is refused: its budget is one method's time on
- * the machine that runs the others. */
+ * the machine that runs the others; so is --ref-every. With --runs the merge has no temporal_cov
+ * (000 Eq. 17 needs every run's frame sequence, which jobs do not keep). */
 
 static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '2'};
 
 /* What a SPEC's job measured: its frame time, paths per pixel and instances; has_mask: the record
- * goes on with the last frame's disocclusion mask (width x height bytes, compare_run.h). */
+ * goes on with the last frame's disocclusion mask (width x height bytes, compare_run.h); a later
+ * run's record then holds its last frame (3 x width x height floats). */
 struct job_timing {
     double ms_per_frame;
     int32_t spp, instances, has_mask, unused;
 };
 
-static int spec_of_job(const struct compare_setup *st, int k)
+/* Job k's spec (-1: the reference job) and run: the jobs are the reference, then each spec's runs. */
+static int spec_of_job(const struct compare_setup *st, int k, int *run)
 {
-    return k - (st->o.ref ? 0 : 1); /* -1: the reference job */
+    const int j = k - (st->o.ref ? 0 : 1);
+    *run = j < 0 ? 0 : j % st->o.runs;
+    return j < 0 ? -1 : j / st->o.runs;
+}
+
+static int job_of_spec(const struct compare_setup *st, int spec, int run)
+{
+    return (st->o.ref ? 0 : 1) + spec * st->o.runs + run;
 }
 
 int compare_plan(const struct compare_setup *st, int argc, char **argv)
@@ -44,9 +55,8 @@ int compare_plan(const struct compare_setup *st, int argc, char **argv)
                   "means something for methods timed on the same machine; run it unsplit");
         return EXIT_USAGE;
     }
-    if (st->o.runs > 1 || st->o.ref_every > 0) {
-        cli_error("compare: --runs and --ref-every cannot be planned: a job holds one run's last frame; run it "
-                  "unsplit");
+    if (st->o.ref_every > 0) {
+        cli_error("compare: --ref-every cannot be planned: a job holds one run's last frame; run it unsplit");
         return EXIT_USAGE;
     }
     char name[96], rel[PLAN_PATH_MAX];
@@ -56,11 +66,18 @@ int compare_plan(const struct compare_setup *st, int argc, char **argv)
         return rc;
     if (!st->o.ref)
         plan_add_job(&pl, "the comparison's reference", "runs/reference.exr");
-    for (int k = 0; k < st->n; k++) {
-        snprintf(name, sizeof name, "%.80s", st->specs[k].label);
-        snprintf(rel, sizeof rel, "runs/%.140s/result.bin", st->specs[k].dir);
-        plan_add_job(&pl, name, rel);
-    }
+    for (int k = 0; k < st->n; k++)
+        for (int n = 0; n < st->o.runs; n++) {
+            if (st->o.runs > 1)
+                snprintf(name, sizeof name, "%.70s, run %d", st->specs[k].label, n);
+            else
+                snprintf(name, sizeof name, "%.80s", st->specs[k].label);
+            if (n == 0)
+                snprintf(rel, sizeof rel, "runs/%.140s/result.bin", st->specs[k].dir);
+            else
+                snprintf(rel, sizeof rel, "runs/%.140s/run_%d.bin", st->specs[k].dir, n);
+            plan_add_job(&pl, name, rel);
+        }
     return plan_finish(&pl);
 }
 
@@ -73,7 +90,9 @@ static int read_job(const struct plan *pl, const struct compare_setup *st, int k
         *mask = NULL;
     char path[2 * PLAN_PATH_MAX];
     plan_output_path(pl, k, path, sizeof path);
-    const int spec = spec_of_job(st, k);
+    int run;
+    const int spec = spec_of_job(st, k, &run);
+    const size_t image_bytes = run > 0 ? sizeof(float) * 3 * npix : 0;
     float *img = NULL;
     if (spec < 0) {
         if (cli_load_reference(path, st->p.width, st->p.height, &img, why) != 0)
@@ -86,7 +105,7 @@ static int read_job(const struct plan *pl, const struct compare_setup *st, int k
         struct job_timing t;
         if (size >= sizeof t)
             memcpy(&t, data, sizeof t);
-        if (size < sizeof t || size != sizeof t + (t.has_mask ? npix : 0)) {
+        if (size < sizeof t || size != sizeof t + (t.has_mask ? npix : 0) + image_bytes) {
             snprintf(why, RESTIR_MSG_LEN, "%.300s: not a timing record", path);
             free(data);
             return -1;
@@ -96,6 +115,14 @@ static int read_job(const struct plan *pl, const struct compare_setup *st, int k
         if (mask && t.has_mask) {
             *mask = xmalloc(npix);
             memcpy(*mask, (const char *)data + sizeof t, npix);
+        }
+        if (run > 0) { /* a later run's last frame is in its record */
+            if (image) {
+                *image = xmalloc(image_bytes);
+                memcpy(*image, (const char *)data + size - image_bytes, image_bytes);
+            }
+            free(data);
+            return 0;
         }
         free(data);
         snprintf(path, sizeof path, "%s/runs/%s/frame_%04d.exr", pl->dir, st->specs[spec].dir, st->o.frames - 1);
@@ -138,7 +165,8 @@ int compare_run_job(const struct plan *pl, int k)
         return 0;
     }
     cli_catch_stop_signals();
-    const int spec = spec_of_job(&st, k);
+    int run;
+    const int spec = spec_of_job(&st, k, &run);
     if (spec < 0) {
         float *ref = compare_render_reference(&st);
         if (!ref) {
@@ -152,8 +180,16 @@ int compare_run_job(const struct plan *pl, int k)
     } else {
         struct compare_result res;
         memset(&res, 0, sizeof res);
-        rc = compare_run_method(&st.s, &st.specs[spec], &st.specs[spec].p, st.o.frames, 1, NULL, runs, 0, NULL, 0, &res,
-                                msg);
+        struct render_params q = st.specs[spec].p;
+        q.seed = compare_run_seed(q.seed, run);
+        char folder[PLAN_PATH_MAX + 240];
+        snprintf(folder, sizeof folder, "%s/%s", runs, st.specs[spec].dir); /* run 0 writes its frame there */
+        if (io_make_dirs(folder, msg) != 0) {
+            cli_error("%s", msg);
+            scene_destroy(&st.s);
+            return EXIT_RUNTIME;
+        }
+        rc = compare_run_method(&st.s, &st.specs[spec], &q, st.o.frames, 1, NULL, runs, run > 0, NULL, run, &res, msg);
         if (rc == RUN_STOPPED) {
             cli_error("interrupted by %s; no result written", cli_stop_signal_name());
             rc = 128 + (int)cli_stop_signal;
@@ -163,14 +199,25 @@ int compare_run_job(const struct plan *pl, int k)
         } else {
             /* written after the frame: a result file means the frame is there */
             const struct job_timing t = {res.ms_per_frame, res.spp, res.instances, res.mask != NULL, 0};
-            const void *parts[2] = {&t, res.mask};
-            const size_t sizes[2] = {sizeof t, (size_t)st.p.width * (size_t)st.p.height};
-            if (plan_blob_write(path, result_magic, pl->id, parts, sizes, res.mask ? 2 : 1, msg) != 0) {
+            const size_t npix = (size_t)st.p.width * (size_t)st.p.height;
+            const void *parts[3] = {&t, NULL, NULL};
+            size_t sizes[3] = {sizeof t, 0, 0};
+            int n_parts = 1;
+            if (res.mask) {
+                parts[n_parts] = res.mask;
+                sizes[n_parts++] = npix;
+            }
+            if (res.image) {
+                parts[n_parts] = res.image;
+                sizes[n_parts++] = sizeof(float) * 3 * npix;
+            }
+            if (plan_blob_write(path, result_magic, pl->id, parts, sizes, n_parts, msg) != 0) {
                 cli_error("%s", msg);
                 rc = EXIT_RUNTIME;
             }
         }
         free(res.mask);
+        free(res.image);
     }
     if (rc == 0)
         printf("job %d of %d (%s): %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
@@ -178,7 +225,7 @@ int compare_run_job(const struct plan *pl, int k)
     return rc;
 }
 
-/* Copies every file of from/ but result.bin into to/ (made), each through a temporary name. */
+/* Copies every file of from/ but the results (result.bin, run_N.bin) into to/ (made), each through a temporary name. */
 static int copy_folder(const char *from, const char *to, char *msg)
 {
     if (io_make_dirs(to, msg) != 0)
@@ -190,7 +237,8 @@ static int copy_folder(const char *from, const char *to, char *msg)
     }
     int rc = 0;
     for (struct dirent *e = readdir(d); e && rc == 0; e = readdir(d)) {
-        if (e->d_name[0] == '.' || !strcmp(e->d_name, "result.bin") || strstr(e->d_name, ".tmp-"))
+        if (e->d_name[0] == '.' || !strcmp(e->d_name, "result.bin") || !strncmp(e->d_name, "run_", 4) ||
+            strstr(e->d_name, ".tmp-"))
             continue;
         char src[2 * PLAN_PATH_MAX + 300], dst[2 * PLAN_PATH_MAX + 300];
         snprintf(src, sizeof src, "%s/%s", from, e->d_name);
@@ -235,29 +283,38 @@ int compare_merge(const char *dir)
     memset(res, 0, sizeof res);
     const size_t npix = (size_t)st.p.width * st.p.height;
     for (int k = 0; k < st.n && rc == 0; k++) {
-        const int job = k + (st.o.ref ? 0 : 1);
-        struct job_timing t;
-        float *image = NULL;
-        unsigned char *mask = NULL;
-        if (read_job(&pl, &st, job, &t, &image, &mask, msg) != 0) {
-            cli_error("cannot merge: %s", msg);
-            rc = EXIT_RUNTIME;
-            break;
+        struct compare_runs acc = {0};
+        for (int n = 0; n < st.o.runs && rc == 0; n++) { /* in run order, as compare_run_spec */
+            struct job_timing t;
+            float *image = NULL;
+            unsigned char *mask = NULL;
+            if (read_job(&pl, &st, job_of_spec(&st, k, n), &t, &image, &mask, msg) != 0) {
+                cli_error("cannot merge: %s", msg);
+                rc = EXIT_RUNTIME;
+                break;
+            }
+            struct compare_result one = {.method = st.specs[k].method};
+            restir_error_compute(image, ref, npix, NULL, &one.err);
+            compare_disoccluded_error(image, ref, mask, npix, &one.mape_dis, &one.dis_share);
+            compare_runs_add(&acc, &one);
+            free(mask);
+            if (n > 0) {
+                free(image);
+                continue;
+            }
+            res[k] = one;
+            res[k].ms_per_frame = t.ms_per_frame;
+            res[k].spp = t.spp;
+            res[k].instances = t.instances;
+            res[k].temporal_cov = NAN; /* not planned: it needs every run's frames */
+            if (st.o.report)
+                res[k].image = image;
+            else
+                free(image);
         }
-        res[k].method = st.specs[k].method;
-        res[k].ms_per_frame = t.ms_per_frame;
-        res[k].spp = t.spp;
-        res[k].instances = t.instances;
-        res[k].runs = 1;
-        res[k].temporal_cov = NAN;
-        restir_error_compute(image, ref, npix, NULL, &res[k].err);
-        compare_disoccluded_error(image, ref, mask, npix, &res[k].mape_dis, &res[k].dis_share);
-        res[k].mape_dis_sem = NAN;
-        free(mask);
-        if (st.o.report)
-            res[k].image = image;
-        else
-            free(image);
+        if (rc != 0)
+            break;
+        compare_runs_finish(&acc, &res[k]);
         snprintf(path, sizeof path, "%s/runs/%s", pl.dir, st.specs[k].dir);
         snprintf(to, sizeof to, "%s/%s", pl.dir, st.specs[k].dir);
         if (copy_folder(path, to, msg) != 0) {

@@ -221,14 +221,14 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
         res->mask = mask;
     }
     res->image = NULL;
+    if (keep_image) {
+        res->image = xmalloc(sizeof(float) * n3);
+        memcpy(res->image, r[0].image, sizeof(float) * n3);
+    }
     if (run > 0) { /* a later run is measured only: run 0's frame is the one written */
         for (int k = 0; k < instances; k++)
             renderer_fini(&r[k]);
         return 0;
-    }
-    if (keep_image) {
-        res->image = xmalloc(sizeof(float) * n3);
-        memcpy(res->image, r[0].image, sizeof(float) * n3);
     }
     char path[4400];
     snprintf(path, sizeof(path), "%s/%s", out_dir, c->dir);
@@ -272,8 +272,10 @@ static void compare_usage(void)
                "--runs N (default 1) runs every SPEC as N independently seeded sequences: errors are means\n"
                "over the runs with their standard errors (sd / sqrt N, printed after +-), and temporal_cov\n"
                "is 000's relative autocovariance (Appendix A, Eq. 17) at a lag of 3 frames over the second\n"
-               "half of the frames (at least 8 frames); run 0's frames are the ones written. Neither can be\n"
-               "planned (--plan).\n"
+               "half of the frames (at least 8 frames); run 0's frames are the ones written. --plan DIR makes\n"
+               "each SPEC's run a job of its own; the merge then has the same errors and standard errors, but\n"
+               "no temporal_cov (it needs every run's frame sequence). --ref-every and --equal-time cannot be\n"
+               "planned.\n"
                "--report also writes DIR/index.html: one self-contained page (no network) with the command,\n"
                "commit and machine, the table, a relMSE plot, every image beside the reference in a viewer\n"
                "(synchronized zoom and pan, A/B flip), relative-error heat maps and the crops where the first\n"
@@ -353,20 +355,46 @@ int compare_setup(int argc, char **argv, struct compare_setup *st)
     return 0;
 }
 
+void compare_runs_add(struct compare_runs *a, const struct compare_result *r)
+{
+    const struct restir_error *e = &r->err;
+    const double x[6] = {e->relmse, e->mape, e->smape, e->luma_rmse, r->mape_dis, r->dis_share};
+    a->n++;
+    for (int k = 0; k < 6; k++) { /* Welford's running mean and sum of squared deviations */
+        const double d = x[k] - a->mean[k];
+        a->mean[k] += d / a->n;
+        a->m2[k] += d * (x[k] - a->mean[k]);
+    }
+}
+
+void compare_runs_finish(const struct compare_runs *a, struct compare_result *res)
+{
+    const int runs = a->n;
+    double sem[6];
+    for (int k = 0; k < 6; k++)
+        sem[k] = runs > 1 ? sqrt(a->m2[k] / (runs - 1) / runs) : NAN;
+    if (runs > 1) { /* one run keeps its error bit for bit */
+        res->err = (struct restir_error){a->mean[0], a->mean[1], a->mean[2], a->mean[3]};
+        res->mape_dis = a->mean[4];
+        res->dis_share = a->mean[5];
+    }
+    res->sem = (struct restir_error){sem[0], sem[1], sem[2], sem[3]};
+    res->mape_dis_sem = sem[4];
+    res->runs = runs;
+}
+
 int compare_run_spec(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
                      int instances, int runs, const float *ref, const char *out_dir, int keep_image,
                      struct compare_track *track, struct compare_result *res, char *msg)
 {
-    /* Welford's running mean and sum of squared deviations of each metric over the runs: relMSE,
-     * MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share */
-    double mean[6] = {0, 0, 0, 0, 0, 0}, m2[6] = {0, 0, 0, 0, 0, 0};
+    struct compare_runs acc = {0};
     if (track)
         compare_track_begin(track);
     for (int n = 0; n < runs; n++) {
         struct render_params q = *p;
-        q.seed = p->seed + COMPARE_RUN_SEED_STRIDE * (uint64_t)n;
+        q.seed = compare_run_seed(p->seed, n);
         struct compare_result one;
-        int rc = compare_run_method(s, c, &q, frames, instances, ref, out_dir, keep_image, track, n,
+        int rc = compare_run_method(s, c, &q, frames, instances, ref, out_dir, n == 0 && keep_image, track, n,
                                     n == 0 ? res : &one, msg);
         if (rc != 0) {
             if (n > 0) {
@@ -375,26 +403,9 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
             }
             return rc;
         }
-        const struct compare_result *o = n == 0 ? res : &one;
-        const struct restir_error *e = &o->err;
-        const double x[6] = {e->relmse, e->mape, e->smape, e->luma_rmse, o->mape_dis, o->dis_share};
-        for (int k = 0; k < 6; k++) {
-            const double d = x[k] - mean[k];
-            mean[k] += d / (n + 1);
-            m2[k] += d * (x[k] - mean[k]);
-        }
+        compare_runs_add(&acc, n == 0 ? res : &one);
     }
-    double sem[6];
-    for (int k = 0; k < 6; k++)
-        sem[k] = runs > 1 ? sqrt(m2[k] / (runs - 1) / runs) : NAN;
-    if (runs > 1) { /* one run keeps its error bit for bit */
-        res->err = (struct restir_error){mean[0], mean[1], mean[2], mean[3]};
-        res->mape_dis = mean[4];
-        res->dis_share = mean[5];
-    }
-    res->sem = (struct restir_error){sem[0], sem[1], sem[2], sem[3]};
-    res->mape_dis_sem = sem[4];
-    res->runs = runs;
+    compare_runs_finish(&acc, res);
     res->temporal_cov = track ? compare_track_end(track, c->label) : NAN;
     return 0;
 }

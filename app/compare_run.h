@@ -69,12 +69,27 @@ int compare_setup(int argc, char **argv, struct compare_setup *st);
 float *compare_render_reference(const struct compare_setup *st);
 /* Runs `frames` frames of spec c with parameters p (c->p, or with an equal-time spp) as `instances`
  * (at most MAX_INSTANCES) independently seeded renderers, measures the average of their last frames
- * against ref (none when ref is NULL) and, for run 0, writes it under out_dir/c->dir. With a track
+ * against ref (none when ref is NULL: then res->mask gets the disocclusion mask) and, for run 0,
+ * writes it under out_dir/c->dir; keep_image keeps it in res->image. With a track
  * (may be NULL) every frame's statistics and the frames it asks for go to it as run `run`.
  * Returns 0, -1 with msg (the frame cannot be written), or RUN_STOPPED having written nothing. */
 int compare_run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
                        int instances, const float *ref, const char *out_dir, int keep_image, struct compare_track *track,
                        int run, struct compare_result *res, char *msg);
+/* The errors of a spec's runs as they arrive (run order), and their means and standard errors. */
+struct compare_runs {
+    int n;
+    double mean[6], m2[6]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share */
+};
+void compare_runs_add(struct compare_runs *a, const struct compare_result *r);
+/* Into res: with more than one run the means (one run keeps its own errors bit for bit), the
+ * standard errors (NaN with one run) and the number of runs. */
+void compare_runs_finish(const struct compare_runs *a, struct compare_result *res);
+/* Run n's seed: seed + n COMPARE_RUN_SEED_STRIDE. */
+static inline uint64_t compare_run_seed(uint64_t seed, int n)
+{
+    return seed + COMPARE_RUN_SEED_STRIDE * (uint64_t)n;
+}
 /* --runs runs of spec c (compare_run_method with seed + n COMPARE_RUN_SEED_STRIDE for run n): res
  * gets run 0's frame and time, the last-frame error averaged over the runs and the temporal
  * autocovariance; the track's rows for c go to frames.csv. Returns as compare_run_method. */

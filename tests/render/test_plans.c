@@ -3,8 +3,9 @@
  * its timing columns, pareto.svg, hard_pixels.png, strip.png byte for byte); a reference split
  * into shards, run with xargs -P and merged, equals the unsplit one within the summation-order
  * bound (2 C + 1) 2^-24 of reference_shards.c; merges with a job missing or corrupt are refused
- * naming its line; a finished job run again says so; a comparison planned per method and merged
- * equals the unsplit one (compare.csv except ms_per_frame, reference and frames byte for byte). */
+ * naming its line; a finished job run again says so; a comparison planned per method and run
+ * (--runs 2) and merged equals the unsplit one (compare.csv except ms_per_frame, reference and
+ * frames byte for byte). */
 #include <math.h>
 #include <signal.h>
 #include <string.h>
@@ -156,7 +157,7 @@ static void test_reference(char *err)
 }
 
 #define COMPARE "compare --scene cornell --methods restir-di,pt,restir-di:mis=balance --res 48x27 --frames 3 " \
-                "--ref-spp 32 --seed 9"
+                "--ref-spp 32 --seed 9 --runs 2"
 
 
 static void test_compare(char *err)
@@ -189,10 +190,11 @@ static void test_compare(char *err)
         snprintf(pb, sizeof pb, "%s/%s", plan, same[i]);
         EXPECT(cli_files_equal(pa, pb, &size) == 1, "merged %s differs from the unsplit one", same[i]);
     }
-    printf("compare: 4 jobs under GNU parallel, merged: compare.csv (all but ms_per_frame), the reference and the "
-           "frames equal the unsplit compare's\n%s", b);
-    EXPECT(sh("rm '%s/runs/pt/result.bin'%s", plan, "") == 0, "cannot remove a result");
-    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 3 (pt)"), "merge with a missing job: %s", err);
+    printf("compare: 7 jobs (3 specs x 2 runs, the reference) under GNU parallel, merged: compare.csv (all but "
+           "ms_per_frame: means and standard errors over the runs), the reference and the frames equal the unsplit "
+           "compare's\n%s", b);
+    EXPECT(sh("rm '%s/runs/pt/run_1.bin'%s", plan, "") == 0, "cannot remove a result");
+    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 5 (pt, run 1)"), "merge with a missing job: %s", err);
 }
 
 /* A job refuses a scene file whose content changed after planning. */
