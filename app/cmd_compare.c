@@ -122,8 +122,8 @@ int cmd_compare(int argc, char **argv)
             first = k;
     int stopped_at = -1; /* the spec a stop signal interrupted */
     if (first >= 0) {
-        rc = compare_run_spec(&st.s, &specs[first], &specs[first].p, o.frames, 1, o.runs, ref, out_dir, o.report, &track,
-                              &res[first], msg);
+        rc = compare_run_spec(&st.s, &specs[first], &specs[first].p, o.frames, specs[first].instances, o.runs, ref,
+                              out_dir, o.report, &track, &res[first], msg);
         stopped_at = rc == RUN_STOPPED ? first : -1;
         budget = res[first].ms_per_frame;
     }
@@ -131,7 +131,7 @@ int cmd_compare(int argc, char **argv)
         if (k == first)
             continue;
         struct render_params q = specs[k].p;
-        int instances = 1;
+        int instances = specs[k].instances;
         if (o.equal_time && budget > 0.0) {
             if (compare_budget_by_spp(specs[k].method)) {
                 q.spp = spp_for_budget(&st.s, specs[k].method, &specs[k].p, budget);

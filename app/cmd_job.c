@@ -14,7 +14,7 @@ int cmd_job(int argc, char **argv)
 {
     if (argc == 1 && (!strcmp(argv[0], "--help") || !strcmp(argv[0], "-h"))) {
         printf("usage: restir job DIR K\n"
-               "Runs job K (1-based: line K of DIR/jobs.txt) of a plan that `restir study|reference|compare ...\n"
+               "Runs job K (1-based: line K of DIR/jobs.txt) of a plan that `restir study|reference|compare|evaluate ...\n"
                "--plan DIR` wrote. The job writes only its own result under DIR/runs/ (a temporary file, then a\n"
                "rename); a job whose result is there and sound says so and exits 0, so a plan can be run again.\n");
         return 0;
@@ -42,6 +42,8 @@ int cmd_job(int argc, char **argv)
         rc = reference_run_job(&pl, (int)k - 1);
     else if (!strcmp(pl.kind, "compare"))
         rc = compare_run_job(&pl, (int)k - 1);
+    else if (!strcmp(pl.kind, "evaluate"))
+        rc = evaluate_run_job(&pl, (int)k - 1);
     else {
         cli_error("%s/plan.json: unknown kind '%s'", pl.dir, pl.kind);
         rc = EXIT_USAGE;

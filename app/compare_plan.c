@@ -189,7 +189,8 @@ int compare_run_job(const struct plan *pl, int k)
             scene_destroy(&st.s);
             return EXIT_RUNTIME;
         }
-        rc = compare_run_method(&st.s, &st.specs[spec], &q, st.o.frames, 1, NULL, runs, run > 0, NULL, run, &res, msg);
+        rc = compare_run_method(&st.s, &st.specs[spec], &q, st.o.frames, st.specs[spec].instances, NULL, runs, run > 0,
+                                NULL, run, &res, msg);
         if (rc == RUN_STOPPED) {
             cli_error("interrupted by %s; no result written", cli_stop_signal_name());
             rc = 128 + (int)cli_stop_signal;

@@ -28,6 +28,30 @@ static const char *strip_set_prefix(const char *m)
     return m;
 }
 
+/* Removes every "instances=N" from a spec's key=value list (colon separated, in place) into *n: the
+ * row averages N independently seeded renderers (as --equal-time's instances; 002 Sec. 5 gives its
+ * baselines fixed counts). Returns 0, or -1 with msg. */
+static int take_instances(char *list, int *n, char *msg)
+{
+    char out[SPEC_MAX + 1] = "";
+    size_t used = 0;
+    for (char *tok = list, *next; tok; tok = next) {
+        next = strchr(tok, ':');
+        if (next)
+            *next++ = '\0';
+        if (!strncmp(tok, "instances=", 10)) {
+            long long v = 0;
+            if (cli_parse_int("instances", tok + 10, 1, MAX_INSTANCES, &v, msg) != 0)
+                return -1;
+            *n = (int)v;
+            continue;
+        }
+        used += (size_t)snprintf(out + used, sizeof out - used, "%s%s", used ? ":" : "", tok);
+    }
+    memcpy(list, out, used + 1);
+    return 0;
+}
+
 /* Parses spec "NAME[:key=value]..." onto common parameters. Returns 0, or -1 with msg naming the
  * spec and the problem (an unknown method, key or value). */
 static int parse_spec(const char *spec, const struct render_params *common, struct compare_spec *c, char *msg)
@@ -53,7 +77,12 @@ static int parse_spec(const char *spec, const struct render_params *common, stru
     }
     c->method = (enum method_id)m;
     c->p = *common;
-    if (rest && render_params_set_list(&c->p, rest, sub) != 0) {
+    c->instances = 1;
+    if (rest && take_instances(rest, &c->instances, sub) != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "--methods spec '%.200s': %.280s", spec, sub);
+        return -1;
+    }
+    if (rest && *rest && render_params_set_list(&c->p, rest, sub) != 0) {
         snprintf(msg, RESTIR_MSG_LEN, "--methods spec '%.200s': %.280s", spec, strip_set_prefix(sub));
         return -1;
     }
@@ -248,6 +277,8 @@ static void compare_usage(void)
                "Each SPEC is NAME[:key=value]...: method NAME (see restir list) with the command's parameters,\n"
                "then each key=value applied as by --set (see restir render --help) for that row only, e.g.\n"
                "  --methods 'restir-pt,restir-pt:mis=balance:spatial.neighbors=5,pt'\n"
+               "The key instances=N (1-16) makes the row average N independently seeded renderers (as\n"
+               "--equal-time does; 002 Sec. 5 gives its baselines such fixed counts).\n"
                "The whole SPEC labels its row. Runs each SPEC for N frames (default 1) and measures the last\n"
                "frame against the reference, rendered from the common parameters with --ref-spp paths\n"
                "(default 1024) when --ref is absent. With --equal-time every row gets the frame time of the\n"
@@ -322,6 +353,12 @@ int compare_setup(int argc, char **argv, struct compare_setup *st)
         cli_error("--methods lists no method (see restir list)");
         return EXIT_USAGE;
     }
+    for (int k = 0; k < st->n && o->equal_time; k++)
+        if (st->specs[k].instances != 1) {
+            cli_error("--methods spec '%s': instances= and --equal-time both set a row's instances; give one",
+                      st->specs[k].label);
+            return EXIT_USAGE;
+        }
     st->p = o->params;
     if (st->any_direct)
         renderer_reference_params(METHOD_RESTIR_DI, &st->p); /* pt estimates the same integral */

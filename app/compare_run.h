@@ -20,6 +20,7 @@ struct compare_spec {
     char dir[SPEC_MAX + 16];
     enum method_id method;
     struct render_params p;
+    int instances; /* independently seeded renderers the row averages (key instances=N; default 1) */
 };
 
 struct compare_result {

@@ -1,4 +1,4 @@
-/* main.c: the `restir` command: dispatches to list, render, reference, compare, study, scene, view
+/* main.c: the `restir` command: dispatches to list, render, reference, compare, study, evaluate, scene, view
  * and job.
  * Must never parse method parameters itself (options.c and params.c do). */
 #include <stdio.h>
@@ -18,9 +18,10 @@ static void usage(FILE *out)
             "  reference   render a converged reference of what a method estimates\n"
             "  compare     run several methods on the same frames, optionally at equal time\n"
             "  study       the error-correlation study of neighbor selection (000 Sec. 6-7)\n"
+            "  evaluate    a paper's evaluation at its own scale, with a verdict per claim (000, 004, 002)\n"
             "  scene       scene info NAME|FILE; scene export NAME --out DIR (restir scene --help)\n"
             "  view        an interactive window rendering frame after frame (restir view --help)\n"
-            "  job         job K of a plan folder (study, reference, compare --plan DIR): restir job DIR K\n");
+            "  job         job K of a plan folder (study, reference, compare, evaluate --plan DIR): restir job DIR K\n");
 }
 
 static int cmd_list(void)
@@ -49,6 +50,8 @@ int main(int argc, char **argv)
         return cmd_compare(argc - 2, argv + 2);
     if (!strcmp(cmd, "study"))
         return cmd_study(argc - 2, argv + 2);
+    if (!strcmp(cmd, "evaluate"))
+        return cmd_evaluate(argc - 2, argv + 2);
     if (!strcmp(cmd, "scene"))
         return cmd_scene(argc - 2, argv + 2);
     if (!strcmp(cmd, "view"))

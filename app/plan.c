@@ -243,6 +243,17 @@ int plan_finish(struct plan *p)
     return rc;
 }
 
+/* A job writes under runs/ of its plan, or of a step's plan one folder down (an evaluation's). */
+static int output_in_runs(const char *out)
+{
+    if (strstr(out, "..") || out[0] == '/')
+        return 0;
+    if (!strncmp(out, "runs/", 5))
+        return 1;
+    const char *slash = strchr(out, '/');
+    return slash && slash > out && !strncmp(slash + 1, "runs/", 5);
+}
+
 int plan_load(const char *dir, struct plan *p, char *msg)
 {
     memset(p, 0, sizeof *p);
@@ -292,8 +303,7 @@ int plan_load(const char *dir, struct plan *p, char *msg)
     {
         const cJSON *name = cJSON_GetObjectItemCaseSensitive(o, "name");
         const cJSON *out = cJSON_GetObjectItemCaseSensitive(o, "output");
-        if (!cJSON_IsString(name) || !cJSON_IsString(out) || strstr(out->valuestring, "..") ||
-            strncmp(out->valuestring, "runs/", 5) != 0) {
+        if (!cJSON_IsString(name) || !cJSON_IsString(out) || !output_in_runs(out->valuestring)) {
             bad = 1;
             break;
         }

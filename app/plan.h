@@ -21,7 +21,7 @@ struct plan_job {
 
 struct plan {
     char dir[PLAN_PATH_MAX]; /* absolute */
-    char kind[16];           /* "study", "reference" or "compare": the command whose jobs these are */
+    char kind[16];           /* "study", "reference", "compare" or "evaluate": the command whose jobs these are */
     char command[8192];      /* the command as it was given, for reports */
     int argc;
     char **argv;             /* the command's arguments without --plan DIR, file paths made absolute */

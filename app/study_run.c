@@ -18,11 +18,21 @@
 #define COV_RADIUS 8       /* 000 Appendix A: radial covariance over radius-8 disks */
 #define COV_EPS 1e-4f
 
+/* 1 when name is exactly "compat-rR-kK" for R in [1, 512] pixels and K in [1, 1024]. */
+static int grid_name(const char *name, float r, int k)
+{
+    char again[40];
+    snprintf(again, sizeof again, "compat-r%g-k%d", r, k);
+    return r >= 1.0f && r <= 512.0f && k >= 1 && k <= 1024 && !strcmp(again, name);
+}
+
 /* A named configuration at radius r (the radius of bitterli, compat and compat-binary). */
 static int named_config(const char *name, float r, int candidates, struct study_config *c, char *msg)
 {
     memset(c, 0, sizeof(*c));
     snprintf(c->name, sizeof(c->name), "%s", name);
+    float grid_r = 0.0f;
+    int grid_k = 0;
     c->radius = r;
     c->candidates = 32;
     if (!strcmp(name, "bitterli")) {
@@ -31,6 +41,10 @@ static int named_config(const char *name, float r, int candidates, struct study_
     } else if (!strcmp(name, "fast") || !strcmp(name, "balanced") || !strcmp(name, "conservative")) {
         c->select = SELECT_COMPAT; /* 000 Table 1 presets: K 32 and R 30 / 50 / 100 */
         c->radius = name[0] == 'f' ? 30.0f : name[0] == 'b' ? 50.0f : 100.0f;
+    } else if (sscanf(name, "compat-r%f-k%d", &grid_r, &grid_k) == 2 && grid_name(name, grid_r, grid_k)) {
+        c->select = SELECT_COMPAT; /* 000 Table 2: radius R and candidates K */
+        c->radius = grid_r;
+        c->candidates = grid_k;
     } else if (!strcmp(name, "compat")) {
         c->select = SELECT_COMPAT;
         c->candidates = candidates;
@@ -40,7 +54,7 @@ static int named_config(const char *name, float r, int candidates, struct study_
     } else {
         snprintf(msg, RESTIR_MSG_LEN,
                  "--configs: unknown configuration '%s' (bitterli, fast, balanced, conservative, compat, "
-                 "compat-binary)",
+                 "compat-binary, compat-rR-kK)",
                  name);
         return -1;
     }

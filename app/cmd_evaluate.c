@@ -1,0 +1,407 @@
+/* cmd_evaluate.c: `restir evaluate PAPER`: a paper's evaluation at its own scale as one plan of study /
+ * compare plans (issue 25): plan, run, merge, then the paper's tables and a verdict per claim.
+ * Must never implement a method or measure an image: the steps' commands do, evaluate_tables.c reads them. */
+#define _XOPEN_SOURCE 700 /* realpath */
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "compare_plan.h"
+#include "core/check.h"
+#include "evaluate_papers.h"
+#include "evaluate_tables.h"
+#include "io/atomic_file.h"
+#include "plan.h"
+
+static void evaluate_usage(void)
+{
+    printf(
+        "usage: restir evaluate 000|004|002|all (--out DIR | --plan DIR) [--res WxH] [--runs N] [--scenes LIST]\n"
+        "                       [--frames N] [--warmup N] [--ref-spp N] [--threads N] [--report]\n"
+        "       restir evaluate --merge DIR\n"
+        "A paper's evaluation at its own scale (1920x1080 unless --res) with its own parameters, as `restir\n"
+        "study` (000) and `restir compare` (004, 002) commands, one folder each under DIR:\n"
+        "  000  compatibility-guided neighbor selection: study of restir-pt, M = 1, static camera, 40\n"
+        "       warm-up frames, Bitterli R = 30 vs FAST / BALANCED / CONSERVATIVE (Table 1); on the first\n"
+        "       scene also the R x K grid of Table 2. Scenes forest (for EMERALD SQUARE), ajar (VEACH AJAR).\n"
+        "  004  stochastic pairwise MIS: compare of standard reuse, SPMIS and SPMIS with the compatibility-\n"
+        "       scored cell search, restir-pt and restir-di, the last of 50 frames of the camera path:\n"
+        "       MAPE overall and over disoccluded pixels. Scenes pillars, forest.\n"
+        "  002  gradient-domain ReSTIR PT at the paper's equal-time ratios (ours x 1, Gradient after ReSTIR\n"
+        "       x 2, Area ReSTIR x 4, G-PT 3 spp), L2 and L1 reconstructions, camera path. Scenes ajar,\n"
+        "       cornell.\n"
+        "Every configuration runs --runs independently seeded times (default 4): every number comes with\n"
+        "its standard error. --scenes replaces the paper's scenes; --frames, --warmup and --ref-spp\n"
+        "replace its frame counts (000: 16 measured after 40 warm-up; 004: 50; 002: 16) and the\n"
+        "references' 1024 paths per pixel: the tables say so. A --res below the paper's largest pixel\n"
+        "radius (000: 100, 004 and 002: 30) is refused; smaller images keep the papers' pixel radii.\n"
+        "--plan DIR writes the plan (DIR/jobs.txt: one `restir job DIR K` per configuration, run and\n"
+        "reference; DIR/slurm.sh) for GNU parallel or Slurm; `restir evaluate --merge DIR` then merges\n"
+        "every step and writes the tables. --out DIR plans, runs every job not yet done (so a stopped\n"
+        "evaluation resumes) and merges. A folder that holds another evaluation or another command's\n"
+        "plan is refused, and nothing in it is touched.\n"
+        "Writes DIR/evaluation.md (the paper's tables with spreads and one line per claim: reproduced,\n"
+        "partly or not reproduced, our figure, the paper's, the differences), DIR/claims.csv, each\n"
+        "step's study.csv / compare.csv and with --report DIR/index.html (and each step's page).\n"
+        "docs/EVALUATION.md is made from evaluation.md files (scripts/evaluation_doc.sh).\n");
+}
+
+/* Parses the evaluation's options (argv without the command name); dir and mode (0 none, 'o' --out,
+ * 'p' --plan) may be NULL for a plan's stored arguments. Returns 0, -1 after printing --help, or an
+ * exit code having said why. */
+static int parse(int argc, char **argv, struct eval_options *o, const char **dir, int *mode)
+{
+    char msg[RESTIR_MSG_LEN];
+    memset(o, 0, sizeof *o);
+    o->width = EVAL_PAPER_WIDTH;
+    o->height = EVAL_PAPER_HEIGHT;
+    int report = 0;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            evaluate_usage();
+            return -1;
+        }
+        if (!strcmp(a, "--report")) {
+            report = 1;
+            continue;
+        }
+        if (strncmp(a, "--", 2) != 0) {
+            if (o->paper[0]) {
+                cli_error("evaluate: unexpected argument '%s' (one paper: 000, 004, 002 or all)", a);
+                return EXIT_USAGE;
+            }
+            if (strlen(a) >= sizeof o->paper) {
+                cli_error("evaluate: unknown paper '%.40s' (000, 004, 002 or all)", a);
+                return EXIT_USAGE;
+            }
+            snprintf(o->paper, sizeof o->paper, "%s", a);
+            continue;
+        }
+        if (i + 1 >= argc) {
+            cli_error("evaluate: %s needs a value", a);
+            return EXIT_USAGE;
+        }
+        const char *v = argv[++i];
+        long long x = 0;
+        int rc = 0;
+        if ((!strcmp(a, "--out") || !strcmp(a, "--plan")) && dir && mode) {
+            if (*mode) {
+                cli_error("evaluate: give one of --out DIR and --plan DIR");
+                return EXIT_USAGE;
+            }
+            *dir = v;
+            *mode = a[2];
+        } else if (!strcmp(a, "--res"))
+            rc = cli_parse_res(v, &o->width, &o->height, msg);
+        else if (!strcmp(a, "--runs") && (rc = cli_parse_int(a, v, 2, 64, &x, msg)) == 0)
+            o->runs = (int)x;
+        else if (!strcmp(a, "--frames") && (rc = cli_parse_int(a, v, 4, 100000, &x, msg)) == 0)
+            o->frames = (int)x;
+        else if (!strcmp(a, "--warmup") && (rc = cli_parse_int(a, v, 1, 100000, &x, msg)) == 0)
+            o->warmup = (int)x;
+        else if (!strcmp(a, "--ref-spp") && (rc = cli_parse_int(a, v, 1, 1 << 24, &x, msg)) == 0)
+            o->ref_spp = (int)x;
+        else if (!strcmp(a, "--threads") && (rc = cli_parse_int(a, v, 1, 4096, &x, msg)) == 0)
+            o->threads = (int)x;
+        else if (!strcmp(a, "--scenes")) {
+            if (strlen(v) >= sizeof o->scenes) {
+                cli_error("evaluate: --scenes is longer than %zu characters", sizeof o->scenes - 1);
+                return EXIT_USAGE;
+            }
+            snprintf(o->scenes, sizeof o->scenes, "%s", v);
+        } else if (strcmp(a, "--runs") && strcmp(a, "--frames") && strcmp(a, "--warmup") &&
+                   strcmp(a, "--ref-spp") && strcmp(a, "--threads")) {
+            cli_error("evaluate: unknown option '%s' (restir evaluate --help)", a);
+            return EXIT_USAGE;
+        }
+        if (rc != 0) {
+            cli_error("evaluate: %s", msg);
+            return EXIT_USAGE;
+        }
+    }
+    if (!o->paper[0]) {
+        cli_error("evaluate: which paper? (000, 004, 002 or all; restir evaluate --help)");
+        return EXIT_USAGE;
+    }
+    o->report = report;
+    return 0;
+}
+
+/* The evaluation's options as arguments that do not name a folder: the plan's identity. */
+static int canonical_args(const struct eval_options *o, char *text, size_t len, char **argv)
+{
+    int n = 0;
+    size_t used = 0;
+    char one[300];
+#define ARG(...)                                                                                                   \
+    do {                                                                                                           \
+        snprintf(one, sizeof one, __VA_ARGS__);                                                                    \
+        argv[n++] = text + used;                                                                                   \
+        used += (size_t)snprintf(text + used, len - used, "%s", one) + 1;                                          \
+    } while (0)
+    ARG("%s", o->paper);
+    ARG("--res");
+    ARG("%dx%d", o->width, o->height);
+    ARG("--runs");
+    ARG("%d", eval_runs(o));
+    ARG("--ref-spp");
+    ARG("%d", eval_ref_spp(o));
+    if (o->frames > 0) {
+        ARG("--frames");
+        ARG("%d", o->frames);
+    }
+    if (o->warmup > 0) {
+        ARG("--warmup");
+        ARG("%d", o->warmup);
+    }
+    if (o->scenes[0]) {
+        ARG("--scenes");
+        ARG("%s", o->scenes);
+    }
+    if (o->threads > 0) {
+        ARG("--threads");
+        ARG("%d", o->threads);
+    }
+    if (o->report)
+        ARG("--report");
+#undef ARG
+    return n;
+}
+
+/* Runs `restir KIND args... extra...` in this process. */
+static int run_step_command(const struct eval_step *s, const char *extra1, const char *extra2)
+{
+    char *argv[EVAL_MAX_ARGS + 2];
+    int argc = 0;
+    if (extra1 && !strcmp(extra1, "--merge")) { /* a merge takes the folder only */
+        argv[argc++] = (char *)extra1;
+        argv[argc++] = (char *)extra2;
+    } else {
+        for (int i = 0; i < s->argc; i++)
+            argv[argc++] = s->argv[i];
+        argv[argc++] = (char *)extra1;
+        argv[argc++] = (char *)extra2;
+    }
+    return !strcmp(s->kind, "study") ? cmd_study(argc, argv) : cmd_compare(argc, argv);
+}
+
+static void step_dir(const char *dir, const struct eval_step *s, char *out, size_t len)
+{
+    snprintf(out, len, "%s/%s", dir, s->name);
+}
+
+/* 1 when dir exists and holds anything. */
+static int has_entries(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return 0;
+    int any = 0;
+    for (struct dirent *e = readdir(d); e && !any; e = readdir(d))
+        any = strcmp(e->d_name, ".") && strcmp(e->d_name, "..");
+    closedir(d);
+    return any;
+}
+
+/* The folder may hold nothing, or this very evaluation. Returns 0, or EXIT_USAGE having said why. */
+static int check_folder(const char *dir, uint64_t id, const char *command)
+{
+    char path[PLAN_PATH_MAX + 32], msg[RESTIR_MSG_LEN];
+    snprintf(path, sizeof path, "%s/plan.json", dir);
+    struct stat st;
+    if (stat(path, &st) == 0) {
+        struct plan old;
+        if (plan_load(dir, &old, msg) != 0) {
+            cli_error("evaluate: %s: %s; give another folder", dir, msg);
+            return EXIT_USAGE;
+        }
+        int rc = 0;
+        if (strcmp(old.kind, "evaluate") != 0) {
+            cli_error("evaluate: %s is the plan of `%s`, not an evaluation; give another folder", dir, old.command);
+            rc = EXIT_USAGE;
+        } else if (old.id != id) {
+            cli_error("evaluate: %s holds another evaluation (`%s`), not `%s`; give another folder", dir,
+                      old.command, command);
+            rc = EXIT_USAGE;
+        }
+        plan_free(&old);
+        return rc;
+    }
+    if (has_entries(dir)) {
+        cli_error("evaluate: %s is not empty and holds no evaluation; give an empty or new folder", dir);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+/* Plans every step into DIR/NAME and the evaluation into DIR (plan.json, jobs.txt, slurm.sh).
+ * Returns 0 or an exit code. */
+static int plan_evaluation(const char *dir, const struct eval_options *o, struct eval_step *steps, int n,
+                           struct plan *pl)
+{
+    static char text[4096];
+    char *argv[32], msg[RESTIR_MSG_LEN], command[8192];
+    const int argc = canonical_args(o, text, sizeof text, argv);
+    cli_command_line("evaluate", argc, argv, command, sizeof command);
+    int rc = io_make_dirs(dir, msg) == 0 ? 0 : EXIT_RUNTIME;
+    if (rc != 0) {
+        cli_error("%s", msg);
+        return rc;
+    }
+    char abs[PLAN_PATH_MAX];
+    if (!realpath(dir, abs)) {
+        cli_error("evaluate: cannot resolve %s", dir);
+        return EXIT_RUNTIME;
+    }
+    struct plan probe;
+    if ((rc = plan_start(&probe, abs, "evaluate", argc, argv, 0)) != 0)
+        return rc;
+    rc = check_folder(abs, probe.id, command);
+    plan_free(&probe);
+    if (rc != 0)
+        return rc;
+    for (int k = 0; k < n && rc == 0; k++) {
+        char sub[PLAN_PATH_MAX + 80];
+        step_dir(abs, &steps[k], sub, sizeof sub);
+        printf("evaluate: step %d of %d: %s\n", k + 1, n, steps[k].name);
+        rc = run_step_command(&steps[k], "--plan", sub);
+    }
+    if (rc != 0)
+        return rc;
+    if ((rc = plan_start(pl, abs, "evaluate", argc, argv, 0)) != 0)
+        return rc;
+    for (int k = 0; k < n && rc == 0; k++) {
+        char sub[PLAN_PATH_MAX + 80], name[96], out[160];
+        step_dir(abs, &steps[k], sub, sizeof sub);
+        struct plan sp;
+        if (plan_load(sub, &sp, msg) != 0) {
+            cli_error("%s", msg);
+            rc = EXIT_RUNTIME;
+            break;
+        }
+        for (int j = 0; j < sp.n_jobs; j++) {
+            snprintf(name, sizeof name, "%.30s: %.60s", steps[k].name, sp.jobs[j].name);
+            snprintf(out, sizeof out, "%.60s/%.95s", steps[k].name, sp.jobs[j].output);
+            plan_add_job(pl, name, out);
+        }
+        plan_free(&sp);
+    }
+    if (rc != 0)
+        plan_free(pl);
+    return rc;
+}
+
+/* The options and steps of a loaded evaluation plan. Returns 0 or an exit code. */
+static int plan_steps(const struct plan *pl, struct eval_options *o, struct eval_step *steps, int *n)
+{
+    char msg[RESTIR_MSG_LEN];
+    int rc = parse(pl->argc, pl->argv, o, NULL, NULL);
+    if (rc != 0)
+        return rc < 0 ? EXIT_USAGE : rc;
+    if (eval_steps(o, steps, n, msg) != 0) {
+        cli_error("%s/plan.json: %s", pl->dir, msg);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+int evaluate_run_job(const struct plan *pl, int k)
+{
+    static struct eval_step steps[EVAL_MAX_STEPS];
+    struct eval_options o;
+    int n = 0;
+    int rc = plan_steps(pl, &o, steps, &n);
+    if (rc != 0)
+        return rc;
+    char msg[RESTIR_MSG_LEN], sub[PLAN_PATH_MAX + 80];
+    for (int s = 0; s < n; s++) {
+        step_dir(pl->dir, &steps[s], sub, sizeof sub);
+        struct plan sp;
+        if (plan_load(sub, &sp, msg) != 0) {
+            cli_error("%s", msg);
+            return EXIT_RUNTIME;
+        }
+        if (k < sp.n_jobs) {
+            rc = !strcmp(sp.kind, "study") ? study_run_job(&sp, k) : compare_run_job(&sp, k);
+            plan_free(&sp);
+            return rc;
+        }
+        k -= sp.n_jobs;
+        plan_free(&sp);
+    }
+    cli_error("%s: no job %d in its steps' plans", pl->dir, k + 1);
+    return EXIT_RUNTIME;
+}
+
+/* Merges every step, then writes the tables. Returns an exit code. */
+static int evaluate_merge(const char *dir)
+{
+    struct plan pl;
+    int rc = plan_load_kind(dir, "evaluate", "an evaluation", &pl);
+    if (rc != 0)
+        return rc;
+    static struct eval_step steps[EVAL_MAX_STEPS];
+    struct eval_options o;
+    int n = 0;
+    rc = plan_steps(&pl, &o, steps, &n);
+    char sub[PLAN_PATH_MAX + 80];
+    for (int k = 0; k < n && rc == 0; k++) {
+        step_dir(pl.dir, &steps[k], sub, sizeof sub);
+        printf("evaluate: merging %s\n", steps[k].name);
+        rc = run_step_command(&steps[k], "--merge", sub);
+    }
+    if (rc == 0)
+        rc = evaluate_write_tables(pl.dir, pl.command, &o, steps, n);
+    plan_free(&pl);
+    return rc;
+}
+
+int cmd_evaluate(int argc, char **argv)
+{
+    for (int i = 0; i + 1 < argc; i++)
+        if (!strcmp(argv[i], "--merge")) {
+            if (argc != 2) {
+                cli_error("evaluate --merge DIR takes no other option (the plan holds them)");
+                return EXIT_USAGE;
+            }
+            return evaluate_merge(argv[i + 1]);
+        }
+    struct eval_options o;
+    const char *dir = NULL;
+    int mode = 0;
+    int rc = parse(argc, argv, &o, &dir, &mode);
+    if (rc != 0)
+        return rc < 0 ? 0 : rc;
+    if (!mode) {
+        cli_error("evaluate: give --out DIR (plan, run and merge) or --plan DIR (plan only)");
+        return EXIT_USAGE;
+    }
+    static struct eval_step steps[EVAL_MAX_STEPS];
+    int n = 0;
+    char msg[RESTIR_MSG_LEN];
+    if (eval_steps(&o, steps, &n, msg) != 0) {
+        cli_error("evaluate: %s", msg);
+        return EXIT_USAGE;
+    }
+    struct plan pl;
+    if ((rc = plan_evaluation(dir, &o, steps, n, &pl)) != 0)
+        return rc;
+    if (mode == 'p')
+        return plan_finish(&pl);
+    if (plan_write(&pl, msg) != 0) {
+        cli_error("%s", msg);
+        plan_free(&pl);
+        return EXIT_RUNTIME;
+    }
+    for (int k = 0; k < pl.n_jobs && rc == 0; k++) /* finished jobs say so and return at once */
+        rc = evaluate_run_job(&pl, k);
+    char abs[PLAN_PATH_MAX];
+    snprintf(abs, sizeof abs, "%s", pl.dir);
+    plan_free(&pl);
+    return rc != 0 ? rc : evaluate_merge(abs);
+}

@@ -1,0 +1,460 @@
+/* evaluate_tables.c: the papers' tables and a verdict per claim from an evaluation's merged steps
+ * (evaluate_tables.h; issue 25). Must never run a command or render: it reads study.csv and compare.csv. */
+#include "evaluate_tables.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "core/check.h"
+#include "csv_table.h"
+#include "io/atomic_file.h"
+#include "io/html_report.h"
+#include "io/report.h"
+#include "report_commit.h"
+
+#define PATH_LEN 4400
+
+/* A growing text. */
+struct text {
+    char *s;
+    size_t len, cap;
+};
+
+static void put(struct text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void put(struct text *t, const char *fmt, ...)
+{
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        const int n = vsnprintf(t->s ? t->s + t->len : NULL, t->s ? t->cap - t->len : 0, fmt, ap);
+        va_end(ap);
+        RESTIR_CHECK(n >= 0);
+        if (t->s && t->len + (size_t)n < t->cap) {
+            t->len += (size_t)n;
+            return;
+        }
+        t->cap = 2 * (t->cap + (size_t)n + 256);
+        t->s = realloc(t->s, t->cap);
+        RESTIR_CHECK(t->s != NULL);
+    }
+}
+
+/* A relative change ours / base - 1 in percent, with its standard deviation from the two standard
+ * errors (independent runs; first-order propagation). sd is NaN when either has no spread. */
+struct change {
+    double pct, sd;
+};
+
+static struct change rel_change(double ours, double ours_sem, double base, double base_sem)
+{
+    struct change c = {100.0 * (ours / base - 1.0), NAN};
+    if (isfinite(ours_sem) && isfinite(base_sem))
+        c.sd = 100.0 * sqrt(ours_sem * ours_sem / (base * base) +
+                            ours * ours * base_sem * base_sem / (base * base * base * base));
+    return c;
+}
+
+/* A claimed cost of at most hi percent more, as verdict()'s lo: reproduced when the change is at most
+ * hi (times have no spread: one machine, means over frames and runs). */
+#define COST_CLAIM(hi) (-1000.0 - (hi))
+
+/* The verdict on a claimed reduction of at least lo percent (0: any reduction; negative: no claim), judged at two
+ * standard deviations: reproduced (significantly lower, and lo within reach), partly (significantly
+ * lower, but less than lo), not reproduced (within the noise, or higher). */
+static const char *verdict(struct change c, double lo, char *why, size_t len)
+{
+    if (lo <= -1000.0) { /* a cost claim */
+        const double hi = -1000.0 - lo;
+        snprintf(why, len, "%s", c.pct <= hi ? "" : "costs more");
+        return !isfinite(c.pct) ? "not measured" : c.pct <= hi ? "reproduced" : "not reproduced";
+    }
+    if (lo < 0.0) { /* no claim to judge (our own variant): which way it went, at two standard deviations */
+        const double sd = isfinite(c.sd) ? c.sd : 0.0;
+        snprintf(why, len, "%s", isfinite(c.sd) ? "" : "no spread");
+        return !isfinite(c.pct)         ? "not measured"
+               : c.pct + 2.0 * sd < 0.0 ? "lower"
+               : c.pct - 2.0 * sd > 0.0 ? "higher"
+                                        : "no difference";
+    }
+    const double sd = isfinite(c.sd) ? c.sd : 0.0;
+    const char *spread = isfinite(c.sd) ? "" : " (no spread)";
+    if (!isfinite(c.pct)) {
+        snprintf(why, len, "not measured");
+        return "not measured";
+    }
+    if (c.pct + 2.0 * sd < 0.0 && c.pct - 2.0 * sd <= -lo) {
+        snprintf(why, len, "%s", spread);
+        return "reproduced";
+    }
+    if (c.pct + 2.0 * sd < 0.0) {
+        snprintf(why, len, "a smaller gain than the paper's%s", spread);
+        return "partly";
+    }
+    if (c.pct - 2.0 * sd > 0.0)
+        snprintf(why, len, "worse%s", spread);
+    else
+        snprintf(why, len, "within the noise");
+    return "not reproduced";
+}
+
+static void fmt_change(struct change c, char *out, size_t len)
+{
+    if (isfinite(c.sd))
+        snprintf(out, len, "%+.1f%% +- %.1f", c.pct, c.sd);
+    else
+        snprintf(out, len, "%+.1f%%", c.pct);
+}
+
+static void fmt_pm(double v, double sem, char *out, size_t len)
+{
+    if (!isfinite(v))
+        snprintf(out, len, "-");
+    else if (isfinite(sem))
+        snprintf(out, len, "%.4g +- %.2g", v, sem);
+    else
+        snprintf(out, len, "%.4g", v);
+}
+
+/* The claims, as lines of evaluation.md and rows of claims.csv. */
+struct claims {
+    struct text md;
+    struct csv_writer csv;
+    int csv_ok;
+};
+
+/* One claim's line: what (the claim), where (scene, base), our change, the paper's figure, lo as in
+ * verdict(), and the setup's differences from the paper's (said when not reproduced). */
+static void claim(struct claims *cl, const char *paper, const char *what, const char *where, struct change c,
+                  const char *paper_figure, double lo, const char *differences)
+{
+    char ours[64], why[160], f[4][400];
+    fmt_change(c, ours, sizeof ours);
+    const char *v = verdict(c, lo, why, sizeof why);
+    const int ok = !strcmp(v, "reproduced") || (lo < 0.0 && lo > -1000.0);
+    char reason[600];
+    snprintf(reason, sizeof reason, "%s%s%s", why, ok || !why[0] ? "" : "; ", ok ? "" : differences);
+    put(&cl->md, "| %s | %s | %s | %s | **%s** | %s |\n", what, where, ours, paper_figure, v,
+        reason[0] ? reason : "-");
+    if (cl->csv_ok) {
+        csv_field(f[0], sizeof f[0], what);
+        csv_field(f[1], sizeof f[1], where);
+        csv_field(f[2], sizeof f[2], paper_figure);
+        csv_field(f[3], sizeof f[3], reason);
+        csv_row(&cl->csv, "%s,%s,%s,%.4g,%.4g,%s,%s,%s", paper, f[0], f[1], c.pct, c.sd, f[2], v, f[3]);
+    }
+}
+
+/* Ends a paper's section: its claims' table, then empties the claims' lines. */
+static void flush_claims(struct text *md, struct claims *cl, const char *paper)
+{
+    put(md,
+        "\n#### Claims of %s\n\nOurs: the relative change with its standard deviation (from the standard "
+        "errors); verdicts at two standard deviations.\n\n"
+        "| claim | where | ours (change) | paper | verdict | why / differences |\n|---|---|---|---|---|---|\n%s",
+        paper, cl->md.s ? cl->md.s : "");
+    cl->md.len = 0;
+    if (cl->md.s)
+        cl->md.s[0] = '\0';
+}
+
+/* The scene of ours that stands in for one of the paper's, as "ours (for PAPER'S)". */
+static void scene_label(const char *paper, const char *scene, char *out, size_t len)
+{
+    for (const struct eval_scene_note *n = eval_scene_notes; n->paper; n++)
+        if (!strcmp(n->paper, paper) && !strcmp(n->scene, scene)) {
+            snprintf(out, len, "%s (for %s)", scene, n->stands_for);
+            return;
+        }
+    snprintf(out, len, "%s", scene);
+}
+
+/* What every line of a paper's claims shares: the setup's departures from the paper's. */
+static void differences(const struct eval_options *o, const char *paper, const char *scene, char *out, size_t len)
+{
+    char res[64] = "";
+    if (o->width != EVAL_PAPER_WIDTH || o->height != EVAL_PAPER_HEIGHT)
+        snprintf(res, sizeof res, "%dx%d, not 1920x1080; ", o->width, o->height);
+    const char *scene_note = "scene: ours";
+    for (const struct eval_scene_note *n = eval_scene_notes; n->paper; n++)
+        if (!strcmp(n->paper, paper) && !strcmp(n->scene, scene))
+            scene_note = "scene: ours, not the paper's";
+    const char *method = !strcmp(paper, "000")
+                             ? "base: our ReSTIR PT (hybrid shift, sub-pixel reservoirs, splatting)"
+                         : !strcmp(paper, "004")
+                             ? "disocclusion: history rejected in the last 4 frames (the paper does not define it)"
+                             : "equal time by the paper's GPU ratios; our times are in the table";
+    snprintf(out, len, "%s%s; %s", res, scene_note, method);
+}
+
+static int read_step_csv(const char *dir, const struct eval_step *s, struct csv_table *t)
+{
+    char path[PATH_LEN], msg[RESTIR_MSG_LEN];
+    snprintf(path, sizeof path, "%s/%s/%s.csv", dir, s->name, s->kind);
+    if (csv_table_read(path, t, msg) != 0) {
+        cli_error("evaluate: %s", msg);
+        return -1;
+    }
+    return 0;
+}
+
+/* 000: Table 1 (pass times), the quality metrics of Table 2's layout, the claims. */
+static void paper_000(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
+                      const struct csv_table *t)
+{
+    static const char *const presets[] = {"fast", "balanced", "conservative"};
+    char where[96], diff[300], a[64], b[64];
+    char heading[96];
+    scene_label("000", s->scene, heading, sizeof heading);
+    snprintf(where, sizeof where, "%s", s->scene);
+    differences(o, "000", s->scene, diff, sizeof diff);
+    put(md,
+        "\n### %s\n\nTable 1 layout (pass times, ms, means over the measured frames and runs):\n\n"
+        "| config | R | K | select | spatial | frame | frame vs Bitterli |\n|---|---|---|---|---|---|---|\n",
+        heading);
+    const int bit = csv_table_find(t, "bitterli");
+    const double base_ms = csv_table_num(t, bit, "ms_frame");
+    for (int r = 0; r < t->nrow; r++) {
+        const double ms = csv_table_num(t, r, "ms_frame");
+        put(md, "| %s | %g | %g | %.1f | %.1f | %.1f | %+.1f%% |\n", t->cell[(size_t)(r + 1) * t->ncol],
+            csv_table_num(t, r, "radius"), csv_table_num(t, r, "K"), csv_table_num(t, r, "ms_select"),
+            csv_table_num(t, r, "ms_spatial"), ms, 100.0 * (ms / base_ms - 1.0));
+    }
+    put(md, "\nTable 2 layout (SMAPE in %% with standard errors over the runs; relative temporal covariance at lag "
+            "3 and spatial covariance within 8 px, 000 Appendix A; hard pixels: 000 Sec. 7):\n\n"
+            "| config | R | K | SMAPE | hard SMAPE | temporal cov | spatial cov | frame ms |\n"
+            "|---|---|---|---|---|---|---|---|\n");
+    for (int r = 0; r < t->nrow; r++) {
+        fmt_pm(csv_table_num(t, r, "smape_all"), csv_table_num(t, r, "smape_all_sem"), a, sizeof a);
+        fmt_pm(csv_table_num(t, r, "smape_hard"), csv_table_num(t, r, "smape_hard_sem"), b, sizeof b);
+        put(md, "| %s | %g | %g | %s | %s | %.4g | %.4g | %.1f |\n", t->cell[(size_t)(r + 1) * t->ncol],
+            csv_table_num(t, r, "radius"), csv_table_num(t, r, "K"), a, b, csv_table_num(t, r, "temporal_cov"),
+            csv_table_num(t, r, "spatial_cov"), csv_table_num(t, r, "ms_frame"));
+    }
+    for (int k = 0; k < 3; k++) {
+        const int r = csv_table_find(t, presets[k]);
+        char what[96];
+        snprintf(what, sizeof what, "%s: SMAPE vs Bitterli R = 30", presets[k]);
+        claim(cl, "000", what, where,
+              rel_change(csv_table_num(t, r, "smape_all"), csv_table_num(t, r, "smape_all_sem"),
+                         csv_table_num(t, bit, "smape_all"), csv_table_num(t, bit, "smape_all_sem")),
+              "-6% to -29%", 6.0, diff);
+        snprintf(what, sizeof what, "%s: hard-pixel SMAPE vs Bitterli", presets[k]);
+        claim(cl, "000", what, where,
+              rel_change(csv_table_num(t, r, "smape_hard"), csv_table_num(t, r, "smape_hard_sem"),
+                         csv_table_num(t, bit, "smape_hard"), csv_table_num(t, bit, "smape_hard_sem")),
+              "-26% to -29%", 26.0, diff);
+        snprintf(what, sizeof what, "%s: temporal covariance vs Bitterli", presets[k]);
+        claim(cl, "000", what, where,
+              rel_change(csv_table_num(t, r, "temporal_cov"), NAN, csv_table_num(t, bit, "temporal_cov"), NAN),
+              "-22% to -49%", 22.0, diff);
+        snprintf(what, sizeof what, "%s: frame time vs Bitterli (cost)", presets[k]);
+        claim(cl, "000", what, where, rel_change(csv_table_num(t, r, "ms_frame"), NAN, base_ms, NAN), "+2% to +5%",
+              COST_CLAIM(5.0), diff);
+    }
+}
+
+/* 004: the main table (MAPE overall and over disoccluded pixels) and its claims. */
+static void paper_004(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
+                      const struct csv_table *t)
+{
+    char where[128], scene[96], diff[300], a[64], b[64], c[64], label[3][160];
+    scene_label("004", s->scene, scene, sizeof scene);
+    snprintf(where, sizeof where, "%s, %s", s->scene, s->base);
+    differences(o, "004", s->scene, diff, sizeof diff);
+    snprintf(label[0], sizeof label[0], "%s", s->base);
+    snprintf(label[1], sizeof label[1], "%s:spatial.reuse=spmis", s->base);
+    snprintf(label[2], sizeof label[2], "%s:spatial.reuse=spmis:spmis.search_score=compat", s->base);
+    static const char *const names[] = {"standard (3 neighbors, 30 px)", "SPMIS (004)",
+                                        "SPMIS, compat search (ours)"};
+    put(md,
+        "\n### %s, %s\n\nLast frame (%d) of the camera path, means over %d runs +- standard errors:\n\n"
+        "| reuse | ms/frame | MAPE | MAPE disoccluded | disoccluded share | relMSE |\n|---|---|---|---|---|---|\n",
+        scene, s->base, eval_frames(o, "004") - 1, eval_runs(o));
+    int row[3];
+    for (int k = 0; k < 3; k++) {
+        const int r = row[k] = csv_table_find(t, label[k]);
+        fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), a, sizeof a);
+        fmt_pm(csv_table_num(t, r, "mape_disoccluded"), csv_table_num(t, r, "mape_disoccluded_sem"), b, sizeof b);
+        fmt_pm(csv_table_num(t, r, "relmse"), csv_table_num(t, r, "relmse_sem"), c, sizeof c);
+        put(md, "| %s | %.1f | %s | %s | %.3f | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b,
+            csv_table_num(t, r, "disoccluded_share"), c);
+    }
+    static const char *const col[2][2] = {{"mape", "mape_sem"}, {"mape_disoccluded", "mape_disoccluded_sem"}};
+    static const char *const what[2][2] = {
+        {"SPMIS: MAPE overall vs standard", "SPMIS: MAPE disoccluded vs standard"},
+        {"compat search (ours): MAPE overall vs standard", "compat search (ours): MAPE disoccluded vs standard"}};
+    for (int v = 0; v < 2; v++)
+        for (int m = 0; m < 2; m++)
+            claim(cl, "004", what[v][m], where,
+                  rel_change(csv_table_num(t, row[v + 1], col[m][0]), csv_table_num(t, row[v + 1], col[m][1]),
+                             csv_table_num(t, row[0], col[m][0]), csv_table_num(t, row[0], col[m][1])),
+                  v   ? "none (not in the paper)"
+                  : m ? "lower, \"especially in disocclusions\""
+                      : "lower overall",
+                  v ? -1.0 : 0.0, diff);
+}
+
+/* 002: the equal-time table (L2 and L1) and its claims. */
+static void paper_002(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
+                      const struct csv_table *t)
+{
+    char where[96], diff[300], a[64], b[64];
+    char heading[96];
+    scene_label("002", s->scene, heading, sizeof heading);
+    snprintf(where, sizeof where, "%s", s->scene);
+    differences(o, "002", s->scene, diff, sizeof diff);
+    put(md,
+        "\n### %s\n\nLast frame (%d) of the camera path, the paper's equal-time ratios; means over %d runs +- "
+        "standard errors:\n\n| method | instances | spp | ms/frame | relMSE | MAPE |\n|---|---|---|---|---|---|\n",
+        heading, eval_frames(o, "002") - 1, eval_runs(o));
+    for (int r = 0; r < t->nrow; r++) {
+        fmt_pm(csv_table_num(t, r, "relmse"), csv_table_num(t, r, "relmse_sem"), a, sizeof a);
+        fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), b, sizeof b);
+        put(md, "| %s | %g | %g | %.1f | %s | %s |\n", t->cell[(size_t)(r + 1) * t->ncol],
+            csv_table_num(t, r, "instances"), csv_table_num(t, r, "spp"), csv_table_num(t, r, "ms_per_frame"), a,
+            b);
+    }
+    static const char *const ours[2] = {"grestir-pt", "grestir-pt:recon=l1"};
+    static const char *const rivals[2][3] = {
+        {"grad-after-restir:instances=2", "area-restir:instances=4", "gpt:spp=3"},
+        {"grad-after-restir:instances=2:recon=l1", "area-restir:instances=4", "gpt:spp=3:recon=l1"}};
+    static const char *const names[3] = {"Gradient after ReSTIR x 2", "Area ReSTIR x 4", "G-PT 3 spp"};
+    for (int l = 0; l < 2; l++) {
+        const int me = csv_table_find(t, ours[l]);
+        for (int k = 0; k < 3; k++) {
+            const int r = csv_table_find(t, rivals[l][k]);
+            char what[128];
+            snprintf(what, sizeof what, "%s: relMSE vs %s", l ? "L1" : "L2", names[k]);
+            claim(cl, "002", what, where,
+                  rel_change(csv_table_num(t, me, "relmse"), csv_table_num(t, me, "relmse_sem"),
+                             csv_table_num(t, r, "relmse"), csv_table_num(t, r, "relmse_sem")),
+                  "lower at equal time (Fig. 7, 8; no numbers)", 0.0, diff);
+        }
+    }
+}
+
+static const char *paper_title(const char *paper)
+{
+    return !strcmp(paper, "000")   ? "000: compatibility-guided spatial neighbor selection"
+           : !strcmp(paper, "004") ? "004: stochastic pairwise MIS with reuse cells"
+                                   : "002: gradient-domain ReSTIR PT";
+}
+
+/* Writes text to path through a temporary file. Returns 0, or -1 with msg. */
+static int write_file(const char *path, const char *text, size_t len, char *msg)
+{
+    char tmp[PATH_LEN + 64];
+    io_temp_path(path, tmp, sizeof tmp);
+    FILE *f = fopen(tmp, "w");
+    if (!f) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: cannot write", path);
+        return -1;
+    }
+    const int bad = fwrite(text, 1, len, f) != len;
+    if (bad | ferror(f) | fclose(f)) {
+        remove(tmp);
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: write failed", path);
+        return -1;
+    }
+    return io_commit(tmp, path, msg);
+}
+
+/* index.html: the evaluation's text and a link to each step's own page. */
+static int write_index(const char *dir, const char *command, const struct eval_step *steps, int n, const char *md,
+                       char *msg)
+{
+    char path[PATH_LEN];
+    snprintf(path, sizeof path, "%s/index.html", dir);
+    struct html_page pg;
+    if (html_begin(&pg, path, "restir evaluate", msg) != 0)
+        return -1;
+    html_run_info(&pg, command, RESTIR_GIT_COMMIT);
+    html_raw(&pg, "<h2>Steps</h2><ul>");
+    for (int k = 0; k < n; k++)
+        html_raw(&pg, "<li><a href=\"%s/index.html\">%s</a> (restir %s)</li>", steps[k].name, steps[k].name,
+                 steps[k].kind);
+    html_raw(&pg, "</ul><h2>Tables and claims</h2><pre>");
+    html_text(&pg, md);
+    html_raw(&pg, "</pre>");
+    return html_end(&pg, msg);
+}
+
+int evaluate_write_tables(const char *dir, const char *command, const struct eval_options *o,
+                          const struct eval_step *steps, int n)
+{
+    char msg[RESTIR_MSG_LEN], path[PATH_LEN];
+    struct text md = {0};
+    struct claims cl;
+    memset(&cl, 0, sizeof cl);
+    snprintf(path, sizeof path, "%s/claims.csv", dir);
+    if (csv_open(&cl.csv, path, "paper,claim,where,ours_change_pct,ours_change_sd,paper_figure,verdict,why", msg) !=
+        0) {
+        cli_error("%s", msg);
+        return EXIT_RUNTIME;
+    }
+    cl.csv_ok = 1;
+    int rc = 0;
+    const char *current = "";
+    for (int k = 0; k < n && rc == 0; k++) {
+        const struct eval_step *s = &steps[k];
+        if (strcmp(current, s->paper) != 0) { /* a paper's section: its setup, then its steps, then its claims */
+            if (current[0])
+                flush_claims(&md, &cl, current);
+            current = s->paper;
+            put(&md,
+                "\n## %s\n\n`%s`\n\n%dx%d (the paper: %dx%d), %d independently seeded runs per configuration, "
+                "references of %d paths per pixel, ",
+                paper_title(current), command, o->width, o->height, EVAL_PAPER_WIDTH, EVAL_PAPER_HEIGHT,
+                eval_runs(o), eval_ref_spp(o));
+            if (!strcmp(current, "000"))
+                put(&md, "static camera, %d warm-up frames, %d measured frames.\n", eval_warmup(o),
+                    eval_frames(o, current));
+            else
+                put(&md, "camera path, error of frame %d.\n", eval_frames(o, current) - 1);
+            put(&md, "Pixel radii as in the paper (not scaled with the resolution).\n");
+            for (int j = k; j < n && !strcmp(steps[j].paper, current); j++)
+                for (const struct eval_scene_note *sn = eval_scene_notes; sn->paper; sn++)
+                    if (!strcmp(sn->paper, current) && !strcmp(sn->scene, steps[j].scene) &&
+                        (j == k || strcmp(steps[j - 1].scene, steps[j].scene)))
+                        put(&md, "- scene `%s` for %s: %s.\n", sn->scene, sn->stands_for, sn->why);
+        }
+        struct csv_table t;
+        if (read_step_csv(dir, s, &t) != 0) {
+            rc = EXIT_RUNTIME;
+            break;
+        }
+        if (!strcmp(s->paper, "000"))
+            paper_000(&md, &cl, o, s, &t);
+        else if (!strcmp(s->paper, "004"))
+            paper_004(&md, &cl, o, s, &t);
+        else
+            paper_002(&md, &cl, o, s, &t);
+        csv_table_free(&t);
+    }
+    if (rc == 0 && current[0])
+        flush_claims(&md, &cl, current);
+    free(cl.md.s);
+    if (rc == 0 && csv_close(&cl.csv, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    } else if (rc != 0)
+        csv_abort(&cl.csv);
+    snprintf(path, sizeof path, "%s/evaluation.md", dir);
+    if (rc == 0 && write_file(path, md.s, md.len, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    if (rc == 0 && o->report && write_index(dir, command, steps, n, md.s, msg) != 0) {
+        cli_error("--report: %s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    if (rc == 0)
+        printf("%s\nevaluation: %s/evaluation.md, %s/claims.csv%s\n", md.s, dir, dir,
+               o->report ? ", index.html" : "");
+    free(md.s);
+    return rc;
+}

@@ -1,0 +1,13 @@
+/* evaluate_tables.h: an evaluation's tables and verdicts from its steps' study.csv / compare.csv
+ * (evaluate_tables.c; issue 25). Must never run a command: it reads what the merges wrote. */
+#ifndef RESTIR_APP_EVALUATE_TABLES_H
+#define RESTIR_APP_EVALUATE_TABLES_H
+
+#include "evaluate_papers.h"
+
+/* Writes DIR/evaluation.md, DIR/claims.csv and with o->report DIR/index.html from the merged steps
+ * (folders DIR/NAME). Returns an exit code. */
+int evaluate_write_tables(const char *dir, const char *command, const struct eval_options *o,
+                          const struct eval_step *steps, int n);
+
+#endif

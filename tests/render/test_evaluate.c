@@ -1,0 +1,206 @@
+/* test_evaluate.c: `restir evaluate` (issue 25) at small resolution. The evaluation of all three
+ * papers run unsplit (--out) equals the same evaluation planned, its jobs run by GNU parallel in
+ * shuffled order and merged (every step's table but its timing columns, and every claim but the
+ * timed ones); a step's table equals what `restir compare` writes for the same command, and the
+ * evaluation's tables and claims show its numbers; bad input (an unknown paper or scene, a
+ * resolution below the paper's radii, a folder of another evaluation or of another command's plan,
+ * a non-empty folder) exits 2 and leaves the folder as it was. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include "cli_util.h"
+#include "test_util.h"
+
+static char tmp[CLI_PATH_MAX];
+
+#define EVAL_ARGS "--res 208x208 --runs 2 --frames 4 --warmup 2 --ref-spp 8 --scenes cornell"
+
+static int sh(const char *fmt, const char *a, const char *b)
+{
+    char cmd[6 * CLI_PATH_MAX];
+    snprintf(cmd, sizeof cmd, fmt, a, b);
+    int st = system(cmd);
+    return st == -1 || !WIFEXITED(st) ? -1 : WEXITSTATUS(st);
+}
+
+static int exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+/* The lines of a text file that do not contain `skip`, concatenated. */
+static void lines_without(const char *path, const char *skip, char *out, size_t n)
+{
+    static char text[1 << 17];
+    cli_read_text(path, text, sizeof text);
+    size_t o = 0;
+    for (char *line = text, *next; line && *line; line = next) {
+        next = strchr(line, '\n');
+        if (next)
+            *next++ = '\0';
+        if (!strstr(line, skip))
+            o += (size_t)snprintf(out + o, n - o, "%s\n", line);
+    }
+    out[o < n ? o : n - 1] = '\0';
+}
+
+static void test_bad_input(char *err)
+{
+    char dir[2 * CLI_PATH_MAX], args[6 * CLI_PATH_MAX], before[1 << 14], after[1 << 14], path[3 * CLI_PATH_MAX];
+    snprintf(dir, sizeof dir, "%s/bad", tmp);
+    snprintf(args, sizeof args, "evaluate 007 --out '%s'", dir);
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "unknown paper '007'"), "unknown paper: %s", err);
+    snprintf(args, sizeof args, "evaluate 000 --res 320x180 --out '%s'", dir);
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "CONSERVATIVE") && strstr(err, "201x201"),
+           "000 below its radii: %s", err);
+    snprintf(args, sizeof args, "evaluate 004 --res 48x48 --plan '%s'", dir);
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "61x61"), "004 below its radii: %s", err);
+    snprintf(args, sizeof args, "evaluate 004 --scenes nowhere --out '%s'", dir);
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "'nowhere'"), "unknown scene: %s", err);
+    EXPECT(!exists(dir), "a refused evaluation made its folder");
+
+    /* a folder of another evaluation: refused, untouched */
+    snprintf(args, sizeof args, "evaluate 004 --res 64x64 --runs 2 --frames 4 --scenes cornell --plan '%s'", dir);
+    EXPECT(cli_run(tmp, args, err) == 0, "evaluate --plan: %s", err);
+    snprintf(path, sizeof path, "%s/plan.json", dir);
+    cli_read_text(path, before, sizeof before);
+    snprintf(args, sizeof args, "evaluate 004 --res 64x64 --runs 3 --frames 4 --scenes cornell --plan '%s'", dir);
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "holds another evaluation"), "another evaluation: %s", err);
+    cli_read_text(path, after, sizeof after);
+    EXPECT(before[0] && !strcmp(before, after), "a refused evaluation rewrote plan.json");
+    /* the same evaluation again: accepted (it resumes) */
+    snprintf(args, sizeof args, "evaluate 004 --res 64x64 --runs 2 --frames 4 --scenes cornell --plan '%s'", dir);
+    EXPECT(cli_run(tmp, args, err) == 0, "the same evaluation planned again: %s", err);
+
+    /* another command's plan, and a folder that is not empty */
+    snprintf(path, sizeof path, "%s/compare_plan", tmp);
+    snprintf(args, sizeof args, "compare --scene cornell --methods pt --res 16x16 --plan '%s'", path);
+    EXPECT(cli_run(tmp, args, err) == 0, "compare --plan: %s", err);
+    snprintf(args, sizeof args, "evaluate 004 --res 64x64 --scenes cornell --out '%s'", path);
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "is the plan of `restir compare"), "a compare plan: %s",
+           err);
+    EXPECT(sh("mkdir -p '%s/full' && touch '%s/full/notes.txt'", tmp, tmp) == 0, "cannot make a folder");
+    snprintf(args, sizeof args, "evaluate 004 --res 64x64 --scenes cornell --out '%s/full'", tmp);
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "not empty"), "a non-empty folder: %s", err);
+    snprintf(path, sizeof path, "%s/full/plan.json", tmp);
+    EXPECT(!exists(path), "a refused evaluation wrote into a non-empty folder");
+    snprintf(args, sizeof args, "evaluate --merge '%s/full'", tmp);
+    EXPECT(cli_run(tmp, args, err) != 0, "merge of a folder without an evaluation succeeded");
+}
+
+/* The steps of `evaluate all` with --scenes cornell, and the columns of their tables that are times. */
+static const struct {
+    const char *name, *table;
+    int first, last;
+} steps[] = {{"000-cornell", "study", 8, 10},
+             {"004-cornell-restir-pt", "compare", 1, 1},
+             {"004-cornell-restir-di", "compare", 1, 1},
+             {"002-cornell", "compare", 1, 1}};
+
+static void test_plan_equals_unsplit(char *err)
+{
+    char unsplit[2 * CLI_PATH_MAX], plan[2 * CLI_PATH_MAX], args[6 * CLI_PATH_MAX];
+    snprintf(unsplit, sizeof unsplit, "%s/unsplit", tmp);
+    snprintf(plan, sizeof plan, "%s/planned", tmp);
+    snprintf(args, sizeof args, "evaluate all " EVAL_ARGS " --out '%s'", unsplit);
+    EXPECT(cli_run(tmp, args, err) == 0, "evaluate all --out: %s", err);
+    snprintf(args, sizeof args, "evaluate all " EVAL_ARGS " --plan '%s'", plan);
+    EXPECT(cli_run(tmp, args, err) == 0, "evaluate all --plan: %s", err);
+    EXPECT(sh("shuf '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel -j 2 > '%s/parallel.log' 2>&1", plan, plan) == 0,
+           "GNU parallel: an evaluation job failed");
+    snprintf(args, sizeof args, "evaluate --merge '%s'", plan);
+    EXPECT(cli_run(tmp, args, err) == 0, "evaluate --merge: %s", err);
+    static char a[1 << 17], b[1 << 17];
+    char pa[3 * CLI_PATH_MAX], pb[3 * CLI_PATH_MAX];
+    for (size_t k = 0; k < sizeof steps / sizeof steps[0]; k++) {
+        snprintf(pa, sizeof pa, "%s/%s/%s.csv", unsplit, steps[k].name, steps[k].table);
+        snprintf(pb, sizeof pb, "%s/%s/%s.csv", plan, steps[k].name, steps[k].table);
+        cli_csv_without_columns(pa, steps[k].first, steps[k].last, a, sizeof a);
+        cli_csv_without_columns(pb, steps[k].first, steps[k].last, b, sizeof b);
+        EXPECT(a[0] && !strcmp(a, b), "%s: the merged %s.csv differs from the unsplit one:\n%s\nvs\n%s",
+               steps[k].name, steps[k].table, a, b);
+    }
+    snprintf(pa, sizeof pa, "%s/claims.csv", unsplit);
+    snprintf(pb, sizeof pb, "%s/claims.csv", plan);
+    lines_without(pa, "frame time", a, sizeof a);
+    lines_without(pb, "frame time", b, sizeof b);
+    EXPECT(strstr(a, "\n004,") && strstr(a, "\n000,") && strstr(a, "\n002,") && !strcmp(a, b),
+           "merged claims.csv differs from the unsplit one (or misses a paper):\n%s\nvs\n%s", a, b);
+    snprintf(pa, sizeof pa, "%s/index.html", unsplit);
+    EXPECT(!exists(pa), "index.html without --report");
+    printf(
+        "evaluate all (000, 004, 002 on cornell at 208x208, 2 runs): planned, the jobs run in shuffled order "
+        "under GNU parallel, merged = unsplit (4 step tables but their times, claims.csv but its timed claims)\n");
+}
+
+/* The 004 step's table is what `restir compare` writes for its command, and the evaluation's tables
+ * and claims show those numbers. */
+static void test_tables_are_compares(char *err)
+{
+    char out[2 * CLI_PATH_MAX], args[8 * CLI_PATH_MAX], path[3 * CLI_PATH_MAX];
+    snprintf(out, sizeof out, "%s/compare_004", tmp);
+    snprintf(args, sizeof args,
+             "compare --scene cornell --res 208x208 --runs 2 --ref-spp 8 --frames 4 --camera path --methods "
+             "'restir-pt,restir-pt:spatial.reuse=spmis,restir-pt:spatial.reuse=spmis:spmis.search_score=compat' "
+             "--set spatial.neighbors=3 --set spatial.radius=30 --set mis=pairwise --set confidence_cap=20 --set "
+             "pt.candidates=1 --set pt.max_bounces=8 --out '%s'",
+             out);
+    EXPECT(cli_run(tmp, args, err) == 0, "compare: %s", err);
+    static char a[1 << 16], b[1 << 16], md[1 << 17];
+    snprintf(path, sizeof path, "%s/compare.csv", out);
+    cli_csv_without_columns(path, 1, 1, a, sizeof a);
+    char step[3 * CLI_PATH_MAX];
+    snprintf(step, sizeof step, "%s/unsplit/004-cornell-restir-pt/compare.csv", tmp);
+    cli_csv_without_columns(step, 1, 1, b, sizeof b);
+    EXPECT(a[0] && !strcmp(a, b), "the 004 step's compare.csv differs from restir compare's:\n%s\nvs\n%s", b, a);
+
+    /* MAPE and its standard error of standard reuse and SPMIS, from compare.csv */
+    double mape[2] = {NAN, NAN}, sem[2] = {NAN, NAN};
+    cli_read_text(path, a, sizeof a);
+    char *line = strchr(a, '\n');
+    for (int k = 0; k < 2 && line; k++) {
+        line++;
+        double v[16];
+        char *c = strchr(line, ',');
+        for (int j = 0; j < 16 && c; j++) { /* columns 1.. */
+            v[j] = strtod(c + 1, NULL);
+            c = strchr(c + 1, ',');
+        }
+        mape[k] = v[4]; /* mape (column 5) */
+        sem[k] = v[10]; /* mape_sem (column 11) */
+        line = strchr(line, '\n');
+    }
+    char want[128];
+    snprintf(path, sizeof path, "%s/unsplit/evaluation.md", tmp);
+    cli_read_text(path, md, sizeof md);
+    snprintf(want, sizeof want, "| standard (3 neighbors, 30 px) | ");
+    EXPECT(strstr(md, want), "evaluation.md has no standard-reuse row");
+    snprintf(want, sizeof want, "| %.4g +- %.2g |", mape[0], sem[0]);
+    EXPECT(strstr(md, want), "evaluation.md does not show compare's MAPE of standard reuse '%s'", want);
+    const double pct = 100.0 * (mape[1] / mape[0] - 1.0);
+    snprintf(want, sizeof want, "| SPMIS: MAPE overall vs standard | cornell, restir-pt | %+.1f%% +- ", pct);
+    EXPECT(strstr(md, want), "the SPMIS claim does not show compare's change '%s'", want);
+    printf("the 004 step = restir compare of the same command; evaluation.md shows its MAPE (%.4g +- %.2g) and the "
+           "SPMIS change %+.1f%%\n",
+           mape[0], sem[0], pct);
+}
+
+int main(void)
+{
+    static char err[CLI_ERR_MAX];
+    if (!cli_bin() || cli_make_temp_dir(tmp) != 0) {
+        EXPECT(0, "cannot set up (RESTIR_BIN or temporary folder)");
+        return test_finish();
+    }
+    EXPECT(system("command -v parallel >/dev/null 2>&1") == 0,
+           "GNU parallel is not installed (make test-deps installs it)");
+    test_bad_input(err);
+    test_plan_equals_unsplit(err);
+    test_tables_are_compares(err);
+    EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
+    return test_finish();
+}
