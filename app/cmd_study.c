@@ -39,7 +39,8 @@ static void study_usage(FILE *out)
             "Writes DIR/study.csv, study.md, pareto.svg, hard_pixels.png, strip.png; with --report also\n"
             "DIR/index.html, one self-contained page showing them with the command, commit and machine.\n"
             "SMAPE (all and hard pixels) comes with its standard error over the runs (smape_all_sem,\n"
-            "smape_hard_sem: the runs' SMAPEs, each the mean over its frames).\n"
+            "smape_hard_sem: the runs' SMAPEs, each the mean over its frames), the covariances with their\n"
+            "jackknife standard errors over the runs (temporal_cov_sem, spatial_cov_sem; nan under 3 runs).\n"
             "--plan DIR (instead of --out) writes DIR/jobs.txt (one command per configuration and run, and\n"
             "one for the reference without --ref), DIR/plan.json and DIR/slurm.sh (sbatch --array) instead\n"
             "of running; run the jobs in any order and anywhere (`parallel -j N < DIR/jobs.txt`, `sbatch\n"
@@ -57,13 +58,14 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
     struct csv_writer csv;
     if (csv_open(&csv, path,
                  "config,radius,K,M,smape_all,smape_hard,temporal_cov,spatial_cov,ms_select,ms_spatial,ms_frame,"
-                 "smape_all_sem,smape_hard_sem",
+                 "smape_all_sem,smape_hard_sem,temporal_cov_sem,spatial_cov_sem",
                  msg) != 0)
         return -1;
     for (int k = 0; k < n; k++)
-        csv_row(&csv, "%s,%g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g", cfg[k].name, cfg[k].radius,
+        csv_row(&csv, "%s,%g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g", cfg[k].name, cfg[k].radius,
                 cfg[k].candidates, m, res[k].smape_all, res[k].smape_hard, res[k].temporal_cov, res[k].spatial_cov,
-                res[k].ms_select, res[k].ms_spatial, res[k].ms_frame, res[k].smape_all_sem, res[k].smape_hard_sem);
+                res[k].ms_select, res[k].ms_spatial, res[k].ms_frame, res[k].smape_all_sem, res[k].smape_hard_sem,
+                res[k].temporal_cov_sem, res[k].spatial_cov_sem);
     if (csv_close(&csv, msg) != 0)
         return -1;
     snprintf(path, sizeof(path), "%s/study.md", dir);
@@ -82,12 +84,15 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
     fprintf(f, "| config | R | K | M | SMAPE all | SMAPE hard | temporal cov | spatial cov | select ms | spatial ms "
                "| frame ms |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < n; k++) {
-        fprintf(f, "| %s | %g | %d | %d | %.3f +- %.2g | %.3f +- %.2g | %.4g | %.4g | %.2f | %.2f | %.2f |\n",
+        fprintf(f,
+                "| %s | %g | %d | %d | %.3f +- %.2g | %.3f +- %.2g | %.4g +- %.2g | %.4g +- %.2g | %.2f | %.2f | "
+                "%.2f |\n",
                 cfg[k].name, cfg[k].radius, cfg[k].candidates, m, res[k].smape_all, res[k].smape_all_sem,
-                res[k].smape_hard, res[k].smape_hard_sem, res[k].temporal_cov, res[k].spatial_cov, res[k].ms_select,
-                res[k].ms_spatial, res[k].ms_frame);
+                res[k].smape_hard, res[k].smape_hard_sem, res[k].temporal_cov, res[k].temporal_cov_sem,
+                res[k].spatial_cov, res[k].spatial_cov_sem, res[k].ms_select, res[k].ms_spatial, res[k].ms_frame);
     }
-    fprintf(f, "\nSMAPE: mean over the runs +- its standard error (the runs' SMAPEs, each over its frames).\n");
+    fprintf(f, "\nSMAPE: mean over the runs +- its standard error (the runs' SMAPEs, each over its frames); the "
+               "covariances +- their jackknife standard errors over the runs (nan under 3 runs).\n");
     if (base >= 0) {
         const struct study_result *b = &res[base];
         fprintf(f, "\nChange against %s: SMAPE all, SMAPE hard, temporal covariance, frame time; "

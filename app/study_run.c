@@ -264,6 +264,30 @@ void study_row_add(struct study_row *row, const struct study_unit *u, const floa
     }
 }
 
+/* Swaps blocks i and j (each `block` floats) of a, element by element (no copy of a block). */
+static void swap_blocks(float *a, size_t block, int i, int j)
+{
+    if (i == j)
+        return;
+    float *x = a + (size_t)i * block, *y = a + (size_t)j * block;
+    for (size_t k = 0; k < block; k++) {
+        const float t = x[k];
+        x[k] = y[k];
+        y[k] = t;
+    }
+}
+
+/* The jackknife standard error of n leave-one-out estimates. */
+static double jackknife_se(const double *theta, int n)
+{
+    double mean = 0.0, ss = 0.0;
+    for (int i = 0; i < n; i++)
+        mean += theta[i] / n;
+    for (int i = 0; i < n; i++)
+        ss += (theta[i] - mean) * (theta[i] - mean);
+    return sqrt((n - 1.0) / n * ss);
+}
+
 void study_row_end(struct study_row *row, struct study_result *res)
 {
     const int runs = row->runs, frames = row->frames, w = row->w, h = row->h;
@@ -281,15 +305,35 @@ void study_row_end(struct study_row *row, struct study_result *res)
     }
     res->smape_all_sem = sem[0];
     res->smape_hard_sem = sem[1];
+    /* The covariances, and their jackknife standard errors over the runs (with at least 3 runs): each
+     * recomputed without run i, which is swapped to the end of the run-major arrays so that the others
+     * are the first runs - 1; se = sqrt((n - 1) / n sum_i (theta_i - mean theta_i)^2). */
+    const int jack = runs >= 3;
+    double *theta_t = xcalloc((size_t)runs, sizeof(double)), *theta_s = xcalloc((size_t)runs, sizeof(double));
+    const size_t seq_block = (size_t)frames * npix;
     res->temporal_cov = restir_temporal_autocovariance(row->seq, runs, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
+    for (int i = 0; i < runs && jack; i++) {
+        swap_blocks(row->seq, seq_block, i, runs - 1);
+        theta_t[i] = restir_temporal_autocovariance(row->seq, runs - 1, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
+        swap_blocks(row->seq, seq_block, i, runs - 1);
+    }
     /* Spatial covariance of each measured frame across runs, averaged over frames. */
     float *at_t = xmalloc(sizeof(float) * npix * (size_t)runs);
     for (int t = 0; t < frames; t++) {
         for (int n = 0; n < runs; n++)
             memcpy(&at_t[(size_t)n * npix], &row->seq[((size_t)n * frames + t) * npix], sizeof(float) * npix);
         res->spatial_cov += restir_spatial_covariance(at_t, runs, w, h, COV_RADIUS, COV_EPS, NULL) / frames;
+        for (int i = 0; i < runs && jack; i++) {
+            swap_blocks(at_t, npix, i, runs - 1);
+            theta_s[i] += restir_spatial_covariance(at_t, runs - 1, w, h, COV_RADIUS, COV_EPS, NULL) / frames;
+            swap_blocks(at_t, npix, i, runs - 1);
+        }
     }
     free(at_t);
+    res->temporal_cov_sem = jack ? jackknife_se(theta_t, runs) : NAN;
+    res->spatial_cov_sem = jack ? jackknife_se(theta_s, runs) : NAN;
+    free(theta_t);
+    free(theta_s);
     study_row_free(row);
 }
 

@@ -30,6 +30,8 @@ struct study_result {
     /* standard errors of smape_all and smape_hard over the runs (each run's SMAPE its frames' mean;
      * NaN with one run) */
     double smape_all_sem, smape_hard_sem;
+    /* jackknife standard errors of temporal_cov and spatial_cov over the runs (NaN under 3 runs) */
+    double temporal_cov_sem, spatial_cov_sem;
 };
 
 /* One run of one configuration: what its measured frames leave for the study's statistics. */

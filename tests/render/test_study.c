@@ -54,7 +54,7 @@ int main(void)
     EXPECT(csv != NULL, "no %s", path);
     if (csv) {
         const char *header = "config,radius,K,M,smape_all,smape_hard,temporal_cov,spatial_cov,ms_select,ms_spatial,"
-                             "ms_frame,smape_all_sem,smape_hard_sem\n";
+                             "ms_frame,smape_all_sem,smape_hard_sem,temporal_cov_sem,spatial_cov_sem\n";
         EXPECT(strncmp(csv, header, strlen(header)) == 0, "study.csv header: %.120s", csv);
         const char *names[] = {"bitterli,", "fast,", "compat-binary,", "bitterli@4,", "compat@4,", "bitterli@8,",
                                "compat@8,"};
@@ -62,16 +62,18 @@ int main(void)
         for (char *line = strchr(csv, '\n'); line && line[1]; line = strchr(line + 1, '\n')) {
             const char *row = line + 1;
             EXPECT(rows < 7 && strncmp(row, names[rows], strlen(names[rows])) == 0, "row %d: %.60s", rows, row);
-            /* radius, K, M, then 7 metrics and 2 standard errors: all finite and not negative except the
+            /* radius, K, M, then 7 metrics and 4 standard errors: all finite and not negative except the
              * covariances */
             const char *p = strchr(row, ',');
-            double v[12];
+            double v[14];
             int nv = 0;
-            while (p && nv < 12) {
+            while (p && nv < 14) {
                 v[nv++] = strtod(p + 1, NULL);
                 p = strchr(p + 1, ',');
             }
-            EXPECT(nv == 12, "row %d has %d numbers", rows, nv);
+            EXPECT(nv == 14, "row %d has %d numbers", rows, nv);
+            EXPECT(v[12] > 0.0 && v[13] > 0.0, "row %d: covariance standard errors %g / %g (3 runs)", rows, v[12],
+                   v[13]);
             EXPECT(v[10] > 0.0 && v[10] < v[3] && v[11] > 0.0 && v[11] < v[4],
                    "row %d: SMAPE standard errors %g / %g against SMAPE %g / %g (3 runs)", rows, v[10], v[11], v[3],
                    v[4]);
