@@ -124,6 +124,7 @@ struct claims {
     struct text md;
     struct csv_writer csv;
     int csv_ok;
+    double render_ms; /* the paper's frames: measured frame times x frames x runs, summed over its steps */
 };
 
 /* One claim's line: what (the claim), where (scene, base), our change, the paper's figure, lo as in
@@ -151,6 +152,10 @@ static void claim(struct claims *cl, const char *paper, const char *what, const 
 /* Ends a paper's section: its claims' table, then empties the claims' lines. */
 static void flush_claims(struct text *md, struct claims *cl, const char *paper)
 {
+    put(md, "\nRendering time of the measured configurations: %.2f hours of wall time (frame times as measured by "
+            "the jobs, times frames and runs; references not counted).\n",
+        cl->render_ms / 3.6e6);
+    cl->render_ms = 0.0;
     put(md,
         "\n#### Claims of %s\n\nOurs: the relative change with its standard deviation (from the standard "
         "errors); verdicts at two standard deviations.\n\n"
@@ -219,6 +224,7 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
     const double base_ms = csv_table_num(t, bit, "ms_frame");
     for (int r = 0; r < t->nrow; r++) {
         const double ms = csv_table_num(t, r, "ms_frame");
+        cl->render_ms += ms * (eval_warmup(o) + eval_frames(o, "000")) * eval_runs(o);
         put(md, "| %s | %g | %g | %.1f | %.1f | %.1f | %+.1f%% |\n", t->cell[(size_t)(r + 1) * t->ncol],
             csv_table_num(t, r, "radius"), csv_table_num(t, r, "K"), csv_table_num(t, r, "ms_select"),
             csv_table_num(t, r, "ms_spatial"), ms, 100.0 * (ms / base_ms - 1.0));
@@ -283,6 +289,7 @@ static void paper_004(struct text *md, struct claims *cl, const struct eval_opti
         fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), a, sizeof a);
         fmt_pm(csv_table_num(t, r, "mape_disoccluded"), csv_table_num(t, r, "mape_disoccluded_sem"), b, sizeof b);
         fmt_pm(csv_table_num(t, r, "relmse"), csv_table_num(t, r, "relmse_sem"), c, sizeof c);
+        cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "004") * eval_runs(o);
         put(md, "| %s | %.1f | %s | %s | %.3f | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b,
             csv_table_num(t, r, "disoccluded_share"), c);
     }
@@ -317,6 +324,7 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
     for (int r = 0; r < t->nrow; r++) {
         fmt_pm(csv_table_num(t, r, "relmse"), csv_table_num(t, r, "relmse_sem"), a, sizeof a);
         fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), b, sizeof b);
+        cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "002") * eval_runs(o);
         put(md, "| %s | %g | %g | %.1f | %s | %s |\n", t->cell[(size_t)(r + 1) * t->ncol],
             csv_table_num(t, r, "instances"), csv_table_num(t, r, "spp"), csv_table_num(t, r, "ms_per_frame"), a,
             b);
