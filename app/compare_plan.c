@@ -25,13 +25,13 @@
  * the machine that runs the others; so is --ref-every. With --runs the merge has no temporal_cov
  * (000 Eq. 17 needs every run's frame sequence, which jobs do not keep). */
 
-static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '2'};
+static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '3'};
 
 /* What a SPEC's job measured: its frame time, paths per pixel and instances; has_mask: the record
  * goes on with the last frame's disocclusion mask (width x height bytes, compare_run.h); a later
  * run's record then holds its last frame (3 x width x height floats). */
 struct job_timing {
-    double ms_per_frame;
+    double ms_per_frame, ms_pass[PASS_COUNT];
     int32_t spp, instances, has_mask, unused;
 };
 
@@ -199,7 +199,9 @@ int compare_run_job(const struct plan *pl, int k)
             rc = EXIT_RUNTIME;
         } else {
             /* written after the frame: a result file means the frame is there */
-            const struct job_timing t = {res.ms_per_frame, res.spp, res.instances, res.mask != NULL, 0};
+            struct job_timing t = {.ms_per_frame = res.ms_per_frame, .spp = res.spp, .instances = res.instances,
+                                   .has_mask = res.mask != NULL};
+            memcpy(t.ms_pass, res.ms_pass, sizeof t.ms_pass);
             const size_t npix = (size_t)st.p.width * (size_t)st.p.height;
             const void *parts[3] = {&t, NULL, NULL};
             size_t sizes[3] = {sizeof t, 0, 0};
@@ -305,6 +307,7 @@ int compare_merge(const char *dir)
             }
             res[k] = one;
             res[k].ms_per_frame = t.ms_per_frame;
+            memcpy(res[k].ms_pass, t.ms_pass, sizeof t.ms_pass);
             res[k].spp = t.spp;
             res[k].instances = t.instances;
             res[k].temporal_cov = NAN; /* not planned: it needs every run's frames */

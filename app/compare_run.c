@@ -173,7 +173,7 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     }
     const size_t n3 = 3 * (size_t)p->width * (size_t)p->height;
     float *scratch = track && instances > 1 ? xmalloc(sizeof(float) * n3) : NULL;
-    double ms = 0.0;
+    double ms = 0.0, ms_pass[PASS_COUNT] = {0};
     struct progress pg;
     progress_begin(&pg, c->label, frames);
     for (int f = 0; f < frames; f++) {
@@ -191,6 +191,8 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
             struct frame_stats st;
             renderer_render(&r[k], f, &cam, &st);
             ms_frame += st.ms_total - (k > 0 ? st.ms[PASS_RECON_L2] + st.ms[PASS_RECON_L1] : 0.0);
+            for (int q = 0; q < PASS_COUNT; q++) /* as the frame time: one reconstruction */
+                ms_pass[q] += k > 0 && (q == PASS_RECON_L2 || q == PASS_RECON_L1) ? 0.0 : st.ms[q];
             if (k == 0)
                 st0 = st;
         }
@@ -233,6 +235,8 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
         compare_track_image(track, run, frames - 1, r[0].image);
     res->method = m;
     res->ms_per_frame = ms / frames;
+    for (int q = 0; q < PASS_COUNT; q++)
+        res->ms_pass[q] = ms_pass[q] / frames;
     res->spp = compare_budget_by_spp(m) ? p->spp : 1;
     res->instances = instances;
     const size_t npix = (size_t)p->width * (size_t)p->height;
@@ -465,6 +469,30 @@ float *compare_render_reference_at(const struct compare_setup *st, int frame)
                                 st->o.ref_spp);
 }
 
+/* DIR/passes.csv: each row's mean time per frame of every pass (run 0; its instances summed, one
+ * reconstruction), the breakdown of 004 Table 2 and 000 Table 1. Returns 0, or -1 with msg. */
+static int write_passes(const char *out_dir, const struct compare_spec *specs, const struct compare_result *res, int n,
+                        char *msg)
+{
+    char path[4200], header[1024] = "method";
+    size_t used = strlen(header);
+    for (int q = 0; q < PASS_COUNT; q++)
+        used += (size_t)snprintf(header + used, sizeof header - used, ",%s", pass_names[q]);
+    snprintf(path, sizeof path, "%s/passes.csv", out_dir);
+    struct csv_writer csv;
+    if (csv_open(&csv, path, header, msg) != 0)
+        return -1;
+    for (int k = 0; k < n; k++) {
+        char row[2048];
+        csv_field(row, sizeof row, specs[k].label);
+        used = strlen(row);
+        for (int q = 0; q < PASS_COUNT; q++)
+            used += (size_t)snprintf(row + used, sizeof row - used, ",%.4f", res[k].ms_pass[q]);
+        csv_row(&csv, "%s", row);
+    }
+    return csv_close(&csv, msg);
+}
+
 int compare_write_table(const struct compare_setup *st, const char *out_dir, const char *command,
                         const struct compare_result *res, const float *ref)
 {
@@ -534,6 +562,10 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
         }
     }
     if (rc == 0 && csv_close(&csv, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    if (rc == 0 && write_passes(out_dir, specs, res, n, msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }

@@ -26,6 +26,7 @@ struct compare_spec {
 struct compare_result {
     enum method_id method;
     double ms_per_frame;
+    double ms_pass[PASS_COUNT]; /* each pass's mean time per frame (run 0), as ms_per_frame counts */
     int spp;
     int instances;           /* independently seeded renderers averaged per run (equal time) */
     int runs;                /* independently seeded runs measured (--runs) */

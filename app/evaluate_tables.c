@@ -195,10 +195,11 @@ static void differences(const struct eval_options *o, const char *paper, const c
     snprintf(out, len, "%s%s; %s", res, scene_note, method);
 }
 
-static int read_step_csv(const char *dir, const struct eval_step *s, struct csv_table *t)
+/* DIR/STEP/NAME.csv into t. */
+static int read_step_csv(const char *dir, const struct eval_step *s, const char *name, struct csv_table *t)
 {
     char path[PATH_LEN], msg[RESTIR_MSG_LEN];
-    snprintf(path, sizeof path, "%s/%s/%s.csv", dir, s->name, s->kind);
+    snprintf(path, sizeof path, "%s/%s/%s.csv", dir, s->name, name);
     if (csv_table_read(path, t, msg) != 0) {
         cli_error("evaluate: %s", msg);
         return -1;
@@ -292,8 +293,31 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
 }
 
 /* 004: the main table (MAPE overall and over disoccluded pixels) and its claims. */
-static void paper_004(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
-                      const struct csv_table *t)
+/* 004 Table 2's layout: each reuse's pass times per frame (run 0's means over the frames). */
+static int table2_004(struct text *md, const char *dir, const struct eval_step *s, char (*label)[160],
+                      const char *const *names)
+{
+    struct csv_table p;
+    if (read_step_csv(dir, s, "passes", &p) != 0)
+        return -1;
+    static const char *const pass[] = {"initial", "temporal", "select", "spatial", "cells", "cell_search",
+                                       "spmis_canonical", "spmis_reuse", "shade"};
+    put(md, "\nTable 2 layout (ms per frame of each pass, run 0, mean over the frames; spmis: create cells, cell "
+            "search, canonical weight m_c, stochastic neighbor reuse):\n\n| reuse | initial | temporal | select | "
+            "spatial | cells | cell search | m_c | neighbor reuse | shade |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int k = 0; k < 3; k++) {
+        const int r = csv_table_find(&p, label[k]);
+        put(md, "| %s |", names[k]);
+        for (size_t q = 0; q < sizeof pass / sizeof pass[0]; q++)
+            put(md, " %.1f |", csv_table_num(&p, r, pass[q]));
+        put(md, "\n");
+    }
+    csv_table_free(&p);
+    return 0;
+}
+
+static int paper_004(struct text *md, struct claims *cl, const struct eval_options *o, const char *dir,
+                     const struct eval_step *s, const struct csv_table *t)
 {
     char where[128], scene[96], diff[300], a[64], b[64], c[64], label[3][160];
     scene_label("004", s->scene, scene, sizeof scene);
@@ -333,6 +357,7 @@ static void paper_004(struct text *md, struct claims *cl, const struct eval_opti
                        : (m ? "lower in disocclusions (the paper: ReSTIR PT only)"
                             : "lower (the paper: ReSTIR PT only)"),
                   v ? -1.0 : 0.0, diff);
+    return table2_004(md, dir, s, label, names) == 0 ? 0 : EXIT_RUNTIME;
 }
 
 /* 002: the equal-time table (L2 and L1) and its claims. */
@@ -463,14 +488,14 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
                         put(&md, "- scene `%s` for %s: %s.\n", sn->scene, sn->stands_for, sn->why);
         }
         struct csv_table t;
-        if (read_step_csv(dir, s, &t) != 0) {
+        if (read_step_csv(dir, s, s->kind, &t) != 0) {
             rc = EXIT_RUNTIME;
             break;
         }
         if (!strcmp(s->paper, "000"))
             paper_000(&md, &cl, o, s, &t);
         else if (!strcmp(s->paper, "004"))
-            paper_004(&md, &cl, o, s, &t);
+            rc = paper_004(&md, &cl, o, dir, s, &t);
         else
             paper_002(&md, &cl, o, s, &t);
         csv_table_free(&t);
