@@ -81,7 +81,7 @@ static struct eval_step *begin(struct eval_step *steps, int *n, const char *pape
     snprintf(s->paper, sizeof s->paper, "%s", paper);
     snprintf(s->kind, sizeof s->kind, "%s", kind);
     snprintf(s->scene, sizeof s->scene, "%s", scene);
-    snprintf(s->base, sizeof s->base, "%s", base);
+    snprintf(s->base, sizeof s->base, "%s", strcmp(base, "ablation") ? base : "restir-pt");
     snprintf(s->name, sizeof s->name, "%s-%s%s%s", paper, scene, *base ? "-" : "", base);
     add(s, "--scene");
     add(s, "%s", scene);
@@ -129,15 +129,25 @@ static void steps_000(const struct eval_options *o, const char *scene, int first
 
 /* 004 Sec. 6: the last frame of a camera animation; standard reuse (3 neighbors in 30 px, pairwise
  * MIS) against SPMIS (8x8 cells, N = 3, N_c = 1, the 12-tap search from 30 px) and SPMIS with our
- * compatibility-scored cell search. ReSTIR PT: 1 initial candidate, 8 bounces, cap 20. */
-static void steps_004(const struct eval_options *o, const char *scene, const char *base, struct eval_step *steps,
-                      int *n)
+ * compatibility-scored cell search. ReSTIR PT: 1 initial candidate, 8 bounces, cap 20. The
+ * ablation step varies SPMIS alone as Figures 2, 6 and 7 do. */
+static void steps_004(const struct eval_options *o, const char *scene, const char *base, int ablation,
+                      struct eval_step *steps, int *n)
 {
-    struct eval_step *s = begin(steps, n, "004", "compare", scene, base, o);
+    struct eval_step *s = begin(steps, n, "004", "compare", scene, ablation ? "ablation" : base, o);
+    s->ablation = ablation;
     add(s, "--camera");
     add(s, "path");
     add(s, "--methods");
-    add(s, "%s,%s:spatial.reuse=spmis,%s:spatial.reuse=spmis:spmis.search_score=compat", base, base, base);
+    if (ablation) /* Figure 2 (N / M confidence scaling), Figure 7 (N of M), Figure 6 (N_c) */
+        add(s,
+            "%s:spatial.reuse=spmis,%s:spatial.reuse=spmis:spmis.confidence_adjust=off,"
+            "%s:spatial.reuse=spmis:spmis.candidates=1,%s:spatial.reuse=spmis:spmis.candidates=M,"
+            "%s:spatial.reuse=spmis:spmis.canonical_candidates=4,%s:spatial.reuse=spmis:spmis.canonical_candidates="
+            "M",
+            base, base, base, base, base, base);
+    else
+        add(s, "%s,%s:spatial.reuse=spmis,%s:spatial.reuse=spmis:spmis.search_score=compat", base, base, base);
     set(s, "spatial.neighbors=3");
     set(s, "spatial.radius=30");
     set(s, "mis=pairwise");
@@ -186,11 +196,11 @@ static int paper_steps(const struct eval_options *o, const char *paper, struct e
                  : check_res(o, paper, EVAL_002_RADIUS, "area ReSTIR's 30-pixel reuse", msg);
     if (rc != 0)
         return -1;
-    char list[256];
+    char list[256], first_scene[32] = "";
     snprintf(list, sizeof list, "%s", o->scenes[0] ? o->scenes : default_scenes(paper));
     int first = 1;
     for (char *save = NULL, *t = strtok_r(list, ",", &save); t; t = strtok_r(NULL, ",", &save), first = 0) {
-        if (*n + 2 > EVAL_MAX_STEPS) {
+        if (*n + 3 > EVAL_MAX_STEPS) {
             snprintf(msg, RESTIR_MSG_LEN, "--scenes: more than %d steps in all", EVAL_MAX_STEPS);
             return -1;
         }
@@ -201,14 +211,18 @@ static int paper_steps(const struct eval_options *o, const char *paper, struct e
             snprintf(msg, RESTIR_MSG_LEN, "--scenes: '%.40s' is not a built-in scene name (see restir list)", t);
             return -1;
         }
+        if (first)
+            snprintf(first_scene, sizeof first_scene, "%s", t);
         if (!strcmp(paper, "000"))
             steps_000(o, t, first, steps, n);
         else if (!strcmp(paper, "004")) {
-            steps_004(o, t, "restir-pt", steps, n);
-            steps_004(o, t, "restir-di", steps, n);
+            steps_004(o, t, "restir-pt", 0, steps, n);
+            steps_004(o, t, "restir-di", 0, steps, n);
         } else
             steps_002(o, t, steps, n);
     }
+    if (!strcmp(paper, "004")) /* the ablations on the first scene, after the main table's steps */
+        steps_004(o, first_scene, "restir-pt", 1, steps, n);
     return 0;
 }
 

@@ -25,6 +25,7 @@ struct eval_step {
     char scene[32];
     char base[24]; /* the method the paper's variants modify (restir-pt, restir-di) or "" */
     int table2;    /* 000: this study also holds Table 2's R x K grid */
+    int ablation;  /* 004: SPMIS's own variants (Figures 2, 6, 7) */
     int argc;
     char *argv[EVAL_MAX_ARGS];
     char text[4096]; /* the arguments' storage */

@@ -58,6 +58,10 @@ static struct change rel_change(double ours, double ours_sem, double base, doubl
     return c;
 }
 
+/* A claimed small change, as verdict()'s lo: reproduced when the change is within +-lim percent at two
+ * standard deviations. */
+#define SMALL_CLAIM(lim) (-2000.0 - (lim))
+
 /* A claimed cost of at most hi percent more, as verdict()'s lo: reproduced when the change is at most
  * hi (times have no spread: one machine, means over frames and runs). */
 #define COST_CLAIM(hi) (-1000.0 - (hi))
@@ -67,6 +71,15 @@ static struct change rel_change(double ours, double ours_sem, double base, doubl
  * lower, but less than lo), not reproduced (within the noise, or higher). */
 static const char *verdict(struct change c, double lo, char *why, size_t len)
 {
+    if (lo <= -2000.0) { /* a claimed small change */
+        const double lim = -2000.0 - lo, sd = isfinite(c.sd) ? c.sd : 0.0;
+        const int small = c.pct - 2.0 * sd >= -lim && c.pct + 2.0 * sd <= lim;
+        if (small)
+            why[0] = '\0';
+        else
+            snprintf(why, len, "the change may exceed %g%%", lim);
+        return !isfinite(c.pct) ? "not measured" : small ? "reproduced" : "not reproduced";
+    }
     if (lo <= -1000.0) { /* a cost claim */
         const double hi = -1000.0 - lo;
         snprintf(why, len, "%s", c.pct <= hi ? "" : "costs more");
@@ -87,7 +100,7 @@ static const char *verdict(struct change c, double lo, char *why, size_t len)
         return "not measured";
     }
     if (c.pct + 2.0 * sd < 0.0 && c.pct - 2.0 * sd <= -lo) {
-        snprintf(why, len, "%s", spread);
+        snprintf(why, len, "%s", isfinite(c.sd) ? "" : "no spread");
         return "reproduced";
     }
     if (c.pct + 2.0 * sd < 0.0) {
@@ -152,8 +165,9 @@ static void claim(struct claims *cl, const char *paper, const char *what, const 
 /* Ends a paper's section: its claims' table, then empties the claims' lines. */
 static void flush_claims(struct text *md, struct claims *cl, const char *paper)
 {
-    put(md, "\nRendering time of the measured configurations: %.3g hours of wall time (frame times as measured by "
-            "the jobs, times frames and runs; references not counted).\n",
+    put(md,
+        "\nRendering time of the measured configurations: %.3g hours of wall time (frame times as measured by "
+        "the jobs, times frames and runs; references not counted).\n",
         cl->render_ms / 3.6e6);
     cl->render_ms = 0.0;
     put(md,
@@ -268,8 +282,8 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
         const int r = csv_table_find(t, presets[k]);
         char what[96];
         snprintf(what, sizeof what, "%s: frame time vs Bitterli (cost)", presets[k]);
-        claim(cl, "000", what, where, rel_change(csv_table_num(t, r, "ms_frame"), NAN, base_ms, NAN), cost_figure[k],
-              COST_CLAIM(cost_max[k]), diff);
+        claim(cl, "000", what, where, rel_change(csv_table_num(t, r, "ms_frame"), NAN, base_ms, NAN),
+              cost_figure[k], COST_CLAIM(cost_max[k]), diff);
     }
     if (!s->table2)
         return;
@@ -300,11 +314,12 @@ static int table2_004(struct text *md, const char *dir, const struct eval_step *
     struct csv_table p;
     if (read_step_csv(dir, s, "passes", &p) != 0)
         return -1;
-    static const char *const pass[] = {"initial", "temporal", "select", "spatial", "cells", "cell_search",
-                                       "spmis_canonical", "spmis_reuse", "shade"};
+    static const char *const pass[] = {"initial",     "temporal",        "select",      "spatial", "cells",
+                                       "cell_search", "spmis_canonical", "spmis_reuse", "shade"};
     put(md, "\nTable 2 layout (ms per frame of each pass, run 0, mean over the frames; spmis: create cells, cell "
             "search, canonical weight m_c, stochastic neighbor reuse):\n\n| reuse | initial | temporal | select | "
-            "spatial | cells | cell search | m_c | neighbor reuse | shade |\n|---|---|---|---|---|---|---|---|---|---|\n");
+            "spatial | cells | cell search | m_c | neighbor reuse | shade "
+            "|\n|---|---|---|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < 3; k++) {
         const int r = csv_table_find(&p, label[k]);
         put(md, "| %s |", names[k]);
@@ -358,6 +373,55 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
                             : "lower (the paper: ReSTIR PT only)"),
                   v ? -1.0 : 0.0, diff);
     return table2_004(md, dir, s, label, names) == 0 ? 0 : EXIT_RUNTIME;
+}
+
+/* 004 Figures 2, 6 and 7: SPMIS's own variants on one scene, and the claims the figures make. */
+static void paper_004_ablation(struct text *md, struct claims *cl, const struct eval_options *o,
+                               const struct eval_step *s, const struct csv_table *t)
+{
+    char scene[96], diff[300], a[64], b[64], label[6][200];
+    scene_label("004", s->scene, scene, sizeof scene);
+    differences(o, "004", s->scene, diff, sizeof diff);
+    static const char *const suffix[6] = {"",
+                                          ":spmis.confidence_adjust=off",
+                                          ":spmis.candidates=1",
+                                          ":spmis.candidates=M",
+                                          ":spmis.canonical_candidates=4",
+                                          ":spmis.canonical_candidates=M"};
+    static const char *const names[6] = {"SPMIS: N = 3, N_c = 1, confidences x N / M",
+                                         "Fig. 2: without the N / M confidence scaling",
+                                         "Fig. 7: N = 1",
+                                         "Fig. 7: N = M (deterministic over the cell)",
+                                         "Fig. 6: N_c = 4",
+                                         "Fig. 6: N_c = M (exact Eq. 11b)"};
+    int row[6];
+    put(md,
+        "\n### %s, SPMIS variants (004 Figures 2, 6, 7), %s\n\nLast frame (%d) of the camera path, means over %d "
+        "runs +- standard errors:\n\n| variant | ms/frame | MAPE | MAPE disoccluded |\n|---|---|---|---|\n",
+        scene, s->base, eval_frames(o, "004") - 1, eval_runs(o));
+    for (int k = 0; k < 6; k++) {
+        snprintf(label[k], sizeof label[k], "%s:spatial.reuse=spmis%s", s->base, suffix[k]);
+        const int r = row[k] = csv_table_find(t, label[k]);
+        fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), a, sizeof a);
+        fmt_pm(csv_table_num(t, r, "mape_disoccluded"), csv_table_num(t, r, "mape_disoccluded_sem"), b, sizeof b);
+        cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "004") * eval_runs(o);
+        put(md, "| %s | %.1f | %s | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b);
+    }
+    char where[96];
+    snprintf(where, sizeof where, "%s, %s", s->scene, s->base);
+#define MAPE_CHANGE(x, y)                                                                                          \
+    rel_change(csv_table_num(t, row[x], "mape"), csv_table_num(t, row[x], "mape_sem"),                             \
+               csv_table_num(t, row[y], "mape"), csv_table_num(t, row[y], "mape_sem"))
+    claim(cl, "004", "Fig. 2: the N / M scaling vs none: MAPE", where, MAPE_CHANGE(0, 1), "lower (images only)",
+          0.0, diff);
+    claim(cl, "004", "Fig. 7: N = M vs N = 3: MAPE", where, MAPE_CHANGE(3, 0), "lower (\"some loss of quality\")",
+          0.0, diff);
+    claim(cl, "004", "Fig. 7: N = 3 vs N = M: frame time", where,
+          rel_change(csv_table_num(t, row[0], "ms_per_frame"), NAN, csv_table_num(t, row[3], "ms_per_frame"), NAN),
+          "lower (\"significant cost reduction\")", 0.0, diff);
+    claim(cl, "004", "Fig. 6: N_c = M vs N_c = 1: MAPE", where, MAPE_CHANGE(5, 0), "\"only slightly\" different",
+          SMALL_CLAIM(5.0), diff);
+#undef MAPE_CHANGE
 }
 
 /* 002: the equal-time table (L2 and L1) and its claims. */
@@ -494,6 +558,8 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
         }
         if (!strcmp(s->paper, "000"))
             paper_000(&md, &cl, o, s, &t);
+        else if (!strcmp(s->paper, "004") && s->ablation)
+            paper_004_ablation(&md, &cl, o, s, &t);
         else if (!strcmp(s->paper, "004"))
             rc = paper_004(&md, &cl, o, dir, s, &t);
         else

@@ -99,6 +99,7 @@ static const struct {
 } steps[] = {{"000-cornell", "study", 8, 10},
              {"004-cornell-restir-pt", "compare", 1, 1},
              {"004-cornell-restir-di", "compare", 1, 1},
+             {"004-cornell-ablation", "compare", 1, 1},
              {"002-cornell", "compare", 1, 1}};
 
 static void test_plan_equals_unsplit(char *err)
@@ -134,7 +135,7 @@ static void test_plan_equals_unsplit(char *err)
     EXPECT(!exists(pa), "index.html without --report");
     printf(
         "evaluate all (000, 004, 002 on cornell at 208x208, 2 runs): planned, the jobs run in shuffled order "
-        "under GNU parallel, merged = unsplit (4 step tables but their times, claims.csv but its timed claims)\n");
+        "under GNU parallel, merged = unsplit (5 step tables but their times, claims.csv but its timed claims)\n");
 }
 
 /* The 004 step's table is what `restir compare` writes for its command, and the evaluation's tables
