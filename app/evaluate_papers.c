@@ -27,7 +27,7 @@ const struct eval_scene_note eval_scene_notes[] = {
      "into the crowns, static camera as in all of 000's results; the hard-pixel case 000 targets"},
     {"000", "ajar", "VEACH AJAR",
      "the same scene idea: a closed room lit through the gap of a door, mostly indirect light; static camera"},
-    {"004", "pillars", "disocclusion under fast camera motion (004 Figure 1)",
+    {"004", "pillars", "disocclusion under fast camera motion, as in 004 Figure 1",
      "the camera strafes 8 m in 64 frames (0.125 m per frame on average), 6 m from seven pillars and 8.5 m from "
      "the wall behind them: at "
      "1920x1080 the pillars move about 24 px per frame and the wall 17 px on average, so each pillar edge uncovers "

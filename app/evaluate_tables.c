@@ -209,6 +209,22 @@ static void differences(const struct eval_options *o, const char *paper, const c
     snprintf(out, len, "%s%s; %s", res, scene_note, method);
 }
 
+/* What a step's table and claims say about it: the heading (the scene and what it stands for), the
+ * claims' "where" (the scene, and the base method for 004) and the setup's departures. */
+struct step_text {
+    char heading[96], where[96], diff[300];
+};
+
+static void step_text(const struct eval_options *o, const struct eval_step *s, struct step_text *x)
+{
+    scene_label(s->paper, s->scene, x->heading, sizeof x->heading);
+    if (!strcmp(s->paper, "004"))
+        snprintf(x->where, sizeof x->where, "%s, %s", s->scene, s->base);
+    else
+        snprintf(x->where, sizeof x->where, "%s", s->scene);
+    differences(o, s->paper, s->scene, x->diff, sizeof x->diff);
+}
+
 /* DIR/STEP/NAME.csv into t. */
 static int read_step_csv(const char *dir, const struct eval_step *s, const char *name, struct csv_table *t)
 {
@@ -226,11 +242,10 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
                       const struct csv_table *t)
 {
     static const char *const presets[] = {"fast", "balanced", "conservative"};
-    char where[96], diff[300], a[64], b[64], c[64], d[64];
-    char heading[96];
-    scene_label("000", s->scene, heading, sizeof heading);
-    snprintf(where, sizeof where, "%s", s->scene);
-    differences(o, "000", s->scene, diff, sizeof diff);
+    char a[64], b[64], c[64], d[64];
+    struct step_text x;
+    step_text(o, s, &x);
+    const char *heading = x.heading, *where = x.where, *diff = x.diff;
     put(md,
         "\n### %s\n\nTable 1 layout (pass times, ms, means over the measured frames and runs):\n\n"
         "| config | R | K | select | spatial | frame | frame vs Bitterli |\n|---|---|---|---|---|---|---|\n",
@@ -334,10 +349,10 @@ static int table2_004(struct text *md, const char *dir, const struct eval_step *
 static int paper_004(struct text *md, struct claims *cl, const struct eval_options *o, const char *dir,
                      const struct eval_step *s, const struct csv_table *t)
 {
-    char where[128], scene[96], diff[300], a[64], b[64], c[64], label[3][160];
-    scene_label("004", s->scene, scene, sizeof scene);
-    snprintf(where, sizeof where, "%s, %s", s->scene, s->base);
-    differences(o, "004", s->scene, diff, sizeof diff);
+    char a[64], b[64], c[64], label[3][160];
+    struct step_text x;
+    step_text(o, s, &x);
+    const char *scene = x.heading, *where = x.where, *diff = x.diff;
     snprintf(label[0], sizeof label[0], "%s", s->base);
     snprintf(label[1], sizeof label[1], "%s:spatial.reuse=spmis", s->base);
     snprintf(label[2], sizeof label[2], "%s:spatial.reuse=spmis:spmis.search_score=compat", s->base);
@@ -379,9 +394,10 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
 static void paper_004_ablation(struct text *md, struct claims *cl, const struct eval_options *o,
                                const struct eval_step *s, const struct csv_table *t)
 {
-    char scene[96], diff[300], a[64], b[64], label[6][200];
-    scene_label("004", s->scene, scene, sizeof scene);
-    differences(o, "004", s->scene, diff, sizeof diff);
+    char a[64], b[64], label[6][200];
+    struct step_text x;
+    step_text(o, s, &x);
+    const char *scene = x.heading, *where = x.where, *diff = x.diff;
     static const char *const suffix[6] = {"",
                                           ":spmis.confidence_adjust=off",
                                           ":spmis.candidates=1",
@@ -407,8 +423,6 @@ static void paper_004_ablation(struct text *md, struct claims *cl, const struct 
         cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "004") * eval_runs(o);
         put(md, "| %s | %.1f | %s | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b);
     }
-    char where[96];
-    snprintf(where, sizeof where, "%s, %s", s->scene, s->base);
 #define MAPE_CHANGE(x, y)                                                                                          \
     rel_change(csv_table_num(t, row[x], "mape"), csv_table_num(t, row[x], "mape_sem"),                             \
                csv_table_num(t, row[y], "mape"), csv_table_num(t, row[y], "mape_sem"))
@@ -428,11 +442,10 @@ static void paper_004_ablation(struct text *md, struct claims *cl, const struct 
 static void paper_002(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
                       const struct csv_table *t)
 {
-    char where[96], diff[300], a[64], b[64];
-    char heading[96];
-    scene_label("002", s->scene, heading, sizeof heading);
-    snprintf(where, sizeof where, "%s", s->scene);
-    differences(o, "002", s->scene, diff, sizeof diff);
+    char a[64], b[64];
+    struct step_text x;
+    step_text(o, s, &x);
+    const char *heading = x.heading, *where = x.where, *diff = x.diff;
     put(md,
         "\n### %s\n\nLast frame (%d) of the camera path, the paper's equal-time ratios; means over %d runs +- "
         "standard errors:\n\n| method | instances | spp | ms/frame | relMSE | MAPE |\n|---|---|---|---|---|---|\n",
