@@ -156,8 +156,15 @@ static void check_compare(void)
     expect_failure("compare with --ref-every 0",
                    "compare --scene cornell --methods pt --ref-every 0 --res 16x16 --out '%1$s'", 2, "--ref-every",
                    NULL);
-    expect_failure("compare --runs planned",
-                   "compare --scene cornell --methods pt --runs 2 --res 16x16 --plan '%1$s'", 2, "--runs", "unsplit");
+    expect_failure("compare --ref-every planned",
+                   "compare --scene cornell --methods pt --ref-every 2 --frames 4 --res 16x16 --plan '%1$s'", 2,
+                   "--ref-every", "unsplit");
+    expect_failure("compare instances= with --equal-time",
+                   "compare --scene cornell --methods restir-di,pt:instances=2 --equal-time --res 16x16 --out '%1$s'", 2,
+                   "instances=", "--equal-time");
+    expect_failure("compare instances=0",
+                   "compare --scene cornell --methods restir-di:instances=0 --res 16x16 --out '%1$s'", 2, "instances",
+                   "[1, 16]");
     expect_failure("study with --ref-every",
                    "study --scene cornell --method restir-pt --configs bitterli --ref-every 4 --res 16x16 --out '%1$s'",
                    2, "--ref-every", NULL);
@@ -220,8 +227,8 @@ static void check_compare_specs(void)
         int frames = cli_count_entries(path, "frame_0001.exr");
         EXPECT(frames == 1, "no last frame in %s (%d)", path, frames);
     }
-    EXPECT(cli_count_entries(dir, "") == 6,
-           "%s holds %d entries, want compare.csv, frames.csv, reference.exr and 3 folders", dir,
+    EXPECT(cli_count_entries(dir, "") == 7,
+           "%s holds %d entries, want compare.csv, frames.csv, passes.csv, reference.exr and 3 folders", dir,
            cli_count_entries(dir, ""));
 }
 

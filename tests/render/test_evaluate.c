@@ -1,7 +1,7 @@
 /* test_evaluate.c: `restir evaluate` (issue 25) at small resolution. The evaluation of all three
  * papers run unsplit (--out) equals the same evaluation planned, its jobs run by GNU parallel in
- * shuffled order and merged (every step's table but its timing columns, and every claim but the
- * timed ones); a step's table equals what `restir compare` writes for the same command, and the
+ * shuffled order and merged with --report (every step's table but its timing columns, and every
+ * claim but the timed ones; the report links every step's page); a step's table equals what `restir compare` writes for the same command, and the
  * evaluation's tables and claims show its numbers; bad input (an unknown paper or scene, a
  * resolution below the paper's radii, a folder of another evaluation or of another command's plan,
  * a non-empty folder) exits 2 and leaves the folder as it was. */
@@ -109,7 +109,7 @@ static void test_plan_equals_unsplit(char *err)
     snprintf(plan, sizeof plan, "%s/planned", tmp);
     snprintf(args, sizeof args, "evaluate all " EVAL_ARGS " --out '%s'", unsplit);
     EXPECT(cli_run(tmp, args, err) == 0, "evaluate all --out: %s", err);
-    snprintf(args, sizeof args, "evaluate all " EVAL_ARGS " --plan '%s'", plan);
+    snprintf(args, sizeof args, "evaluate all " EVAL_ARGS " --report --plan '%s'", plan);
     EXPECT(cli_run(tmp, args, err) == 0, "evaluate all --plan: %s", err);
     EXPECT(sh("shuf '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel -j 2 > '%s/parallel.log' 2>&1", plan, plan) == 0,
            "GNU parallel: an evaluation job failed");
@@ -133,6 +133,15 @@ static void test_plan_equals_unsplit(char *err)
            "merged claims.csv differs from the unsplit one (or misses a paper):\n%s\nvs\n%s", a, b);
     snprintf(pa, sizeof pa, "%s/index.html", unsplit);
     EXPECT(!exists(pa), "index.html without --report");
+    static char html[1 << 18];
+    snprintf(pb, sizeof pb, "%s/index.html", plan);
+    cli_read_text(pb, html, sizeof html);
+    EXPECT(strstr(html, "href=\"004-cornell-ablation/index.html\"") && strstr(html, "Claims of 002"),
+           "--report: index.html does not link the steps' pages or lacks the claims");
+    for (size_t k = 0; k < sizeof steps / sizeof steps[0]; k++) {
+        snprintf(pb, sizeof pb, "%s/%s/index.html", plan, steps[k].name);
+        EXPECT(exists(pb), "--report: %s has no index.html", steps[k].name);
+    }
     printf(
         "evaluate all (000, 004, 002 on cornell at 208x208, 2 runs): planned, the jobs run in shuffled order "
         "under GNU parallel, merged = unsplit (5 step tables but their times, claims.csv but its timed claims)\n");
