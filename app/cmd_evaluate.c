@@ -22,7 +22,7 @@ static void evaluate_usage(void)
     printf(
         "usage: restir evaluate 000|004|002|all (--out DIR | --plan DIR) [--res WxH] [--runs N] [--scenes LIST]\n"
         "                       [--frames N] [--warmup N] [--ref-spp N] [--threads N] [--report]\n"
-        "       restir evaluate --merge DIR\n"
+        "       restir evaluate --merge DIR [--partial]\n"
         "A paper's evaluation at its own scale (1920x1080 unless --res) with its own parameters, as `restir\n"
         "study` (000) and `restir compare` (004, 002) commands, one folder each under DIR:\n"
         "  000  compatibility-guided neighbor selection: study of restir-pt, M = 1, static camera, 40\n"
@@ -41,7 +41,8 @@ static void evaluate_usage(void)
         "radius (000: 100, 004 and 002: 30) is refused; smaller images keep the papers' pixel radii.\n"
         "--plan DIR writes the plan (DIR/jobs.txt: one `restir job DIR K` per configuration, run and\n"
         "reference; DIR/slurm.sh) for GNU parallel or Slurm; `restir evaluate --merge DIR` then merges\n"
-        "every step and writes the tables. --out DIR plans, runs every job not yet done (so a stopped\n"
+        "every step and writes the tables (--partial: the steps whose jobs are all done; the tables name\n"
+        "the others). --out DIR plans, runs every job not yet done (so a stopped\n"
         "evaluation resumes) and merges. A folder that holds another evaluation or another command's\n"
         "plan is refused, and nothing in it is touched.\n"
         "Writes DIR/evaluation.md (the paper's tables with spreads and one line per claim: reproduced,\n"
@@ -338,8 +339,9 @@ int evaluate_run_job(const struct plan *pl, int k)
     return EXIT_RUNTIME;
 }
 
-/* Merges every step, then writes the tables. Returns an exit code. */
-static int evaluate_merge(const char *dir)
+/* Merges every step, then writes the tables. partial: a step that cannot be merged yet (jobs not
+ * done) is left out of the tables, which say so, instead of failing the merge. Returns an exit code. */
+static int evaluate_merge(const char *dir, int partial)
 {
     struct plan pl;
     int rc = plan_load_kind(dir, "evaluate", "an evaluation", &pl);
@@ -350,13 +352,24 @@ static int evaluate_merge(const char *dir)
     int n = 0;
     rc = plan_steps(&pl, &o, steps, &n);
     char sub[PLAN_PATH_MAX + 80];
+    int merged[EVAL_MAX_STEPS], any = 0;
     for (int k = 0; k < n && rc == 0; k++) {
         step_dir(pl.dir, &steps[k], sub, sizeof sub);
         printf("evaluate: merging %s\n", steps[k].name);
-        rc = run_step_command(&steps[k], "--merge", sub);
+        const int step_rc = run_step_command(&steps[k], "--merge", sub);
+        merged[k] = step_rc == 0;
+        any |= merged[k];
+        if (step_rc != 0 && partial)
+            printf("evaluate: %s is left out (--partial)\n", steps[k].name);
+        else
+            rc = step_rc;
+    }
+    if (rc == 0 && !any) {
+        cli_error("evaluate: no step of %s can be merged yet", pl.dir);
+        rc = EXIT_RUNTIME;
     }
     if (rc == 0)
-        rc = evaluate_write_tables(pl.dir, pl.command, &o, steps, n);
+        rc = evaluate_write_tables(pl.dir, pl.command, &o, steps, n, merged);
     plan_free(&pl);
     return rc;
 }
@@ -365,11 +378,12 @@ int cmd_evaluate(int argc, char **argv)
 {
     for (int i = 0; i + 1 < argc; i++)
         if (!strcmp(argv[i], "--merge")) {
-            if (argc != 2) {
-                cli_error("evaluate --merge DIR takes no other option (the plan holds them)");
+            const int partial = argc == 3 && !strcmp(argv[i ? 0 : 2], "--partial");
+            if (argc != 2 && !partial) {
+                cli_error("evaluate --merge DIR takes no other option than --partial (the plan holds them)");
                 return EXIT_USAGE;
             }
-            return evaluate_merge(argv[i + 1]);
+            return evaluate_merge(argv[i + 1], partial);
         }
     struct eval_options o;
     const char *dir = NULL;
@@ -403,5 +417,5 @@ int cmd_evaluate(int argc, char **argv)
     char abs[PLAN_PATH_MAX];
     snprintf(abs, sizeof abs, "%s", pl.dir);
     plan_free(&pl);
-    return rc != 0 ? rc : evaluate_merge(abs);
+    return rc != 0 ? rc : evaluate_merge(abs, 0);
 }

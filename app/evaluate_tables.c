@@ -526,7 +526,7 @@ static int write_index(const char *dir, const char *command, const struct eval_s
 }
 
 int evaluate_write_tables(const char *dir, const char *command, const struct eval_options *o,
-                          const struct eval_step *steps, int n)
+                          const struct eval_step *steps, int n, const int *merged)
 {
     char msg[RESTIR_MSG_LEN], path[PATH_LEN];
     struct text md = {0};
@@ -563,6 +563,13 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
                     if (!strcmp(sn->paper, current) && !strcmp(sn->scene, steps[j].scene) &&
                         (j == k || strcmp(steps[j - 1].scene, steps[j].scene)))
                         put(&md, "- scene `%s` for %s: %s.\n", sn->scene, sn->stands_for, sn->why);
+        }
+        if (!merged[k]) {
+            put(&md,
+                "\n### %s: not finished\n\nIts jobs are not all done yet: this evaluation was merged with "
+                "`--partial`; run the remaining jobs and merge again.\n",
+                s->name);
+            continue;
         }
         struct csv_table t;
         if (read_step_csv(dir, s, s->kind, &t) != 0) {

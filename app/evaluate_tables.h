@@ -6,8 +6,9 @@
 #include "evaluate_papers.h"
 
 /* Writes DIR/evaluation.md, DIR/claims.csv and with o->report DIR/index.html from the merged steps
- * (folders DIR/NAME). Returns an exit code. */
+ * (folders DIR/NAME; merged[k] == 0: step k is not finished, and is named as such). Returns an exit
+ * code. */
 int evaluate_write_tables(const char *dir, const char *command, const struct eval_options *o,
-                          const struct eval_step *steps, int n);
+                          const struct eval_step *steps, int n, const int *merged);
 
 #endif

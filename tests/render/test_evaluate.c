@@ -1,10 +1,11 @@
 /* test_evaluate.c: `restir evaluate` (issue 25) at small resolution. The evaluation of all three
  * papers run unsplit (--out) equals the same evaluation planned, its jobs run by GNU parallel in
  * shuffled order and merged with --report (every step's table but its timing columns, and every
- * claim but the timed ones; the report links every step's page); a step's table equals what `restir compare` writes for the same command, and the
- * evaluation's tables and claims show its numbers; bad input (an unknown paper or scene, a
- * resolution below the paper's radii, a folder of another evaluation or of another command's plan,
- * a non-empty folder) exits 2 and leaves the folder as it was. */
+ * claim but the timed ones; the report links every step's page); a step's table equals what `restir compare` writes
+ * for the same command, and the evaluation's tables and claims show its numbers; bad input (an unknown paper or
+ * scene, a resolution below the paper's radii, a folder of another evaluation or of another command's plan, a
+ * non-empty folder) exits 2 and leaves the folder as it was; an unfinished evaluation merges only with --partial,
+ * which names the steps left out. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -75,6 +76,20 @@ static void test_bad_input(char *err)
     /* the same evaluation again: accepted (it resumes) */
     snprintf(args, sizeof args, "evaluate 004 --res 64x64 --runs 2 --frames 4 --scenes cornell --plan '%s'", dir);
     EXPECT(cli_run(tmp, args, err) == 0, "the same evaluation planned again: %s", err);
+
+    /* only the first step's jobs done: a merge is refused, a --partial merge names the others */
+    EXPECT(sh("head -n 7 '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel -j 2 > '%s/parallel.log' 2>&1", dir, dir) == 0,
+           "the first step's jobs failed");
+    snprintf(args, sizeof args, "evaluate --merge '%s'", dir);
+    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "004-cornell-restir-di are missing"),
+           "merge of an unfinished evaluation: %s", err);
+    snprintf(args, sizeof args, "evaluate --merge '%s' --partial", dir);
+    EXPECT(cli_run(tmp, args, err) == 0, "merge --partial: %s", err);
+    static char md[1 << 16];
+    snprintf(path, sizeof path, "%s/evaluation.md", dir);
+    cli_read_text(path, md, sizeof md);
+    EXPECT(strstr(md, "### 004-cornell-restir-di: not finished") && strstr(md, "SPMIS: MAPE overall vs standard"),
+           "merge --partial: evaluation.md lacks the finished step's claims or the unfinished step's note");
 
     /* another command's plan, and a folder that is not empty */
     snprintf(path, sizeof path, "%s/compare_plan", tmp);
