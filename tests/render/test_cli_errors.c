@@ -77,14 +77,13 @@ static void check_bad_render_input(void)
                    "render --scene cornell --method restir-pt --res 4000x4000 --max-memory 200 --out '%1$s'", 1,
                    "needs about", "than the 200 MB that --max-memory allows");
     expect_failure("compare too large for --max-memory",
-                   "compare --scene cornell --methods restir-di,pt --res 4000x4000 --max-memory 200 --out '%1$s'",
-                   1, "restir-di", "needs about");
+                   "compare --scene cornell --methods restir-di,pt --res 4000x4000 --max-memory 200 --out '%1$s'", 1,
+                   "restir-di", "needs about");
     expect_failure("reference too large for --max-memory",
                    "reference --scene cornell --method pt --res 8000x6000 --max-memory 200 --out '%1$s/r.exr'", 1,
                    "reference at 8000x6000 needs about", "than the 200 MB that --max-memory allows");
-    expect_failure("bad --checkpoint-every",
-                   "reference --scene cornell --method pt --checkpoint-every -1 --out '%1$s/r.exr'", 2,
-                   "--checkpoint-every", "-1");
+    expect_failure("bad --checkpoint-every", "reference --scene cornell --method pt --checkpoint-every -1 --out '%1$s/r.exr'",
+                   2, "--checkpoint-every", "-1");
     expect_failure("--checkpoint-every outside reference", RENDER_ARGS("--checkpoint-every 5"), 2,
                    "--checkpoint-every", NULL);
     expect_failure("huge width", "render --scene cornell --method pt --res 100000x10 --out '%1$s'", 2, "--res",
@@ -137,8 +136,7 @@ static void check_failed_write(void)
     snprintf(out, sizeof(out), "%s/blocked", tmp);
     snprintf(blocker, sizeof(blocker), "%s/frame_0001.exr", out);
     EXPECT(mkdir(out, 0777) == 0 && mkdir(blocker, 0777) == 0, "cannot create %s", blocker);
-    snprintf(args, sizeof(args), "render --scene cornell --method restir-di --res 16x16 --frames 3 --out '%s'",
-             out);
+    snprintf(args, sizeof(args), "render --scene cornell --method restir-di --res 16x16 --frames 3 --out '%s'", out);
     int rc = cli_run(tmp, args, err);
     printf("[failed write] exit %d: %s", rc, err);
     EXPECT(rc == 1, "failed frame write: exit %d", rc);
@@ -153,35 +151,33 @@ static void check_failed_write(void)
 static void check_compare(void)
 {
     char fmt[4 * CLI_PATH_MAX], out[2 * CLI_PATH_MAX], blocker[3 * CLI_PATH_MAX], err[CLI_ERR_MAX];
-    expect_failure("compare with no runs", "compare --scene cornell --methods pt --runs 0 --res 16x16 --out '%1$s'",
-                   2, "--runs", NULL);
+    expect_failure("compare with no runs", "compare --scene cornell --methods pt --runs 0 --res 16x16 --out '%1$s'", 2,
+                   "--runs", NULL);
     expect_failure("compare with --ref-every 0",
                    "compare --scene cornell --methods pt --ref-every 0 --res 16x16 --out '%1$s'", 2, "--ref-every",
                    NULL);
     expect_failure("compare --ref-every planned",
                    "compare --scene cornell --methods pt --ref-every 2 --frames 4 --res 16x16 --plan '%1$s'", 2,
                    "--ref-every", "unsplit");
-    expect_failure(
-        "compare instances= with --equal-time",
-        "compare --scene cornell --methods restir-di,pt:instances=2 --equal-time --res 16x16 --out '%1$s'", 2,
-        "instances=", "--equal-time");
+    expect_failure("compare instances= with --equal-time",
+                   "compare --scene cornell --methods restir-di,pt:instances=2 --equal-time --res 16x16 --out '%1$s'", 2,
+                   "instances=", "--equal-time");
     expect_failure("compare instances=0",
-                   "compare --scene cornell --methods restir-di:instances=0 --res 16x16 --out '%1$s'", 2,
-                   "instances", "[1, 16]");
-    expect_failure(
-        "study with --ref-every",
-        "study --scene cornell --method restir-pt --configs bitterli --ref-every 4 --res 16x16 --out '%1$s'", 2,
-        "--ref-every", NULL);
-    expect_failure("compare with an empty method list",
-                   "compare --scene cornell --methods '' --res 16x16 --out '%1$s'", 2, "--methods", NULL);
+                   "compare --scene cornell --methods restir-di:instances=0 --res 16x16 --out '%1$s'", 2, "instances",
+                   "[1, 16]");
+    expect_failure("study with --ref-every",
+                   "study --scene cornell --method restir-pt --configs bitterli --ref-every 4 --res 16x16 --out '%1$s'",
+                   2, "--ref-every", NULL);
+    expect_failure("compare with an empty method list", "compare --scene cornell --methods '' --res 16x16 --out '%1$s'",
+                   2, "--methods", NULL);
     expect_failure("compare with only commas", "compare --scene cornell --methods , --res 16x16 --out '%1$s'", 2,
                    "--methods", NULL);
     expect_failure("compare with an unknown method",
                    "compare --scene cornell --methods pt,no-such-method --res 16x16 --out '%1$s'", 2,
                    "no-such-method", NULL);
     expect_failure("compare spec with an unknown key",
-                   "compare --scene cornell --methods 'restir-pt,restir-pt:nosuchkey=1' --res 16x16 --out '%1$s'",
-                   2, "restir-pt:nosuchkey=1", "'nosuchkey'");
+                   "compare --scene cornell --methods 'restir-pt,restir-pt:nosuchkey=1' --res 16x16 --out '%1$s'", 2,
+                   "restir-pt:nosuchkey=1", "'nosuchkey'");
     expect_failure("compare spec with a bad value",
                    "compare --scene cornell --methods 'restir-pt:mis=foo' --res 16x16 --out '%1$s'", 2,
                    "restir-pt:mis=foo", "'foo'");
@@ -246,20 +242,19 @@ static void check_study(void)
                    "study --scene cornell --method pt --configs bitterli --res 16x16 --out '%1$s'", 2, "restir-di",
                    NULL);
     expect_failure("study with a bad radius",
-                   "study --scene cornell --method restir-di --radii 10,abc --res 16x16 --out '%1$s'", 2, "abc",
-                   NULL);
+                   "study --scene cornell --method restir-di --radii 10,abc --res 16x16 --out '%1$s'", 2, "abc", NULL);
     expect_failure("study with too few frames",
                    "study --scene cornell --method restir-di --configs fast --frames 2 --res 16x16 --out '%1$s'", 2,
                    "--frames", NULL);
     expect_failure("unknown neighbor selection",
-                   "render --scene cornell --method restir-di --set spatial.select=magic --res 16x16 --out '%1$s'",
-                   2, "magic", NULL);
+                   "render --scene cornell --method restir-di --set spatial.select=magic --res 16x16 --out '%1$s'", 2,
+                   "magic", NULL);
     expect_failure("unknown spatial reuse",
-                   "render --scene cornell --method restir-pt --set spatial.reuse=cells --res 16x16 --out '%1$s'",
-                   2, "spatial.reuse", NULL);
+                   "render --scene cornell --method restir-pt --set spatial.reuse=cells --res 16x16 --out '%1$s'", 2,
+                   "spatial.reuse", NULL);
     expect_failure("spmis candidates out of range",
-                   "render --scene cornell --method restir-pt --set spmis.candidates=-2 --res 16x16 --out '%1$s'",
-                   2, "or M", NULL);
+                   "render --scene cornell --method restir-pt --set spmis.candidates=-2 --res 16x16 --out '%1$s'", 2,
+                   "or M", NULL);
     expect_failure("compare spec that changes the integrand",
                    "compare --scene cornell --res 16x12 --frames 1 --ref-spp 1 --methods 'pt,pt:pt.max_bounces=2' "
                    "--out '%1$s'",
@@ -277,19 +272,18 @@ static void check_study(void)
     expect_failure("unknown temporal reuse", RENDER_ARGS("--set temporal.reuse=forward"), 2, "temporal.reuse",
                    "forward");
     expect_failure("splat with restir-di",
-                   "render --scene cornell --method restir-di --set temporal.reuse=splat --res 16x16 --out '%1$s'",
-                   2, "temporal.reuse=splat", "restir-di");
+                   "render --scene cornell --method restir-di --set temporal.reuse=splat --res 16x16 --out '%1$s'", 2,
+                   "temporal.reuse=splat", "restir-di");
     expect_failure("both with pt",
                    "render --scene cornell --method pt --set temporal.reuse=both --res 16x16 --out '%1$s'", 2,
                    "temporal.reuse=both", "pt");
-    expect_failure(
-        "splat without jitter",
-        "render --scene cornell --method restir-pt --set temporal.reuse=splat --set jitter=off --res 16x16 "
-        "--out '%1$s'",
-        2, "temporal.reuse=splat", "jitter");
+    expect_failure("splat without jitter",
+                   "render --scene cornell --method restir-pt --set temporal.reuse=splat --set jitter=off --res 16x16 "
+                   "--out '%1$s'",
+                   2, "temporal.reuse=splat", "jitter");
     expect_failure("aperture with restir-di",
-                   "render --scene cornell --method restir-di --set camera.aperture=0.1 --res 16x16 --out '%1$s'",
-                   2, "camera.aperture", "restir-di");
+                   "render --scene cornell --method restir-di --set camera.aperture=0.1 --res 16x16 --out '%1$s'", 2,
+                   "camera.aperture", "restir-di");
     expect_failure("shutter with gpt",
                    "render --scene cornell --method gpt --set camera.shutter=0.5 --res 16x16 --out '%1$s'", 2,
                    "camera.shutter", "gpt");
@@ -356,29 +350,23 @@ static void check_scene_files(void)
     expect_failure("mesh file without emitters, --env none", fmt, 2, "dark", "no emitter");
     snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --out '%%1$s'", junk);
     expect_failure("broken mesh file", fmt, 2, "junk.ply", NULL);
-    expect_failure("missing scene file",
-                   "render --scene /nonexistent/room.json --method pt --res 16x16 --out '%1$s'", 2,
-                   "/nonexistent/room.json", NULL);
+    expect_failure("missing scene file", "render --scene /nonexistent/room.json --method pt --res 16x16 --out '%1$s'",
+                   2, "/nonexistent/room.json", NULL);
     expect_failure("scene info of a missing file", "scene info /nonexistent/room.gltf", 2, "/nonexistent/room.gltf",
                    NULL);
-    expect_failure("export of an unknown scene", "scene export no-such-scene --out '%1$s'", 2, "no-such-scene",
-                   NULL);
+    expect_failure("export of an unknown scene", "scene export no-such-scene --out '%1$s'", 2, "no-such-scene", NULL);
     /* A texture that cannot be read: refused by default; scene.missing_textures=warn renders with
      * the factor, saying which file on stderr (issue 23). */
     char missing[2 * CLI_PATH_MAX], out[3 * CLI_PATH_MAX], err[CLI_ERR_MAX];
     snprintf(missing, sizeof missing, "%s/missing-texture.json", tmp);
-    write_text(missing,
-               "{\"format\": \"restir-scene 1\", \"camera\": {\"position\": [0, 1, 3], \"look_at\": [0, 0.5, 0]},"
-               " \"materials\": [{\"name\": \"wall\", \"base_color_texture\": \"no-such-image.png\"},"
-               " {\"name\": \"lamp\", \"emission\": [1, 1, 1]}], \"shapes\": ["
-               " {\"type\": \"quads\", \"material\": \"wall\", \"quads\": [[[-1, 0, -1], [1, 0, -1], [1, 2, -1], "
-               "[-1, 2, -1]]]},"
-               " {\"type\": \"quads\", \"material\": \"lamp\", \"quads\": [[[-1, 2, 1], [1, 2, 1], [1, 2, -1], "
-               "[-1, 2, -1]]]}]}");
+    write_text(missing, "{\"format\": \"restir-scene 1\", \"camera\": {\"position\": [0, 1, 3], \"look_at\": [0, 0.5, 0]},"
+                        " \"materials\": [{\"name\": \"wall\", \"base_color_texture\": \"no-such-image.png\"},"
+                        " {\"name\": \"lamp\", \"emission\": [1, 1, 1]}], \"shapes\": ["
+                        " {\"type\": \"quads\", \"material\": \"wall\", \"quads\": [[[-1, 0, -1], [1, 0, -1], [1, 2, -1], [-1, 2, -1]]]},"
+                        " {\"type\": \"quads\", \"material\": \"lamp\", \"quads\": [[[-1, 2, 1], [1, 2, 1], [1, 2, -1], [-1, 2, -1]]]}]}");
     snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --out '%%1$s'", missing);
     expect_failure("scene with a missing texture", fmt, 2, "no-such-image.png", "base_color_texture");
-    snprintf(fmt, sizeof fmt,
-             "render --scene '%s' --method pt --res 16x16 --set scene.missing_textures=warn --out '%s/warned'",
+    snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --set scene.missing_textures=warn --out '%s/warned'",
              missing, tmp);
     int rc = cli_run(tmp, fmt, err);
     EXPECT(rc == 0 && strstr(err, "warning") && strstr(err, "no-such-image.png"),
@@ -389,18 +377,14 @@ static void check_scene_files(void)
     EXPECT(cli_run(tmp, fmt, err) == 0 && strstr(err, "no-such-image.png"), "scene info with warn: %s", err);
     /* Environment light (issue 23): an unreadable --env names the file; every kind of method
      * renders an environment-lit scene. */
-    expect_failure("--env of a missing image",
-                   "render --scene cornell --method pt --res 16x16 --env /nonexistent/sky.hdr "
-                   "--out '%1$s'",
-                   2, "/nonexistent/sky.hdr", "--env");
+    expect_failure("--env of a missing image", "render --scene cornell --method pt --res 16x16 --env /nonexistent/sky.hdr "
+                   "--out '%1$s'", 2, "/nonexistent/sky.hdr", "--env");
     char sky[2 * CLI_PATH_MAX];
     snprintf(sky, sizeof sky, "%s/sky.json", tmp);
-    write_text(sky,
-               "{\"format\": \"restir-scene 1\", \"camera\": {\"position\": [0, 1, 3], \"look_at\": [0, 0, 0]},"
-               " \"environment\": {\"color\": [0.5, 0.6, 0.8], \"intensity\": 2},"
-               " \"materials\": [{\"name\": \"ground\", \"base_color\": [0.5, 0.5, 0.5]}],"
-               " \"shapes\": [{\"type\": \"quads\", \"material\": \"ground\", \"quads\": [[[-1, 0, 1], [1, 0, 1], "
-               "[1, 0, -1], [-1, 0, -1]]]}]}");
+    write_text(sky, "{\"format\": \"restir-scene 1\", \"camera\": {\"position\": [0, 1, 3], \"look_at\": [0, 0, 0]},"
+                    " \"environment\": {\"color\": [0.5, 0.6, 0.8], \"intensity\": 2},"
+                    " \"materials\": [{\"name\": \"ground\", \"base_color\": [0.5, 0.5, 0.5]}],"
+                    " \"shapes\": [{\"type\": \"quads\", \"material\": \"ground\", \"quads\": [[[-1, 0, 1], [1, 0, 1], [1, 0, -1], [-1, 0, -1]]]}]}");
     snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --env none --out '%%1$s'", sky);
     expect_failure("--env none leaving no light", fmt, 2, "--env none", NULL);
     const char *methods[] = {"pt", "restir-di", "restir-pt", "grestir-pt"};
@@ -420,9 +404,8 @@ static void check_scene_files(void)
             char set[128] = "";
             if (value[k])
                 snprintf(set, sizeof set, "--set scene.%s=%s", knobs[o][0], value[k]);
-            snprintf(fmt, sizeof fmt,
-                     "render --scene '%s/scenes/%s.json' --method pt --res 24x16 %s --out '%s/%s-%d'", data,
-                     knobs[o][1], set, tmp, knobs[o][0], k);
+            snprintf(fmt, sizeof fmt, "render --scene '%s/scenes/%s.json' --method pt --res 24x16 %s --out '%s/%s-%d'",
+                     data, knobs[o][1], set, tmp, knobs[o][0], k);
             EXPECT(cli_run(tmp, fmt, err) == 0, "restir %s: %s", fmt, err);
             snprintf(frames[k], sizeof frames[k], "%s/%s-%d/frame_0000.exr", tmp, knobs[o][0], k);
         }
@@ -436,12 +419,8 @@ static void check_scene_files(void)
  * message naming the file, never crashes (the in-process checks are in tests/unit/test_scene_import.c). */
 static void check_broken_assets(void)
 {
-    static const char *const dirs[] = {"invalid",
-                                       "glTF2/wrongTypes",
-                                       "glTF2/IndexOutOfRange",
-                                       "glTF2/MissingBin",
-                                       "glTF2/SchemaFailures",
-                                       "glTF2/BoxBadNormals-glTF-Binary",
+    static const char *const dirs[] = {"invalid", "glTF2/wrongTypes", "glTF2/IndexOutOfRange", "glTF2/MissingBin",
+                                       "glTF2/SchemaFailures", "glTF2/BoxBadNormals-glTF-Binary",
                                        "glTF2/BoxWithInfinites-glTF-Binary"};
     int files = 0;
     for (size_t d = 0; d < sizeof dirs / sizeof dirs[0]; d++) {
