@@ -302,6 +302,9 @@ int compare_merge(const char *dir)
             compare_runs_add(&acc, &one);
             free(mask);
             if (n > 0) {
+                one.ms_per_frame = t.ms_per_frame;
+                memcpy(one.ms_pass, t.ms_pass, sizeof one.ms_pass);
+                compare_keep_fastest(&res[k], &one);
                 free(image);
                 continue;
             }

@@ -307,7 +307,8 @@ static void compare_usage(void)
                "--runs N (default 1) runs every SPEC as N independently seeded sequences: errors are means\n"
                "over the runs with their standard errors (sd / sqrt N, printed after +-), and temporal_cov\n"
                "is 000's relative autocovariance (Appendix A, Eq. 17) at a lag of 3 frames over the second\n"
-               "half of the frames (at least 8 frames); run 0's frames are the ones written. --plan DIR makes\n"
+               "half of the frames (at least 8 frames); run 0's frames are the ones written, and the times\n"
+               "are the fastest run's (runs on a shared machine only ever get slower). --plan DIR makes\n"
                "each SPEC's run a job of its own; the merge then has the same errors and standard errors, but\n"
                "no temporal_cov (it needs every run's frame sequence). --ref-every and --equal-time cannot be\n"
                "planned.\n"
@@ -424,6 +425,14 @@ void compare_runs_finish(const struct compare_runs *a, struct compare_result *re
     res->runs = runs;
 }
 
+void compare_keep_fastest(struct compare_result *res, const struct compare_result *run)
+{
+    if (run->ms_per_frame < res->ms_per_frame) {
+        res->ms_per_frame = run->ms_per_frame;
+        memcpy(res->ms_pass, run->ms_pass, sizeof res->ms_pass);
+    }
+}
+
 int compare_run_spec(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
                      int instances, int runs, const float *ref, const char *out_dir, int keep_image,
                      struct compare_track *track, struct compare_result *res, char *msg)
@@ -445,6 +454,8 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
             return rc;
         }
         compare_runs_add(&acc, n == 0 ? res : &one);
+        if (n > 0)
+            compare_keep_fastest(res, &one);
     }
     compare_runs_finish(&acc, res);
     res->temporal_cov = track ? compare_track_end(track, c->label) : NAN;

@@ -87,13 +87,16 @@ void compare_runs_add(struct compare_runs *a, const struct compare_result *r);
 /* Into res: with more than one run the means (one run keeps its own errors bit for bit), the
  * standard errors (NaN with one run) and the number of runs. */
 void compare_runs_finish(const struct compare_runs *a, struct compare_result *res);
+/* The times of res become run's (frame and passes) when run's frame time is shorter: a row reports
+ * its fastest run, since other load on a machine only ever slows a run down. */
+void compare_keep_fastest(struct compare_result *res, const struct compare_result *run);
 /* Run n's seed: seed + n COMPARE_RUN_SEED_STRIDE. */
 static inline uint64_t compare_run_seed(uint64_t seed, int n)
 {
     return seed + COMPARE_RUN_SEED_STRIDE * (uint64_t)n;
 }
 /* --runs runs of spec c (compare_run_method with seed + n COMPARE_RUN_SEED_STRIDE for run n): res
- * gets run 0's frame and time, the last-frame error averaged over the runs and the temporal
+ * gets run 0's frame, the fastest run's times, the last-frame error averaged over the runs and the temporal
  * autocovariance; the track's rows for c go to frames.csv. Returns as compare_run_method. */
 int compare_run_spec(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
                      int instances, int runs, const float *ref, const char *out_dir, int keep_image,
