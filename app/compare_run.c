@@ -480,7 +480,7 @@ float *compare_render_reference_at(const struct compare_setup *st, int frame)
                                 st->o.ref_spp);
 }
 
-/* DIR/passes.csv: each row's mean time per frame of every pass (run 0; its instances summed, one
+/* DIR/passes.csv: each row's mean time per frame of every pass (the fastest run; its instances summed, one
  * reconstruction), the breakdown of 004 Table 2 and 000 Table 1. Returns 0, or -1 with msg. */
 static int write_passes(const char *out_dir, const struct compare_spec *specs, const struct compare_result *res, int n,
                         char *msg)

@@ -331,7 +331,7 @@ static int table2_004(struct text *md, const char *dir, const struct eval_step *
         return -1;
     static const char *const pass[] = {"initial",     "temporal",        "select",      "spatial", "cells",
                                        "cell_search", "spmis_canonical", "spmis_reuse", "shade"};
-    put(md, "\nTable 2 layout (ms per frame of each pass, run 0, mean over the frames; spmis: create cells, cell "
+    put(md, "\nTable 2 layout (ms per frame of each pass, the fastest run, mean over its frames; spmis: create cells, cell "
             "search, canonical weight m_c, stochastic neighbor reuse):\n\n| reuse | initial | temporal | select | "
             "spatial | cells | cell search | m_c | neighbor reuse | shade "
             "|\n|---|---|---|---|---|---|---|---|---|---|\n");

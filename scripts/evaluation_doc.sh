@@ -23,6 +23,20 @@ echo "Each section starts with the command that produced it; run it again (it re
 echo "to update this page. Verdicts: at two standard deviations of the relative change; \"partly\": a"
 echo "significant gain smaller than the paper's. How the steps map to the papers' setups: README,"
 echo "\`restir evaluate --help\`, docs/BENCHMARKS.md (issue 25)."
+missing=""
+for paper in 000 004 002; do
+    found=0
+    for d in "$@"; do
+        if grep -q "^## $paper:" "$d/evaluation.md"; then
+            found=1
+        fi
+    done
+    [ "$found" = 1 ] || missing="$missing $paper"
+done
+if [ -n "$missing" ]; then
+    echo
+    echo "Not evaluated in these folders yet:$missing (no verdicts for them on this page)."
+fi
 for d in "$@"; do
     echo
     echo "<!-- from $(basename "$d") -->"
