@@ -28,11 +28,13 @@
 static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '3'};
 
 /* What a SPEC's job measured: its frame time, paths per pixel and instances; has_mask: the record
- * goes on with the last frame's disocclusion mask (width x height bytes, compare_run.h); a later
- * run's record then holds its last frame (3 x width x height floats). */
+ * goes on with the last frame's disocclusion mask (width x height bytes, compare_run.h); has_grad:
+ * then with its gradients (dx, dy: 2 x 3 x width x height floats; 0 in the records of versions
+ * before gradient errors, which read as gradient methods without them); a later run's record then
+ * holds its last frame (3 x width x height floats). */
 struct job_timing {
     double ms_per_frame, ms_pass[PASS_COUNT];
-    int32_t spp, instances, has_mask, unused;
+    int32_t spp, instances, has_mask, has_grad;
 };
 
 /* Job k's spec (-1: the reference job) and run: the jobs are the reference, then each spec's runs. */
@@ -81,13 +83,16 @@ int compare_plan(const struct compare_setup *st, int argc, char **argv)
     return plan_finish(&pl);
 }
 
-/* Job k's result: the reference image, or a SPEC's timing and last frame. */
+/* Job k's result: the reference image, or a SPEC's timing, last frame, mask and gradients (each
+ * out-pointer may be NULL; *mask and *grad NULL when the record has none). */
 static int read_job(const struct plan *pl, const struct compare_setup *st, int k, struct job_timing *timing,
-                    float **image, unsigned char **mask, char *why)
+                    float **image, unsigned char **mask, float **grad, char *why)
 {
     const size_t npix = (size_t)st->p.width * (size_t)st->p.height;
     if (mask)
         *mask = NULL;
+    if (grad)
+        *grad = NULL;
     char path[2 * PLAN_PATH_MAX];
     plan_output_path(pl, k, path, sizeof path);
     int run;
@@ -102,10 +107,11 @@ static int read_job(const struct plan *pl, const struct compare_setup *st, int k
         size_t size = 0;
         if (plan_blob_read(path, result_magic, pl->id, &data, &size, why) != 0)
             return -1;
-        struct job_timing t;
+        struct job_timing t = {0};
         if (size >= sizeof t)
             memcpy(&t, data, sizeof t);
-        if (size < sizeof t || size != sizeof t + (t.has_mask ? npix : 0) + image_bytes) {
+        const size_t grad_bytes = t.has_grad ? sizeof(float) * 6 * npix : 0;
+        if (size < sizeof t || size != sizeof t + (t.has_mask ? npix : 0) + grad_bytes + image_bytes) {
             snprintf(why, RESTIR_MSG_LEN, "%.300s: not a timing record", path);
             free(data);
             return -1;
@@ -115,6 +121,10 @@ static int read_job(const struct plan *pl, const struct compare_setup *st, int k
         if (mask && t.has_mask) {
             *mask = xmalloc(npix);
             memcpy(*mask, (const char *)data + sizeof t, npix);
+        }
+        if (grad && t.has_grad) {
+            *grad = xmalloc(grad_bytes);
+            memcpy(*grad, (const char *)data + sizeof t + (t.has_mask ? npix : 0), grad_bytes);
         }
         if (run > 0) { /* a later run's last frame is in its record */
             if (image) {
@@ -131,6 +141,10 @@ static int read_job(const struct plan *pl, const struct compare_setup *st, int k
                 free(*mask);
                 *mask = NULL;
             }
+            if (grad) {
+                free(*grad);
+                *grad = NULL;
+            }
             return -1;
         }
     }
@@ -143,7 +157,7 @@ static int read_job(const struct plan *pl, const struct compare_setup *st, int k
 
 static int job_valid(const struct plan *pl, int k, char *why, void *ctx)
 {
-    return read_job(pl, ctx, k, NULL, NULL, NULL, why);
+    return read_job(pl, ctx, k, NULL, NULL, NULL, NULL, why);
 }
 
 int compare_run_job(const struct plan *pl, int k)
@@ -159,7 +173,7 @@ int compare_run_job(const struct plan *pl, int k)
     char path[PLAN_PATH_MAX + 200], runs[PLAN_PATH_MAX + 16], msg[RESTIR_MSG_LEN];
     plan_output_path(pl, k, path, sizeof path);
     snprintf(runs, sizeof runs, "%s/runs", pl->dir);
-    if (read_job(pl, &st, k, NULL, NULL, NULL, msg) == 0) {
+    if (read_job(pl, &st, k, NULL, NULL, NULL, NULL, msg) == 0) {
         printf("job %d of %d (%s): already done: %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
         scene_destroy(&st.s);
         return 0;
@@ -200,15 +214,19 @@ int compare_run_job(const struct plan *pl, int k)
         } else {
             /* written after the frame: a result file means the frame is there */
             struct job_timing t = {.ms_per_frame = res.ms_per_frame, .spp = res.spp, .instances = res.instances,
-                                   .has_mask = res.mask != NULL};
+                                   .has_mask = res.mask != NULL, .has_grad = res.grad != NULL};
             memcpy(t.ms_pass, res.ms_pass, sizeof t.ms_pass);
             const size_t npix = (size_t)st.p.width * (size_t)st.p.height;
-            const void *parts[3] = {&t, NULL, NULL};
-            size_t sizes[3] = {sizeof t, 0, 0};
+            const void *parts[4] = {&t, NULL, NULL, NULL};
+            size_t sizes[4] = {sizeof t, 0, 0, 0};
             int n_parts = 1;
             if (res.mask) {
                 parts[n_parts] = res.mask;
                 sizes[n_parts++] = npix;
+            }
+            if (res.grad) {
+                parts[n_parts] = res.grad;
+                sizes[n_parts++] = sizeof(float) * 6 * npix;
             }
             if (res.image) {
                 parts[n_parts] = res.image;
@@ -220,6 +238,7 @@ int compare_run_job(const struct plan *pl, int k)
             }
         }
         free(res.mask);
+        free(res.grad);
         free(res.image);
     }
     if (rc == 0)
@@ -289,9 +308,9 @@ int compare_merge(const char *dir)
         struct compare_runs acc = {0};
         for (int n = 0; n < st.o.runs && rc == 0; n++) { /* in run order, as compare_run_spec */
             struct job_timing t;
-            float *image = NULL;
+            float *image = NULL, *grad = NULL;
             unsigned char *mask = NULL;
-            if (read_job(&pl, &st, job_of_spec(&st, k, n), &t, &image, &mask, msg) != 0) {
+            if (read_job(&pl, &st, job_of_spec(&st, k, n), &t, &image, &mask, &grad, msg) != 0) {
                 cli_error("cannot merge: %s", msg);
                 rc = EXIT_RUNTIME;
                 break;
@@ -299,8 +318,10 @@ int compare_merge(const char *dir)
             struct compare_result one = {.method = st.specs[k].method};
             restir_error_compute(image, ref, npix, NULL, &one.err);
             compare_disoccluded_error(image, ref, mask, npix, &one.mape_dis, &one.dis_share);
+            one.grad_relmse = grad ? restir_gradient_relmse(grad, grad + 3 * npix, ref, st.p.width, st.p.height) : NAN;
             compare_runs_add(&acc, &one);
             free(mask);
+            free(grad);
             if (n > 0) {
                 one.ms_per_frame = t.ms_per_frame;
                 memcpy(one.ms_pass, t.ms_pass, sizeof one.ms_pass);

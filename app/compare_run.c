@@ -246,12 +246,22 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
         renderer_disoccluded(&r[0], DISOCCLUSION_FRAMES, mask);
     }
     res->mask = NULL;
-    if (ref) { /* a planned job measures nothing: the merge does, from the frame and mask it writes */
+    res->grad = NULL;
+    res->grad_relmse = NAN;
+    const struct grad_frame *g = r[0].grad;
+    if (ref) { /* a planned job measures nothing: the merge does, from the frame, mask and gradients it writes */
         restir_error_compute(r[0].image, ref, npix, NULL, &res->err);
         compare_disoccluded_error(r[0].image, ref, mask, npix, &res->mape_dis, &res->dis_share);
+        if (g)
+            res->grad_relmse = restir_gradient_relmse(g->dx, g->dy, ref, p->width, p->height);
         free(mask);
     } else {
         res->mask = mask;
+        if (g) {
+            res->grad = xmalloc(2 * sizeof(float) * n3);
+            memcpy(res->grad, g->dx, sizeof(float) * n3);
+            memcpy(res->grad + n3, g->dy, sizeof(float) * n3);
+        }
     }
     res->image = NULL;
     if (keep_image) {
@@ -294,7 +304,9 @@ static void compare_usage(void)
                "luma_rmse, runs, temporal_cov, and with --runs the standard errors relmse_sem, mape_sem,\n"
                "smape_sem; then mape_disoccluded, its mape_disoccluded_sem and disoccluded_share: 004 Sec.\n"
                "6.2's MAPE over the pixels whose history was rejected in any of the last 4 frames, for the\n"
-               "methods with a G-buffer history)\n"
+               "methods with a G-buffer history; then gradient_relmse and gradient_relmse_sem for the gradient\n"
+               "methods: the relMSE of the last frame's estimated forward differences against the reference's,\n"
+               "our measure of 002 Fig. 7's gradient images, defined in restir render --help)\n"
                "and each row's last frame to DIR/FOLDER/, where FOLDER is the SPEC with every character other\n"
                "than A-Z a-z 0-9 . _ - replaced by _ (and _2, _3, ... appended when two SPECs give the same\n"
                "name). Default DIR: out/compare-SCENE.\n"
@@ -400,9 +412,9 @@ int compare_setup(int argc, char **argv, struct compare_setup *st)
 void compare_runs_add(struct compare_runs *a, const struct compare_result *r)
 {
     const struct restir_error *e = &r->err;
-    const double x[6] = {e->relmse, e->mape, e->smape, e->luma_rmse, r->mape_dis, r->dis_share};
+    const double x[7] = {e->relmse, e->mape, e->smape, e->luma_rmse, r->mape_dis, r->dis_share, r->grad_relmse};
     a->n++;
-    for (int k = 0; k < 6; k++) { /* Welford's running mean and sum of squared deviations */
+    for (int k = 0; k < 7; k++) { /* Welford's running mean and sum of squared deviations */
         const double d = x[k] - a->mean[k];
         a->mean[k] += d / a->n;
         a->m2[k] += d * (x[k] - a->mean[k]);
@@ -412,16 +424,18 @@ void compare_runs_add(struct compare_runs *a, const struct compare_result *r)
 void compare_runs_finish(const struct compare_runs *a, struct compare_result *res)
 {
     const int runs = a->n;
-    double sem[6];
-    for (int k = 0; k < 6; k++)
+    double sem[7];
+    for (int k = 0; k < 7; k++)
         sem[k] = runs > 1 ? sqrt(a->m2[k] / (runs - 1) / runs) : NAN;
     if (runs > 1) { /* one run keeps its error bit for bit */
         res->err = (struct restir_error){a->mean[0], a->mean[1], a->mean[2], a->mean[3]};
         res->mape_dis = a->mean[4];
         res->dis_share = a->mean[5];
+        res->grad_relmse = a->mean[6];
     }
     res->sem = (struct restir_error){sem[0], sem[1], sem[2], sem[3]};
     res->mape_dis_sem = sem[4];
+    res->grad_relmse_sem = sem[6];
     res->runs = runs;
 }
 
@@ -518,7 +532,7 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
     struct csv_writer csv;
     if (csv_open(&csv, csv_path,
                  "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse,runs,temporal_cov,relmse_sem,mape_sem,"
-                 "smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share",
+                 "smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share,gradient_relmse,gradient_relmse_sem",
                  msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
@@ -530,16 +544,24 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
     printf("%s, %dx%d, %s camera, error at frame %d%s:\n", o->scene, p->width, p->height,
            p->camera_path ? "moving" : "static", o->frames - 1, o->equal_time ? ", equal time" : "");
     const int runs = o->runs > 1;
+    int any_grad = 0; /* a gradient method's row: the table gets 002 Fig. 7's gradient relMSE */
+    for (int k = 0; k < n; k++)
+        any_grad |= isfinite(res[k].grad_relmse);
     if (runs)
         printf("(errors: means of %d independently seeded runs, +- their standard error; tcov: 000 Eq. 17 at lag %d "
                "over frames %d-%d)\n",
                o->runs, COMPARE_COV_LAG, o->frames / 2, o->frames - 1);
-    printf("%-*s %10s %6s %5s %12s%s %10s%s %8s%s %12s %10s%s %6s%s\n", w, "method", "ms/frame", "spp", "inst",
+    printf("%-*s %10s %6s %5s %12s%s %10s%s %8s%s %12s %10s%s %6s%s%s%s\n", w, "method", "ms/frame", "spp", "inst",
            "relMSE", runs ? "       +-" : "", "MAPE", runs ? "       +-" : "", "SMAPE", runs ? "     +-" : "",
-           "relMSE/first", "MAPE dis", runs ? "       +-" : "", "dis", runs ? "         tcov" : "");
+           "relMSE/first", "MAPE dis", runs ? "       +-" : "", "dis", runs ? "         tcov" : "",
+           any_grad ? "  grad relMSE" : "", any_grad && runs ? "       +-" : "");
     for (int k = 0; k < n; k++) {
         const struct compare_result *c = &res[k];
-        char tcov[32] = "", se[4][32] = {"", "", "", ""};
+        char tcov[32] = "", se[4][32] = {"", "", "", ""}, grad[64] = "";
+        if (any_grad && runs)
+            snprintf(grad, sizeof grad, " %12.5g %8.2g", c->grad_relmse, c->grad_relmse_sem);
+        else if (any_grad)
+            snprintf(grad, sizeof grad, " %12.5g", c->grad_relmse);
         if (runs) {
             snprintf(tcov, sizeof tcov, " %12.5g", c->temporal_cov);
             snprintf(se[0], sizeof se[0], " %8.2g", c->sem.relmse);
@@ -547,12 +569,13 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
             snprintf(se[2], sizeof se[2], " %6.2g", c->sem.smape);
             snprintf(se[3], sizeof se[3], " %8.2g", c->mape_dis_sem);
         }
-        printf("%-*s %10.2f %6d %5d %12.5g%s %10.5g%s %8.3f%s %12.3f %10.5g%s %6.3f%s\n", w, specs[k].label,
+        printf("%-*s %10.2f %6d %5d %12.5g%s %10.5g%s %8.3f%s %12.3f %10.5g%s %6.3f%s%s\n", w, specs[k].label,
                c->ms_per_frame, c->spp, c->instances, c->err.relmse, se[0], c->err.mape, se[1], c->err.smape, se[2],
                res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0, c->mape_dis, se[3], c->dis_share,
-               tcov);
+               tcov, grad);
         if (rc == 0) {
-            char field[2 * SPEC_MAX + 4], cov[32] = "", sem[4][32] = {"", "", "", ""}, dis[2][32] = {"", ""};
+            char field[2 * SPEC_MAX + 4], cov[32] = "", sem[4][32] = {"", "", "", ""}, dis[2][32] = {"", ""},
+                                          gr[2][32] = {"", ""};
             csv_field(field, sizeof(field), specs[k].label);
             if (isfinite(c->temporal_cov))
                 snprintf(cov, sizeof cov, "%.6g", c->temporal_cov);
@@ -567,9 +590,13 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                 snprintf(dis[0], sizeof dis[0], "%.6g", c->mape_dis);
             if (isfinite(c->dis_share))
                 snprintf(dis[1], sizeof dis[1], "%.6g", c->dis_share);
-            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s", field, c->ms_per_frame, c->spp,
-                    c->instances, c->err.relmse, c->err.mape, c->err.smape, c->err.luma_rmse,
-                    c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1]);
+            if (isfinite(c->grad_relmse))
+                snprintf(gr[0], sizeof gr[0], "%.6g", c->grad_relmse);
+            if (c->runs > 1 && isfinite(c->grad_relmse_sem))
+                snprintf(gr[1], sizeof gr[1], "%.6g", c->grad_relmse_sem);
+            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s", field, c->ms_per_frame,
+                    c->spp, c->instances, c->err.relmse, c->err.mape, c->err.smape, c->err.luma_rmse,
+                    c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1], gr[0], gr[1]);
         }
     }
     if (rc == 0 && csv_close(&csv, msg) != 0) {

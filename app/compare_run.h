@@ -37,7 +37,12 @@ struct compare_result {
      * the disoccluded share of the image's pixels (mean over the runs); NaN for methods without a
      * G-buffer history (pt, gpt), MAPE also when no pixel is disoccluded */
     double mape_dis, mape_dis_sem, dis_share;
+    /* gradient methods (002 Fig. 7): restir_gradient_relmse of the last frame's (instance-averaged)
+     * gradients, mean over the runs, and its standard error; NaN for the other methods */
+    double grad_relmse, grad_relmse_sem;
     unsigned char *mask; /* a planned job's disocclusion mask for the merge (else NULL; caller frees) */
+    float *grad; /* a planned job's gradients for the merge: dx then dy, 3 x width x height floats
+                    each (else NULL; caller frees) */
     double temporal_cov;     /* 000 Eq. 17 over the runs (compare_track.h); NaN with one run */
     float *image;            /* the last frame, kept for --report (else NULL) */
 };
@@ -71,7 +76,8 @@ int compare_setup(int argc, char **argv, struct compare_setup *st);
 float *compare_render_reference(const struct compare_setup *st);
 /* Runs `frames` frames of spec c with parameters p (c->p, or with an equal-time spp) as `instances`
  * (at most MAX_INSTANCES) independently seeded renderers, measures the average of their last frames
- * against ref (none when ref is NULL: then res->mask gets the disocclusion mask) and, for run 0,
+ * against ref (none when ref is NULL: then res->mask gets the disocclusion mask and, for gradient
+ * methods, res->grad the gradients) and, for run 0,
  * writes it under out_dir/c->dir; keep_image keeps it in res->image. With a track
  * (may be NULL) every frame's statistics and the frames it asks for go to it as run `run`.
  * Returns 0, -1 with msg (the frame cannot be written), or RUN_STOPPED having written nothing. */
@@ -81,7 +87,8 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
 /* The errors of a spec's runs as they arrive (run order), and their means and standard errors. */
 struct compare_runs {
     int n;
-    double mean[6], m2[6]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share */
+    double mean[7], m2[7]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share,
+                              gradient relMSE */
 };
 void compare_runs_add(struct compare_runs *a, const struct compare_result *r);
 /* Into res: with more than one run the means (one run keeps its own errors bit for bit), the

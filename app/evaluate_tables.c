@@ -58,48 +58,55 @@ static struct change rel_change(double ours, double ours_sem, double base, doubl
     return c;
 }
 
-/* A claimed small change, as verdict()'s lo: reproduced when the change is within +-lim percent at two
- * standard deviations. */
-#define SMALL_CLAIM(lim) (-2000.0 - (lim))
+/* What a paper claims about a change (ours against its baseline), judged by verdict(). */
+enum claim_kind {
+    CLAIM_REDUCTION, /* lower by at least limit percent (0: any reduction) */
+    CLAIM_SMALL,     /* a change within +-limit percent */
+    CLAIM_COST,      /* at most limit percent more time (times have no spread: one machine, means over frames and
+                        runs) */
+    CLAIM_NONE,      /* no claim (our own variant): which way it went */
+};
+struct claimed {
+    enum claim_kind kind;
+    double limit;
+};
+#define REDUCTION(pct) ((struct claimed){CLAIM_REDUCTION, (pct)})
+#define SMALL_CHANGE(pct) ((struct claimed){CLAIM_SMALL, (pct)})
+#define COSTS_AT_MOST(pct) ((struct claimed){CLAIM_COST, (pct)})
+#define NO_CLAIM ((struct claimed){CLAIM_NONE, 0.0})
 
-/* A claimed cost of at most hi percent more, as verdict()'s lo: reproduced when the change is at most
- * hi (times have no spread: one machine, means over frames and runs). */
-#define COST_CLAIM(hi) (-1000.0 - (hi))
-
-/* The verdict on a claimed reduction of at least lo percent (0: any reduction; negative: no claim), judged at two
- * standard deviations: reproduced (significantly lower, and lo within reach), partly (significantly
- * lower, but less than lo), not reproduced (within the noise, or higher). */
-static const char *verdict(struct change c, double lo, char *why, size_t len)
+/* The verdict on claim k at two standard deviations: for a reduction, reproduced (significantly lower,
+ * and the claimed limit within reach), partly (significantly lower, but less than the limit), not
+ * reproduced (within the noise, or higher); for a small change, reproduced when the whole interval
+ * lies within +-limit; for a cost, when the change is at most limit; for no claim, lower / higher /
+ * no difference. why gets the reason ("" when none). */
+static const char *verdict(struct change c, struct claimed k, char *why, size_t len)
 {
-    if (lo <= -2000.0) { /* a claimed small change */
-        const double lim = -2000.0 - lo, sd = isfinite(c.sd) ? c.sd : 0.0;
-        const int small = c.pct - 2.0 * sd >= -lim && c.pct + 2.0 * sd <= lim;
-        if (small)
-            why[0] = '\0';
-        else
-            snprintf(why, len, "the change may exceed %g%%", lim);
-        return !isfinite(c.pct) ? "not measured" : small ? "reproduced" : "not reproduced";
-    }
-    if (lo <= -1000.0) { /* a cost claim */
-        const double hi = -1000.0 - lo;
-        snprintf(why, len, "%s", c.pct <= hi ? "" : "costs more");
-        return !isfinite(c.pct) ? "not measured" : c.pct <= hi ? "reproduced" : "not reproduced";
-    }
-    if (lo < 0.0) { /* no claim to judge (our own variant): which way it went, at two standard deviations */
-        const double sd = isfinite(c.sd) ? c.sd : 0.0;
-        snprintf(why, len, "%s", isfinite(c.sd) ? "" : "no spread");
-        return !isfinite(c.pct)         ? "not measured"
-               : c.pct + 2.0 * sd < 0.0 ? "lower"
-               : c.pct - 2.0 * sd > 0.0 ? "higher"
-                                        : "no difference";
-    }
     const double sd = isfinite(c.sd) ? c.sd : 0.0;
-    const char *spread = isfinite(c.sd) ? "" : " (no spread)";
+    why[0] = '\0';
     if (!isfinite(c.pct)) {
         snprintf(why, len, "not measured");
         return "not measured";
     }
-    if (c.pct + 2.0 * sd < 0.0 && c.pct - 2.0 * sd <= -lo) {
+    switch (k.kind) {
+    case CLAIM_SMALL: {
+        const int small = c.pct - 2.0 * sd >= -k.limit && c.pct + 2.0 * sd <= k.limit;
+        if (!small)
+            snprintf(why, len, "the change may exceed %g%%", k.limit);
+        return small ? "reproduced" : "not reproduced";
+    }
+    case CLAIM_COST:
+        if (c.pct > k.limit)
+            snprintf(why, len, "costs more");
+        return c.pct <= k.limit ? "reproduced" : "not reproduced";
+    case CLAIM_NONE:
+        snprintf(why, len, "%s", isfinite(c.sd) ? "" : "no spread");
+        return c.pct + 2.0 * sd < 0.0 ? "lower" : c.pct - 2.0 * sd > 0.0 ? "higher" : "no difference";
+    case CLAIM_REDUCTION:
+        break;
+    }
+    const char *spread = isfinite(c.sd) ? "" : " (no spread)";
+    if (c.pct + 2.0 * sd < 0.0 && c.pct - 2.0 * sd <= -k.limit) {
         snprintf(why, len, "%s", isfinite(c.sd) ? "" : "no spread");
         return "reproduced";
     }
@@ -141,14 +148,14 @@ struct claims {
 };
 
 /* One claim's line: what (the claim), where (scene, base), our change, the paper's figure, lo as in
- * verdict(), and the setup's differences from the paper's (said when not reproduced). */
+ * what the paper claims (verdict()), and the setup's differences from the paper's (said when not reproduced). */
 static void claim(struct claims *cl, const char *paper, const char *what, const char *where, struct change c,
-                  const char *paper_figure, double lo, const char *differences)
+                  const char *paper_figure, struct claimed k, const char *differences)
 {
     char ours[64], why[160], f[4][400];
     fmt_change(c, ours, sizeof ours);
-    const char *v = verdict(c, lo, why, sizeof why);
-    const int ok = !strcmp(v, "reproduced") || (lo < 0.0 && lo > -1000.0);
+    const char *v = verdict(c, k, why, sizeof why);
+    const int ok = !strcmp(v, "reproduced") || k.kind == CLAIM_NONE;
     char reason[600];
     snprintf(reason, sizeof reason, "%s%s%s", why, ok || !why[0] ? "" : "; ", ok ? "" : differences);
     put(&cl->md, "| %s | %s | %s | %s | **%s** | %s |\n", what, where, ours, paper_figure, v,
@@ -282,15 +289,15 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
     claim(cl, "000", "FAST: SMAPE vs Bitterli R = 30", where,
           rel_change(csv_table_num(t, fast, "smape_all"), csv_table_num(t, fast, "smape_all_sem"),
                      csv_table_num(t, bit, "smape_all"), csv_table_num(t, bit, "smape_all_sem")),
-          emerald ? "-29% (EMERALD SQUARE)" : "-5.8% to -13.7% (simpler scenes)", emerald ? 29.0 : 5.8, diff);
+          emerald ? "-29% (EMERALD SQUARE)" : "-5.8% to -13.7% (simpler scenes)", REDUCTION(emerald ? 29.0 : 5.8), diff);
     claim(cl, "000", "FAST: temporal covariance vs Bitterli", where,
           rel_change(csv_table_num(t, fast, "temporal_cov"), csv_table_num(t, fast, "temporal_cov_sem"),
                      csv_table_num(t, bit, "temporal_cov"), csv_table_num(t, bit, "temporal_cov_sem")),
-          emerald ? "-49% (EMERALD SQUARE)" : "-22% to -31% (simpler scenes)", emerald ? 49.0 : 22.0, diff);
+          emerald ? "-49% (EMERALD SQUARE)" : "-22% to -31% (simpler scenes)", REDUCTION(emerald ? 49.0 : 22.0), diff);
     claim(cl, "000", "FAST: hard-pixel SMAPE vs Bitterli", where,
           rel_change(csv_table_num(t, fast, "smape_hard"), csv_table_num(t, fast, "smape_hard_sem"),
                      csv_table_num(t, bit, "smape_hard"), csv_table_num(t, bit, "smape_hard_sem")),
-          "-26% to -29%", 26.0, diff);
+          "-26% to -29%", REDUCTION(26.0), diff);
     static const char *const cost_figure[] = {"+1.3% to +4.4%", "+2.0% to +6.4%", "+4.3% to +7.4%"};
     static const double cost_max[] = {4.4, 6.4, 7.4};
     for (int k = 0; k < 3; k++) {
@@ -298,7 +305,7 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
         char what[96];
         snprintf(what, sizeof what, "%s: frame time vs Bitterli (cost)", presets[k]);
         claim(cl, "000", what, where, rel_change(csv_table_num(t, r, "ms_frame"), NAN, base_ms, NAN),
-              cost_figure[k], COST_CLAIM(cost_max[k]), diff);
+              cost_figure[k], COSTS_AT_MOST(cost_max[k]), diff);
     }
     if (!s->table2)
         return;
@@ -310,15 +317,15 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
     claim(cl, "000", "Table 2: spatial covariance, R 100 vs R 30 (K 32)", where,
           rel_change(csv_table_num(t, r100, "spatial_cov"), csv_table_num(t, r100, "spatial_cov_sem"),
                      csv_table_num(t, fast, "spatial_cov"), csv_table_num(t, fast, "spatial_cov_sem")),
-          "-75% (6.0 -> 1.5)", 0.0, diff);
+          "-75% (6.0 -> 1.5)", REDUCTION(0.0), diff);
     claim(cl, "000", "Table 2: spatial covariance, K 8 vs K 128 (R 30)", where,
           rel_change(csv_table_num(t, k8, "spatial_cov"), csv_table_num(t, k8, "spatial_cov_sem"),
                      csv_table_num(t, k128, "spatial_cov"), csv_table_num(t, k128, "spatial_cov_sem")),
-          "-30% (6.6 -> 4.6)", 0.0, diff);
+          "-30% (6.6 -> 4.6)", REDUCTION(0.0), diff);
     claim(cl, "000", "Table 2: SMAPE, K 128 vs K 8 (R 30)", where,
           rel_change(csv_table_num(t, k128, "smape_all"), csv_table_num(t, k128, "smape_all_sem"),
                      csv_table_num(t, k8, "smape_all"), csv_table_num(t, k8, "smape_all_sem")),
-          "-2% (29.9 -> 29.3)", 0.0, diff);
+          "-2% (29.9 -> 29.3)", REDUCTION(0.0), diff);
 }
 
 /* 004: the main table (MAPE overall and over disoccluded pixels) and its claims. */
@@ -386,7 +393,7 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
                   : pt ? (m ? "lower, \"especially in disocclusions\"" : "lower overall")
                        : (m ? "lower in disocclusions (the paper: ReSTIR PT only)"
                             : "lower (the paper: ReSTIR PT only)"),
-                  v ? -1.0 : 0.0, diff);
+                  v ? NO_CLAIM : REDUCTION(0.0), diff);
     return table2_004(md, dir, s, label, names) == 0 ? 0 : EXIT_RUNTIME;
 }
 
@@ -427,14 +434,14 @@ static void paper_004_ablation(struct text *md, struct claims *cl, const struct 
     rel_change(csv_table_num(t, row[x], "mape"), csv_table_num(t, row[x], "mape_sem"),                             \
                csv_table_num(t, row[y], "mape"), csv_table_num(t, row[y], "mape_sem"))
     claim(cl, "004", "Fig. 2: the N / M scaling vs none: MAPE", where, MAPE_CHANGE(0, 1), "lower (images only)",
-          0.0, diff);
+          REDUCTION(0.0), diff);
     claim(cl, "004", "Fig. 7: N = M vs N = 3: MAPE", where, MAPE_CHANGE(3, 0), "lower (\"some loss of quality\")",
-          0.0, diff);
+          REDUCTION(0.0), diff);
     claim(cl, "004", "Fig. 7: N = 3 vs N = M: frame time", where,
           rel_change(csv_table_num(t, row[0], "ms_per_frame"), NAN, csv_table_num(t, row[3], "ms_per_frame"), NAN),
-          "lower (\"significant cost reduction\")", 0.0, diff);
+          "lower (\"significant cost reduction\")", REDUCTION(0.0), diff);
     claim(cl, "004", "Fig. 6: N_c = M vs N_c = 1: MAPE", where, MAPE_CHANGE(5, 0), "\"only slightly\" different",
-          SMALL_CLAIM(5.0), diff);
+          SMALL_CHANGE(5.0), diff);
 #undef MAPE_CHANGE
 }
 
@@ -442,21 +449,24 @@ static void paper_004_ablation(struct text *md, struct claims *cl, const struct 
 static void paper_002(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
                       const struct csv_table *t)
 {
-    char a[64], b[64];
+    char a[64], b[64], g[64];
     struct step_text x;
     step_text(o, s, &x);
     const char *heading = x.heading, *where = x.where, *diff = x.diff;
     put(md,
         "\n### %s\n\nLast frame (%d) of the camera path, the paper's equal-time ratios; means over %d runs +- "
-        "standard errors:\n\n| method | instances | spp | ms/frame | relMSE | MAPE |\n|---|---|---|---|---|---|\n",
+        "standard errors (gradient relMSE: of the estimated forward differences against the reference's, "
+        "our measure of Fig. 7's gradient images):\n\n| method | instances | spp | ms/frame | relMSE | MAPE | "
+        "gradient relMSE |\n|---|---|---|---|---|---|---|\n",
         heading, eval_frames(o, "002") - 1, eval_runs(o));
     for (int r = 0; r < t->nrow; r++) {
         fmt_pm(csv_table_num(t, r, "relmse"), csv_table_num(t, r, "relmse_sem"), a, sizeof a);
         fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), b, sizeof b);
+        fmt_pm(csv_table_num(t, r, "gradient_relmse"), csv_table_num(t, r, "gradient_relmse_sem"), g, sizeof g);
         cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "002") * eval_runs(o);
-        put(md, "| %s | %g | %g | %.1f | %s | %s |\n", t->cell[(size_t)(r + 1) * t->ncol],
+        put(md, "| %s | %g | %g | %.1f | %s | %s | %s |\n", t->cell[(size_t)(r + 1) * t->ncol],
             csv_table_num(t, r, "instances"), csv_table_num(t, r, "spp"), csv_table_num(t, r, "ms_per_frame"), a,
-            b);
+            b, g);
     }
     static const char *const ours[2] = {"grestir-pt", "grestir-pt:recon=l1"};
     static const char *const rivals[2][3] = {
@@ -474,8 +484,20 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
             claim(cl, "002", what, where,
                   rel_change(csv_table_num(t, me, "relmse"), csv_table_num(t, me, "relmse_sem"),
                              csv_table_num(t, r, "relmse"), csv_table_num(t, r, "relmse_sem")),
-                  "lower at equal time (Fig. 7, 8; no numbers)", 0.0, diff);
+                  "lower at equal time (Fig. 7, 8; no numbers)", REDUCTION(0.0), diff);
         }
+    }
+    /* Fig. 7 and Sec. 6: "our method tends to produce highest-quality gradients" at equal time. The
+     * gradients do not depend on the reconstruction: the L2 rows judge it. */
+    const int me = csv_table_find(t, ours[0]);
+    for (int k = 0; k < 3; k += 2) {
+        const int r = csv_table_find(t, rivals[0][k]);
+        char what[128];
+        snprintf(what, sizeof what, "Fig. 7: gradient relMSE vs %s", names[k]);
+        claim(cl, "002", what, where,
+              rel_change(csv_table_num(t, me, "gradient_relmse"), csv_table_num(t, me, "gradient_relmse_sem"),
+                         csv_table_num(t, r, "gradient_relmse"), csv_table_num(t, r, "gradient_relmse_sem")),
+              "lower at equal time (images only)", REDUCTION(0.0), diff);
     }
 }
 

@@ -34,6 +34,14 @@ int restir_smape_luminance(const double *luminance, const float *reference, size
  * the mean of out over the image is restir_error's mape (heat maps of reports). */
 void restir_error_map_mape(const float *image, const float *reference, size_t n_pixels, float *out);
 
+/* 002 Figure 7's gradient images as a number: the relMSE of estimated forward differences
+ * dx[a] = F(a + x) - F(a), dy[a] = F(a + y) - F(a) (RGB per pixel, as the gradient methods store
+ * them) against the reference's own, mean over the pairs inside the image and channels of
+ * (G - (R_b - R_a))^2 / (((R_a + R_b) / 2)^2 + 1e-3): relMSE's form, with the pair's mean as R.
+ * The paper shows the images only; this is our measure of them. NaN for NULL inputs or an image
+ * with no pair. */
+double restir_gradient_relmse(const float *dx, const float *dy, const float *reference, int width, int height);
+
 /* Text with the definitions above, for --help. */
 const char *restir_metrics_help(void);
 

@@ -1,4 +1,4 @@
-/* metrics.c: the project's image error metrics (relMSE, MAPE, SMAPE, luminance RMSE) as declared
+/* metrics.c: the project's image error metrics (relMSE, MAPE, SMAPE, luminance RMSE, gradient relMSE) as declared
  * in restir/metrics.h. Must never depend on src/ headers, a ray tracer, files or the renderer. */
 #include <math.h>
 #include <stddef.h>
@@ -90,6 +90,31 @@ int restir_error_compute(const float *image, const float *reference, size_t n_pi
     return 0;
 }
 
+double restir_gradient_relmse(const float *dx, const float *dy, const float *reference, int width, int height)
+{
+    if (!dx || !dy || !reference || width < 1 || height < 1 || (width < 2 && height < 2))
+        return NAN;
+    double sum = 0.0;
+    size_t terms = 0;
+    for (int y = 0; y < height; y++)
+        for (int x = 0; x < width; x++) {
+            const size_t a = (size_t)y * (size_t)width + (size_t)x;
+            for (int dir = 0; dir < 2; dir++) {
+                if (dir == 0 ? x + 1 >= width : y + 1 >= height) /* the pair leaves the image */
+                    continue;
+                const size_t b = dir == 0 ? a + 1 : a + (size_t)width;
+                const float *g = dir == 0 ? dx : dy;
+                for (int c = 0; c < 3; c++) {
+                    const double ra = (double)reference[3 * a + (size_t)c], rb = (double)reference[3 * b + (size_t)c];
+                    const double d = (double)g[3 * a + (size_t)c] - (rb - ra), m = 0.5 * (ra + rb);
+                    sum += d * d / (m * m + 1e-3);
+                }
+                terms += 3;
+            }
+        }
+    return sum / (double)terms;
+}
+
 const char *restir_metrics_help(void)
 {
     return "Error metrics (image I against reference R; interleaved RGB; only pixels selected by\n"
@@ -100,6 +125,9 @@ const char *restir_metrics_help(void)
            "              a channel with I_c == R_c contributes 0\n"
            "  SMAPE     = 100 * mean over pixels of |L(I) - L(R)| / (|L(I)| + |L(R)| + 1e-4)\n"
            "  luma RMSE = sqrt(mean over pixels of (L(I) - L(R))^2)\n"
+           "  gradient relMSE (gradient methods, 002 Fig. 7) = mean over the pixel pairs (a, b = a + x)\n"
+           "              and (a, b = a + y) inside the image and channels c of (G_c - (R_bc - R_ac))^2 /\n"
+           "              (((R_ac + R_bc) / 2)^2 + 1e-3), G the estimated forward difference F(b) - F(a)\n"
            "  L(x)      = 0.2126 x_r + 0.7152 x_g + 0.0722 x_b (Rec. 709 luminance)\n";
 }
 

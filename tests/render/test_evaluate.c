@@ -146,6 +146,12 @@ static void test_plan_equals_unsplit(char *err)
     lines_without(pb, "frame time", b, sizeof b);
     EXPECT(strstr(a, "\n004,") && strstr(a, "\n000,") && strstr(a, "\n002,") && !strcmp(a, b),
            "merged claims.csv differs from the unsplit one (or misses a paper):\n%s\nvs\n%s", a, b);
+    /* 002's gradient claims are measured (compare.csv's gradient_relmse reached the tables) */
+    const char *g = strstr(a, "Fig. 7: gradient relMSE vs G-PT 3 spp");
+    const char *g_end = g ? strchr(g, '\n') : NULL, *unmeasured = g ? strstr(g, "not measured") : NULL;
+    EXPECT(g && (!unmeasured || (g_end && unmeasured > g_end)), "claims.csv: 002's gradient claim is missing or "
+                                                                 "not measured:\n%s",
+           a);
     snprintf(pa, sizeof pa, "%s/index.html", unsplit);
     EXPECT(!exists(pa), "index.html without --report");
     static char html[1 << 18];

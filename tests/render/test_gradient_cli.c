@@ -6,6 +6,7 @@
 #include "cli_util.h"
 #include "core/check.h"
 #include "io/exr.h"
+#include "restir/metrics.h"
 #include "test_util.h"
 
 #define W 24
@@ -413,7 +414,9 @@ static void check_compare(void)
     snprintf(path, sizeof(path), "%s/compare.csv", dir);
     cli_read_text(path, csv, sizeof(csv));
     const char *header = "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse,runs,temporal_cov,relmse_sem,"
-                         "mape_sem,smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share\n";
+                         "mape_sem,smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share,gradient_relmse,"
+                         "gradient_relmse_sem\n";
+    double grad_relmse[4];
     EXPECT(strncmp(csv, header, strlen(header)) == 0, "%s: wrong header:\n%s", path, csv);
     int rows = 0;
     for (const char *line = next_line(csv); line; line = next_line(line)) {
@@ -430,16 +433,30 @@ static void check_compare(void)
             double e = csv_number(line, c);
             EXPECT(isfinite(e) && e >= 0.0, "%s row %d: error column %d is %g", path, rows + 1, c, e);
         }
+        if (rows < 4)
+            grad_relmse[rows] = csv_number(line, 16);
         rows++;
     }
     EXPECT(rows == 4, "%s has %d rows, want 4", path, rows);
+    /* the gradient rows' gradient_relmse is restir_gradient_relmse of the frame's dx, dy layers
+     * against the reference (the written frame is the measured one: instances = 1); the others have none */
+    float *ref = read_layer(dir, "reference.exr", NULL);
     for (int k = 0; k < 2; k++) {
         snprintf(sub, sizeof(sub), "%s/%s", dir, methods[k]);
-        float *dx = read_layer(sub, "frame_0002.exr", "dx");
+        float *dx = read_layer(sub, "frame_0002.exr", "dx"), *dy = read_layer(sub, "frame_0002.exr", "dy");
         if (dx)
             EXPECT(all_finite(dx, NPIX), "compare: %s/frame_0002.exr has a non-finite dx", sub);
+        const double want = dx && dy && ref ? restir_gradient_relmse(dx, dy, ref, W, H) : NAN;
+        EXPECT(rows == 4 && isfinite(want) && fabs(grad_relmse[k] - want) <= 1e-5 * want,
+               "compare: %s gradient_relmse %.9g, its frame's %.9g", methods[k], rows == 4 ? grad_relmse[k] : NAN,
+               want);
         free(dx);
+        free(dy);
     }
+    free(ref);
+    for (int k = 2; k < rows && k < 4; k++)
+        EXPECT(isnan(grad_relmse[k]), "compare: %s has a gradient_relmse (%g) but no gradients", methods[k],
+               grad_relmse[k]);
     snprintf(sub, sizeof(sub), "%s/pt", dir);
     expect_no_layer(sub, "frame_0002.exr", "dx");
 }

@@ -1,5 +1,6 @@
-/* test_metrics.c: unit tests for restir_error_compute on small images with hand-computed values.
+/* test_metrics.c: unit tests for restir_error_compute and restir_gradient_relmse on small images with hand-computed values.
  * Must never depend on src/ headers, files or the renderer; only on include/restir/metrics.h. */
+#include <math.h>
 #include <string.h>
 
 #include "restir/metrics.h"
@@ -82,7 +83,7 @@ static void test_help(void)
 {
     const char *h = restir_metrics_help();
     EXPECT(h && strstr(h, "relMSE") && strstr(h, "MAPE") && strstr(h, "SMAPE") &&
-               strstr(h, "RMSE") && strstr(h, "0.7152"),
+               strstr(h, "RMSE") && strstr(h, "0.7152") && strstr(h, "gradient relMSE"),
            "help text incomplete");
 }
 
@@ -115,8 +116,33 @@ static void test_smape_from_luminance(void)
     EXPECT(restir_smape_luminance(lum, ref, N, mask, &smape) == -1, "empty mask accepted");
 }
 
+/* A 2x2 grey reference R = [1 3; 0 1]: its forward differences are dx = (2, 1) on the rows, dy = (-1, -2)
+ * on the columns, pair means 2, 0.5, 0.5, 2. Estimated gradients exact but dx at (0,0) = 2.5: one
+ * pair of 4 is off by 0.5 in each channel, so the mean over 12 terms is 3 * 0.25 / (2^2 + 1e-3) / 12. The
+ * entries whose pair leaves the image hold junk that must not count. */
+static void test_gradient_relmse(void)
+{
+    const float junk = 1e30f;
+    float ref[12], dx[12], dy[12];
+    const float r[4] = {1, 3, 0, 1}, gx[4] = {2.5f, junk, 1, junk}, gy[4] = {-1, -2, junk, junk};
+    for (int i = 0; i < 4; i++)
+        for (int c = 0; c < 3; c++) {
+            ref[3 * i + c] = r[i];
+            dx[3 * i + c] = gx[i];
+            dy[3 * i + c] = gy[i];
+        }
+    EXPECT_NEAR(restir_gradient_relmse(dx, dy, ref, 2, 2), 0.75 / 4.001 / 12.0, 1e-12, "gradient relmse");
+    dx[0] = dx[1] = dx[2] = 2.0f;
+    EXPECT(restir_gradient_relmse(dx, dy, ref, 2, 2) == 0.0, "exact gradients");
+    /* one row: only x pairs exist */
+    EXPECT_NEAR(restir_gradient_relmse(dx, dy, ref, 2, 1), 0.0, 0.0, "one row");
+    EXPECT(isnan(restir_gradient_relmse(dx, dy, ref, 1, 1)), "a single pixel has no pair");
+    EXPECT(isnan(restir_gradient_relmse(NULL, dy, ref, 2, 2)), "NULL gradients");
+}
+
 int main(void)
 {
+    test_gradient_relmse();
     test_smape_from_luminance();
     test_two_pixels();
     test_mask();
