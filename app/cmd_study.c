@@ -33,14 +33,18 @@ static void study_usage(FILE *out)
             "                    [--set key=value]... [--report] --out DIR\n"
             "The error-correlation study of 000 (Sec. 6-7, Appendix A): N independently seeded sequences per\n"
             "configuration (static camera, confidence cap 20, --warmup frames before measuring, default 40),\n"
-            "then --frames measured frames (default 16). LIST: bitterli, fast, balanced, conservative,\n"
-            "compat, compat-binary, compat-rR-kK (compat at radius R with K candidates: 000 Table 2's\n"
-            "grid). --radii R1,R2,... adds bitterli and compat at each radius (the Pareto curves). Spatial neighbors M: --set spatial.neighbors=M. Default --res 320x180, --runs 8.\n"
-            "Writes DIR/study.csv, study.md, pareto.svg, hard_pixels.png, strip.png; with --report also\n"
+            "then --frames measured frames (default 16). LIST: bitterli, bitterli-rR (at radius R),\n"
+            "fast, balanced, conservative, compat, compat-binary, compat-rR-kK (compat at radius R with K\n"
+            "candidates: 000 Table 2's grid). --radii R1,R2,... adds bitterli and compat at each radius.\n"
+            "Spatial neighbors M: --set spatial.neighbors=M. Default --res 320x180, --runs 8.\n"
+            "Writes DIR/study.csv, study.md, pareto.svg (000 Figure 3: SMAPE against spatial covariance of\n"
+            "every bitterli configuration and every compat one with K = 32, by radius), hard_pixels.png,\n"
+            "strip.png; with --report also\n"
             "DIR/index.html, one self-contained page showing them with the command, commit and machine.\n"
             "SMAPE (all and hard pixels) comes with its standard error over the runs (smape_all_sem,\n"
             "smape_hard_sem: the runs' SMAPEs, each the mean over its frames), the covariances with their\n"
-            "jackknife standard errors over the runs (temporal_cov_sem, spatial_cov_sem; nan under 3 runs).\n"
+            "jackknife standard errors over the runs (temporal_cov_sem, spatial_cov_sem; nan under 3 runs);\n"
+            "temporal_cov_hard (with temporal_cov_hard_sem) is temporal_cov over the hard pixels only.\n"
             "--plan DIR (instead of --out) writes DIR/jobs.txt (one command per configuration and run, and\n"
             "one for the reference without --ref), DIR/plan.json and DIR/slurm.sh (sbatch --array) instead\n"
             "of running; run the jobs in any order and anywhere (`parallel -j N < DIR/jobs.txt`, `sbatch\n"
@@ -58,14 +62,15 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
     struct csv_writer csv;
     if (csv_open(&csv, path,
                  "config,radius,K,M,smape_all,smape_hard,temporal_cov,spatial_cov,ms_select,ms_spatial,ms_frame,"
-                 "smape_all_sem,smape_hard_sem,temporal_cov_sem,spatial_cov_sem",
+                 "smape_all_sem,smape_hard_sem,temporal_cov_sem,spatial_cov_sem,temporal_cov_hard,temporal_cov_hard_sem",
                  msg) != 0)
         return -1;
     for (int k = 0; k < n; k++)
-        csv_row(&csv, "%s,%g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g", cfg[k].name, cfg[k].radius,
-                cfg[k].candidates, m, res[k].smape_all, res[k].smape_hard, res[k].temporal_cov, res[k].spatial_cov,
-                res[k].ms_select, res[k].ms_spatial, res[k].ms_frame, res[k].smape_all_sem, res[k].smape_hard_sem,
-                res[k].temporal_cov_sem, res[k].spatial_cov_sem);
+        csv_row(&csv, "%s,%g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g", cfg[k].name,
+                cfg[k].radius, cfg[k].candidates, m, res[k].smape_all, res[k].smape_hard, res[k].temporal_cov,
+                res[k].spatial_cov, res[k].ms_select, res[k].ms_spatial, res[k].ms_frame, res[k].smape_all_sem,
+                res[k].smape_hard_sem, res[k].temporal_cov_sem, res[k].spatial_cov_sem, res[k].temporal_cov_hard,
+                res[k].temporal_cov_hard_sem);
     if (csv_close(&csv, msg) != 0)
         return -1;
     snprintf(path, sizeof(path), "%s/study.md", dir);
@@ -81,29 +86,31 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
     for (int k = 0; k < n && base < 0; k++)
         if (cfg[k].select == SELECT_BITTERLI)
             base = k;
-    fprintf(f, "| config | R | K | M | SMAPE all | SMAPE hard | temporal cov | spatial cov | select ms | spatial ms "
-               "| frame ms |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+    fprintf(f, "| config | R | K | M | SMAPE all | SMAPE hard | temporal cov | temporal cov hard | spatial cov | "
+               "select ms | spatial ms | frame ms |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < n; k++) {
         fprintf(f,
-                "| %s | %g | %d | %d | %.3f +- %.2g | %.3f +- %.2g | %.4g +- %.2g | %.4g +- %.2g | %.2f | %.2f | "
-                "%.2f |\n",
+                "| %s | %g | %d | %d | %.3f +- %.2g | %.3f +- %.2g | %.4g +- %.2g | %.4g +- %.2g | %.4g +- %.2g | "
+                "%.2f | %.2f | %.2f |\n",
                 cfg[k].name, cfg[k].radius, cfg[k].candidates, m, res[k].smape_all, res[k].smape_all_sem,
                 res[k].smape_hard, res[k].smape_hard_sem, res[k].temporal_cov, res[k].temporal_cov_sem,
-                res[k].spatial_cov, res[k].spatial_cov_sem, res[k].ms_select, res[k].ms_spatial, res[k].ms_frame);
+                res[k].temporal_cov_hard, res[k].temporal_cov_hard_sem, res[k].spatial_cov, res[k].spatial_cov_sem,
+                res[k].ms_select, res[k].ms_spatial, res[k].ms_frame);
     }
     fprintf(f, "\nSMAPE: mean over the runs +- its standard error (the runs' SMAPEs, each over its frames); the "
                "covariances +- their jackknife standard errors over the runs (nan under 3 runs).\n");
     if (base >= 0) {
         const struct study_result *b = &res[base];
-        fprintf(f, "\nChange against %s: SMAPE all, SMAPE hard, temporal covariance, frame time; "
+        fprintf(f, "\nChange against %s: SMAPE all, SMAPE hard, temporal covariance (all, hard), frame time; "
                    "selection pass as a share of the frame.\n\n| config | SMAPE all | SMAPE hard | temporal cov | "
-                   "frame | select / frame |\n|---|---|---|---|---|---|\n",
+                   "temporal cov hard | frame | select / frame |\n|---|---|---|---|---|---|---|\n",
                 cfg[base].name);
         for (int k = 0; k < n; k++)
-            fprintf(f, "| %s | %+.1f%% | %+.1f%% | %+.1f%% | %+.1f%% | %.1f%% |\n", cfg[k].name,
+            fprintf(f, "| %s | %+.1f%% | %+.1f%% | %+.1f%% | %+.1f%% | %+.1f%% | %.1f%% |\n", cfg[k].name,
                     100.0 * (res[k].smape_all / b->smape_all - 1.0), 100.0 * (res[k].smape_hard / b->smape_hard - 1.0),
-                    100.0 * (res[k].temporal_cov / b->temporal_cov - 1.0), 100.0 * (res[k].ms_frame / b->ms_frame - 1.0),
-                    100.0 * res[k].ms_select / res[k].ms_frame);
+                    100.0 * (res[k].temporal_cov / b->temporal_cov - 1.0),
+                    100.0 * (res[k].temporal_cov_hard / b->temporal_cov_hard - 1.0),
+                    100.0 * (res[k].ms_frame / b->ms_frame - 1.0), 100.0 * res[k].ms_select / res[k].ms_frame);
     }
     if (ferror(f) | fclose(f)) {
         remove(tmp);
@@ -113,19 +120,25 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
     return io_commit(tmp, path, msg);
 }
 
-/* 000 Figure 3: SMAPE against spatial covariance over the radius sweeps. */
+/* 000 Figure 3: SMAPE against spatial covariance over radii, Bitterli's selection and ours at K 32. */
 static int write_pareto(const char *dir, const struct study_config *cfg, const struct study_result *res, int n,
                         char *msg)
 {
     double x[2][STUDY_MAX_CONFIGS], y[2][STUDY_MAX_CONFIGS], r[2][STUDY_MAX_CONFIGS];
     int cnt[2] = {0, 0};
-    for (int k = 0; k < n; k++) {
-        if (!cfg[k].sweep)
+    for (int k = 0; k < n; k++) { /* 000 Figure 3's two curves: Bitterli's, and ours at K 32 */
+        const int q = study_pareto_series(&cfg[k]);
+        if (q < 0)
             continue;
-        int q = cfg[k].sweep - 1;
-        x[q][cnt[q]] = res[k].spatial_cov;
-        y[q][cnt[q]] = res[k].smape_all;
-        r[q][cnt[q]++] = cfg[k].radius;
+        int at = cnt[q]++; /* by radius: the curve's points in order */
+        for (; at > 0 && r[q][at - 1] > cfg[k].radius; at--) {
+            x[q][at] = x[q][at - 1];
+            y[q][at] = y[q][at - 1];
+            r[q][at] = r[q][at - 1];
+        }
+        x[q][at] = res[k].spatial_cov;
+        y[q][at] = res[k].smape_all;
+        r[q][at] = cfg[k].radius;
     }
     struct plot_series series[2] = {{"bitterli", "#d62728", cnt[0], x[0], y[0], r[0]},
                                     {"compat (K 32)", "#1f77b4", cnt[1], x[1], y[1], r[1]}};
@@ -358,7 +371,7 @@ static int study_rows(const struct study_setup *st, const struct plan *pl, const
             study_unit_free(&u);
         }
         if (rc == 0)
-            study_row_end(&row, &res[k]);
+            study_row_end(&row, hard, &res[k]);
         else
             study_row_free(&row);
         progress_update(&pg, k + 1);

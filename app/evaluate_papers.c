@@ -117,7 +117,8 @@ static void set(struct eval_step *s, const char *kv)
 
 /* 000 Sec. 7: the error-correlation study of ReSTIR PT with M = 1 neighbor, Bitterli's R = 30
  * against FAST / BALANCED / CONSERVATIVE (Table 1); on the first scene also the R x K grid of
- * Table 2 (K = 32 is the presets' row). */
+ * Table 2 (K = 32 is the presets' row) and Figure 3's Pareto curves (Bitterli at R 10, 30, 50,
+ * 100; ours at K 32 and R 10 and the presets' 30, 50, 100). */
 static void steps_000(const struct eval_options *o, const char *scene, int first, struct eval_step *steps, int *n)
 {
     struct eval_step *s = begin(steps, n, "000", "study", scene, "", o);
@@ -128,7 +129,8 @@ static void steps_000(const struct eval_options *o, const char *scene, int first
     add(s, "%d", eval_warmup(o));
     add(s, "--configs");
     add(s, "bitterli,fast,balanced,conservative%s",
-        first ? ",compat-r30-k8,compat-r30-k128,compat-r50-k8,compat-r50-k128,compat-r100-k8,compat-r100-k128"
+        first ? ",compat-r30-k8,compat-r30-k128,compat-r50-k8,compat-r50-k128,compat-r100-k8,compat-r100-k128,"
+                "bitterli-r10,bitterli-r50,bitterli-r100,compat-r10-k32"
               : "");
     set(s, "spatial.neighbors=1");
     set(s, "temporal.reuse=splat"); /* 000 Sec. 7: Area ReSTIR's reservoirs with splatting */

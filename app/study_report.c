@@ -80,8 +80,9 @@ int study_write_report(const struct study_report_run *run, char *msg)
         html_abort(&pg);
         return -1;
     }
-    html_raw(&pg, "<h2>Pareto plot (000 Figure 3)</h2>\n<p>SMAPE against spatial covariance over the radius "
-                  "sweeps.</p><img alt=\"Pareto plot\" src=\"pareto.svg\">\n"
+    html_raw(&pg, "<h2>Pareto plot (000 Figure 3)</h2>\n<p>SMAPE against spatial covariance over radii: every "
+                  "Bitterli configuration, and every compat one with K = 32.</p><img alt=\"Pareto plot\" "
+                  "src=\"pareto.svg\">\n"
                   "<h2>Hard pixels</h2>\n<p>In red, the pixels whose neighbors within the radius rarely look alike "
                   "(the hardest 10%%), over the reference:</p>\n");
     const char *labels[2] = {"reference", "hard pixels"}, *srcs[2] = {"reference.png", "hard_pixels.png"};

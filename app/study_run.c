@@ -26,6 +26,14 @@ static int grid_name(const char *name, float r, int k)
     return r >= 1.0f && r <= 512.0f && k >= 1 && k <= 1024 && !strcmp(again, name);
 }
 
+/* 1 when name is exactly "bitterli-rR" for R in [1, 512] pixels. */
+static int bitterli_name(const char *name, float r)
+{
+    char again[40];
+    snprintf(again, sizeof again, "bitterli-r%g", r);
+    return r >= 1.0f && r <= 512.0f && !strcmp(again, name);
+}
+
 /* A named configuration at radius r (the radius of bitterli, compat and compat-binary). */
 static int named_config(const char *name, float r, int candidates, struct study_config *c, char *msg)
 {
@@ -41,6 +49,10 @@ static int named_config(const char *name, float r, int candidates, struct study_
     } else if (!strcmp(name, "fast") || !strcmp(name, "balanced") || !strcmp(name, "conservative")) {
         c->select = SELECT_COMPAT; /* 000 Table 1 presets: K 32 and R 30 / 50 / 100 */
         c->radius = name[0] == 'f' ? 30.0f : name[0] == 'b' ? 50.0f : 100.0f;
+    } else if (sscanf(name, "bitterli-r%f", &grid_r) == 1 && bitterli_name(name, grid_r)) {
+        c->select = SELECT_BITTERLI; /* 000 Figure 3: Bitterli's selection at radius R */
+        c->radius = grid_r;
+        c->candidates = 0;
     } else if (sscanf(name, "compat-r%f-k%d", &grid_r, &grid_k) == 2 && grid_name(name, grid_r, grid_k)) {
         c->select = SELECT_COMPAT; /* 000 Table 2: radius R and candidates K */
         c->radius = grid_r;
@@ -53,12 +65,17 @@ static int named_config(const char *name, float r, int candidates, struct study_
         c->candidates = candidates;
     } else {
         snprintf(msg, RESTIR_MSG_LEN,
-                 "--configs: unknown configuration '%s' (bitterli, fast, balanced, conservative, compat, "
-                 "compat-binary, compat-rR-kK)",
+                 "--configs: unknown configuration '%s' (bitterli, bitterli-rR, fast, balanced, conservative, "
+                 "compat, compat-binary, compat-rR-kK)",
                  name);
         return -1;
     }
     return 0;
+}
+
+int study_pareto_series(const struct study_config *c)
+{
+    return c->select == SELECT_BITTERLI ? 0 : c->select == SELECT_COMPAT && c->candidates == 32 ? 1 : -1;
 }
 
 int study_parse_configs(const struct cli_options *o, struct study_config *cfg, int *n, char *msg)
@@ -90,7 +107,6 @@ int study_parse_configs(const struct cli_options *o, struct study_config *cfg, i
             struct study_config *c = &cfg[(*n)++];
             named_config(k ? "compat" : "bitterli", (float)r, o->params.spatial_candidates, c, msg);
             snprintf(c->name, sizeof(c->name), "%s@%g", k ? "compat" : "bitterli", r);
-            c->sweep = k + 1;
         }
     }
     if (*n == 0) {
@@ -288,7 +304,7 @@ static double jackknife_se(const double *theta, int n)
     return sqrt((n - 1.0) / n * ss);
 }
 
-void study_row_end(struct study_row *row, struct study_result *res)
+void study_row_end(struct study_row *row, const unsigned char *hard, struct study_result *res)
 {
     const int runs = row->runs, frames = row->frames, w = row->w, h = row->h;
     const size_t npix = (size_t)w * h;
@@ -309,12 +325,15 @@ void study_row_end(struct study_row *row, struct study_result *res)
      * recomputed without run i, which is swapped to the end of the run-major arrays so that the others
      * are the first runs - 1; se = sqrt((n - 1) / n sum_i (theta_i - mean theta_i)^2). */
     const int jack = runs >= 3;
-    double *theta_t = xcalloc((size_t)runs, sizeof(double)), *theta_s = xcalloc((size_t)runs, sizeof(double));
+    double *theta_t = xcalloc((size_t)runs, sizeof(double)), *theta_s = xcalloc((size_t)runs, sizeof(double)),
+           *theta_h = xcalloc((size_t)runs, sizeof(double));
     const size_t seq_block = (size_t)frames * npix;
     res->temporal_cov = restir_temporal_autocovariance(row->seq, runs, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
+    res->temporal_cov_hard = restir_temporal_autocovariance(row->seq, runs, frames, w, h, STUDY_COV_LAG, COV_EPS, hard);
     for (int i = 0; i < runs && jack; i++) {
         swap_blocks(row->seq, seq_block, i, runs - 1);
         theta_t[i] = restir_temporal_autocovariance(row->seq, runs - 1, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
+        theta_h[i] = restir_temporal_autocovariance(row->seq, runs - 1, frames, w, h, STUDY_COV_LAG, COV_EPS, hard);
         swap_blocks(row->seq, seq_block, i, runs - 1);
     }
     /* Spatial covariance of each measured frame across runs, averaged over frames. */
@@ -332,8 +351,10 @@ void study_row_end(struct study_row *row, struct study_result *res)
     free(at_t);
     res->temporal_cov_sem = jack ? jackknife_se(theta_t, runs) : NAN;
     res->spatial_cov_sem = jack ? jackknife_se(theta_s, runs) : NAN;
+    res->temporal_cov_hard_sem = jack ? jackknife_se(theta_h, runs) : NAN;
     free(theta_t);
     free(theta_s);
+    free(theta_h);
     study_row_free(row);
 }
 

@@ -22,16 +22,17 @@ struct study_config {
     enum spatial_select_mode select;
     float radius;
     int candidates;
-    int sweep; /* 0: named; 1: bitterli radius sweep; 2: compat radius sweep (000 Figure 3) */
 };
 
 struct study_result {
     double smape_all, smape_hard, temporal_cov, spatial_cov, ms_select, ms_spatial, ms_frame;
+    double temporal_cov_hard; /* temporal_cov over the hard pixels only (000 Sec. 7.2: "43-57%") */
     /* standard errors of smape_all and smape_hard over the runs (each run's SMAPE its frames' mean;
      * NaN with one run) */
     double smape_all_sem, smape_hard_sem;
-    /* jackknife standard errors of temporal_cov and spatial_cov over the runs (NaN under 3 runs) */
-    double temporal_cov_sem, spatial_cov_sem;
+    /* jackknife standard errors of temporal_cov, spatial_cov and temporal_cov_hard over the runs (NaN
+     * under 3 runs) */
+    double temporal_cov_sem, spatial_cov_sem, temporal_cov_hard_sem;
 };
 
 /* One run of one configuration: what its measured frames leave for the study's statistics. */
@@ -42,6 +43,10 @@ struct study_unit {
     double *ms;        /* frames * 3: the select pass, the spatial pass, the whole frame */
 };
 
+/* The curve of 000 Figure 3 (error against covariance over radii) configuration c is a point of: 0
+ * for Bitterli's selection, 1 for compat with K = 32 (the presets, compat-rR-k32, compat@R), -1
+ * for none. */
+int study_pareto_series(const struct study_config *c);
 /* --configs and --radii into cfg (at most STUDY_MAX_CONFIGS). Returns 0, or -1 with msg. */
 int study_parse_configs(const struct cli_options *o, struct study_config *cfg, int *n, char *msg);
 /* The hard-pixel mask of the static view (000 Sec. 7). Returns the number of hard pixels. */
@@ -77,8 +82,8 @@ struct study_row {
 void study_row_begin(struct study_row *row, int runs, int frames, int w, int h);
 void study_row_add(struct study_row *row, const struct study_unit *u, const float *ref, const unsigned char *hard,
                    int strip_y, float *strip);
-/* Completes res (every run added) and frees the row. */
-void study_row_end(struct study_row *row, struct study_result *res);
+/* Completes res (every run added; hard: the mask study_row_add got) and frees the row. */
+void study_row_end(struct study_row *row, const unsigned char *hard, struct study_result *res);
 /* Frees a row given up before its end. */
 void study_row_free(struct study_row *row);
 

@@ -238,6 +238,9 @@ static void check_study(void)
                    "study --scene cornell --method restir-pt --configs bitterli,no-such-config --res 16x16 "
                    "--out '%1$s'",
                    2, "no-such-config", NULL);
+    expect_failure("study with a Bitterli radius out of range",
+                   "study --scene cornell --method restir-pt --configs bitterli-r0 --res 16x16 --out '%1$s'", 2,
+                   "bitterli-r0", NULL);
     expect_failure("study of a method without spatial reuse",
                    "study --scene cornell --method pt --configs bitterli --res 16x16 --out '%1$s'", 2, "restir-di",
                    NULL);

@@ -43,7 +43,7 @@ int main(void)
     }
     snprintf(out, sizeof(out), "%s/study", tmp);
     snprintf(args, sizeof(args),
-             "study --scene cornell --method restir-pt --configs bitterli,fast,compat-binary --radii 4,8 --runs 3 "
+             "study --scene cornell --method restir-pt --configs bitterli,fast,compat-binary,bitterli-r6 --radii 4,8 --runs 3 "
              "--warmup 2 --frames 5 --res 32x18 --ref-spp 16 --set pt.max_bounces=2 --out '%s'",
              out);
     int rc = cli_run(tmp, args, err);
@@ -54,26 +54,29 @@ int main(void)
     EXPECT(csv != NULL, "no %s", path);
     if (csv) {
         const char *header = "config,radius,K,M,smape_all,smape_hard,temporal_cov,spatial_cov,ms_select,ms_spatial,"
-                             "ms_frame,smape_all_sem,smape_hard_sem,temporal_cov_sem,spatial_cov_sem\n";
+                             "ms_frame,smape_all_sem,smape_hard_sem,temporal_cov_sem,spatial_cov_sem,temporal_cov_hard,"
+                             "temporal_cov_hard_sem\n";
         EXPECT(strncmp(csv, header, strlen(header)) == 0, "study.csv header: %.120s", csv);
-        const char *names[] = {"bitterli,", "fast,", "compat-binary,", "bitterli@4,", "compat@4,", "bitterli@8,",
-                               "compat@8,"};
+        const char *names[] = {"bitterli,",    "fast,",     "compat-binary,", "bitterli-r6,6,",
+                               "bitterli@4,", "compat@4,", "bitterli@8,",    "compat@8,"};
         int rows = 0;
         for (char *line = strchr(csv, '\n'); line && line[1]; line = strchr(line + 1, '\n')) {
             const char *row = line + 1;
-            EXPECT(rows < 7 && strncmp(row, names[rows], strlen(names[rows])) == 0, "row %d: %.60s", rows, row);
-            /* radius, K, M, then 7 metrics and 4 standard errors: all finite and not negative except the
-             * covariances */
+            EXPECT(rows < 8 && strncmp(row, names[rows], strlen(names[rows])) == 0, "row %d: %.60s", rows, row);
+            /* radius, K, M, then 7 metrics, 4 standard errors, the hard pixels' temporal covariance and
+             * its standard error: all finite and not negative except the covariances */
             const char *p = strchr(row, ',');
-            double v[14];
+            double v[16];
             int nv = 0;
-            while (p && nv < 14) {
+            while (p && nv < 16) {
                 v[nv++] = strtod(p + 1, NULL);
                 p = strchr(p + 1, ',');
             }
-            EXPECT(nv == 14, "row %d has %d numbers", rows, nv);
-            EXPECT(v[12] > 0.0 && v[13] > 0.0, "row %d: covariance standard errors %g / %g (3 runs)", rows, v[12],
-                   v[13]);
+            EXPECT(nv == 16, "row %d has %d numbers", rows, nv);
+            EXPECT(v[12] > 0.0 && v[13] > 0.0 && v[15] > 0.0,
+                   "row %d: covariance standard errors %g / %g / %g (3 runs)", rows, v[12], v[13], v[15]);
+            EXPECT(v[14] != v[5], "row %d: the hard pixels' temporal covariance is the whole image's (%g)", rows,
+                   v[5]);
             EXPECT(v[10] > 0.0 && v[10] < v[3] && v[11] > 0.0 && v[11] < v[4],
                    "row %d: SMAPE standard errors %g / %g against SMAPE %g / %g (3 runs)", rows, v[10], v[11], v[3],
                    v[4]);
@@ -85,7 +88,7 @@ int main(void)
             EXPECT(v[9] > 0.0 && v[7] >= 0.0 && v[8] >= 0.0, "row %d: times %g %g %g", rows, v[7], v[8], v[9]);
             rows++;
         }
-        EXPECT(rows == 7, "study.csv has %d rows, want 7", rows);
+        EXPECT(rows == 8, "study.csv has %d rows, want 8", rows);
         free(csv);
     }
     snprintf(path, sizeof(path), "%s/pareto.svg", out);
