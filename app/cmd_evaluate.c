@@ -27,7 +27,8 @@ static void evaluate_usage(void)
         "study` (000) and `restir compare` (004, 002) commands, one folder each under DIR:\n"
         "  000  compatibility-guided neighbor selection: study of restir-pt, M = 1, static camera, 40\n"
         "       warm-up frames, Bitterli R = 30 vs FAST / BALANCED / CONSERVATIVE (Table 1); on the first\n"
-        "       scene also the R x K grid of Table 2. Scenes forest (for EMERALD SQUARE), ajar (VEACH AJAR).\n"
+        "       scene also the R x K grid of Table 2 and Figure 3's Pareto points (Bitterli and K = 32 at\n"
+        "       R 10, 30, 50, 100). Scenes forest (for EMERALD SQUARE), ajar (VEACH AJAR).\n"
         "  004  stochastic pairwise MIS: compare of standard reuse, SPMIS and SPMIS with the compatibility-\n"
         "       scored cell search, restir-pt and restir-di, the last of 50 frames of the camera path:\n"
         "       MAPE overall and over disoccluded pixels. Scenes pillars, forest.\n"
@@ -46,7 +47,8 @@ static void evaluate_usage(void)
         "evaluation resumes) and merges. A folder that holds another evaluation or another command's\n"
         "plan is refused, and nothing in it is touched.\n"
         "Writes DIR/evaluation.md (the paper's tables with spreads and one line per claim: reproduced,\n"
-        "partly or not reproduced, our figure, the paper's, the differences), DIR/claims.csv, each\n"
+        "partly or not reproduced at two standard deviations, or undefined against a baseline <= 0; our\n"
+        "figure, the paper's, the differences), DIR/claims.csv, each\n"
         "step's study.csv / compare.csv and with --report DIR/index.html (and each step's page).\n"
         "docs/EVALUATION.md is made from evaluation.md files (scripts/evaluation_doc.sh).\n");
 }

@@ -54,6 +54,15 @@ static void study_usage(FILE *out)
 
 static float luminance_at(const float *rgb, size_t i) { return v3_luminance(v3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2])); }
 
+/* "+x.x%" for value against a positive base, "-" otherwise. */
+static void relative_change(double value, double base, char *out, size_t len)
+{
+    if (base > 0.0 && isfinite(value))
+        snprintf(out, len, "%+.1f%%", 100.0 * (value / base - 1.0));
+    else
+        snprintf(out, len, "-");
+}
+
 static int write_tables(const char *dir, const struct study_config *cfg, const struct study_result *res, int n,
                         int m, char *msg)
 {
@@ -105,12 +114,15 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
                    "selection pass as a share of the frame.\n\n| config | SMAPE all | SMAPE hard | temporal cov | "
                    "temporal cov hard | frame | select / frame |\n|---|---|---|---|---|---|---|\n",
                 cfg[base].name);
-        for (int k = 0; k < n; k++)
-            fprintf(f, "| %s | %+.1f%% | %+.1f%% | %+.1f%% | %+.1f%% | %+.1f%% | %.1f%% |\n", cfg[k].name,
+        for (int k = 0; k < n; k++) {
+            char cov[2][32]; /* a covariance can be <= 0: then a relative change means nothing */
+            relative_change(res[k].temporal_cov, b->temporal_cov, cov[0], sizeof cov[0]);
+            relative_change(res[k].temporal_cov_hard, b->temporal_cov_hard, cov[1], sizeof cov[1]);
+            fprintf(f, "| %s | %+.1f%% | %+.1f%% | %s | %s | %+.1f%% | %.1f%% |\n", cfg[k].name,
                     100.0 * (res[k].smape_all / b->smape_all - 1.0), 100.0 * (res[k].smape_hard / b->smape_hard - 1.0),
-                    100.0 * (res[k].temporal_cov / b->temporal_cov - 1.0),
-                    100.0 * (res[k].temporal_cov_hard / b->temporal_cov_hard - 1.0),
-                    100.0 * (res[k].ms_frame / b->ms_frame - 1.0), 100.0 * res[k].ms_select / res[k].ms_frame);
+                    cov[0], cov[1], 100.0 * (res[k].ms_frame / b->ms_frame - 1.0),
+                    100.0 * res[k].ms_select / res[k].ms_frame);
+        }
     }
     if (ferror(f) | fclose(f)) {
         remove(tmp);

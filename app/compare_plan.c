@@ -319,6 +319,11 @@ int compare_merge(const char *dir)
             restir_error_compute(image, ref, npix, NULL, &one.err);
             compare_disoccluded_error(image, ref, mask, npix, &one.mape_dis, &one.dis_share);
             one.grad_relmse = grad ? restir_gradient_relmse(grad, grad + 3 * npix, ref, st.p.width, st.p.height) : NAN;
+            if (!grad && method_table[st.specs[k].method].gradient)
+                fprintf(stderr,
+                        "restir: compare --merge: %s, run %d: its job was written without gradients (by a restir "
+                        "before gradient errors): no gradient_relmse for the row\n",
+                        st.specs[k].label, n);
             compare_runs_add(&acc, &one);
             free(mask);
             free(grad);

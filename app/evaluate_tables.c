@@ -166,7 +166,7 @@ static void claim(struct claims *cl, const char *paper, const char *what, const 
     char ours[64], why[160], f[4][400];
     fmt_change(c, ours, sizeof ours);
     const char *v = verdict(c, k, why, sizeof why);
-    const int ok = !strcmp(v, "reproduced") || k.kind == CLAIM_NONE;
+    const int ok = !strcmp(v, "reproduced") || !strcmp(v, "undefined") || k.kind == CLAIM_NONE;
     char reason[600];
     snprintf(reason, sizeof reason, "%s%s%s", why, ok || !why[0] ? "" : "; ", ok ? "" : differences);
     put(&cl->md, "| %s | %s | %s | %s | **%s** | %s |\n", what, where, ours, paper_figure, v,

@@ -26,7 +26,7 @@ struct study_config {
 
 struct study_result {
     double smape_all, smape_hard, temporal_cov, spatial_cov, ms_select, ms_spatial, ms_frame;
-    double temporal_cov_hard; /* temporal_cov over the hard pixels only (000 Sec. 7.2: "43-57%") */
+    double temporal_cov_hard; /* temporal_cov over the hard pixels only (000 Sec. 7.1: "43-57%") */
     /* standard errors of smape_all and smape_hard over the runs (each run's SMAPE its frames' mean;
      * NaN with one run) */
     double smape_all_sem, smape_hard_sem;

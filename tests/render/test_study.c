@@ -34,6 +34,29 @@ static char *read_text(const char *path)
     return buf;
 }
 
+/* The point labels (radii) of the polyline drawn in color, in order, each followed by a comma. */
+static void pareto_labels(const char *svg, const char *color, char *out, size_t len)
+{
+    out[0] = '\0';
+    char key[64], fill[64];
+    snprintf(key, sizeof key, "<polyline fill=\"none\" stroke=\"%s\"", color);
+    snprintf(fill, sizeof fill, "fill=\"%s\"", color);
+    const char *p = svg ? strstr(svg, key) : NULL;
+    const char *end = p ? strstr(p + 1, "<polyline") : NULL;
+    size_t used = 0;
+    while (p && (p = strstr(p + 1, "<text")) && (!end || p < end)) {
+        const char *gt = strchr(p, '>'), *lt = gt ? strchr(gt, '<') : NULL;
+        if (!lt)
+            break;
+        const char *f = strstr(p, fill);
+        if (!f || f > gt) /* not a point label of this curve (the legend's text has no fill) */
+            continue;
+        used += (size_t)snprintf(out + used, len > used ? len - used : 0, "%.*s,", (int)(lt - gt - 1), gt + 1);
+        if (used >= len)
+            break;
+    }
+}
+
 int main(void)
 {
     char tmp[CLI_PATH_MAX], out[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX], err[CLI_ERR_MAX], path[3 * CLI_PATH_MAX];
@@ -95,6 +118,15 @@ int main(void)
     char *svg = read_text(path);
     EXPECT(svg && strstr(svg, "<svg") && strstr(svg, "bitterli") && strstr(svg, "compat"),
            "pareto.svg missing or without both curves");
+    /* 000 Figure 3's curves by radius: every Bitterli configuration (bitterli at 30, bitterli-r6,
+     * bitterli@4, @8, given in that order) and every compat one with K = 32 (fast at 30, compat@4,
+     * @8; not compat-binary) */
+    char labels[2][64];
+    pareto_labels(svg, "#d62728", labels[0], sizeof labels[0]);
+    pareto_labels(svg, "#1f77b4", labels[1], sizeof labels[1]);
+    EXPECT(!strcmp(labels[0], "4,6,8,30,"), "pareto.svg: the Bitterli curve's radii are '%s', want 4,6,8,30",
+           labels[0]);
+    EXPECT(!strcmp(labels[1], "4,8,30,"), "pareto.svg: the compat curve's radii are '%s', want 4,8,30", labels[1]);
     free(svg);
     const char *files[] = {"study.md", "hard_pixels.png", "strip.png"};
     for (int k = 0; k < 3; k++) {
