@@ -18,20 +18,17 @@
 #define COV_RADIUS 8       /* 000 Appendix A: radial covariance over radius-8 disks */
 #define COV_EPS 1e-4f
 
-/* 1 when name is exactly "compat-rR-kK" for R in [1, 512] pixels and K in [1, 1024]. */
-static int grid_name(const char *name, float r, int k)
+/* 1 when name is exactly "bitterli-rR" (k == 0) or "compat-rR-kK" (k >= 1), R in [1, 512] pixels and
+ * K in [1, 1024]: the name the parsed numbers print back to, so "compat-r30.0-k8" or "bitterli-r30x" is
+ * no configuration. */
+static int radius_name(const char *name, float r, int k)
 {
     char again[40];
-    snprintf(again, sizeof again, "compat-r%g-k%d", r, k);
-    return r >= 1.0f && r <= 512.0f && k >= 1 && k <= 1024 && !strcmp(again, name);
-}
-
-/* 1 when name is exactly "bitterli-rR" for R in [1, 512] pixels. */
-static int bitterli_name(const char *name, float r)
-{
-    char again[40];
-    snprintf(again, sizeof again, "bitterli-r%g", r);
-    return r >= 1.0f && r <= 512.0f && !strcmp(again, name);
+    if (k == 0)
+        snprintf(again, sizeof again, "bitterli-r%g", r);
+    else
+        snprintf(again, sizeof again, "compat-r%g-k%d", r, k);
+    return r >= 1.0f && r <= 512.0f && k >= 0 && k <= 1024 && !strcmp(again, name);
 }
 
 /* A named configuration at radius r (the radius of bitterli, compat and compat-binary). */
@@ -49,11 +46,12 @@ static int named_config(const char *name, float r, int candidates, struct study_
     } else if (!strcmp(name, "fast") || !strcmp(name, "balanced") || !strcmp(name, "conservative")) {
         c->select = SELECT_COMPAT; /* 000 Table 1 presets: K 32 and R 30 / 50 / 100 */
         c->radius = name[0] == 'f' ? 30.0f : name[0] == 'b' ? 50.0f : 100.0f;
-    } else if (sscanf(name, "bitterli-r%f", &grid_r) == 1 && bitterli_name(name, grid_r)) {
+    } else if (sscanf(name, "bitterli-r%f", &grid_r) == 1 && radius_name(name, grid_r, 0)) {
         c->select = SELECT_BITTERLI; /* 000 Figure 3: Bitterli's selection at radius R */
         c->radius = grid_r;
         c->candidates = 0;
-    } else if (sscanf(name, "compat-r%f-k%d", &grid_r, &grid_k) == 2 && grid_name(name, grid_r, grid_k)) {
+    } else if (sscanf(name, "compat-r%f-k%d", &grid_r, &grid_k) == 2 && grid_k >= 1 &&
+               radius_name(name, grid_r, grid_k)) {
         c->select = SELECT_COMPAT; /* 000 Table 2: radius R and candidates K */
         c->radius = grid_r;
         c->candidates = grid_k;
