@@ -15,6 +15,7 @@
 #include "io/svg_plot.h"
 #include "options.h"
 #include "plan.h"
+#include "reference_checkpoint.h"
 #include "scene/scene_file.h"
 #include "study_report.h"
 #include "study_run.h"
@@ -267,12 +268,16 @@ static int study_setup(int argc, char **argv, int need_out, struct study_setup *
 
 /* The study's own reference: pt over the method's integrand, independently seeded. NULL when a
  * stop signal arrived. */
-static float *study_render_reference(const struct study_setup *st)
+/* The study's reference (a still camera); out: a plan job's output, which makes it resumable from
+ * out's checkpoint (reference_render_resumable), else NULL. NULL after a stop or, with out, an error (msg). */
+static float *study_render_reference(const struct study_setup *st, const char *out, char *msg)
 {
     struct render_params rp = st->o.params;
     rp.seed ^= 0x7265666572656e63ull;
     const struct camera cam = study_camera(&st->s);
-    return cli_render_reference(&st->s, st->method, &rp, &cam, NULL, st->o.ref_spp); /* a still camera */
+    if (out)
+        return reference_render_resumable(&st->s, st->method, &rp, &cam, NULL, st->o.ref_spp, out, msg);
+    return cli_render_reference(&st->s, st->method, &rp, &cam, NULL, st->o.ref_spp);
 }
 
 /* Writes the study's tables, plots and report into dir and prints its summary. */
@@ -448,13 +453,12 @@ int study_run_job(const struct plan *pl, int k)
     if (done_before) {
         printf("job %d of %d (%s): already done: %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
     } else if (has_ref && k == 0) {
-        float *ref = study_render_reference(&st);
-        if (!ref) {
-            cli_error("interrupted by %s; nothing written", cli_stop_signal_name());
-            rc = 128 + (int)cli_stop_signal;
-        } else if (exr_write_rgb(path, ref, st.o.params.width, st.o.params.height, msg) != 0) {
+        float *ref = study_render_reference(&st, path, msg);
+        if (!ref || exr_write_rgb(path, ref, st.o.params.width, st.o.params.height, msg) != 0) {
             cli_error("%s", msg);
-            rc = EXIT_RUNTIME;
+            rc = !ref && cli_stop_signal ? 128 + (int)cli_stop_signal : EXIT_RUNTIME;
+        } else {
+            reference_checkpoint_discard(path);
         }
         free(ref);
     } else {
@@ -540,7 +544,7 @@ int cmd_study(int argc, char **argv)
             scene_destroy(&st.s);
             return EXIT_RUNTIME;
         }
-    } else if (!(ref = study_render_reference(&st))) {
+    } else if (!(ref = study_render_reference(&st, NULL, NULL))) {
         cli_error("interrupted by %s while rendering the reference; nothing written", cli_stop_signal_name());
         scene_destroy(&st.s);
         return 128 + (int)cli_stop_signal;

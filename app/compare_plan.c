@@ -15,6 +15,7 @@
 #include "io/atomic_file.h"
 #include "io/exr.h"
 #include "plan.h"
+#include "reference_checkpoint.h"
 
 /* `restir compare ... --plan DIR` plans one job per SPEC and run (and one for the reference without
  * --ref); `restir job` runs a SPEC's frames and writes its last frame and its timing under
@@ -182,13 +183,12 @@ int compare_run_job(const struct plan *pl, int k)
     int run;
     const int spec = spec_of_job(&st, k, &run);
     if (spec < 0) {
-        float *ref = compare_render_reference(&st);
-        if (!ref) {
-            cli_error("interrupted by %s; nothing written", cli_stop_signal_name());
-            rc = 128 + (int)cli_stop_signal;
-        } else if (exr_write_rgb(path, ref, st.p.width, st.p.height, msg) != 0) {
+        float *ref = compare_render_reference_resumable(&st, path, msg);
+        if (!ref || exr_write_rgb(path, ref, st.p.width, st.p.height, msg) != 0) {
             cli_error("%s", msg);
-            rc = EXIT_RUNTIME;
+            rc = !ref && cli_stop_signal ? 128 + (int)cli_stop_signal : EXIT_RUNTIME;
+        } else {
+            reference_checkpoint_discard(path);
         }
         free(ref);
     } else {

@@ -15,6 +15,7 @@
 #include "gradient/grad_frame.h"
 #include "io/atomic_file.h"
 #include "io/report.h"
+#include "reference_checkpoint.h"
 #include "scene/scene_file.h"
 
 /* msg of render_params_set without its "--set" prefix, which
@@ -481,17 +482,33 @@ float *compare_render_reference(const struct compare_setup *st)
     return compare_render_reference_at(st, st->o.frames - 1);
 }
 
+/* What the reference at frame `frame` renders: its params and cameras. */
+static enum method_id reference_inputs(const struct compare_setup *st, int frame, struct render_params *rp,
+                                       struct camera *cam, struct camera *open)
+{
+    *rp = st->p;
+    /* independent of the compared runs and of the other frames' references */
+    rp->seed = st->p.seed ^ 0x7265666572656e63ull;
+    if (frame != st->o.frames - 1)
+        rp->seed += 0x2545F4914F6CDD1Dull * (uint64_t)(frame + 1);
+    cli_frame_cameras(&st->s, st->p.camera_path, frame, cam, open);
+    return st->any_direct ? METHOD_RESTIR_DI : METHOD_PT;
+}
+
 float *compare_render_reference_at(const struct compare_setup *st, int frame)
 {
-    struct render_params rp = st->p;
-    /* independent of the compared runs and of the other frames' references */
-    rp.seed = st->p.seed ^ 0x7265666572656e63ull;
-    if (frame != st->o.frames - 1)
-        rp.seed += 0x2545F4914F6CDD1Dull * (uint64_t)(frame + 1);
+    struct render_params rp;
     struct camera cam, open;
-    cli_frame_cameras(&st->s, st->p.camera_path, frame, &cam, &open);
-    return cli_render_reference(&st->s, st->any_direct ? METHOD_RESTIR_DI : METHOD_PT, &rp, &cam, &open,
-                                st->o.ref_spp);
+    const enum method_id m = reference_inputs(st, frame, &rp, &cam, &open);
+    return cli_render_reference(&st->s, m, &rp, &cam, &open, st->o.ref_spp);
+}
+
+float *compare_render_reference_resumable(const struct compare_setup *st, const char *out, char *msg)
+{
+    struct render_params rp;
+    struct camera cam, open;
+    const enum method_id m = reference_inputs(st, st->o.frames - 1, &rp, &cam, &open);
+    return reference_render_resumable(&st->s, m, &rp, &cam, &open, st->o.ref_spp, out, msg);
 }
 
 /* DIR/passes.csv: each row's mean time per frame of every pass (the fastest run; its instances summed, one

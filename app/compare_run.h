@@ -111,6 +111,9 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
 /* The comparison's reference at frame `frame` (the last frame's: compare_render_reference), or NULL
  * when a stop signal arrived. */
 float *compare_render_reference_at(const struct compare_setup *st, int frame);
+/* The last frame's reference for a plan's job, resumable from out's checkpoint
+ * (reference_render_resumable); NULL with msg after a stop or an unusable checkpoint. */
+float *compare_render_reference_resumable(const struct compare_setup *st, const char *out, char *msg);
 /* Prints the table, writes out_dir/compare.csv and, with --report, index.html. Returns an exit
  * code. */
 int compare_write_table(const struct compare_setup *st, const char *out_dir, const char *command,

@@ -5,7 +5,8 @@
  * bound (2 C + 1) 2^-24 of reference_shards.c; merges with a job missing or corrupt are refused
  * naming its line; a finished job run again says so; a comparison planned per method and run
  * (--runs 2) and merged equals the unsplit one (compare.csv except ms_per_frame, reference and
- * frames byte for byte). */
+ * frames byte for byte); a plan's reference job stopped by SIGTERM saves a checkpoint, and run again
+ * continues from it to the bytes of an uninterrupted job (issue 25: a 1080p reference outlives a session). */
 #include <math.h>
 #include <signal.h>
 #include <string.h>
@@ -197,6 +198,52 @@ static void test_compare(char *err)
     EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 5 (pt, run 1)"), "merge with a missing job: %s", err);
 }
 
+/* A study plan's reference job stopped with SIGTERM, then run again, writes the bytes of the same
+ * job uninterrupted (in another plan of the same study). */
+#define SLOW_REF_STUDY                                                                                             \
+    "study --scene cornell --method restir-di --configs bitterli --res 96x54 --frames 4 "                          \
+    "--warmup 1 --runs 2 --ref-spp 960 --seed 3 --threads 1"
+
+static void test_reference_job_resumes(char *err)
+{
+    char plan[2 * CLI_PATH_MAX], whole[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX];
+    snprintf(plan, sizeof plan, "%s/resumed_plan", tmp);
+    snprintf(whole, sizeof whole, "%s/whole_plan", tmp);
+    snprintf(args, sizeof args, SLOW_REF_STUDY " --plan '%s'", plan);
+    EXPECT(cli_run(tmp, args, err) == 0, "study --plan: %s", err);
+    snprintf(args, sizeof args, SLOW_REF_STUDY " --plan '%s'", whole);
+    EXPECT(cli_run(tmp, args, err) == 0, "study --plan: %s", err);
+    char ckpt[3 * CLI_PATH_MAX], ref[3 * CLI_PATH_MAX], log[3 * CLI_PATH_MAX];
+    snprintf(ckpt, sizeof ckpt, "%s/runs/reference.checkpoint.exr", plan);
+    snprintf(ref, sizeof ref, "%s/runs/reference.exr", plan);
+    snprintf(log, sizeof log, "%s/stopped_job.txt", tmp);
+    snprintf(args, sizeof args, "job '%s' 1", plan);
+    pid_t pid = cli_spawn(args, log);
+    nanosleep(&(struct timespec){0, 300000000L}, NULL);
+    int status = cli_signal_and_wait(pid, SIGTERM);
+    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM,
+           "SIGTERM: exit status %d (the job finished "
+           "within 0.3 s?)",
+           WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+    struct stat st;
+    EXPECT(stat(ckpt, &st) == 0 && stat(ref, &st) != 0, "a stopped reference job left no checkpoint, or its image");
+    static char out[CLI_ERR_MAX];
+    EXPECT(cli_run_capture(tmp, args, out, err) == 0 && strstr(out, "resuming"), "the job run again: %s%s", out,
+           err);
+    EXPECT(stat(ckpt, &st) != 0, "the checkpoint outlived the finished job");
+    snprintf(args, sizeof args, "job '%s' 1", whole);
+    EXPECT(cli_run(tmp, args, err) == 0, "the uninterrupted job: %s", err);
+    char ref_whole[3 * CLI_PATH_MAX];
+    snprintf(ref_whole, sizeof ref_whole, "%s/runs/reference.exr", whole);
+    long size = 0;
+    const int same = cli_files_equal(ref, ref_whole, &size) == 1;
+    EXPECT(same, "the resumed reference differs from the uninterrupted one");
+    if (same)
+        printf("a study plan's reference job stopped by SIGTERM and run again equals the uninterrupted job (%ld "
+               "bytes)\n%s",
+               size, out);
+}
+
 /* A job refuses a scene file whose content changed after planning. */
 static void test_changed_scene(char *err)
 {
@@ -225,6 +272,7 @@ int main(void)
     test_study(err);
     test_reference(err);
     test_compare(err);
+    test_reference_job_resumes(err);
     test_changed_scene(err);
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
     return test_finish();
