@@ -279,7 +279,7 @@ static int plan_evaluation(const char *dir, const struct eval_options *o, struct
     if ((rc = plan_start(pl, abs, "evaluate", argc, argv, 0)) != 0)
         return rc;
     for (int k = 0; k < n && rc == 0; k++) {
-        char sub[PLAN_PATH_MAX + 80], name[96], out[160];
+        char sub[PLAN_PATH_MAX + 80], name[PLAN_NAME_MAX], out[160];
         step_dir(abs, &steps[k], sub, sizeof sub);
         struct plan sp;
         if (plan_load(sub, &sp, msg) != 0) {
@@ -288,7 +288,7 @@ static int plan_evaluation(const char *dir, const struct eval_options *o, struct
             break;
         }
         for (int j = 0; j < sp.n_jobs; j++) {
-            snprintf(name, sizeof name, "%.30s: %.60s", steps[k].name, sp.jobs[j].name);
+            snprintf(name, sizeof name, "%.40s: %.210s", steps[k].name, sp.jobs[j].name);
             snprintf(out, sizeof out, "%.60s/%.95s", steps[k].name, sp.jobs[j].output);
             plan_add_job(pl, name, out);
         }

@@ -418,7 +418,7 @@ static int study_finish(const struct study_setup *st, const struct plan *pl, con
 
 static int study_plan(const struct study_setup *st, int argc, char **argv)
 {
-    char name[96], rel[64];
+    char name[PLAN_NAME_MAX], rel[64];
     struct plan pl;
     const int rc = plan_start(&pl, st->o.plan, "study", argc, argv, scene_content_hash(&st->s));
     if (rc != 0)

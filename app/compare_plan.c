@@ -62,7 +62,7 @@ int compare_plan(const struct compare_setup *st, int argc, char **argv)
         cli_error("compare: --ref-every cannot be planned: a job holds one run's last frame; run it unsplit");
         return EXIT_USAGE;
     }
-    char name[96], rel[PLAN_PATH_MAX];
+    char name[PLAN_NAME_MAX], rel[PLAN_PATH_MAX];
     struct plan pl;
     const int rc = plan_start(&pl, st->o.plan, "compare", argc, argv, scene_content_hash(&st->s));
     if (rc != 0)
@@ -72,9 +72,9 @@ int compare_plan(const struct compare_setup *st, int argc, char **argv)
     for (int k = 0; k < st->n; k++)
         for (int n = 0; n < st->o.runs; n++) {
             if (st->o.runs > 1)
-                snprintf(name, sizeof name, "%.70s, run %d", st->specs[k].label, n);
+                snprintf(name, sizeof name, "%.200s, run %d", st->specs[k].label, n);
             else
-                snprintf(name, sizeof name, "%.80s", st->specs[k].label);
+                snprintf(name, sizeof name, "%.200s", st->specs[k].label);
             if (n == 0)
                 snprintf(rel, sizeof rel, "runs/%.140s/result.bin", st->specs[k].dir);
             else

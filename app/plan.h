@@ -13,9 +13,10 @@
 
 #define PLAN_MAX_JOBS 100000
 #define PLAN_PATH_MAX 4096
+#define PLAN_NAME_MAX 256 /* a job's name: an evaluate step, a spec of up to SPEC_MAX characters, a run */
 
 struct plan_job {
-    char name[96];    /* what the job computes, for messages ("config compat, run 3") */
+    char name[PLAN_NAME_MAX]; /* what the job computes, for messages ("config compat, run 3") */
     char output[160]; /* its result, relative to the plan folder (under runs/) */
 };
 

@@ -61,7 +61,7 @@ int reference_plan(const struct reference_setup *st, int argc, char **argv)
         cli_error("reference: --checkpoint-every does not apply to a plan (a shard that fails is run again)");
         return EXIT_USAGE;
     }
-    char name[96], rel[64];
+    char name[PLAN_NAME_MAX], rel[64];
     struct plan pl;
     const int rc = plan_start(&pl, st->o.plan, "reference", argc, argv, scene_content_hash(&st->s));
     if (rc != 0)
