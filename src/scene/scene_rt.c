@@ -21,11 +21,12 @@ struct ray_log {
 #define RAY_LOG_MAX_THREADS 256
 
 /* What an alpha filter needs: a shallow copy of the finished scene (its arrays do not move after
- * the build, while the struct itself may be copied by its owner) and the triangle of each
- * primitive (NULL: primitive = triangle). */
+ * the build, while the struct itself may be copied by its owner) and, per primitive, what the
+ * alpha test reads of its triangle (one cache line: the test runs for every candidate hit on a
+ * masked triangle, several per ray through a tree's crown). */
 struct alpha_filter {
     struct scene s;
-    const int *tris;
+    struct alpha_tri *tris;
 };
 
 struct scene_rt {
@@ -62,9 +63,7 @@ static void alpha_filter(const struct RTCFilterFunctionNArguments *args)
     for (unsigned i = 0; i < n; i++) {
         if (args->valid[i] != -1)
             continue;
-        const unsigned prim = hu[5 * n + i];
-        const int tri = f->tris ? f->tris[prim] : (int)prim;
-        if (scene_alpha_cut(&f->s, tri, hf[3 * n + i], hf[4 * n + i]))
+        if (scene_alpha_cut_tri(&f->s, &f->tris[hu[5 * n + i]], hf[3 * n + i], hf[4 * n + i]))
             args->valid[i] = 0;
     }
 }
@@ -96,7 +95,13 @@ static int attach_triangles(RTCDevice device, RTCScene scene, unsigned id, const
     }
     if (filter) {
         filter->s = *s;
-        filter->tris = tris;
+        filter->tris = aligned_alloc(32, sizeof(struct alpha_tri) * (size_t)count);
+        if (!filter->tris) {
+            rtcReleaseGeometry(geom);
+            return -1;
+        }
+        for (int i = 0; i < count; i++)
+            scene_alpha_tri(s, tris ? tris[i] : i, &filter->tris[i]);
         rtcSetGeometryUserData(geom, filter);
         rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
         rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
@@ -184,6 +189,8 @@ int scene_rt_build(struct scene *s, char *msg)
         rtcReleaseDevice(rt->device);
         free(rt->geom_tris[0]);
         free(rt->geom_tris[1]);
+        free(rt->alpha_masked.tris);
+        free(rt->alpha_emitters.tris);
         free(rt);
         return -1;
     }
@@ -203,6 +210,8 @@ void scene_rt_destroy(struct scene *s)
     rtcReleaseDevice(s->rt->device);
     free(s->rt->geom_tris[0]);
     free(s->rt->geom_tris[1]);
+    free(s->rt->alpha_masked.tris);
+    free(s->rt->alpha_emitters.tris);
     free(s->rt);
     s->rt = NULL;
 }

@@ -24,16 +24,22 @@ void scene_uv_at(const struct scene *s, int tri, float b1, float b2, float *u, f
     uv_set_at(s, 0, tri, b1, b2, u, v);
 }
 
-/* The coordinates map `l` reads at the point: its UV set, through its transform. */
-static void lookup_uv(const struct scene *s, const struct texture_lookup *l, int tri, float b1, float b2, float *u,
-                      float *v)
+/* (u, v) through the lookup's transform (glTF KHR_texture_transform), in place. */
+static void transform_uv(const struct texture_lookup *l, float *u, float *v)
 {
-    uv_set_at(s, l->uv_set, tri, b1, b2, u, v);
     if (l->has_xform) {
         const float *m = l->xform, x = *u, y = *v;
         *u = m[0] * x + m[1] * y + m[2];
         *v = m[3] * x + m[4] * y + m[5];
     }
+}
+
+/* The coordinates map `l` reads at the point: its UV set, through its transform. */
+static void lookup_uv(const struct scene *s, const struct texture_lookup *l, int tri, float b1, float b2, float *u,
+                      float *v)
+{
+    uv_set_at(s, l->uv_set, tri, b1, b2, u, v);
+    transform_uv(l, u, v);
 }
 
 /* Texture `map` (>= 1) read through lookup l at the point. */
@@ -44,19 +50,55 @@ static vec3 map_sample(const struct scene *s, int map, const struct texture_look
     return texture_sample_wrap(&s->textures[map - 1], u, v, l->wrap_u, l->wrap_v);
 }
 
+/* Whether masked material m is cut out where its base colour map's UV set reads (u, v) (before
+ * the lookup's transform): coverage = base_alpha times the map's bilinear alpha, below the cutoff. */
+static int coverage_cut(const struct scene *s, const struct material *m, float u, float v)
+{
+    float a = m->base_alpha;
+    if (m->base_color_map) {
+        const struct texture_lookup *l = &m->base_color_lookup;
+        transform_uv(l, &u, &v);
+        a *= texture_sample_alpha_wrap(&s->textures[m->base_color_map - 1], u, v, l->wrap_u, l->wrap_v);
+    }
+    return a < m->alpha_cutoff;
+}
+
 int scene_alpha_cut(const struct scene *s, int tri, float b1, float b2)
 {
     const struct material *m = &s->materials[s->tri_material[tri]];
     if (!m->alpha_mask)
         return 0;
-    float a = m->base_alpha;
-    if (m->base_color_map) {
-        const struct texture_lookup *l = &m->base_color_lookup;
-        float u, v;
-        lookup_uv(s, l, tri, b1, b2, &u, &v);
-        a *= texture_sample_alpha_wrap(&s->textures[m->base_color_map - 1], u, v, l->wrap_u, l->wrap_v);
+    float u = 0.0f, v = 0.0f;
+    if (m->base_color_map)
+        uv_set_at(s, m->base_color_lookup.uv_set, tri, b1, b2, &u, &v);
+    return coverage_cut(s, m, u, v);
+}
+
+void scene_alpha_tri(const struct scene *s, int tri, struct alpha_tri *r)
+{
+    const struct material *m = &s->materials[s->tri_material[tri]];
+    const float *uv = m->base_color_lookup.uv_set ? s->uv1 : s->uv;
+    for (int k = 0; k < 3; k++) {
+        const uint32_t i = s->indices[3 * tri + k];
+        r->uv[2 * k] = uv ? uv[2 * i] : 0.0f;
+        r->uv[2 * k + 1] = uv ? uv[2 * i + 1] : 0.0f;
     }
-    return a < m->alpha_cutoff;
+    r->material = s->tri_material[tri];
+    r->unused = 0;
+}
+
+int scene_alpha_cut_tri(const struct scene *s, const struct alpha_tri *r, float b1, float b2)
+{
+    const struct material *m = &s->materials[r->material];
+    if (!m->alpha_mask)
+        return 0;
+    float u = 0.0f, v = 0.0f;
+    if (m->base_color_map) { /* as uv_set_at */
+        const float b0 = 1.0f - b1 - b2;
+        u = b0 * r->uv[0] + b1 * r->uv[2] + b2 * r->uv[4];
+        v = b0 * r->uv[1] + b1 * r->uv[3] + b2 * r->uv[5];
+    }
+    return coverage_cut(s, m, u, v);
 }
 
 const struct material *scene_material_at(const struct scene *s, int tri, float b1, float b2, struct material *tmp)

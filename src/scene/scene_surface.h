@@ -19,6 +19,18 @@ const struct material *scene_material_at(const struct scene *s, int tri, float b
  * through it (scene_rt.c's Embree filter) and it emits nothing (scene_material_at). */
 int scene_alpha_cut(const struct scene *s, int tri, float b1, float b2);
 
+/* What scene_alpha_cut reads of one triangle, in one record of 32 bytes: the ray tracer keeps one
+ * per alpha-masked primitive, so a candidate hit's test touches one cache line instead of the
+ * triangle's material index, its vertex indices and three vertices' UVs (scene_rt.c). */
+struct alpha_tri {
+    float uv[6];  /* the corners' coordinates in the set the base colour map reads (0 without UVs) */
+    int material; /* s->tri_material[tri] */
+    int unused;
+};
+void scene_alpha_tri(const struct scene *s, int tri, struct alpha_tri *r);
+/* scene_alpha_cut of the record's triangle: the same arithmetic, so the same answer bit for bit. */
+int scene_alpha_cut_tri(const struct scene *s, const struct alpha_tri *r, float b1, float b2);
+
 /* The shading normal at barycentrics (b1, b2) of triangle tri, turned to the side of ng (the
  * geometric normal as the caller faces it): the corners' normals interpolated and normalized
  * (the triangle's own normal where the scene or a corner has none), then the material's normal

@@ -2,13 +2,16 @@
  * only when some texel is not opaque; scene_alpha_cut rejects exactly the points whose coverage
  * (base_alpha times the map's bilinear alpha) is below the cutoff; every ray query (closest hit,
  * occlusion, the emitters-only BVH) passes through cut-out points and stops at the others; a cut
- * part of an emitter emits nothing; the JSON reader refuses a bad alpha_mode or cutoff by key. */
+ * part of an emitter emits nothing; the ray tracer's per-primitive records (struct alpha_tri) give
+ * scene_alpha_cut's answer at every point, through either UV set and a texture transform; the
+ * JSON reader refuses a bad alpha_mode or cutoff by key. */
 #include <math.h>
 #include <string.h>
 
 #include "core/check.h"
 #include "scene/scene.h"
 #include "scene/scene_json.h"
+#include "scene/scene_surface.h"
 #include "shading/lights.h"
 #include "test_util.h"
 
@@ -27,22 +30,67 @@ static struct texture checker(void)
 
 /* Quad [0,1]^2 at z = 0 facing +z with UVs = (x, y), emissive and alpha-masked; a lamp elsewhere
  * is not needed: the quad is the emitter. */
-static int masked_quad(struct scene *s, float base_alpha, int use_map)
+static int masked_quad_lookup(struct scene *s, float base_alpha, int use_map, struct texture_lookup lookup)
 {
     struct scene_builder b;
     char msg[RESTIR_MSG_LEN];
     scene_builder_begin(&b, s, "masked");
     int map = use_map ? scene_add_texture(&b, checker(), "checker-alpha", 1) : 0;
-    int m = scene_add_material(&b, (struct material){.base_color = v3s(0.5f), .roughness = 1.0f,
-                                                     .emission = v3s(2.0f), .base_color_map = map,
-                                                     .alpha_mask = 1, .alpha_cutoff = 0.5f, .base_alpha = base_alpha});
+    int m = scene_add_material(&b, (struct material){.base_color = v3s(0.5f),
+                                                     .roughness = 1.0f,
+                                                     .emission = v3s(2.0f),
+                                                     .base_color_map = map,
+                                                     .alpha_mask = 1,
+                                                     .alpha_cutoff = 0.5f,
+                                                     .base_alpha = base_alpha,
+                                                     .base_color_lookup = lookup});
     scene_add_quad(&b, v3(0, 0, 0), v3(1, 0, 0), v3(1, 1, 0), v3(0, 1, 0), m, scene_new_object(&b));
     const float uv0[6] = {0, 0, 1, 0, 1, 1}, uv1[6] = {0, 0, 1, 1, 0, 1};
     scene_set_uvs(&b, 0, uv0);
     scene_set_uvs(&b, 1, uv1);
+    const float swapped0[6] = {0, 0, 0, 1, 1, 1}, swapped1[6] = {0, 0, 1, 1, 1, 0}; /* set 1: (v, u) */
+    scene_set_uv_set(&b, 0, 1, swapped0);
+    scene_set_uv_set(&b, 1, 1, swapped1);
     int rc = scene_builder_end(&b, msg);
     EXPECT(rc == 0, "builder: %s", msg);
     return rc;
+}
+
+static int masked_quad(struct scene *s, float base_alpha, int use_map)
+{
+    return masked_quad_lookup(s, base_alpha, use_map, (struct texture_lookup){0});
+}
+
+/* scene_alpha_cut_tri of scene_alpha_tri's record equals scene_alpha_cut at random points, many of
+ * them near the checker's cutoff lines, for UV set 0, set 1 and set 1 through a transform. */
+static void test_records(void)
+{
+    const struct texture_lookup lookups[3] = {
+        {0}, {.uv_set = 1}, {.uv_set = 1, .has_xform = 1, .xform = {0.7f, 0.2f, 0.13f, -0.3f, 1.1f, 0.4f}}};
+    for (int k = 0; k < 3; k++) {
+        struct scene s;
+        if (masked_quad_lookup(&s, 1.0f, 1, lookups[k]) != 0)
+            return;
+        uint32_t state = 12345u + (uint32_t)k;
+        int differ = 0, cut = 0;
+        const int n = 20000;
+        for (int i = 0; i < n; i++) {
+            state = state * 1664525u + 1013904223u;
+            float b1 = (float)(state >> 8) / 16777216.0f;
+            state = state * 1664525u + 1013904223u;
+            float b2 = (float)(state >> 8) / 16777216.0f * (1.0f - b1);
+            const int tri = i & 1;
+            struct alpha_tri r;
+            scene_alpha_tri(&s, tri, &r);
+            const int want = scene_alpha_cut(&s, tri, b1, b2);
+            differ += scene_alpha_cut_tri(&s, &r, b1, b2) != want;
+            cut += want;
+        }
+        EXPECT(differ == 0, "lookup %d: the record's alpha test differs at %d of %d points", k, differ, n);
+        EXPECT(cut > n / 5 && cut < 4 * n / 5, "lookup %d: %d of %d points cut: the test sees one side only", k,
+               cut, n);
+        scene_destroy(&s);
+    }
 }
 
 /* The opaque quarters are (x < 0.5, y > 0.5) and (x > 0.5, y < 0.5); points near the centres. */
@@ -125,6 +173,7 @@ static void expect_refused(const char *material_keys, const char *key)
 int main(void)
 {
     test_queries();
+    test_records();
     const char *data = getenv("RESTIR_TEST_DATA");
     EXPECT(data != NULL, "RESTIR_TEST_DATA is not set (run through ctest)");
     if (data)
