@@ -14,13 +14,17 @@
 int cmd_job(int argc, char **argv)
 {
     if (argc == 1 && (!strcmp(argv[0], "--help") || !strcmp(argv[0], "-h"))) {
-        printf("usage: restir job DIR K\n"
-               "Runs job K (1-based: line K of DIR/jobs.txt) of a plan that `restir study|reference|compare|evaluate ...\n"
-               "--plan DIR` wrote. The job writes only its own result under DIR/runs/ (a temporary file, then a\n"
-               "rename); a job whose result is there and sound says so and exits 0, so a plan can be run again.\n"
-               "A reference job saves its running mean to runs/reference.checkpoint.exr every %.0f minutes and when\n"
-               "SIGINT or SIGTERM stops it; run again, it continues from there (after a kill too) to the bytes of\n"
-               "an uninterrupted job.\n", PLAN_REFERENCE_CHECKPOINT_SECONDS / 60.0);
+        printf(
+            "usage: restir job DIR K\n"
+            "Runs job K (1-based: line K of DIR/jobs.txt) of a plan that `restir study|reference|compare|evaluate "
+            "...\n"
+            "--plan DIR` wrote. The job writes only its own result under DIR/runs/ (a temporary file, then a\n"
+            "rename); a job whose result is there and sound says so and exits 0, so a plan can be run again.\n"
+            "A reference job saves its running mean to runs/reference.checkpoint.exr every %.0f minutes (the\n"
+            "environment's RESTIR_REFERENCE_CHECKPOINT_SECONDS sets another interval) and when SIGINT or SIGTERM\n"
+            "stops it; run again, it continues from there (after a kill too) to the bytes of an uninterrupted "
+            "job.\n",
+            PLAN_REFERENCE_CHECKPOINT_SECONDS / 60.0);
         return 0;
     }
     if (argc != 2) {

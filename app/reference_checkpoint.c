@@ -177,6 +177,24 @@ void reference_checkpoint_discard(const char *out)
     reference_checkpoint_remove(&c);
 }
 
+/* PLAN_REFERENCE_CHECKPOINT_SECONDS, or the environment's RESTIR_REFERENCE_CHECKPOINT_SECONDS
+ * when it is a number >= 0 (anything else is ignored, with a warning). */
+static double plan_checkpoint_seconds(void)
+{
+    const char *text = getenv("RESTIR_REFERENCE_CHECKPOINT_SECONDS");
+    if (!text)
+        return PLAN_REFERENCE_CHECKPOINT_SECONDS;
+    char *end = NULL;
+    const double s = strtod(text, &end);
+    if (end == text || *end != '\0' || !(s >= 0.0 && s < 1e9)) {
+        cli_error("warning: RESTIR_REFERENCE_CHECKPOINT_SECONDS='%.40s' is not a number of seconds >= 0; saving "
+                  "every %.0f s",
+                  text, PLAN_REFERENCE_CHECKPOINT_SECONDS);
+        return PLAN_REFERENCE_CHECKPOINT_SECONDS;
+    }
+    return s;
+}
+
 float *reference_render_resumable(const struct scene *s, enum method_id method, const struct render_params *p,
                                   const struct camera *cam, const struct camera *open, int spp, const char *out,
                                   char *msg)
@@ -184,7 +202,7 @@ float *reference_render_resumable(const struct scene *s, enum method_id method, 
     struct reference_accum a;
     reference_accum_init(&a, s, method, p, cam, open, spp);
     struct reference_checkpoint c;
-    reference_checkpoint_init(&c, &a, out, PLAN_REFERENCE_CHECKPOINT_SECONDS, method_table[method].name, s->name);
+    reference_checkpoint_init(&c, &a, out, plan_checkpoint_seconds(), method_table[method].name, s->name);
     int resumed = 0;
     if (reference_checkpoint_resume(&c, &a, &resumed, msg) != 0) {
         reference_accum_fini(&a);

@@ -8,7 +8,8 @@
 #include "methods/reference.h"
 #include "reference_run.h"
 
-/* Seconds between a plan's reference job's saves: a kill costs at most this much rendering. */
+/* Seconds between a plan's reference job's saves: a kill costs at most this much rendering. The
+ * environment's RESTIR_REFERENCE_CHECKPOINT_SECONDS (a number >= 0; 0: after every chunk) replaces it. */
 #define PLAN_REFERENCE_CHECKPOINT_SECONDS 300.0
 
 struct reference_checkpoint {

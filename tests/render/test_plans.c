@@ -5,8 +5,8 @@
  * bound (2 C + 1) 2^-24 of reference_shards.c; merges with a job missing or corrupt are refused
  * naming its line; a finished job run again says so; a comparison planned per method and run
  * (--runs 2) and merged equals the unsplit one (compare.csv except ms_per_frame, reference and
- * frames byte for byte); a plan's reference job stopped by SIGTERM saves a checkpoint, and run again
- * continues from it to the bytes of an uninterrupted job (issue 25: a 1080p reference outlives a session). */
+ * frames byte for byte); a plan's reference job stopped by SIGTERM or killed keeps a checkpoint, and run
+ * again continues from it to the bytes of an uninterrupted job (issue 25: a 1080p reference outlives a session). */
 #include <math.h>
 #include <signal.h>
 #include <string.h>
@@ -198,11 +198,33 @@ static void test_compare(char *err)
     EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 5 (pt, run 1)"), "merge with a missing job: %s", err);
 }
 
-/* A study plan's reference job stopped with SIGTERM, then run again, writes the bytes of the same
- * job uninterrupted (in another plan of the same study). */
+/* A study plan's reference job saving after every chunk (RESTIR_REFERENCE_CHECKPOINT_SECONDS=0):
+ * stopped by SIGTERM once its first checkpoint exists, then killed with SIGKILL once a later one
+ * exists, then run again, it writes the bytes of the same job uninterrupted (in another plan). */
 #define SLOW_REF_STUDY                                                                                             \
     "study --scene cornell --method restir-di --configs bitterli --res 96x54 --frames 4 "                          \
     "--warmup 1 --runs 2 --ref-spp 960 --seed 3 --threads 1"
+
+/* restir.samples of a checkpoint, or -1. */
+static int checkpoint_samples(const char *path)
+{
+    char text[64], msg[MSG_LEN];
+    return exr_read_attribute(path, "restir.samples", text, sizeof text, msg) == 0 ? atoi(text) : -1;
+}
+
+/* Spawns `job DIR 1`, waits until its checkpoint holds more than `after` samples, sends sig; returns
+ * the wait status, and the samples at the signal in *samples. */
+static int stop_reference_job(const char *plan, const char *ckpt, int after, int sig, int *samples)
+{
+    char args[3 * CLI_PATH_MAX], log[3 * CLI_PATH_MAX];
+    snprintf(args, sizeof args, "job '%s' 1", plan);
+    snprintf(log, sizeof log, "%s/stopped_job.txt", tmp);
+    pid_t pid = cli_spawn(args, log);
+    for (int waited = 0; waited < 12000 && checkpoint_samples(ckpt) <= after; waited++)
+        nanosleep(&(struct timespec){0, 10000000L}, NULL);
+    *samples = checkpoint_samples(ckpt);
+    return cli_signal_and_wait(pid, sig);
+}
 
 static void test_reference_job_resumes(char *err)
 {
@@ -213,21 +235,23 @@ static void test_reference_job_resumes(char *err)
     EXPECT(cli_run(tmp, args, err) == 0, "study --plan: %s", err);
     snprintf(args, sizeof args, SLOW_REF_STUDY " --plan '%s'", whole);
     EXPECT(cli_run(tmp, args, err) == 0, "study --plan: %s", err);
-    char ckpt[3 * CLI_PATH_MAX], ref[3 * CLI_PATH_MAX], log[3 * CLI_PATH_MAX];
+    char ckpt[3 * CLI_PATH_MAX], ref[3 * CLI_PATH_MAX];
     snprintf(ckpt, sizeof ckpt, "%s/runs/reference.checkpoint.exr", plan);
     snprintf(ref, sizeof ref, "%s/runs/reference.exr", plan);
-    snprintf(log, sizeof log, "%s/stopped_job.txt", tmp);
-    snprintf(args, sizeof args, "job '%s' 1", plan);
-    pid_t pid = cli_spawn(args, log);
-    nanosleep(&(struct timespec){0, 300000000L}, NULL);
-    int status = cli_signal_and_wait(pid, SIGTERM);
-    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM,
-           "SIGTERM: exit status %d (the job finished "
-           "within 0.3 s?)",
-           WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+    setenv("RESTIR_REFERENCE_CHECKPOINT_SECONDS", "0", 1);
+    int at_term = 0, at_kill = 0;
+    int status = stop_reference_job(plan, ckpt, 0, SIGTERM, &at_term);
+    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM, "SIGTERM at %d samples: exit status %d",
+           at_term, WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+    const int saved = checkpoint_samples(ckpt);
+    EXPECT(saved >= at_term && saved < 960, "after SIGTERM the checkpoint holds %d samples", saved);
+    status = stop_reference_job(plan, ckpt, saved, SIGKILL, &at_kill);
+    EXPECT(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL, "the job finished before the SIGKILL");
+    unsetenv("RESTIR_REFERENCE_CHECKPOINT_SECONDS");
     struct stat st;
-    EXPECT(stat(ckpt, &st) == 0 && stat(ref, &st) != 0, "a stopped reference job left no checkpoint, or its image");
+    EXPECT(stat(ckpt, &st) == 0 && stat(ref, &st) != 0, "a killed reference job left no checkpoint, or its image");
     static char out[CLI_ERR_MAX];
+    snprintf(args, sizeof args, "job '%s' 1", plan);
     EXPECT(cli_run_capture(tmp, args, out, err) == 0 && strstr(out, "resuming"), "the job run again: %s%s", out,
            err);
     EXPECT(stat(ckpt, &st) != 0, "the checkpoint outlived the finished job");
@@ -239,9 +263,9 @@ static void test_reference_job_resumes(char *err)
     const int same = cli_files_equal(ref, ref_whole, &size) == 1;
     EXPECT(same, "the resumed reference differs from the uninterrupted one");
     if (same)
-        printf("a study plan's reference job stopped by SIGTERM and run again equals the uninterrupted job (%ld "
-               "bytes)\n%s",
-               size, out);
+        printf("a study plan's reference job stopped by SIGTERM (%d samples saved), then killed (%d), then run "
+               "again equals the uninterrupted job (%ld bytes)\n%s",
+               saved, at_kill, size, out);
 }
 
 /* A job refuses a scene file whose content changed after planning. */
