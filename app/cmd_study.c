@@ -266,10 +266,9 @@ static int study_setup(int argc, char **argv, int need_out, struct study_setup *
     return 0;
 }
 
-/* The study's own reference: pt over the method's integrand, independently seeded. NULL when a
- * stop signal arrived. */
-/* The study's reference (a still camera); out: a plan job's output, which makes it resumable from
- * out's checkpoint (reference_render_resumable), else NULL. NULL after a stop or, with out, an error (msg). */
+/* The study's own reference: pt over the method's integrand from a still camera, independently
+ * seeded. out: a plan job's output, which makes it resumable from out's checkpoint
+ * (reference_render_resumable), else NULL. NULL after a stop signal or, with out, an error (msg). */
 static float *study_render_reference(const struct study_setup *st, const char *out, char *msg)
 {
     struct render_params rp = st->o.params;
