@@ -452,14 +452,8 @@ int study_run_job(const struct plan *pl, int k)
     if (done_before) {
         printf("job %d of %d (%s): already done: %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
     } else if (has_ref && k == 0) {
-        float *ref = study_render_reference(&st, path, msg);
-        if (!ref || exr_write_rgb(path, ref, st.o.params.width, st.o.params.height, msg) != 0) {
-            cli_error("%s", msg);
-            rc = !ref && cli_stop_signal ? 128 + (int)cli_stop_signal : EXIT_RUNTIME;
-        } else {
-            reference_checkpoint_discard(path);
-        }
-        free(ref);
+        rc = reference_job_finish(study_render_reference(&st, path, msg), path, st.o.params.width,
+                                  st.o.params.height, msg);
     } else {
         const int unit = k - has_ref, cfg = unit / st.o.runs, run = unit % st.o.runs;
         struct study_unit u;

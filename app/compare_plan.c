@@ -183,14 +183,8 @@ int compare_run_job(const struct plan *pl, int k)
     int run;
     const int spec = spec_of_job(&st, k, &run);
     if (spec < 0) {
-        float *ref = compare_render_reference_resumable(&st, path, msg);
-        if (!ref || exr_write_rgb(path, ref, st.p.width, st.p.height, msg) != 0) {
-            cli_error("%s", msg);
-            rc = !ref && cli_stop_signal ? 128 + (int)cli_stop_signal : EXIT_RUNTIME;
-        } else {
-            reference_checkpoint_discard(path);
-        }
-        free(ref);
+        rc = reference_job_finish(compare_render_reference_resumable(&st, path, msg), path, st.p.width, st.p.height,
+                                  msg);
     } else {
         struct compare_result res;
         memset(&res, 0, sizeof res);

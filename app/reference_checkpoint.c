@@ -195,6 +195,19 @@ static double plan_checkpoint_seconds(void)
     return s;
 }
 
+int reference_job_finish(float *ref, const char *out, int w, int h, char *msg)
+{
+    int rc = 0;
+    if (!ref || exr_write_rgb(out, ref, w, h, msg) != 0) {
+        cli_error("%s", msg);
+        rc = !ref && cli_stop_signal ? 128 + (int)cli_stop_signal : EXIT_RUNTIME;
+    } else {
+        reference_checkpoint_discard(out);
+    }
+    free(ref);
+    return rc;
+}
+
 float *reference_render_resumable(const struct scene *s, enum method_id method, const struct render_params *p,
                                   const struct camera *cam, const struct camera *open, int spp, const char *out,
                                   char *msg)

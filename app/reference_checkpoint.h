@@ -47,4 +47,9 @@ float *reference_render_resumable(const struct scene *s, enum method_id method, 
                                   const struct camera *cam, const struct camera *open, int spp, const char *out,
                                   char *msg);
 
+/* A plan's reference job's end: writes ref (reference_render_resumable's result; NULL: msg says
+ * why) to out as a plain RGB EXR, then removes the checkpoint, and frees ref. Returns 0, 128 + the
+ * signal after a stop, or EXIT_RUNTIME, having said what failed. */
+int reference_job_finish(float *ref, const char *out, int w, int h, char *msg);
+
 #endif
