@@ -115,10 +115,66 @@ static void set(struct eval_step *s, const char *kv)
     add(s, "%s", kv);
 }
 
+const char *const eval_000_configs[] = {"bitterli",
+                                        "fast",
+                                        "balanced",
+                                        "conservative", /* Table 1 */
+                                        "compat-r30-k8",
+                                        "compat-r30-k128",
+                                        "compat-r50-k8",
+                                        "compat-r50-k128", /* Table 2's R x K */
+                                        "compat-r100-k8",
+                                        "compat-r100-k128",
+                                        "bitterli-r10",
+                                        "bitterli-r50",
+                                        "bitterli-r100",
+                                        "compat-r10-k32", /* Figure 3's radii */
+                                        NULL};
+
+/* Whether name is an item of the comma-separated list. */
+static int in_list(const char *list, const char *name)
+{
+    const size_t n = strlen(name);
+    for (const char *p = list; *p;) {
+        const char *end = strchr(p, ',');
+        const size_t len = end ? (size_t)(end - p) : strlen(p);
+        if (len == n && !strncmp(p, name, n))
+            return 1;
+        p += len + (end != NULL);
+    }
+    return 0;
+}
+
+/* Checks --configs: every name one of 000's, and Bitterli's R = 30 (every claim's baseline) among them. */
+static int check_configs_000(const struct eval_options *o, char *msg)
+{
+    if (!o->configs[0])
+        return 0;
+    char list[sizeof o->configs];
+    snprintf(list, sizeof list, "%s", o->configs);
+    for (char *save = NULL, *t = strtok_r(list, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+        int known = 0;
+        for (int i = 0; eval_000_configs[i] && !known; i++)
+            known = !strcmp(eval_000_configs[i], t);
+        if (!known) {
+            snprintf(msg, RESTIR_MSG_LEN,
+                     "--configs: '%.40s' is not one of 000's configurations (restir evaluate --help)", t);
+            return -1;
+        }
+    }
+    if (!in_list(o->configs, "bitterli")) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "--configs: 'bitterli' (Bitterli's R = 30) is missing: every 000 claim is "
+                 "measured against it");
+        return -1;
+    }
+    return 0;
+}
+
 /* 000 Sec. 7: the error-correlation study of ReSTIR PT with M = 1 neighbor, Bitterli's R = 30
  * against FAST / BALANCED / CONSERVATIVE (Table 1); on the first scene also the R x K grid of
  * Table 2 (K = 32 is the presets' row) and Figure 3's Pareto curves (Bitterli at R 10, 30, 50,
- * 100; ours at K 32 and R 10 and the presets' 30, 50, 100). */
+ * 100; ours at K 32 and R 10 and the presets' 30, 50, 100). --configs keeps a subset. */
 static void steps_000(const struct eval_options *o, const char *scene, int first, struct eval_step *steps, int *n)
 {
     struct eval_step *s = begin(steps, n, "000", "study", scene, "", o);
@@ -127,11 +183,13 @@ static void steps_000(const struct eval_options *o, const char *scene, int first
     add(s, "restir-pt");
     add(s, "--warmup");
     add(s, "%d", eval_warmup(o));
+    char list[512] = "";
+    size_t used = 0;
+    for (int i = 0; eval_000_configs[i] && (first || i < EVAL_000_TABLE1_CONFIGS); i++)
+        if (!o->configs[0] || in_list(o->configs, eval_000_configs[i]))
+            used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", used ? "," : "", eval_000_configs[i]);
     add(s, "--configs");
-    add(s, "bitterli,fast,balanced,conservative%s",
-        first ? ",compat-r30-k8,compat-r30-k128,compat-r50-k8,compat-r50-k128,compat-r100-k8,compat-r100-k128,"
-                "bitterli-r10,bitterli-r50,bitterli-r100,compat-r10-k32"
-              : "");
+    add(s, "%s", list);
     set(s, "spatial.neighbors=1");
     set(s, "temporal.reuse=splat"); /* 000 Sec. 7: Area ReSTIR's reservoirs with splatting */
 }
@@ -204,7 +262,7 @@ static int paper_steps(const struct eval_options *o, const char *paper, struct e
              : !strcmp(paper, "004")
                  ? check_res(o, paper, EVAL_004_RADIUS, "the 30-pixel reuse and cell search", msg)
                  : check_res(o, paper, EVAL_002_RADIUS, "area ReSTIR's 30-pixel reuse", msg);
-    if (rc != 0)
+    if (rc != 0 || (!strcmp(paper, "000") && check_configs_000(o, msg) != 0))
         return -1;
     char list[256], first_scene[32] = "";
     snprintf(list, sizeof list, "%s", o->scenes[0] ? o->scenes : default_scenes(paper));

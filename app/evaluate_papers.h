@@ -14,6 +14,7 @@ struct eval_options {
     char paper[8]; /* 000, 004, 002 or all */
     int width, height, runs, frames, warmup, ref_spp, threads;
     char scenes[256]; /* comma-separated scenes instead of each paper's defaults */
+    char configs[256]; /* 000: comma-separated configurations to run, a subset of eval_000_configs ("": all) */
     int report;       /* --report: the steps' pages and the evaluation's index.html */
 };
 
@@ -37,9 +38,15 @@ struct eval_scene_note {
 };
 extern const struct eval_scene_note eval_scene_notes[];
 
+/* 000's configurations in the order its study runs them: Table 1's four (Bitterli R = 30 and the
+ * presets; every scene), then Table 2's R x K grid and Figure 3's radii (the first scene only). */
+extern const char *const eval_000_configs[];
+#define EVAL_000_TABLE1_CONFIGS 4
+
 /* The steps of o->paper ("all": 000, 004 and 002 in turn) into steps (at most EVAL_MAX_STEPS).
- * Returns 0, or -1 with msg (RESTIR_MSG_LEN): an unknown paper, or a resolution below what the
- * paper's pixel radii allow (named). */
+ * Returns 0, or -1 with msg (RESTIR_MSG_LEN): an unknown paper, a resolution below what the
+ * paper's pixel radii allow (named), or --configs naming what 000 does not run or leaving out its
+ * baseline. */
 int eval_steps(const struct eval_options *o, struct eval_step *steps, int *n, char *msg);
 /* The parameters a step runs with that its tables state: frames, warm-up, runs, reference paths. */
 int eval_frames(const struct eval_options *o, const char *paper);

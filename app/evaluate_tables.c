@@ -638,6 +638,12 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
             else
                 put(&md, "camera path, error of frame %d.\n", eval_frames(o, current) - 1);
             put(&md, "Pixel radii as in the paper (not scaled with the resolution).\n");
+            if (!strcmp(current, "000") && o->configs[0])
+                put(&md,
+                    "Configurations: only %s (--configs; the whole evaluation runs Table 1's four on every "
+                    "scene and Table 2's grid and Figure 3's radii on the first): claims on the others read "
+                    "\"not measured\".\n",
+                    o->configs);
             for (int j = k; j < n && !strcmp(steps[j].paper, current); j++)
                 for (const struct eval_scene_note *sn = eval_scene_notes; sn->paper; sn++)
                     if (!strcmp(sn->paper, current) && !strcmp(sn->scene, steps[j].scene) &&

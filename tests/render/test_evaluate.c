@@ -5,7 +5,7 @@
  * for the same command, and the evaluation's tables and claims show its numbers; bad input (an unknown paper or
  * scene, a resolution below the paper's radii, a folder of another evaluation or of another command's plan, a
  * non-empty folder) exits 2 and leaves the folder as it was; an unfinished evaluation merges only with --partial,
- * which names the steps left out. */
+ * which names the steps left out; --configs runs a subset of 000's configurations with the same numbers. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -60,6 +60,12 @@ static void test_bad_input(char *err)
            "000 below its radii: %s", err);
     snprintf(args, sizeof args, "evaluate 004 --res 48x48 --plan '%s'", dir);
     EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "61x61"), "004 below its radii: %s", err);
+    snprintf(args, sizeof args, "evaluate 000 --configs fast --out '%s'", dir);
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "'bitterli'"), "--configs without bitterli: %s", err);
+    snprintf(args, sizeof args, "evaluate 000 --configs bitterli,quick --out '%s'", dir);
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "'quick'"), "--configs, an unknown name: %s", err);
+    snprintf(args, sizeof args, "evaluate 004 --configs bitterli --out '%s'", dir);
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "000's configurations"), "--configs with 004: %s", err);
     snprintf(args, sizeof args, "evaluate 004 --scenes nowhere --out '%s'", dir);
     EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "'nowhere'"), "unknown scene: %s", err);
     EXPECT(!exists(dir), "a refused evaluation made its folder");
@@ -168,6 +174,37 @@ static void test_plan_equals_unsplit(char *err)
         "under GNU parallel, merged = unsplit (5 step tables but their times, claims.csv but its timed claims)\n");
 }
 
+/* --configs: 000's study runs only the named configurations, each with the numbers it has in the whole
+ * evaluation (the first two rows of its study.csv but their times), and the claims on the others read
+ * "not measured". Needs test_plan_equals_unsplit's unsplit evaluation. */
+static void test_configs_subset(char *err)
+{
+    char out[2 * CLI_PATH_MAX], args[6 * CLI_PATH_MAX], path[3 * CLI_PATH_MAX];
+    snprintf(out, sizeof out, "%s/subset", tmp);
+    snprintf(args, sizeof args, "evaluate 000 " EVAL_ARGS " --configs fast,bitterli --out '%s'", out);
+    EXPECT(cli_run(tmp, args, err) == 0, "evaluate 000 --configs: %s", err);
+    static char a[1 << 16], b[1 << 16], md[1 << 16];
+    snprintf(path, sizeof path, "%s/000-cornell/study.csv", out);
+    cli_csv_without_columns(path, 8, 10, a, sizeof a);
+    snprintf(path, sizeof path, "%s/unsplit/000-cornell/study.csv", tmp);
+    cli_csv_without_columns(path, 8, 10, b, sizeof b);
+    char *end = b;
+    for (int line = 0; line < 3 && end; line++) /* the header, bitterli's row and fast's */
+        end = strchr(end, '\n') ? strchr(end, '\n') + 1 : NULL;
+    if (end)
+        *end = '\0';
+    EXPECT(a[0] && strstr(a, "\nbitterli,") && !strcmp(a, b),
+           "--configs fast,bitterli: study.csv is not the whole evaluation's first two rows:\n%s\nvs\n%s", a, b);
+    snprintf(path, sizeof path, "%s/evaluation.md", out);
+    cli_read_text(path, md, sizeof md);
+    EXPECT(strstr(md, "Configurations: only fast,bitterli"), "evaluation.md does not say which configurations ran");
+    EXPECT(strstr(md, "| balanced: frame time vs Bitterli (cost) | cornell | - |") &&
+               strstr(md, "**not measured**") && !strstr(md, "| FAST: SMAPE vs Bitterli R = 30 | cornell | - |"),
+           "evaluation.md: a claim on a configuration not run is not 'not measured', or FAST's is:\n%s", md);
+    printf("evaluate 000 --configs fast,bitterli: the whole evaluation's rows for those two, the others' claims "
+           "not measured\n");
+}
+
 /* The 004 step's table is what `restir compare` writes for its command, and the evaluation's tables
  * and claims show those numbers. */
 static void test_tables_are_compares(char *err)
@@ -232,6 +269,7 @@ int main(void)
     test_bad_input(err);
     test_plan_equals_unsplit(err);
     test_tables_are_compares(err);
+    test_configs_subset(err);
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
     return test_finish();
 }
