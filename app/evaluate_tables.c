@@ -638,6 +638,9 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
             else
                 put(&md, "camera path, error of frame %d.\n", eval_frames(o, current) - 1);
             put(&md, "Pixel radii as in the paper (not scaled with the resolution).\n");
+            char machine[400];
+            html_machine_name(machine, sizeof machine);
+            put(&md, "Merged on %s (the frame times are those of the machines that ran the jobs).\n", machine);
             if (!strcmp(current, "000") && o->configs[0])
                 put(&md,
                     "Configurations: only %s (--configs; the whole evaluation runs Table 1's four on every "

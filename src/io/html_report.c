@@ -91,7 +91,7 @@ void html_raw(struct html_page *pg, const char *fmt, ...)
     va_end(ap);
 }
 
-static void machine_name(char *out, size_t len)
+void html_machine_name(char *out, size_t len)
 {
     char model[256] = "unknown CPU";
     FILE *f = fopen("/proc/cpuinfo", "r");
@@ -114,7 +114,7 @@ static void machine_name(char *out, size_t len)
 void html_run_info(struct html_page *pg, const char *command, const char *commit)
 {
     char machine[400], when[64];
-    machine_name(machine, sizeof machine);
+    html_machine_name(machine, sizeof machine);
     time_t now = time(NULL);
     strftime(when, sizeof when, "%Y-%m-%d %H:%M:%S UTC", gmtime(&now));
     html_raw(pg, "<p>Command: <code>");

@@ -24,6 +24,8 @@ void html_raw(struct html_page *pg, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+/* This machine as "CPU model, N cores" (from /proc/cpuinfo; "unknown CPU" without it). */
+void html_machine_name(char *out, size_t len);
 /* The run: the command line, the commit, the machine (CPU model and cores) and the time. */
 void html_run_info(struct html_page *pg, const char *command, const char *commit);
 /* A table: header cells, then rows of cells (escaped), rows * cols entries row-major. */
