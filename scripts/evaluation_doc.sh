@@ -1,7 +1,7 @@
 #!/bin/sh
 # evaluation_doc.sh SOURCE... > docs/EVALUATION.md
-# docs/EVALUATION.md from merged `restir evaluate` output (issue 25): a header naming the machine
-# and the sources, then each source's evaluation.md as the evaluation wrote it. A SOURCE is a merged
+# docs/EVALUATION.md from merged `restir evaluate` output (issue 25): a header naming the sources
+# (each says the machine it was merged on), then each source's evaluation.md as the evaluation wrote it. A SOURCE is a merged
 # evaluation folder (its evaluation.md is used) or an evaluation.md kept as docs/evaluation/NAME.md
 # (the run folders are hundreds of GB and do not outlive the machine; these files do). Nothing in the
 # tables or verdicts is typed: rerun the evaluations and this script to change them.
