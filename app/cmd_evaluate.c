@@ -56,6 +56,9 @@ static void evaluate_usage(void)
         "docs/EVALUATION.md is made from evaluation.md files (scripts/evaluation_doc.sh).\n");
 }
 
+_Static_assert(sizeof((struct eval_options *)0)->scenes == sizeof((struct eval_options *)0)->configs,
+               "parse() stores --scenes and --configs through one bound");
+
 /* Parses the evaluation's options (argv without the command name); dir and mode (0 none, 'o' --out,
  * 'p' --plan) may be NULL for a plan's stored arguments. Returns 0, -1 after printing --help, or an
  * exit code having said why. */
@@ -115,7 +118,7 @@ static int parse(int argc, char **argv, struct eval_options *o, const char **dir
         else if (!strcmp(a, "--threads") && (rc = cli_parse_int(a, v, 1, 4096, &x, msg)) == 0)
             o->threads = (int)x;
         else if (!strcmp(a, "--scenes") || !strcmp(a, "--configs")) {
-            char *field = a[2] == 's' ? o->scenes : o->configs;
+            char *field = !strcmp(a, "--scenes") ? o->scenes : o->configs;
             if (strlen(v) >= sizeof o->scenes) {
                 cli_error("evaluate: %s is longer than %zu characters", a, sizeof o->scenes - 1);
                 return EXIT_USAGE;
