@@ -124,7 +124,7 @@ void progress_end(struct progress *pg)
 int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *msg)
 {
     const int w = r->p.width, h = r->p.height;
-    const struct grad_frame *g = r->grad;
+    const struct grad_frame *g = renderer_gradients(r);
     char path[4200];
     struct exr_layer layers[5] = {{NULL, r->image}};
     int n = 1;
@@ -162,7 +162,7 @@ void cli_frame_cameras(const struct scene *s, int use_path, int frame, struct ca
     *open = scene_camera_at(s, use_path, (float)(frame > 0 ? frame - 1 : frame));
 }
 
-float *cli_render_reference(const struct scene *s, enum method_id method, const struct render_params *p,
+float *cli_render_reference(const struct scene *s, const struct method *method, const struct render_params *p,
                             const struct camera *cam, const struct camera *open, int spp)
 {
     struct reference_accum a;
@@ -190,12 +190,12 @@ void cli_command_line(const char *command, int argc, char **argv, char *out, siz
     }
 }
 
-int cli_check_memory(const struct scene *s, enum method_id m, const struct render_params *p, long long max_memory_mb,
+int cli_check_memory(const struct scene *s, const struct method *m, const struct render_params *p, long long max_memory_mb,
                      char *msg)
 {
     double per_pixel = 0.0;
     const double need = (double)renderer_estimate_bytes(s, m, p, &per_pixel);
-    return cli_check_bytes(method_table[m].name, p->width, p->height, need, per_pixel, max_memory_mb, msg);
+    return cli_check_bytes(m->name, p->width, p->height, need, per_pixel, max_memory_mb, msg);
 }
 
 int cli_check_bytes(const char *what, int width, int height, double need_bytes, double per_pixel,

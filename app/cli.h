@@ -40,7 +40,7 @@ const char *cli_stop_signal_name(void);
 
 /* 0 when a renderer of method m with parameters p fits in max_memory_mb (0: the memory the system
  * has available now), else -1 with msg giving the estimate and the limit (memory_estimate.h). */
-int cli_check_memory(const struct scene *s, enum method_id m, const struct render_params *p, long long max_memory_mb,
+int cli_check_memory(const struct scene *s, const struct method *m, const struct render_params *p, long long max_memory_mb,
                      char *msg);
 /* The same for a known need: 0 when need_bytes fits, else -1 with msg naming what (a method or
  * command), the resolution, the need (and per_pixel bytes) and the limit. */
@@ -74,7 +74,7 @@ int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *
  * spp samples per pixel from camera cam (shutter opening at `open`, NULL: cam) into a new
  * malloc'ed RGB buffer (methods/reference.h). Returns NULL, having stopped between chunks, when a
  * stop signal arrived (cli_stop_signal). */
-float *cli_render_reference(const struct scene *s, enum method_id method, const struct render_params *p,
+float *cli_render_reference(const struct scene *s, const struct method *method, const struct render_params *p,
                             const struct camera *cam, const struct camera *open, int spp);
 /* The camera at frame `frame` of a sequence (the default path, or the static camera) and where
  * its shutter opens: the camera of the frame before, as renderer_render takes it. */

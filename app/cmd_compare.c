@@ -13,7 +13,7 @@
 #include "io/exr.h"
 
 /* Frame time of method m at spp paths per pixel (the second of two frames, after a warm-up). */
-static double frame_ms_at_spp(const struct scene *s, enum method_id m, const struct render_params *p, int spp)
+static double frame_ms_at_spp(const struct scene *s, const struct method *m, const struct render_params *p, int spp)
 {
     struct render_params q = *p;
     struct renderer r;
@@ -29,7 +29,7 @@ static double frame_ms_at_spp(const struct scene *s, enum method_id m, const str
 
 /* Paths per pixel of pt or gpt that fit in budget_ms, from a 1-spp and a 4-spp timing (the
  * difference removes fixed per-frame cost such as gpt's reconstruction). */
-static int spp_for_budget(const struct scene *s, enum method_id m, const struct render_params *p, double budget_ms)
+static int spp_for_budget(const struct scene *s, const struct method *m, const struct render_params *p, double budget_ms)
 {
     double t1 = frame_ms_at_spp(s, m, p, 1), t4 = frame_ms_at_spp(s, m, p, 4);
     double per_spp = (t4 - t1) / 3.0 > 0.25 * t1 ? (t4 - t1) / 3.0 : t1;
@@ -112,13 +112,14 @@ int cmd_compare(int argc, char **argv)
         scene_destroy(&st.s);
         return EXIT_RUNTIME;
     }
-    /* The first spec other than pt sets the equal-time budget (its frame time, reconstruction
-     * included); pt and gpt then fit it by paths per pixel, the others by averaging instances. */
+    /* The first spec of a method with state between frames sets the equal-time budget (its frame
+     * time, reconstruction included); the METHOD_BUDGET_BY_SPP ones (pt, gpt) then fit it by paths
+     * per pixel, the others by averaging instances. */
     struct compare_result res[MAX_METHODS] = {0};
     double budget = -1.0;
     int first = -1;
     for (int k = 0; k < n && first < 0; k++)
-        if (specs[k].method != METHOD_PT)
+        if (!compare_budget_by_spp(specs[k].method))
             first = k;
     int stopped_at = -1; /* the spec a stop signal interrupted */
     if (first >= 0) {

@@ -29,7 +29,7 @@ int cmd_reference(int argc, char **argv)
     const struct cli_options o = st.o;
     const int spp = st.spp;
     struct scene s = st.s;
-    const enum method_id method = st.method;
+    const struct method *method = st.method;
     struct camera cam = st.cam, open = st.cam_open;
     struct reference_accum a;
     reference_accum_init(&a, &s, method, &o.params, &cam, &open, spp);

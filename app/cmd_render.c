@@ -43,19 +43,19 @@ static void render_usage(FILE *out)
 }
 
 /* Resolves scene and method; returns 0 or an exit code after printing the problem. */
-static int open_scene_and_method(const struct cli_options *o, struct scene *s, enum method_id *method)
+static int open_scene_and_method(const struct cli_options *o, struct scene *s, const struct method **method)
 {
     char msg[RESTIR_MSG_LEN];
     if (!o->method) {
         cli_error("--method is required (see restir list)");
         return EXIT_USAGE;
     }
-    int m = method_find(o->method);
-    if (m < 0) {
+    const struct method *m = method_find(o->method);
+    if (!m) {
         cli_error("unknown method '%s' (see restir list)", o->method);
         return EXIT_USAGE;
     }
-    *method = (enum method_id)m;
+    *method = m;
     if (cli_scene_load(&o->params, o->env, o->scene, s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;
@@ -65,10 +65,10 @@ static int open_scene_and_method(const struct cli_options *o, struct scene *s, e
 
 /* What ran, so that `restir render --params summary.json` runs it again: scene, method, frames,
  * resolution, seed, camera, and every setting of the table as the renderer used it. */
-static cJSON *params_json(const struct cli_options *o, enum method_id method)
+static cJSON *params_json(const struct cli_options *o, const struct method *method)
 {
     struct render_params p = o->params;
-    renderer_method_params(method, &p); /* what the renderer ran with */
+    method_params(method, &p); /* what the renderer ran with */
     cJSON *j = cJSON_CreateObject();
     char scene[PATH_MAX], camera[PATH_MAX]; /* files by absolute path: --params may run elsewhere */
     if (scene_is_builtin(o->scene) || !realpath(o->scene, scene))
@@ -113,7 +113,7 @@ int cmd_render(int argc, char **argv)
         return 0;
     }
     struct scene s;
-    enum method_id method;
+    const struct method *method;
     int rc = open_scene_and_method(&o, &s, &method);
     if (rc != 0)
         return rc;
@@ -211,7 +211,7 @@ int cmd_render(int argc, char **argv)
         double sp_acc = st.valid_pixels > 0 ? (double)tc->splat_accepted / vp : 0.0;
         /* 004 Sec. 6.2: pixels whose history was rejected in any of the last DISOCCLUSION_FRAMES frames */
         double disoccluded = 0.0, mape_disoccluded = 0.0;
-        if (method != METHOD_PT) {
+        if (method_has(method, METHOD_HISTORY)) {
             long long marked = renderer_disoccluded(&r, DISOCCLUSION_FRAMES, mask);
             disoccluded = st.valid_pixels > 0 ? (double)marked / (double)st.valid_pixels : 0.0;
             struct restir_error e;

@@ -206,7 +206,7 @@ static int write_strip(const char *dir, const float *strips, const float *ref_ro
 /* What every mode of the study (run, plan, job, merge) derives from its options. */
 struct study_setup {
     struct cli_options o;
-    enum method_id method;
+    const struct method *method;
     struct study_config cfg[STUDY_MAX_CONFIGS];
     int ncfg;
     struct scene s;
@@ -234,13 +234,15 @@ static int study_setup(int argc, char **argv, int need_out, struct study_setup *
         cli_error("study: --out DIR (or --plan DIR, or --merge DIR) is required");
         return EXIT_USAGE;
     }
-    int m = o->method ? method_find(o->method) : -1;
-    if (m != METHOD_RESTIR_DI && m != METHOD_RESTIR_PT) {
-        cli_error("study: --method must be restir-di or restir-pt (methods with spatial reuse), got '%s'",
-                  o->method ? o->method : "(none)");
+    const struct method *m = method_find(o->method);
+    if (!m || !method_has(m, METHOD_SELECTION_STUDY)) {
+        char names[256];
+        method_names_with(METHOD_SELECTION_STUDY, names, sizeof names);
+        cli_error("study: --method must be one of %s (methods with spatial reuse from the selection pass), got '%s'",
+                  names, o->method ? o->method : "(none)");
         return EXIT_USAGE;
     }
-    st->method = (enum method_id)m;
+    st->method = m;
     if (o->frames <= STUDY_COV_LAG || o->runs < 2) {
         cli_error("study: needs --frames > %d (autocovariance lag) and --runs >= 2", STUDY_COV_LAG);
         return EXIT_USAGE;
@@ -272,7 +274,7 @@ static int study_setup(int argc, char **argv, int need_out, struct study_setup *
 static float *study_render_reference(const struct study_setup *st, const char *out, char *msg)
 {
     struct render_params rp = st->o.params;
-    rp.seed ^= 0x7265666572656e63ull;
+    rp.seed = reference_seed(rp.seed);
     const struct camera cam = study_camera(&st->s);
     if (out)
         return reference_render_resumable(&st->s, st->method, &rp, &cam, NULL, st->o.ref_spp, out, msg);
@@ -290,7 +292,7 @@ static int study_write_outputs(const struct study_setup *st, const char *dir, co
     float *ref_row = xmalloc(sizeof(float) * (size_t)w);
     for (int x = 0; x < w; x++)
         ref_row[x] = luminance_at(ref, (size_t)strip_y * w + x);
-    const int neighbors = render_params_spatial_neighbors(&o->params, st->method == METHOD_RESTIR_PT);
+    const int neighbors = render_params_spatial_neighbors(&o->params, method_has(st->method, METHOD_PATH_RESERVOIRS));
     int rc = 0;
     if (write_tables(dir, st->cfg, res, st->ncfg, neighbors, msg) != 0 ||
         write_pareto(dir, st->cfg, res, st->ncfg, msg) != 0 || write_mask(dir, ref, hard, w, h, msg) != 0 ||

@@ -13,11 +13,13 @@
 
 static void view_usage(FILE *out)
 {
+    char cycle[256];
+    view_method_cycle_names(cycle, sizeof cycle);
     fprintf(out,
             "usage: restir view --scene NAME|FILE [--method NAME] [--res WxH] [--seed N] [--threads N]\n"
             "                   [--script FILE] [--out DIR] [--set key=value]...\n"
-            "A window that renders frame after frame (default method restir-di, 640x360). Mouse drag turns\n"
-            "the camera, W A S D move, Q E down and up; M next method (restir-di, restir-pt, pt, ris-di),\n"
+            "A window that renders frame after frame (default method: the first of the M cycle, 640x360).\n"
+            "Mouse drag turns the camera, W A S D move, Q E down and up; M next method (%s),\n"
             "T temporal reuse, Y spatial reuse, N neighbor selection, P spmis; V debug views (confidence,\n"
             "temporal acceptance, selected-neighbor count, reuse cells, temporal candidates per technique:\n"
             "black none, dark red received but none accepted, green backprojection accepted, blue splat\n"
@@ -28,7 +30,8 @@ static void view_usage(FILE *out)
             "per-pass times.\n"
             "--script FILE: timed input, one event per line ('F press KEY', 'F hold KEY N', 'F drag DX DY',\n"
             "'F quit'; F counts frames from the start). Default DIR: out/view-SCENE. Without a display it\n"
-            "says so and exits 1.\n");
+            "says so and exits 1.\n",
+            cycle);
 }
 
 int cmd_view(int argc, char **argv)
@@ -43,8 +46,8 @@ int cmd_view(int argc, char **argv)
         view_usage(stdout);
         return 0;
     }
-    int m = method_find(o.method ? o.method : "restir-di");
-    if (m < 0) {
+    const struct method *m = o.method ? method_find(o.method) : view_method_after(NULL);
+    if (!m) {
         cli_error("unknown method '%s' (see restir list)", o.method);
         return EXIT_USAGE;
     }
@@ -53,12 +56,12 @@ int cmd_view(int argc, char **argv)
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
-    if (method_check_settings((enum method_id)m, &o.params, &s, msg) != 0) {
+    if (method_check_settings(m, &o.params, &s, msg) != 0) {
         cli_error("%s", msg);
         scene_destroy(&s);
         return EXIT_USAGE;
     }
-    if (cli_check_memory(&s, (enum method_id)m, &o.params, o.max_memory_mb, msg) != 0) {
+    if (cli_check_memory(&s, m, &o.params, o.max_memory_mb, msg) != 0) {
         cli_error("%s", msg);
         scene_destroy(&s);
         return EXIT_RUNTIME;
@@ -67,7 +70,7 @@ int cmd_view(int argc, char **argv)
         omp_set_num_threads(o.params.threads);
     char out_dir[4096];
     snprintf(out_dir, sizeof out_dir, o.out ? "%s" : "out/view-%s", o.out ? o.out : s.name);
-    const struct view_options vo = {&s, (enum method_id)m, o.params, o.script, out_dir};
+    const struct view_options vo = {&s, m, o.params, o.script, out_dir};
     int rc = view_run(&vo, msg);
     if (rc != 0)
         cli_error("view: %s", msg);

@@ -68,15 +68,15 @@ static int parse_spec(const char *spec, const struct render_params *common, stru
     char *rest = strchr(buf, ':');
     if (rest)
         *rest++ = '\0';
-    int m = method_find(buf);
-    if (m < 0) {
+    const struct method *m = method_find(buf);
+    if (!m) {
         if (rest)
             snprintf(msg, RESTIR_MSG_LEN, "unknown method '%s' in --methods spec '%s' (see restir list)", buf, spec);
         else
             snprintf(msg, RESTIR_MSG_LEN, "unknown method '%s' in --methods (see restir list)", buf);
         return -1;
     }
-    c->method = (enum method_id)m;
+    c->method = m;
     c->p = *common;
     c->instances = 1;
     if (rest && take_instances(rest, &c->instances, sub) != 0) {
@@ -126,7 +126,7 @@ static void assign_dirs(struct compare_spec *c, int n)
     }
 }
 
-int compare_budget_by_spp(enum method_id m) { return m == METHOD_PT || m == METHOD_GPT; }
+int compare_budget_by_spp(const struct method *m) { return method_has(m, METHOD_BUDGET_BY_SPP); }
 
 /* The instances average their last frames. For gradient methods the primal and gradient images
  * are averaged and then reconstructed once (002 Sec. 5, Figure 8), and the frame time counts the
@@ -165,11 +165,11 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
                        int instances, const float *ref, const char *out_dir, int keep_image, struct compare_track *track,
                        int run, struct compare_result *res, char *msg)
 {
-    enum method_id m = c->method;
+    const struct method *m = c->method;
     struct renderer r[MAX_INSTANCES];
     for (int k = 0; k < instances; k++) {
         struct render_params q = *p;
-        q.seed = p->seed + 1000003ull * (uint64_t)k;
+        q.seed = p->seed + COMPARE_INSTANCE_SEED_STRIDE * (uint64_t)k;
         renderer_init(&r[k], s, m, &q);
     }
     const size_t n3 = 3 * (size_t)p->width * (size_t)p->height;
@@ -207,26 +207,29 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     }
     progress_end(&pg);
     free(scratch);
+    struct grad_frame *grad[MAX_INSTANCES] = {0};
+    for (int k = 0; k < instances; k++)
+        grad[k] = renderer_gradients(&r[k]);
     if (instances > 1) {
         const float inv = 1.0f / (float)instances;
         for (size_t i = 0; i < n3; i++) {
             float sum[4] = {0, 0, 0, 0};
             for (int k = 0; k < instances; k++) {
                 sum[0] += r[k].image[i];
-                if (r[k].grad) {
-                    sum[1] += r[k].grad->primal[i];
-                    sum[2] += r[k].grad->dx[i];
-                    sum[3] += r[k].grad->dy[i];
+                if (grad[k]) {
+                    sum[1] += grad[k]->primal[i];
+                    sum[2] += grad[k]->dx[i];
+                    sum[3] += grad[k]->dy[i];
                 }
             }
             r[0].image[i] = sum[0] * inv;
-            if (r[0].grad) {
-                r[0].grad->primal[i] = sum[1] * inv;
-                r[0].grad->dx[i] = sum[2] * inv;
-                r[0].grad->dy[i] = sum[3] * inv;
+            if (grad[0]) {
+                grad[0]->primal[i] = sum[1] * inv;
+                grad[0]->dx[i] = sum[2] * inv;
+                grad[0]->dy[i] = sum[3] * inv;
             }
         }
-        if (r[0].grad) {
+        if (grad[0]) {
             struct frame_stats st;
             memset(&st, 0, sizeof(st));
             renderer_reconstruct(&r[0], &st);
@@ -242,14 +245,14 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     res->instances = instances;
     const size_t npix = (size_t)p->width * (size_t)p->height;
     unsigned char *mask = NULL;
-    if (method_has_gbuffer(m)) { /* the first instance's history decides (004 Sec. 6.2) */
+    if (method_has(m, METHOD_HISTORY)) { /* the first instance's history decides (004 Sec. 6.2) */
         mask = xmalloc(npix);
         renderer_disoccluded(&r[0], DISOCCLUSION_FRAMES, mask);
     }
     res->mask = NULL;
     res->grad = NULL;
     res->grad_relmse = NAN;
-    const struct grad_frame *g = r[0].grad;
+    const struct grad_frame *g = grad[0];
     if (ref) { /* a planned job measures nothing: the merge does, from the frame, mask and gradients it writes */
         restir_error_compute(r[0].image, ref, npix, NULL, &res->err);
         compare_disoccluded_error(r[0].image, ref, mask, npix, &res->mape_dis, &res->dis_share);
@@ -354,7 +357,6 @@ int compare_setup(int argc, char **argv, struct compare_setup *st)
     }
     snprintf(list, sizeof(list), "%s", o->methods);
     st->n = 0;
-    st->any_direct = 0;
     for (char *tok = strtok(list, ","); tok; tok = strtok(NULL, ",")) {
         if (st->n == MAX_METHODS) {
             cli_error("--methods lists more than %d methods", MAX_METHODS);
@@ -364,7 +366,6 @@ int compare_setup(int argc, char **argv, struct compare_setup *st)
             cli_error("%s", msg);
             return EXIT_USAGE;
         }
-        st->any_direct |= method_table[st->specs[st->n].method].direct_only;
         st->n++;
     }
     if (st->n == 0) {
@@ -378,11 +379,13 @@ int compare_setup(int argc, char **argv, struct compare_setup *st)
             return EXIT_USAGE;
         }
     st->p = o->params;
-    if (st->any_direct)
-        renderer_reference_params(METHOD_RESTIR_DI, &st->p); /* pt estimates the same integral */
+    st->integrand = st->specs[0].method;
+    for (int k = st->n - 1; k >= 0; k--)
+        if (method_has(st->specs[k].method, METHOD_DIRECT_ONLY))
+            st->integrand = st->specs[k].method;
+    method_reference_params(st->integrand, &st->p); /* pt estimates the same integral */
     for (int k = 0; k < st->n; k++) {
-        if (st->any_direct)
-            renderer_reference_params(METHOD_RESTIR_DI, &st->specs[k].p); /* as for --set */
+        method_reference_params(st->integrand, &st->specs[k].p); /* as for --set */
         if (render_params_validate(&st->specs[k].p, msg) != 0) {
             cli_error("--methods spec '%s': %s", st->specs[k].label, msg);
             return EXIT_USAGE;
@@ -483,23 +486,23 @@ float *compare_render_reference(const struct compare_setup *st)
 }
 
 /* What the reference at frame `frame` renders: its params and cameras. */
-static enum method_id reference_inputs(const struct compare_setup *st, int frame, struct render_params *rp,
+static const struct method *reference_inputs(const struct compare_setup *st, int frame, struct render_params *rp,
                                        struct camera *cam, struct camera *open)
 {
     *rp = st->p;
     /* independent of the compared runs and of the other frames' references */
-    rp->seed = st->p.seed ^ 0x7265666572656e63ull;
+    rp->seed = reference_seed(st->p.seed);
     if (frame != st->o.frames - 1)
         rp->seed += 0x2545F4914F6CDD1Dull * (uint64_t)(frame + 1);
     cli_frame_cameras(&st->s, st->p.camera_path, frame, cam, open);
-    return st->any_direct ? METHOD_RESTIR_DI : METHOD_PT;
+    return st->integrand;
 }
 
 float *compare_render_reference_at(const struct compare_setup *st, int frame)
 {
     struct render_params rp;
     struct camera cam, open;
-    const enum method_id m = reference_inputs(st, frame, &rp, &cam, &open);
+    const struct method *m = reference_inputs(st, frame, &rp, &cam, &open);
     return cli_render_reference(&st->s, m, &rp, &cam, &open, st->o.ref_spp);
 }
 
@@ -507,7 +510,7 @@ float *compare_render_reference_resumable(const struct compare_setup *st, const 
 {
     struct render_params rp;
     struct camera cam, open;
-    const enum method_id m = reference_inputs(st, st->o.frames - 1, &rp, &cam, &open);
+    const struct method *m = reference_inputs(st, st->o.frames - 1, &rp, &cam, &open);
     return reference_render_resumable(&st->s, m, &rp, &cam, &open, st->o.ref_spp, out, msg);
 }
 

@@ -18,13 +18,13 @@
 struct compare_spec {
     char label[SPEC_MAX + 1];
     char dir[SPEC_MAX + 16];
-    enum method_id method;
+    const struct method *method;
     struct render_params p;
     int instances; /* independently seeded renderers the row averages (key instances=N; default 1) */
 };
 
 struct compare_result {
-    enum method_id method;
+    const struct method *method;
     double ms_per_frame;
     double ms_pass[PASS_COUNT]; /* each pass's mean time per frame (run 0), as ms_per_frame counts */
     int spp;
@@ -51,14 +51,16 @@ struct compare_setup {
     struct cli_options o;
     struct compare_spec specs[MAX_METHODS];
     int n;
-    int any_direct;         /* a DI method is compared: every row and the reference use 1 bounce */
+    /* the method whose integrand every row and the reference estimate: the first METHOD_DIRECT_ONLY
+     * spec when there is one (then every row uses 1 bounce), else the first spec */
+    const struct method *integrand;
     struct render_params p; /* the common parameters */
     struct scene s;
 };
 
 /* 1 for the methods that reach a time budget by paths per pixel (pt, gpt); the others do by
  * averaging independently seeded instances (002 Sec. 5). */
-int compare_budget_by_spp(enum method_id m);
+int compare_budget_by_spp(const struct method *m);
 
 /* MAPE of image over the pixels mask marks (NaN when mask is NULL or marks none) and the share of
  * the npix pixels it marks (NaN when mask is NULL), into *mape and *share. */

@@ -14,8 +14,9 @@
 #include "restir/metrics.h"
 
 /* Run n of a spec renders with seed + n * COMPARE_RUN_SEED_STRIDE (its instances then add
- * 1000003 k as before), so runs and equal-time instances never share a seed. */
+ * k * COMPARE_INSTANCE_SEED_STRIDE), so runs and equal-time instances never share a seed. */
 #define COMPARE_RUN_SEED_STRIDE 0x9E3779B97F4A7C15ull
+#define COMPARE_INSTANCE_SEED_STRIDE 1000003ull
 #define COMPARE_COV_LAG 3 /* 000 Appendix A: autocovariance at a lag of 3 frames */
 
 /* One frame of one spec, summed over its runs (compare_track_end divides). */

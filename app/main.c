@@ -28,8 +28,8 @@ static int cmd_list(void)
 {
     for (int i = 0; scene_builtin_names[i]; i++)
         printf("scene %s\t%s\n", scene_builtin_names[i], scene_builtin_descriptions[i]);
-    for (int m = 0; m < METHOD_COUNT; m++)
-        printf("method %s\t%s\n", method_table[m].name, method_table[m].description);
+    for (int k = 0; k < method_count(); k++)
+        printf("method %s\t%s\n", method_at(k)->name, method_at(k)->description);
     return 0;
 }
 

@@ -208,14 +208,14 @@ int reference_job_finish(float *ref, const char *out, int w, int h, char *msg)
     return rc;
 }
 
-float *reference_render_resumable(const struct scene *s, enum method_id method, const struct render_params *p,
+float *reference_render_resumable(const struct scene *s, const struct method *method, const struct render_params *p,
                                   const struct camera *cam, const struct camera *open, int spp, const char *out,
                                   char *msg)
 {
     struct reference_accum a;
     reference_accum_init(&a, s, method, p, cam, open, spp);
     struct reference_checkpoint c;
-    reference_checkpoint_init(&c, &a, out, plan_checkpoint_seconds(), method_table[method].name, s->name);
+    reference_checkpoint_init(&c, &a, out, plan_checkpoint_seconds(), method->name, s->name);
     int resumed = 0;
     if (reference_checkpoint_resume(&c, &a, &resumed, msg) != 0) {
         reference_accum_fini(&a);

@@ -43,7 +43,7 @@ void reference_checkpoint_discard(const char *out);
  * PLAN_REFERENCE_CHECKPOINT_SECONDS and at a stop. The caller writes the image to out, then calls
  * reference_checkpoint_discard(out). Returns the image (w*h*3, to free), or NULL with msg (a stop,
  * after saving; a failed save; an unusable checkpoint). */
-float *reference_render_resumable(const struct scene *s, enum method_id method, const struct render_params *p,
+float *reference_render_resumable(const struct scene *s, const struct method *method, const struct render_params *p,
                                   const struct camera *cam, const struct camera *open, int spp, const char *out,
                                   char *msg);
 

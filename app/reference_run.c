@@ -69,12 +69,12 @@ int reference_setup(int argc, char **argv, int need_out, struct reference_setup 
         cli_error("--out FILE.exr (or --shards N --plan DIR) is required");
         return EXIT_USAGE;
     }
-    if (!o->method || method_find(o->method) < 0) {
+    if (!method_find(o->method)) {
         cli_error(o->method ? "unknown method '%s' (see restir list)" : "--method is required (see restir list)%s",
                   o->method ? o->method : "");
         return EXIT_USAGE;
     }
-    st->method = (enum method_id)method_find(o->method);
+    st->method = method_find(o->method);
     if (cli_scene_load(&o->params, o->env, o->scene, &st->s, msg) != 0) {
         cli_error("%s", msg);
         return EXIT_USAGE;

@@ -12,7 +12,7 @@
 
 struct reference_setup {
     struct cli_options o;
-    enum method_id method;
+    const struct method *method;
     struct scene s;
     int spp;
     struct camera cam, cam_open; /* the frame's camera and where its shutter opens */

@@ -155,7 +155,7 @@ struct camera study_camera(const struct scene *s)
     return scene_camera_at(s, 0, 0.0f);
 }
 
-int study_run_unit(const struct scene *s, enum method_id method, const struct render_params *base,
+int study_run_unit(const struct scene *s, const struct method *method, const struct render_params *base,
                    const struct study_config *c, const struct cli_options *o, int run, struct study_unit *u)
 {
     struct render_params p = *base;
@@ -163,7 +163,7 @@ int study_run_unit(const struct scene *s, enum method_id method, const struct re
     p.spatial_radius = c->radius;
     if (c->candidates > 0)
         p.spatial_candidates = c->candidates;
-    p.seed = base->seed + 1000003ull * (uint64_t)run;
+    p.seed = base->seed + STUDY_RUN_SEED_STRIDE * (uint64_t)run;
     const struct camera cam = study_camera(s);
     u->frames = o->frames;
     u->npix = (size_t)p.width * (size_t)p.height;

@@ -57,10 +57,12 @@ int study_strip_row(const unsigned char *hard, int w, int h);
 /* The static camera every study run uses. */
 struct camera study_camera(const struct scene *s);
 
-/* Renders run `run` (seed base->seed + 1000003 run) of configuration c: o->warmup frames, then
+/* Run r of a study configuration renders with seed base->seed + r * STUDY_RUN_SEED_STRIDE. */
+#define STUDY_RUN_SEED_STRIDE 1000003ull
+/* Renders run `run` (seed base->seed + STUDY_RUN_SEED_STRIDE run) of configuration c: o->warmup frames, then
  * o->frames measured into u (allocated here). Returns 0, or -1 when a stop signal arrived (u is
  * then freed). */
-int study_run_unit(const struct scene *s, enum method_id method, const struct render_params *base,
+int study_run_unit(const struct scene *s, const struct method *method, const struct render_params *base,
                    const struct study_config *c, const struct cli_options *o, int run, struct study_unit *u);
 void study_unit_free(struct study_unit *u);
 /* A unit's result file (plan.h blobs, tagged with plan id). Returns 0, or -1 with msg; read: 1 when

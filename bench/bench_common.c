@@ -20,11 +20,11 @@ struct scene bench_load_scene(const char *name)
     return s;
 }
 
-float *bench_reference(const struct scene *s, enum method_id method, const struct render_params *p, float frame,
+float *bench_reference(const struct scene *s, const struct method *method, const struct render_params *p, float frame,
                        int use_path, int spp)
 {
     struct render_params rp = *p;
-    renderer_reference_params(method, &rp);
+    method_reference_params(method, &rp);
     rp.seed = 0xbe4c4ull;
     struct camera cam = scene_camera_at(s, use_path, frame);
     struct camera_view view;

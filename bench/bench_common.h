@@ -9,7 +9,7 @@
 struct scene bench_load_scene(const char *name);
 /* pt reference of what `method` estimates, seen from camera frame `frame` (camera path when
  * use_path), spp paths per pixel, as a new malloc'ed RGB buffer. */
-float *bench_reference(const struct scene *s, enum method_id method, const struct render_params *p, float frame,
+float *bench_reference(const struct scene *s, const struct method *method, const struct render_params *p, float frame,
                        int use_path, int spp);
 /* The `spmis` section (bench_spmis.c). */
 struct bench_spmis_options {

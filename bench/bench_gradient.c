@@ -40,7 +40,7 @@ struct gb_ref {
 
 /* One row: a method (with settings) at its budget, measured at the last frame. */
 struct gb_result {
-    enum method_id method;
+    const struct method *method;
     double ms;      /* per frame over the timed frames, all instances, one reconstruction */
     double grad_ms; /* the PASS_GRAD_* passes (gpt: PASS_GPT), per frame, all instances */
     int spp, instances;
@@ -188,7 +188,7 @@ static void load_reference(const struct scene *s, const char *scene_name, const 
         free(ref->rgb);
         struct render_params p = base_params(c);
         double t0 = omp_get_wtime();
-        ref->rgb = bench_reference(s, METHOD_PT, &p, (float)last, 1, c->ref_spp);
+        ref->rgb = bench_reference(s, method_named("pt"), &p, (float)last, 1, c->ref_spp);
         fprintf(stderr, "restir_bench: reference %s rendered in %.0f s\n", path, omp_get_wtime() - t0);
         make_dirs(REF_CACHE_DIR);
         if (exr_write_rgb(path, ref->rgb, c->width, c->height, msg) != 0)
@@ -238,7 +238,7 @@ static double render_frames(struct renderer *r, const struct scene *s, int from,
         *rays += st.rays;
         for (int q = 0; q < PASS_COUNT; q++)
             pass_ms[q] += st.ms[q];
-        if (r->grad)
+        if (renderer_gradients(r))
             log_time(&l2_log, &l2_n, &l2_cap, st.ms[PASS_RECON_L2]);
     }
     for (int q = 0; q < PASS_COUNT; q++)
@@ -247,7 +247,7 @@ static double render_frames(struct renderer *r, const struct scene *s, int from,
 }
 
 /* Frame time of a stateless method (pt, gpt) at spp paths per pixel: the second of two frames. */
-static double frame_ms_at_spp(const struct scene *s, enum method_id m, const struct render_params *p, int spp,
+static double frame_ms_at_spp(const struct scene *s, const struct method *m, const struct render_params *p, int spp,
                               int frame)
 {
     struct render_params q = *p;
@@ -264,7 +264,7 @@ static double frame_ms_at_spp(const struct scene *s, enum method_id m, const str
 
 /* Paths per pixel that fit budget_ms: the cost per path from 1 and 4 spp (their difference removes the
  * fixed per-frame cost, e.g. gpt's reconstruction), as restir compare --equal-time does. */
-static int spp_for_budget(const struct scene *s, enum method_id m, const struct render_params *p, double budget_ms,
+static int spp_for_budget(const struct scene *s, const struct method *m, const struct render_params *p, double budget_ms,
                           int frame)
 {
     double t1 = frame_ms_at_spp(s, m, p, 1, frame), t4 = frame_ms_at_spp(s, m, p, 4, frame);
@@ -283,7 +283,7 @@ static int spp_for_budget(const struct scene *s, enum method_id m, const struct 
  * includes one L2 solve, each further instance costs t0 - L2 (gradient methods average primal, dx
  * and dy, then reconstruct once, 002 Sec. 5). Gradient methods then also get the L1 solve of the
  * final inputs (untimed). */
-static void run_method(const struct scene *s, const struct gb_config *c, enum method_id m, const char *sets,
+static void run_method(const struct scene *s, const struct gb_config *c, const struct method *m, const char *sets,
                        double budget_ms, int equal_samples, const struct gb_ref *ref, struct gb_result *res)
 {
     memset(res, 0, sizeof(*res));
@@ -306,7 +306,7 @@ static void run_method(const struct scene *s, const struct gb_config *c, enum me
     }
     res->instances = 1;
     res->spp = 1;
-    if (m == METHOD_PT || m == METHOD_GPT) {
+    if (m == method_named("pt") || m == method_named("gpt")) {
         if (budget_ms > 0.0)
             p.spp = spp_for_budget(s, m, &p, budget_ms, last);
         res->spp = p.spp;
@@ -327,10 +327,10 @@ static void run_method(const struct scene *s, const struct gb_config *c, enum me
         }
         if (res->instances > 1) {
             float *sum[4] = {copy3(r0.image, npix), NULL, NULL, NULL};
-            if (r0.grad) {
-                sum[1] = copy3(r0.grad->primal, npix);
-                sum[2] = copy3(r0.grad->dx, npix);
-                sum[3] = copy3(r0.grad->dy, npix);
+            if (renderer_gradients(&r0)) {
+                sum[1] = copy3(renderer_gradients(&r0)->primal, npix);
+                sum[2] = copy3(renderer_gradients(&r0)->dx, npix);
+                sum[3] = copy3(renderer_gradients(&r0)->dy, npix);
             }
             for (int k = 1; k < res->instances; k++) {
                 struct render_params q = p;
@@ -341,16 +341,16 @@ static void run_method(const struct scene *s, const struct gb_config *c, enum me
                 res->rays += rays_k;
                 res->ms += ms_k - pass_ms[PASS_RECON_L2] - pass_ms[PASS_RECON_L1];
                 res->grad_ms += grad_pass_ms(pass_ms);
-                const float *src[4] = {rk.image, rk.grad ? rk.grad->primal : NULL, rk.grad ? rk.grad->dx : NULL,
-                                       rk.grad ? rk.grad->dy : NULL};
+                const float *src[4] = {rk.image, renderer_gradients(&rk) ? renderer_gradients(&rk)->primal : NULL, renderer_gradients(&rk) ? renderer_gradients(&rk)->dx : NULL,
+                                       renderer_gradients(&rk) ? renderer_gradients(&rk)->dy : NULL};
                 for (int b = 0; b < 4; b++)
                     if (sum[b])
                         for (size_t i = 0; i < n3; i++)
                             sum[b][i] += src[b][i];
                 renderer_fini(&rk);
             }
-            float *dst[4] = {r0.image, r0.grad ? r0.grad->primal : NULL, r0.grad ? r0.grad->dx : NULL,
-                             r0.grad ? r0.grad->dy : NULL};
+            float *dst[4] = {r0.image, renderer_gradients(&r0) ? renderer_gradients(&r0)->primal : NULL, renderer_gradients(&r0) ? renderer_gradients(&r0)->dx : NULL,
+                             renderer_gradients(&r0) ? renderer_gradients(&r0)->dy : NULL};
             const float inv = 1.0f / (float)res->instances;
             for (int b = 0; b < 4; b++) {
                 if (!sum[b])
@@ -361,16 +361,16 @@ static void run_method(const struct scene *s, const struct gb_config *c, enum me
             }
         }
     }
-    if (r0.grad) {
+    if (renderer_gradients(&r0)) {
         /* L2 again (the averaged inputs) and L1 (recon defaults), outside the budget */
         struct frame_stats st;
         memset(&st, 0, sizeof(st));
         r0.p.recon = RECON_BOTH;
         renderer_reconstruct(&r0, &st);
         log_time(&l1_log, &l1_n, &l1_cap, st.ms[PASS_RECON_L1]);
-        res->l1_image = copy3(r0.grad->l1, npix);
-        res->dx = copy3(r0.grad->dx, npix);
-        res->dy = copy3(r0.grad->dy, npix);
+        res->l1_image = copy3(renderer_gradients(&r0)->l1, npix);
+        res->dx = copy3(renderer_gradients(&r0)->dx, npix);
+        res->dy = copy3(renderer_gradients(&r0)->dy, npix);
         restir_error_compute(res->l1_image, ref->rgb, npix, NULL, &res->l1);
         res->mean_l1 = mean_lum(res->l1_image, npix) / mean_lum(ref->rgb, npix);
     } else {
@@ -398,15 +398,14 @@ static void gb_result_free(struct gb_result *r)
 
 /* The equal-time rows of one scene (002 Fig. 8), in table order. */
 enum { ROW_OURS, ROW_GRAD_AFTER, ROW_GPT, ROW_AREA, ROW_PT, ROWS };
-static const enum method_id row_method[ROWS] = {METHOD_GRESTIR_PT, METHOD_GRAD_AFTER_RESTIR, METHOD_GPT,
-                                                METHOD_AREA_RESTIR, METHOD_PT};
+static const char *const row_method[ROWS] = {"grestir-pt", "grad-after-restir", "gpt", "area-restir", "pt"};
 
 /* The rows of an equal-time or equal-samples table; npix > 0 adds the rays/px column. */
 static void print_rows(const struct gb_result *res, double npix)
 {
     for (int k = 0; k < ROWS; k++) {
         const struct gb_result *r = &res[k];
-        const int grad = method_table[r->method].gradient;
+        const int grad = method_has(r->method, METHOD_GRADIENT);
         char l1a[32], l1b[32], l1m[32], rays[32] = "";
         snprintf(l1a, sizeof(l1a), grad ? "%.5g" : "-", r->l1.relmse);
         snprintf(l1b, sizeof(l1b), grad ? "%.4f" : "-", r->l1.mape);
@@ -414,7 +413,7 @@ static void print_rows(const struct gb_result *res, double npix)
         if (npix > 0.0)
             snprintf(rays, sizeof(rays), " %.2f |", (double)r->rays / r->timed_frames / npix);
         printf("| %s%s | %.1f | %d | %d |%s %.5g | %.4f | %s | %s | %.2f | %.4f%s | %.3f%s |\n",
-               method_table[r->method].name, k == ROW_OURS ? " (ours)" : "", r->ms, r->spp, r->instances, rays,
+               r->method->name, k == ROW_OURS ? " (ours)" : "", r->ms, r->spp, r->instances, rays,
                r->l2.relmse, r->l2.mape, l1a, l1b, r->l2.relmse / res[ROW_OURS].l2.relmse, r->grad_err,
                grad ? "" : " *", r->mean_l2, l1m);
     }
@@ -424,10 +423,10 @@ static void equal_time(const struct scene *s, const char *name, const struct gb_
                        struct gb_result res[ROWS])
 {
     double t0 = omp_get_wtime();
-    run_method(s, c, METHOD_GRESTIR_PT, "", 0.0, 0, ref, &res[ROW_OURS]);
+    run_method(s, c, method_named("grestir-pt"), "", 0.0, 0, ref, &res[ROW_OURS]);
     const double budget = res[ROW_OURS].ms;
     for (int k = 1; k < ROWS; k++)
-        run_method(s, c, row_method[k], "", budget, 0, ref, &res[k]);
+        run_method(s, c, method_named(row_method[k]), "", budget, 0, ref, &res[k]);
     printf("\n### Equal time (002 Fig. 8) on %s, %dx%d, camera path, error of frame %d against a %d-spp pt "
            "reference; budget = grestir-pt's %.1f ms/frame (L2 included, frames %d-%d)\n\n",
            name, c->width, c->height, c->frames - 1, c->ref_spp, budget, TIMING_SKIP, c->frames - 1);
@@ -454,7 +453,7 @@ static void equal_samples(const struct scene *s, const char *name, const struct 
     const double npix = (double)c->width * c->height;
     struct gb_result res[ROWS];
     for (int k = 0; k < ROWS; k++)
-        run_method(s, c, row_method[k], "", 0.0, 1, ref, &res[k]);
+        run_method(s, c, method_named(row_method[k]), "", 0.0, 1, ref, &res[k]);
     printf("\n### Equal samples on %s, %dx%d, camera path, error of frame %d against a %d-spp pt reference; "
            "1 instance each, gpt and pt at 1 spp, all frames 0-%d rendered, frames %d-%d timed\n\n",
            name, c->width, c->height, c->frames - 1, c->ref_spp, c->frames - 1, TIMING_SKIP, c->frames - 1);
@@ -564,7 +563,7 @@ static void ablations(const struct scene *s, const struct gb_config *c, const st
            "| mean / ref L2, L1 |\n|---|---|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < n; k++) {
         struct gb_result r;
-        run_method(s, c, METHOD_GRESTIR_PT, sets[k][0], 0.0, 0, ref, &r);
+        run_method(s, c, method_named("grestir-pt"), sets[k][0], 0.0, 0, ref, &r);
         printf("| %s | %.1f | %.1f | %.5g | %.4f | %.5g | %.4f | %.4f | %.3f, %.3f |\n", sets[k][1], r.ms,
                r.grad_ms, r.l2.relmse, r.l2.mape, r.l1.relmse, r.l1.mape, r.grad_err, r.mean_l2, r.mean_l1);
         fflush(stdout);

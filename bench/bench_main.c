@@ -86,7 +86,7 @@ static void replay_best(const struct scene *s, const struct ray_record *rays, si
 /* Per-pass timing over frames 1..N-1 (frame 0 has no history), rays per second, and the last
  * frame's rays replayed through Embree alone. Pass columns: those any of the methods ran. */
 #define BENCH_MAX_METHODS 4
-static void bench_passes(const struct bench_config *c, const enum method_id *methods, int nmethods)
+static void bench_passes(const struct bench_config *c, const struct method **methods, int nmethods)
 {
     struct scene s = bench_load_scene(c->scene);
     double ms[BENCH_MAX_METHODS][PASS_COUNT] = {{0}}, total[BENCH_MAX_METHODS] = {0}, rays[BENCH_MAX_METHODS] = {0};
@@ -96,8 +96,8 @@ static void bench_passes(const struct bench_config *c, const enum method_id *met
     RESTIR_CHECK(nmethods <= BENCH_MAX_METHODS);
     for (int k = 0; k < nmethods; k++) {
         struct render_params p = base_params(c);
-        if (methods[k] == METHOD_PT)
-            renderer_reference_params(methods[0], &p); /* pt over the first method's integrand, 1 spp */
+        if (methods[k] == method_named("pt"))
+            method_reference_params(methods[0], &p); /* pt over the first method's integrand, 1 spp */
         struct renderer r;
         renderer_init(&r, &s, methods[k], &p);
         struct frame_stats st;
@@ -157,21 +157,21 @@ static void bench_passes(const struct bench_config *c, const enum method_id *met
     printf("---|---|---|---|---|\n");
     const int n = c->frames - 1;
     for (int k = 0; k < nmethods; k++) {
-        printf("| %s |", method_table[methods[k]].name);
+        printf("| %s |", methods[k]->name);
         for (int q = 0; q < PASS_COUNT; q++)
             if (used[q])
                 printf(" %.2f |", ms[k][q] / n);
         printf(" %.2f | %.2f | %.2f | %.2f | %.2f |\n", total[k] / n, rays[k] / (total[k] * 1e3), rays_px[k],
                replay_ms[k], frame_ms[k] / replay_ms[k]);
         if (passes_csv)
-            csv_row(passes_csv, "%s,%s,%d,%d,%.3f,%.3f,%.4f", c->scene, method_table[methods[k]].name, c->width,
+            csv_row(passes_csv, "%s,%s,%d,%d,%.3f,%.3f,%.4f", c->scene, methods[k]->name, c->width,
                     c->height, frame_ms[k], replay_ms[k], frame_ms[k] / replay_ms[k]);
     }
     printf("\nEmbree-only ms of the same rays batched as the threads traced them (consecutive same-kind "
            "rays):\n\n| method | single | packet 8 | packet 16 | stream 64 | stream 64 coherent |\n"
            "|---|---|---|---|---|---|\n");
     for (int k = 0; k < nmethods; k++) {
-        printf("| %s |", method_table[methods[k]].name);
+        printf("| %s |", methods[k]->name);
         for (int b = 0; b < RAY_BATCH_COUNT; b++)
             printf(" %.2f |", batch_ms[k][b]);
         printf("\n");
@@ -184,7 +184,7 @@ static void bench_passes(const struct bench_config *c, const enum method_id *met
         for (int kind = 0; kind < 3; kind++) {
             if (!kind_count[k][kind])
                 continue;
-            printf("| %s | %s | %zu |", method_table[methods[k]].name, kind_names[kind], kind_count[k][kind]);
+            printf("| %s | %s | %zu |", methods[k]->name, kind_names[kind], kind_count[k][kind]);
             for (int b = 0; b < RAY_BATCH_COUNT; b++)
                 printf(" %.2f |", kind_ms[k][kind][b]);
             printf("\n");
@@ -194,7 +194,7 @@ static void bench_passes(const struct bench_config *c, const enum method_id *met
 
 /* Equal time: the method's mean frame time buys pt as many paths per pixel as fit; errors at the
  * last frame against a reference from that frame's camera (static camera or the camera path). */
-static void bench_equal_time(const struct bench_config *c, enum method_id method, int use_path)
+static void bench_equal_time(const struct bench_config *c, const struct method *method, int use_path)
 {
     struct scene s = bench_load_scene(c->scene);
     struct render_params p = base_params(c);
@@ -219,11 +219,11 @@ static void bench_equal_time(const struct bench_config *c, enum method_id method
     /* pt cost per path: time 1 and 4 spp (the difference removes per-frame overhead). */
     struct camera cam = scene_camera_at(&s, use_path, (float)last);
     struct render_params q = p;
-    renderer_reference_params(method, &q);
+    method_reference_params(method, &q);
     double t[2];
     for (int k = 0; k < 2; k++) {
         q.spp = k ? 4 : 1;
-        renderer_init(&r, &s, METHOD_PT, &q);
+        renderer_init(&r, &s, method_named("pt"), &q);
         renderer_render(&r, 0, &cam, &st);
         renderer_render(&r, 0, &cam, &st);
         t[k] = st.ms_total;
@@ -233,14 +233,14 @@ static void bench_equal_time(const struct bench_config *c, enum method_id method
     q.spp = (int)(budget / per_spp);
     if (q.spp < 1)
         q.spp = 1;
-    renderer_init(&r, &s, METHOD_PT, &q);
+    renderer_init(&r, &s, method_named("pt"), &q);
     renderer_render(&r, last, &cam, &st);
     struct restir_error e_pt;
     restir_error_compute(r.image, ref, npix, NULL, &e_pt);
     double pt_ms = st.ms_total;
     renderer_fini(&r);
 
-    const char *name = method_table[method].name;
+    const char *name = method->name;
     printf("\n### Equal time, %s, %s %dx%d, %s, error at frame %d (reference: %d spp)\n\n", name, c->scene,
            c->width, c->height, use_path ? "camera path" : "static camera", last, c->ref_spp);
     printf("| method | ms/frame | spp | relMSE | MAPE | SMAPE |\n|---|---|---|---|---|---|\n");
@@ -279,10 +279,10 @@ static void bench_temporal(const struct bench_config *c)
     struct render_params p = base_params(c);
     size_t npix = (size_t)c->width * c->height, n3 = 3 * npix;
     const int nf = c->temporal_frames, moving_frames = 16;
-    float *ref_static = bench_reference(&s, METHOD_RESTIR_DI, &p, 0.0f, 0, c->ref_spp);
+    float *ref_static = bench_reference(&s, method_named("restir-di"), &p, 0.0f, 0, c->ref_spp);
     float **ref_moving = xmalloc(sizeof(float *) * moving_frames);
     for (int f = 0; f < moving_frames; f++)
-        ref_moving[f] = bench_reference(&s, METHOD_RESTIR_DI, &p, (float)f, 1, c->ref_spp / 4);
+        ref_moving[f] = bench_reference(&s, method_named("restir-di"), &p, (float)f, 1, c->ref_spp / 4);
     printf("\n### Temporal reuse (001 Sec. 6), %s %dx%d, spatial reuse off; static: %d frames, moving: %d "
            "frames of the camera path; references %d / %d spp\n\n",
            c->scene, c->width, c->height, nf, moving_frames, c->ref_spp, c->ref_spp / 4);
@@ -301,7 +301,7 @@ static void bench_temporal(const struct bench_config *c)
             q.temporal = temporal;
             struct renderer r;
             struct frame_stats st;
-            renderer_init(&r, &s, METHOD_RESTIR_DI, &q);
+            renderer_init(&r, &s, method_named("restir-di"), &q);
             double per_frame = 0.0, adjacent = 0.0;
             memset(acc, 0, n3 * sizeof(float));
             struct camera cam = scene_camera_at(&s, 0, 0.0f);
@@ -324,7 +324,7 @@ static void bench_temporal(const struct bench_config *c)
                 lum_ref += v3_luminance(v3(ref_static[3 * i], ref_static[3 * i + 1], ref_static[3 * i + 2]));
             }
             q.camera_path = 1;
-            renderer_init(&r, &s, METHOD_RESTIR_DI, &q);
+            renderer_init(&r, &s, method_named("restir-di"), &q);
             double moving = 0.0;
             for (int f = 0; f < moving_frames; f++) {
                 struct camera mc = scene_camera_at(&s, 1, (float)f);
@@ -359,7 +359,7 @@ static void bench_table1(const struct bench_config *c, const char *const *scenes
         struct scene s = bench_load_scene(scenes[sc]);
         struct render_params p = base_params(c);
         struct renderer r;
-        renderer_init(&r, &s, METHOD_RESTIR_PT, &p);
+        renderer_init(&r, &s, method_named("restir-pt"), &p);
         struct camera cam = scene_camera_at(&s, 0, 0.0f);
         for (int f = 0; f < c->frames; f++) {
             struct frame_stats st;
@@ -392,7 +392,7 @@ static void bench_table1(const struct bench_config *c, const char *const *scenes
 
 /* Bias of a MIS choice: the image mean of `runs` independent sequences (last frame) against the
  * reference, with the standard error from the spread of per-run image means. */
-static void bench_bias(const char *scene, enum method_id method, int w, int h, int runs, int frames, int ref_spp)
+static void bench_bias(const char *scene, const struct method *method, int w, int h, int runs, int frames, int ref_spp)
 {
     struct scene s = bench_load_scene(scene);
     struct render_params p;
@@ -406,7 +406,7 @@ static void bench_bias(const char *scene, enum method_id method, int w, int h, i
         ref_mean += v3_luminance(v3(ref[3 * i], ref[3 * i + 1], ref[3 * i + 2])) / (double)npix;
     printf("\n### Bias of the resampling MIS, %s on %s %dx%d: image mean of frame %d over %d runs vs a %d-spp "
            "reference (mean %.5f)\n\n| mis | image mean | relative bias | z |\n|---|---|---|---|\n",
-           method_table[method].name, scene, w, h, frames - 1, runs, ref_spp, ref_mean);
+           method->name, scene, w, h, frames - 1, runs, ref_spp, ref_mean);
     const char *mis[3] = {"pairwise", "balance", "1/M"};
     for (int m = 0; m < 3; m++) {
         char set[32], msg[RESTIR_MSG_LEN];
@@ -504,27 +504,27 @@ int main(int argc, char **argv)
         run_passes = run_equal = run_visibility = run_temporal = run_pt = run_spmis = 1;
     struct csv_writer pw, ew;
     bench_csv_open(&pw, &ew);
-    const enum method_id di_methods[] = {METHOD_RESTIR_DI, METHOD_RIS_DI, METHOD_PT};
+    const struct method *di_methods[] = {method_named("restir-di"), method_named("ris-di"), method_named("pt")};
     if (run_passes)
         bench_passes(&c, di_methods, 3);
     if (run_equal) {
-        bench_equal_time(&c, METHOD_RESTIR_DI, 0);
+        bench_equal_time(&c, method_named("restir-di"), 0);
         if (bench_quick)
-            bench_equal_time(&c, METHOD_RESTIR_DI, 1);
+            bench_equal_time(&c, method_named("restir-di"), 1);
     }
     if (run_visibility)
         bench_di_visibility(c.scene, c.width, c.height, c.frames, c.ref_spp);
     if (run_pt) {
         const char *const pt_scenes[] = {"ajar", "cornell"};
-        const enum method_id pt_methods[] = {METHOD_RESTIR_PT, METHOD_PT};
+        const struct method *pt_methods[] = {method_named("restir-pt"), method_named("pt")};
         bench_table1(&c, pt_scenes, 2);
         for (int sc = 0; sc < 2; sc++) {
             struct bench_config pc = c;
             pc.scene = pt_scenes[sc];
             bench_passes(&pc, pt_methods, 2);
-            bench_equal_time(&pc, METHOD_RESTIR_PT, 0);
-            bench_equal_time(&pc, METHOD_RESTIR_PT, 1);
-            bench_bias(pt_scenes[sc], METHOD_RESTIR_PT, 64, 36, c.width < 640 ? 64 : 256, 8, 4096);
+            bench_equal_time(&pc, method_named("restir-pt"), 0);
+            bench_equal_time(&pc, method_named("restir-pt"), 1);
+            bench_bias(pt_scenes[sc], method_named("restir-pt"), 64, 36, c.width < 640 ? 64 : 256, 8, 4096);
         }
     }
     if (run_temporal) {
@@ -543,10 +543,10 @@ int main(int argc, char **argv)
     if (bench_quick && !run_pt) {
         struct bench_config pc = c;
         pc.scene = "ajar";
-        const enum method_id pt_methods[] = {METHOD_RESTIR_PT, METHOD_PT};
+        const struct method *pt_methods[] = {method_named("restir-pt"), method_named("pt")};
         bench_passes(&pc, pt_methods, 2);
-        bench_equal_time(&pc, METHOD_RESTIR_PT, 0);
-        bench_equal_time(&pc, METHOD_RESTIR_PT, 1);
+        bench_equal_time(&pc, method_named("restir-pt"), 0);
+        bench_equal_time(&pc, method_named("restir-pt"), 1);
     }
     bench_csv_close();
     return 0;

@@ -42,7 +42,7 @@ static void apply_sets(struct render_params *p, const char *sets)
     }
 }
 
-static void run_config(const struct scene *s, enum method_id m, const struct bench_spmis_cfg *c, const char *sets,
+static void run_config(const struct scene *s, const struct method *m, const struct bench_spmis_cfg *c, const char *sets,
                        const float *ref, struct config_result *res)
 {
     memset(res, 0, sizeof(*res));
@@ -74,9 +74,7 @@ static void run_config(const struct scene *s, enum method_id m, const struct ben
             timed += 1.0;
         }
         long long marked = renderer_disoccluded(&r, DISOCCLUSION_FRAMES, mask);
-        long long valid = 0;
-        for (size_t i = 0; i < npix; i++)
-            valid += r.gb[1 - r.cur].valid[i];
+        long long valid = renderer_valid_pixels(&r);
         struct restir_error e;
         restir_error_compute(r.image, ref, npix, NULL, &e);
         res->mape += e.mape / c->runs;
@@ -96,7 +94,7 @@ static void run_config(const struct scene *s, enum method_id m, const struct ben
 }
 
 /* The reference of method m's integrand for the last frame of the camera path. */
-static float *last_frame_reference(const struct bench_spmis_cfg *c, enum method_id m, const struct scene *s)
+static float *last_frame_reference(const struct bench_spmis_cfg *c, const struct method *m, const struct scene *s)
 {
     struct render_params p;
     render_params_defaults(&p);
@@ -201,9 +199,9 @@ static void write_mask(const char *name, const unsigned char *mask, int w, int h
 #define SPMIS "spatial.reuse=spmis"
 
 /* The main comparison of one method on the given scenes, with the per-pass table. */
-static void compare_scenes(const struct bench_spmis_cfg *c, enum method_id m, const char *const *scenes, int n)
+static void compare_scenes(const struct bench_spmis_cfg *c, const struct method *m, const char *const *scenes, int n)
 {
-    const char *name = method_table[m].name;
+    const char *name = m->name;
     double table[8][PASS_COUNT + 2];
     const char *pass_scene[8];
     for (int sc = 0; sc < n; sc++) {
@@ -293,7 +291,7 @@ static void compare_scenes(const struct bench_spmis_cfg *c, enum method_id m, co
 
 /* The ablations of 004 Fig. 2 (confidence adjustment), Fig. 6 (N_c), Fig. 7 (N, N = M), and the
  * search modes, on one scene. */
-static void ablations(const struct bench_spmis_cfg *c, enum method_id m, const char *scene)
+static void ablations(const struct bench_spmis_cfg *c, const struct method *m, const char *scene)
 {
     struct scene s = bench_load_scene(scene);
     float *ref = last_frame_reference(c, m, &s);
@@ -316,7 +314,7 @@ static void ablations(const struct bench_spmis_cfg *c, enum method_id m, const c
     for (size_t g = 0; g < sizeof(groups) / sizeof(groups[0]); g++) {
         if (groups[g][0][0]) {
             char title[256];
-            snprintf(title, sizeof(title), "### Ablation, %s on %s: %s", method_table[m].name, scene, groups[g][0]);
+            snprintf(title, sizeof(title), "### Ablation, %s on %s: %s", m->name, scene, groups[g][0]);
             table_header(title);
             print_row("standard", &base, &base);
         }
@@ -336,7 +334,7 @@ static void ablations(const struct bench_spmis_cfg *c, enum method_id m, const c
  * spatial output), with the history taken before spatial reuse (no feedback of spatial reuse into
  * the next frame), and with temporal reuse off (every pixel as right after a disocclusion). Each
  * spmis row is measured against the standard row of the same regime. */
-static void temporal_interplay(const struct bench_spmis_cfg *c, enum method_id m, const char *scene)
+static void temporal_interplay(const struct bench_spmis_cfg *c, const struct method *m, const char *scene)
 {
     struct scene s = bench_load_scene(scene);
     float *ref = last_frame_reference(c, m, &s);
@@ -345,7 +343,7 @@ static void temporal_interplay(const struct bench_spmis_cfg *c, enum method_id m
                                               {"temporal off", ":temporal=off"}};
     char title[256];
     snprintf(title, sizeof(title), "### %s on %s: spatial reuse against temporal reuse (each spmis row vs the "
-             "standard row above it)", method_table[m].name, scene);
+             "standard row above it)", m->name, scene);
     table_header(title);
     for (int k = 0; k < 3; k++) {
         char a[192], b[192], la[96], lb[96];
@@ -377,20 +375,20 @@ void bench_spmis(const struct bench_spmis_options *o)
            c.height, o->scale_radii ? "pixel radii scaled by height / 1080" : "paper pixel parameters kept", radius);
     if (o->main) {
         const char *const pt_scenes[] = {"pillars", "ajar", "foliage", "cornell", "forest"};
-        compare_scenes(&c, METHOD_RESTIR_PT, pt_scenes, 5);
+        compare_scenes(&c, method_named("restir-pt"), pt_scenes, 5);
         const char *const di_scenes[] = {"pillars", "many-lights", "forest"};
-        compare_scenes(&c, METHOD_RESTIR_DI, di_scenes, 3);
+        compare_scenes(&c, method_named("restir-di"), di_scenes, 3);
     }
     if (o->ablations) {
         struct bench_spmis_cfg a = c;
         a.runs = 1;
-        ablations(&a, METHOD_RESTIR_PT, "pillars");
-        ablations(&a, METHOD_RESTIR_DI, "pillars");
+        ablations(&a, method_named("restir-pt"), "pillars");
+        ablations(&a, method_named("restir-di"), "pillars");
     }
     if (o->interplay) {
         struct bench_spmis_cfg a = c;
         a.runs = 1;
-        temporal_interplay(&a, METHOD_RESTIR_PT, "pillars");
-        temporal_interplay(&a, METHOD_RESTIR_PT, "cornell");
+        temporal_interplay(&a, method_named("restir-pt"), "pillars");
+        temporal_interplay(&a, method_named("restir-pt"), "cornell");
     }
 }

@@ -15,7 +15,7 @@
 
 /* Mean per-pass ms over frames 1 .. STREAMS_FRAMES-1 of one renderer into ms[], the frame's in
  * ms[PASS_COUNT]. */
-static void timed_run(const struct scene *s, enum method_id method, int width, int height, int streams, double *ms)
+static void timed_run(const struct scene *s, const struct method *method, int width, int height, int streams, double *ms)
 {
     struct render_params p;
     render_params_defaults(&p);
@@ -38,7 +38,7 @@ static void timed_run(const struct scene *s, enum method_id method, int width, i
     renderer_fini(&r);
 }
 
-static void streams_case(const char *scene, enum method_id method, int width, int height, int rounds)
+static void streams_case(const char *scene, const struct method *method, int width, int height, int rounds)
 {
     struct scene s = bench_load_scene(scene);
     double best[2][PASS_COUNT + 1];
@@ -55,7 +55,7 @@ static void streams_case(const char *scene, enum method_id method, int width, in
         }
     printf("\n### rays.streams, %s %s %dx%d, static camera, best of %d rounds of frames 1-%d (%d threads)\n\n"
            "| pass | off (ms) | on (ms) | on / off |\n|---|---|---|---|\n",
-           method_table[method].name, scene, width, height, rounds, STREAMS_FRAMES - 1, omp_get_max_threads());
+           method->name, scene, width, height, rounds, STREAMS_FRAMES - 1, omp_get_max_threads());
     for (int q = 0; q <= PASS_COUNT; q++) {
         if (!(best[0][q] > 0.0))
             continue;
@@ -79,9 +79,9 @@ int bench_streams(int argc, char **argv)
             return 2;
         }
     }
-    streams_case("many-lights", METHOD_RESTIR_DI, width, height, rounds);
-    streams_case("many-lights", METHOD_RIS_DI, width, height, rounds);
-    streams_case("ajar", METHOD_RESTIR_PT, width, height, rounds);
-    streams_case("foliage", METHOD_GRESTIR_PT, width, height, rounds);
+    streams_case("many-lights", method_named("restir-di"), width, height, rounds);
+    streams_case("many-lights", method_named("ris-di"), width, height, rounds);
+    streams_case("ajar", method_named("restir-pt"), width, height, rounds);
+    streams_case("foliage", method_named("grestir-pt"), width, height, rounds);
     return 0;
 }

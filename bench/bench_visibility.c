@@ -24,7 +24,7 @@ static void variants_table(const struct scene *s, const char *title, const struc
     p.width = width;
     p.height = height;
     const size_t npix = (size_t)width * height;
-    float *ref = bench_reference(s, METHOD_RESTIR_DI, &p, (float)(frames - 1), use_path, ref_spp);
+    float *ref = bench_reference(s, method_named("restir-di"), &p, (float)(frames - 1), use_path, ref_spp);
     printf("\n### %s, restir-di, %s %dx%d, %s, error at frame %d (reference: %d spp; %d threads)\n\n", title, s->name,
            width, height, use_path ? "camera path" : "static camera", frames - 1, ref_spp, omp_get_max_threads());
     printf("| setting | ms/frame | rays/px | relMSE | MAPE | SMAPE | relMSE x ms |\n|---|---|---|---|---|---|---|\n");
@@ -36,7 +36,7 @@ static void variants_table(const struct scene *s, const char *title, const struc
             exit(1);
         }
         struct renderer r;
-        renderer_init(&r, s, METHOD_RESTIR_DI, &q);
+        renderer_init(&r, s, method_named("restir-di"), &q);
         struct frame_stats st;
         double ms = 0.0, rays = 0.0;
         for (int f = 0; f < frames; f++) {

@@ -19,7 +19,7 @@ static size_t heap_in_use(void)
 #endif
 
 /* Heap growth of building (and keeping) one renderer at w x h. */
-static double build_bytes(const struct scene *s, enum method_id method, const struct render_params *p, int w, int h)
+static double build_bytes(const struct scene *s, const struct method *method, const struct render_params *p, int w, int h)
 {
     struct render_params q = *p;
     q.width = w;
@@ -32,7 +32,7 @@ static double build_bytes(const struct scene *s, enum method_id method, const st
     return (double)after - (double)before;
 }
 
-size_t renderer_estimate_bytes(const struct scene *s, enum method_id method, const struct render_params *p,
+size_t renderer_estimate_bytes(const struct scene *s, const struct method *method, const struct render_params *p,
                                double *bytes_per_pixel)
 {
     /* sizes that are whole tiles and reuse-cell tiles, so per-tile buffers scale exactly */

@@ -11,7 +11,7 @@
  * hand-counted: renderers are built at two small resolutions and the heap's growth (glibc's
  * mallinfo2, which sees every allocation, the reuse core's included) is fitted as fixed + per pixel
  * x pixels, which is what every buffer of the renderer is. */
-size_t renderer_estimate_bytes(const struct scene *s, enum method_id method, const struct render_params *p,
+size_t renderer_estimate_bytes(const struct scene *s, const struct method *method, const struct render_params *p,
                                double *bytes_per_pixel);
 
 /* Memory the system can give now (MemAvailable of /proc/meminfo), 0 when unknown. */

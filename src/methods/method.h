@@ -1,53 +1,92 @@
-/* method.h: the table of methods (name, what it estimates, which passes it runs) and each method's
- * own defaults on top of the settings. Must never depend on the passes or the ray tracer. */
+/* method.h: the method registry. A method is one row, `struct method`: its name, what it estimates,
+ * what it can do (capability bits that the commands, the viewer and the harness read instead of
+ * naming methods) and the functions that create, run and destroy its own state. The rows live in
+ * the methods' own files; method_table.c lists them, and is the one place that names every
+ * method. docs/ADDING_A_METHOD.md walks through adding one.
+ * Must never depend on the passes or the ray tracer. */
 #ifndef RESTIR_METHODS_METHOD_H
 #define RESTIR_METHODS_METHOD_H
 
 #include "render/params.h"
 #include "scene/scene_types.h"
 
-enum method_id {
-    METHOD_PT = 0,
-    METHOD_RIS_DI,
-    METHOD_RESTIR_DI,
-    METHOD_RESTIR_PT,
-    METHOD_AREA_RESTIR,       /* 002 B.3: restir-pt with 1 initial candidate and 2 spatial neighbors */
-    METHOD_GPT,               /* 002 B.2: gradient-domain path tracing */
-    METHOD_GRAD_AFTER_RESTIR, /* 002 B.1: gradients from shifting the final area-ReSTIR paths */
-    METHOD_GRESTIR_PT,        /* 002: Gradient with ReSTIR over paired-pixel samples */
-    METHOD_COUNT
+struct renderer;
+struct frame_stats;
+struct camera_view;
+struct renderer_inspect;
+
+/* Capability bits of struct method.caps. */
+enum method_caps {
+    /* estimates direct lighting only: its reference is pt with max_bounces = 1 */
+    METHOD_DIRECT_ONLY = 1u << 0,
+    /* renders a primal and forward-difference gradients and reconstructs them (002) */
+    METHOD_GRADIENT = 1u << 1,
+    /* keeps a G-buffer and temporal history: it has disoccluded pixels (004 Sec. 6.2), a
+     * temporal acceptance rate and debug views of its reuse */
+    METHOD_HISTORY = 1u << 2,
+    /* its samples carry the primary ray's shutter time and lens point: renders camera.shutter
+     * (motion blur) and camera.aperture (depth of field) */
+    METHOD_CAMERA_EFFECTS = 1u << 3,
+    /* keeps path reservoirs with primary hits: temporal.reuse=splat|both apply, and spatial
+     * reuse defaults to 3 neighbors (render_params_spatial_neighbors) */
+    METHOD_PATH_RESERVOIRS = 1u << 4,
+    /* stateless between frames: reaches an equal-time budget by paths per pixel (spp) rather
+     * than by averaging independent instances */
+    METHOD_BUDGET_BY_SPP = 1u << 5,
+    /* 000's study (restir study) runs it: spatial reuse from the neighbor selection pass */
+    METHOD_SELECTION_STUDY = 1u << 6,
 };
 
-struct method_info {
-    const char *name;
-    const char *description;
-    int direct_only; /* estimates direct lighting only: its reference is pt with 1 bounce */
-    int gradient;    /* renders primal + gradients and reconstructs (002) */
+struct method {
+    const char *name;        /* what --method and method specs spell */
+    const char *description; /* one line for `restir list` and --help */
+    unsigned caps;           /* enum method_caps bits */
+    int viewer_order;        /* position in the viewer's M cycle (1, 2, ...); 0: not offered there */
+    /* The method's own defaults on top of p (NULL: none). renderer_init applies them; reports
+     * call method_params to say what ran. */
+    void (*defaults)(struct render_params *p);
+    /* Checks what depends on the method beyond the capability bits (s may be NULL). Returns 0,
+     * or -1 with msg (RESTIR_MSG_LEN bytes) naming the key or the scene. NULL: nothing more. */
+    int (*check)(const struct render_params *p, const struct scene *s, char *msg);
+    /* Allocates the method's state for r (r->scene, r->p with the defaults applied, r->image
+     * allocated). Never fails: allocation failure aborts (core/check.h). */
+    void *(*create)(const struct renderer *r);
+    void (*destroy)(void *state);
+    /* Renders frame r->frame seen through view into r->image; adds rays and per-pass times to st.
+     * r->prev_view is the previous frame's view (valid after the first frame). */
+    void (*render_frame)(struct renderer *r, void *state, const struct camera_view *view, struct frame_stats *st);
+    /* Gradient methods: reconstructs the image from the state's primal and gradients (NULL for
+     * the others). */
+    void (*reconstruct)(struct renderer *r, void *state, struct frame_stats *st);
+    /* What the last frame left for debug views and metrics (NULL: nothing; renderer_inspect
+     * zeroes the record first). */
+    void (*inspect)(const void *state, struct renderer_inspect *out);
 };
 
-extern const struct method_info method_table[METHOD_COUNT];
+/* The registered methods, in `restir list` order: method_at(0 .. method_count() - 1). */
+int method_count(void);
+const struct method *method_at(int k);
+/* The method of that name, or NULL for an unknown name (or NULL). */
+const struct method *method_find(const char *name);
+/* As method_find, for names the caller spells itself (tests, benchmarks): aborts naming the
+ * name when it is not registered. */
+const struct method *method_named(const char *name);
+static inline int method_has(const struct method *m, unsigned caps) { return (m->caps & caps) == caps; }
 
-/* Returns the method id, or -1 for an unknown name. */
-int method_find(const char *name);
-/* Methods that run the ReSTIR PT passes (restir-pt, area-restir, and the primal of grad-after-restir
- * and grestir-pt). */
-int method_runs_restir_pt(enum method_id m);
-/* Methods that trace their own primary rays instead of reading a G-buffer (pt, gpt). */
-int method_has_gbuffer(enum method_id m);
+/* Writes the names of the methods with all of caps, ", "-separated, into out (n bytes): for
+ * messages that say which methods would accept a setting. */
+void method_names_with(unsigned caps, char *out, size_t n);
 
-/* Methods whose samples carry the primary ray's shutter time and lens point (pt, restir-pt,
- * area-restir): the ones that render camera.shutter and camera.aperture. */
-int method_has_camera_effects(enum method_id m);
 /* Checks what depends on the method (and the scene, when s is not NULL): temporal.reuse=splat|both
- * needs path reservoirs; motion blur and depth of field need method_has_camera_effects. Returns 0,
- * or -1 with msg naming the key. */
-int method_check_settings(enum method_id m, const struct render_params *p, const struct scene *s, char *msg);
+ * needs METHOD_PATH_RESERVOIRS; motion blur and depth of field need METHOD_CAMERA_EFFECTS; then
+ * the method's own check. Returns 0, or -1 with msg naming the key. */
+int method_check_settings(const struct method *m, const struct render_params *p, const struct scene *s, char *msg);
 
 /* The method's own defaults on top of p (ris-di: no reuse; area-restir and the primal of
- * grad-after-restir and grestir-pt: 2 spatial neighbors unless spatial.neighbors is set).
- * renderer_init applies them; reports call it to say what ran. */
-void renderer_method_params(enum method_id method, struct render_params *p);
-/* The parameters a method's reference integrates with: pt with max_bounces = 1 for DI methods. */
-void renderer_reference_params(enum method_id method, struct render_params *p);
+ * grad-after-restir and grestir-pt: 2 spatial neighbors unless spatial.neighbors is set). */
+void method_params(const struct method *m, struct render_params *p);
+/* The parameters a method's reference integrates with: pt with max_bounces = 1 for
+ * METHOD_DIRECT_ONLY methods, p unchanged otherwise. */
+void method_reference_params(const struct method *m, struct render_params *p);
 
 #endif

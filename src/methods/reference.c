@@ -8,13 +8,13 @@
 #include "methods/renderer.h"
 #include "render/pt.h"
 
-void reference_accum_init(struct reference_accum *a, const struct scene *s, enum method_id method,
+void reference_accum_init(struct reference_accum *a, const struct scene *s, const struct method *method,
                           const struct render_params *p, const struct camera *cam, const struct camera *open, int spp)
 {
     memset(a, 0, sizeof *a);
     a->scene = s;
     a->params = *p;
-    renderer_reference_params(method, &a->params);
+    method_reference_params(method, &a->params);
     renderer_camera_view(&a->params, cam, open, &a->view);
     a->spp = spp;
     const size_t n = 3 * (size_t)a->params.width * (size_t)a->params.height;
@@ -22,7 +22,7 @@ void reference_accum_init(struct reference_accum *a, const struct scene *s, enum
     a->chunk = xcalloc(n, sizeof(float));
 }
 
-void reference_accum_init_shard(struct reference_accum *a, const struct scene *s, enum method_id method,
+void reference_accum_init_shard(struct reference_accum *a, const struct scene *s, const struct method *method,
                                 const struct render_params *p, const struct camera *cam, const struct camera *open,
                                 int first_chunk, int spp)
 {

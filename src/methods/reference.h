@@ -5,6 +5,7 @@
 #define RESTIR_METHODS_REFERENCE_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "methods/method.h"
 #include "render/params.h"
@@ -14,12 +15,14 @@
 /* Samples per chunk. Chunk c renders pt frame REFERENCE_FRAME_BASE + c, so chunk c's samples are
  * the same whatever ran before it: a run resumed at a chunk boundary continues exactly. */
 #define REFERENCE_CHUNK_SPP 16
+/* The seed of a reference made next to runs of `seed`: its noise is independent of theirs. */
+static inline uint64_t reference_seed(uint64_t seed) { return seed ^ 0x7265666572656e63ull; }
 /* A frame number no render uses keeps reference noise independent of the compared runs. */
 #define REFERENCE_FRAME_BASE 1000000
 
 struct reference_accum {
     const struct scene *scene;
-    struct render_params params; /* with renderer_reference_params applied: the integrand */
+    struct render_params params; /* with method_reference_params applied: the integrand */
     struct camera_view view;
     int first_chunk; /* the chunk this accumulation starts at (0; a shard's first chunk) */
     int spp;     /* samples the finished image holds */
@@ -31,10 +34,10 @@ struct reference_accum {
 /* Prepares a reference of what method estimates (pt over the same integrand) from cam with spp
  * samples, starting empty. open is the camera at the shutter opening (the previous frame's; NULL:
  * cam), which camera.shutter > 0 blurs toward (renderer_camera_view). */
-void reference_accum_init(struct reference_accum *a, const struct scene *s, enum method_id method,
+void reference_accum_init(struct reference_accum *a, const struct scene *s, const struct method *method,
                           const struct render_params *p, const struct camera *cam, const struct camera *open, int spp);
 /* The same for a shard: the samples of chunks first_chunk, first_chunk + 1, ... (spp of them). */
-void reference_accum_init_shard(struct reference_accum *a, const struct scene *s, enum method_id method,
+void reference_accum_init_shard(struct reference_accum *a, const struct scene *s, const struct method *method,
                                 const struct render_params *p, const struct camera *cam, const struct camera *open,
                                 int first_chunk, int spp);
 /* Continues from a saved state: mean (w*h*3, copied) holding done samples. done must be a chunk

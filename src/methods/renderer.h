@@ -1,17 +1,19 @@
-/* renderer.h: runs a method frame by frame: the per-frame state its passes keep (ping-pong G-buffers
- * and reservoirs, cameras) and per-pass timings. Must never read or write files. */
+/* renderer.h: runs a registered method (method.h) frame by frame: the cameras and the image every
+ * method has, the method's own state behind a pointer, per-pass timings, and what a method exposes
+ * of its last frame (renderer_inspect). Must never read or write files or name a method. */
 #ifndef RESTIR_METHODS_RENDERER_H
 #define RESTIR_METHODS_RENDERER_H
 
+#include <omp.h>
+
 #include "methods/method.h"
-#include "render/di_sample.h"
 #include "render/gbuffer.h"
-#include "render/light_pool.h"
 #include "render/params.h"
-#include "render/pt_splat.h"
-#include "render/restir_pt.h"
+#include "render/temporal_flags.h"
+#include "scene/camera.h"
 
 struct grad_frame;
+struct spmis_frame;
 
 /* PASS_CELLS .. PASS_SPMIS_REUSE are spatial.reuse=spmis's passes, split as 004 Table 2: create
  * reuse cells (Algorithm 1), cell search (Algorithm 2 line 2, Sec. 5.1), the canonical weight
@@ -54,39 +56,39 @@ struct frame_stats {
     struct temporal_counts temporal; /* path reservoirs: pixels with temporal candidates per technique */
 };
 
+/* The method-independent part of a renderer; everything else is the method's own state. */
 struct renderer {
     const struct scene *scene;
-    struct render_params p;
-    enum method_id method;
-    struct gbuffer gb[2];
-    int cur; /* index of the current G-buffer / history */
-    int frame;
-    int has_history;
-    struct camera_view prev_view;
+    struct render_params p;       /* with the method's defaults applied */
+    const struct method *method;
+    void *state;                  /* the method's (struct method.create) */
+    int frame;                    /* the frame being rendered, or the last one */
+    struct camera_view prev_view; /* the previous frame's view (valid after the first frame) */
     struct camera prev_cam;       /* the last frame's camera: where the next frame's shutter opens */
     int has_prev_cam;
-    struct di_reservoir *work;    /* initial, then temporal outputs */
-    struct di_reservoir *hist[2]; /* spatial outputs: this frame's and the previous frame's */
-    struct light_pool lights;     /* DI methods: this frame's light candidates (initial RIS) */
-    struct pt_reservoir *pt_work;    /* restir-pt: as work */
-    struct pt_reservoir *pt_hist[2]; /* restir-pt: as hist */
-    vec3 *pt_emission;               /* restir-pt: emission seen directly by the initial paths */
-    unsigned char *temporal_flags;   /* restir-pt: this frame's TEMPORAL_* bits per pixel (pt_splat.h) */
-    struct pt_splat_buffers *splat;  /* temporal.reuse=splat|both: landing buckets */
-    float scene_diagonal;            /* scales shift.distance */
-    unsigned char *material_rough;   /* restir-pt: hybrid shift's roughness class per material */
-    int *neighbors;                  /* selection pass output: spatial neighbors per pixel */
-    float *disk_offsets;             /* R2 disk offsets of compat selection (R2_DISK_OFFSETS x 2) */
-    struct spmis_frame *spmis;    /* spatial.reuse=spmis: cells and per-pixel scratch */
-    unsigned char *age[2];        /* per pixel: frames its surface has been in view (history chain
-                                     length by G-buffer validation, capped at 255); ping-pong */
-    struct grad_frame *grad;      /* gradient methods: primal, gradients, reconstructions */
     float *image;                 /* this frame's radiance, RGB (gradient methods: the reconstruction
                                      recon selects, L2 for recon=both) */
 };
 
-/* p must have passed render_params_validate. */
-void renderer_init(struct renderer *r, const struct scene *s, enum method_id method, const struct render_params *p);
+/* What a method exposes of its last frame, for debug views and metrics; NULL / 0 where it has
+ * none. Pointers stay valid until the next renderer_render or renderer_fini. */
+struct renderer_inspect {
+    const struct gbuffer *gbuffer; /* the last frame's G-buffer */
+    const unsigned char *age;      /* per pixel: frames its surface has been in view (history
+                                      chain length by G-buffer validation, capped at 255) */
+    const int *neighbors;          /* selection pass output, neighbors_per_pixel per pixel (-1: none) */
+    int neighbors_per_pixel;
+    const struct spmis_frame *spmis; /* spatial.reuse=spmis: the last frame's cells */
+    const unsigned char *temporal_flags; /* path reservoirs: TEMPORAL_* bits per pixel (pt_splat.h) */
+    const void *reservoirs;        /* the last frame's final reservoirs, read by confidence() */
+    float (*confidence)(const void *reservoirs, int pixel);
+    struct grad_frame *grad;       /* gradient methods: primal, gradients, reconstructions */
+};
+
+/* p must have passed render_params_validate and method_check_settings. Allocates the method's
+ * state; aborts when memory runs out. */
+void renderer_init(struct renderer *r, const struct scene *s, const struct method *method,
+                   const struct render_params *p);
 void renderer_fini(struct renderer *r);
 /* Renders frame number `frame` seen by cam into r->image. */
 /* The shutter opens at the previous frame's camera (camera.shutter > 0), or at cam for the first. */
@@ -98,18 +100,31 @@ void renderer_set_shutter_open(struct renderer *r, const struct camera *open);
  * and with camera.shutter > 0 the shutter opening at `open` (NULL: cam, no motion). */
 void renderer_camera_view(const struct render_params *p, const struct camera *cam, const struct camera *open,
                           struct camera_view *v);
-/* Gradient methods: the screened Poisson reconstruction (L2; L1 too unless recon=l2) of
- * r->grad's primal and gradients into r->image, timed into st->ms. renderer_render calls it; call
- * it again after changing the inputs (e.g. averaging instances, 002 Sec. 5). */
+/* Gradient methods: the screened Poisson reconstruction (L2; L1 too unless recon=l2) of the
+ * primal and gradients (renderer_gradients) into r->image, timed into st->ms. renderer_render calls
+ * it; call it again after changing the inputs (e.g. averaging instances, 002 Sec. 5). Does nothing
+ * for the other methods. */
 void renderer_reconstruct(struct renderer *r, struct frame_stats *st);
-/* Forgets history (the next frame starts without temporal reuse). */
-void renderer_reset(struct renderer *r);
+/* What the method exposes of its last frame (struct renderer_inspect). */
+void renderer_inspect(const struct renderer *r, struct renderer_inspect *out);
+/* Gradient methods: the primal, gradients and reconstructions; NULL for the others. */
+struct grad_frame *renderer_gradients(const struct renderer *r);
 
-/* After a ReSTIR frame: mask[i] = 1 for the valid pixels of the last frame whose temporal
- * history was rejected (G-buffer validation, 001) in any of its last `frames` frames, i.e. the
- * disoccluded pixels of 004 Sec. 6.2; 0 elsewhere. Returns the number of pixels marked. */
-#define DISOCCLUSION_FRAMES 4 /* the window of the and 004 Sec. 6.2's disocclusion masks */
+/* After a frame of a METHOD_HISTORY method: mask[i] = 1 for the valid pixels of the last frame
+ * whose temporal history was rejected (G-buffer validation, 001) in any of its last `frames`
+ * frames, i.e. the disoccluded pixels of 004 Sec. 6.2; 0 elsewhere. Returns the number of pixels
+ * marked (0, mask all 0, for methods without history). */
+#define DISOCCLUSION_FRAMES 4 /* the window of 004 Sec. 6.2's disocclusion masks */
 long long renderer_disoccluded(const struct renderer *r, int frames, unsigned char *mask);
+/* The number of valid pixels (primary ray hit) of the last frame's G-buffer; -1 without one. */
+long long renderer_valid_pixels(const struct renderer *r);
 
+/* Accumulates the milliseconds of stmt into st->ms[pass]: the per-pass timing of every method. */
+#define RENDERER_TIMED(st, pass, stmt)                                                         \
+    do {                                                                                       \
+        double t0_ = omp_get_wtime();                                                          \
+        stmt;                                                                                  \
+        (st)->ms[pass] += 1e3 * (omp_get_wtime() - t0_);                                       \
+    } while (0)
 
 #endif

@@ -19,11 +19,6 @@ static void uv_set_at(const struct scene *s, int set, int tri, float b1, float b
     *v = b0 * uv[2 * ix[0] + 1] + b1 * uv[2 * ix[1] + 1] + b2 * uv[2 * ix[2] + 1];
 }
 
-void scene_uv_at(const struct scene *s, int tri, float b1, float b2, float *u, float *v)
-{
-    uv_set_at(s, 0, tri, b1, b2, u, v);
-}
-
 /* (u, v) through the lookup's transform (glTF KHR_texture_transform), in place. */
 static void transform_uv(const struct texture_lookup *l, float *u, float *v)
 {

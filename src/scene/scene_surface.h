@@ -6,10 +6,6 @@
 
 #include "scene/scene_types.h"
 
-/* The texture coordinates at barycentrics (b1, b2) of triangle tri ((0, 0) when the scene has
- * none, as glTF reads textures of a mesh without UVs). */
-void scene_uv_at(const struct scene *s, int tri, float b1, float b2, float *u, float *v);
-
 /* The material at a point of triangle tri (barycentrics b1, b2): its factors times its textures
  * there. Returns the scene's own material when it has no textures, else fills and returns tmp. */
 const struct material *scene_material_at(const struct scene *s, int tri, float b1, float b2, struct material *tmp);

@@ -1,10 +1,9 @@
-/* view_debug.c: the viewer's debug views (view_debug.h). The renderer has flipped its ping-pong
- * index after the frame, so the last frame's buffers are at 1 - cur. */
+/* view_debug.c: the viewer's debug views (view_debug.h), drawn from what the method exposes of its
+ * last frame (renderer_inspect). */
 #include "view/view_debug.h"
 
 #include "io/png.h"
-#include "render/pt_splat.h"
-#include "render/restir_pt.h"
+#include "render/temporal_flags.h"
 #include "render/reuse_cells.h"
 
 const char *const view_mode_names[VIEW_MODES] = {"image", "confidence", "temporal acceptance", "selected neighbors",
@@ -37,15 +36,15 @@ static void cell_color(int id, unsigned char *out)
 
 int view_debug_rgb8(const struct renderer *r, enum view_mode mode, unsigned char *rgb8)
 {
-    const int n = r->p.width * r->p.height, last = 1 - r->cur, pt = method_runs_restir_pt(r->method);
-    const int m = render_params_spatial_neighbors(&r->p, pt);
-    const int has_conf = pt ? r->pt_hist[last] != NULL : r->hist[last] != NULL;
-    const int ok = mode == VIEW_CONFIDENCE            ? has_conf
-                   : mode == VIEW_ACCEPTANCE          ? r->age[last] != NULL
-                   : mode == VIEW_NEIGHBORS           ? r->neighbors != NULL && r->p.spatial &&
+    struct renderer_inspect in;
+    renderer_inspect(r, &in);
+    const int n = r->p.width * r->p.height, m = in.neighbors_per_pixel;
+    const int ok = mode == VIEW_CONFIDENCE            ? in.reservoirs != NULL && in.confidence != NULL
+                   : mode == VIEW_ACCEPTANCE          ? in.age != NULL
+                   : mode == VIEW_NEIGHBORS           ? in.neighbors != NULL && r->p.spatial &&
                                                   r->p.spatial_reuse == REUSE_STANDARD && m > 0
-                   : mode == VIEW_CELLS               ? r->spmis != NULL && r->p.spatial_reuse == REUSE_SPMIS
-                   : mode == VIEW_TEMPORAL_CANDIDATES ? r->temporal_flags != NULL
+                   : mode == VIEW_CELLS               ? in.spmis != NULL && r->p.spatial_reuse == REUSE_SPMIS
+                   : mode == VIEW_TEMPORAL_CANDIDATES ? in.temporal_flags != NULL
                                                       : 0;
     if (!ok) {
         encode_srgb8(r->image, 3 * (size_t)n, 0.0f, rgb8);
@@ -55,23 +54,23 @@ int view_debug_rgb8(const struct renderer *r, enum view_mode mode, unsigned char
     for (int i = 0; i < n; i++) {
         unsigned char *o = rgb8 + 3 * (size_t)i;
         if (mode == VIEW_CONFIDENCE) {
-            heat_color((pt ? r->pt_hist[last][i].c : r->hist[last][i].c) / cap, o);
+            heat_color(in.confidence(in.reservoirs, i) / cap, o);
         } else if (mode == VIEW_ACCEPTANCE) {
-            heat_color((float)r->age[last][i] / 20.0f, o);
+            heat_color((float)in.age[i] / 20.0f, o);
         } else if (mode == VIEW_NEIGHBORS) {
             int count = 0;
             for (int k = 0; k < m; k++)
-                count += r->neighbors[(size_t)i * m + k] >= 0;
+                count += in.neighbors[(size_t)i * m + k] >= 0;
             heat_color((float)count / (float)m, o);
         } else if (mode == VIEW_TEMPORAL_CANDIDATES) {
             /* a single buffer, not ping-pong: always the last frame's */
-            temporal_color(r->temporal_flags[i], o);
+            temporal_color(in.temporal_flags[i], o);
         } else {
             /* the cell a pixel belongs to (tile, object, quantized normal: 004 Algorithm 1) */
-            if (r->spmis->cell[i] < 0)
+            if (in.spmis->cell[i] < 0)
                 o[0] = o[1] = o[2] = 0;
             else
-                cell_color((int)r->spmis->key[i], o);
+                cell_color((int)in.spmis->key[i], o);
         }
     }
     return 1;

@@ -18,13 +18,40 @@
 #include "view/view_debug.h"
 #include "view/view_script.h"
 
-static const enum method_id cycle[] = {METHOD_RESTIR_DI, METHOD_RESTIR_PT, METHOD_PT, METHOD_RIS_DI};
-static const char *const select_names[] = {"bitterli", "compat", "compat-binary"};
+const struct method *view_method_after(const struct method *m)
+{
+    /* the cycle member of the smallest order above m's, else of the smallest order overall */
+    const int from = m ? m->viewer_order : 0;
+    const struct method *next = NULL, *first = NULL;
+    for (int k = 0; k < method_count(); k++) {
+        const struct method *c = method_at(k);
+        if (c->viewer_order <= 0)
+            continue;
+        if (!first || c->viewer_order < first->viewer_order)
+            first = c;
+        if (from > 0 && c->viewer_order > from && (!next || c->viewer_order < next->viewer_order))
+            next = c;
+    }
+    return next ? next : first;
+}
+
+void view_method_cycle_names(char *out, size_t n)
+{
+    size_t len = 0;
+    out[0] = '\0';
+    const struct method *first = view_method_after(NULL);
+    for (const struct method *m = first; m && len < n; m = view_method_after(m)) {
+        int w = snprintf(out + len, n - len, "%s%s", len ? ", " : "", m->name);
+        len += w > 0 ? (size_t)w : 0;
+        if (view_method_after(m) == first)
+            break;
+    }
+}
 
 struct view {
     const struct view_options *o;
     struct render_params p;
-    enum method_id method;
+    const struct method *method;
     struct renderer r;
     vec3 position;
     float yaw, pitch, vfov, step;
@@ -46,9 +73,11 @@ static struct camera current_camera(const struct view *v)
 /* The spec the camera file names: method[:key=value]... of what differs from the defaults. */
 static void spec(const struct view *v, char *out, size_t len)
 {
-    snprintf(out, len, "%s%s%s%s%s%s", method_table[v->method].name, v->p.temporal ? "" : ":temporal=off",
+    char select[64];
+    render_params_get(&v->p, "spatial.select", select, sizeof select);
+    snprintf(out, len, "%s%s%s%s%s%s", v->method->name, v->p.temporal ? "" : ":temporal=off",
              v->p.spatial ? "" : ":spatial=off", v->p.spatial_select == SELECT_BITTERLI ? "" : ":spatial.select=",
-             v->p.spatial_select == SELECT_BITTERLI ? "" : select_names[v->p.spatial_select],
+             v->p.spatial_select == SELECT_BITTERLI ? "" : select,
              v->p.spatial_reuse == REUSE_SPMIS ? ":spatial.reuse=spmis" : "");
 }
 
@@ -63,14 +92,10 @@ static void restart(struct view *v, int first)
 static void press(struct view *v, char key)
 {
     switch (key) {
-    case 'm': {
-        int k = 0;
-        while (k < 4 && cycle[k] != v->method)
-            k++;
-        v->method = cycle[(k + 1) % 4];
+    case 'm':
+        v->method = view_method_after(v->method);
         restart(v, 0);
         break;
-    }
     case 't': v->p.temporal = !v->p.temporal; restart(v, 0); break;
     case 'y': v->p.spatial = !v->p.spatial; restart(v, 0); break;
     case 'n': v->p.spatial_select = (enum spatial_select_mode)((v->p.spatial_select + 1) % 3); restart(v, 0); break;

@@ -14,7 +14,7 @@
 
 struct view_options {
     const struct scene *scene;
-    enum method_id method;
+    const struct method *method;
     struct render_params params;
     const char *script;  /* timed input (view_script.h), or NULL */
     const char *out_dir; /* screenshots, camera files and the last frame */
@@ -24,5 +24,11 @@ struct view_options {
  * out_dir/last_frame.exr and .png. Returns 0, 1 with msg when there is no display or an output
  * cannot be written, 2 with msg for a bad script. */
 int view_run(const struct view_options *o, char *msg);
+
+/* The method the M key switches to after m: the registry's methods with viewer_order > 0, in that
+ * order, wrapping around; m NULL or not in the cycle: the first. */
+const struct method *view_method_after(const struct method *m);
+/* The cycle's method names, ", "-separated, into out (n bytes). */
+void view_method_cycle_names(char *out, size_t n);
 
 #endif

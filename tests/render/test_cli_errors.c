@@ -309,9 +309,9 @@ static void check_list_and_help(void)
         snprintf(want, sizeof(want), "scene %s\t", scene_builtin_names[i]);
         EXPECT(strstr(out, want) != NULL, "restir list does not list scene %s", scene_builtin_names[i]);
     }
-    for (int m = 0; m < METHOD_COUNT; m++) {
-        snprintf(want, sizeof(want), "method %s\t", method_table[m].name);
-        EXPECT(strstr(out, want) != NULL, "restir list does not list method %s", method_table[m].name);
+    for (int k = 0; k < method_count(); k++) {
+        snprintf(want, sizeof(want), "method %s\t", method_at(k)->name);
+        EXPECT(strstr(out, want) != NULL, "restir list does not list method %s", method_at(k)->name);
     }
 
     rc = cli_run_capture(tmp, "", out, err);

@@ -19,7 +19,7 @@
 #define ALPHA 0.01
 #define POOLED_Z_MAX 4.5
 
-static void check_reference(enum method_id method, const char *scene_name, int w, int h, int ref_spp,
+static void check_reference(const struct method *method, const char *scene_name, int w, int h, int ref_spp,
                             const char *const *sets, int nsets, int expect_unbiased)
 {
     const struct unbiased_case c = {scene_name, method, w, h, RUNS, FRAMES, 6, ref_spp, ALPHA, POOLED_Z_MAX};
@@ -29,7 +29,7 @@ static void check_reference(enum method_id method, const char *scene_name, int w
     unbiased_check(&c, all, nsets + 1, expect_unbiased);
 }
 
-static void check_method(enum method_id method, const char *scene_name, int w, int h, const char *const *sets, int nsets,
+static void check_method(const struct method *method, const char *scene_name, int w, int h, const char *const *sets, int nsets,
                          int expect_unbiased)
 {
     check_reference(method, scene_name, w, h, 16, sets, nsets, expect_unbiased);
@@ -37,15 +37,15 @@ static void check_method(enum method_id method, const char *scene_name, int w, i
 
 static void check_scene(const char *scene_name, int w, int h, const char *const *sets, int nsets, int expect_unbiased)
 {
-    check_method(METHOD_RESTIR_DI, scene_name, w, h, sets, nsets, expect_unbiased);
+    check_method(method_named("restir-di"), scene_name, w, h, sets, nsets, expect_unbiased);
 }
 
 int main(int argc, char **argv)
 {
     if (argc >= 3) { /* one case: METHOD SCENE [key=value ...], expected unbiased */
-        enum method_id m = (enum method_id)method_find(argv[1]);
-        EXPECT((int)m >= 0, "unknown method %s", argv[1]);
-        if ((int)m >= 0)
+        const struct method *m = method_find(argv[1]);
+        EXPECT(m != NULL, "unknown method %s", argv[1]);
+        if (m)
             check_method(m, argv[2], 24, 16, (const char *const *)argv + 3, argc - 3 > 7 ? 7 : argc - 3, 1);
         return test_finish();
     }
@@ -82,7 +82,7 @@ int main(int argc, char **argv)
      * alone cannot be judged here: on cornell they reach the light from the ceiling and the
      * mirror-like block only as rare events that no run of the sample saw.) */
     const char *batches[] = {"di.light_candidates=80", "history=temporal", "jitter=off"};
-    check_reference(METHOD_RESTIR_DI, "cornell", 24, 16, 64, batches, 3, 1);
+    check_reference(method_named("restir-di"), "cornell", 24, 16, 64, batches, 3, 1);
     const char *one_candidate[] = {"di.light_candidates=1"};
     check_scene("cornell", 24, 16, one_candidate, 1, 1);
     /* Textures (tests/data/scenes/textured.json): a checker base colour, a metallic-roughness map
@@ -114,7 +114,7 @@ int main(int argc, char **argv)
     check_scene("forest", 24, 16, pairwise, 1, 1);
     /* ris-di has no reuse: none is exact there (and skips the shading ray). */
     const char *ris_none[] = {"di.visibility_mis=none"};
-    check_method(METHOD_RIS_DI, "pillars", 24, 16, ris_none, 1, 1);
+    check_method(method_named("ris-di"), "pillars", 24, 16, ris_none, 1, 1);
     const char *vis_none[] = {"di.visibility_mis=none"};
     check_scene("pillars", 24, 16, vis_none, 1, 0);
     const char *ml_vis_none[] = {"di.visibility_mis=none", "jitter=off"};

@@ -90,14 +90,14 @@ static int floor_scene(struct scene *s, float a, int tilt, int lamp, struct envi
  * frames from the same camera, temporal and spatial reuse on): each pixel against `expect`
  * (per-pixel standard error from the runs), the image mean by its z. at_most: only a one-sided
  * bound (the image may be darker, never brighter). */
-static void check_method(const char *what, const struct scene *s, double expect, int at_most, enum method_id m)
+static void check_method(const char *what, const struct scene *s, double expect, int at_most, const struct method *m)
 {
     struct render_params p;
     render_params_defaults(&p);
     p.width = W;
     p.height = H;
-    p.spp = m == METHOD_PT ? SPP : 1;
-    const int frames = m == METHOD_PT ? 1 : RESTIR_FRAMES;
+    p.spp = m == method_named("pt") ? SPP : 1;
+    const int frames = m == method_named("pt") ? 1 : RESTIR_FRAMES;
     struct pixel_stats st;
     pixel_stats_init(&st, W * H);
     const struct camera cam = s->camera;
@@ -123,9 +123,9 @@ static void check_method(const char *what, const struct scene *s, double expect,
     }
     const double mean = sum / (W * H), z = (sum - expect * W * H) / sqrt(var);
     printf("%s, %s: image mean %.5f, expected %s%.5f, z %.2f, worst pixel |z| %.2f (limit %.2f), %d pixels off\n",
-           method_table[m].name, what, mean, at_most ? "<= " : "", expect, z, worst, z_crit, failed);
-    EXPECT(failed == 0, "%s, %s: %d pixels off", method_table[m].name, what, failed);
-    EXPECT(at_most ? z < IMAGE_Z_MAX : fabs(z) < IMAGE_Z_MAX, "%s, %s: image mean %.5f vs %.5f (z %.2f)", method_table[m].name, what, mean,
+           m->name, what, mean, at_most ? "<= " : "", expect, z, worst, z_crit, failed);
+    EXPECT(failed == 0, "%s, %s: %d pixels off", m->name, what, failed);
+    EXPECT(at_most ? z < IMAGE_Z_MAX : fabs(z) < IMAGE_Z_MAX, "%s, %s: image mean %.5f vs %.5f (z %.2f)", m->name, what, mean,
            expect, z);
     pixel_stats_free(&st);
 }
@@ -134,7 +134,7 @@ static void check_method(const char *what, const struct scene *s, double expect,
  * and restir-pt, whose paths end in directions of the sky. */
 static void check(const char *what, const struct scene *s, double expect, int at_most)
 {
-    const enum method_id methods[3] = {METHOD_PT, METHOD_RESTIR_DI, METHOD_RESTIR_PT};
+    const struct method *methods[3] = {method_named("pt"), method_named("restir-di"), method_named("restir-pt")};
     for (int k = 0; k < 3; k++)
         check_method(what, s, expect, at_most, methods[k]);
 }

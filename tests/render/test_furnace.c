@@ -98,7 +98,7 @@ struct furnace_result {
  * is exact up to facet effects). pt's pixels are independent, so its image mean's standard error
  * follows from that variance; ReSTIR's pixels share samples, so theirs comes from the spread of
  * the per-run image means. */
-static struct furnace_result render_furnace(const struct scene *s, enum method_id method, int runs, int frames,
+static struct furnace_result render_furnace(const struct scene *s, const struct method *method, int runs, int frames,
                                             int max_bounces, double expect)
 {
     struct render_params p;
@@ -134,7 +134,7 @@ static struct furnace_result render_furnace(const struct scene *s, enum method_i
     double var_run = var_sum / (W * H); /* variance of one run's pixel value */
     struct furnace_result res;
     res.image_mean = sum / (W * H);
-    if (method == METHOD_PT) {
+    if (method == method_named("pt")) {
         res.image_se = sqrt(var_run / ((double)runs * W * H));
     } else {
         double mu = run_sum / runs, var_means = (run_sum2 / runs - mu * mu) * runs / (runs - 1);
@@ -147,7 +147,7 @@ static struct furnace_result render_furnace(const struct scene *s, enum method_i
     for (int i = 0; i < W * H; i++) {
         /* ReSTIR pixels differ in variance (less spatial reuse near the image border): each pixel
          * gets its own standard error from its spread over the independent runs. */
-        double se = method == METHOD_PT ? se_pixel : sqrt(st.m2[i] / (runs - 1) / runs);
+        double se = method == method_named("pt") ? se_pixel : sqrt(st.m2[i] / (runs - 1) / runs);
         double z = se > 0.0 ? fabs(st.mean[i] - expect) / se : INFINITY;
         if (z > res.worst_z)
             res.worst_z = z;
@@ -156,8 +156,8 @@ static struct furnace_result render_furnace(const struct scene *s, enum method_i
     }
     printf("%s, max_bounces %d: image mean %.5f (se %.5f), expected %.5f, pixel se %.4f, worst |z| %.2f "
            "(crit %.2f), %d pixels fail\n",
-           method_table[method].name, max_bounces, res.image_mean, res.image_se, expect, se_pixel, res.worst_z, z_crit, res.pixels_failed);
-    EXPECT(var_run > 0.0, "%s with jitter and random bounces must show noise", method_table[method].name);
+           method->name, max_bounces, res.image_mean, res.image_se, expect, se_pixel, res.worst_z, z_crit, res.pixels_failed);
+    EXPECT(var_run > 0.0, "%s with jitter and random bounces must show noise", method->name);
     pixel_stats_free(&st);
     return res;
 }
@@ -182,8 +182,8 @@ static void smooth_furnace(double le)
         EXPECT(0, "%s", msg);
         return;
     }
-    struct furnace_result pt = render_furnace(&s, METHOD_PT, RUNS, 1, 64, 1.0);
-    struct furnace_result rpt = render_furnace(&s, METHOD_RESTIR_PT, RESTIR_RUNS, RESTIR_FRAMES, 64, 1.0);
+    struct furnace_result pt = render_furnace(&s, method_named("pt"), RUNS, 1, 64, 1.0);
+    struct furnace_result rpt = render_furnace(&s, method_named("restir-pt"), RESTIR_RUNS, RESTIR_FRAMES, 64, 1.0);
     printf("smooth furnace: pt %.5f (se %.5f), restir-pt %.5f (se %.5f); flat answer 1\n", pt.image_mean, pt.image_se,
            rpt.image_mean, rpt.image_se);
     EXPECT(pt.image_mean <= 1.0 + IMAGE_Z_MAX * pt.image_se, "shading normals gain energy: pt mean %.5f (se %.5f)",
@@ -234,22 +234,22 @@ int main(void)
     /* All bounces: pt and restir-pt (path reuse through every shift) solve the same equation;
      * one bounce: Le seen directly plus one scattering of Le = 0.75, for pt and restir-di. */
     const struct {
-        enum method_id method;
+        const struct method *method;
         int runs, frames, max_bounces;
         double expect;
     } cases[] = {
-        {METHOD_PT, RUNS, 1, 64, l_center},
-        {METHOD_PT, RUNS, 1, 1, l_one_bounce},
-        {METHOD_RESTIR_PT, RESTIR_RUNS, RESTIR_FRAMES, 64, l_center},
-        {METHOD_RESTIR_DI, RESTIR_RUNS, RESTIR_FRAMES, 1, l_one_bounce},
+        {method_named("pt"), RUNS, 1, 64, l_center},
+        {method_named("pt"), RUNS, 1, 1, l_one_bounce},
+        {method_named("restir-pt"), RESTIR_RUNS, RESTIR_FRAMES, 64, l_center},
+        {method_named("restir-di"), RESTIR_RUNS, RESTIR_FRAMES, 1, l_one_bounce},
     };
     for (size_t k = 0; k < sizeof(cases) / sizeof(cases[0]); k++) {
         struct furnace_result r = render_furnace(&s, cases[k].method, cases[k].runs, cases[k].frames,
                                                  cases[k].max_bounces, cases[k].expect);
         EXPECT(fabs(r.image_mean - cases[k].expect) <= IMAGE_Z_MAX * r.image_se + GEOMETRY_ALLOWANCE,
-               "%s: image mean %.5f vs %.5f (se %.5f)", method_table[cases[k].method].name, r.image_mean,
+               "%s: image mean %.5f vs %.5f (se %.5f)", cases[k].method->name, r.image_mean,
                cases[k].expect, r.image_se);
-        EXPECT(r.pixels_failed == 0, "%s: %d pixels off (worst |z| %.2f)", method_table[cases[k].method].name,
+        EXPECT(r.pixels_failed == 0, "%s: %d pixels off (worst |z| %.2f)", cases[k].method->name,
                r.pixels_failed, r.worst_z);
     }
 

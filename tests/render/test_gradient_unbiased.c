@@ -47,7 +47,7 @@ static void run_reference(const struct scene *s, const struct render_params *bas
         q.spp = REF_SPP;
         q.seed = 900000 + (uint64_t)k;
         struct renderer r;
-        renderer_init(&r, s, METHOD_PT, &q);
+        renderer_init(&r, s, method_named("pt"), &q);
         struct frame_stats fs;
         struct camera cam = scene_camera_at(s, 1, (float)((FRAMES - 1) * FRAME_STEP));
         renderer_render(&r, 0, &cam, &fs);
@@ -63,7 +63,7 @@ static void run_reference(const struct scene *s, const struct render_params *bas
     free(dy);
 }
 
-static void run_method(const struct scene *s, enum method_id m, const struct render_params *base, int runs,
+static void run_method(const struct scene *s, const struct method *m, const struct render_params *base, int runs,
                        struct pixel_stats *st)
 {
     for (int k = 0; k < runs; k++) {
@@ -76,12 +76,12 @@ static void run_method(const struct scene *s, enum method_id m, const struct ren
             struct camera cam = scene_camera_at(s, 1, (float)(f * FRAME_STEP));
             renderer_render(&r, f, &cam, &fs);
         }
-        pixel_stats_add(&st[L_PRIMAL], r.grad->primal);
-        pixel_stats_add(&st[L_DX], r.grad->dx);
-        pixel_stats_add(&st[L_DY], r.grad->dy);
-        pixel_stats_add(&st[L_L2], r.grad->l2);
-        if (r.grad->l1)
-            pixel_stats_add(&st[L_L1], r.grad->l1);
+        pixel_stats_add(&st[L_PRIMAL], renderer_gradients(&r)->primal);
+        pixel_stats_add(&st[L_DX], renderer_gradients(&r)->dx);
+        pixel_stats_add(&st[L_DY], renderer_gradients(&r)->dy);
+        pixel_stats_add(&st[L_L2], renderer_gradients(&r)->l2);
+        if (renderer_gradients(&r)->l1)
+            pixel_stats_add(&st[L_L1], renderer_gradients(&r)->l1);
         renderer_fini(&r);
     }
 }
@@ -92,9 +92,9 @@ static int check(const char *scene_name, const char *method, int runs, const cha
 {
     struct scene s;
     char msg[512];
-    int m = method_find(method);
-    if (scene_load(scene_name, &s, msg) != 0 || m < 0) {
-        EXPECT(0, "%s", m < 0 ? "unknown method" : msg);
+    const struct method *m = method_find(method);
+    if (scene_load(scene_name, &s, msg) != 0 || !m) {
+        EXPECT(0, "%s", !m ? "unknown method" : msg);
         return 1;
     }
     struct render_params p;
@@ -110,7 +110,7 @@ static int check(const char *scene_name, const char *method, int runs, const cha
         pixel_stats_init(&got[l], WIDTH * HEIGHT);
     }
     run_reference(&s, &p, runs, ref);
-    run_method(&s, (enum method_id)m, &p, runs, got);
+    run_method(&s, m, &p, runs, got);
     printf("%s %dx%d %s, %d runs of %d frames:", scene_name, WIDTH, HEIGHT, method, runs, FRAMES);
     for (int k = 0; k < nsets; k++)
         printf(" %s", sets[k]);

@@ -20,11 +20,12 @@ int main(void)
     }
     int runs = 0;
     for (int sc = 0; scene_builtin_names[sc]; sc++) {
-        for (int m = 0; m < METHOD_COUNT; m++) {
+        for (int k = 0; k < method_count(); k++) {
+            const struct method *m = method_at(k);
             char dir[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX], err[CLI_ERR_MAX], path[3 * CLI_PATH_MAX];
-            snprintf(dir, sizeof dir, "%s/%s-%s", tmp, scene_builtin_names[sc], method_table[m].name);
+            snprintf(dir, sizeof dir, "%s/%s-%s", tmp, scene_builtin_names[sc], m->name);
             snprintf(args, sizeof args, "render --scene %s --method %s --res 24x16 --frames 3 --camera path --out '%s'",
-                     scene_builtin_names[sc], method_table[m].name, dir);
+                     scene_builtin_names[sc], m->name, dir);
             int rc = cli_run(tmp, args, err);
             EXPECT(rc == 0, "restir %s exited %d:\n%s", args, rc, err);
             snprintf(path, sizeof path, "%s/metrics.csv", dir);
@@ -45,7 +46,7 @@ int main(void)
                         comma = c;
                 long long n = atoll(comma + 1);
                 EXPECT(n == 0, "%s %s frame %d: %lld non-finite values discarded", scene_builtin_names[sc],
-                       method_table[m].name, rows, n);
+                       m->name, rows, n);
                 line = end ? end + 1 : NULL;
             }
             EXPECT(rows == 3, "%s: %d frames in metrics.csv", dir, rows);

@@ -14,7 +14,7 @@
 /* Returns the number of pixels that fail the per-pixel test (unbiased_check_path). */
 static int check(const char *scene_name, int runs, const char *const *sets, int nsets, int expect_unbiased)
 {
-    return unbiased_check_path(scene_name, METHOD_RESTIR_PT, runs, sets, nsets, expect_unbiased);
+    return unbiased_check_path(scene_name, method_named("restir-pt"), runs, sets, nsets, expect_unbiased);
 }
 
 int main(int argc, char **argv)

@@ -13,7 +13,7 @@
 
 #define RUNS 2048
 
-static int check(const char *scene_name, enum method_id m, int runs, const char *const *sets, int nsets,
+static int check(const char *scene_name, const struct method *m, int runs, const char *const *sets, int nsets,
                  int expect_unbiased)
 {
     return unbiased_check_path(scene_name, m, runs, sets, nsets, expect_unbiased);
@@ -22,7 +22,7 @@ static int check(const char *scene_name, enum method_id m, int runs, const char 
 int main(int argc, char **argv)
 {
     if (argc >= 3) {
-        check(argv[1], METHOD_RESTIR_PT, atoi(argv[2]), (const char *const *)argv + 3, argc - 3, 1);
+        check(argv[1], method_named("restir-pt"), atoi(argv[2]), (const char *const *)argv + 3, argc - 3, 1);
         return test_finish();
     }
     const char *scenes[] = {"foliage", "pillars"};
@@ -30,26 +30,26 @@ int main(int argc, char **argv)
     for (int sc = 0; sc < 2; sc++)
         for (int k = 0; k < 2; k++) {
             const char *sets[] = {modes[k], "mis=pairwise"};
-            check(scenes[sc], METHOD_RESTIR_PT, RUNS, sets, 2, 1);
+            check(scenes[sc], method_named("restir-pt"), RUNS, sets, 2, 1);
         }
     /* Motion blur: pt integrates the same blurred image (the camera moves from the previous frame's
      * pose during the shutter); backprojection keeps each path's time, splatting re-times it. */
     const char *blur_bp[] = {"camera.shutter=1"};
-    check("pillars", METHOD_RESTIR_PT, RUNS, blur_bp, 1, 1);
+    check("pillars", method_named("restir-pt"), RUNS, blur_bp, 1, 1);
     const char *blur_splat[] = {"temporal.reuse=splat", "camera.shutter=1"};
-    check("pillars", METHOD_RESTIR_PT, RUNS, blur_splat, 2, 1);
+    check("pillars", method_named("restir-pt"), RUNS, blur_splat, 2, 1);
     const char *blur_both[] = {"temporal.reuse=both", "camera.shutter=0.5", "temporal.splat_steps=3"};
-    check("foliage", METHOD_RESTIR_PT, RUNS, blur_both, 3, 1);
+    check("foliage", method_named("restir-pt"), RUNS, blur_both, 3, 1);
     /* Depth of field: the lens sample is kept by every shift. Cornell's glossy box makes the
      * heaviest tails of these cases: at 2048 runs one pixel reached |t| = 4.27 (limit 4.10) with a
      * pooled z of 1.7; at 4096 runs the worst |t| is 3.36 and z 0.34, so this case takes 4096. */
     const char *lens[] = {"temporal.reuse=splat", "camera.aperture=0.08"};
-    check("cornell", METHOD_RESTIR_PT, 2 * RUNS, lens, 2, 1);
+    check("cornell", method_named("restir-pt"), 2 * RUNS, lens, 2, 1);
     /* area-restir: the primal pass of grad-after-restir and grestir-pt */
     const char *area[] = {"temporal.reuse=both"};
-    check("pillars", METHOD_AREA_RESTIR, RUNS, area, 1, 1);
+    check("pillars", method_named("area-restir"), RUNS, area, 1, 1);
     /* The test has power: 1/M weights over the splatted candidates are caught. */
     const char *uniform[] = {"temporal.reuse=splat", "mis=1/M"};
-    EXPECT(check("cornell", METHOD_RESTIR_PT, RUNS, uniform, 2, 0) > 0, "1/M weights were not detected as biased");
+    EXPECT(check("cornell", method_named("restir-pt"), RUNS, uniform, 2, 0) > 0, "1/M weights were not detected as biased");
     return test_finish();
 }

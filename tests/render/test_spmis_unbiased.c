@@ -21,11 +21,11 @@
 #define POOLED_Z_MAX 4.5
 
 /* 24 x 16 pixels: 3 x 2 full 8 x 8 tiles, so cells, the search and exclusions all take part. */
-static int check(enum method_id m, const char *scene, int runs, const char *const *sets, int nsets, int expect)
+static int check(const struct method *m, const char *scene, int runs, const char *const *sets, int nsets, int expect)
 {
-    const int ref_spp = m == METHOD_RESTIR_PT ? 8 : 16;
+    const int ref_spp = m == method_named("restir-pt") ? 8 : 16;
     const struct unbiased_case c = {scene, m, 24, 16, runs, FRAMES, FRAME_STEP, ref_spp, ALPHA, POOLED_Z_MAX};
-    const char *all[16] = {"spatial.reuse=spmis", m == METHOD_RESTIR_PT ? "pt.max_bounces=4" : "mis=pairwise"};
+    const char *all[16] = {"spatial.reuse=spmis", m == method_named("restir-pt") ? "pt.max_bounces=4" : "mis=pairwise"};
     for (int k = 0; k < nsets && k < 14; k++)
         all[k + 2] = sets[k];
     return unbiased_check(&c, all, nsets + 2, expect);
@@ -34,7 +34,7 @@ static int check(enum method_id m, const char *scene, int runs, const char *cons
 int main(int argc, char **argv)
 {
     if (argc >= 4) {
-        enum method_id m = strcmp(argv[1], "di") == 0 ? METHOD_RESTIR_DI : METHOD_RESTIR_PT;
+        const struct method *m = strcmp(argv[1], "di") == 0 ? method_named("restir-di") : method_named("restir-pt");
         check(m, argv[2], atoi(argv[3]), (const char *const *)argv + 4, argc - 4, 1);
         return test_finish();
     }
@@ -51,27 +51,27 @@ int main(int argc, char **argv)
     const char *far_cells[] = {"spmis.search_radius=4", "spmis.search_growth=1.5"};
     const char *compat[] = {"spmis.search_radius=4", "spmis.search_growth=1.5", "spmis.search_score=compat"};
 
-    check(METHOD_RESTIR_PT, "pillars", 4096, none, 1, 1); /* worst |t| 4.17 at 2048 runs: heavy tails */
-    check(METHOD_RESTIR_PT, "cornell", 1024, none, 1, 1);
-    check(METHOD_RESTIR_PT, "pillars", 1024, far_cells, 2, 1);
-    check(METHOD_RESTIR_PT, "pillars", 4096, no_adjust, 1, 1); /* heavy tails: worst |t| 5.6 at 1024 runs, 4.0 at 4096 */
-    check(METHOD_RESTIR_PT, "cornell", 1024, no_adjust, 1, 1);
-    check(METHOD_RESTIR_PT, "pillars", 1024, one, 1, 1);
-    check(METHOD_RESTIR_PT, "pillars", 1024, hist_temporal, 1, 1);
+    check(method_named("restir-pt"), "pillars", 4096, none, 1, 1); /* worst |t| 4.17 at 2048 runs: heavy tails */
+    check(method_named("restir-pt"), "cornell", 1024, none, 1, 1);
+    check(method_named("restir-pt"), "pillars", 1024, far_cells, 2, 1);
+    check(method_named("restir-pt"), "pillars", 4096, no_adjust, 1, 1); /* heavy tails: worst |t| 5.6 at 1024 runs, 4.0 at 4096 */
+    check(method_named("restir-pt"), "cornell", 1024, no_adjust, 1, 1);
+    check(method_named("restir-pt"), "pillars", 1024, one, 1, 1);
+    check(method_named("restir-pt"), "pillars", 1024, hist_temporal, 1, 1);
 
-    check(METHOD_RESTIR_DI, "pillars", 2048, none, 1, 1);
-    check(METHOD_RESTIR_DI, "cornell", 2048, none, 1, 1);
-    check(METHOD_RESTIR_DI, "pillars", 2048, no_adjust, 1, 1);
-    check(METHOD_RESTIR_DI, "pillars", 2048, one, 1, 1);
-    check(METHOD_RESTIR_DI, "cornell", 2048, one, 1, 1);
-    check(METHOD_RESTIR_DI, "pillars", 2048, far_cells, 2, 1);
-    check(METHOD_RESTIR_DI, "pillars", 2048, all_cell, 2, 1);
-    check(METHOD_RESTIR_DI, "cornell", 4096, by_conf, 2, 1); /* worst |t| 5.5 at 1024 runs, 3.6 at 4096 */
-    check(METHOD_RESTIR_PT, "pillars", 1024, low_conf, 2, 1);
-    check(METHOD_RESTIR_DI, "pillars", 2048, hist_temporal, 1, 1);
-    check(METHOD_RESTIR_PT, "pillars", 1024, compat, 3, 1);
-    check(METHOD_RESTIR_DI, "pillars", 2048, compat, 3, 1);
+    check(method_named("restir-di"), "pillars", 2048, none, 1, 1);
+    check(method_named("restir-di"), "cornell", 2048, none, 1, 1);
+    check(method_named("restir-di"), "pillars", 2048, no_adjust, 1, 1);
+    check(method_named("restir-di"), "pillars", 2048, one, 1, 1);
+    check(method_named("restir-di"), "cornell", 2048, one, 1, 1);
+    check(method_named("restir-di"), "pillars", 2048, far_cells, 2, 1);
+    check(method_named("restir-di"), "pillars", 2048, all_cell, 2, 1);
+    check(method_named("restir-di"), "cornell", 4096, by_conf, 2, 1); /* worst |t| 5.5 at 1024 runs, 3.6 at 4096 */
+    check(method_named("restir-pt"), "pillars", 1024, low_conf, 2, 1);
+    check(method_named("restir-di"), "pillars", 2048, hist_temporal, 1, 1);
+    check(method_named("restir-pt"), "pillars", 1024, compat, 3, 1);
+    check(method_named("restir-di"), "pillars", 2048, compat, 3, 1);
     /* BIASED option: its bias is printed (pooled z, relative bias of the image mean), not asserted. */
-    check(METHOD_RESTIR_DI, "pillars", 2048, sparse, 1, 0);
+    check(method_named("restir-di"), "pillars", 2048, sparse, 1, 0);
     return test_finish();
 }

@@ -4,6 +4,7 @@
 
 #include "core/check.h"
 #include "methods/renderer.h"
+#include "render/di_sample.h"
 #include "scene/scenes_builtin.h"
 #include "test_util.h"
 
@@ -29,7 +30,7 @@ static void render_two(struct scene *s, const struct render_params *p, const str
     int *saved = xmalloc(sizeof(int) * (size_t)s->num_tris);
     memcpy(saved, s->tri_material, sizeof(int) * (size_t)s->num_tris);
     struct renderer r;
-    renderer_init(&r, s, METHOD_RESTIR_DI, p);
+    renderer_init(&r, s, method_named("restir-di"), p);
     struct frame_stats fs;
     renderer_render(&r, 0, cam0, &fs);
     EXPECT(fs.temporal_accepted == 0, "frame 0 has no history but accepted %lld pixels", fs.temporal_accepted);
@@ -39,8 +40,10 @@ static void render_two(struct scene *s, const struct render_params *p, const str
     renderer_render(&r, 1, cam1, &fs);
     out->accepted = fs.temporal_accepted;
     out->valid = fs.valid_pixels;
-    const struct gbuffer *g = &r.gb[1 - r.cur]; /* renderer_render flipped cur */
-    const struct di_reservoir *res = r.hist[1 - r.cur];
+    struct renderer_inspect in;
+    renderer_inspect(&r, &in);
+    const struct gbuffer *g = in.gbuffer;
+    const struct di_reservoir *res = in.reservoirs;
     for (int i = 0; i < NPIX; i++) {
         out->object[i] = g->object[i];
         out->material[i] = g->material[i];

@@ -12,7 +12,7 @@
 #include "unbiased_util.h"
 
 /* Frame f of a run is seen from camera-path frame f * frame_step. */
-static inline void unbiased_run_method(const struct scene *s, enum method_id m, const struct render_params *base,
+static inline void unbiased_run_method(const struct scene *s, const struct method *m, const struct render_params *base,
                                        uint64_t seed0, int runs, int frames, int frame_step, struct pixel_stats *st)
 {
     for (int k = 0; k < runs; k++) {
@@ -32,18 +32,18 @@ static inline void unbiased_run_method(const struct scene *s, enum method_id m, 
 
 /* The reference of method m (pt over the same integrand) with spp paths per run, seen from
  * camera-path frame camera_frame with the shutter opening at frame open_frame. */
-static inline void unbiased_run_reference(const struct scene *s, enum method_id m, const struct render_params *base,
+static inline void unbiased_run_reference(const struct scene *s, const struct method *m, const struct render_params *base,
                                           int runs, int spp, float camera_frame, float open_frame,
                                           struct pixel_stats *st)
 {
     struct render_params rp = *base;
-    renderer_reference_params(m, &rp);
+    method_reference_params(m, &rp);
     rp.spp = spp;
     for (int k = 0; k < runs; k++) {
         struct render_params q = rp;
         q.seed = 900000 + (uint64_t)k;
         struct renderer r;
-        renderer_init(&r, s, METHOD_PT, &q);
+        renderer_init(&r, s, method_named("pt"), &q);
         struct frame_stats fs;
         struct camera cam = scene_camera_at(s, 1, camera_frame), open = scene_camera_at(s, 1, open_frame);
         renderer_set_shutter_open(&r, &open);
@@ -57,7 +57,7 @@ static inline void unbiased_run_reference(const struct scene *s, enum method_id 
  * against `runs` x ref_spp paths of pt from the last camera. */
 struct unbiased_case {
     const char *scene;
-    enum method_id method;
+    const struct method *method;
     int width, height;
     int runs, frames, frame_step, ref_spp;
     double alpha;        /* family-wise level of the per-pixel Welch tests (Sidak) */
@@ -85,7 +85,7 @@ static inline int unbiased_check(const struct unbiased_case *c, const char *cons
     unbiased_run_reference(&s, c->method, &p, c->runs, c->ref_spp, (float)last,
                            (float)(c->frames > 1 ? last - c->frame_step : last), &ref);
     unbiased_run_method(&s, c->method, &p, 1000, c->runs, c->frames, c->frame_step, &m);
-    printf("%s %dx%d %s, %d runs of %d frames:", c->scene, c->width, c->height, method_table[c->method].name,
+    printf("%s %dx%d %s, %d runs of %d frames:", c->scene, c->width, c->height, c->method->name,
            c->runs, c->frames);
     for (int k = 0; k < nsets; k++)
         printf(" %s", sets[k]);
@@ -106,7 +106,7 @@ static inline int unbiased_check(const struct unbiased_case *c, const char *cons
  * `runs` sequences of 4 frames 6 path frames apart against runs x 8 spp of pt, family-wise alpha
  * 0.01 per case and pooled |z| < 4.5 (~1e-5), with pt.max_bounces=4 before sets. The seeds are
  * fixed, so the outcome is deterministic. Returns the number of pixels that fail. */
-static inline int unbiased_check_path(const char *scene_name, enum method_id m, int runs, const char *const *sets,
+static inline int unbiased_check_path(const char *scene_name, const struct method *m, int runs, const char *const *sets,
                                       int nsets, int expect_unbiased)
 {
     const struct unbiased_case c = {scene_name, m, 20, 12, runs, 4, 6, 8, 0.01, 4.5};
