@@ -26,6 +26,8 @@ int bench_poisson(int argc, char **argv);
 int bench_gradient(int argc, char **argv);
 /* The `streams` section (bench_streams.c): argv[0] is "streams", then its options. */
 int bench_streams(int argc, char **argv);
+/* The `gi-bias` section (bench_gi.c): argv[0] is "gi-bias", then its options. */
+int bench_gi_bias(int argc, char **argv);
 /* The `l1-bias` section (bench_l1_bias.c): argv[0] is "l1-bias", then FRAME.exr REF.exr. */
 int bench_l1_bias(int argc, char **argv);
 

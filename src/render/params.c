@@ -42,6 +42,7 @@ static const char *const precond_names[] = {"multigrid", "jacobi", NULL}; /* enu
 static const char *const visibility_mis_names[] = {"rays", "none", NULL};
 static const char *const temporal_reuse_names[] = {"backproject", "splat", "both", NULL};
 static const char *const missing_texture_names[] = {"error", "warn", NULL};
+static const char *const gi_radiance_names[] = {"reevaluate", "stored", NULL}; /* enum gi_radiance_mode */
 static const char *const preset_names[] = {"fast", "balanced", "conservative", NULL};
 
 /* Index of val among the NULL-terminated names, or -1. */
@@ -62,6 +63,7 @@ _Static_assert(sizeof(enum grad_spatial_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum recon_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum di_visibility_mis) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum temporal_reuse_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(enum gi_radiance_mode) == sizeof(int), "enum size");
 
 #define F(field) offsetof(struct render_params, field)
 static const struct param_def params[] = {
@@ -192,6 +194,11 @@ static const struct param_def params[] = {
     {"shift.roughness", P_FLOAT, F(shift_roughness), 0, 1, "0.2", NULL, "hybrid shift: GGX alpha at or above which a vertex is rough", NULL},
     {"shift.distance", P_FLOAT, F(shift_distance), 0, 1, "0.01", NULL,
      "hybrid shift: minimum reconnection length as a fraction of the scene diagonal", NULL},
+    {"gi.radiance", P_NAMES, F(gi_radiance), 0, 0, "reevaluate", "stored",
+     "restir-gi: the outgoing radiance of a reused sample point toward the reusing shading point: reevaluate "
+     "(the sample point's path estimate traced again from its own random numbers) or stored (the radiance it "
+     "sent toward the pixel that traced it, as Ouyang et al. 2021; BIASED where the sample point is glossy)",
+     gi_radiance_names},
     {"grad.spatial", P_NAMES, F(grad_spatial), 0, 0, "adaptive", NULL,
      "grestir-pt spatial reuse of paired-pixel samples: off, dense (a similar random pair for every pair) "
      "or adaptive (edge pairs only, 002 Sec. 4.3.2); the search reads only the G-buffer (unbiased)",

@@ -30,6 +30,11 @@ enum di_visibility_mis { DI_VIS_MIS_RAYS = 0, DI_VIS_MIS_NONE };
  * ReSTIR), reservoir splatting (Liu et al. 2025: each previous reservoir forward-projected by its
  * primary hit), or both techniques combined by MIS. */
 enum temporal_reuse_mode { TEMPORAL_BACKPROJECT = 0, TEMPORAL_SPLAT, TEMPORAL_BOTH };
+/* ReSTIR GI: a reused sample point's outgoing radiance toward the shading point that reuses it is
+ * estimated again from the sample's own random numbers (unbiased), or the radiance the sample
+ * point sent toward the pixel that first traced it (Ouyang et al. 2021; BIASED where the sample
+ * point is glossy). */
+enum gi_radiance_mode { GI_RADIANCE_REEVALUATE = 0, GI_RADIANCE_STORED };
 /* Which screened Poisson reconstruction fills the image (the other one is written as a layer). */
 enum recon_mode { RECON_L2 = 0, RECON_L1, RECON_BOTH };
 /* Most cell-search taps spmis.search_steps takes (reuse_cells.c keeps this many uniforms). */
@@ -105,6 +110,9 @@ struct render_params {
     enum shift_kind shift;
     float shift_roughness;  /* hybrid: GGX alpha at or above which a vertex is rough */
     float shift_distance;   /* hybrid: minimum reconnection length, fraction of the scene diagonal */
+
+    /* ReSTIR GI */
+    enum gi_radiance_mode gi_radiance; /* what a reused sample point's outgoing radiance is */
 
     /* gradient-domain ReSTIR PT (002) */
     enum grad_spatial_mode grad_spatial;
