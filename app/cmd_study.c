@@ -85,10 +85,8 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
         return -1;
     snprintf(path, sizeof(path), "%s/study.md", dir);
     char tmp[4300];
-    io_temp_path(path, tmp, sizeof(tmp));
-    FILE *f = fopen(tmp, "w");
+    FILE *f = io_open_temp(path, tmp, sizeof tmp, "w", msg);
     if (!f) {
-        snprintf(msg, RESTIR_MSG_LEN, "%.400s: cannot write", path);
         return -1;
     }
     /* 000 Table 2 layout (quality) and Table 1 (time), relative to the first bitterli row. */
@@ -125,12 +123,7 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
                     100.0 * res[k].ms_select / res[k].ms_frame);
         }
     }
-    if (ferror(f) | fclose(f)) {
-        remove(tmp);
-        snprintf(msg, RESTIR_MSG_LEN, "%.400s: write failed", path);
-        return -1;
-    }
-    return io_commit(tmp, path, msg);
+    return io_close_commit(f, tmp, path, msg);
 }
 
 /* 000 Figure 3: SMAPE against spatial covariance over radii, Bitterli's selection and ours at K 32. */

@@ -566,24 +566,6 @@ static const char *paper_title(const char *paper)
                                    : "002: gradient-domain ReSTIR PT";
 }
 
-/* Writes text to path through a temporary file. Returns 0, or -1 with msg. */
-static int write_file(const char *path, const char *text, size_t len, char *msg)
-{
-    char tmp[PATH_LEN + 64];
-    io_temp_path(path, tmp, sizeof tmp);
-    FILE *f = fopen(tmp, "w");
-    if (!f) {
-        snprintf(msg, RESTIR_MSG_LEN, "%.300s: cannot write", path);
-        return -1;
-    }
-    const int bad = fwrite(text, 1, len, f) != len;
-    if (bad | ferror(f) | fclose(f)) {
-        remove(tmp);
-        snprintf(msg, RESTIR_MSG_LEN, "%.300s: write failed", path);
-        return -1;
-    }
-    return io_commit(tmp, path, msg);
-}
 
 /* index.html: the evaluation's text and a link to each step's own page. */
 static int write_index(const char *dir, const char *command, const struct eval_step *steps, int n, const char *md,
@@ -684,7 +666,7 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
     } else if (rc != 0)
         csv_abort(&cl.csv);
     snprintf(path, sizeof path, "%s/evaluation.md", dir);
-    if (rc == 0 && write_file(path, md.s, md.len, msg) != 0) {
+    if (rc == 0 && io_write_file(path, md.s, md.len, msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }

@@ -113,39 +113,17 @@ void plan_output_path(const struct plan *p, int k, char *out, size_t len)
     snprintf(out, len, "%s/%s", p->dir, p->jobs[k].output);
 }
 
-/* Creates and opens (fopen mode) path's temporary sibling tmp (len bytes). Returns the file, or
- * NULL with msg. */
-static FILE *open_temp(const char *path, char *tmp, size_t len, const char *mode, char *msg)
-{
-    io_temp_path(path, tmp, len);
-    FILE *f = fopen(tmp, mode);
-    if (!f)
-        snprintf(msg, RESTIR_MSG_LEN, "%.300s: cannot write: %s", path, strerror(errno));
-    return f;
-}
-
-/* Closes f, written to tmp, and renames tmp over path. Returns 0, or -1 with msg (tmp removed). */
-static int close_commit(FILE *f, const char *tmp, const char *path, char *msg)
-{
-    if (ferror(f) | fclose(f)) {
-        remove(tmp);
-        snprintf(msg, RESTIR_MSG_LEN, "%.300s: write failed", path);
-        return -1;
-    }
-    return io_commit(tmp, path, msg);
-}
-
 /* Writes text to path through a temporary file. */
 static int write_text(const char *path, const char *text, int executable, char *msg)
 {
     char tmp[PLAN_PATH_MAX + 64];
-    FILE *f = open_temp(path, tmp, sizeof tmp, "w", msg);
+    FILE *f = io_open_temp(path, tmp, sizeof tmp, "w", msg);
     if (!f)
         return -1;
     fputs(text, f);
     if (executable)
         chmod(tmp, 0755);
-    return close_commit(f, tmp, path, msg);
+    return io_close_commit(f, tmp, path, msg);
 }
 
 /* The restir binary running now, so jobs run the same build from any folder. */
@@ -384,7 +362,7 @@ int plan_copy_file(const char *src, const char *dst, char *msg)
         return -1;
     }
     char tmp[PLAN_PATH_MAX + 400];
-    FILE *out = open_temp(dst, tmp, sizeof tmp, "wb", msg);
+    FILE *out = io_open_temp(dst, tmp, sizeof tmp, "wb", msg);
     if (!out) {
         fclose(in);
         return -1;
@@ -395,19 +373,20 @@ int plan_copy_file(const char *src, const char *dst, char *msg)
         fwrite(buf, 1, n, out);
     const int bad = ferror(in);
     fclose(in);
-    if (bad | ferror(out) | fclose(out)) {
+    if (bad) {
+        fclose(out);
         remove(tmp);
-        snprintf(msg, RESTIR_MSG_LEN, "%.300s: copy failed", dst);
+        snprintf(msg, RESTIR_MSG_LEN, "%.200s: reading failed while copying to %.200s", src, dst);
         return -1;
     }
-    return io_commit(tmp, dst, msg);
+    return io_close_commit(out, tmp, dst, msg);
 }
 
 int plan_blob_write(const char *path, const char magic[8], uint64_t id, const void *const *parts, const size_t *sizes,
                     int n, char *msg)
 {
     char tmp[PLAN_PATH_MAX + 64];
-    FILE *f = open_temp(path, tmp, sizeof tmp, "wb", msg);
+    FILE *f = io_open_temp(path, tmp, sizeof tmp, "wb", msg);
     if (!f)
         return -1;
     uint64_t size = 0;
@@ -425,7 +404,7 @@ int plan_blob_write(const char *path, const char magic[8], uint64_t id, const vo
         h = fnv1a64(h, parts[i], sizes[i]);
     }
     fwrite(&h, sizeof h, 1, f);
-    return close_commit(f, tmp, path, msg);
+    return io_close_commit(f, tmp, path, msg);
 }
 
 int plan_blob_read(const char *path, const char magic[8], uint64_t id, void **payload, size_t *size, char *msg)

@@ -40,6 +40,35 @@ int io_commit(const char *tmp, const char *path, char *msg)
     return 0;
 }
 
+int io_close_commit(FILE *f, const char *tmp, const char *path, char *msg)
+{
+    int err = ferror(f) ? (errno ? errno : EIO) : 0;
+    if (fclose(f) != 0 && !err)
+        err = errno ? errno : EIO;
+    if (err) {
+        io_msg(msg, "%s: writing failed: %s", path, strerror(err));
+        remove(tmp);
+        return -1;
+    }
+    return io_commit(tmp, path, msg);
+}
+
+int io_write_file(const char *path, const void *data, size_t len, char *msg)
+{
+    char tmp[4200];
+    FILE *f = io_open_temp(path, tmp, sizeof tmp, "wb", msg);
+    if (!f)
+        return -1;
+    if (len > 0 && fwrite(data, 1, len, f) != len) {
+        int err = errno ? errno : EIO;
+        fclose(f);
+        remove(tmp);
+        io_msg(msg, "%s: writing failed: %s", path, strerror(err));
+        return -1;
+    }
+    return io_close_commit(f, tmp, path, msg);
+}
+
 int io_remove_stale_temporaries(const char *path)
 {
     char dir[4096];

@@ -58,12 +58,9 @@ int html_begin(struct html_page *pg, const char *path, const char *title, char *
 {
     memset(pg, 0, sizeof(*pg));
     snprintf(pg->path, sizeof pg->path, "%s", path);
-    io_temp_path(path, pg->tmp, sizeof pg->tmp);
-    pg->f = fopen(pg->tmp, "wb");
-    if (!pg->f) {
-        io_msg(msg, "%.300s: cannot create: %s", path, strerror(errno));
+    pg->f = io_open_temp(path, pg->tmp, sizeof pg->tmp, "wb", msg);
+    if (!pg->f)
         return -1;
-    }
     fputs("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>", pg->f);
     html_text(pg, title);
     fprintf(pg->f, "</title><style>%s</style></head><body>\n", page_style);
@@ -199,16 +196,9 @@ void html_colorbar(struct html_page *pg, float vmax, const char *what)
 int html_end(struct html_page *pg, char *msg)
 {
     fprintf(pg->f, "<script>%s</script>\n</body></html>\n", page_script);
-    int failed = ferror(pg->f) != 0;
-    if (fclose(pg->f) != 0)
-        failed = 1;
+    FILE *f = pg->f;
     pg->f = NULL;
-    if (failed) {
-        io_msg(msg, "%.300s: cannot write: %s", pg->path, strerror(errno));
-        remove(pg->tmp);
-        return -1;
-    }
-    return io_commit(pg->tmp, pg->path, msg);
+    return io_close_commit(f, pg->tmp, pg->path, msg);
 }
 
 void html_abort(struct html_page *pg)

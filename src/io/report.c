@@ -60,19 +60,9 @@ int csv_close(struct csv_writer *w, char *msg)
         io_msg(msg, "%.400s: CSV writer is not open", w->path);
         return -1;
     }
-    int bad = ferror(w->f) != 0;
-    int err = bad ? EIO : 0;
-    if (fclose(w->f) != 0 && !bad) {
-        bad = 1;
-        err = errno;
-    }
+    FILE *f = w->f;
     w->f = NULL;
-    if (bad) {
-        io_msg(msg, "%.400s: writing CSV failed: %s", w->path, strerror(err));
-        remove(w->tmp);
-        return -1;
-    }
-    return io_commit(w->tmp, w->path, msg);
+    return io_close_commit(f, w->tmp, w->path, msg);
 }
 
 void csv_abort(struct csv_writer *w)
@@ -93,25 +83,11 @@ int json_write_file(const char *path, const cJSON *root, char *msg)
         io_msg(msg, "%s: cannot format JSON", path);
         return -1;
     }
-    char tmp[REPORT_PATH_MAX + 32];
-    FILE *f = io_open_temp(path, tmp, sizeof tmp, "w", msg);
-    if (!f) {
-        cJSON_free(text);
-        return -1;
-    }
-    int bad = fputs(text, f) < 0 || fputc('\n', f) == EOF || ferror(f);
-    int err = bad ? errno : 0;
+    const size_t len = strlen(text);
+    text[len] = '\n'; /* cJSON_Print's terminator becomes the file's last line break */
+    int rc = io_write_file(path, text, len + 1, msg);
     cJSON_free(text);
-    if (fclose(f) != 0 && !bad) {
-        bad = 1;
-        err = errno;
-    }
-    if (bad) {
-        io_msg(msg, "%s: writing JSON failed: %s", path, strerror(err ? err : EIO));
-        remove(tmp);
-        return -1;
-    }
-    return io_commit(tmp, path, msg);
+    return rc;
 }
 
 /* Writes s as one CSV field: verbatim, or quoted (quotes doubled) when it holds a comma, a quote

@@ -12,6 +12,7 @@
 
 #include "core/check.h"
 #include "io/atomic_file.h"
+#include "io/report.h"
 
 /* Shortest %g form of f that the reader (strtod, then a float conversion) turns back into f. */
 static void format_float(float f, char *out, size_t len)
@@ -143,25 +144,9 @@ static cJSON *shapes_json(const struct scene_shape_record *r, int n)
 /* Prints root (and deletes it) to path through a temporary file and a rename. */
 static int write_json(cJSON *root, const char *path, char *msg)
 {
-    char *text = cJSON_Print(root);
+    int rc = json_write_file(path, root, msg);
     cJSON_Delete(root);
-    if (!text) {
-        snprintf(msg, RESTIR_MSG_LEN, "%.400s: out of memory formatting JSON", path);
-        return -1;
-    }
-    char tmp[4200];
-    io_temp_path(path, tmp, sizeof tmp);
-    FILE *f = fopen(tmp, "wb");
-    int ok = f && fputs(text, f) >= 0 && fputc('\n', f) != EOF;
-    if (f && fclose(f) != 0)
-        ok = 0;
-    free(text);
-    if (!ok) {
-        snprintf(msg, RESTIR_MSG_LEN, "%.400s: cannot write: %s", path, strerror(errno));
-        remove(tmp);
-        return -1;
-    }
-    return io_commit(tmp, path, msg);
+    return rc;
 }
 
 int cameras_write_json(const char *path, const struct camera *cams, int n, const char *scene, const char *method,

@@ -35,10 +35,8 @@ int svg_write_xy_plot(const char *path, const char *title, const char *xlabel, c
     double px = 0.05 * (x1 - x0) + 1e-12, py = 0.05 * (y1 - y0) + 1e-12;
     x0 -= px, x1 += px, y0 -= py, y1 += py;
     char tmp[4200];
-    io_temp_path(path, tmp, sizeof(tmp));
-    FILE *f = fopen(tmp, "w");
+    FILE *f = io_open_temp(path, tmp, sizeof tmp, "w", msg);
     if (!f) {
-        io_msg(msg, "%s: cannot write: %s", path, strerror(errno));
         return -1;
     }
     const double left = MARGIN_L, right = PLOT_W - MARGIN_R, top = MARGIN_T, bottom = PLOT_H - MARGIN_B;
@@ -78,10 +76,5 @@ int svg_write_xy_plot(const char *path, const char *title, const char *xlabel, c
         fprintf(f, "<text x=\"%.1f\" y=\"%.1f\">%s</text>\n", right + 42, top + 18 + 18 * k, s->label);
     }
     fprintf(f, "</svg>\n");
-    if (ferror(f) | fclose(f)) {
-        remove(tmp);
-        io_msg(msg, "%s: write failed", path);
-        return -1;
-    }
-    return io_commit(tmp, path, msg);
+    return io_close_commit(f, tmp, path, msg);
 }
