@@ -146,6 +146,16 @@ static const float *instances_mean(const struct renderer *r, int instances, size
     return scratch;
 }
 
+/* One cell of a printed table: v by fmt, or '-' right-aligned in width characters when v is NaN or
+ * infinite (a metric that does not apply to the row). */
+static void table_cell(char *out, size_t n, const char *fmt, int width, double v)
+{
+    if (isfinite(v))
+        snprintf(out, n, fmt, v);
+    else
+        snprintf(out, n, "%*s", width, "-");
+}
+
 void compare_disoccluded_error(const float *image, const float *ref, const unsigned char *mask, size_t npix,
                                double *mape, double *share)
 {
@@ -577,22 +587,25 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
            any_grad ? "  grad relMSE" : "", any_grad && runs ? "       +-" : "");
     for (int k = 0; k < n; k++) {
         const struct compare_result *c = &res[k];
-        char tcov[32] = "", se[4][32] = {"", "", "", ""}, grad[64] = "";
+        /* a metric that does not apply to the row (no history, no gradients, one run) prints '-' */
+        char tcov[32] = "", se[4][32] = {"", "", "", ""}, grad[2][32] = {"", ""}, dis[2][32];
+        if (any_grad)
+            table_cell(grad[0], sizeof grad[0], " %12.5g", 13, c->grad_relmse);
         if (any_grad && runs)
-            snprintf(grad, sizeof grad, " %12.5g %8.2g", c->grad_relmse, c->grad_relmse_sem);
-        else if (any_grad)
-            snprintf(grad, sizeof grad, " %12.5g", c->grad_relmse);
+            table_cell(grad[1], sizeof grad[1], " %8.2g", 9, c->grad_relmse_sem);
         if (runs) {
-            snprintf(tcov, sizeof tcov, " %12.5g", c->temporal_cov);
-            snprintf(se[0], sizeof se[0], " %8.2g", c->sem.relmse);
-            snprintf(se[1], sizeof se[1], " %8.2g", c->sem.mape);
-            snprintf(se[2], sizeof se[2], " %6.2g", c->sem.smape);
-            snprintf(se[3], sizeof se[3], " %8.2g", c->mape_dis_sem);
+            table_cell(tcov, sizeof tcov, " %12.5g", 13, c->temporal_cov);
+            table_cell(se[0], sizeof se[0], " %8.2g", 9, c->sem.relmse);
+            table_cell(se[1], sizeof se[1], " %8.2g", 9, c->sem.mape);
+            table_cell(se[2], sizeof se[2], " %6.2g", 7, c->sem.smape);
+            table_cell(se[3], sizeof se[3], " %8.2g", 9, c->mape_dis_sem);
         }
-        printf("%-*s %10.2f %6d %5d %12.5g%s %10.5g%s %8.3f%s %12.3f %10.5g%s %6.3f%s%s\n", w, specs[k].label,
+        table_cell(dis[0], sizeof dis[0], " %10.5g", 11, c->mape_dis);
+        table_cell(dis[1], sizeof dis[1], " %6.3f", 7, c->dis_share);
+        printf("%-*s %10.2f %6d %5d %12.5g%s %10.5g%s %8.3f%s %12.3f%s%s%s%s%s%s\n", w, specs[k].label,
                c->ms_per_frame, c->spp, c->instances, c->err.relmse, se[0], c->err.mape, se[1], c->err.smape, se[2],
-               res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0, c->mape_dis, se[3], c->dis_share,
-               tcov, grad);
+               res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0, dis[0], se[3], dis[1], tcov, grad[0],
+               grad[1]);
         if (rc == 0) {
             char field[2 * SPEC_MAX + 4], cov[32] = "", sem[4][32] = {"", "", "", ""}, dis[2][32] = {"", ""},
                                           gr[2][32] = {"", ""};
