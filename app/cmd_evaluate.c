@@ -1,5 +1,5 @@
 /* cmd_evaluate.c: `restir evaluate PAPER`: a paper's evaluation at its own scale as one plan of study /
- * compare plans (issue 25): plan, run, merge, then the paper's tables and a verdict per claim.
+ * compare plans: plan, run, merge, then the paper's tables and a verdict per claim.
  * Must never implement a method or measure an image: the steps' commands do, evaluate_tables.c reads them. */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include <dirent.h>

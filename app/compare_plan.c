@@ -1,4 +1,4 @@
-/* compare_plan.c: a comparison split into jobs (issue 14; compare_plan.h): the plan, one job, the merge.
+/* compare_plan.c: a comparison split into jobs (compare_plan.h): the plan, one job, the merge.
  * Must never implement a method or be called by compare_run.c: cmd_compare.c and cmd_job.c call it. */
 #include "compare_plan.h"
 

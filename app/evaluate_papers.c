@@ -1,4 +1,4 @@
-/* evaluate_papers.c: each paper's evaluation as study / compare commands (evaluate_papers.h; issue 25).
+/* evaluate_papers.c: each paper's evaluation as study / compare commands (evaluate_papers.h).
  * Must never run a command or read results. */
 #include "evaluate_papers.h"
 

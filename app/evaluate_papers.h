@@ -1,5 +1,5 @@
 /* evaluate_papers.h: the papers' evaluations as `restir study` / `restir compare` commands (evaluate_papers.c):
- * which scenes, configurations and parameters each paper's tables need (issue 25). Must never run a
+ * which scenes, configurations and parameters each paper's tables need. Must never run a
  * command or read results: cmd_evaluate.c runs the steps, evaluate_tables.c reads their tables. */
 #ifndef RESTIR_APP_EVALUATE_PAPERS_H
 #define RESTIR_APP_EVALUATE_PAPERS_H

@@ -1,5 +1,5 @@
 /* evaluate_tables.h: an evaluation's tables and verdicts from its steps' study.csv / compare.csv
- * (evaluate_tables.c; issue 25). Must never run a command: it reads what the merges wrote. */
+ * (evaluate_tables.c). Must never run a command: it reads what the merges wrote. */
 #ifndef RESTIR_APP_EVALUATE_TABLES_H
 #define RESTIR_APP_EVALUATE_TABLES_H
 

@@ -1,4 +1,4 @@
-/* plan.h: plan folders: long commands split into independent jobs, run anywhere, then merged (issue 14).
+/* plan.h: plan folders: long commands split into independent jobs, run anywhere, then merged.
  * Must never implement a method or know a command's results. */
 #ifndef RESTIR_APP_PLAN_H
 #define RESTIR_APP_PLAN_H

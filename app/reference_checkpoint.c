@@ -16,7 +16,7 @@
 #include "io/exr.h"
 
 /* Checkpoints let the same command continue after Ctrl-C, SIGTERM or a kill and still give the
- * bytes of an uninterrupted run (issue 13). */
+ * bytes of an uninterrupted run. */
 
 /* FILE.exr -> FILE.checkpoint.exr; any other name gets ".checkpoint.exr" appended. */
 static void checkpoint_path(const char *out, char *path, size_t len)

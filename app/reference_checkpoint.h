@@ -1,4 +1,4 @@
-/* reference_checkpoint.h: a reference accumulation that survives a kill (issue 13): its running mean
+/* reference_checkpoint.h: a reference accumulation that survives a kill: its running mean
  * and sample count saved beside the output as FILE.checkpoint.exr, and continued from there with
  * the bytes of an uninterrupted run. `restir reference` and the reference jobs of study, compare and
  * evaluate plans use it. Must never implement a method or call into a command. */

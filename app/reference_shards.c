@@ -1,4 +1,4 @@
-/* reference_shards.c: a reference split into shards (issue 14; reference_shards.h): the plan, one shard, the merge.
+/* reference_shards.c: a reference split into shards (reference_shards.h): the plan, one shard, the merge.
  * Must never implement a method or be called by reference_run.c: cmd_reference.c and cmd_job.c call it. */
 #include "reference_shards.h"
 

@@ -1,6 +1,6 @@
 #!/bin/bash
 # bench/assimp_models.sh [BIN] [--set ...]: how a new user fares with `restir scene info FILE` on the
-# first 400 model files of assimp-testmodels (issue 23). Writes $OUT/models400.out (default /tmp).
+# first 400 model files of assimp-testmodels. Writes $OUT/models400.out (default /tmp).
 bin=${1:-build/restir}
 find /usr/share/assimp/models /usr/share/assimp/models-nonbsd -type f 2>/dev/null | \
   grep -viE '\.(png|jpg|jpeg|bmp|tga|dds|gif|tif|tiff|bin|mtl|txt|md|license|pdf|ktx2|webp|hdr|exr|psd|ini|xcf|zip)$' | \

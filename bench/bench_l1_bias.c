@@ -1,5 +1,5 @@
 /* bench_l1_bias.c: `restir_bench l1-bias FRAME.exr REF.exr`: where L1 reconstruction's dark bias
- * comes from (issue 24). Reads the primal, dx and dy layers of one gradient-method frame (restir
+ * comes from. Reads the primal, dx and dy layers of one gradient-method frame (restir
  * render --method grestir-pt|gpt|grad-after-restir writes them) and a converged reference, then
  * solves the same inputs with the L2 DCT solve and with IRLS L1 (recon/poisson_l1.c) over a grid
  * of reweightings, CG steps per reweighting and alpha, printing each result's image mean as a

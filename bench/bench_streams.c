@@ -1,7 +1,7 @@
 /* bench_streams.c: `restir_bench streams [--res WxH] [--rounds N]`: the batched passes with
  * rays.streams on (Embree streams per tile) against off (one Embree call per ray), per pass, in
  * alternating rounds of one run (this machine's speed drifts), so that the faster way is kept per
- * pass on measurement (issue 24). The images are the same either way (render.ray_streams). */
+ * pass on measurement. The images are the same either way (render.ray_streams). */
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench/forest.sh [BIN] [RES] [FRAMES] [REF_SPP] [OUT]: issue 23's measurements on the built-in
+# bench/forest.sh [BIN] [RES] [FRAMES] [REF_SPP] [OUT]: measurements on the built-in
 # forest (75,000 alpha-masked leaf cards under a sky with a sun), static camera:
 #  1. cost per frame and per pass of pt (1 spp), restir-di and restir-pt with the alpha masks on
 #     and off (`--set scene.alpha=off`: the same geometry with opaque cards; another scene, so

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""bench/perf_categories.py PERF.DATA: a perf profile's self time by kind of work (issue 24's
+"""bench/perf_categories.py PERF.DATA: a perf profile's self time by kind of work (docs/BENCHMARKS.md's
 profile summary): Embree (its DSO), the kernel, the OpenMP runtime, and our functions grouped by
 name into the candidate loop, shifts, BSDF work, G-buffer, reuse passes and the rest. Prints
 Markdown table rows. Record with e.g.

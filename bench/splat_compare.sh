@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench/splat_compare.sh [BIN] [RES] [FRAMES] [REF_SPP] [RUNS] [OUT]: issue 22's comparison of
+# bench/splat_compare.sh [BIN] [RES] [FRAMES] [REF_SPP] [RUNS] [OUT]: a comparison of
 # temporal reuse techniques for restir-pt on the camera paths of foliage, pillars, ajar and cornell:
 # backproject, splat and both at equal frame count. One `restir compare` per scene with --runs RUNS
 # (errors are means over the runs; temporal autocovariance of 000 Eq. 17 at lag 3 over the second

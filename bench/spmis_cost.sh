@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # bench/spmis_cost.sh [SCENE] [METHOD] [RES] [FRAMES] [OUT]: what stochastic pairwise MIS (004)
-# costs against standard selection + spatial reuse (issue 24: at most 1.2x at 640x360), per pass:
+# costs against standard selection + spatial reuse (target: at most 1.2x at 640x360), per pass:
 # spmis with the paper's cell search (`spmis.search=always`), with our low-confidence search, and
 # standard reuse, camera path, three alternating repetitions (the machine is noisy: compare within
 # one repetition), medians over frames 2 .. FRAMES-1 of metrics.csv. BASE=path/to/old/restir adds

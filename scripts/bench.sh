@@ -7,7 +7,7 @@ echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -
 echo "commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
 # BENCH_QUICK=1: only the tables of passes.csv and equal_time.csv (in BENCH_OUT, default out/bench/).
 "$build/restir_bench" ${BENCH_ARGS:-}
-# The passes with Embree streams on and off (issue 24); the full run only.
+# The passes with Embree streams on and off; the full run only.
 if [ -z "${BENCH_QUICK:-}" ] || [ "${BENCH_QUICK}" = 0 ]; then
   [ -n "${BENCH_ARGS:-}" ] || "$build/restir_bench" streams
 fi

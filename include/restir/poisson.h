@@ -92,8 +92,8 @@ enum restir_poisson_precond {
  * Defaults: RESTIR_POISSON_L1_ITERATIONS and RESTIR_POISSON_L1_MG_STEPS (multigrid) or
  * RESTIR_POISSON_L1_CG_STEPS (Jacobi); iterations >= 0 (0 gives the L2 solution), cg_steps >= 1.
  * Both preconditioners converge to the same IRLS iterates; at the defaults they reach the same
- * L1 energy to 0.03-0.15% on ajar (docs/BENCHMARKS.md, "Issue 24: L1 reconstruction with a
- * multigrid-preconditioned CG"). */
+ * L1 energy to 0.03-0.15% on ajar (docs/BENCHMARKS.md, the section on L1 reconstruction with a
+ * multigrid-preconditioned CG). */
 int restir_poisson_l1(int w, int h, const float *primal, const float *dx, const float *dy, float alpha,
                       int iterations, enum restir_poisson_precond precond, int cg_steps, float *out,
                       struct restir_poisson_stats *st);

@@ -1,4 +1,4 @@
-/* memory_estimate.h: what a renderer will allocate, known before it does (issue 13: refuse what the
+/* memory_estimate.h: what a renderer will allocate, known before it does (to refuse what the
  * machine cannot hold instead of being killed half way). */
 #ifndef RESTIR_METHODS_MEMORY_ESTIMATE_H
 #define RESTIR_METHODS_MEMORY_ESTIMATE_H

@@ -1,6 +1,6 @@
 /* recon/poisson_mg.h: a multigrid V-cycle that preconditions CG on the (weighted) screened Poisson
  * system of recon/poisson_ops.h, so that IRLS L1 reconstruction needs a few CG steps per
- * reweighting instead of tens (issue 24). Hierarchy: aggregation of 2x2 pixel blocks (odd sizes
+ * reweighting instead of tens. Hierarchy: aggregation of 2x2 pixel blocks (odd sizes
  * keep a 1-wide last block) down to a grid of at most 4 x 4. The coarse operator is the Galerkin
  * product P^T A P with P the piecewise constant prolongation, which for A = diag + weighted grid
  * Laplacian is again one: the coarse diagonal is the sum of the block's diagonal terms, a coarse

@@ -10,7 +10,7 @@ struct di_sample {
     int tri;          /* emissive triangle, -1 for "no sample", DI_ENV_TRI for the environment */
     float b1, b2;     /* barycentrics on it */
     vec3 p, n;        /* point and emitting normal (cached from tri, b1, b2); for the environment
-                         p is the unit direction toward it and n = -p (issue 23) */
+                         p is the unit direction toward it and n = -p */
     vec3 Le;          /* emitted radiance (front side) */
 };
 

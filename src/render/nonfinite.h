@@ -1,4 +1,4 @@
-/* nonfinite.h: the renderer's guard against NaN and infinity (issue 13): after each pass that
+/* nonfinite.h: the renderer's guard against NaN and infinity: after each pass that
  * produces radiance or weights, entries that are not finite are discarded (a reservoir is emptied
  * with its confidence kept, an image channel set to 0) and counted, so one bad value cannot spread
  * through reuse and the count shows in metrics.csv. */

@@ -121,14 +121,14 @@ static const struct param_def params[] = {
      temporal_reuse_names},
     {"scene.shading_normals", P_BOOL, F(shading_normals), 0, 1, "on", NULL,
      "off: every triangle shades with its geometric normal (no vertex normals, no normal maps), as before "
-     "issue 23. This CHANGES THE SCENE: for looking at what they do, never for comparing images", NULL},
+     "the renderer read them. This CHANGES THE SCENE: for looking at what they do, never for comparing images", NULL},
     {"scene.alpha", P_BOOL, F(alpha_masks), 0, 1, "on", NULL,
      "off: every alpha-masked material (glTF alphaMode MASK or BLEND) is opaque. This CHANGES THE SCENE "
      "(leaf cards become quads): for measuring what the masks cost, never for comparing images", NULL},
     {"rays.streams", P_BOOL, F(ray_streams), 0, 1, "on", NULL,
      "trace the G-buffer's camera rays and restir-di's shadow rays tile by tile as Embree streams "
      "(rtcIntersect1M / rtcOccluded1M); off: one Embree call per ray. The same images either way, only the "
-     "time differs (docs/BENCHMARKS.md, issue 24)", NULL},
+     "time differs (docs/BENCHMARKS.md, the section on Embree streams)", NULL},
     {"simd", P_BOOL, F(simd), 0, 1, "on", NULL,
      "vector kernels (initial RIS candidates, restir-di merge targets across pixels): on = AVX2 where the "
      "CPU has it, chosen at run time; off = the build's baseline (SSE2 on x86-64). The same images either "

@@ -3,7 +3,7 @@
  * Every BSDF is evaluated with the vertex's shading normal for its own outgoing direction
  * (bsdf_shading_normal), x_k's too, rebuilt from its triangle and barycentrics because its
  * outgoing direction changes with the shift; geometric normals give the side tests and the
- * Jacobians' area measure (issue 23). Must never depend on reservoirs. */
+ * Jacobians' area measure. Must never depend on reservoirs. */
 #include "render/path_shift.h"
 
 #include "shading/bsdf.h"

@@ -14,7 +14,7 @@
  * where x_{j-1} and x_j are both rough and farther apart than a distance threshold, else D. The
  * target re-checks that rule so the shift stays a bijection.
  *
- * Environment light (issue 23): a path may end in a direction w of the environment, a vertex at
+ * Environment light: a path may end in a direction w of the environment, a vertex at
  * infinity. When it is the reconnection vertex (k = D), the shift keeps the direction: y_{k-1}
  * connects along w, the ray must escape the scene, and the direction's solid-angle measure does
  * not depend on the point it is seen from, so the reconnection factor of |T'| is 1 (no distance

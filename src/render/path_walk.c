@@ -54,7 +54,7 @@ static void emit_nee(const struct path_walk *w, int at_env, vec3 light_p, vec3 l
     emit(ctx, w, &c);
 }
 
-/* NEE toward the environment (issue 23): a direction from its importance sampler, chosen with
+/* NEE toward the environment: a direction from its importance sampler, chosen with
  * probability s->env_prob; reported like a light point at infinity (no distance term). */
 static long long next_event_env(const struct scene *s, const struct path_walk *w, const struct bsdf_frame *bf, vec3 n,
                                 vec3 prefix_f, float prefix_pdf, float u1, float u2, path_candidate_fn emit, void *ctx)

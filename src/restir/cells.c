@@ -17,7 +17,7 @@ uint32_t restir_pcg_hash(uint32_t v)
 static int quantize(float n, int bins)
 {
     /* floor((n + 1) bins / 2), clamped to [0, bins - 1]: a negative component must not wrap
-     * around when cast (the pitfall of one public implementation, shared/notes). */
+     * around when cast (the pitfall of one public implementation). */
     float q = floorf((n + 1.0f) * 0.5f * (float)bins);
     if (!(q >= 0.0f))
         return 0;

@@ -1,4 +1,4 @@
-/* scenes_forest.c: the built-in scene `forest` (issue 23): dense alpha-tested foliage under a sky
+/* scenes_forest.c: the built-in scene `forest`: dense alpha-tested foliage under a sky
  * with a sun, the kind of scene 000 and 004 claim their largest gains on, made in code with its
  * textures. Must never read files. */
 #include "scene/scenes_forest.h"

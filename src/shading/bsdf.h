@@ -20,7 +20,7 @@ struct bsdf {
 
 void bsdf_from_material(const struct material *m, struct bsdf *b);
 
-/* Shading normals (issue 23). The BSDF's normal at a point is the interpolated shading normal ns
+/* Shading normals. The BSDF's normal at a point is the interpolated shading normal ns
  * (scene_shading_normal, on the side of the geometric normal ng facing wo), bent toward ng where wo
  * would be below or grazing it: ns' = normalize(ns + t ng) with t = (c_min - ns.wo) / (ng.wo),
  * so ns'.wo > 0 (the "black facet" a view below the interpolated hemisphere would see; the bend

@@ -265,7 +265,7 @@ static void check_study(void)
     expect_failure("spmis tile too large",
                    "render --scene cornell --method restir-di --set spmis.tile=64 --res 16x16 --out '%1$s'", 2,
                    "spmis.tile", NULL);
-    /* issue 22: camera effects and reservoir splatting */
+    /* camera effects and reservoir splatting */
     expect_failure("shutter above 1", RENDER_ARGS("--set camera.shutter=1.5"), 2, "camera.shutter", "1.5");
     expect_failure("negative shutter", RENDER_ARGS("--set camera.shutter=-0.1"), 2, "camera.shutter", NULL);
     expect_failure("negative aperture", RENDER_ARGS("--set camera.aperture=-1"), 2, "camera.aperture", "-1");
@@ -359,7 +359,7 @@ static void check_scene_files(void)
                    NULL);
     expect_failure("export of an unknown scene", "scene export no-such-scene --out '%1$s'", 2, "no-such-scene", NULL);
     /* A texture that cannot be read: refused by default; scene.missing_textures=warn renders with
-     * the factor, saying which file on stderr (issue 23). */
+     * the factor, saying which file on stderr. */
     char missing[2 * CLI_PATH_MAX], out[3 * CLI_PATH_MAX], err[CLI_ERR_MAX];
     snprintf(missing, sizeof missing, "%s/missing-texture.json", tmp);
     write_text(missing, "{\"format\": \"restir-scene 1\", \"camera\": {\"position\": [0, 1, 3], \"look_at\": [0, 0.5, 0]},"
@@ -378,7 +378,7 @@ static void check_scene_files(void)
     EXPECT(cli_count_entries(out, "frame_0000.exr") == 1, "the warned render wrote no frame");
     snprintf(fmt, sizeof fmt, "scene info '%s' --set scene.missing_textures=warn", missing);
     EXPECT(cli_run(tmp, fmt, err) == 0 && strstr(err, "no-such-image.png"), "scene info with warn: %s", err);
-    /* Environment light (issue 23): an unreadable --env names the file; every kind of method
+    /* Environment light: an unreadable --env names the file; every kind of method
      * renders an environment-lit scene. */
     expect_failure("--env of a missing image", "render --scene cornell --method pt --res 16x16 --env /nonexistent/sky.hdr "
                    "--out '%1$s'", 2, "/nonexistent/sky.hdr", "--env");
@@ -440,7 +440,7 @@ static void check_broken_assets(void)
                 continue;
             char args[2 * CLI_PATH_MAX], out[CLI_ERR_MAX], err[CLI_ERR_MAX];
             /* --env none: a file assimp reads in part but that has no emitter is refused as before
-             * the default sky (issue 23) lit such files */
+             * the default sky lit such files */
             snprintf(args, sizeof args, "scene info '%s/%s' --env none", dir, e->d_name);
             int rc = cli_run_capture(tmp, args, out, err);
             files++;

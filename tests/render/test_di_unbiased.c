@@ -101,7 +101,7 @@ int main(int argc, char **argv)
          * and BSDF ray passes through the cut-outs, and the cut part of the lamp emits nothing. */
         snprintf(textured, sizeof textured, "%s/scenes/leaves.json", data);
         check_scene(textured, 24, 16, pairwise, 1, 1);
-        /* Environment light (issue 23): the leaves under a sky map with a sun next to their lamp
+        /* Environment light: the leaves under a sky map with a sun next to their lamp
          * (light samples split between the two), and a sky-only scene (every light sample a
          * direction); candidates from the pool and from BSDF directions, reused as directions. */
         snprintf(textured, sizeof textured, "%s/scenes/leaves_sky.json", data);
@@ -110,7 +110,7 @@ int main(int argc, char **argv)
         check_scene(textured, 24, 16, pairwise, 1, 1);
     }
     /* The built-in forest along its walk: leaf cut-outs in every shadow ray, a sky with a sun as
-     * the only light (issue 23). */
+     * the only light. */
     check_scene("forest", 24, 16, pairwise, 1, 1);
     /* ris-di has no reuse: none is exact there (and skips the shading ray). */
     const char *ris_none[] = {"di.visibility_mis=none"};

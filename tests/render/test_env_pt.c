@@ -1,4 +1,4 @@
-/* test_env_pt.c: pt, restir-di and restir-pt under an environment light (issue 23) against answers
+/* test_env_pt.c: pt, restir-di and restir-pt under an environment light against answers
  * known in closed form. A
  * Lambertian floor of albedo a, open to the sky, seen from above, has radiance a E / pi with E the
  * irradiance of the sky; for the nearest-texel map of environment.h, E is a finite sum over texels

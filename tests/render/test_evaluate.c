@@ -1,4 +1,4 @@
-/* test_evaluate.c: `restir evaluate` (issue 25) at small resolution. The evaluation of all three
+/* test_evaluate.c: `restir evaluate` at small resolution. The evaluation of all three
  * papers run unsplit (--out) equals the same evaluation planned, its jobs run by GNU parallel in
  * shuffled order and merged with --report (every step's table but its timing columns, and every
  * claim but the timed ones; the report links every step's page); a step's table equals what `restir compare` writes

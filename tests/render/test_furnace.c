@@ -162,7 +162,7 @@ static struct furnace_result render_furnace(const struct scene *s, const struct 
     return res;
 }
 
-/* Shading normals (issue 23): the same furnace as a coarse 12-segment sphere with its exact normals
+/* Shading normals: the same furnace as a coarse 12-segment sphere with its exact normals
  * as shading normals (up to 15 degrees off its facets). The BSDF's support is the intersection of
  * the shading and geometric hemispheres, so a bounce reflects at most the albedo (the quadrature
  * of tests/unit/test_shading_normal.c) and L <= Le / (1 - a) = 1: no energy gain. It loses a

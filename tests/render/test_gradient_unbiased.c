@@ -166,7 +166,7 @@ int main(int argc, char **argv)
                                  {"recon=l2", "grad.base=shared"}};
     for (int k = 0; k < 5; k++)
         check("cornell", "grestir-pt", 2048, variants[k], 2, 1);
-    /* Under an environment light (issue 23): base and offset paths ending in a direction (a sky map
+    /* Under an environment light: base and offset paths ending in a direction (a sky map
      * with a sun and no emitter), and alpha-cut leaves with a masked lamp under the same sky. */
     const char *data = getenv("RESTIR_TEST_DATA");
     EXPECT(data != NULL, "RESTIR_TEST_DATA is not set (run through ctest)");
@@ -181,7 +181,7 @@ int main(int argc, char **argv)
         check(path, "grestir-pt", 2048, none, 1, 1);
     }
     /* The built-in forest (alpha-masked leaves, normal-mapped trunks, sky with a sun): primal,
-     * both gradients and the L2 reconstruction (issue 23). */
+     * both gradients and the L2 reconstruction. */
     check("forest", "grestir-pt", 2048, none, 1, 1);
     /* L1's bias, measured (printed) with the L2 checks of the same runs. */
     const char *both[] = {"recon=both"};

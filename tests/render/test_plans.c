@@ -1,4 +1,4 @@
-/* test_plans.c: long commands split into jobs (issue 14). A study planned with --plan, its jobs
+/* test_plans.c: long commands split into jobs. A study planned with --plan, its jobs
  * run by GNU parallel in shuffled order and merged, equals the unsplit study (study.csv except
  * its timing columns, pareto.svg, hard_pixels.png, strip.png byte for byte); a reference split
  * into shards, run with xargs -P and merged, equals the unsplit one within the summation-order
@@ -6,7 +6,7 @@
  * naming its line; a finished job run again says so; a comparison planned per method and run
  * (--runs 2) and merged equals the unsplit one (compare.csv except ms_per_frame, reference and
  * frames byte for byte); a plan's reference job stopped by SIGTERM or killed keeps a checkpoint, and run
- * again continues from it to the bytes of an uninterrupted job (issue 25: a 1080p reference outlives a session). */
+ * again continues from it to the bytes of an uninterrupted job (a 1080p reference outlives a session). */
 #include <math.h>
 #include <signal.h>
 #include <string.h>

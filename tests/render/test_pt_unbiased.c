@@ -58,7 +58,7 @@ int main(int argc, char **argv)
         /* alpha cutouts (leaves.json): alpha-masked leaf cards and lamp */
         snprintf(real, sizeof real, "%s/scenes/leaves.json", data);
         check(real, RUNS, sets, 2, 1);
-        /* Environment light (issue 23): paths ending in a direction, reconnected to it with no
+        /* Environment light: paths ending in a direction, reconnected to it with no
          * distance term, under every shift (sky_only.json: a sky map with a sun, no emitter), and
          * next to an emitter with temporal splatting (leaves_sky.json). Treating the direction as
          * a point one unit away fails the sky-only case (8 pixels, pooled z -5.5; checked). */
@@ -75,7 +75,7 @@ int main(int argc, char **argv)
         const char *splat[] = {"shift=reconnection", "temporal.reuse=both"};
         check(real, RUNS, splat, 2, 1);
     }
-    /* The built-in forest (issue 23): alpha-masked leaf cards, normal-mapped trunks and a sky with
+    /* The built-in forest: alpha-masked leaf cards, normal-mapped trunks and a sky with
      * a sun as the only light, along its walk. */
     const char *forest[] = {"shift=hybrid", "mis=pairwise"};
     check("forest", RUNS, forest, 2, 1);

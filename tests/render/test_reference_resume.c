@@ -1,4 +1,4 @@
-/* test_reference_resume.c: `restir reference --checkpoint-every` (issue 13). A reference killed
+/* test_reference_resume.c: `restir reference --checkpoint-every`. A reference killed
  * with SIGKILL mid-run, or stopped by SIGINT, continues from its checkpoint when the same command
  * runs again and writes exactly the bytes of an uninterrupted run (also when --spp grows, and at
  * another thread count); checkpoints of other runs, with NaN or truncated are refused and kept;

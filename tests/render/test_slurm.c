@@ -1,4 +1,4 @@
-/* test_slurm.c: a study planned with --plan runs as a Slurm job array (issue 14). The test starts
+/* test_slurm.c: a study planned with --plan runs as a Slurm job array. The test starts
  * a single-node Slurm on this machine (munged with a generated key, slurmctld and slurmd on a
  * minimal slurm.conf: one node with this machine's cores, proctrack/linuxproc, no cgroups, state,
  * spool, logs and sockets in a temporary folder, ports chosen from the process id), submits

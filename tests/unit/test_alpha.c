@@ -1,4 +1,4 @@
-/* test_alpha.c: alpha cutouts (issue 23, glTF alphaMode MASK). A texture's alpha channel is kept
+/* test_alpha.c: alpha cutouts (glTF alphaMode MASK). A texture's alpha channel is kept
  * only when some texel is not opaque; scene_alpha_cut rejects exactly the points whose coverage
  * (base_alpha times the map's bilinear alpha) is below the cutoff; every ray query (closest hit,
  * occlusion, the emitters-only BVH) passes through cut-out points and stops at the others; a cut

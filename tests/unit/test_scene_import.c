@@ -480,7 +480,7 @@ static void write_lamp_gltf_floor(const char *path, int with_camera, const char 
     write_file(path, json);
 }
 
-/* KHR_texture_transform, texCoord and sampler wraps (issue 23) on the glTF sample that tests them:
+/* KHR_texture_transform, texCoord and sampler wraps on the glTF sample that tests them:
  * the lookups of "Offset U" and "Rotation" against glTF's formula by hand, CLAMP_TO_EDGE read. */
 static void test_texture_transform(void)
 {
@@ -532,7 +532,7 @@ static void test_whole_scene(const char *dir)
     char msg[RESTIR_MSG_LEN], path[512];
     struct scene s;
 
-    /* The Box has no emitters: it loads under the default sky (issue 23), as glTF viewers show it. */
+    /* The Box has no emitters: it loads under the default sky, as glTF viewers show it. */
     const char *box = MODELS "/glTF2/Box/glTF/Box.gltf";
     if (!file_exists(box))
         box = MODELS "/glTF2/BoxTextured-glTF/BoxTextured.gltf";
@@ -593,7 +593,7 @@ static void test_whole_scene(const char *dir)
     }
     scene_destroy(&s);
 
-    /* glTF alpha (issue 23): OPAQUE ignores baseColorFactor's alpha; MASK keeps its cutoff and that
+    /* glTF alpha: OPAQUE ignores baseColorFactor's alpha; MASK keeps its cutoff and that
      * alpha; BLEND is read as MASK at 0.5; a cutoff outside [0, 1] is refused by name. */
     const struct {
         const char *keys;

@@ -1,4 +1,4 @@
-/* test_shading_normal.c: shading normals (issue 23). scene_shading_normal interpolates the
+/* test_shading_normal.c: shading normals. scene_shading_normal interpolates the
  * corners' normals by barycentrics, turns them to the side of the geometric normal it is given and
  * falls back to it where a corner has none; bsdf_shading_normal leaves a normal alone where wo is
  * above it, bends it in the plane of ns and ng where wo is below (so ns'.wo > 0), and never touches
