@@ -12,6 +12,8 @@
 #ifndef RESTIR_GRADIENT_GRAD_COMMON_H
 #define RESTIR_GRADIENT_GRAD_COMMON_H
 
+#include <stddef.h>
+
 #include "render/path_shift.h"
 
 enum grad_dir { GRAD_RIGHT = 0, GRAD_LEFT, GRAD_DOWN, GRAD_UP, GRAD_DIRS };

@@ -8,9 +8,9 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "scene/file_name.h"
 #include "scene/scene_import.h"
 #include "scene/scene_json.h"
-#include "scene/scene_path.h"
 #include "scene/scenes_builtin.h"
 
 int scene_load(const char *name_or_path, struct scene *s, char *msg)

@@ -17,6 +17,7 @@
 
 #include "core/check.h"
 #include "scene/environment.h"
+#include "scene/file_name.h"
 #include "scene/mat4d.h"
 #include "scene/scene_env.h"
 #include "scene/scene_import_ai.h"
@@ -24,7 +25,6 @@
 #include "scene/scene_import_gltf.h"
 #include "scene/scene_import_precheck.h"
 #include "scene/scene_import_texture.h"
-#include "scene/scene_path.h"
 
 /* With scene_import_texture.c the only file that includes assimp headers. Every problem goes into
  * msg, naming the file: a bad asset is user input, not a bug. */

@@ -7,8 +7,8 @@
 #include <assimp/scene.h>
 #include <string.h>
 
+#include "scene/file_name.h"
 #include "scene/mat4d.h"
-#include "scene/scene_path.h"
 
 /* Deeper node hierarchies are refused rather than risking the stack (real assets have tens). */
 #define IMPORT_MAX_NODE_DEPTH 1024

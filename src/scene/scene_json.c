@@ -9,10 +9,10 @@
 
 #include "core/check.h"
 #include "scene/environment.h"
+#include "scene/file_name.h"
 #include "scene/scene_env.h"
 #include "scene/scene_import.h"
 #include "scene/scene_json_reader.h"
-#include "scene/scene_path.h"
 #include "scene/texture.h"
 
 /* Largest magnitude accepted for a coordinate or radiance: beyond it float math overflows. */
@@ -500,7 +500,7 @@ static const char *const top_keys[] = {"format",    "name",   "camera",      "ca
                                        "materials", "shapes", "environment", NULL};
 
 /* "environment": {"image": FILE, "intensity": k, "rotation": degrees} or {"color": [r, g, b],
- * "intensity": k} (issue 23). */
+ * "intensity": k}. */
 static int read_environment(struct json_reader *r, const cJSON *v)
 {
     static const char *const keys[] = {"image", "color", "intensity", "rotation", NULL};

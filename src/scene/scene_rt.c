@@ -1,24 +1,16 @@
 /* scene_rt.c: the Embree 3 back end: the BVH over the scene's triangles, closest-hit and occlusion
- * queries. The only file that includes embree3/rtcore.h; must never expose its types. */
+ * queries. With the benchmarks' ray replay (scene_ray_log.c, through scene_rt_embree.h) the only
+ * file that includes embree3/rtcore.h; must never expose its types. */
 #include "scene/scene_rt.h"
 
 #include <embree3/rtcore.h>
 #include <math.h>
-#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "core/check.h"
+#include "scene/scene_rt_embree.h"
 #include "scene/scene_surface.h"
-
-/* Per-thread append-only ray log (benchmarks only). */
-struct ray_log {
-    struct ray_record *rays;
-    size_t count, cap;
-};
-
-#define RAY_LOG_MAX_THREADS 256
 
 /* What an alpha filter needs: a shallow copy of the finished scene (its arrays do not move after
  * the build, while the struct itself may be copied by its owner) and, per primitive, what the
@@ -30,14 +22,14 @@ struct alpha_filter {
 };
 
 struct scene_rt {
-    int logging;
+    scene_ray_hook hook; /* the ray log's (scene_rt_embree.h), NULL unless a benchmark logs */
+    void *hook_user;
     int streams; /* scene_ray_streams */
     struct alpha_filter alpha_masked, alpha_emitters;
     /* The main scene holds the opaque triangles as geometry 0 and, where some material is
      * alpha-masked, the masked ones as geometry 1, so that only hits on those call the filter.
      * geom_tris[g][primID] is the triangle (NULL: primID is the triangle). */
     int *geom_tris[2];
-    struct ray_log logs[RAY_LOG_MAX_THREADS];
     RTCDevice device;
     RTCScene scene;
     RTCScene emitters; /* emissive triangles only (NULL without lights); primID = emitter index */
@@ -202,8 +194,6 @@ void scene_rt_destroy(struct scene *s)
 {
     if (!s->rt)
         return;
-    for (int t = 0; t < RAY_LOG_MAX_THREADS; t++)
-        free(s->rt->logs[t].rays);
     rtcReleaseScene(s->rt->scene);
     if (s->rt->emitters)
         rtcReleaseScene(s->rt->emitters);
@@ -216,51 +206,26 @@ void scene_rt_destroy(struct scene *s)
     s->rt = NULL;
 }
 
-static void log_ray(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax, int kind)
+void *scene_rt_set_ray_hook(const struct scene *s, scene_ray_hook hook, void *user)
 {
-    int t = omp_get_thread_num();
-    if (t >= RAY_LOG_MAX_THREADS)
-        return;
-    struct ray_log *lg = &s->rt->logs[t];
-    if (lg->count == lg->cap) {
-        lg->cap = lg->cap ? 2 * lg->cap : 4096;
-        struct ray_record *grown = realloc(lg->rays, lg->cap * sizeof(*lg->rays));
-        RESTIR_CHECK(grown != NULL);
-        lg->rays = grown;
-    }
-    lg->rays[lg->count++] = (struct ray_record){o, d, tmin, tmax, kind};
+    void *old = s->rt->hook_user;
+    s->rt->hook = hook;
+    s->rt->hook_user = user;
+    return old;
 }
 
-/* Closest hit in rtc_scene; returns the triangle (geom_tris[geomID][primID], or primID where
- * geom_tris or its entry is NULL) or -1, with the distance and barycentrics. */
-static int intersect_closest(RTCScene rtc_scene, int *const *geom_tris, vec3 o, vec3 d, float tmin, float tmax,
-                             float *t, float *u, float *v)
+/* Hands the rays q[0 .. n-1] a query is about to trace to the ray log, while one is active. */
+static inline void log_rays(const struct scene *s, const struct ray_query *q, int n, enum ray_kind kind)
 {
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    struct RTCRayHit rh;
-    rh.ray.org_x = o.x;
-    rh.ray.org_y = o.y;
-    rh.ray.org_z = o.z;
-    rh.ray.dir_x = d.x;
-    rh.ray.dir_y = d.y;
-    rh.ray.dir_z = d.z;
-    rh.ray.tnear = tmin;
-    rh.ray.tfar = tmax;
-    rh.ray.time = 0.0f;
-    rh.ray.mask = 0xffffffffu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(rtc_scene, &ctx, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-        return -1;
-    *t = rh.ray.tfar;
-    *u = rh.hit.u;
-    *v = rh.hit.v;
-    const int *map = geom_tris ? geom_tris[rh.hit.geomID] : NULL;
-    return map ? map[rh.hit.primID] : (int)rh.hit.primID;
+    if (s->rt->hook)
+        s->rt->hook(s->rt->hook_user, q, n, (int)kind);
+}
+
+RTCScene scene_rt_embree(const struct scene *s, int kind, int *const **geom_tris)
+{
+    if (geom_tris)
+        *geom_tris = kind == RAY_EMITTERS ? NULL : s->rt->geom_tris;
+    return kind == RAY_EMITTERS ? s->rt->emitters : s->rt->scene;
 }
 
 void scene_surface_at(const struct scene *s, int tri, float b1, float b2, vec3 p, vec3 d, struct surface_hit *hit)
@@ -288,9 +253,8 @@ static void fill_hit(const struct scene *s, int tri, vec3 o, vec3 d, float t, fl
 int scene_intersect(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax, struct surface_hit *hit)
 {
     float t, u, v;
-    if (s->rt->logging)
-        log_ray(s, o, d, tmin, tmax, RAY_CLOSEST);
-    int tri = intersect_closest(s->rt->scene, s->rt->geom_tris, o, d, tmin, tmax, &t, &u, &v);
+    log_rays(s, &(struct ray_query){o, d, tmin, tmax}, 1, RAY_CLOSEST);
+    int tri = scene_rt_closest(s->rt->scene, s->rt->geom_tris, o, d, tmin, tmax, &t, &u, &v);
     if (tri < 0)
         return 0;
     fill_hit(s, tri, o, d, t, u, v, hit);
@@ -303,89 +267,19 @@ int scene_intersect_emitters(const struct scene *s, vec3 o, vec3 d, float tmin, 
     if (!s->rt->emitters)
         return 0;
     float t, u, v;
-    if (s->rt->logging)
-        log_ray(s, o, d, tmin, tmax, RAY_EMITTERS);
-    int e = intersect_closest(s->rt->emitters, NULL, o, d, tmin, tmax, &t, &u, &v);
+    log_rays(s, &(struct ray_query){o, d, tmin, tmax}, 1, RAY_EMITTERS);
+    int e = scene_rt_closest(s->rt->emitters, NULL, o, d, tmin, tmax, &t, &u, &v);
     if (e < 0)
         return 0;
     fill_hit(s, s->emitter_tri[e], o, d, t, u, v, hit);
     return 1;
 }
 
-static int occluded(RTCScene rtc_scene, vec3 o, vec3 d, float tmin, float tmax)
-{
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    struct RTCRay ray;
-    ray.org_x = o.x;
-    ray.org_y = o.y;
-    ray.org_z = o.z;
-    ray.dir_x = d.x;
-    ray.dir_y = d.y;
-    ray.dir_z = d.z;
-    ray.tnear = tmin;
-    ray.tfar = tmax;
-    ray.time = 0.0f;
-    ray.mask = 0xffffffffu;
-    ray.id = 0;
-    ray.flags = 0;
-    rtcOccluded1(rtc_scene, &ctx, &ray);
-    return ray.tfar == -INFINITY;
-}
-
 int scene_occluded(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax)
 {
-    if (s->rt->logging)
-        log_ray(s, o, d, tmin, tmax, RAY_OCCLUDED);
-    return occluded(s->rt->scene, o, d, tmin, tmax);
+    log_rays(s, &(struct ray_query){o, d, tmin, tmax}, 1, RAY_OCCLUDED);
+    return scene_rt_occluded(s->rt->scene, o, d, tmin, tmax);
 }
-
-void scene_ray_log_begin(const struct scene *s)
-{
-    for (int t = 0; t < RAY_LOG_MAX_THREADS; t++)
-        s->rt->logs[t].count = 0;
-    s->rt->logging = 1;
-}
-
-struct ray_record *scene_ray_log_end(const struct scene *s, size_t *count)
-{
-    s->rt->logging = 0;
-    size_t n = 0;
-    for (int t = 0; t < RAY_LOG_MAX_THREADS; t++)
-        n += s->rt->logs[t].count;
-    struct ray_record *all = xmalloc(sizeof(*all) * (n ? n : 1));
-    size_t k = 0;
-    for (int t = 0; t < RAY_LOG_MAX_THREADS; t++) {
-        struct ray_log *lg = &s->rt->logs[t];
-        if (lg->count)
-            memcpy(all + k, lg->rays, lg->count * sizeof(*all));
-        k += lg->count;
-    }
-    *count = n;
-    return all;
-}
-
-double scene_ray_replay(const struct scene *s, const struct ray_record *rays, size_t count)
-{
-    long long hits = 0;
-    double t0 = omp_get_wtime();
-#pragma omp parallel for schedule(dynamic, 4096) reduction(+ : hits)
-    for (long long i = 0; i < (long long)count; i++) {
-        const struct ray_record *r = &rays[i];
-        float t, u, v;
-        if (r->kind == RAY_OCCLUDED)
-            hits += occluded(s->rt->scene, r->o, r->d, r->tmin, r->tmax);
-        else
-            hits += intersect_closest(r->kind == RAY_EMITTERS ? s->rt->emitters : s->rt->scene,
-                                      r->kind == RAY_EMITTERS ? NULL : s->rt->geom_tris, r->o, r->d, r->tmin, r->tmax,
-                                      &t, &u, &v) >= 0;
-    }
-    (void)hits;
-    return 1e3 * (omp_get_wtime() - t0);
-}
-
-/* Embree's stream calls take at most this many rays per call here (stack arrays). */
-#define RAY_STREAM_MAX 64
 
 static void fill_ray(struct RTCRay *ray, const struct ray_query *q)
 {
@@ -403,9 +297,7 @@ static void fill_ray(struct RTCRay *ray, const struct ray_query *q)
     ray->flags = 0;
 }
 
-/* Closest hits of q[0 .. n-1] (n <= RAY_STREAM_MAX) in rtc_scene through one rtcIntersect1M call:
- * tri[k] as intersect_closest returns it, with t, u, v. */
-static void intersect_stream(RTCScene rtc_scene, int *const *geom_tris, const struct ray_query *q, int n, int coherent,
+void scene_rt_closest_stream(RTCScene sc, int *const *geom_tris, const struct ray_query *q, int n, int coherent,
                              int *tri, float *t, float *u, float *v)
 {
     struct RTCIntersectContext ctx;
@@ -416,7 +308,7 @@ static void intersect_stream(RTCScene rtc_scene, int *const *geom_tris, const st
         fill_ray(&rh[k].ray, &q[k]);
         rh[k].hit.geomID = rh[k].hit.primID = rh[k].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     }
-    rtcIntersect1M(rtc_scene, &ctx, rh, (unsigned)n, sizeof(rh[0]));
+    rtcIntersect1M(sc, &ctx, rh, (unsigned)n, sizeof(rh[0]));
     for (int k = 0; k < n; k++) {
         tri[k] = -1;
         if (rh[k].hit.geomID == RTC_INVALID_GEOMETRY_ID)
@@ -429,8 +321,7 @@ static void intersect_stream(RTCScene rtc_scene, int *const *geom_tris, const st
     }
 }
 
-/* Occlusion of q[0 .. n-1] (n <= RAY_STREAM_MAX) through one rtcOccluded1M call. */
-static void occluded_stream(RTCScene rtc_scene, const struct ray_query *q, int n, int coherent, unsigned char *occ)
+void scene_rt_occluded_stream(RTCScene sc, const struct ray_query *q, int n, int coherent, unsigned char *occ)
 {
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -438,7 +329,7 @@ static void occluded_stream(RTCScene rtc_scene, const struct ray_query *q, int n
     struct RTCRay ray[RAY_STREAM_MAX];
     for (int k = 0; k < n; k++)
         fill_ray(&ray[k], &q[k]);
-    rtcOccluded1M(rtc_scene, &ctx, ray, (unsigned)n, sizeof(ray[0]));
+    rtcOccluded1M(sc, &ctx, ray, (unsigned)n, sizeof(ray[0]));
     for (int k = 0; k < n; k++)
         occ[k] = ray[k].tfar == -INFINITY;
 }
@@ -460,10 +351,8 @@ void scene_intersect_batch(const struct scene *s, const struct ray_query *q, int
         const int m = n - first < RAY_STREAM_MAX ? n - first : RAY_STREAM_MAX;
         int tri[RAY_STREAM_MAX];
         float t[RAY_STREAM_MAX], u[RAY_STREAM_MAX], v[RAY_STREAM_MAX];
-        if (s->rt->logging)
-            for (int k = 0; k < m; k++)
-                log_ray(s, q[first + k].o, q[first + k].d, q[first + k].tmin, q[first + k].tmax, RAY_CLOSEST);
-        intersect_stream(s->rt->scene, s->rt->geom_tris, q + first, m, coherent, tri, t, u, v);
+        log_rays(s, q + first, m, RAY_CLOSEST);
+        scene_rt_closest_stream(s->rt->scene, s->rt->geom_tris, q + first, m, coherent, tri, t, u, v);
         for (int k = 0; k < m; k++) {
             const struct ray_query *r = &q[first + k];
             hit[first + k] = tri[k] >= 0;
@@ -482,96 +371,9 @@ void scene_occluded_batch(const struct scene *s, const struct ray_query *q, int 
     }
     for (int first = 0; first < n; first += RAY_STREAM_MAX) {
         const int m = n - first < RAY_STREAM_MAX ? n - first : RAY_STREAM_MAX;
-        if (s->rt->logging)
-            for (int k = 0; k < m; k++)
-                log_ray(s, q[first + k].o, q[first + k].d, q[first + k].tmin, q[first + k].tmax, RAY_OCCLUDED);
-        occluded_stream(s->rt->scene, q + first, m, 0, occluded + first);
+        log_rays(s, q + first, m, RAY_OCCLUDED);
+        scene_rt_occluded_stream(s->rt->scene, q + first, m, 0, occluded + first);
     }
-}
-
-/* One group of same-kind rays (at most 16 for packets, 64 for streams) traced through Embree in one
- * call; returns the number of hits / occluded rays. */
-#define RAY_GROUP_MAX RAY_STREAM_MAX
-static long long trace_group(const struct scene *s, const struct ray_record *r, int n, enum ray_batch batch)
-{
-    RTCScene sc = r[0].kind == RAY_EMITTERS ? s->rt->emitters : s->rt->scene;
-    const int occ = r[0].kind == RAY_OCCLUDED;
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    long long hits = 0;
-    if (batch == RAY_BATCH_PACKET8 || batch == RAY_BATCH_PACKET16) {
-        /* RTCRayHit16's and RTCRay16's leading members are the ray's SoA arrays, 16 wide; the 8-wide
-         * structs have the same layout at width 8: fill both through one SoA float view. */
-        RTC_ALIGN(64) struct RTCRayHit16 rh;
-        RTC_ALIGN(64) int valid[16];
-        const int w = batch == RAY_BATCH_PACKET8 ? 8 : 16;
-        float *f = (float *)&rh;
-        unsigned *u = (unsigned *)&rh;
-        for (int i = 0; i < w; i++) {
-            const struct ray_record *q = &r[i < n ? i : 0];
-            valid[i] = i < n ? -1 : 0;
-            f[0 * w + i] = q->o.x, f[1 * w + i] = q->o.y, f[2 * w + i] = q->o.z, f[3 * w + i] = q->tmin;
-            f[4 * w + i] = q->d.x, f[5 * w + i] = q->d.y, f[6 * w + i] = q->d.z, f[7 * w + i] = 0.0f;
-            f[8 * w + i] = q->tmax;
-            u[9 * w + i] = 0xffffffffu, u[10 * w + i] = 0, u[11 * w + i] = 0;
-            u[18 * w + i] = RTC_INVALID_GEOMETRY_ID; /* hit.geomID: after 12 ray arrays, Ng xyz, u, v, primID */
-        }
-        if (w == 8) {
-            if (occ)
-                rtcOccluded8(valid, sc, &ctx, (struct RTCRay8 *)&rh);
-            else
-                rtcIntersect8(valid, sc, &ctx, (struct RTCRayHit8 *)&rh);
-        } else {
-            if (occ)
-                rtcOccluded16(valid, sc, &ctx, &rh.ray);
-            else
-                rtcIntersect16(valid, sc, &ctx, &rh);
-        }
-        for (int i = 0; i < n; i++)
-            hits += occ ? f[8 * w + i] == -INFINITY : u[18 * w + i] != RTC_INVALID_GEOMETRY_ID;
-        return hits;
-    }
-    const int coherent = batch == RAY_BATCH_STREAM_COHERENT;
-    struct ray_query rq[RAY_STREAM_MAX];
-    for (int i = 0; i < n; i++)
-        rq[i] = (struct ray_query){r[i].o, r[i].d, r[i].tmin, r[i].tmax};
-    if (occ) {
-        unsigned char o[RAY_STREAM_MAX];
-        occluded_stream(sc, rq, n, coherent, o);
-        for (int i = 0; i < n; i++)
-            hits += o[i];
-    } else {
-        int tri[RAY_STREAM_MAX];
-        float t[RAY_STREAM_MAX], u[RAY_STREAM_MAX], v[RAY_STREAM_MAX];
-        intersect_stream(sc, r[0].kind == RAY_EMITTERS ? NULL : s->rt->geom_tris, rq, n, coherent, tri, t, u, v);
-        for (int i = 0; i < n; i++)
-            hits += tri[i] >= 0;
-    }
-    return hits;
-}
-
-double scene_ray_replay_batched(const struct scene *s, const struct ray_record *rays, size_t count,
-                                enum ray_batch batch)
-{
-    if (batch == RAY_BATCH_SINGLE)
-        return scene_ray_replay(s, rays, count);
-    const int w = batch == RAY_BATCH_PACKET8 ? 8 : batch == RAY_BATCH_PACKET16 ? 16 : RAY_GROUP_MAX;
-    const long long chunk = 4096, nchunks = ((long long)count + chunk - 1) / chunk;
-    long long hits = 0;
-    double t0 = omp_get_wtime();
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : hits)
-    for (long long c = 0; c < nchunks; c++) {
-        const long long end = (c + 1) * chunk < (long long)count ? (c + 1) * chunk : (long long)count;
-        for (long long i = c * chunk; i < end;) {
-            int n = 1;
-            while (n < w && i + n < end && rays[i + n].kind == rays[i].kind)
-                n++;
-            hits += trace_group(s, &rays[i], n, batch);
-            i += n;
-        }
-    }
-    (void)hits;
-    return 1e3 * (omp_get_wtime() - t0);
 }
 
 /* Offset scale for self-intersection: relative to the coordinates' magnitude, so it tracks float

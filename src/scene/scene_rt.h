@@ -1,5 +1,6 @@
 /* scene_rt.h: ray queries against the scene and the Embree BVH build behind them.
- * Must never expose embree types (only scene_rt.c includes embree3/rtcore.h). */
+ * Must never expose embree types (only scene_rt.c and the benchmarks' ray replay, scene_ray_log.c,
+ * include embree3/rtcore.h, the latter through scene_rt_embree.h). */
 #ifndef RESTIR_SCENE_SCENE_RT_H
 #define RESTIR_SCENE_SCENE_RT_H
 
@@ -53,39 +54,16 @@ int scene_visibility_query(vec3 p0, vec3 n0, vec3 p1, vec3 n1, struct ray_query 
  * stream traversal: hit distances and barycentrics may differ from single rays' in the last
  * bits), at lower cost per ray where many are traced together: primary rays of a tile
  * (coherent = 1: they share the camera's origin) and shadow rays of a tile (measured in
- * docs/BENCHMARKS.md, "Issue 24, ray streams"). hit[k] / occluded[k] are 0 or 1. */
+ * docs/BENCHMARKS.md, the section on ray streams). hit[k] / occluded[k] are 0 or 1. */
 void scene_intersect_batch(const struct scene *s, const struct ray_query *q, int n, int coherent,
                            struct surface_hit *hits, unsigned char *hit);
 void scene_occluded_batch(const struct scene *s, const struct ray_query *q, int n, unsigned char *occluded);
 /* on = 0: the batched queries trace ray by ray (the renderer sets it from rays.streams each frame). */
 void scene_ray_streams(const struct scene *s, int on);
 
-/* Ray logging for benchmarks: while a log is active every query is recorded (per thread, no
- * locks), so a frame's rays can be replayed through Embree alone to separate ray-tracing time
- * from shading time. */
+/* Which query traced a ray: scene_intersect (and the batched closest hits), scene_occluded (and
+ * the batched occlusion), scene_intersect_emitters. The benchmarks' ray log records it
+ * (scene_ray_log.h). */
 enum ray_kind { RAY_CLOSEST = 0, RAY_OCCLUDED, RAY_EMITTERS };
-struct ray_record {
-    vec3 o, d;
-    float tmin, tmax;
-    int kind;
-};
-void scene_ray_log_begin(const struct scene *s);
-/* Stops logging and returns all recorded rays (malloc'ed, caller frees) and their count. */
-struct ray_record *scene_ray_log_end(const struct scene *s, size_t *count);
-/* Traces the recorded rays again in parallel; returns the elapsed milliseconds. */
-double scene_ray_replay(const struct scene *s, const struct ray_record *rays, size_t count);
-/* The same rays traced in groups of consecutive same-kind rays (the order in which one thread
- * traced them): Embree packets of 8 / 16 or streams (rtcIntersect1M / rtcOccluded1M, groups of
- * 64, with the coherent or incoherent hint). Measures what batching a pass's rays could save. */
-enum ray_batch {
-    RAY_BATCH_SINGLE = 0,
-    RAY_BATCH_PACKET8,
-    RAY_BATCH_PACKET16,
-    RAY_BATCH_STREAM,
-    RAY_BATCH_STREAM_COHERENT,
-    RAY_BATCH_COUNT
-};
-double scene_ray_replay_batched(const struct scene *s, const struct ray_record *rays, size_t count,
-                                enum ray_batch batch);
 
 #endif

@@ -1,6 +1,6 @@
-/* scene_path.c: file-name helpers every scene reader shares (stem, suffix, whole-file read).
+/* file_name.c: file-name helpers every scene reader shares (stem, suffix, whole-file read).
  * Must never depend on the scene or on any file format: the readers depend on it, not back. */
-#include "scene/scene_path.h"
+#include "scene/file_name.h"
 
 #include <errno.h>
 #include <stdio.h>

@@ -1,7 +1,7 @@
-/* scene_path.h: file-name helpers every scene reader shares (stem, suffix, whole-file read).
+/* file_name.h: file-name helpers every scene reader shares (stem, suffix, whole-file read).
  * Must never depend on the scene or on any file format: the readers depend on it, not back. */
-#ifndef RESTIR_SCENE_SCENE_PATH_H
-#define RESTIR_SCENE_SCENE_PATH_H
+#ifndef RESTIR_SCENE_FILE_NAME_H
+#define RESTIR_SCENE_FILE_NAME_H
 
 #include <stddef.h>
 
