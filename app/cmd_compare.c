@@ -9,6 +9,7 @@
 #include "compare_plan.h"
 #include "compare_run.h"
 #include "core/check.h"
+#include "experiments/stats.h"
 #include "io/atomic_file.h"
 #include "io/exr.h"
 
@@ -27,15 +28,11 @@ static double frame_ms_at_spp(const struct scene *s, const struct method *m, con
     return st.ms_total;
 }
 
-/* Paths per pixel of pt or gpt that fit in budget_ms, from a 1-spp and a 4-spp timing (the
- * difference removes fixed per-frame cost such as gpt's reconstruction). */
+/* Paths per pixel of pt or gpt that fit in budget_ms (equal_time_spp: a 1-spp and a 4-spp timing,
+ * the fixed per-frame cost such as gpt's reconstruction removed). */
 static int spp_for_budget(const struct scene *s, const struct method *m, const struct render_params *p, double budget_ms)
 {
-    double t1 = frame_ms_at_spp(s, m, p, 1), t4 = frame_ms_at_spp(s, m, p, 4);
-    double per_spp = (t4 - t1) / 3.0 > 0.25 * t1 ? (t4 - t1) / 3.0 : t1;
-    double fixed = t1 - per_spp > 0.0 ? t1 - per_spp : 0.0;
-    int spp = (int)((budget_ms - fixed) / per_spp);
-    return spp < 1 ? 1 : spp;
+    return equal_time_spp(budget_ms, frame_ms_at_spp(s, m, p, 1), frame_ms_at_spp(s, m, p, 4));
 }
 
 int cmd_compare(int argc, char **argv)

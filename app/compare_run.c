@@ -428,11 +428,8 @@ void compare_runs_add(struct compare_runs *a, const struct compare_result *r)
     const struct restir_error *e = &r->err;
     const double x[7] = {e->relmse, e->mape, e->smape, e->luma_rmse, r->mape_dis, r->dis_share, r->grad_relmse};
     a->n++;
-    for (int k = 0; k < 7; k++) { /* Welford's running mean and sum of squared deviations */
-        const double d = x[k] - a->mean[k];
-        a->mean[k] += d / a->n;
-        a->m2[k] += d * (x[k] - a->mean[k]);
-    }
+    for (int k = 0; k < 7; k++)
+        running_mean_add(&a->m[k], x[k]);
 }
 
 void compare_runs_finish(const struct compare_runs *a, struct compare_result *res)
@@ -440,12 +437,12 @@ void compare_runs_finish(const struct compare_runs *a, struct compare_result *re
     const int runs = a->n;
     double sem[7];
     for (int k = 0; k < 7; k++)
-        sem[k] = runs > 1 ? sqrt(a->m2[k] / (runs - 1) / runs) : NAN;
+        sem[k] = running_mean_sem(&a->m[k]);
     if (runs > 1) { /* one run keeps its error bit for bit */
-        res->err = (struct restir_error){a->mean[0], a->mean[1], a->mean[2], a->mean[3]};
-        res->mape_dis = a->mean[4];
-        res->dis_share = a->mean[5];
-        res->grad_relmse = a->mean[6];
+        res->err = (struct restir_error){a->m[0].mean, a->m[1].mean, a->m[2].mean, a->m[3].mean};
+        res->mape_dis = a->m[4].mean;
+        res->dis_share = a->m[5].mean;
+        res->grad_relmse = a->m[6].mean;
     }
     res->sem = (struct restir_error){sem[0], sem[1], sem[2], sem[3]};
     res->mape_dis_sem = sem[4];

@@ -4,6 +4,7 @@
 #define RESTIR_APP_COMPARE_RUN_H
 
 #include "compare_track.h"
+#include "experiments/stats.h"
 #include "methods/renderer.h"
 #include "options.h"
 #include "restir/metrics.h"
@@ -89,8 +90,8 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
 /* The errors of a spec's runs as they arrive (run order), and their means and standard errors. */
 struct compare_runs {
     int n;
-    double mean[7], m2[7]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share,
-                              gradient relMSE */
+    struct running_mean m[7]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share,
+                                 gradient relMSE */
 };
 void compare_runs_add(struct compare_runs *a, const struct compare_result *r);
 /* Into res: with more than one run the means (one run keeps its own errors bit for bit), the

@@ -1,5 +1,5 @@
 /* evaluate_tables.c: the papers' tables and a verdict per claim from an evaluation's merged steps
- * (evaluate_tables.h; issue 25). Must never run a command or render: it reads study.csv and compare.csv. */
+ * (evaluate_tables.h). Must never run a command or render: it reads study.csv and compare.csv. */
 #include "evaluate_tables.h"
 
 #include <math.h>
@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "core/check.h"
 #include "csv_table.h"
+#include "experiments/stats.h"
 #include "io/atomic_file.h"
 #include "io/html_report.h"
 #include "io/report.h"
@@ -43,94 +44,12 @@ static void put(struct text *t, const char *fmt, ...)
     }
 }
 
-/* A relative change ours / base - 1 in percent, with its standard deviation from the two standard
- * errors (independent runs; first-order propagation). sd is NaN when either has no spread. */
-struct change {
-    double pct, sd;
-    int no_base; /* the baseline is not positive (a covariance can be): a relative change means nothing */
-};
+#define REDUCTION(pct) ((struct claim){CLAIM_REDUCTION, (pct)})
+#define SMALL_CHANGE(pct) ((struct claim){CLAIM_SMALL, (pct)})
+#define COSTS_AT_MOST(pct) ((struct claim){CLAIM_COST, (pct)})
+#define NO_CLAIM ((struct claim){CLAIM_NONE, 0.0})
 
-static struct change rel_change(double ours, double ours_sem, double base, double base_sem)
-{
-    struct change c = {100.0 * (ours / base - 1.0), NAN, base <= 0.0};
-    if (c.no_base) {
-        c.pct = NAN;
-        return c;
-    }
-    if (isfinite(ours_sem) && isfinite(base_sem))
-        c.sd = 100.0 * sqrt(ours_sem * ours_sem / (base * base) +
-                            ours * ours * base_sem * base_sem / (base * base * base * base));
-    return c;
-}
-
-/* What a paper claims about a change (ours against its baseline), judged by verdict(). */
-enum claim_kind {
-    CLAIM_REDUCTION, /* lower by at least limit percent (0: any reduction) */
-    CLAIM_SMALL,     /* a change within +-limit percent */
-    CLAIM_COST,      /* at most limit percent more time (times have no spread: one machine, means over frames and
-                        runs) */
-    CLAIM_NONE,      /* no claim (our own variant): which way it went */
-};
-struct claimed {
-    enum claim_kind kind;
-    double limit;
-};
-#define REDUCTION(pct) ((struct claimed){CLAIM_REDUCTION, (pct)})
-#define SMALL_CHANGE(pct) ((struct claimed){CLAIM_SMALL, (pct)})
-#define COSTS_AT_MOST(pct) ((struct claimed){CLAIM_COST, (pct)})
-#define NO_CLAIM ((struct claimed){CLAIM_NONE, 0.0})
-
-/* The verdict on claim k at two standard deviations: for a reduction, reproduced (significantly lower,
- * and the claimed limit within reach), partly (significantly lower, but less than the limit), not
- * reproduced (within the noise, or higher); for a small change, reproduced when the whole interval
- * lies within +-limit; for a cost, when the change is at most limit; for no claim, lower / higher /
- * no difference. why gets the reason ("" when none). */
-static const char *verdict(struct change c, struct claimed k, char *why, size_t len)
-{
-    const double sd = isfinite(c.sd) ? c.sd : 0.0;
-    why[0] = '\0';
-    if (c.no_base) {
-        snprintf(why, len, "the baseline is not positive: no relative change");
-        return "undefined";
-    }
-    if (!isfinite(c.pct)) {
-        snprintf(why, len, "not measured");
-        return "not measured";
-    }
-    switch (k.kind) {
-    case CLAIM_SMALL: {
-        const int small = c.pct - 2.0 * sd >= -k.limit && c.pct + 2.0 * sd <= k.limit;
-        if (!small)
-            snprintf(why, len, "the change may exceed %g%%", k.limit);
-        return small ? "reproduced" : "not reproduced";
-    }
-    case CLAIM_COST:
-        if (c.pct > k.limit)
-            snprintf(why, len, "costs more");
-        return c.pct <= k.limit ? "reproduced" : "not reproduced";
-    case CLAIM_NONE:
-        snprintf(why, len, "%s", isfinite(c.sd) ? "" : "no spread");
-        return c.pct + 2.0 * sd < 0.0 ? "lower" : c.pct - 2.0 * sd > 0.0 ? "higher" : "no difference";
-    case CLAIM_REDUCTION:
-        break;
-    }
-    const char *spread = isfinite(c.sd) ? "" : " (no spread)";
-    if (c.pct + 2.0 * sd < 0.0 && c.pct - 2.0 * sd <= -k.limit) {
-        snprintf(why, len, "%s", isfinite(c.sd) ? "" : "no spread");
-        return "reproduced";
-    }
-    if (c.pct + 2.0 * sd < 0.0) {
-        snprintf(why, len, "a smaller gain than the paper's%s", spread);
-        return "partly";
-    }
-    if (c.pct - 2.0 * sd > 0.0)
-        snprintf(why, len, "worse%s", spread);
-    else
-        snprintf(why, len, "within the noise");
-    return "not reproduced";
-}
-
-static void fmt_change(struct change c, char *out, size_t len)
+static void fmt_change(struct rel_change c, char *out, size_t len)
 {
     if (!isfinite(c.pct))
         snprintf(out, len, "-");
@@ -159,13 +78,13 @@ struct claims {
 };
 
 /* One claim's line: what (the claim), where (scene, base), our change, the paper's figure, lo as in
- * what the paper claims (verdict()), and the setup's differences from the paper's (said when not reproduced). */
-static void claim(struct claims *cl, const char *paper, const char *what, const char *where, struct change c,
-                  const char *paper_figure, struct claimed k, const char *differences)
+ * what the paper claims (claim_verdict()), and the setup's differences from the paper's (said when not reproduced). */
+static void claim(struct claims *cl, const char *paper, const char *what, const char *where, struct rel_change c,
+                  const char *paper_figure, struct claim k, const char *differences)
 {
     char ours[64], why[160], f[4][400];
     fmt_change(c, ours, sizeof ours);
-    const char *v = verdict(c, k, why, sizeof why);
+    const char *v = claim_verdict(c, k, why, sizeof why);
     const int ok = !strcmp(v, "reproduced") || !strcmp(v, "undefined") || k.kind == CLAIM_NONE;
     char reason[600];
     snprintf(reason, sizeof reason, "%s%s%s", why, ok || !why[0] ? "" : "; ", ok ? "" : differences);
@@ -285,7 +204,7 @@ static void pareto_000(struct text *md, struct claims *cl, const struct eval_ste
             snprintf(what, sizeof what, "Fig. 3: %s, ours vs Bitterli at R %g", m ? "spatial covariance" : "SMAPE",
                      radius[k]);
             claim(cl, "000", what, where,
-                  rel_change(csv_table_num(t, c, col[m][0]), csv_table_num(t, c, col[m][1]),
+                  rel_change_of(csv_table_num(t, c, col[m][0]), csv_table_num(t, c, col[m][1]),
                              csv_table_num(t, b, col[m][0]), csv_table_num(t, b, col[m][1])),
                   "lower (a better frontier; plot only)", REDUCTION(0.0), diff);
         }
@@ -334,19 +253,19 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
     const int emerald = strstr(heading, "EMERALD") != NULL;
     const int fast = csv_table_find(t, "fast");
     claim(cl, "000", "FAST: SMAPE vs Bitterli R = 30", where,
-          rel_change(csv_table_num(t, fast, "smape_all"), csv_table_num(t, fast, "smape_all_sem"),
+          rel_change_of(csv_table_num(t, fast, "smape_all"), csv_table_num(t, fast, "smape_all_sem"),
                      csv_table_num(t, bit, "smape_all"), csv_table_num(t, bit, "smape_all_sem")),
           emerald ? "-29% (EMERALD SQUARE)" : "-5.8% to -13.7% (simpler scenes)", REDUCTION(emerald ? 29.0 : 5.8), diff);
     claim(cl, "000", "FAST: temporal covariance vs Bitterli", where,
-          rel_change(csv_table_num(t, fast, "temporal_cov"), csv_table_num(t, fast, "temporal_cov_sem"),
+          rel_change_of(csv_table_num(t, fast, "temporal_cov"), csv_table_num(t, fast, "temporal_cov_sem"),
                      csv_table_num(t, bit, "temporal_cov"), csv_table_num(t, bit, "temporal_cov_sem")),
           emerald ? "-49% (EMERALD SQUARE)" : "-22% to -31% (simpler scenes)", REDUCTION(emerald ? 49.0 : 22.0), diff);
     claim(cl, "000", "FAST: hard-pixel SMAPE vs Bitterli", where,
-          rel_change(csv_table_num(t, fast, "smape_hard"), csv_table_num(t, fast, "smape_hard_sem"),
+          rel_change_of(csv_table_num(t, fast, "smape_hard"), csv_table_num(t, fast, "smape_hard_sem"),
                      csv_table_num(t, bit, "smape_hard"), csv_table_num(t, bit, "smape_hard_sem")),
           "-26% to -29%", REDUCTION(26.0), diff);
     claim(cl, "000", "FAST: hard-pixel temporal covariance vs Bitterli", where,
-          rel_change(csv_table_num(t, fast, "temporal_cov_hard"), csv_table_num(t, fast, "temporal_cov_hard_sem"),
+          rel_change_of(csv_table_num(t, fast, "temporal_cov_hard"), csv_table_num(t, fast, "temporal_cov_hard_sem"),
                      csv_table_num(t, bit, "temporal_cov_hard"), csv_table_num(t, bit, "temporal_cov_hard_sem")),
           "-43% to -57%", REDUCTION(43.0), diff);
     static const char *const cost_figure[] = {"+1.3% to +4.4%", "+2.0% to +6.4%", "+4.3% to +7.4%"};
@@ -355,7 +274,7 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
         const int r = csv_table_find(t, presets[k]);
         char what[96];
         snprintf(what, sizeof what, "%s: frame time vs Bitterli (cost)", presets[k]);
-        claim(cl, "000", what, where, rel_change(csv_table_num(t, r, "ms_frame"), NAN, base_ms, NAN),
+        claim(cl, "000", what, where, rel_change_of(csv_table_num(t, r, "ms_frame"), NAN, base_ms, NAN),
               cost_figure[k], COSTS_AT_MOST(cost_max[k]), diff);
     }
     if (!s->table2)
@@ -366,15 +285,15 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
     const int r100 = csv_table_find(t, "conservative"), k8 = csv_table_find(t, "compat-r30-k8"),
               k128 = csv_table_find(t, "compat-r30-k128");
     claim(cl, "000", "Table 2: spatial covariance, R 100 vs R 30 (K 32)", where,
-          rel_change(csv_table_num(t, r100, "spatial_cov"), csv_table_num(t, r100, "spatial_cov_sem"),
+          rel_change_of(csv_table_num(t, r100, "spatial_cov"), csv_table_num(t, r100, "spatial_cov_sem"),
                      csv_table_num(t, fast, "spatial_cov"), csv_table_num(t, fast, "spatial_cov_sem")),
           "-75% (6.0 -> 1.5)", REDUCTION(0.0), diff);
     claim(cl, "000", "Table 2: spatial covariance, K 8 vs K 128 (R 30)", where,
-          rel_change(csv_table_num(t, k8, "spatial_cov"), csv_table_num(t, k8, "spatial_cov_sem"),
+          rel_change_of(csv_table_num(t, k8, "spatial_cov"), csv_table_num(t, k8, "spatial_cov_sem"),
                      csv_table_num(t, k128, "spatial_cov"), csv_table_num(t, k128, "spatial_cov_sem")),
           "-30% (6.6 -> 4.6)", REDUCTION(0.0), diff);
     claim(cl, "000", "Table 2: SMAPE, K 128 vs K 8 (R 30)", where,
-          rel_change(csv_table_num(t, k128, "smape_all"), csv_table_num(t, k128, "smape_all_sem"),
+          rel_change_of(csv_table_num(t, k128, "smape_all"), csv_table_num(t, k128, "smape_all_sem"),
                      csv_table_num(t, k8, "smape_all"), csv_table_num(t, k8, "smape_all_sem")),
           "-2% (29.9 -> 29.3)", REDUCTION(0.0), diff);
     pareto_000(md, cl, s, t, where, diff);
@@ -439,7 +358,7 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
     for (int v = 0; v < 2; v++)
         for (int m = 0; m < 2; m++)
             claim(cl, "004", what[v][m], where,
-                  rel_change(csv_table_num(t, row[v + 1], col[m][0]), csv_table_num(t, row[v + 1], col[m][1]),
+                  rel_change_of(csv_table_num(t, row[v + 1], col[m][0]), csv_table_num(t, row[v + 1], col[m][1]),
                              csv_table_num(t, row[0], col[m][0]), csv_table_num(t, row[0], col[m][1])),
                   v    ? "none (not in the paper)"
                   : pt ? (m ? "lower, \"especially in disocclusions\"" : "lower overall")
@@ -483,14 +402,14 @@ static void paper_004_ablation(struct text *md, struct claims *cl, const struct 
         put(md, "| %s | %.1f | %s | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b);
     }
 #define MAPE_CHANGE(x, y)                                                                                          \
-    rel_change(csv_table_num(t, row[x], "mape"), csv_table_num(t, row[x], "mape_sem"),                             \
+    rel_change_of(csv_table_num(t, row[x], "mape"), csv_table_num(t, row[x], "mape_sem"),                             \
                csv_table_num(t, row[y], "mape"), csv_table_num(t, row[y], "mape_sem"))
     claim(cl, "004", "Fig. 2: the N / M scaling vs none: MAPE", where, MAPE_CHANGE(0, 1), "lower (images only)",
           REDUCTION(0.0), diff);
     claim(cl, "004", "Fig. 7: N = M vs N = 3: MAPE", where, MAPE_CHANGE(3, 0), "lower (\"some loss of quality\")",
           REDUCTION(0.0), diff);
     claim(cl, "004", "Fig. 7: N = 3 vs N = M: frame time", where,
-          rel_change(csv_table_num(t, row[0], "ms_per_frame"), NAN, csv_table_num(t, row[3], "ms_per_frame"), NAN),
+          rel_change_of(csv_table_num(t, row[0], "ms_per_frame"), NAN, csv_table_num(t, row[3], "ms_per_frame"), NAN),
           "lower (\"significant cost reduction\")", REDUCTION(0.0), diff);
     claim(cl, "004", "Fig. 6: N_c = M vs N_c = 1: MAPE", where, MAPE_CHANGE(5, 0), "\"only slightly\" different",
           SMALL_CHANGE(5.0), diff);
@@ -538,7 +457,7 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
                 char what[128];
                 snprintf(what, sizeof what, "%s: %s vs %s", l ? "L1" : "L2", metric[m][0], names[k]);
                 claim(cl, "002", what, where,
-                      rel_change(csv_table_num(t, me, metric[m][1]), csv_table_num(t, me, metric[m][2]),
+                      rel_change_of(csv_table_num(t, me, metric[m][1]), csv_table_num(t, me, metric[m][2]),
                                  csv_table_num(t, r, metric[m][1]), csv_table_num(t, r, metric[m][2])),
                       m ? "lower at equal time (the paper reports relMSE)" : "lower at equal time (Fig. 7, 8; no numbers)",
                       REDUCTION(0.0), diff);
@@ -553,7 +472,7 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
         char what[128];
         snprintf(what, sizeof what, "Fig. 7: gradient relMSE vs %s", names[k]);
         claim(cl, "002", what, where,
-              rel_change(csv_table_num(t, me, "gradient_relmse"), csv_table_num(t, me, "gradient_relmse_sem"),
+              rel_change_of(csv_table_num(t, me, "gradient_relmse"), csv_table_num(t, me, "gradient_relmse_sem"),
                          csv_table_num(t, r, "gradient_relmse"), csv_table_num(t, r, "gradient_relmse_sem")),
               "lower at equal time (images only)", REDUCTION(0.0), diff);
     }

@@ -9,6 +9,7 @@
 
 #include "cli.h"
 #include "core/check.h"
+#include "experiments/stats.h"
 #include "plan.h"
 #include "render/gbuffer.h"
 #include "restir/metrics.h"
@@ -289,17 +290,6 @@ static void swap_blocks(float *a, size_t block, int i, int j)
         x[k] = y[k];
         y[k] = t;
     }
-}
-
-/* The jackknife standard error of n leave-one-out estimates. */
-static double jackknife_se(const double *theta, int n)
-{
-    double mean = 0.0, ss = 0.0;
-    for (int i = 0; i < n; i++)
-        mean += theta[i] / n;
-    for (int i = 0; i < n; i++)
-        ss += (theta[i] - mean) * (theta[i] - mean);
-    return sqrt((n - 1.0) / n * ss);
 }
 
 void study_row_end(struct study_row *row, const unsigned char *hard, struct study_result *res)

@@ -12,7 +12,7 @@
 
 /* The configurations, one run of one configuration (a "unit"), the unit's result file, and the
  * combination of a configuration's runs into its row. The unsplit study and a merged plan both
- * call these same functions on the same data, so they write the same numbers (issue 14). */
+ * call these same functions on the same data, so they write the same numbers. */
 
 #define STUDY_MAX_CONFIGS 64
 #define STUDY_COV_LAG 3 /* 000 Appendix A: autocovariance at a lag of 3 frames */

@@ -10,11 +10,13 @@
 
 #include "bench_common.h"
 #include "core/check.h"
+#include "experiments/stats.h"
 #include "io/atomic_file.h"
 #include "io/report.h"
 #include "methods/renderer.h"
 #include "render/pt.h"
 #include "restir/metrics.h"
+#include "scene/scene_ray_log.h"
 
 struct bench_config {
     const char *scene;
@@ -229,10 +231,7 @@ static void bench_equal_time(const struct bench_config *c, const struct method *
         t[k] = st.ms_total;
         renderer_fini(&r);
     }
-    double per_spp = (t[1] - t[0]) / 3.0 > 0.25 * t[0] ? (t[1] - t[0]) / 3.0 : t[0];
-    q.spp = (int)(budget / per_spp);
-    if (q.spp < 1)
-        q.spp = 1;
+    q.spp = equal_time_spp(budget, t[0], t[1]); /* as restir compare --equal-time */
     renderer_init(&r, &s, method_named("pt"), &q);
     renderer_render(&r, last, &cam, &st);
     struct restir_error e_pt;

@@ -34,8 +34,10 @@ ALLOWED = {
     "src/gradient": ["src/render", "src/shading", "src/scene", "src/core", "include/restir"],
     "src/methods": ["src/gradient", "src/render", "src/shading", "src/scene", "src/core", "include/restir"],
     "src/io": ["src/scene", "src/core", "include/restir"],
+    "src/experiments": ["src/methods", "src/gradient", "src/render", "src/io", "src/shading", "src/scene", "src/core",
+                        "include/restir"],
     "src/view": ["src/methods", "src/render", "src/io", "src/scene", "src/core", "include/restir"],
-    "app": ["src/view", "src/methods", "src/gradient", "src/render", "src/io", "src/shading", "src/scene",
+    "app": ["src/experiments", "src/view", "src/methods", "src/gradient", "src/render", "src/io", "src/shading", "src/scene",
             "src/core", "include/restir"],
 }
 # Checked for style, size exemptions and cycles, but free to include any layer.
