@@ -15,6 +15,7 @@
 #include "evaluate_papers.h"
 #include "evaluate_tables.h"
 #include "io/atomic_file.h"
+#include "options.h"
 #include "plan.h"
 
 static void evaluate_usage(void)
@@ -54,86 +55,79 @@ static void evaluate_usage(void)
         "figure, the paper's, the differences), DIR/claims.csv, each\n"
         "step's study.csv / compare.csv and with --report DIR/index.html (and each step's page).\n"
         "docs/EVALUATION.md is made from evaluation.md files (scripts/evaluation_doc.sh).\n");
+    cli_options_help(stdout, "evaluate");
 }
 
 _Static_assert(sizeof((struct eval_options *)0)->scenes == sizeof((struct eval_options *)0)->configs,
                "parse() stores --scenes and --configs through one bound");
 
-/* Parses the evaluation's options (argv without the command name); dir and mode (0 none, 'o' --out,
- * 'p' --plan) may be NULL for a plan's stored arguments. Returns 0, -1 after printing --help, or an
- * exit code having said why. */
+/* Parses the evaluation's options (argv without the command name) through the option table
+ * (options.c); dir and mode (0 none, 'o' --out, 'p' --plan) may be NULL for a plan's stored
+ * arguments. Returns 0, -1 after printing --help, or an exit code having said why. */
 static int parse(int argc, char **argv, struct eval_options *o, const char **dir, int *mode)
 {
     char msg[RESTIR_MSG_LEN];
     memset(o, 0, sizeof *o);
-    o->width = EVAL_PAPER_WIDTH;
-    o->height = EVAL_PAPER_HEIGHT;
-    int report = 0;
-    for (int i = 0; i < argc; i++) {
+    char *options[EVAL_MAX_ARGS + 2];
+    int n = 0;
+    for (int i = 0; i < argc; i++) { /* the paper is the one argument that is not an option */
         const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            evaluate_usage();
-            return -1;
-        }
-        if (!strcmp(a, "--report")) {
-            report = 1;
+        if (a[0] == '-' || (i > 0 && cli_option_takes_value("evaluate", argv[i - 1]))) {
+            if (n == EVAL_MAX_ARGS) {
+                cli_error("evaluate: too many arguments");
+                return EXIT_USAGE;
+            }
+            options[n++] = argv[i];
             continue;
         }
-        if (strncmp(a, "--", 2) != 0) {
-            if (o->paper[0]) {
-                cli_error("evaluate: unexpected argument '%s' (one paper: 000, 004, 002 or all)", a);
-                return EXIT_USAGE;
-            }
-            if (strlen(a) >= sizeof o->paper) {
-                cli_error("evaluate: unknown paper '%.40s' (000, 004, 002 or all)", a);
-                return EXIT_USAGE;
-            }
-            snprintf(o->paper, sizeof o->paper, "%s", a);
-            continue;
-        }
-        if (i + 1 >= argc) {
-            cli_error("evaluate: %s needs a value", a);
+        if (o->paper[0]) {
+            cli_error("evaluate: unexpected argument '%s' (one paper: 000, 004, 002 or all)", a);
             return EXIT_USAGE;
         }
-        const char *v = argv[++i];
-        long long x = 0;
-        int rc = 0;
-        if ((!strcmp(a, "--out") || !strcmp(a, "--plan")) && dir && mode) {
-            if (*mode) {
-                cli_error("evaluate: give one of --out DIR and --plan DIR");
-                return EXIT_USAGE;
-            }
-            *dir = v;
-            *mode = a[2];
-        } else if (!strcmp(a, "--res"))
-            rc = cli_parse_res(v, &o->width, &o->height, msg);
-        else if (!strcmp(a, "--runs") && (rc = cli_parse_int(a, v, 2, 64, &x, msg)) == 0)
-            o->runs = (int)x;
-        else if (!strcmp(a, "--frames") && (rc = cli_parse_int(a, v, 4, 100000, &x, msg)) == 0)
-            o->frames = (int)x;
-        else if (!strcmp(a, "--warmup") && (rc = cli_parse_int(a, v, 1, 100000, &x, msg)) == 0)
-            o->warmup = (int)x;
-        else if (!strcmp(a, "--ref-spp") && (rc = cli_parse_int(a, v, 1, 1 << 24, &x, msg)) == 0)
-            o->ref_spp = (int)x;
-        else if (!strcmp(a, "--threads") && (rc = cli_parse_int(a, v, 1, 4096, &x, msg)) == 0)
-            o->threads = (int)x;
-        else if (!strcmp(a, "--scenes") || !strcmp(a, "--configs")) {
-            char *field = !strcmp(a, "--scenes") ? o->scenes : o->configs;
-            if (strlen(v) >= sizeof o->scenes) {
-                cli_error("evaluate: %s is longer than %zu characters", a, sizeof o->scenes - 1);
-                return EXIT_USAGE;
-            }
-            snprintf(field, sizeof o->scenes, "%s", v);
-        } else if (strcmp(a, "--runs") && strcmp(a, "--frames") && strcmp(a, "--warmup") &&
-                   strcmp(a, "--ref-spp") && strcmp(a, "--threads")) {
-            cli_error("evaluate: unknown option '%s' (restir evaluate --help)", a);
+        if (strlen(a) >= sizeof o->paper) {
+            cli_error("evaluate: unknown paper '%.40s' (000, 004, 002 or all)", a);
             return EXIT_USAGE;
         }
-        if (rc != 0) {
-            cli_error("evaluate: %s", msg);
-            return EXIT_USAGE;
-        }
+        snprintf(o->paper, sizeof o->paper, "%s", a);
     }
+    struct cli_options c;
+    if (cli_parse_options("evaluate", n, options, &c, msg) != 0) {
+        cli_error("evaluate: %s (restir evaluate --help)", msg);
+        return EXIT_USAGE;
+    }
+    if (c.help) {
+        evaluate_usage();
+        return -1;
+    }
+    if ((c.out || c.plan) && !(dir && mode)) {
+        cli_error("evaluate: a plan's stored options name no folder");
+        return EXIT_USAGE;
+    }
+    if (c.out && c.plan) {
+        cli_error("evaluate: give one of --out DIR and --plan DIR");
+        return EXIT_USAGE;
+    }
+    if (dir && mode && (c.out || c.plan)) {
+        *dir = c.out ? c.out : c.plan;
+        *mode = c.out ? 'o' : 'p';
+    }
+    const char *lists[2] = {c.scenes, c.configs}, *names[2] = {"--scenes", "--configs"};
+    char *fields[2] = {o->scenes, o->configs};
+    for (int k = 0; k < 2; k++) {
+        if (lists[k] && strlen(lists[k]) >= sizeof o->scenes) {
+            cli_error("evaluate: %s is longer than %zu characters", names[k], sizeof o->scenes - 1);
+            return EXIT_USAGE;
+        }
+        snprintf(fields[k], sizeof o->scenes, "%s", lists[k] ? lists[k] : "");
+    }
+    o->width = c.res_given ? c.params.width : EVAL_PAPER_WIDTH;
+    o->height = c.res_given ? c.params.height : EVAL_PAPER_HEIGHT;
+    o->runs = c.runs;
+    o->frames = c.frames;
+    o->warmup = c.warmup;
+    o->ref_spp = c.ref_spp;
+    o->threads = c.params.threads;
+    o->report = c.report;
     if (!o->paper[0]) {
         cli_error("evaluate: which paper? (000, 004, 002 or all; restir evaluate --help)");
         return EXIT_USAGE;
@@ -142,7 +136,6 @@ static int parse(int argc, char **argv, struct eval_options *o, const char **dir
         cli_error("evaluate: --configs chooses among 000's configurations; %s has none to choose", o->paper);
         return EXIT_USAGE;
     }
-    o->report = report;
     return 0;
 }
 

@@ -40,6 +40,7 @@ static void render_usage(FILE *out)
             "Parameters (--set key=value, defaults shown):\n");
     render_params_help(out);
     fprintf(out, "\nMetrics (against --ref):\n%s", restir_metrics_help());
+    cli_options_help(out, "render");
 }
 
 /* Resolves scene and method; returns 0 or an exit code after printing the problem. */

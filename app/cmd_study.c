@@ -51,6 +51,7 @@ static void study_usage(FILE *out)
             "of running; run the jobs in any order and anywhere (`parallel -j N < DIR/jobs.txt`, `sbatch\n"
             "DIR/slurm.sh`), then `restir study --merge DIR` writes into DIR what the study writes, with the\n"
             "same numbers (the pass times are those the jobs measured). docs/CLUSTER.md.\n");
+    cli_options_help(out, "study");
 }
 
 static float luminance_at(const float *rgb, size_t i) { return v3_luminance(v3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2])); }

@@ -32,6 +32,7 @@ static void view_usage(FILE *out)
             "'F quit'; F counts frames from the start). Default DIR: out/view-SCENE. Without a display it\n"
             "says so and exits 1.\n",
             cycle);
+    cli_options_help(out, "view");
 }
 
 int cmd_view(int argc, char **argv)

@@ -15,6 +15,7 @@
 #include "gradient/grad_frame.h"
 #include "io/atomic_file.h"
 #include "io/report.h"
+#include "options.h"
 #include "reference_checkpoint.h"
 #include "scene/scene_file.h"
 
@@ -342,6 +343,7 @@ static void compare_usage(void)
                "commit and machine, the table, a relMSE plot, every image beside the reference in a viewer\n"
                "(synchronized zoom and pan, A/B flip), relative-error heat maps and the crops where the first\n"
                "two methods differ most.\n");
+    cli_options_help(stdout, "compare");
 }
 
 int compare_setup(int argc, char **argv, struct compare_setup *st)

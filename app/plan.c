@@ -18,6 +18,7 @@
 #include "io/atomic_file.h"
 #include "io/report.h"
 #include "io/text_file.h"
+#include "options.h"
 
 static uint64_t plan_hash(const char *kind, int argc, char **argv)
 {
@@ -43,6 +44,19 @@ static int plain_path(const char *s)
             *s == '`' || *s == '%')
             return 0;
     return 1;
+}
+
+/* p->argv, p->argc, p->threads and p->id from the command's JSON description (options.h). Returns 0,
+ * or -1 with msg. */
+static int plan_set_arguments(struct plan *p, const cJSON *desc, char *msg)
+{
+    if (cli_options_argv(p->kind, desc, &p->argc, &p->argv, msg) != 0)
+        return -1;
+    for (int i = 0; i + 1 < p->argc; i++)
+        if (!strcmp(p->argv[i], "--threads"))
+            p->threads = atoi(p->argv[i + 1]);
+    p->id = plan_hash(p->kind, p->argc, p->argv);
+    return 0;
 }
 
 /* Starts a plan of kind in dir (made, if missing) from the command's arguments, copying them
@@ -77,11 +91,17 @@ static int plan_init(struct plan *p, const char *dir, const char *kind, int argc
         struct stat st;
         /* a scene name stays a name; a file is found again from any folder a job runs in */
         p->argv[p->argc++] = xstrdup(path_value && stat(argv[i], &st) == 0 && realpath(argv[i], abs) ? abs : argv[i]);
-        if (!strcmp(argv[i], "--threads") && i + 1 < argc)
-            p->threads = atoi(argv[i + 1]);
     }
-    p->id = plan_hash(kind, p->argc, p->argv);
-    return 0;
+    /* the arguments as the description plan.json keeps, and back: jobs and merges see the same */
+    cJSON *desc = cli_options_describe(kind, p->argc, p->argv, msg);
+    cli_options_free_argv(p->argc, p->argv);
+    p->argc = 0;
+    p->argv = NULL;
+    if (!desc)
+        return -1;
+    const int rc = plan_set_arguments(p, desc, msg);
+    cJSON_Delete(desc);
+    return rc;
 }
 
 int plan_start(struct plan *p, const char *dir, const char *kind, int argc, char **argv, uint64_t scene_hash)
@@ -149,12 +169,15 @@ int plan_write(const struct plan *p, char *msg)
         return -1;
 
     cJSON *j = cJSON_CreateObject();
-    cJSON_AddNumberToObject(j, "restir_plan", 1);
+    cJSON_AddNumberToObject(j, "restir_plan", PLAN_FORMAT);
     cJSON_AddStringToObject(j, "kind", p->kind);
     cJSON_AddStringToObject(j, "command", p->command);
-    cJSON *args = cJSON_AddArrayToObject(j, "args");
-    for (int i = 0; i < p->argc; i++)
-        cJSON_AddItemToArray(args, cJSON_CreateString(p->argv[i]));
+    cJSON *desc = cli_options_describe(p->kind, p->argc, p->argv, msg);
+    if (!desc) {
+        cJSON_Delete(j);
+        return -1;
+    }
+    cJSON_AddItemToObject(j, "options", desc);
     char hex[32];
     snprintf(hex, sizeof hex, "%016llx", (unsigned long long)p->scene_hash);
     cJSON_AddStringToObject(j, "scene_hash", hex);
@@ -249,33 +272,36 @@ int plan_load(const char *dir, struct plan *p, char *msg)
     cJSON *j = cJSON_Parse(text);
     free(text);
     const cJSON *kind = cJSON_GetObjectItemCaseSensitive(j, "kind");
-    const cJSON *args = cJSON_GetObjectItemCaseSensitive(j, "args");
+    const cJSON *options = cJSON_GetObjectItemCaseSensitive(j, "options");
     const cJSON *jobs = cJSON_GetObjectItemCaseSensitive(j, "jobs");
     const cJSON *hash = cJSON_GetObjectItemCaseSensitive(j, "scene_hash");
     const cJSON *command = cJSON_GetObjectItemCaseSensitive(j, "command");
-    if (!j || !cJSON_IsString(kind) || !cJSON_IsArray(args) || !cJSON_IsArray(jobs) || !cJSON_IsString(hash) ||
+    if (j && !options && cJSON_GetObjectItemCaseSensitive(j, "args")) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "%.300s: planned by an older restir, which stored the command's arguments instead of its JSON "
+                 "description; plan the command again", path);
+        cJSON_Delete(j);
+        return -1;
+    }
+    if (!j || !cJSON_IsString(kind) || !cJSON_IsObject(options) || !cJSON_IsArray(jobs) || !cJSON_IsString(hash) ||
         !cJSON_IsString(command) || strlen(kind->valuestring) >= sizeof p->kind ||
         cJSON_GetArraySize(jobs) > PLAN_MAX_JOBS) {
-        snprintf(msg, RESTIR_MSG_LEN, "%.300s: not a plan (kind, args, jobs, scene_hash and command are required)",
-                 path);
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "%.300s: not a plan (kind, options, jobs, scene_hash and command are required)", path);
         cJSON_Delete(j);
         return -1;
     }
     snprintf(p->kind, sizeof p->kind, "%s", kind->valuestring);
     snprintf(p->command, sizeof p->command, "%s", command->valuestring);
     p->scene_hash = strtoull(hash->valuestring, NULL, 16);
-    p->argc = cJSON_GetArraySize(args);
-    p->argv = xcalloc((size_t)p->argc + 1, sizeof(char *));
-    int bad = 0, i = 0;
-    const cJSON *a;
-    cJSON_ArrayForEach(a, args)
-    {
-        bad |= !cJSON_IsString(a);
-        p->argv[i] = xstrdup(cJSON_IsString(a) ? a->valuestring : "");
-        if (i > 0 && !strcmp(p->argv[i - 1], "--threads"))
-            p->threads = atoi(p->argv[i]);
-        i++;
+    char why_options[RESTIR_MSG_LEN];
+    if (plan_set_arguments(p, options, why_options) != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.200s: %.280s", path, why_options);
+        cJSON_Delete(j);
+        plan_free(p);
+        return -1;
     }
+    int bad = 0;
     const cJSON *o;
     cJSON_ArrayForEach(o, jobs)
     {
@@ -289,11 +315,10 @@ int plan_load(const char *dir, struct plan *p, char *msg)
     }
     cJSON_Delete(j);
     if (bad) {
-        snprintf(msg, RESTIR_MSG_LEN, "%.300s: an argument or a job entry is malformed", path);
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: a job entry is malformed", path);
         plan_free(p);
         return -1;
     }
-    p->id = plan_hash(p->kind, p->argc, p->argv);
     return 0;
 }
 

@@ -6,11 +6,12 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* A plan folder holds plan.json (the command's kind, its arguments and its jobs), jobs.txt (one
+/* A plan folder holds plan.json (the command's kind, its JSON description (options.h) and its jobs), jobs.txt (one
  * shell command per job: `restir job DIR K`, for GNU parallel), slurm.sh (an `sbatch --array`
  * script that runs line $SLURM_ARRAY_TASK_ID of jobs.txt) and runs/, the only place jobs write,
  * each its own output, atomically. */
 
+#define PLAN_FORMAT 2 /* plan.json's "restir_plan": 2 stores the command's JSON description ("options") */
 #define PLAN_MAX_JOBS 100000
 #define PLAN_PATH_MAX 4096
 #define PLAN_NAME_MAX 256 /* a job's name: an evaluate step, a spec of up to SPEC_MAX characters, a run */

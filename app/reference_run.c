@@ -1,5 +1,6 @@
 /* reference_run.c: what `restir reference` and its sharded form share (reference_run.h): options, the image.
  * Must never implement a method or call into cmd_reference.c or reference_shards.c. */
+#include "options.h"
 #include "reference_run.h"
 
 #include <omp.h>
@@ -37,6 +38,7 @@ static void reference_usage(FILE *out)
             "it up to the order of the floating-point sums (relative difference at most (2C+1) 2^-24 for C\n"
             "chunks).\n",
             REFERENCE_CHUNK_SPP);
+    cli_options_help(out, "reference");
 }
 
 int reference_write_image(const char *path, const float *mean, int w, int h, int samples, int spp, const char *run,

@@ -11,6 +11,7 @@
 #include <signal.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "cli_util.h"
 #include "io/exr.h"
@@ -161,6 +162,44 @@ static void test_reference(char *err)
                 "--ref-spp 32 --seed 9 --runs 2"
 
 
+/* plan.json holds the command's JSON description, not its arguments: a job reads it back through the
+ * option table; a plan written with an argument list (an older restir), a description with an
+ * unknown key or a value of the wrong type are refused with exit 2, naming the problem, and the job
+ * writes nothing. plan is a finished compare plan; its plan.json is restored at the end. */
+static void test_plan_descriptions(const char *plan, char *err)
+{
+    char path[3 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX];
+    static char original[1 << 16], text[1 << 16];
+    snprintf(path, sizeof path, "%s/plan.json", plan);
+    cli_read_text(path, original, sizeof original);
+    EXPECT(strstr(original, "\"options\"") && strstr(original, "\"methods\":\t\"restir-di,pt,restir-di:mis=balance\"") &&
+               !strstr(original, "\"args\""),
+           "plan.json holds no JSON description of the compare:\n%s", original);
+    static const struct {
+        const char *from, *to, *says;
+    } broken[] = {
+        {"\"options\"", "\"args\": [\"--scene\", \"cornell\"], \"old_options\"", "older restir"},
+        {"\"methods\":", "\"no_such_key\": 1, \"methods\":", "unknown key \"no_such_key\""},
+        {"\"frames\":\t3", "\"frames\":\t\"three\"", "\"frames\" must be a number"},
+    };
+    for (int k = 0; k < 3; k++) {
+        char *at = strstr(original, broken[k].from);
+        EXPECT(at != NULL, "plan.json has no %s to break", broken[k].from);
+        if (!at)
+            continue;
+        snprintf(text, sizeof text, "%.*s%s%s", (int)(at - original), original, broken[k].to,
+                 at + strlen(broken[k].from));
+        EXPECT(cli_write_text(path, text) == 0, "cannot write %s", path);
+        EXPECT(sh("rm -f '%s/runs/reference.exr'%s", plan, "") == 0, "cannot remove a result");
+        snprintf(args, sizeof args, "job '%s' 1", plan);
+        EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, broken[k].says), "plan.json with %s: job says %s",
+               broken[k].to, err);
+        snprintf(args, sizeof args, "%s/runs/reference.exr", plan);
+        EXPECT(access(args, F_OK) != 0, "a refused job wrote %s", args);
+    }
+    EXPECT(cli_write_text(path, original) == 0, "cannot restore %s", path);
+}
+
 static void test_compare(char *err)
 {
     char unsplit[2 * CLI_PATH_MAX], plan[2 * CLI_PATH_MAX], args[6 * CLI_PATH_MAX];
@@ -196,6 +235,7 @@ static void test_compare(char *err)
            "compare's\n%s", b);
     EXPECT(sh("rm '%s/runs/pt/run_1.bin'%s", plan, "") == 0, "cannot remove a result");
     EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 5 (pt, run 1)"), "merge with a missing job: %s", err);
+    test_plan_descriptions(plan, err);
 }
 
 /* A study plan's reference job saving after every chunk (RESTIR_REFERENCE_CHECKPOINT_SECONDS=0):
