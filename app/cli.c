@@ -245,10 +245,11 @@ void cli_catch_stop_signals(void)
 
 int cli_scene_load(const struct render_params *p, const char *env, const char *name, struct scene *s, char *msg)
 {
-    scene_set_missing_textures_warn(p->missing_textures_warn);
-    scene_set_alpha_masks(p->alpha_masks);
-    scene_set_shading_normals(p->shading_normals);
-    if (scene_load(name, s, msg) != 0)
+    const struct scene_load_desc desc = {.missing_textures_warn = p->missing_textures_warn != 0,
+                                         .no_alpha_masks = !p->alpha_masks,
+                                         .flat_shading = !p->shading_normals,
+                                         .ray_streams_off = !p->ray_streams};
+    if (scene_load_with(name, &desc, s, msg) != 0)
         return -1;
     if (!env)
         return 0;

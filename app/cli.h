@@ -47,8 +47,9 @@ int cli_check_memory(const struct scene *s, const struct method *m, const struct
 int cli_check_bytes(const char *what, int width, int height, double need_bytes, double per_pixel,
                     long long max_memory_mb, char *msg);
 
-/* scene_load with the scene-loading settings of p (scene.missing_textures), then env (NULL: keep
- * the scene's): "none" removes its environment light, else an .hdr / .exr image replaces it. */
+/* scene_load_with the scene-loading settings of p (scene.missing_textures, scene.alpha,
+ * scene.shading_normals, rays.streams: all fixed here, at load), then env (NULL: keep the
+ * scene's): "none" removes its environment light, else an .hdr / .exr image replaces it. */
 int cli_scene_load(const struct render_params *p, const char *env, const char *name, struct scene *s, char *msg);
 
 /* Loads a reference EXR and checks it has the render size. Returns 0, or -1 with msg. */

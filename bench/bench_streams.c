@@ -1,7 +1,8 @@
 /* bench_streams.c: `restir_bench streams [--res WxH] [--rounds N]`: the batched passes with
  * rays.streams on (Embree streams per tile) against off (one Embree call per ray), per pass, in
  * alternating rounds of one run (this machine's speed drifts), so that the faster way is kept per
- * pass on measurement. The images are the same either way (render.ray_streams). */
+ * pass on measurement. The images are the same either way (rays.streams). The setting is the
+ * scene's (scene_set_ray_streams): this benchmark owns its scene and sets it before each run. */
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -14,14 +15,13 @@
 #define STREAMS_FRAMES 9
 
 /* Mean per-pass ms over frames 1 .. STREAMS_FRAMES-1 of one renderer into ms[], the frame's in
- * ms[PASS_COUNT]. */
-static void timed_run(const struct scene *s, const struct method *method, int width, int height, int streams, double *ms)
+ * ms[PASS_COUNT]; streams on or off as s is set. */
+static void timed_run(const struct scene *s, const struct method *method, int width, int height, double *ms)
 {
     struct render_params p;
     render_params_defaults(&p);
     p.width = width;
     p.height = height;
-    p.ray_streams = streams;
     struct renderer r;
     renderer_init(&r, s, method, &p);
     struct camera cam = scene_camera_at(s, 0, 0.0f);
@@ -49,7 +49,8 @@ static void streams_case(const char *scene, const struct method *method, int wid
         for (int m = 0; m < 2; m++) {
             const int streams = (round + m) % 2; /* alternate which goes first */
             double ms[PASS_COUNT + 1];
-            timed_run(&s, method, width, height, streams, ms);
+            scene_set_ray_streams(&s, streams);
+            timed_run(&s, method, width, height, ms);
             for (int q = 0; q <= PASS_COUNT; q++)
                 best[streams][q] = ms[q] < best[streams][q] ? ms[q] : best[streams][q];
         }

@@ -14,7 +14,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (size > (1u << 20)) /* scenes larger than 1 MB say nothing new about the reader */
         return 0;
-    scene_set_max_triangles(1 << 18); /* a sphere of 4096 segments must not exhaust the fuzzer's memory */
     char *text = malloc(size + 1);
     if (!text)
         return 0;
@@ -22,7 +21,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     text[size] = '\0';
     struct scene s;
     char msg[RESTIR_MSG_LEN];
-    if (scene_json_parse(text, size, "fuzz.json", "/nonexistent-restir-fuzz", &s, msg) == 0)
+    /* a sphere of 4096 segments must not exhaust the fuzzer's memory */
+    const struct scene_load_desc desc = {.max_triangles = 1 << 18};
+    if (scene_json_parse_with(text, size, "fuzz.json", "/nonexistent-restir-fuzz", &desc, &s, msg) == 0)
         scene_destroy(&s);
     else if (msg[0] == '\0' || memchr(msg, '\0', sizeof msg) == NULL)
         abort(); /* a refusal must say why, in a terminated message */

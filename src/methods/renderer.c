@@ -108,8 +108,7 @@ void renderer_render(struct renderer *r, int frame, const struct camera *cam, st
     renderer_camera_view(&r->p, cam, r->has_prev_cam ? &r->prev_cam : NULL, &view);
     r->prev_cam = *cam;
     r->has_prev_cam = 1;
-    scene_ray_streams(r->scene, r->p.ray_streams); /* the scene may be shared with other renderers */
-    simd_allow(r->p.simd);                         /* process-wide */
+    simd_allow(r->p.simd); /* process-wide */
     double t0 = omp_get_wtime();
     r->frame = frame;
     r->method->render_frame(r, r->state, &view, st);

@@ -128,7 +128,8 @@ static const struct param_def params[] = {
     {"rays.streams", P_BOOL, F(ray_streams), 0, 1, "on", NULL,
      "trace the G-buffer's camera rays and restir-di's shadow rays tile by tile as Embree streams "
      "(rtcIntersect1M / rtcOccluded1M); off: one Embree call per ray. The same images either way, only the "
-     "time differs (docs/BENCHMARKS.md, the section on Embree streams)", NULL},
+     "time differs (docs/BENCHMARKS.md, the section on Embree streams). Applied when the scene is loaded, so "
+     "in `restir compare` the command's --set value counts, not a per-spec one", NULL},
     {"simd", P_BOOL, F(simd), 0, 1, "on", NULL,
      "vector kernels (initial RIS candidates, restir-di merge targets across pixels): on = AVX2 where the "
      "CPU has it, chosen at run time; off = the build's baseline (SSE2 on x86-64). The same images either "

@@ -23,13 +23,26 @@ static void *grow_to(void *p, int cap, size_t elem)
     return q;
 }
 
-void scene_builder_begin(struct scene_builder *b, struct scene *s, const char *name)
+/* The default triangle budget (scene_load_desc.max_triangles). */
+#define DEFAULT_MAX_TRIANGLES (1 << 26)
+
+void scene_builder_begin_with(struct scene_builder *b, struct scene *s, const char *name,
+                              const struct scene_load_desc *desc)
 {
     memset(s, 0, sizeof(*s));
     memset(b, 0, sizeof(*b));
     b->s = s;
+    if (desc)
+        b->desc = *desc;
+    if (b->desc.max_triangles <= 0)
+        b->desc.max_triangles = DEFAULT_MAX_TRIANGLES;
     snprintf(s->name, sizeof(s->name), "%s", name);
     s->camera = (struct camera){v3(0, 1, 3), v3(0, 1, 0), v3(0, 1, 0), 45.0f, 0.0f, 0.0f};
+}
+
+void scene_builder_begin(struct scene_builder *b, struct scene *s, const char *name)
+{
+    scene_builder_begin_with(b, s, name, NULL);
 }
 
 int scene_add_material(struct scene_builder *b, struct material m)
@@ -73,23 +86,9 @@ int scene_texture_find(const struct scene *s, const char *key, int srgb)
     return 0;
 }
 
-static int max_triangles = 1 << 26;
-
-void scene_set_max_triangles(int n) { max_triangles = n > 0 ? n : 1; }
-
-static int missing_textures_warn;
-static int alpha_masks = 1;
-
-static int shading_normals = 1;
-
-void scene_set_alpha_masks(int on) { alpha_masks = on != 0; }
-void scene_set_shading_normals(int on) { shading_normals = on != 0; }
-
-void scene_set_missing_textures_warn(int warn) { missing_textures_warn = warn != 0; }
-
-int scene_texture_unreadable(const char *why)
+int scene_texture_unreadable(const struct scene_builder *b, const char *why)
 {
-    if (!missing_textures_warn)
+    if (!b->desc.missing_textures_warn)
         return -1;
     fprintf(stderr, "restir: warning: %s; the material's factor is used instead of the map "
                     "(scene.missing_textures=warn)\n",
@@ -163,7 +162,7 @@ void scene_add_triangle(struct scene_builder *b, vec3 a, vec3 c, vec3 d, int mat
     record_shape(b, (struct scene_shape_record){.kind = SHAPE_TRIANGLE, .p = {a, c, d}, .material = material,
                                                 .object = object});
     struct scene *s = b->s;
-    if (s->num_tris >= max_triangles) {
+    if (s->num_tris >= b->desc.max_triangles) {
         b->over_budget = 1;
         return;
     }
@@ -323,7 +322,8 @@ int scene_builder_end(struct scene_builder *b, char *msg)
 {
     struct scene *s = b->s;
     if (b->over_budget) {
-        snprintf(msg, RESTIR_MSG_LEN, "scene '%s' has more than %d triangles (the limit)", s->name, max_triangles);
+        snprintf(msg, RESTIR_MSG_LEN, "scene '%s' has more than %d triangles (the limit)", s->name,
+                 b->desc.max_triangles);
         return -1;
     }
     if (s->num_tris == 0) {
@@ -331,9 +331,9 @@ int scene_builder_end(struct scene_builder *b, char *msg)
         return -1;
     }
     for (int m = 0; m < s->num_materials; m++) {
-        if (!alpha_masks)
+        if (b->desc.no_alpha_masks)
             s->materials[m].alpha_mask = 0;
-        if (!shading_normals)
+        if (b->desc.flat_shading)
             s->materials[m].normal_map = 0;
         const struct material *mt = &s->materials[m];
         if (!v3_is_finite(mt->base_color) || !v3_is_finite(mt->emission) || !isfinite(mt->metallic) ||
@@ -351,7 +351,7 @@ int scene_builder_end(struct scene_builder *b, char *msg)
             }
         }
     }
-    if (!shading_normals) {
+    if (b->desc.flat_shading) {
         free(s->normals);
         free(s->tangents);
         s->normals = NULL;
@@ -362,6 +362,8 @@ int scene_builder_end(struct scene_builder *b, char *msg)
     double t0 = omp_get_wtime();
     int rc = scene_rt_build(s, msg);
     s->bvh_ms = 1e3 * (omp_get_wtime() - t0);
+    if (rc == 0)
+        scene_set_ray_streams(s, !b->desc.ray_streams_off);
     return rc;
 }
 

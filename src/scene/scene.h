@@ -23,17 +23,47 @@ struct scene_shape_record {
     int material, object;
 };
 
+/* How a scene is to be loaded: the settings scene_load_with (scene_file.h) hands down to the
+ * readers and the builder. Every field's zero is the default, so a zeroed description (or a NULL
+ * pointer wherever one is taken) loads the scene as it is written. */
+struct scene_load_desc {
+    /* The most triangles the scene may have, counted as the builder adds them (instances and
+     * imported meshes included); past it the builder stops adding and scene_builder_end refuses the
+     * scene saying so. 0 (or negative): 1 << 26, about 16 GB with its BVH. Fuzzing lowers it. */
+    int max_triangles;
+    /* A texture that cannot be read (missing, undecodable): 0 refuses the scene with a message
+     * naming the file and key; 1 says why on stderr and goes on without the map (the material's
+     * factor alone; scene.missing_textures=warn). */
+    int missing_textures_warn;
+    /* 1: scene_builder_end makes every alpha-masked material opaque (scene.alpha=off: what the
+     * masks cost, measured on the same geometry). 0: masks are honoured. Changes the scene. */
+    int no_alpha_masks;
+    /* 1: scene_builder_end drops vertex normals, tangents and normal maps, so every triangle
+     * shades with its geometric normal (scene.shading_normals=off). 0: they are kept. Changes the
+     * scene. */
+    int flat_shading;
+    /* 1: the batched ray queries (scene_intersect_batch, scene_occluded_batch) trace ray by ray
+     * instead of as Embree streams (rays.streams=off). 0: streams. The same answers either way,
+     * only the time differs; the owner may change it later (scene_set_ray_streams). */
+    int ray_streams_off;
+};
+
 /* Builder used by the built-in scenes, scene files and tests. */
 struct scene_builder {
     struct scene *s;
+    struct scene_load_desc desc; /* max_triangles already resolved (> 0) */
     int cap_verts, cap_tris, cap_materials, cap_textures; /* capacities of the growing arrays */
     /* With record set, every outermost shape call is appended to records (the caller frees). */
     int record, depth;
-    int over_budget; /* a triangle beyond scene_set_max_triangles was refused */
+    int over_budget; /* a triangle beyond desc.max_triangles was refused */
     int num_records, cap_records;
     struct scene_shape_record *records;
 };
 
+/* Starts building s, named name, as desc says (NULL: a zeroed description, the defaults). */
+void scene_builder_begin_with(struct scene_builder *b, struct scene *s, const char *name,
+                              const struct scene_load_desc *desc);
+/* scene_builder_begin_with with the defaults. */
 void scene_builder_begin(struct scene_builder *b, struct scene *s, const char *name);
 int scene_add_material(struct scene_builder *b, struct material m);
 /* Takes ownership of t; returns its map id for struct material (>= 1). key names where it came
@@ -42,20 +72,10 @@ int scene_add_material(struct scene_builder *b, struct material m);
 int scene_add_texture(struct scene_builder *b, struct texture t, const char *key, int srgb);
 /* The map id of the texture added with this key and srgb, or 0. */
 int scene_texture_find(const struct scene *s, const char *key, int srgb);
-/* The most triangles a scene may have (default 1 << 26, about 16 GB with its BVH): a builder past
- * it stops adding and scene_builder_end fails saying so. Fuzzing lowers it. */
-void scene_set_max_triangles(int n);
-/* What loading does with a texture that cannot be read (missing, undecodable): refuse the scene
- * (default) or, with warn set, say why on stderr and go on without the map. Loaders call
- * scene_texture_unreadable(why): -1 to refuse, 0 after the warning. */
-void scene_set_missing_textures_warn(int warn);
-int scene_texture_unreadable(const char *why);
-/* With on = 0, scene_builder_end makes every alpha-masked material opaque (scene.alpha=off: what
- * the masks cost is measured on the same geometry). Default on. */
-void scene_set_alpha_masks(int on);
-/* With on = 0, scene_builder_end drops vertex normals, tangents and normal maps: every triangle
- * shades flat (scene.shading_normals=off). Default on. */
-void scene_set_shading_normals(int on);
+/* What loading does with a texture that cannot be read (missing, undecodable), as the builder's
+ * desc.missing_textures_warn says: returns -1 to refuse the scene, or 0 after saying why on stderr
+ * (the loader then goes on without the map). */
+int scene_texture_unreadable(const struct scene_builder *b, const char *why);
 /* The UVs (u0 v0 u1 v1 u2 v2) of triangle tri, already added: set 0 (scene_set_uvs) or 1. */
 void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6]);
 void scene_set_uv_set(struct scene_builder *b, int tri, int set, const float uv[6]);
@@ -79,8 +99,8 @@ void scene_add_box_rotated_y(struct scene_builder *b, vec3 lo, vec3 hi, float an
 enum { SPHERE_INWARD = 1, SPHERE_SMOOTH = 2 };
 void scene_add_sphere(struct scene_builder *b, vec3 center, float radius, int segments, int flags,
                       int material, int object);
-/* Finishes derived data (normals, areas, emitters, alias table) and builds the Embree scene.
- * Returns 0 on success, -1 with msg filled (e.g. no geometry, NaN vertex). */
+/* Applies the description's scene changes (no_alpha_masks, flat_shading), finishes derived data
+ * (normals, areas, emitters, alias table) and builds the Embree scene (ray_streams_off). Returns 0 on success, -1 with msg filled (e.g. no geometry, NaN vertex). */
 int scene_builder_end(struct scene_builder *b, char *msg);
 
 void scene_destroy(struct scene *s);

@@ -6,8 +6,12 @@
 #include "scene/scene.h"
 
 /* A built-in scene by name, or a scene file: .json (ours, scene_json.h) or anything assimp reads
- * (.gltf, .glb, .obj, .ply, ...; scene_import.h). Returns 0, or -1 with msg naming the scene or
- * file and the problem. */
+ * (.gltf, .glb, .obj, .ply, ...; scene_import.h), loaded as d says (struct scene_load_desc in
+ * scene.h: triangle budget, unreadable textures, alpha masks, shading normals, Embree streams;
+ * NULL or zeroed: the defaults); the settings live in d and the scene, none process-wide.
+ * Returns 0, or -1 with msg naming the scene or file and the problem. */
+int scene_load_with(const char *name_or_path, const struct scene_load_desc *d, struct scene *s, char *msg);
+/* scene_load_with with the defaults. */
 int scene_load(const char *name_or_path, struct scene *s, char *msg);
 
 /* A camera file (`restir view` records them; `render --camera FILE` replays them): one camera per

@@ -525,10 +525,15 @@ static int has_emissive_triangle(const struct scene *s)
 
 int scene_import_file(const char *path, struct scene *s, char *msg)
 {
+    return scene_import_file_with(path, NULL, s, msg);
+}
+
+int scene_import_file_with(const char *path, const struct scene_load_desc *d, struct scene *s, char *msg)
+{
     char name[sizeof(s->name)];
     scene_file_stem(path, name, sizeof name);
     struct scene_builder b;
-    scene_builder_begin(&b, s, name);
+    scene_builder_begin_with(&b, s, name, d);
     const struct aiScene *ai = NULL;
     if (import_mesh(&b, path, NULL, -1, NULL, 0, -1, msg, &ai) < 0) {
         scene_destroy(s);

@@ -41,5 +41,7 @@ int scene_import_mesh(struct scene_builder *b, const char *path, const float *xf
  * materials are the emitters; a file without any is refused with a message that suggests a JSON
  * scene adding lights. Returns 0, or -1 with msg filled and s left empty. */
 int scene_import_file(const char *path, struct scene *s, char *msg);
+/* The same as d says (scene.h; NULL: the defaults, as scene_import_file). */
+int scene_import_file_with(const char *path, const struct scene_load_desc *d, struct scene *s, char *msg);
 
 #endif

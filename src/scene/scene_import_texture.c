@@ -94,6 +94,6 @@ int import_texture_map(struct scene_builder *b, const struct aiScene *ai, const 
         return map;
     struct texture t;
     if (decode(ai, model_path, ref.data, key, srgb, &t, msg) != 0)
-        return scene_texture_unreadable(msg) == 0 ? 0 : -1;
+        return scene_texture_unreadable(b, msg) == 0 ? 0 : -1;
     return scene_add_texture(b, t, key, srgb);
 }

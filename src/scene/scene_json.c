@@ -125,7 +125,7 @@ static int texture_map(struct json_reader *r, const cJSON *m, const char *mkey, 
     if (texture_load_file(path, srgb, &t, tmsg) != 0) {
         char why[2 * RESTIR_MSG_LEN];
         snprintf(why, sizeof why, "%s: %s: %s", r->file, k, tmsg);
-        return scene_texture_unreadable(why) == 0 ? 0 : json_fail(r, k, "%s", tmsg);
+        return scene_texture_unreadable(r->b, why) == 0 ? 0 : json_fail(r, k, "%s", tmsg);
     }
     *map = scene_add_texture(r->b, t, path, srgb);
     return 0;
@@ -593,6 +593,12 @@ static int read_scene(struct json_reader *r, const cJSON *root)
  * reads back bit for bit. Nothing is half-built on failure. */
 int scene_json_parse(const char *text, size_t len, const char *file, const char *dir, struct scene *s, char *msg)
 {
+    return scene_json_parse_with(text, len, file, dir, NULL, s, msg);
+}
+
+int scene_json_parse_with(const char *text, size_t len, const char *file, const char *dir,
+                          const struct scene_load_desc *d, struct scene *s, char *msg)
+{
     memset(s, 0, sizeof(*s)); /* empty on every failure, so scene_destroy is always safe */
     struct json_reader r = {.file = file, .msg = msg};
     snprintf(r.dir, sizeof r.dir, "%s", dir ? dir : "");
@@ -604,7 +610,7 @@ int scene_json_parse(const char *text, size_t len, const char *file, const char 
     char stem[64];
     scene_file_stem(file, stem, sizeof stem);
     struct scene_builder b;
-    scene_builder_begin(&b, s, stem);
+    scene_builder_begin_with(&b, s, stem, d);
     r.b = &b;
     int rc = read_scene(&r, root);
     cJSON_Delete(root);
@@ -629,7 +635,7 @@ int scene_json_parse(const char *text, size_t len, const char *file, const char 
     return rc;
 }
 
-int scene_json_load(const char *path, struct scene *s, char *msg)
+int scene_json_load(const char *path, const struct scene_load_desc *d, struct scene *s, char *msg)
 {
     memset(s, 0, sizeof(*s));
     long len = 0;
@@ -647,7 +653,7 @@ int scene_json_load(const char *path, struct scene *s, char *msg)
         snprintf(msg, RESTIR_MSG_LEN, "%.300s: path too long", path);
         return -1;
     }
-    int rc = scene_json_parse(text, (size_t)len, path, dir, s, msg);
+    int rc = scene_json_parse_with(text, (size_t)len, path, dir, d, s, msg);
     free(text);
     return rc;
 }

@@ -24,7 +24,7 @@ struct alpha_filter {
 struct scene_rt {
     scene_ray_hook hook; /* the ray log's (scene_rt_embree.h), NULL unless a benchmark logs */
     void *hook_user;
-    int streams; /* scene_ray_streams */
+    int streams; /* scene_set_ray_streams; set at load from scene_load_desc.ray_streams_off */
     struct alpha_filter alpha_masked, alpha_emitters;
     /* The main scene holds the opaque triangles as geometry 0 and, where some material is
      * alpha-masked, the masked ones as geometry 1, so that only hits on those call the filter.
@@ -334,9 +334,9 @@ void scene_rt_occluded_stream(RTCScene sc, const struct ray_query *q, int n, int
         occ[k] = ray[k].tfar == -INFINITY;
 }
 
-void scene_ray_streams(const struct scene *s, int on)
+void scene_set_ray_streams(struct scene *s, int on)
 {
-    s->rt->streams = on;
+    s->rt->streams = on != 0;
 }
 
 void scene_intersect_batch(const struct scene *s, const struct ray_query *q, int n, int coherent,

@@ -58,8 +58,11 @@ int scene_visibility_query(vec3 p0, vec3 n0, vec3 p1, vec3 n1, struct ray_query 
 void scene_intersect_batch(const struct scene *s, const struct ray_query *q, int n, int coherent,
                            struct surface_hit *hits, unsigned char *hit);
 void scene_occluded_batch(const struct scene *s, const struct ray_query *q, int n, unsigned char *occluded);
-/* on = 0: the batched queries trace ray by ray (the renderer sets it from rays.streams each frame). */
-void scene_ray_streams(const struct scene *s, int on);
+/* on = 0: the batched queries trace ray by ray; on = 1 (the default): as Embree streams. The
+ * scene's owner's setting, not a renderer's: loading sets it (scene_load_desc.ray_streams_off,
+ * from rays.streams), and an owner may change it while no query runs (the benchmark of streams
+ * toggles it per run). The same answers either way. */
+void scene_set_ray_streams(struct scene *s, int on);
 
 /* Which query traced a ray: scene_intersect (and the batched closest hits), scene_occluded (and
  * the batched occlusion), scene_intersect_emitters. The benchmarks' ray log records it

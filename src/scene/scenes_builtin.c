@@ -256,8 +256,8 @@ static int find_builtin(const char *name)
 
 int scene_is_builtin(const char *name) { return find_builtin(name) >= 0; }
 
-static int create_builtin(const char *name, struct scene *s, struct scene_shape_record **records, int *num_records,
-                          char *msg)
+static int create_builtin(const char *name, const struct scene_load_desc *d, struct scene *s,
+                          struct scene_shape_record **records, int *num_records, char *msg)
 {
     static void (*const builders[])(struct scene_builder *) = {build_many_lights, build_cornell, build_ajar,
                                                                build_foliage,     build_pillars, build_furnace,
@@ -274,7 +274,7 @@ static int create_builtin(const char *name, struct scene *s, struct scene_shape_
         return -1;
     }
     struct scene_builder b;
-    scene_builder_begin(&b, s, name);
+    scene_builder_begin_with(&b, s, name, d);
     b.record = records != NULL;
     builders[i](&b);
     if (scene_builder_end(&b, msg) != 0 || (lights[i] && lights[i](s, msg) != 0)) {
@@ -291,11 +291,16 @@ static int create_builtin(const char *name, struct scene *s, struct scene_shape_
 
 int scene_create_builtin(const char *name, struct scene *s, char *msg)
 {
-    return create_builtin(name, s, NULL, NULL, msg);
+    return create_builtin(name, NULL, s, NULL, NULL, msg);
+}
+
+int scene_create_builtin_with(const char *name, const struct scene_load_desc *d, struct scene *s, char *msg)
+{
+    return create_builtin(name, d, s, NULL, NULL, msg);
 }
 
 int scene_create_builtin_recorded(const char *name, struct scene *s, struct scene_shape_record **records,
                                   int *num_records, char *msg)
 {
-    return create_builtin(name, s, records, num_records, msg);
+    return create_builtin(name, NULL, s, records, num_records, msg);
 }

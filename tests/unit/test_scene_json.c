@@ -47,8 +47,9 @@ static void expect_loads(const char *name, const char *text, struct scene *s)
         memset(s, 0, sizeof(*s));
 }
 
-/* Loading text must fail with a message containing the file name and every part given. */
-static void expect_error(const char *text, const char *part1, const char *part2)
+/* Loading text as d says (NULL: the defaults) must fail with a message containing the file name
+ * and every part given. */
+static void expect_error_with(const struct scene_load_desc *d, const char *text, const char *part1, const char *part2)
 {
     static int count;
     char name[64], path[512], msg[RESTIR_MSG_LEN];
@@ -56,7 +57,7 @@ static void expect_error(const char *text, const char *part1, const char *part2)
     write_file(name, text);
     snprintf(path, sizeof path, "%s/%s", dir, name);
     struct scene s;
-    int rc = scene_load(path, &s, msg);
+    int rc = scene_load_with(path, d, &s, msg);
     EXPECT(rc != 0, "%s should be refused (expected '%s')", name, part1);
     if (rc == 0) {
         scene_destroy(&s);
@@ -66,6 +67,11 @@ static void expect_error(const char *text, const char *part1, const char *part2)
     EXPECT(strstr(msg, part1) != NULL, "%s: message lacks '%s': %s", name, part1, msg);
     EXPECT(!part2 || strstr(msg, part2) != NULL, "%s: message lacks '%s': %s", name, part2 ? part2 : "", msg);
     printf("refused as expected: %s\n", msg);
+}
+
+static void expect_error(const char *text, const char *part1, const char *part2)
+{
+    expect_error_with(NULL, text, part1, part2);
 }
 
 static void test_good_scene(void)
@@ -243,13 +249,19 @@ static void test_errors(void)
              good_camera);
     expect_error(t, "materials[0].base_color_texture", "nope.png");
     /* the triangle budget: refused with a message, not an exhausted machine */
-    scene_set_max_triangles(100);
+    const struct scene_load_desc budget = {.max_triangles = 100};
     snprintf(t, sizeof t,
              "{%s, %s, \"shapes\": [{\"type\": \"sphere\", \"material\": \"lamp\", \"center\": [0,0,0], "
              "\"radius\": 1, \"segments\": 64}]}",
              good_camera, good_materials);
-    expect_error(t, "more than 100 triangles", NULL);
-    scene_set_max_triangles(1 << 26);
+    expect_error_with(&budget, t, "more than 100 triangles", NULL);
+    /* the budget is the description's, not the process's: the same file loads without it */
+    write_file("budget.json", t);
+    snprintf(path, sizeof path, "%s/budget.json", dir);
+    const int rc = scene_load(path, &s, msg);
+    EXPECT(rc == 0, "budget.json should load with the default budget: %s", msg);
+    if (rc == 0)
+        scene_destroy(&s);
 }
 
 /* The thin-lens keys: read for the static camera, every camera_path key and camera files, and
