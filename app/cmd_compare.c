@@ -4,11 +4,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
 #include "commands.h"
-#include "compare_plan.h"
-#include "compare_run.h"
 #include "core/check.h"
+#include "experiments/cli.h"
+#include "experiments/compare_plan.h"
+#include "experiments/compare_run.h"
 #include "experiments/stats.h"
 #include "io/atomic_file.h"
 #include "io/exr.h"

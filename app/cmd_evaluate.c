@@ -8,15 +8,15 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "cli.h"
 #include "commands.h"
-#include "compare_plan.h"
 #include "core/check.h"
-#include "evaluate_papers.h"
-#include "evaluate_tables.h"
+#include "experiments/cli.h"
+#include "experiments/compare_plan.h"
+#include "experiments/evaluate_papers.h"
+#include "experiments/evaluate_tables.h"
+#include "experiments/options.h"
+#include "experiments/plan.h"
 #include "io/atomic_file.h"
-#include "options.h"
-#include "plan.h"
 
 static void evaluate_usage(void)
 {

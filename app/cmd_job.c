@@ -3,13 +3,13 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "cli.h"
 #include "commands.h"
-#include "compare_plan.h"
 #include "core/check.h"
-#include "plan.h"
-#include "reference_checkpoint.h"
-#include "reference_shards.h"
+#include "experiments/cli.h"
+#include "experiments/compare_plan.h"
+#include "experiments/plan.h"
+#include "experiments/reference_checkpoint.h"
+#include "experiments/reference_shards.h"
 
 int cmd_job(int argc, char **argv)
 {

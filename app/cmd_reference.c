@@ -3,13 +3,13 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "cli.h"
 #include "commands.h"
 #include "core/check.h"
+#include "experiments/cli.h"
+#include "experiments/reference_checkpoint.h"
+#include "experiments/reference_run.h"
+#include "experiments/reference_shards.h"
 #include "methods/reference.h"
-#include "reference_checkpoint.h"
-#include "reference_run.h"
-#include "reference_shards.h"
 
 int cmd_reference(int argc, char **argv)
 {

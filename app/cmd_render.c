@@ -8,15 +8,15 @@
 #include <string.h>
 #include <sys/resource.h>
 
-#include "cli.h"
 #include "commands.h"
 #include "core/check.h"
+#include "experiments/cli.h"
+#include "experiments/options.h"
+#include "experiments/settings_file.h"
 #include "io/atomic_file.h"
 #include "io/report.h"
-#include "options.h"
 #include "scene/scene_file.h"
 #include "scene/scenes_builtin.h"
-#include "settings_file.h"
 
 static void render_usage(FILE *out)
 {

@@ -6,12 +6,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
 #include "commands.h"
 #include "core/check.h"
+#include "experiments/cli.h"
+#include "experiments/options.h"
 #include "io/atomic_file.h"
 #include "io/scene_export.h"
-#include "options.h"
 #include "scene/scene_file.h"
 #include "scene/scenes_builtin.h"
 

@@ -5,20 +5,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
 #include "commands.h"
 #include "core/check.h"
+#include "experiments/cli.h"
+#include "experiments/options.h"
+#include "experiments/plan.h"
+#include "experiments/reference_checkpoint.h"
+#include "experiments/study_report.h"
+#include "experiments/study_run.h"
 #include "io/atomic_file.h"
 #include "io/exr.h"
 #include "io/png.h"
 #include "io/report.h"
 #include "io/svg_plot.h"
-#include "options.h"
-#include "plan.h"
-#include "reference_checkpoint.h"
 #include "scene/scene_file.h"
-#include "study_report.h"
-#include "study_run.h"
 
 /* Per configuration of spatial neighbor selection, N independently seeded static-camera sequences
  * after a warm-up; SMAPE over all and over hard pixels, temporal and spatial relative covariance,

@@ -4,10 +4,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
 #include "commands.h"
 #include "core/check.h"
-#include "options.h"
+#include "experiments/cli.h"
+#include "experiments/options.h"
 #include "scene/scene_file.h"
 #include "view/viewer.h"
 

@@ -4,8 +4,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "cli.h"
 #include "commands.h"
+#include "experiments/cli.h"
 #include "scene/scenes_builtin.h"
 
 static void usage(FILE *out)

@@ -1,0 +1,360 @@
+/* compare_plan.c: a comparison split into jobs (compare_plan.h): the plan, one job, the merge.
+ * Must never implement a method or be called by compare_run.c: cmd_compare.c and cmd_job.c call it. */
+#include "experiments/compare_plan.h"
+
+#include <dirent.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/check.h"
+#include "experiments/cli.h"
+#include "experiments/compare_run.h"
+#include "experiments/plan.h"
+#include "experiments/reference_checkpoint.h"
+#include "io/atomic_file.h"
+#include "io/exr.h"
+
+/* `restir compare ... --plan DIR` plans one job per SPEC and run (and one for the reference without
+ * --ref); `restir job` runs a SPEC's frames and writes its last frame and its timing under
+ * DIR/runs/FOLDER/ (run 0; a later run n writes its record, mask and last frame to run_N.bin);
+ * `restir compare --merge DIR` measures every last frame against the reference and writes what the
+ * unsplit compare writes into DIR (the same errors, bit for bit: they are computed from the same
+ * frames; the times are the jobs' own). --equal-time is refused: its budget is one method's time on
+ * the machine that runs the others; so is --ref-every. With --runs the merge has no temporal_cov
+ * (000 Eq. 17 needs every run's frame sequence, which jobs do not keep). */
+
+static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '3'};
+
+/* What a SPEC's job measured: its frame time, paths per pixel and instances; has_mask: the record
+ * goes on with the last frame's disocclusion mask (width x height bytes, compare_run.h); has_grad:
+ * then with its gradients (dx, dy: 2 x 3 x width x height floats; 0 in the records of versions
+ * before gradient errors, which read as gradient methods without them); a later run's record then
+ * holds its last frame (3 x width x height floats). */
+struct job_timing {
+    double ms_per_frame, ms_pass[PASS_COUNT];
+    int32_t spp, instances, has_mask, has_grad;
+};
+
+/* Job k's spec (-1: the reference job) and run: the jobs are the reference, then each spec's runs. */
+static int spec_of_job(const struct compare_setup *st, int k, int *run)
+{
+    const int j = k - (st->o.ref ? 0 : 1);
+    *run = j < 0 ? 0 : j % st->o.runs;
+    return j < 0 ? -1 : j / st->o.runs;
+}
+
+static int job_of_spec(const struct compare_setup *st, int spec, int run)
+{
+    return (st->o.ref ? 0 : 1) + spec * st->o.runs + run;
+}
+
+int compare_plan(const struct compare_setup *st, int argc, char **argv)
+{
+    if (st->o.equal_time) {
+        cli_error("compare: --equal-time cannot be planned: its budget is one method's frame time, which only "
+                  "means something for methods timed on the same machine; run it unsplit");
+        return EXIT_USAGE;
+    }
+    if (st->o.ref_every > 0) {
+        cli_error("compare: --ref-every cannot be planned: a job holds one run's last frame; run it unsplit");
+        return EXIT_USAGE;
+    }
+    char name[PLAN_NAME_MAX], rel[PLAN_PATH_MAX];
+    struct plan pl;
+    const int rc = plan_start(&pl, st->o.plan, "compare", argc, argv, scene_content_hash(&st->s));
+    if (rc != 0)
+        return rc;
+    if (!st->o.ref)
+        plan_add_job(&pl, "the comparison's reference", "runs/reference.exr");
+    for (int k = 0; k < st->n; k++)
+        for (int n = 0; n < st->o.runs; n++) {
+            if (st->o.runs > 1)
+                snprintf(name, sizeof name, "%.200s, run %d", st->specs[k].label, n);
+            else
+                snprintf(name, sizeof name, "%.200s", st->specs[k].label);
+            if (n == 0)
+                snprintf(rel, sizeof rel, "runs/%.140s/result.bin", st->specs[k].dir);
+            else
+                snprintf(rel, sizeof rel, "runs/%.140s/run_%d.bin", st->specs[k].dir, n);
+            plan_add_job(&pl, name, rel);
+        }
+    return plan_finish(&pl);
+}
+
+/* Job k's result: the reference image, or a SPEC's timing, last frame, mask and gradients (each
+ * out-pointer may be NULL; *mask and *grad NULL when the record has none). */
+static int read_job(const struct plan *pl, const struct compare_setup *st, int k, struct job_timing *timing,
+                    float **image, unsigned char **mask, float **grad, char *why)
+{
+    const size_t npix = (size_t)st->p.width * (size_t)st->p.height;
+    if (mask)
+        *mask = NULL;
+    if (grad)
+        *grad = NULL;
+    char path[2 * PLAN_PATH_MAX];
+    plan_output_path(pl, k, path, sizeof path);
+    int run;
+    const int spec = spec_of_job(st, k, &run);
+    const size_t image_bytes = run > 0 ? sizeof(float) * 3 * npix : 0;
+    float *img = NULL;
+    if (spec < 0) {
+        if (cli_load_reference(path, st->p.width, st->p.height, &img, why) != 0)
+            return -1;
+    } else {
+        void *data = NULL;
+        size_t size = 0;
+        if (plan_blob_read(path, result_magic, pl->id, &data, &size, why) != 0)
+            return -1;
+        struct job_timing t = {0};
+        if (size >= sizeof t)
+            memcpy(&t, data, sizeof t);
+        const size_t grad_bytes = t.has_grad ? sizeof(float) * 6 * npix : 0;
+        if (size < sizeof t || size != sizeof t + (t.has_mask ? npix : 0) + grad_bytes + image_bytes) {
+            snprintf(why, RESTIR_MSG_LEN, "%.300s: not a timing record", path);
+            free(data);
+            return -1;
+        }
+        if (timing)
+            *timing = t;
+        if (mask && t.has_mask) {
+            *mask = xmalloc(npix);
+            memcpy(*mask, (const char *)data + sizeof t, npix);
+        }
+        if (grad && t.has_grad) {
+            *grad = xmalloc(grad_bytes);
+            memcpy(*grad, (const char *)data + sizeof t + (t.has_mask ? npix : 0), grad_bytes);
+        }
+        if (run > 0) { /* a later run's last frame is in its record */
+            if (image) {
+                *image = xmalloc(image_bytes);
+                memcpy(*image, (const char *)data + size - image_bytes, image_bytes);
+            }
+            free(data);
+            return 0;
+        }
+        free(data);
+        snprintf(path, sizeof path, "%s/runs/%s/frame_%04d.exr", pl->dir, st->specs[spec].dir, st->o.frames - 1);
+        if (cli_load_reference(path, st->p.width, st->p.height, &img, why) != 0) {
+            if (mask) {
+                free(*mask);
+                *mask = NULL;
+            }
+            if (grad) {
+                free(*grad);
+                *grad = NULL;
+            }
+            return -1;
+        }
+    }
+    if (image)
+        *image = img;
+    else
+        free(img);
+    return 0;
+}
+
+static int job_valid(const struct plan *pl, int k, char *why, void *ctx)
+{
+    return read_job(pl, ctx, k, NULL, NULL, NULL, NULL, why);
+}
+
+int compare_run_job(const struct plan *pl, int k)
+{
+    static struct compare_setup st;
+    int rc = compare_setup(pl->argc, pl->argv, &st);
+    if (rc != 0)
+        return rc < 0 ? EXIT_USAGE : rc;
+    if ((rc = plan_check_scene(pl, scene_content_hash(&st.s))) != 0) {
+        scene_destroy(&st.s);
+        return rc;
+    }
+    char path[PLAN_PATH_MAX + 200], runs[PLAN_PATH_MAX + 16], msg[RESTIR_MSG_LEN];
+    plan_output_path(pl, k, path, sizeof path);
+    snprintf(runs, sizeof runs, "%s/runs", pl->dir);
+    if (read_job(pl, &st, k, NULL, NULL, NULL, NULL, msg) == 0) {
+        printf("job %d of %d (%s): already done: %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
+        scene_destroy(&st.s);
+        return 0;
+    }
+    cli_catch_stop_signals();
+    int run;
+    const int spec = spec_of_job(&st, k, &run);
+    if (spec < 0) {
+        rc = reference_job_finish(compare_render_reference_resumable(&st, path, msg), path, st.p.width, st.p.height,
+                                  msg);
+    } else {
+        struct compare_result res;
+        memset(&res, 0, sizeof res);
+        struct render_params q = st.specs[spec].p;
+        q.seed = compare_run_seed(q.seed, run);
+        char folder[PLAN_PATH_MAX + 240];
+        snprintf(folder, sizeof folder, "%s/%s", runs, st.specs[spec].dir); /* run 0 writes its frame there */
+        if (io_make_dirs(folder, msg) != 0) {
+            cli_error("%s", msg);
+            scene_destroy(&st.s);
+            return EXIT_RUNTIME;
+        }
+        rc = compare_run_method(&st.s, &st.specs[spec], &q, st.o.frames, st.specs[spec].instances, NULL, runs, run > 0,
+                                NULL, run, &res, msg);
+        if (rc == RUN_STOPPED) {
+            cli_error("interrupted by %s; no result written", cli_stop_signal_name());
+            rc = 128 + (int)cli_stop_signal;
+        } else if (rc != 0) {
+            cli_error("%s", msg);
+            rc = EXIT_RUNTIME;
+        } else {
+            /* written after the frame: a result file means the frame is there */
+            struct job_timing t = {.ms_per_frame = res.ms_per_frame, .spp = res.spp, .instances = res.instances,
+                                   .has_mask = res.mask != NULL, .has_grad = res.grad != NULL};
+            memcpy(t.ms_pass, res.ms_pass, sizeof t.ms_pass);
+            const size_t npix = (size_t)st.p.width * (size_t)st.p.height;
+            const void *parts[4] = {&t, NULL, NULL, NULL};
+            size_t sizes[4] = {sizeof t, 0, 0, 0};
+            int n_parts = 1;
+            if (res.mask) {
+                parts[n_parts] = res.mask;
+                sizes[n_parts++] = npix;
+            }
+            if (res.grad) {
+                parts[n_parts] = res.grad;
+                sizes[n_parts++] = sizeof(float) * 6 * npix;
+            }
+            if (res.image) {
+                parts[n_parts] = res.image;
+                sizes[n_parts++] = sizeof(float) * 3 * npix;
+            }
+            if (plan_blob_write(path, result_magic, pl->id, parts, sizes, n_parts, msg) != 0) {
+                cli_error("%s", msg);
+                rc = EXIT_RUNTIME;
+            }
+        }
+        free(res.mask);
+        free(res.grad);
+        free(res.image);
+    }
+    if (rc == 0)
+        printf("job %d of %d (%s): %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
+    scene_destroy(&st.s);
+    return rc;
+}
+
+/* Copies every file of from/ but the results (result.bin, run_N.bin) into to/ (made), each through a temporary name. */
+static int copy_folder(const char *from, const char *to, char *msg)
+{
+    if (io_make_dirs(to, msg) != 0)
+        return -1;
+    DIR *d = opendir(from);
+    if (!d) {
+        snprintf(msg, RESTIR_MSG_LEN, "cannot read %.300s", from);
+        return -1;
+    }
+    int rc = 0;
+    for (struct dirent *e = readdir(d); e && rc == 0; e = readdir(d)) {
+        if (e->d_name[0] == '.' || !strcmp(e->d_name, "result.bin") || !strncmp(e->d_name, "run_", 4) ||
+            strstr(e->d_name, ".tmp-"))
+            continue;
+        char src[2 * PLAN_PATH_MAX + 300], dst[2 * PLAN_PATH_MAX + 300];
+        snprintf(src, sizeof src, "%s/%s", from, e->d_name);
+        snprintf(dst, sizeof dst, "%s/%s", to, e->d_name);
+        rc = plan_copy_file(src, dst, msg);
+    }
+    closedir(d);
+    return rc;
+}
+
+int compare_merge(const char *dir)
+{
+    char msg[RESTIR_MSG_LEN];
+    struct plan pl;
+    int rc = plan_load_kind(dir, "compare", "a comparison", &pl);
+    if (rc != 0)
+        return rc;
+    static struct compare_setup st;
+    rc = compare_setup(pl.argc, pl.argv, &st);
+    if (rc != 0) {
+        plan_free(&pl);
+        return rc < 0 ? EXIT_USAGE : rc;
+    }
+    rc = plan_check_scene(&pl, scene_content_hash(&st.s));
+    if (rc == 0 && plan_check_jobs(&pl, job_valid, &st, msg) != 0) {
+        cli_error("cannot merge: %s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    float *ref = NULL;
+    char path[PLAN_PATH_MAX + 300], to[PLAN_PATH_MAX + 300];
+    snprintf(path, sizeof path, "%s/runs/reference.exr", pl.dir);
+    if (rc == 0 && cli_load_reference(st.o.ref ? st.o.ref : path, st.p.width, st.p.height, &ref, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    snprintf(to, sizeof to, "%s/reference.exr", pl.dir);
+    if (rc == 0 && !st.o.ref && plan_copy_file(path, to, msg) != 0) { /* where the unsplit compare puts it */
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    struct compare_result res[MAX_METHODS];
+    memset(res, 0, sizeof res);
+    const size_t npix = (size_t)st.p.width * st.p.height;
+    for (int k = 0; k < st.n && rc == 0; k++) {
+        struct compare_runs acc = {0};
+        for (int n = 0; n < st.o.runs && rc == 0; n++) { /* in run order, as compare_run_spec */
+            struct job_timing t;
+            float *image = NULL, *grad = NULL;
+            unsigned char *mask = NULL;
+            if (read_job(&pl, &st, job_of_spec(&st, k, n), &t, &image, &mask, &grad, msg) != 0) {
+                cli_error("cannot merge: %s", msg);
+                rc = EXIT_RUNTIME;
+                break;
+            }
+            struct compare_result one = {.method = st.specs[k].method};
+            restir_error_compute(image, ref, npix, NULL, &one.err);
+            compare_disoccluded_error(image, ref, mask, npix, &one.mape_dis, &one.dis_share);
+            one.grad_relmse = grad ? restir_gradient_relmse(grad, grad + 3 * npix, ref, st.p.width, st.p.height) : NAN;
+            if (!grad && method_has(st.specs[k].method, METHOD_GRADIENT))
+                fprintf(stderr,
+                        "restir: compare --merge: %s, run %d: its job was written without gradients (by a restir "
+                        "before gradient errors): no gradient_relmse for the row\n",
+                        st.specs[k].label, n);
+            compare_runs_add(&acc, &one);
+            free(mask);
+            free(grad);
+            if (n > 0) {
+                one.ms_per_frame = t.ms_per_frame;
+                memcpy(one.ms_pass, t.ms_pass, sizeof one.ms_pass);
+                compare_keep_fastest(&res[k], &one);
+                free(image);
+                continue;
+            }
+            res[k] = one;
+            res[k].ms_per_frame = t.ms_per_frame;
+            memcpy(res[k].ms_pass, t.ms_pass, sizeof t.ms_pass);
+            res[k].spp = t.spp;
+            res[k].instances = t.instances;
+            res[k].temporal_cov = NAN; /* not planned: it needs every run's frames */
+            if (st.o.report)
+                res[k].image = image;
+            else
+                free(image);
+        }
+        if (rc != 0)
+            break;
+        compare_runs_finish(&acc, &res[k]);
+        snprintf(path, sizeof path, "%s/runs/%s", pl.dir, st.specs[k].dir);
+        snprintf(to, sizeof to, "%s/%s", pl.dir, st.specs[k].dir);
+        if (copy_folder(path, to, msg) != 0) {
+            cli_error("%s", msg);
+            rc = EXIT_RUNTIME;
+        }
+    }
+    if (rc == 0)
+        rc = compare_write_table(&st, pl.dir, pl.command, res, ref);
+    for (int k = 0; k < st.n; k++)
+        free(res[k].image);
+    free(ref);
+    scene_destroy(&st.s);
+    plan_free(&pl);
+    return rc;
+}

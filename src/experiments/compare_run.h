@@ -1,0 +1,125 @@
+/* compare_run.h: what `restir compare` (cmd_compare.c) and its planned form (compare_plan.c) share:
+ * the specs, one method's run, the reference, the table. Must never implement a method or call into either. */
+#ifndef RESTIR_EXPERIMENTS_COMPARE_RUN_H
+#define RESTIR_EXPERIMENTS_COMPARE_RUN_H
+
+#include "experiments/compare_track.h"
+#include "experiments/options.h"
+#include "experiments/stats.h"
+#include "methods/renderer.h"
+#include "restir/metrics.h"
+#include "scene/scene.h"
+
+#define MAX_METHODS 16
+#define MAX_INSTANCES 16 /* independently seeded renderers one row may average */
+#define SPEC_MAX 200 /* characters of one spec; its folder name stays under NAME_MAX */
+
+/* One row of the comparison: a method with the command's parameters and then the spec's own
+ * key=value settings. The spec text labels the row; dir is its folder name under DIR. */
+struct compare_spec {
+    char label[SPEC_MAX + 1];
+    char dir[SPEC_MAX + 16];
+    const struct method *method;
+    struct render_params p;
+    int instances; /* independently seeded renderers the row averages (key instances=N; default 1) */
+};
+
+struct compare_result {
+    const struct method *method;
+    double ms_per_frame;
+    double ms_pass[PASS_COUNT]; /* each pass's mean time per frame (run 0), as ms_per_frame counts */
+    int spp;
+    int instances;           /* independently seeded renderers averaged per run (equal time) */
+    int runs;                /* independently seeded runs measured (--runs) */
+    struct restir_error err; /* of the last frame, the mean over the runs */
+    struct restir_error sem; /* the standard error of that mean over the runs (NaN with one run) */
+    /* 004 Sec. 6.2: MAPE over the last frame's disoccluded pixels (renderer_disoccluded: history
+     * rejected in any of the last DISOCCLUSION_FRAMES frames), its standard error over the runs, and
+     * the disoccluded share of the image's pixels (mean over the runs); NaN for methods without a
+     * G-buffer history (pt, gpt), MAPE also when no pixel is disoccluded */
+    double mape_dis, mape_dis_sem, dis_share;
+    /* gradient methods (002 Fig. 7): restir_gradient_relmse of the last frame's (instance-averaged)
+     * gradients, mean over the runs, and its standard error; NaN for the other methods */
+    double grad_relmse, grad_relmse_sem;
+    unsigned char *mask; /* a planned job's disocclusion mask for the merge (else NULL; caller frees) */
+    float *grad; /* a planned job's gradients for the merge: dx then dy, 3 x width x height floats
+                    each (else NULL; caller frees) */
+    double temporal_cov;     /* 000 Eq. 17 over the runs (compare_track.h); NaN with one run */
+    float *image;            /* the last frame, kept for --report (else NULL) */
+};
+
+struct compare_setup {
+    struct cli_options o;
+    struct compare_spec specs[MAX_METHODS];
+    int n;
+    /* the method whose integrand every row and the reference estimate: the first METHOD_DIRECT_ONLY
+     * spec when there is one (then every row uses 1 bounce), else the first spec */
+    const struct method *integrand;
+    struct render_params p; /* the common parameters */
+    struct scene s;
+};
+
+/* 1 for the methods that reach a time budget by paths per pixel (pt, gpt); the others do by
+ * averaging independently seeded instances (002 Sec. 5). */
+int compare_budget_by_spp(const struct method *m);
+
+/* MAPE of image over the pixels mask marks (NaN when mask is NULL or marks none) and the share of
+ * the npix pixels it marks (NaN when mask is NULL), into *mape and *share. */
+void compare_disoccluded_error(const float *image, const float *ref, const unsigned char *mask, size_t npix,
+                               double *mape, double *share);
+
+/* compare_run_method's result when a stop signal arrived before the method's last frame. */
+#define RUN_STOPPED 1
+
+/* Parses the options and specs, loads the scene (st->s, to destroy), checks memory. Returns 0, -1
+ * after printing --help, or an exit code having said why. */
+int compare_setup(int argc, char **argv, struct compare_setup *st);
+/* The comparison's own reference (independently seeded, from the last frame's camera), or NULL
+ * when a stop signal arrived. */
+float *compare_render_reference(const struct compare_setup *st);
+/* Runs `frames` frames of spec c with parameters p (c->p, or with an equal-time spp) as `instances`
+ * (at most MAX_INSTANCES) independently seeded renderers, measures the average of their last frames
+ * against ref (none when ref is NULL: then res->mask gets the disocclusion mask and, for gradient
+ * methods, res->grad the gradients) and, for run 0,
+ * writes it under out_dir/c->dir; keep_image keeps it in res->image. With a track
+ * (may be NULL) every frame's statistics and the frames it asks for go to it as run `run`.
+ * Returns 0, -1 with msg (the frame cannot be written), or RUN_STOPPED having written nothing. */
+int compare_run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
+                       int instances, const float *ref, const char *out_dir, int keep_image, struct compare_track *track,
+                       int run, struct compare_result *res, char *msg);
+/* The errors of a spec's runs as they arrive (run order), and their means and standard errors. */
+struct compare_runs {
+    int n;
+    struct running_mean m[7]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share,
+                                 gradient relMSE */
+};
+void compare_runs_add(struct compare_runs *a, const struct compare_result *r);
+/* Into res: with more than one run the means (one run keeps its own errors bit for bit), the
+ * standard errors (NaN with one run) and the number of runs. */
+void compare_runs_finish(const struct compare_runs *a, struct compare_result *res);
+/* The times of res become run's (frame and passes) when run's frame time is shorter: a row reports
+ * its fastest run, since other load on a machine only ever slows a run down. */
+void compare_keep_fastest(struct compare_result *res, const struct compare_result *run);
+/* Run n's seed: seed + n COMPARE_RUN_SEED_STRIDE. */
+static inline uint64_t compare_run_seed(uint64_t seed, int n)
+{
+    return seed + COMPARE_RUN_SEED_STRIDE * (uint64_t)n;
+}
+/* --runs runs of spec c (compare_run_method with seed + n COMPARE_RUN_SEED_STRIDE for run n): res
+ * gets run 0's frame, the fastest run's times, the last-frame error averaged over the runs and the temporal
+ * autocovariance; the track's rows for c go to frames.csv. Returns as compare_run_method. */
+int compare_run_spec(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
+                     int instances, int runs, const float *ref, const char *out_dir, int keep_image,
+                     struct compare_track *track, struct compare_result *res, char *msg);
+/* The comparison's reference at frame `frame` (the last frame's: compare_render_reference), or NULL
+ * when a stop signal arrived. */
+float *compare_render_reference_at(const struct compare_setup *st, int frame);
+/* The last frame's reference for a plan's job, resumable from out's checkpoint
+ * (reference_render_resumable); NULL with msg after a stop or an unusable checkpoint. */
+float *compare_render_reference_resumable(const struct compare_setup *st, const char *out, char *msg);
+/* Prints the table, writes out_dir/compare.csv and, with --report, index.html. Returns an exit
+ * code. */
+int compare_write_table(const struct compare_setup *st, const char *out_dir, const char *command,
+                        const struct compare_result *res, const float *ref);
+
+#endif

@@ -1,0 +1,141 @@
+/* compare_track.c: per-frame statistics, errors along the sequence and temporal autocovariance of
+ * `restir compare` (compare_track.h). Must never implement a method or call into cmd_compare.c. */
+#include "experiments/compare_track.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/check.h"
+
+#define COV_EPS 1e-4f /* 000 Appendix A */
+
+void compare_track_init(struct compare_track *t, int frames, int runs, int ref_every, int w, int h,
+                        float *last_ref)
+{
+    memset(t, 0, sizeof *t);
+    t->frames = frames;
+    t->runs = runs;
+    t->width = w;
+    t->height = h;
+    t->ref_frame = xmalloc(sizeof(int) * (size_t)(frames + 1));
+    t->ref = xcalloc((size_t)(frames + 1), sizeof(float *));
+    if (last_ref) {
+        for (int f = ref_every - 1; ref_every > 0 && f < frames - 1; f += ref_every)
+            t->ref_frame[t->nref++] = f;
+        t->ref_frame[t->nref] = frames - 1;
+        t->ref[t->nref++] = last_ref;
+    }
+    t->cov_first = frames / 2;
+    t->sums = xcalloc((size_t)frames, sizeof *t->sums);
+    const size_t window = (size_t)(frames - t->cov_first);
+    t->seq = runs >= 2 ? xmalloc(sizeof(float) * (size_t)runs * window * (size_t)w * (size_t)h) : NULL;
+}
+
+int compare_track_open(struct compare_track *t, const char *out_dir, char *msg)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/frames.csv", out_dir);
+    if (csv_open(&t->csv, path,
+                 "method,frame,runs,ms_frame,ms_temporal,temporal_accept,bp_received,bp_accepted,splat_received,"
+                 "splat_accepted,relmse,mape,smape,luma_rmse",
+                 msg) != 0)
+        return -1;
+    t->csv_open = 1;
+    return 0;
+}
+
+void compare_track_begin(struct compare_track *t)
+{
+    memset(t->sums, 0, sizeof(*t->sums) * (size_t)t->frames);
+}
+
+void compare_track_stats(struct compare_track *t, int f, double ms, const struct frame_stats *st)
+{
+    struct compare_frame_sums *s = &t->sums[f];
+    const double vp = st->valid_pixels > 0 ? (double)st->valid_pixels : 1.0;
+    s->ms_frame += ms;
+    s->ms_temporal += st->ms[PASS_TEMPORAL];
+    s->accept += (double)st->temporal_accepted / vp;
+    s->bp_received += (double)st->temporal.bp_received / vp;
+    s->bp_accepted += (double)st->temporal.bp_accepted / vp;
+    s->splat_received += (double)st->temporal.splat_received / vp;
+    s->splat_accepted += (double)st->temporal.splat_accepted / vp;
+}
+
+static int reference_index(const struct compare_track *t, int f)
+{
+    for (int k = 0; k < t->nref; k++)
+        if (t->ref_frame[k] == f)
+            return k;
+    return -1;
+}
+
+int compare_track_wants_image(const struct compare_track *t, int f)
+{
+    return reference_index(t, f) >= 0 || (t->seq && f >= t->cov_first);
+}
+
+void compare_track_image(struct compare_track *t, int run, int f, const float *image)
+{
+    const size_t npix = (size_t)t->width * (size_t)t->height;
+    const int k = reference_index(t, f);
+    if (k >= 0) {
+        struct restir_error e;
+        restir_error_compute(image, t->ref[k], npix, NULL, &e);
+        struct restir_error *s = &t->sums[f].err;
+        s->relmse += e.relmse;
+        s->mape += e.mape;
+        s->smape += e.smape;
+        s->luma_rmse += e.luma_rmse;
+    }
+    if (t->seq && f >= t->cov_first) {
+        const size_t window = (size_t)(t->frames - t->cov_first);
+        float *out = &t->seq[((size_t)run * window + (size_t)(f - t->cov_first)) * npix];
+        for (size_t i = 0; i < npix; i++) /* Rec. 709 luminance, as restir_luminance_image */
+            out[i] = 0.2126f * image[3 * i] + 0.7152f * image[3 * i + 1] + 0.0722f * image[3 * i + 2];
+    }
+}
+
+double compare_track_end(struct compare_track *t, const char *label)
+{
+    const double k = 1.0 / t->runs;
+    char field[2 * 256 + 4];
+    csv_field(field, sizeof field, label);
+    for (int f = 0; t->csv_open && f < t->frames; f++) {
+        const struct compare_frame_sums *s = &t->sums[f];
+        char err[160] = ",,,";
+        if (reference_index(t, f) >= 0)
+            snprintf(err, sizeof err, "%.6g,%.6g,%.6g,%.6g", s->err.relmse * k, s->err.mape * k, s->err.smape * k,
+                     s->err.luma_rmse * k);
+        csv_row(&t->csv, "%s,%d,%d,%.3f,%.3f,%.4f,%.4f,%.4f,%.4f,%.4f,%s", field, f, t->runs, s->ms_frame * k,
+                s->ms_temporal * k, s->accept * k, s->bp_received * k, s->bp_accepted * k, s->splat_received * k,
+                s->splat_accepted * k, err);
+    }
+    const int window = t->frames - t->cov_first;
+    if (!t->seq || window < COMPARE_COV_LAG + 1)
+        return NAN;
+    return restir_temporal_autocovariance(t->seq, t->runs, window, t->width, t->height, COMPARE_COV_LAG, COV_EPS,
+                                          NULL);
+}
+
+int compare_track_close(struct compare_track *t, char *msg)
+{
+    t->csv_open = 0;
+    return csv_close(&t->csv, msg);
+}
+
+void compare_track_fini(struct compare_track *t)
+{
+    if (t->csv_open)
+        csv_abort(&t->csv);
+    t->csv_open = 0;
+    for (int k = 0; k + 1 < t->nref; k++)
+        free(t->ref[k]);
+    free(t->ref);
+    free(t->ref_frame);
+    free(t->sums);
+    free(t->seq);
+    memset(t, 0, sizeof *t);
+}

@@ -1,0 +1,68 @@
+/* compare_track.h: what `restir compare` measures along a sequence besides its last frame
+ * (compare_track.c): every frame's pass times and temporal shares, the error of every K-th frame
+ * against that frame's own reference (--ref-every K), and over N independently seeded runs of
+ * each spec (--runs N) the mean errors and 000's relative autocovariance (Appendix A, Eq. 17, lag
+ * 3). Must never implement a method or call into cmd_compare.c: it measures frames it is given. */
+#ifndef RESTIR_EXPERIMENTS_COMPARE_TRACK_H
+#define RESTIR_EXPERIMENTS_COMPARE_TRACK_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "io/report.h"
+#include "methods/renderer.h"
+#include "restir/metrics.h"
+
+/* Run n of a spec renders with seed + n * COMPARE_RUN_SEED_STRIDE (its instances then add
+ * k * COMPARE_INSTANCE_SEED_STRIDE), so runs and equal-time instances never share a seed. */
+#define COMPARE_RUN_SEED_STRIDE 0x9E3779B97F4A7C15ull
+#define COMPARE_INSTANCE_SEED_STRIDE 1000003ull
+#define COMPARE_COV_LAG 3 /* 000 Appendix A: autocovariance at a lag of 3 frames */
+
+/* One frame of one spec, summed over its runs (compare_track_end divides). */
+struct compare_frame_sums {
+    double ms_frame, ms_temporal;
+    double accept, bp_received, bp_accepted, splat_received, splat_accepted; /* shares of valid pixels */
+    struct restir_error err; /* at frames with a reference */
+};
+
+struct compare_track {
+    int frames, runs, width, height;
+    int nref;          /* frames measured against a reference of their own; the last one is frames - 1 */
+    int *ref_frame;    /* their indices, ascending */
+    float **ref;       /* their references; ref[nref - 1] is the comparison's reference (not owned) */
+    int cov_first;     /* the autocovariance window: frames cov_first .. frames - 1 (the second half) */
+    struct compare_frame_sums *sums; /* frames entries for the spec being run */
+    float *seq;        /* runs * (frames - cov_first) * w * h luminance, run-major then frame */
+    struct csv_writer csv; /* DIR/frames.csv */
+    int csv_open;
+};
+
+/* Sets up tracking of `frames` frames of `runs` runs at w x h, with references at frames K - 1,
+ * 2K - 1, ... before the last (ref_every = K; 0: the last frame only), whose images the caller then
+ * fills into t->ref[0 .. nref - 2] (compare_track_reference_frame says which). last_ref is the
+ * reference of the last frame (may be NULL: no errors measured). */
+void compare_track_init(struct compare_track *t, int frames, int runs, int ref_every, int w, int h,
+                        float *last_ref);
+/* Opens DIR/frames.csv. Returns 0, or -1 with msg. */
+int compare_track_open(struct compare_track *t, const char *out_dir, char *msg);
+/* Starts a spec: clears the sums and the luminance sequences. */
+void compare_track_begin(struct compare_track *t);
+/* Frame f of run `run`: adds its statistics (instance 0's shares; ms = the instances' summed
+ * frame time) and, at a reference frame or in the covariance window, measures `image` (the
+ * instances' average). */
+void compare_track_stats(struct compare_track *t, int f, double ms, const struct frame_stats *st);
+void compare_track_image(struct compare_track *t, int run, int f, const float *image);
+/* 1 when frame f of the sequence needs its image measured (a reference frame or in the window). */
+int compare_track_wants_image(const struct compare_track *t, int f);
+/* Ends a spec: writes its rows (means over runs) to frames.csv labelled `label` and returns the
+ * relative autocovariance over the runs (NaN with fewer than 2 runs or a window under lag + 1
+ * frames). */
+double compare_track_end(struct compare_track *t, const char *label);
+/* Commits frames.csv. Returns 0, or -1 with msg. */
+int compare_track_close(struct compare_track *t, char *msg);
+/* Frees what init allocated (the references the caller filled in too, not last_ref); aborts an
+ * unclosed frames.csv. */
+void compare_track_fini(struct compare_track *t);
+
+#endif

@@ -1,0 +1,601 @@
+/* evaluate_tables.c: the papers' tables and a verdict per claim from an evaluation's merged steps
+ * (evaluate_tables.h). Must never run a command or render: it reads study.csv and compare.csv. */
+#include "experiments/evaluate_tables.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/check.h"
+#include "experiments/cli.h"
+#include "experiments/csv_table.h"
+#include "experiments/report_commit.h"
+#include "experiments/stats.h"
+#include "io/atomic_file.h"
+#include "io/html_report.h"
+#include "io/report.h"
+
+#define PATH_LEN 4400
+
+/* A growing text. */
+struct text {
+    char *s;
+    size_t len, cap;
+};
+
+static void put(struct text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void put(struct text *t, const char *fmt, ...)
+{
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        const int n = vsnprintf(t->s ? t->s + t->len : NULL, t->s ? t->cap - t->len : 0, fmt, ap);
+        va_end(ap);
+        RESTIR_CHECK(n >= 0);
+        if (t->s && t->len + (size_t)n < t->cap) {
+            t->len += (size_t)n;
+            return;
+        }
+        t->cap = 2 * (t->cap + (size_t)n + 256);
+        t->s = realloc(t->s, t->cap);
+        RESTIR_CHECK(t->s != NULL);
+    }
+}
+
+#define REDUCTION(pct) ((struct claim){CLAIM_REDUCTION, (pct)})
+#define SMALL_CHANGE(pct) ((struct claim){CLAIM_SMALL, (pct)})
+#define COSTS_AT_MOST(pct) ((struct claim){CLAIM_COST, (pct)})
+#define NO_CLAIM ((struct claim){CLAIM_NONE, 0.0})
+
+static void fmt_change(struct rel_change c, char *out, size_t len)
+{
+    if (!isfinite(c.pct))
+        snprintf(out, len, "-");
+    else if (isfinite(c.sd))
+        snprintf(out, len, "%+.1f%% +- %.1f", c.pct, c.sd);
+    else
+        snprintf(out, len, "%+.1f%%", c.pct);
+}
+
+static void fmt_pm(double v, double sem, char *out, size_t len)
+{
+    if (!isfinite(v))
+        snprintf(out, len, "-");
+    else if (isfinite(sem))
+        snprintf(out, len, "%.4g +- %.2g", v, sem);
+    else
+        snprintf(out, len, "%.4g", v);
+}
+
+/* The claims, as lines of evaluation.md and rows of claims.csv. */
+struct claims {
+    struct text md;
+    struct csv_writer csv;
+    int csv_ok;
+    double render_ms; /* the paper's frames: measured frame times x frames x runs, summed over its steps */
+};
+
+/* One claim's line: what (the claim), where (scene, base), our change, the paper's figure, lo as in
+ * what the paper claims (claim_verdict()), and the setup's differences from the paper's (said when not reproduced). */
+static void claim(struct claims *cl, const char *paper, const char *what, const char *where, struct rel_change c,
+                  const char *paper_figure, struct claim k, const char *differences)
+{
+    char ours[64], why[160], f[4][400];
+    fmt_change(c, ours, sizeof ours);
+    const char *v = claim_verdict(c, k, why, sizeof why);
+    const int ok = !strcmp(v, "reproduced") || !strcmp(v, "undefined") || k.kind == CLAIM_NONE;
+    char reason[600];
+    snprintf(reason, sizeof reason, "%s%s%s", why, ok || !why[0] ? "" : "; ", ok ? "" : differences);
+    put(&cl->md, "| %s | %s | %s | %s | **%s** | %s |\n", what, where, ours, paper_figure, v,
+        reason[0] ? reason : "-");
+    if (cl->csv_ok) {
+        csv_field(f[0], sizeof f[0], what);
+        csv_field(f[1], sizeof f[1], where);
+        csv_field(f[2], sizeof f[2], paper_figure);
+        csv_field(f[3], sizeof f[3], reason);
+        csv_row(&cl->csv, "%s,%s,%s,%.4g,%.4g,%s,%s,%s", paper, f[0], f[1], c.pct, c.sd, f[2], v, f[3]);
+    }
+}
+
+/* Ends a paper's section: its claims' table, then empties the claims' lines. */
+static void flush_claims(struct text *md, struct claims *cl, const char *paper)
+{
+    put(md,
+        "\nRendering time of the measured configurations: %.3g hours of wall time (frame times as measured by "
+        "the jobs, times frames and runs; references not counted).\n",
+        cl->render_ms / 3.6e6);
+    cl->render_ms = 0.0;
+    put(md,
+        "\n#### Claims of %s\n\nOurs: the relative change with its standard deviation (from the standard "
+        "errors); verdicts at two standard deviations.\n\n"
+        "| claim | where | ours (change) | paper | verdict | why / differences |\n|---|---|---|---|---|---|\n%s",
+        paper, cl->md.s ? cl->md.s : "");
+    cl->md.len = 0;
+    if (cl->md.s)
+        cl->md.s[0] = '\0';
+}
+
+/* The scene of ours that stands in for one of the paper's, as "ours (for PAPER'S)". */
+static void scene_label(const char *paper, const char *scene, char *out, size_t len)
+{
+    for (const struct eval_scene_note *n = eval_scene_notes; n->paper; n++)
+        if (!strcmp(n->paper, paper) && !strcmp(n->scene, scene)) {
+            snprintf(out, len, "%s (for %s)", scene, n->stands_for);
+            return;
+        }
+    snprintf(out, len, "%s", scene);
+}
+
+/* What every line of a paper's claims shares: the setup's departures from the paper's. */
+static void differences(const struct eval_options *o, const char *paper, const char *scene, char *out, size_t len)
+{
+    char res[64] = "";
+    if (o->width != EVAL_PAPER_WIDTH || o->height != EVAL_PAPER_HEIGHT)
+        snprintf(res, sizeof res, "%dx%d, not 1920x1080; ", o->width, o->height);
+    const char *scene_note = "scene: ours";
+    for (const struct eval_scene_note *n = eval_scene_notes; n->paper; n++)
+        if (!strcmp(n->paper, paper) && !strcmp(n->scene, scene))
+            scene_note = "scene: ours, not the paper's";
+    const char *method = !strcmp(paper, "000")
+                             ? "base: our ReSTIR PT (hybrid shift, sub-pixel reservoirs, splatting)"
+                         : !strcmp(paper, "004")
+                             ? "disocclusion: history rejected in the last 4 frames (the paper does not define it)"
+                             : "equal time by the paper's GPU ratios; our times are in the table";
+    snprintf(out, len, "%s%s; %s", res, scene_note, method);
+}
+
+/* What a step's table and claims say about it: the heading (the scene and what it stands for), the
+ * claims' "where" (the scene, and the base method for 004) and the setup's departures. */
+struct step_text {
+    char heading[96], where[96], diff[300];
+};
+
+static void step_text(const struct eval_options *o, const struct eval_step *s, struct step_text *x)
+{
+    scene_label(s->paper, s->scene, x->heading, sizeof x->heading);
+    if (!strcmp(s->paper, "004"))
+        snprintf(x->where, sizeof x->where, "%s, %s", s->scene, s->base);
+    else
+        snprintf(x->where, sizeof x->where, "%s", s->scene);
+    differences(o, s->paper, s->scene, x->diff, sizeof x->diff);
+}
+
+/* DIR/STEP/NAME.csv into t. */
+static int read_step_csv(const char *dir, const struct eval_step *s, const char *name, struct csv_table *t)
+{
+    char path[PATH_LEN], msg[RESTIR_MSG_LEN];
+    snprintf(path, sizeof path, "%s/%s/%s.csv", dir, s->name, name);
+    if (csv_table_read(path, t, msg) != 0) {
+        cli_error("evaluate: %s", msg);
+        return -1;
+    }
+    return 0;
+}
+
+/* 000: Table 1 (pass times), the quality metrics of Table 2's layout, the claims. */
+/* 000 Figure 3 on the Table 2 scene: Bitterli's selection and ours (K 32) at each radius, as points
+ * of the error-covariance plane (the step's pareto.svg draws them), and the claim that ours moves
+ * the frontier: lower SMAPE and lower spatial covariance at the same radius (R 30 is FAST's claims'). */
+static void pareto_000(struct text *md, struct claims *cl, const struct eval_step *s, const struct csv_table *t,
+                       const char *where, const char *diff)
+{
+    static const double radius[4] = {10, 30, 50, 100};
+    static const char *const bitterli[4] = {"bitterli-r10", "bitterli", "bitterli-r50", "bitterli-r100"};
+    static const char *const ours[4] = {"compat-r10-k32", "fast", "balanced", "conservative"};
+    static const char *const col[2][2] = {{"smape_all", "smape_all_sem"}, {"spatial_cov", "spatial_cov_sem"}};
+    char a[4][64];
+    put(md,
+        "\nFigure 3 layout (error against spatial covariance over radii; the plot: %s/pareto.svg):\n\n"
+        "| R | Bitterli SMAPE | Bitterli spatial cov | ours (K 32) SMAPE | ours spatial cov |\n|---|---|---|---|---|\n",
+        s->name);
+    for (int k = 0; k < 4; k++) {
+        const int b = csv_table_find(t, bitterli[k]), c = csv_table_find(t, ours[k]);
+        for (int m = 0; m < 2; m++) {
+            fmt_pm(csv_table_num(t, b, col[m][0]), csv_table_num(t, b, col[m][1]), a[m], sizeof a[m]);
+            fmt_pm(csv_table_num(t, c, col[m][0]), csv_table_num(t, c, col[m][1]), a[2 + m], sizeof a[2 + m]);
+        }
+        put(md, "| %g | %s | %s | %s | %s |\n", radius[k], a[0], a[1], a[2], a[3]);
+        if (radius[k] == 30.0)
+            continue;
+        for (int m = 0; m < 2; m++) {
+            char what[96];
+            snprintf(what, sizeof what, "Fig. 3: %s, ours vs Bitterli at R %g", m ? "spatial covariance" : "SMAPE",
+                     radius[k]);
+            claim(cl, "000", what, where,
+                  rel_change_of(csv_table_num(t, c, col[m][0]), csv_table_num(t, c, col[m][1]),
+                             csv_table_num(t, b, col[m][0]), csv_table_num(t, b, col[m][1])),
+                  "lower (a better frontier; plot only)", REDUCTION(0.0), diff);
+        }
+    }
+}
+
+static void paper_000(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
+                      const struct csv_table *t)
+{
+    static const char *const presets[] = {"fast", "balanced", "conservative"};
+    char a[64], b[64], c[64], d[64], e[64];
+    struct step_text x;
+    step_text(o, s, &x);
+    const char *heading = x.heading, *where = x.where, *diff = x.diff;
+    put(md,
+        "\n### %s\n\nTable 1 layout (pass times, ms, means over the measured frames and runs):\n\n"
+        "| config | R | K | select | spatial | frame | frame vs Bitterli |\n|---|---|---|---|---|---|---|\n",
+        heading);
+    const int bit = csv_table_find(t, "bitterli");
+    const double base_ms = csv_table_num(t, bit, "ms_frame");
+    for (int r = 0; r < t->nrow; r++) {
+        const double ms = csv_table_num(t, r, "ms_frame");
+        cl->render_ms += ms * (eval_warmup(o) + eval_frames(o, "000")) * eval_runs(o);
+        put(md, "| %s | %g | %g | %.1f | %.1f | %.1f | %+.1f%% |\n", t->cell[(size_t)(r + 1) * t->ncol],
+            csv_table_num(t, r, "radius"), csv_table_num(t, r, "K"), csv_table_num(t, r, "ms_select"),
+            csv_table_num(t, r, "ms_spatial"), ms, 100.0 * (ms / base_ms - 1.0));
+    }
+    put(md, "\nTable 2 layout (SMAPE in %% with standard errors over the runs; relative temporal covariance at lag "
+            "3 and spatial covariance within 8 px, 000 Appendix A, with jackknife standard errors over the runs; "
+            "hard pixels: 000 Sec. 7):\n\n"
+            "| config | R | K | SMAPE | hard SMAPE | temporal cov | hard temporal cov | spatial cov | frame ms |\n"
+            "|---|---|---|---|---|---|---|---|---|\n");
+    for (int r = 0; r < t->nrow; r++) {
+        fmt_pm(csv_table_num(t, r, "smape_all"), csv_table_num(t, r, "smape_all_sem"), a, sizeof a);
+        fmt_pm(csv_table_num(t, r, "smape_hard"), csv_table_num(t, r, "smape_hard_sem"), b, sizeof b);
+        fmt_pm(csv_table_num(t, r, "temporal_cov"), csv_table_num(t, r, "temporal_cov_sem"), c, sizeof c);
+        fmt_pm(csv_table_num(t, r, "temporal_cov_hard"), csv_table_num(t, r, "temporal_cov_hard_sem"), e, sizeof e);
+        fmt_pm(csv_table_num(t, r, "spatial_cov"), csv_table_num(t, r, "spatial_cov_sem"), d, sizeof d);
+        put(md, "| %s | %g | %g | %s | %s | %s | %s | %s | %.1f |\n", t->cell[(size_t)(r + 1) * t->ncol],
+            csv_table_num(t, r, "radius"), csv_table_num(t, r, "K"), a, b, c, e, d, csv_table_num(t, r, "ms_frame"));
+    }
+    /* 000 Sec. 7.1 (FAST against Bitterli R = 30): EMERALD SQUARE -29% SMAPE, -49% temporal
+     * covariance; the simpler scenes (VEACH AJAR among them) -5.8..-13.7% and -22..-31%; hard pixels
+     * -26..-29% SMAPE and -43..-57% temporal covariance in every scene. Sec. 7.2: overheads FAST
+     * 1.3-4.4%, BALANCED 2.0-6.4%, CONSERVATIVE 4.3-7.4%. */
+    const int emerald = strstr(heading, "EMERALD") != NULL;
+    const int fast = csv_table_find(t, "fast");
+    claim(cl, "000", "FAST: SMAPE vs Bitterli R = 30", where,
+          rel_change_of(csv_table_num(t, fast, "smape_all"), csv_table_num(t, fast, "smape_all_sem"),
+                     csv_table_num(t, bit, "smape_all"), csv_table_num(t, bit, "smape_all_sem")),
+          emerald ? "-29% (EMERALD SQUARE)" : "-5.8% to -13.7% (simpler scenes)", REDUCTION(emerald ? 29.0 : 5.8), diff);
+    claim(cl, "000", "FAST: temporal covariance vs Bitterli", where,
+          rel_change_of(csv_table_num(t, fast, "temporal_cov"), csv_table_num(t, fast, "temporal_cov_sem"),
+                     csv_table_num(t, bit, "temporal_cov"), csv_table_num(t, bit, "temporal_cov_sem")),
+          emerald ? "-49% (EMERALD SQUARE)" : "-22% to -31% (simpler scenes)", REDUCTION(emerald ? 49.0 : 22.0), diff);
+    claim(cl, "000", "FAST: hard-pixel SMAPE vs Bitterli", where,
+          rel_change_of(csv_table_num(t, fast, "smape_hard"), csv_table_num(t, fast, "smape_hard_sem"),
+                     csv_table_num(t, bit, "smape_hard"), csv_table_num(t, bit, "smape_hard_sem")),
+          "-26% to -29%", REDUCTION(26.0), diff);
+    claim(cl, "000", "FAST: hard-pixel temporal covariance vs Bitterli", where,
+          rel_change_of(csv_table_num(t, fast, "temporal_cov_hard"), csv_table_num(t, fast, "temporal_cov_hard_sem"),
+                     csv_table_num(t, bit, "temporal_cov_hard"), csv_table_num(t, bit, "temporal_cov_hard_sem")),
+          "-43% to -57%", REDUCTION(43.0), diff);
+    static const char *const cost_figure[] = {"+1.3% to +4.4%", "+2.0% to +6.4%", "+4.3% to +7.4%"};
+    static const double cost_max[] = {4.4, 6.4, 7.4};
+    for (int k = 0; k < 3; k++) {
+        const int r = csv_table_find(t, presets[k]);
+        char what[96];
+        snprintf(what, sizeof what, "%s: frame time vs Bitterli (cost)", presets[k]);
+        claim(cl, "000", what, where, rel_change_of(csv_table_num(t, r, "ms_frame"), NAN, base_ms, NAN),
+              cost_figure[k], COSTS_AT_MOST(cost_max[k]), diff);
+    }
+    if (!s->table2)
+        return;
+    /* 000 Sec. 7.3 and Table 2 (EMERALD SQUARE): a larger R lowers spatial covariance (K 32: 6.0 at
+     * R 30, 1.5 at R 100, x 1e-3); a larger K raises it (R 30: 4.6 at K 8, 6.6 at K 128) and lowers
+     * SMAPE (29.9 at K 8, 29.3 at K 128). */
+    const int r100 = csv_table_find(t, "conservative"), k8 = csv_table_find(t, "compat-r30-k8"),
+              k128 = csv_table_find(t, "compat-r30-k128");
+    claim(cl, "000", "Table 2: spatial covariance, R 100 vs R 30 (K 32)", where,
+          rel_change_of(csv_table_num(t, r100, "spatial_cov"), csv_table_num(t, r100, "spatial_cov_sem"),
+                     csv_table_num(t, fast, "spatial_cov"), csv_table_num(t, fast, "spatial_cov_sem")),
+          "-75% (6.0 -> 1.5)", REDUCTION(0.0), diff);
+    claim(cl, "000", "Table 2: spatial covariance, K 8 vs K 128 (R 30)", where,
+          rel_change_of(csv_table_num(t, k8, "spatial_cov"), csv_table_num(t, k8, "spatial_cov_sem"),
+                     csv_table_num(t, k128, "spatial_cov"), csv_table_num(t, k128, "spatial_cov_sem")),
+          "-30% (6.6 -> 4.6)", REDUCTION(0.0), diff);
+    claim(cl, "000", "Table 2: SMAPE, K 128 vs K 8 (R 30)", where,
+          rel_change_of(csv_table_num(t, k128, "smape_all"), csv_table_num(t, k128, "smape_all_sem"),
+                     csv_table_num(t, k8, "smape_all"), csv_table_num(t, k8, "smape_all_sem")),
+          "-2% (29.9 -> 29.3)", REDUCTION(0.0), diff);
+    pareto_000(md, cl, s, t, where, diff);
+}
+
+/* 004: the main table (MAPE overall and over disoccluded pixels) and its claims. */
+/* 004 Table 2's layout: each reuse's pass times per frame (run 0's means over the frames). */
+static int table2_004(struct text *md, const char *dir, const struct eval_step *s, char (*label)[160],
+                      const char *const *names)
+{
+    struct csv_table p;
+    if (read_step_csv(dir, s, "passes", &p) != 0)
+        return -1;
+    static const char *const pass[] = {"initial",     "temporal",        "select",      "spatial", "cells",
+                                       "cell_search", "spmis_canonical", "spmis_reuse", "shade"};
+    put(md, "\nTable 2 layout (ms per frame of each pass, the fastest run, mean over its frames; spmis: create cells, cell "
+            "search, canonical weight m_c, stochastic neighbor reuse):\n\n| reuse | initial | temporal | select | "
+            "spatial | cells | cell search | m_c | neighbor reuse | shade "
+            "|\n|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int k = 0; k < 3; k++) {
+        const int r = csv_table_find(&p, label[k]);
+        put(md, "| %s |", names[k]);
+        for (size_t q = 0; q < sizeof pass / sizeof pass[0]; q++)
+            put(md, " %.1f |", csv_table_num(&p, r, pass[q]));
+        put(md, "\n");
+    }
+    csv_table_free(&p);
+    return 0;
+}
+
+static int paper_004(struct text *md, struct claims *cl, const struct eval_options *o, const char *dir,
+                     const struct eval_step *s, const struct csv_table *t)
+{
+    char a[64], b[64], c[64], label[3][160];
+    struct step_text x;
+    step_text(o, s, &x);
+    const char *scene = x.heading, *where = x.where, *diff = x.diff;
+    snprintf(label[0], sizeof label[0], "%s", s->base);
+    snprintf(label[1], sizeof label[1], "%s:spatial.reuse=spmis", s->base);
+    snprintf(label[2], sizeof label[2], "%s:spatial.reuse=spmis:spmis.search_score=compat", s->base);
+    static const char *const names[] = {"standard (3 neighbors, 30 px)", "SPMIS (004)",
+                                        "SPMIS, compat search (ours)"};
+    put(md,
+        "\n### %s, %s\n\nLast frame (%d) of the camera path, means over %d runs +- standard errors:\n\n"
+        "| reuse | ms/frame | MAPE | MAPE disoccluded | disoccluded share | relMSE |\n|---|---|---|---|---|---|\n",
+        scene, s->base, eval_frames(o, "004") - 1, eval_runs(o));
+    int row[3];
+    for (int k = 0; k < 3; k++) {
+        const int r = row[k] = csv_table_find(t, label[k]);
+        fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), a, sizeof a);
+        fmt_pm(csv_table_num(t, r, "mape_disoccluded"), csv_table_num(t, r, "mape_disoccluded_sem"), b, sizeof b);
+        fmt_pm(csv_table_num(t, r, "relmse"), csv_table_num(t, r, "relmse_sem"), c, sizeof c);
+        cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "004") * eval_runs(o);
+        put(md, "| %s | %.1f | %s | %s | %.3f | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b,
+            csv_table_num(t, r, "disoccluded_share"), c);
+    }
+    const int pt = !strcmp(s->base, "restir-pt");
+    static const char *const col[2][2] = {{"mape", "mape_sem"}, {"mape_disoccluded", "mape_disoccluded_sem"}};
+    static const char *const what[2][2] = {
+        {"SPMIS: MAPE overall vs standard", "SPMIS: MAPE disoccluded vs standard"},
+        {"compat search (ours): MAPE overall vs standard", "compat search (ours): MAPE disoccluded vs standard"}};
+    for (int v = 0; v < 2; v++)
+        for (int m = 0; m < 2; m++)
+            claim(cl, "004", what[v][m], where,
+                  rel_change_of(csv_table_num(t, row[v + 1], col[m][0]), csv_table_num(t, row[v + 1], col[m][1]),
+                             csv_table_num(t, row[0], col[m][0]), csv_table_num(t, row[0], col[m][1])),
+                  v    ? "none (not in the paper)"
+                  : pt ? (m ? "lower, \"especially in disocclusions\"" : "lower overall")
+                       : (m ? "lower in disocclusions (the paper: ReSTIR PT only)"
+                            : "lower (the paper: ReSTIR PT only)"),
+                  v ? NO_CLAIM : REDUCTION(0.0), diff);
+    return table2_004(md, dir, s, label, names) == 0 ? 0 : EXIT_RUNTIME;
+}
+
+/* 004 Figures 2, 6 and 7: SPMIS's own variants on one scene, and the claims the figures make. */
+static void paper_004_ablation(struct text *md, struct claims *cl, const struct eval_options *o,
+                               const struct eval_step *s, const struct csv_table *t)
+{
+    char a[64], b[64], label[6][200];
+    struct step_text x;
+    step_text(o, s, &x);
+    const char *scene = x.heading, *where = x.where, *diff = x.diff;
+    static const char *const suffix[6] = {"",
+                                          ":spmis.confidence_adjust=off",
+                                          ":spmis.candidates=1",
+                                          ":spmis.candidates=M",
+                                          ":spmis.canonical_candidates=4",
+                                          ":spmis.canonical_candidates=M"};
+    static const char *const names[6] = {"SPMIS: N = 3, N_c = 1, confidences x N / M",
+                                         "Fig. 2: without the N / M confidence scaling",
+                                         "Fig. 7: N = 1",
+                                         "Fig. 7: N = M (deterministic over the cell)",
+                                         "Fig. 6: N_c = 4",
+                                         "Fig. 6: N_c = M (exact Eq. 11b)"};
+    int row[6];
+    put(md,
+        "\n### %s, SPMIS variants (004 Figures 2, 6, 7), %s\n\nLast frame (%d) of the camera path, means over %d "
+        "runs +- standard errors:\n\n| variant | ms/frame | MAPE | MAPE disoccluded |\n|---|---|---|---|\n",
+        scene, s->base, eval_frames(o, "004") - 1, eval_runs(o));
+    for (int k = 0; k < 6; k++) {
+        snprintf(label[k], sizeof label[k], "%s:spatial.reuse=spmis%s", s->base, suffix[k]);
+        const int r = row[k] = csv_table_find(t, label[k]);
+        fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), a, sizeof a);
+        fmt_pm(csv_table_num(t, r, "mape_disoccluded"), csv_table_num(t, r, "mape_disoccluded_sem"), b, sizeof b);
+        cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "004") * eval_runs(o);
+        put(md, "| %s | %.1f | %s | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b);
+    }
+#define MAPE_CHANGE(x, y)                                                                                          \
+    rel_change_of(csv_table_num(t, row[x], "mape"), csv_table_num(t, row[x], "mape_sem"),                             \
+               csv_table_num(t, row[y], "mape"), csv_table_num(t, row[y], "mape_sem"))
+    claim(cl, "004", "Fig. 2: the N / M scaling vs none: MAPE", where, MAPE_CHANGE(0, 1), "lower (images only)",
+          REDUCTION(0.0), diff);
+    claim(cl, "004", "Fig. 7: N = M vs N = 3: MAPE", where, MAPE_CHANGE(3, 0), "lower (\"some loss of quality\")",
+          REDUCTION(0.0), diff);
+    claim(cl, "004", "Fig. 7: N = 3 vs N = M: frame time", where,
+          rel_change_of(csv_table_num(t, row[0], "ms_per_frame"), NAN, csv_table_num(t, row[3], "ms_per_frame"), NAN),
+          "lower (\"significant cost reduction\")", REDUCTION(0.0), diff);
+    claim(cl, "004", "Fig. 6: N_c = M vs N_c = 1: MAPE", where, MAPE_CHANGE(5, 0), "\"only slightly\" different",
+          SMALL_CHANGE(5.0), diff);
+#undef MAPE_CHANGE
+}
+
+/* 002: the equal-time table (L2 and L1) and its claims. */
+static void paper_002(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
+                      const struct csv_table *t)
+{
+    char a[64], b[64], g[64];
+    struct step_text x;
+    step_text(o, s, &x);
+    const char *heading = x.heading, *where = x.where, *diff = x.diff;
+    put(md,
+        "\n### %s\n\nLast frame (%d) of the camera path, the paper's equal-time ratios; means over %d runs +- "
+        "standard errors (gradient relMSE: of the estimated forward differences against the reference's, "
+        "our measure of Fig. 7's gradient images):\n\n| method | instances | spp | ms/frame | relMSE | MAPE | "
+        "gradient relMSE |\n|---|---|---|---|---|---|---|\n",
+        heading, eval_frames(o, "002") - 1, eval_runs(o));
+    for (int r = 0; r < t->nrow; r++) {
+        fmt_pm(csv_table_num(t, r, "relmse"), csv_table_num(t, r, "relmse_sem"), a, sizeof a);
+        fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), b, sizeof b);
+        fmt_pm(csv_table_num(t, r, "gradient_relmse"), csv_table_num(t, r, "gradient_relmse_sem"), g, sizeof g);
+        cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "002") * eval_runs(o);
+        put(md, "| %s | %g | %g | %.1f | %s | %s | %s |\n", t->cell[(size_t)(r + 1) * t->ncol],
+            csv_table_num(t, r, "instances"), csv_table_num(t, r, "spp"), csv_table_num(t, r, "ms_per_frame"), a,
+            b, g);
+    }
+    static const char *const ours[2] = {"grestir-pt", "grestir-pt:recon=l1"};
+    static const char *const rivals[2][3] = {
+        {"grad-after-restir:instances=2", "area-restir:instances=4", "gpt:spp=3"},
+        {"grad-after-restir:instances=2:recon=l1", "area-restir:instances=4", "gpt:spp=3:recon=l1"}};
+    static const char *const names[3] = {"Gradient after ReSTIR x 2", "Area ReSTIR x 4", "G-PT 3 spp"};
+    for (int l = 0; l < 2; l++) {
+        const int me = csv_table_find(t, ours[l]);
+        for (int k = 0; k < 3; k++) {
+            if (l == 1 && k == 1) /* Area ReSTIR has no gradients: Figure 8 shows it in the L2 row only */
+                continue;
+            const int r = csv_table_find(t, rivals[l][k]);
+            /* relMSE as the paper; MAPE too: relMSE's few outlier pixels can hide a difference
+             * (their spread over runs is of the order of the mean) that MAPE, robust to them, shows */
+            static const char *const metric[2][3] = {{"relMSE", "relmse", "relmse_sem"}, {"MAPE", "mape", "mape_sem"}};
+            for (int m = 0; m < 2; m++) {
+                char what[128];
+                snprintf(what, sizeof what, "%s: %s vs %s", l ? "L1" : "L2", metric[m][0], names[k]);
+                claim(cl, "002", what, where,
+                      rel_change_of(csv_table_num(t, me, metric[m][1]), csv_table_num(t, me, metric[m][2]),
+                                 csv_table_num(t, r, metric[m][1]), csv_table_num(t, r, metric[m][2])),
+                      m ? "lower at equal time (the paper reports relMSE)" : "lower at equal time (Fig. 7, 8; no numbers)",
+                      REDUCTION(0.0), diff);
+            }
+        }
+    }
+    /* Fig. 7 and Sec. 6: "our method tends to produce highest-quality gradients" at equal time. The
+     * gradients do not depend on the reconstruction: the L2 rows judge it. */
+    const int me = csv_table_find(t, ours[0]);
+    for (int k = 0; k < 3; k += 2) {
+        const int r = csv_table_find(t, rivals[0][k]);
+        char what[128];
+        snprintf(what, sizeof what, "Fig. 7: gradient relMSE vs %s", names[k]);
+        claim(cl, "002", what, where,
+              rel_change_of(csv_table_num(t, me, "gradient_relmse"), csv_table_num(t, me, "gradient_relmse_sem"),
+                         csv_table_num(t, r, "gradient_relmse"), csv_table_num(t, r, "gradient_relmse_sem")),
+              "lower at equal time (images only)", REDUCTION(0.0), diff);
+    }
+}
+
+static const char *paper_title(const char *paper)
+{
+    return !strcmp(paper, "000")   ? "000: compatibility-guided spatial neighbor selection"
+           : !strcmp(paper, "004") ? "004: stochastic pairwise MIS with reuse cells"
+                                   : "002: gradient-domain ReSTIR PT";
+}
+
+
+/* index.html: the evaluation's text and a link to each step's own page. */
+static int write_index(const char *dir, const char *command, const struct eval_step *steps, int n, const char *md,
+                       char *msg)
+{
+    char path[PATH_LEN];
+    snprintf(path, sizeof path, "%s/index.html", dir);
+    struct html_page pg;
+    if (html_begin(&pg, path, "restir evaluate", msg) != 0)
+        return -1;
+    html_run_info(&pg, command, RESTIR_GIT_COMMIT);
+    html_raw(&pg, "<h2>Steps</h2><ul>");
+    for (int k = 0; k < n; k++)
+        html_raw(&pg, "<li><a href=\"%s/index.html\">%s</a> (restir %s)</li>", steps[k].name, steps[k].name,
+                 steps[k].kind);
+    html_raw(&pg, "</ul><h2>Tables and claims</h2><pre>");
+    html_text(&pg, md);
+    html_raw(&pg, "</pre>");
+    return html_end(&pg, msg);
+}
+
+int evaluate_write_tables(const char *dir, const char *command, const struct eval_options *o,
+                          const struct eval_step *steps, int n, const int *merged)
+{
+    char msg[RESTIR_MSG_LEN], path[PATH_LEN];
+    struct text md = {0};
+    struct claims cl;
+    memset(&cl, 0, sizeof cl);
+    snprintf(path, sizeof path, "%s/claims.csv", dir);
+    if (csv_open(&cl.csv, path, "paper,claim,where,ours_change_pct,ours_change_sd,paper_figure,verdict,why", msg) !=
+        0) {
+        cli_error("%s", msg);
+        return EXIT_RUNTIME;
+    }
+    cl.csv_ok = 1;
+    int rc = 0;
+    const char *current = "";
+    for (int k = 0; k < n && rc == 0; k++) {
+        const struct eval_step *s = &steps[k];
+        if (strcmp(current, s->paper) != 0) { /* a paper's section: its setup, then its steps, then its claims */
+            if (current[0])
+                flush_claims(&md, &cl, current);
+            current = s->paper;
+            put(&md,
+                "\n## %s\n\n`%s`\n\n%dx%d (the paper: %dx%d), %d independently seeded runs per configuration, "
+                "references of %d paths per pixel, ",
+                paper_title(current), command, o->width, o->height, EVAL_PAPER_WIDTH, EVAL_PAPER_HEIGHT,
+                eval_runs(o), eval_ref_spp(o));
+            if (!strcmp(current, "000"))
+                put(&md, "static camera, %d warm-up frames, %d measured frames.\n", eval_warmup(o),
+                    eval_frames(o, current));
+            else
+                put(&md, "camera path, error of frame %d.\n", eval_frames(o, current) - 1);
+            put(&md, "Pixel radii as in the paper (not scaled with the resolution).\n");
+            char machine[400];
+            html_machine_name(machine, sizeof machine);
+            put(&md, "Merged on %s (the frame times are those of the machines that ran the jobs).\n", machine);
+            if (!strcmp(current, "000") && o->configs[0])
+                put(&md,
+                    "Configurations: only %s (--configs; the whole evaluation runs Table 1's four on every "
+                    "scene and Table 2's grid and Figure 3's radii on the first): claims on the others read "
+                    "\"not measured\".\n",
+                    o->configs);
+            for (int j = k; j < n && !strcmp(steps[j].paper, current); j++)
+                for (const struct eval_scene_note *sn = eval_scene_notes; sn->paper; sn++)
+                    if (!strcmp(sn->paper, current) && !strcmp(sn->scene, steps[j].scene) &&
+                        (j == k || strcmp(steps[j - 1].scene, steps[j].scene)))
+                        put(&md, "- scene `%s` for %s: %s.\n", sn->scene, sn->stands_for, sn->why);
+        }
+        if (!merged[k]) {
+            put(&md,
+                "\n### %s: not finished\n\nIts jobs are not all done yet: this evaluation was merged with "
+                "`--partial`; run the remaining jobs and merge again.\n",
+                s->name);
+            continue;
+        }
+        struct csv_table t;
+        if (read_step_csv(dir, s, s->kind, &t) != 0) {
+            rc = EXIT_RUNTIME;
+            break;
+        }
+        if (!strcmp(s->paper, "000"))
+            paper_000(&md, &cl, o, s, &t);
+        else if (!strcmp(s->paper, "004") && s->ablation)
+            paper_004_ablation(&md, &cl, o, s, &t);
+        else if (!strcmp(s->paper, "004"))
+            rc = paper_004(&md, &cl, o, dir, s, &t);
+        else
+            paper_002(&md, &cl, o, s, &t);
+        csv_table_free(&t);
+    }
+    if (rc == 0 && current[0])
+        flush_claims(&md, &cl, current);
+    free(cl.md.s);
+    if (rc == 0 && csv_close(&cl.csv, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    } else if (rc != 0)
+        csv_abort(&cl.csv);
+    snprintf(path, sizeof path, "%s/evaluation.md", dir);
+    if (rc == 0 && io_write_file(path, md.s, md.len, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    if (rc == 0 && o->report && write_index(dir, command, steps, n, md.s, msg) != 0) {
+        cli_error("--report: %s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    if (rc == 0)
+        printf("%s\nevaluation: %s/evaluation.md, %s/claims.csv%s\n", md.s, dir, dir,
+               o->report ? ", index.html" : "");
+    free(md.s);
+    return rc;
+}

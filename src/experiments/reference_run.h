@@ -1,0 +1,32 @@
+/* reference_run.h: what `restir reference` (cmd_reference.c) and its sharded form (reference_shards.c) share.
+ * Must never implement a method or call into cmd_reference.c or reference_shards.c. */
+#ifndef RESTIR_EXPERIMENTS_REFERENCE_RUN_H
+#define RESTIR_EXPERIMENTS_REFERENCE_RUN_H
+
+#include "experiments/options.h"
+#include "methods/renderer.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+
+#define RUN_TEXT_MAX 1024 /* a run description (reference_describe): restir.run */
+
+struct reference_setup {
+    struct cli_options o;
+    const struct method *method;
+    struct scene s;
+    int spp;
+    struct camera cam, cam_open; /* the frame's camera and where its shutter opens */
+};
+
+/* Parses and checks the options, loads the scene (st->s, to destroy) and checks memory; need_out:
+ * --out (or --plan) is required. Returns 0, -1 after printing --help, or an exit code having
+ * said why. */
+int reference_setup(int argc, char **argv, int need_out, struct reference_setup *st);
+/* A reference image (the running mean of `samples` of `spp` samples) with its attributes
+ * restir.samples, restir.spp, restir.run, restir.method, restir.scene and, when extra_name is not
+ * NULL, one more; atomically. Returns 0, or -1 with msg. */
+int reference_write_image(const char *path, const float *mean, int w, int h, int samples, int spp, const char *run,
+                          const char *method, const char *scene, const char *extra_name, const char *extra_value,
+                          char *msg);
+
+#endif
