@@ -9,6 +9,7 @@
 #include "experiments/cli.h"
 #include "experiments/compare_plan.h"
 #include "experiments/compare_run.h"
+#include "experiments/options.h"
 #include "experiments/stats.h"
 #include "io/atomic_file.h"
 #include "io/exr.h"
@@ -35,6 +36,54 @@ static int spp_for_budget(const struct scene *s, const struct method *m, const s
     return equal_time_spp(budget_ms, frame_ms_at_spp(s, m, p, 1), frame_ms_at_spp(s, m, p, 4));
 }
 
+static void compare_usage(void)
+{
+    printf("usage: restir compare --scene NAME --methods SPEC,SPEC,... [--equal-time] [--frames N] [--res WxH]\n"
+               "                      [--ref FILE.exr | --ref-spp N] [--camera static|path] [--out DIR] [--report]\n"
+               "                      [--seed N] [--threads N] [--runs N] [--ref-every K] [--set key=value]...\n"
+               "Each SPEC is NAME[:key=value]...: method NAME (see restir list) with the command's parameters,\n"
+               "then each key=value applied as by --set (see restir render --help) for that row only, e.g.\n"
+               "  --methods 'restir-pt,restir-pt:mis=balance:spatial.neighbors=5,pt'\n"
+               "The key instances=N (1-16) makes the row average N independently seeded renderers (as\n"
+               "--equal-time does; 002 Sec. 5 gives its baselines such fixed counts).\n"
+               "The whole SPEC labels its row. Runs each SPEC for N frames (default 1) and measures the last\n"
+               "frame against the reference, rendered from the common parameters with --ref-spp paths\n"
+               "(default 1024) when --ref is absent. With --equal-time every row gets the frame time of the\n"
+               "first SPEC other than pt (gradient methods: L2 reconstruction included, 002 Sec. 5): pt and\n"
+               "gpt get as many paths per pixel as fit, the other methods average as many independently\n"
+               "seeded instances as fit (gradient methods average primal and gradients, then reconstruct\n"
+               "once). When DI methods are compared, pt estimates direct lighting only (1 bounce), like them.\n"
+               "Writes DIR/compare.csv (method = the SPEC, ms per frame, spp, instances, relmse, mape, smape,\n"
+               "luma_rmse, runs, temporal_cov, and with --runs the standard errors relmse_sem, mape_sem,\n"
+               "smape_sem; then mape_disoccluded, its mape_disoccluded_sem and disoccluded_share: 004 Sec.\n"
+               "6.2's MAPE over the pixels whose history was rejected in any of the last 4 frames, for the\n"
+               "methods with a G-buffer history; then gradient_relmse and gradient_relmse_sem for the gradient\n"
+               "methods: the relMSE of the last frame's estimated forward differences against the reference's,\n"
+               "our measure of 002 Fig. 7's gradient images, defined in restir render --help)\n"
+               "and each row's last frame to DIR/FOLDER/, where FOLDER is the SPEC with every character other\n"
+               "than A-Z a-z 0-9 . _ - replaced by _ (and _2, _3, ... appended when two SPECs give the same\n"
+               "name). Default DIR: out/compare-SCENE.\n"
+               "DIR/frames.csv has a row per SPEC and frame: frame time, temporal pass time, the shares of\n"
+               "valid pixels whose history shifted in (temporal_accept) and, for path reservoirs, that were\n"
+               "offered / took a backprojected or a splatted candidate (as restir render's metrics.csv), and\n"
+               "the error of the frames that have a reference: the last, and with --ref-every K also frames\n"
+               "K-1, 2K-1, ..., each against its own reference (--ref-spp paths from that frame's camera;\n"
+               "--ref gives the last frame's only).\n"
+               "--runs N (default 1) runs every SPEC as N independently seeded sequences: errors are means\n"
+               "over the runs with their standard errors (sd / sqrt N, printed after +-), and temporal_cov\n"
+               "is 000's relative autocovariance (Appendix A, Eq. 17) at a lag of 3 frames over the second\n"
+               "half of the frames (at least 8 frames); run 0's frames are the ones written, and the times\n"
+               "are the fastest run's (runs on a shared machine only ever get slower). --plan DIR makes\n"
+               "each SPEC's run a job of its own; the merge then has the same errors and standard errors, but\n"
+               "no temporal_cov (it needs every run's frame sequence). --ref-every and --equal-time cannot be\n"
+               "planned.\n"
+               "--report also writes DIR/index.html: one self-contained page (no network) with the command,\n"
+               "commit and machine, the table, a relMSE plot, every image beside the reference in a viewer\n"
+               "(synchronized zoom and pan, A/B flip), relative-error heat maps and the crops where the first\n"
+               "two methods differ most.\n");
+    cli_options_help(stdout, "compare");
+}
+
 int cmd_compare(int argc, char **argv)
 {
     for (int i = 0; i + 1 < argc; i++)
@@ -45,10 +94,20 @@ int cmd_compare(int argc, char **argv)
             }
             return compare_merge(argv[i + 1]);
         }
+    char parse_msg[RESTIR_MSG_LEN];
+    struct cli_options desc;
+    if (cli_parse_options("compare", argc, argv, &desc, parse_msg) != 0) {
+        cli_error("%s", parse_msg);
+        return EXIT_USAGE;
+    }
+    if (desc.help) {
+        compare_usage();
+        return 0;
+    }
     static struct compare_setup st;
-    int rc = compare_setup(argc, argv, &st);
+    int rc = compare_setup(&desc, &st);
     if (rc != 0)
-        return rc < 0 ? 0 : rc;
+        return rc;
     if (st.o.plan) {
         rc = compare_plan(&st, argc, argv);
         scene_destroy(&st.s);

@@ -6,20 +6,60 @@
 #include "commands.h"
 #include "core/check.h"
 #include "experiments/cli.h"
+#include "experiments/options.h"
 #include "experiments/reference_checkpoint.h"
 #include "experiments/reference_run.h"
 #include "experiments/reference_shards.h"
 #include "methods/reference.h"
+
+static void reference_usage(FILE *out)
+{
+    fprintf(out,
+            "usage: restir reference --scene NAME --method NAME [--res WxH] [--spp N] [--camera static|path]\n"
+            "                        [--frame F] [--seed N] [--threads N] [--checkpoint-every SECONDS]\n"
+            "                        [--max-memory MB] --out FILE.exr | --shards N --plan DIR\n"
+            "       restir reference --merge DIR --out FILE.exr\n"
+            "Renders the converged image of what METHOD estimates (pt over the same integrand: direct\n"
+            "lighting only for DI methods) from the camera of frame F. Default --spp 1024. The samples come\n"
+            "in chunks of %d, chunk c always from the same random numbers, so the image does not depend on\n"
+            "--threads or on interruptions.\n"
+            "--checkpoint-every S saves the running mean and its sample count (EXR attributes restir.samples\n"
+            "and restir.run) to FILE.checkpoint.exr every S seconds (0: after every chunk) and when SIGINT or\n"
+            "SIGTERM arrives, each time through a temporary file and a rename. The same command then\n"
+            "continues from the checkpoint, after a kill too, and writes byte for byte the image an\n"
+            "uninterrupted run gives; a larger --spp extends it. A checkpoint of another run (scene content,\n"
+            "camera, resolution, seed or pt parameters) is refused, not overwritten. The finished reference\n"
+            "carries the same attributes, and the checkpoint is removed.\n"
+            "SIGINT / SIGTERM stop after the current chunk (a second one stops at once); without\n"
+            "--checkpoint-every nothing is written. Exit status 128 + the signal.\n"
+            "--shards N --plan DIR splits the chunks into N jobs (DIR/jobs.txt, plan.json, slurm.sh; see\n"
+            "restir study --help and docs/CLUSTER.md); `restir reference --merge DIR --out FILE.exr` then\n"
+            "averages the shards, weighted by samples: the same samples as the unsplit reference, equal to\n"
+            "it up to the order of the floating-point sums (relative difference at most (2C+1) 2^-24 for C\n"
+            "chunks).\n",
+            REFERENCE_CHUNK_SPP);
+    cli_options_help(out, "reference");
+}
 
 int cmd_reference(int argc, char **argv)
 {
     for (int i = 0; i + 1 < argc; i++)
         if (!strcmp(argv[i], "--merge"))
             return reference_merge(argc, argv);
+    char parse_msg[RESTIR_MSG_LEN];
+    struct cli_options desc;
+    if (cli_parse_options("reference", argc, argv, &desc, parse_msg) != 0) {
+        cli_error("%s", parse_msg);
+        return EXIT_USAGE;
+    }
+    if (desc.help) {
+        reference_usage(stdout);
+        return 0;
+    }
     struct reference_setup st;
-    int rc = reference_setup(argc, argv, 1, &st);
+    int rc = reference_setup(&desc, 1, &st);
     if (rc != 0)
-        return rc < 0 ? 0 : rc;
+        return rc;
     if (st.o.plan || st.o.shards) {
         rc = reference_plan(&st, argc, argv);
         scene_destroy(&st.s);

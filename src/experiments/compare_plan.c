@@ -161,12 +161,25 @@ static int job_valid(const struct plan *pl, int k, char *why, void *ctx)
     return read_job(pl, ctx, k, NULL, NULL, NULL, NULL, why);
 }
 
+/* compare_setup from the plan's description (its options, read back through the option table).
+ * Returns 0 or an exit code having said why. */
+static int compare_setup_planned(const struct plan *pl, struct compare_setup *st)
+{
+    char msg[RESTIR_MSG_LEN];
+    struct cli_options desc;
+    if (cli_parse_options("compare", pl->argc, pl->argv, &desc, msg) != 0) {
+        cli_error("%s/plan.json: %s", pl->dir, msg);
+        return EXIT_USAGE;
+    }
+    return compare_setup(&desc, st);
+}
+
 int compare_run_job(const struct plan *pl, int k)
 {
     static struct compare_setup st;
-    int rc = compare_setup(pl->argc, pl->argv, &st);
+    int rc = compare_setup_planned(pl, &st);
     if (rc != 0)
-        return rc < 0 ? EXIT_USAGE : rc;
+        return rc;
     if ((rc = plan_check_scene(pl, scene_content_hash(&st.s))) != 0) {
         scene_destroy(&st.s);
         return rc;
@@ -273,10 +286,10 @@ int compare_merge(const char *dir)
     if (rc != 0)
         return rc;
     static struct compare_setup st;
-    rc = compare_setup(pl.argc, pl.argv, &st);
+    rc = compare_setup_planned(&pl, &st);
     if (rc != 0) {
         plan_free(&pl);
-        return rc < 0 ? EXIT_USAGE : rc;
+        return rc;
     }
     rc = plan_check_scene(&pl, scene_content_hash(&st.s));
     if (rc == 0 && plan_check_jobs(&pl, job_valid, &st, msg) != 0) {

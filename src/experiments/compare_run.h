@@ -1,5 +1,6 @@
-/* compare_run.h: what `restir compare` (cmd_compare.c) and its planned form (compare_plan.c) share:
- * the specs, one method's run, the reference, the table. Must never implement a method or call into either. */
+/* compare_run.h: the comparison harness that `restir compare` and its planned form (compare_plan.c)
+ * share: compare_setup.c turns a description into specs, compare_run.c runs a spec, compare_reference.c
+ * renders the references, compare_table.c writes the table. Must never implement a method. */
 #ifndef RESTIR_EXPERIMENTS_COMPARE_RUN_H
 #define RESTIR_EXPERIMENTS_COMPARE_RUN_H
 
@@ -71,9 +72,10 @@ void compare_disoccluded_error(const float *image, const float *ref, const unsig
 /* compare_run_method's result when a stop signal arrived before the method's last frame. */
 #define RUN_STOPPED 1
 
-/* Parses the options and specs, loads the scene (st->s, to destroy), checks memory. Returns 0, -1
- * after printing --help, or an exit code having said why. */
-int compare_setup(int argc, char **argv, struct compare_setup *st);
+/* A comparison from its description (struct cli_options as the option table parsed it, from argv or
+ * a plan's JSON): the specs, the common parameters and integrand, the scene loaded (st->s, to
+ * destroy), memory checked. Returns 0, or an exit code having said why. */
+int compare_setup(const struct cli_options *desc, struct compare_setup *st);
 /* The comparison's own reference (independently seeded, from the last frame's camera), or NULL
  * when a stop signal arrived. */
 float *compare_render_reference(const struct compare_setup *st);

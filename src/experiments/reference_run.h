@@ -18,10 +18,12 @@ struct reference_setup {
     struct camera cam, cam_open; /* the frame's camera and where its shutter opens */
 };
 
-/* Parses and checks the options, loads the scene (st->s, to destroy) and checks memory; need_out:
- * --out (or --plan) is required. Returns 0, -1 after printing --help, or an exit code having
- * said why. */
-int reference_setup(int argc, char **argv, int need_out, struct reference_setup *st);
+/* A reference from its description (struct cli_options as the option table parsed it): method,
+ * scene (st->s, to destroy), camera and samples; need_out: --out (or --plan) is required. Returns 0,
+ * or an exit code having said why. */
+int reference_setup(const struct cli_options *desc, int need_out, struct reference_setup *st);
+/* reference_setup of a plan's stored arguments (need_out 0). */
+int reference_setup_args(int argc, char **argv, struct reference_setup *st);
 /* A reference image (the running mean of `samples` of `spp` samples) with its attributes
  * restir.samples, restir.spp, restir.run, restir.method, restir.scene and, when extra_name is not
  * NULL, one more; atomically. Returns 0, or -1 with msg. */

@@ -125,9 +125,9 @@ static int shard_valid(const struct plan *pl, int k, char *why, void *ctx)
 int reference_run_job(const struct plan *pl, int k)
 {
     struct reference_setup st;
-    int rc = reference_setup(pl->argc, pl->argv, 0, &st);
+    int rc = reference_setup_args(pl->argc, pl->argv, &st);
     if (rc != 0)
-        return rc < 0 ? EXIT_USAGE : rc;
+        return rc;
     if ((rc = plan_check_scene(pl, scene_content_hash(&st.s))) != 0) {
         scene_destroy(&st.s);
         return rc;
@@ -185,10 +185,10 @@ int reference_merge(int argc, char **argv)
     if (rc != 0)
         return rc;
     struct reference_setup st;
-    rc = reference_setup(pl.argc, pl.argv, 0, &st);
+    rc = reference_setup_args(pl.argc, pl.argv, &st);
     if (rc != 0) {
         plan_free(&pl);
-        return rc < 0 ? EXIT_USAGE : rc;
+        return rc;
     }
     char run[RUN_TEXT_MAX];
     run_text(&st, run, sizeof run);

@@ -1,0 +1,43 @@
+/* compare_reference.c: a comparison's references: what they integrate (the integrand's pt), their seeds
+ * (independent of the runs and of each other) and cameras, rendered at once or resumably for a
+ * plan's job (compare_run.h). */
+#include "experiments/compare_run.h"
+
+#include <stdint.h>
+
+#include "experiments/cli.h"
+#include "experiments/reference_checkpoint.h"
+
+float *compare_render_reference(const struct compare_setup *st)
+{
+    return compare_render_reference_at(st, st->o.frames - 1);
+}
+
+/* What the reference at frame `frame` renders: its params and cameras. */
+static const struct method *reference_inputs(const struct compare_setup *st, int frame, struct render_params *rp,
+                                       struct camera *cam, struct camera *open)
+{
+    *rp = st->p;
+    /* independent of the compared runs and of the other frames' references */
+    rp->seed = reference_seed(st->p.seed);
+    if (frame != st->o.frames - 1)
+        rp->seed += 0x2545F4914F6CDD1Dull * (uint64_t)(frame + 1);
+    cli_frame_cameras(&st->s, st->p.camera_path, frame, cam, open);
+    return st->integrand;
+}
+
+float *compare_render_reference_at(const struct compare_setup *st, int frame)
+{
+    struct render_params rp;
+    struct camera cam, open;
+    const struct method *m = reference_inputs(st, frame, &rp, &cam, &open);
+    return cli_render_reference(&st->s, m, &rp, &cam, &open, st->o.ref_spp);
+}
+
+float *compare_render_reference_resumable(const struct compare_setup *st, const char *out, char *msg)
+{
+    struct render_params rp;
+    struct camera cam, open;
+    const struct method *m = reference_inputs(st, st->o.frames - 1, &rp, &cam, &open);
+    return reference_render_resumable(&st->s, m, &rp, &cam, &open, st->o.ref_spp, out, msg);
+}

@@ -1,0 +1,160 @@
+/* compare_table.c: a comparison's output: the printed table ('-' where a metric does not apply),
+ * compare.csv, passes.csv and the report page (compare_run.h). Must never render. */
+#include "experiments/compare_run.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/check.h"
+#include "experiments/cli.h"
+#include "experiments/compare_report.h"
+#include "io/report.h"
+
+/* One cell of a printed table: v by fmt, or '-' right-aligned in width characters when v is NaN or
+ * infinite (a metric that does not apply to the row). */
+static void table_cell(char *out, size_t n, const char *fmt, int width, double v)
+{
+    if (isfinite(v))
+        snprintf(out, n, fmt, v);
+    else
+        snprintf(out, n, "%*s", width, "-");
+}
+
+/* DIR/passes.csv: each row's mean time per frame of every pass (the fastest run; its instances summed, one
+ * reconstruction), the breakdown of 004 Table 2 and 000 Table 1. Returns 0, or -1 with msg. */
+static int write_passes(const char *out_dir, const struct compare_spec *specs, const struct compare_result *res, int n,
+                        char *msg)
+{
+    char path[4200], header[1024] = "method";
+    size_t used = strlen(header);
+    for (int q = 0; q < PASS_COUNT; q++)
+        used += (size_t)snprintf(header + used, sizeof header - used, ",%s", pass_names[q]);
+    snprintf(path, sizeof path, "%s/passes.csv", out_dir);
+    struct csv_writer csv;
+    if (csv_open(&csv, path, header, msg) != 0)
+        return -1;
+    for (int k = 0; k < n; k++) {
+        char row[2048];
+        csv_field(row, sizeof row, specs[k].label);
+        used = strlen(row);
+        for (int q = 0; q < PASS_COUNT; q++)
+            used += (size_t)snprintf(row + used, sizeof row - used, ",%.4f", res[k].ms_pass[q]);
+        csv_row(&csv, "%s", row);
+    }
+    return csv_close(&csv, msg);
+}
+
+int compare_write_table(const struct compare_setup *st, const char *out_dir, const char *command,
+                        const struct compare_result *res, const float *ref)
+{
+    char msg[RESTIR_MSG_LEN];
+    const struct cli_options *o = &st->o;
+    const struct render_params *p = &st->p;
+    const struct compare_spec *specs = st->specs;
+    const int n = st->n;
+    int rc = 0;
+    char csv_path[4200];
+    snprintf(csv_path, sizeof(csv_path), "%s/compare.csv", out_dir);
+    struct csv_writer csv;
+    if (csv_open(&csv, csv_path,
+                 "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse,runs,temporal_cov,relmse_sem,mape_sem,"
+                 "smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share,gradient_relmse,gradient_relmse_sem",
+                 msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    int w = 12;
+    for (int k = 0; k < n; k++)
+        if ((int)strlen(specs[k].label) > w)
+            w = (int)strlen(specs[k].label);
+    printf("%s, %dx%d, %s camera, error at frame %d%s:\n", o->scene, p->width, p->height,
+           p->camera_path ? "moving" : "static", o->frames - 1, o->equal_time ? ", equal time" : "");
+    const int runs = o->runs > 1;
+    int any_grad = 0; /* a gradient method's row: the table gets 002 Fig. 7's gradient relMSE */
+    for (int k = 0; k < n; k++)
+        any_grad |= isfinite(res[k].grad_relmse);
+    if (runs)
+        printf("(errors: means of %d independently seeded runs, +- their standard error; tcov: 000 Eq. 17 at lag %d "
+               "over frames %d-%d)\n",
+               o->runs, COMPARE_COV_LAG, o->frames / 2, o->frames - 1);
+    printf("%-*s %10s %6s %5s %12s%s %10s%s %8s%s %12s %10s%s %6s%s%s%s\n", w, "method", "ms/frame", "spp", "inst",
+           "relMSE", runs ? "       +-" : "", "MAPE", runs ? "       +-" : "", "SMAPE", runs ? "     +-" : "",
+           "relMSE/first", "MAPE dis", runs ? "       +-" : "", "dis", runs ? "         tcov" : "",
+           any_grad ? "  grad relMSE" : "", any_grad && runs ? "       +-" : "");
+    for (int k = 0; k < n; k++) {
+        const struct compare_result *c = &res[k];
+        /* a metric that does not apply to the row (no history, no gradients, one run) prints '-' */
+        char tcov[32] = "", se[4][32] = {"", "", "", ""}, grad[2][32] = {"", ""}, dis[2][32];
+        if (any_grad)
+            table_cell(grad[0], sizeof grad[0], " %12.5g", 13, c->grad_relmse);
+        if (any_grad && runs)
+            table_cell(grad[1], sizeof grad[1], " %8.2g", 9, c->grad_relmse_sem);
+        if (runs) {
+            table_cell(tcov, sizeof tcov, " %12.5g", 13, c->temporal_cov);
+            table_cell(se[0], sizeof se[0], " %8.2g", 9, c->sem.relmse);
+            table_cell(se[1], sizeof se[1], " %8.2g", 9, c->sem.mape);
+            table_cell(se[2], sizeof se[2], " %6.2g", 7, c->sem.smape);
+            table_cell(se[3], sizeof se[3], " %8.2g", 9, c->mape_dis_sem);
+        }
+        table_cell(dis[0], sizeof dis[0], " %10.5g", 11, c->mape_dis);
+        table_cell(dis[1], sizeof dis[1], " %6.3f", 7, c->dis_share);
+        printf("%-*s %10.2f %6d %5d %12.5g%s %10.5g%s %8.3f%s %12.3f%s%s%s%s%s%s\n", w, specs[k].label,
+               c->ms_per_frame, c->spp, c->instances, c->err.relmse, se[0], c->err.mape, se[1], c->err.smape, se[2],
+               res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0, dis[0], se[3], dis[1], tcov, grad[0],
+               grad[1]);
+        if (rc == 0) {
+            char field[2 * SPEC_MAX + 4], cov[32] = "", sem[4][32] = {"", "", "", ""}, dis[2][32] = {"", ""},
+                                          gr[2][32] = {"", ""};
+            csv_field(field, sizeof(field), specs[k].label);
+            if (isfinite(c->temporal_cov))
+                snprintf(cov, sizeof cov, "%.6g", c->temporal_cov);
+            if (c->runs > 1) {
+                snprintf(sem[0], sizeof sem[0], "%.6g", c->sem.relmse);
+                snprintf(sem[1], sizeof sem[1], "%.6g", c->sem.mape);
+                snprintf(sem[2], sizeof sem[2], "%.6g", c->sem.smape);
+                if (isfinite(c->mape_dis_sem))
+                    snprintf(sem[3], sizeof sem[3], "%.6g", c->mape_dis_sem);
+            }
+            if (isfinite(c->mape_dis))
+                snprintf(dis[0], sizeof dis[0], "%.6g", c->mape_dis);
+            if (isfinite(c->dis_share))
+                snprintf(dis[1], sizeof dis[1], "%.6g", c->dis_share);
+            if (isfinite(c->grad_relmse))
+                snprintf(gr[0], sizeof gr[0], "%.6g", c->grad_relmse);
+            if (c->runs > 1 && isfinite(c->grad_relmse_sem))
+                snprintf(gr[1], sizeof gr[1], "%.6g", c->grad_relmse_sem);
+            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s", field, c->ms_per_frame,
+                    c->spp, c->instances, c->err.relmse, c->err.mape, c->err.smape, c->err.luma_rmse,
+                    c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1], gr[0], gr[1]);
+        }
+    }
+    if (rc == 0 && csv_close(&csv, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    if (rc == 0 && write_passes(out_dir, specs, res, n, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    if (rc == 0 && o->report) {
+        char pngs[MAX_METHODS][SPEC_MAX + 40];
+        struct compare_report_method rm[MAX_METHODS];
+        for (int k = 0; k < n; k++) {
+            snprintf(pngs[k], sizeof pngs[k], "%s/frame_%04d.png", specs[k].dir, o->frames - 1);
+            rm[k] = (struct compare_report_method){specs[k].label, pngs[k], specs[k].dir, res[k].image,
+                                                   res[k].ms_per_frame, res[k].spp, res[k].instances, res[k].err};
+        }
+        const struct compare_report_run run = {out_dir, command, st->s.name, p->width, p->height, o->frames - 1,
+                                               p->camera_path, o->equal_time, ref};
+        if (compare_write_report(&run, n, rm, msg) != 0) {
+            cli_error("--report: %s", msg);
+            rc = EXIT_RUNTIME;
+        }
+    }
+    if (rc == 0)
+        printf("output: %s%s\n", out_dir, o->report ? " (report: index.html)" : "");
+    return rc;
+}
