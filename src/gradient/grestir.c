@@ -13,6 +13,7 @@
 #include "core/check.h"
 #include "gradient/grad_common.h"
 #include "render/tiles.h"
+#include "restir/gris.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
 
@@ -205,7 +206,7 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
 {
     const struct render_params *p = fr->p;
     long long rays = 0;
-    float c[PAIR_MAX_DOMAINS], J[PAIR_MAX_DOMAINS], m[PAIR_MAX_DOMAINS];
+    float c[PAIR_MAX_DOMAINS], J[PAIR_MAX_DOMAINS];
     float P[PAIR_MAX_DOMAINS * PAIR_MAX_DOMAINS] = {0};
     struct path_sample Y[PAIR_MAX_DOMAINS];
     float H[PAIR_MAX_DOMAINS][3];
@@ -256,15 +257,13 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
             P[k * n + j] = Jb > 0.0f ? restir_grad_target(sg[k], hz) * Jb : 0.0f;
         }
     }
-    restir_mis_weights(p->mis, n, c, P, m);
-    struct restir_wrs wrs;
-    restir_wrs_init(&wrs);
-    int chosen = -1;
+    float W[PAIR_MAX_DOMAINS], u[PAIR_MAX_DOMAINS], W_Y;
     for (int j = 0; j < n; j++) {
-        float wj = ok[j] ? m[j] * P[j] * in[j]->W * J[j] : 0.0f; /* Eq. 20 */
-        if (restir_wrs_offer(&wrs, wj, pcg32_float(rng)))
-            chosen = j;
+        W[j] = in[j]->W;
+        u[j] = pcg32_float(rng);
+        J[j] = ok[j] ? J[j] : 0.0f;
     }
+    const int chosen = restir_gris_resample(p->mis, n, c, P, W, J, u, &W_Y); /* Eq. 20, 004 Eq. 5-7 */
     struct pair_reservoir result;
     pair_clear(&result, restir_confidence_merge(c_sum, p->confidence_cap));
     if (chosen >= 0) {
@@ -272,7 +271,7 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
         result.k = in[chosen]->k;
         memcpy(result.h, H[chosen], sizeof(result.h));
         result.target = P[chosen];
-        result.W = restir_gris_contribution_weight(&wrs, result.target); /* Eq. 18 */
+        result.W = W_Y; /* Eq. 18 */
         if (!(result.W > 0.0f))
             pair_clear(&result, result.c);
     }

@@ -10,6 +10,7 @@
 #include "core/rng.h"
 #include "render/di_visibility.h"
 #include "render/tiles.h"
+#include "restir/gris.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
 
@@ -83,25 +84,20 @@ static void merge_begin(struct di_merge_batch *b, const struct render_params *p,
 static void merge_end(const struct render_params *p, struct di_merge *mg)
 {
     const int n = mg->n;
-    float m[DI_MAX_DOMAINS] = {0}, c_sum = 0.0f;
-    for (int j = 0; j < n; j++)
-        c_sum += mg->c[j];
-    restir_mis_weights(p->mis, n, mg->c, mg->P, m);
-    struct restir_wrs wrs;
-    restir_wrs_init(&wrs);
-    int chosen = -1;
+    float c_sum = 0.0f, W[DI_MAX_DOMAINS], J[DI_MAX_DOMAINS], u[DI_MAX_DOMAINS], W_Y;
     for (int j = 0; j < n; j++) {
-        /* 004 Eq. 6 with |dT/dX| = 1 */
-        float w = mg->in[j]->y.tri >= 0 ? m[j] * mg->P[j] * mg->in[j]->W : 0.0f;
-        if (restir_wrs_offer(&wrs, w, pcg32_float(&mg->rng)))
-            chosen = j;
+        c_sum += mg->c[j];
+        W[j] = mg->in[j]->W;
+        J[j] = mg->in[j]->y.tri >= 0 ? 1.0f : 0.0f; /* a light sample keeps its point: |dT/dX| = 1 */
+        u[j] = pcg32_float(&mg->rng);
     }
+    const int chosen = restir_gris_resample(p->mis, n, mg->c, mg->P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
     struct di_reservoir result;
     di_reservoir_clear(&result, restir_confidence_merge(c_sum, p->confidence_cap));
     if (chosen >= 0) {
         result.y = mg->in[chosen]->y;
         result.target = mg->P[chosen];
-        result.W = restir_gris_contribution_weight(&wrs, result.target); /* 004 Eq. 7 */
+        result.W = W_Y;
         if (result.W <= 0.0f)
             di_reservoir_clear(&result, result.c);
     }

@@ -8,6 +8,7 @@
 #include <math.h>
 
 #include "render/tiles.h"
+#include "restir/gris.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
 #include "scene/scene_env.h"
@@ -236,7 +237,7 @@ static long long gris_merge(const struct gi_frame *fr, int n, const struct path_
 {
     const struct render_params *p = fr->p;
     long long rays = 0;
-    float c[GI_MAX_DOMAINS] = {0}, J[GI_MAX_DOMAINS], m[GI_MAX_DOMAINS];
+    float c[GI_MAX_DOMAINS] = {0}, J[GI_MAX_DOMAINS];
     float P[GI_MAX_DOMAINS * GI_MAX_DOMAINS] = {0};
     struct gi_sample Y[GI_MAX_DOMAINS];
     float c_sum = 0.0f;
@@ -269,22 +270,19 @@ static long long gris_merge(const struct gi_frame *fr, int n, const struct path_
             }
         }
     }
-    restir_mis_weights(p->mis, n, c, P, m);
-    struct restir_wrs wrs;
-    restir_wrs_init(&wrs);
-    int chosen = -1;
+    float W[GI_MAX_DOMAINS], u[GI_MAX_DOMAINS], W_Y;
     for (int j = 0; j < n; j++) {
-        /* 004 Eq. 6 */
-        float wj = Y[j].valid ? m[j] * P[j] * in[j]->W * J[j] : 0.0f;
-        if (restir_wrs_offer(&wrs, wj, pcg32_float(rng)))
-            chosen = j;
+        W[j] = in[j]->W;
+        u[j] = pcg32_float(rng);
+        J[j] = Y[j].valid ? J[j] : 0.0f;
     }
+    const int chosen = restir_gris_resample(p->mis, n, c, P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
     struct gi_reservoir result;
     gi_reservoir_clear(&result, restir_confidence_merge(c_sum, p->confidence_cap));
     if (chosen >= 0) {
         result.y = Y[chosen];
         result.target = P[chosen];
-        result.W = restir_gris_contribution_weight(&wrs, result.target); /* 004 Eq. 7 */
+        result.W = W_Y;
         if (!(result.W > 0.0f) || !isfinite(result.W) || !v3_is_finite(result.y.f))
             gi_reservoir_clear(&result, result.c);
     }

@@ -6,6 +6,7 @@
 
 #include "render/temporal_flags.h"
 #include "render/tiles.h"
+#include "restir/gris.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
 #include "scene/scene_env.h"
@@ -143,7 +144,7 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
 {
     const struct render_params *p = fr->p;
     long long rays = 0;
-    float c[PT_MAX_DOMAINS], J[PT_MAX_DOMAINS], m[PT_MAX_DOMAINS];
+    float c[PT_MAX_DOMAINS], J[PT_MAX_DOMAINS];
     float P[PT_MAX_DOMAINS * PT_MAX_DOMAINS] = {0};
     struct path_sample Y[PT_MAX_DOMAINS];
     float c_sum = 0.0f;
@@ -181,22 +182,19 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
         for (int j = 0; j < n; j++)
             *shifted |= Y[j].length ? 1u << j : 0u;
     }
-    restir_mis_weights(p->mis, n, c, P, m);
-    struct restir_wrs wrs;
-    restir_wrs_init(&wrs);
-    int chosen = -1;
+    float W[PT_MAX_DOMAINS], u[PT_MAX_DOMAINS], W_Y;
     for (int j = 0; j < n; j++) {
-        /* 004 Eq. 6 */
-        float wj = Y[j].length ? m[j] * P[j] * in[j]->W * J[j] : 0.0f;
-        if (restir_wrs_offer(&wrs, wj, pcg32_float(rng)))
-            chosen = j;
+        W[j] = in[j]->W;
+        u[j] = pcg32_float(rng);
+        J[j] = Y[j].length ? J[j] : 0.0f;
     }
+    const int chosen = restir_gris_resample(p->mis, n, c, P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
     struct pt_reservoir result;
     pt_reservoir_clear(&result, restir_confidence_merge(c_sum, p->confidence_cap));
     if (chosen >= 0) {
         result.y = Y[chosen];
         result.target = P[chosen];
-        result.W = restir_gris_contribution_weight(&wrs, result.target); /* 004 Eq. 7 */
+        result.W = W_Y;
         if (!(result.W > 0.0f))
             pt_reservoir_clear(&result, result.c);
     }
