@@ -118,7 +118,8 @@ int cmd_render(int argc, char **argv)
     int rc = open_scene_and_method(&o, &s, &method);
     if (rc != 0)
         return rc;
-    if (method_check_settings(method, &o.params, &s, msg) != 0) {
+    if (method_check_assignments(method, o.sets, o.n_sets, msg) != 0 ||
+        method_check_settings(method, &o.params, &s, msg) != 0) {
         cli_error("%s", msg);
         scene_destroy(&s);
         return EXIT_USAGE;

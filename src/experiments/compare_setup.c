@@ -81,6 +81,11 @@ static int parse_spec(const char *spec, const struct render_params *common, stru
         snprintf(msg, RESTIR_MSG_LEN, "--methods spec '%.200s': %.280s", spec, strip_set_prefix(sub));
         return -1;
     }
+    const char *own = rest; /* known keys and values: does the method read them? */
+    if (rest && *rest && method_check_assignments(m, &own, 1, sub) != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "--methods spec '%.200s': %.280s", spec, strip_set_prefix(sub));
+        return -1;
+    }
     /* One reference serves every row, so no row may change the integral it is measured against. */
     if (c->p.max_bounces != common->max_bounces || c->p.jitter != common->jitter ||
         c->p.camera_shutter != common->camera_shutter || c->p.camera_aperture != common->camera_aperture ||
@@ -150,6 +155,15 @@ int compare_setup(const struct cli_options *desc, struct compare_setup *st)
     if (st->n == 0) {
         cli_error("--methods lists no method (see restir list)");
         return EXIT_USAGE;
+    }
+    for (int k = 0; k < o->n_sets; k++) { /* a common setting must be read by some row's method */
+        int used = 0;
+        for (int j = 0; j < st->n && !used; j++)
+            used = method_check_assignments(st->specs[j].method, &o->sets[k], 1, msg) == 0;
+        if (!used) {
+            cli_error("%s; nor does any other method of --methods", msg);
+            return EXIT_USAGE;
+        }
     }
     for (int k = 0; k < st->n && o->equal_time; k++)
         if (st->specs[k].instances != 1) {

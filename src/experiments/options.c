@@ -308,6 +308,11 @@ static int opt_apply(const struct opt_def *d, const char *command, const char *v
         break;
     }
     case OPT_SET:
+        if (o->n_sets == CLI_MAX_SETS) {
+            snprintf(msg, RESTIR_MSG_LEN, "more than %d --set options", CLI_MAX_SETS);
+            return -1;
+        }
+        o->sets[o->n_sets++] = val;
         return render_params_set(&o->params, val, msg);
     case OPT_PARAMS:
         return apply_params_file(val, o, msg);

@@ -38,6 +38,10 @@ struct cli_options {
     const char *merge;       /* study, reference, compare: merge the finished jobs of this plan folder */
     int shards;              /* reference --plan: jobs the samples are split into (0: not given) */
     struct render_params params;
+    /* the --set assignments as given, in order (checked against the method that reads them) */
+#define CLI_MAX_SETS 128
+    const char *sets[CLI_MAX_SETS];
+    int n_sets;
     /* --params FILE: the strings it names (scene, method, camera file) live here */
     char params_scene[4096], params_method[128], params_camera[4096], params_env[4096];
 };

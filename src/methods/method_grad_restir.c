@@ -125,6 +125,7 @@ const struct method method_grad_after_restir = {
     .description = "Gradient after ReSTIR (002 B.1): area-ReSTIR primal, gradients from shifting each "
                    "pixel's final path to its neighbors, Poisson reconstruction",
     .caps = GRAD_RESTIR_CAPS,
+    .settings = RESTIR_PT_SETTINGS " recon recon.",
     .defaults = restir_pt_area_defaults,
     .create = grad_after_create,
     .destroy = grad_restir_destroy,
@@ -138,6 +139,7 @@ const struct method method_grestir_pt = {
     .description = "gradient-domain ReSTIR PT (002): area-ReSTIR primal, ReSTIR over paired-pixel samples with "
                    "positivization, temporal and adaptive spatial reuse, Poisson reconstruction",
     .caps = GRAD_RESTIR_CAPS,
+    .settings = RESTIR_PT_SETTINGS " recon recon. grad.",
     .defaults = restir_pt_area_defaults,
     .create = grestir_create,
     .destroy = grad_restir_destroy,

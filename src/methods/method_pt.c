@@ -23,6 +23,7 @@ const struct method method_pt = {
     .description = "path tracing: NEE + BSDF sampling with MIS, Russian roulette (the reference method)",
     .caps = METHOD_CAMERA_EFFECTS | METHOD_BUDGET_BY_SPP,
     .viewer_order = 3,
+    .settings = "spp pt.max_bounces pt.rr_bounces",
     .create = pt_create,
     .destroy = pt_destroy,
     .render_frame = pt_render_frame,

@@ -113,11 +113,16 @@ static void ris_di_defaults(struct render_params *p)
     p->spatial = 0;
 }
 
+/* Reuse, neighbor selection and SPMIS, and the DI candidates. */
+#define RESTIR_DI_SETTINGS                                                                                        \
+    "di. temporal temporal. spatial spatial. history confidence_cap mis spmis. pt.max_bounces"
+
 const struct method method_restir_di = {
     .name = "restir-di",
     .description = "ReSTIR DI: initial RIS, temporal and spatial reuse by GRIS (pairwise MIS default)",
     .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY | METHOD_SELECTION_STUDY,
     .viewer_order = 1,
+    .settings = RESTIR_DI_SETTINGS,
     .create = restir_di_create,
     .destroy = restir_di_destroy,
     .render_frame = restir_di_render_frame,
@@ -129,6 +134,7 @@ const struct method method_ris_di = {
     .description = "direct lighting by initial RIS only, no reuse (the no-reuse baseline of 001)",
     .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY,
     .viewer_order = 4,
+    .settings = "di.light_candidates di.bsdf_candidates di.visibility_reuse pt.max_bounces",
     .defaults = ris_di_defaults,
     .create = restir_di_create,
     .destroy = restir_di_destroy,

@@ -159,6 +159,7 @@ const struct method method_restir_pt = {
     .description = "ReSTIR PT: path resampling, temporal and spatial path reuse by GRIS with shift mappings "
                    "(hybrid default) and sub-pixel reservoirs",
     .caps = RESTIR_PT_CAPS | METHOD_SELECTION_STUDY,
+    .settings = RESTIR_PT_SETTINGS,
     .viewer_order = 2,
     .create = restir_pt_create,
     .destroy = restir_pt_destroy,
@@ -171,6 +172,7 @@ const struct method method_area_restir = {
     .description = "Area ReSTIR (002 B.3): restir-pt with 1 initial candidate and 2 spatial neighbors, "
                    "sub-pixel reservoirs",
     .caps = RESTIR_PT_CAPS,
+    .settings = RESTIR_PT_SETTINGS,
     .defaults = restir_pt_area_defaults,
     .create = restir_pt_create,
     .destroy = restir_pt_destroy,

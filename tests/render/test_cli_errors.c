@@ -62,6 +62,27 @@ static void line_with(const char *text, const char *part, char *line, size_t n)
     line[len] = '\0';
 }
 
+/* A setting the chosen method does not read is refused by name, nothing written (the registry's
+ * settings lists): for render, for a compare spec's own settings, and for a common --set that no
+ * listed method reads; and a method name that is not registered. */
+static void check_settings_per_method(void)
+{
+    expect_failure("render: pt with a spatial setting",
+                   "render --scene cornell --method pt --res 16x16 --set spatial.radius=8 --out '%s'", 2,
+                   "spatial.radius", "pt does not read");
+    expect_failure("render: restir-pt with gi.radiance",
+                   "render --scene cornell --method restir-pt --res 16x16 --set gi.radiance=stored --out '%s'", 2,
+                   "gi.radiance", "restir-pt");
+    expect_failure("compare: a spec's own unused setting",
+                   "compare --scene cornell --res 16x16 --methods 'pt,restir-di:shift=replay' --out '%s'", 2, "shift",
+                   "restir-di");
+    expect_failure("compare: a common setting no method reads",
+                   "compare --scene cornell --res 16x16 --methods pt,restir-di --set grad.search=3 --out '%s'", 2,
+                   "grad.search", "nor does any other method");
+    expect_failure("render: an unregistered method", "render --scene cornell --method restir-xyz --out '%s'", 2,
+                   "restir-xyz", NULL);
+}
+
 static void check_bad_render_input(void)
 {
     char path[2 * CLI_PATH_MAX], fmt[4 * CLI_PATH_MAX], err[CLI_ERR_MAX];
@@ -460,6 +481,7 @@ int main(void)
         EXPECT(0, "cannot set up (RESTIR_BIN or temporary folder)");
         return test_finish();
     }
+    check_settings_per_method();
     check_bad_render_input();
     check_failed_write();
     check_compare();
