@@ -16,6 +16,7 @@
 #include "experiments/evaluate_tables.h"
 #include "experiments/options.h"
 #include "experiments/plan.h"
+#include "experiments/study.h"
 #include "io/atomic_file.h"
 
 static void evaluate_usage(void)

@@ -10,6 +10,7 @@
 #include "experiments/plan.h"
 #include "experiments/reference_checkpoint.h"
 #include "experiments/reference_shards.h"
+#include "experiments/study.h"
 
 int cmd_job(int argc, char **argv)
 {

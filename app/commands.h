@@ -15,11 +15,9 @@ int cmd_view(int argc, char **argv);
 int cmd_job(int argc, char **argv);
 int cmd_evaluate(int argc, char **argv);
 
-/* Job k (0-based) of a study plan (plan.h): computes it into its output under runs/, or says it
- * is done already. Returns an exit code. Compare's and reference's are in compare_plan.h and
+/* Job k of an evaluation plan (cmd_evaluate.c): the job of the study or compare step that holds it.
+ * A study's, compare's and reference's jobs are in experiments/study.h, compare_plan.h and
  * reference_shards.h. */
-int study_run_job(const struct plan *pl, int k);
-/* Job k of an evaluation plan (cmd_evaluate.c): the job of the study or compare step that holds it. */
 int evaluate_run_job(const struct plan *pl, int k);
 
 #endif
