@@ -6,6 +6,8 @@
 #ifndef RESTIR_GRIS_H
 #define RESTIR_GRIS_H
 
+#include <stddef.h>
+
 #include "restir/mis.h"
 
 #ifdef __cplusplus
@@ -14,6 +16,28 @@ extern "C" {
 
 /* Most samples one merge takes. */
 #define RESTIR_GRIS_MAX_SAMPLES 64
+
+/* How a merge moves the caller's samples between its domains (0: the canonical one). */
+struct restir_gris_shift {
+    /* Shifts sample x, living in domain `from`, into domain `to`: writes the shifted sample to y and
+     * |dT/dx| to *jacobian. Returns 1, or 0 when the shift is undefined there or the shifted sample
+     * contributes nothing. */
+    int (*shift)(void *ctx, const void *x, int from, int to, void *y, float *jacobian);
+    /* p_hat of sample y in `domain`, the domain it was shifted into. */
+    float (*target)(void *ctx, const void *y, int domain);
+    void *ctx;
+    size_t sample_size; /* bytes of one sample */
+};
+
+/* The targets of one merge of n <= RESTIR_GRIS_MAX_SAMPLES samples (004 Eq. 10). x[j] is reservoir
+ * j's sample in its own domain j (NULL when it has none) and cached[j] its target p_hat_j(x_j).
+ * Writes Y_j = T_{j->0}(x_j) to the j-th sample of Y (Y_0 = x_0), J[j] = |dT/dx| (0 where x_j is
+ * NULL or its shift failed), and P[k * n + j] = p_hat_{<-k}(Y_j): row 0 from the forward shifts,
+ * the diagonal as cached[j] / J[j], the other entries that restir_mis_needs(mode, k, j) asks for by
+ * shifting Y_j back into domain k (0 elsewhere). tmp holds one sample (scratch). Calls s->shift in
+ * a fixed order: the forward shifts by j, then the back shifts by k and j. */
+void restir_gris_targets(enum restir_mis mode, int n, const struct restir_gris_shift *s, const void *const *x,
+                         const float *cached, void *Y, float *P, float *J, void *tmp);
 
 /* Resamples n <= RESTIR_GRIS_MAX_SAMPLES samples Y_j of one merge whose domain 0 is canonical:
  *   m_j  = restir_mis_weights(mode, n, c, P)            (004 Eq. 9-12; P as mis.h documents it)

@@ -228,6 +228,27 @@ long long gi_initial_pass(const struct gi_frame *fr, const struct gbuffer *g, st
 
 /* ---- GRIS merge ------------------------------------------------------------------------------ */
 
+/* A merge's shading points and the rays its shifts trace (restir_gris_shift's ctx). */
+struct merge_shift {
+    const struct gi_frame *fr;
+    const struct path_vertex *const *dom;
+    long long rays;
+};
+
+static int merge_shift_sample(void *vctx, const void *x, int from, int to, void *y, float *jacobian)
+{
+    struct merge_shift *m = vctx;
+    (void)from; /* the sample carries what the Jacobian needs of the domain it lives in */
+    return gi_shift(m->fr->s, m->fr->p, x, m->dom[to], y, jacobian, &m->rays);
+}
+
+static float merge_target(void *vctx, const void *y, int domain)
+{
+    (void)vctx;
+    (void)domain;
+    return v3_luminance(((const struct gi_sample *)y)->f);
+}
+
 /* One GRIS merge into domain dom[0] (canonical, identity shift) of n reservoirs living in the
  * domains dom[j] (004 Eq. 5-7). P[k * n + j] = p_hat_{<-k}(Y_j) (004 Eq. 10): row 0 from the
  * forward shifts, the diagonal from the cached target over the forward Jacobian, the rest by
@@ -236,45 +257,22 @@ static long long gris_merge(const struct gi_frame *fr, int n, const struct path_
                             const struct gi_reservoir *const *in, pcg32 *rng, struct gi_reservoir *out)
 {
     const struct render_params *p = fr->p;
-    long long rays = 0;
-    float c[GI_MAX_DOMAINS] = {0}, J[GI_MAX_DOMAINS];
-    float P[GI_MAX_DOMAINS * GI_MAX_DOMAINS] = {0};
-    struct gi_sample Y[GI_MAX_DOMAINS];
-    float c_sum = 0.0f;
+    struct merge_shift ctx = {fr, dom, 0};
+    const struct restir_gris_shift shift = {merge_shift_sample, merge_target, &ctx, sizeof(struct gi_sample)};
+    float c[GI_MAX_DOMAINS], J[GI_MAX_DOMAINS], P[GI_MAX_DOMAINS * GI_MAX_DOMAINS], cached[GI_MAX_DOMAINS];
+    float W[GI_MAX_DOMAINS], u[GI_MAX_DOMAINS], W_Y, c_sum = 0.0f;
+    const void *x[GI_MAX_DOMAINS];
+    struct gi_sample Y[GI_MAX_DOMAINS], z;
     for (int j = 0; j < n; j++) {
         c[j] = min_f(in[j]->c, p->confidence_cap); /* fminf is a libm call */
         c_sum += c[j];
-        J[j] = 0.0f;
-        Y[j].valid = 0;
-        if (!gi_reservoir_has_sample(in[j]))
-            continue;
-        if (j == 0) {
-            Y[0] = in[0]->y;
-            J[0] = 1.0f;
-            P[0] = in[0]->target;
-        } else if (gi_shift(fr->s, p, &in[j]->y, dom[0], &Y[j], &J[j], &rays)) {
-            P[j] = v3_luminance(Y[j].f);
-        }
+        x[j] = gi_reservoir_has_sample(in[j]) ? &in[j]->y : NULL;
+        cached[j] = in[j]->target;
     }
-    for (int k = 1; k < n; k++) {
-        for (int j = 0; j < n; j++) {
-            if (!restir_mis_needs(p->mis, k, j) || !Y[j].valid)
-                continue;
-            if (k == j) {
-                P[k * n + j] = in[j]->target / J[j]; /* p_hat_j(X_j) |dT^-1/dy| */
-            } else {
-                struct gi_sample z;
-                float Jb;
-                if (gi_shift(fr->s, p, &Y[j], dom[k], &z, &Jb, &rays))
-                    P[k * n + j] = v3_luminance(z.f) * Jb;
-            }
-        }
-    }
-    float W[GI_MAX_DOMAINS], u[GI_MAX_DOMAINS], W_Y;
+    restir_gris_targets(p->mis, n, &shift, x, cached, Y, P, J, &z); /* 004 Eq. 10 */
     for (int j = 0; j < n; j++) {
         W[j] = in[j]->W;
         u[j] = pcg32_float(rng);
-        J[j] = Y[j].valid ? J[j] : 0.0f;
     }
     const int chosen = restir_gris_resample(p->mis, n, c, P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
     struct gi_reservoir result;
@@ -287,7 +285,7 @@ static long long gris_merge(const struct gi_frame *fr, int n, const struct path_
             gi_reservoir_clear(&result, result.c);
     }
     *out = result;
-    return rays;
+    return ctx.rays;
 }
 
 /* ---- temporal and spatial reuse -------------------------------------------------------------- */

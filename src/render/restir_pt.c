@@ -134,6 +134,27 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
 
 /* ---- GRIS merge ------------------------------------------------------------------------------ */
 
+/* A merge's domains and the rays its shifts trace (restir_gris_shift's ctx). */
+struct merge_shift {
+    const struct pt_frame *fr;
+    const struct pt_domain *dom;
+    long long rays;
+};
+
+static int merge_shift_path(void *vctx, const void *x, int from, int to, void *y, float *jacobian)
+{
+    struct merge_shift *m = vctx;
+    return path_shift(m->fr->s, &m->fr->shift, x, &m->dom[from], &m->dom[to], y, jacobian, &m->rays);
+}
+
+/* p_hat = luminance of the path contribution, in whichever domain the path lives. */
+static float merge_target(void *vctx, const void *y, int domain)
+{
+    (void)vctx;
+    (void)domain;
+    return v3_luminance(((const struct path_sample *)y)->f);
+}
+
 /* One GRIS merge into domain dom[0] (canonical, identity shift) of n reservoirs living in the
  * domains dom[j] (004 Eq. 5-7). P[k * n + j] = p_hat_{<-k}(Y_j) (004 Eq. 10): row 0 from the
  * forward shifts, the diagonal from the cached target over the forward Jacobian, the rest by
@@ -143,50 +164,27 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
                             unsigned *shifted)
 {
     const struct render_params *p = fr->p;
-    long long rays = 0;
-    float c[PT_MAX_DOMAINS], J[PT_MAX_DOMAINS];
-    float P[PT_MAX_DOMAINS * PT_MAX_DOMAINS] = {0};
-    struct path_sample Y[PT_MAX_DOMAINS];
-    float c_sum = 0.0f;
+    struct merge_shift ctx = {fr, dom, 0};
+    const struct restir_gris_shift shift = {merge_shift_path, merge_target, &ctx, sizeof(struct path_sample)};
+    float c[PT_MAX_DOMAINS], J[PT_MAX_DOMAINS], P[PT_MAX_DOMAINS * PT_MAX_DOMAINS], cached[PT_MAX_DOMAINS];
+    float W[PT_MAX_DOMAINS], u[PT_MAX_DOMAINS], W_Y, c_sum = 0.0f;
+    const void *x[PT_MAX_DOMAINS];
+    struct path_sample Y[PT_MAX_DOMAINS], z;
     for (int j = 0; j < n; j++) {
         c[j] = min_f(in[j]->c, p->confidence_cap); /* fminf is a libm call */
         c_sum += c[j];
-        J[j] = 0.0f;
-        Y[j].length = 0;
-        if (!pt_reservoir_has_sample(in[j]))
-            continue;
-        if (j == 0) {
-            Y[0] = in[0]->y;
-            J[0] = 1.0f;
-            P[0] = in[0]->target;
-        } else if (path_shift(fr->s, &fr->shift, &in[j]->y, &dom[j], &dom[0], &Y[j], &J[j], &rays)) {
-            P[j] = v3_luminance(Y[j].f);
-        }
+        x[j] = pt_reservoir_has_sample(in[j]) ? &in[j]->y : NULL;
+        cached[j] = in[j]->target;
     }
-    for (int k = 1; k < n; k++) {
-        for (int j = 0; j < n; j++) {
-            if (!restir_mis_needs(p->mis, k, j) || Y[j].length == 0)
-                continue;
-            if (k == j) {
-                P[k * n + j] = in[j]->target / J[j]; /* p_hat_j(X_j) |dT^-1/dy| */
-            } else {
-                struct path_sample z;
-                float Jb;
-                if (path_shift(fr->s, &fr->shift, &Y[j], &dom[0], &dom[k], &z, &Jb, &rays))
-                    P[k * n + j] = v3_luminance(z.f) * Jb;
-            }
-        }
-    }
+    restir_gris_targets(p->mis, n, &shift, x, cached, Y, P, J, &z); /* 004 Eq. 10 */
     if (shifted) {
         *shifted = 0;
         for (int j = 0; j < n; j++)
-            *shifted |= Y[j].length ? 1u << j : 0u;
+            *shifted |= J[j] > 0.0f ? 1u << j : 0u;
     }
-    float W[PT_MAX_DOMAINS], u[PT_MAX_DOMAINS], W_Y;
     for (int j = 0; j < n; j++) {
         W[j] = in[j]->W;
         u[j] = pcg32_float(rng);
-        J[j] = Y[j].length ? J[j] : 0.0f;
     }
     const int chosen = restir_gris_resample(p->mis, n, c, P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
     struct pt_reservoir result;
@@ -199,7 +197,7 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
             pt_reservoir_clear(&result, result.c);
     }
     *out = result;
-    return rays;
+    return ctx.rays;
 }
 
 /* ---- temporal and spatial reuse ---------------------------------------------------------------- */
