@@ -7,6 +7,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/compare_plan.h"
+#include "experiments/evaluate.h"
 #include "experiments/plan.h"
 #include "experiments/reference_checkpoint.h"
 #include "experiments/reference_shards.h"

@@ -3,8 +3,6 @@
 #ifndef RESTIR_APP_COMMANDS_H
 #define RESTIR_APP_COMMANDS_H
 
-struct plan;
-
 /* Each takes the arguments after its name and returns the process's exit code. */
 int cmd_render(int argc, char **argv);
 int cmd_reference(int argc, char **argv);
@@ -14,10 +12,5 @@ int cmd_scene(int argc, char **argv);
 int cmd_view(int argc, char **argv);
 int cmd_job(int argc, char **argv);
 int cmd_evaluate(int argc, char **argv);
-
-/* Job k of an evaluation plan (cmd_evaluate.c): the job of the study or compare step that holds it.
- * A study's, compare's and reference's jobs are in experiments/study.h, compare_plan.h and
- * reference_shards.h. */
-int evaluate_run_job(const struct plan *pl, int k);
 
 #endif
