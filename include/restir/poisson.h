@@ -52,7 +52,9 @@ enum restir_poisson_solver {
     /* Direct solve: A is diagonalized by the 2D DCT-II (the Neumann path-graph Laplacian's
      * eigenvectors are cos(pi k (j + 1/2) / n), eigenvalues 2 - 2 cos(pi k / n)), so
      * I = DCT-III(DCT-II(b) / (alpha^2 + lambda_x + lambda_y)) with FFTW's REDFT10 / REDFT01.
-     * Exact up to rounding; tol and max_iters are ignored. */
+     * Exact up to rounding; tol and max_iters are ignored. In a librestir built without FFTW the
+     * solve is not there: restir_poisson_l2 returns -1 (and so does restir_poisson_l1, which starts
+     * from it); use RESTIR_POISSON_CG. */
     RESTIR_POISSON_DCT = 0,
     /* Jacobi-preconditioned conjugate gradient from x0 = primal until every channel's relative
      * residual is <= tol or max_iters iterations ran. */

@@ -28,7 +28,7 @@ static void rp_apply_dot(const struct rp_sys *s, const double *x, double *y, dou
         double *row = s->rows + (size_t)j * RP_ROW_SUMS;
         row[0] = d0, row[1] = d1, row[2] = d2;
     }
-    rp_sum_rows(s, 3, dot);
+    restir_rp_sum_rows(s, 3, dot);
 }
 
 /* Per channel r . z, summed per row then over rows. */
@@ -46,33 +46,34 @@ static void rp_dot(const struct rp_sys *s, const double *r, const double *z, dou
         double *row = s->rows + (size_t)j * RP_ROW_SUMS;
         row[0] = d0, row[1] = d1, row[2] = d2;
     }
-    rp_sum_rows(s, 3, out);
+    restir_rp_sum_rows(s, 3, out);
 }
 
-int rp_cg_work_alloc(struct rp_cg_work *wk, size_t n)
+int restir_rp_cg_work_alloc(struct rp_cg_work *wk, size_t n)
 {
     const size_t m = 3 * n;
-    wk->r = rp_alloc(m), wk->p = rp_alloc(m), wk->q = rp_alloc(m), wk->z = rp_alloc(m), wk->dinv = rp_alloc(n);
+    wk->r = restir_rp_alloc(m), wk->p = restir_rp_alloc(m), wk->q = restir_rp_alloc(m);
+    wk->z = restir_rp_alloc(m), wk->dinv = restir_rp_alloc(n);
     if (wk->r && wk->p && wk->q && wk->z && wk->dinv)
         return 0;
-    rp_cg_work_free(wk);
+    restir_rp_cg_work_free(wk);
     return -1;
 }
 
-void rp_cg_work_free(struct rp_cg_work *wk)
+void restir_rp_cg_work_free(struct rp_cg_work *wk)
 {
     free(wk->r), free(wk->p), free(wk->q), free(wk->z), free(wk->dinv);
     memset(wk, 0, sizeof *wk);
 }
 
-int rp_cg(const struct rp_sys *s, const double *b, double *x, double tol, int max_iters, struct rp_mg *mg,
+int restir_rp_cg(const struct rp_sys *s, const double *b, double *x, double tol, int max_iters, struct rp_mg *mg,
           struct rp_cg_work *work)
 {
     const size_t n = s->n;
     const long ln = (long)n;
     struct rp_cg_work own = {0};
     if (!work) {
-        if (rp_cg_work_alloc(&own, n) != 0)
+        if (restir_rp_cg_work_alloc(&own, n) != 0)
             return -1;
         work = &own;
     }
@@ -128,7 +129,7 @@ int rp_cg(const struct rp_sys *s, const double *b, double *x, double tol, int ma
             row[v] = acc[v];
     }
     double sums[9];
-    rp_sum_rows(s, 9, sums);
+    restir_rp_sum_rows(s, 9, sums);
     for (int c = 0; c < 3; c++) {
         rz[c] = sums[c], rr[c] = sums[3 + c], bb[c] = sums[6 + c];
         bn[c] = sqrt(bb[c]);
@@ -142,7 +143,7 @@ int rp_cg(const struct rp_sys *s, const double *b, double *x, double tol, int ma
         }
     }
     if (mg) { /* z = M^-1 r */
-        rp_mg_apply(mg, r, p);
+        restir_rp_mg_apply(mg, r, p);
         rp_dot(s, r, p, rz);
     }
 
@@ -182,7 +183,7 @@ int rp_cg(const struct rp_sys *s, const double *b, double *x, double tol, int ma
         }
         iters++;
         double sums[6];
-        rp_sum_rows(s, 6, sums);
+        restir_rp_sum_rows(s, 6, sums);
         const double sr[3] = {sums[0], sums[1], sums[2]}, tz[3] = {sums[3], sums[4], sums[5]};
         for (int c = 0; c < 3; c++)
             if (active[c] && sqrt(sr[c]) <= stop * bn[c])
@@ -191,7 +192,7 @@ int rp_cg(const struct rp_sys *s, const double *b, double *x, double tol, int ma
             break;
         double rzn[3] = {tz[0], tz[1], tz[2]};
         if (mg) {
-            rp_mg_apply(mg, r, z);
+            restir_rp_mg_apply(mg, r, z);
             rp_dot(s, r, z, rzn);
         }
         for (int c = 0; c < 3; c++) {
@@ -215,6 +216,6 @@ int rp_cg(const struct rp_sys *s, const double *b, double *x, double tol, int ma
             }
         }
     }
-    rp_cg_work_free(&own);
+    restir_rp_cg_work_free(&own);
     return iters;
 }

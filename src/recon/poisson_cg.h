@@ -12,8 +12,8 @@ struct rp_cg_work {
     double *dinv;          /* n */
 };
 /* 0, or -1 on allocation failure (nothing is then held). */
-int rp_cg_work_alloc(struct rp_cg_work *wk, size_t n);
-void rp_cg_work_free(struct rp_cg_work *wk);
+int restir_rp_cg_work_alloc(struct rp_cg_work *wk, size_t n);
+void restir_rp_cg_work_free(struct rp_cg_work *wk);
 
 #define RP_CG_TOL_FLOOR 1e-14 /* relative residuals below this count as converged */
 
@@ -22,7 +22,7 @@ struct rp_mg;
  * |b| or max_iters. The preconditioner is mg's V-cycle (recon/poisson_mg.h, built for s) or, with
  * mg NULL, Jacobi (1 / diag A). work: vectors for s->n pixels, or NULL to allocate them for this
  * call. Returns the iterations run (max over channels), -1 on allocation failure. */
-int rp_cg(const struct rp_sys *s, const double *b, double *x, double tol, int max_iters, struct rp_mg *mg,
+int restir_rp_cg(const struct rp_sys *s, const double *b, double *x, double tol, int max_iters, struct rp_mg *mg,
           struct rp_cg_work *work);
 
 #endif

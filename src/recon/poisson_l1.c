@@ -49,7 +49,7 @@ static void rp_weights(const struct rp_sys *s, double alpha, const float *primal
         s->rows[(size_t)j * RP_ROW_SUMS] = sum;
     }
     double sum;
-    rp_sum_rows(s, 1, &sum);
+    restir_rp_sum_rows(s, 1, &sum);
     const double rows = (double)s->n + (double)(w - 1) * h + (double)w * (h - 1);
     const double scale = rows / sum;
     const long ln = (long)s->n;
@@ -66,37 +66,38 @@ int restir_poisson_l1(int w, int h, const float *primal, const float *dx, const 
                       struct restir_poisson_stats *st)
 {
     const double t0 = omp_get_wtime();
-    if (rp_check(w, h, primal, dx, dy, alpha, out) != 0 || iterations < 0 || cg_steps < 1 ||
+    if (restir_rp_check(w, h, primal, dx, dy, alpha, out) != 0 || iterations < 0 || cg_steps < 1 ||
         (precond != RESTIR_POISSON_PRECOND_MULTIGRID && precond != RESTIR_POISSON_PRECOND_JACOBI))
         return -1;
     struct rp_mg mg = {0};
     struct rp_cg_work work = {0};
     struct rp_mg *pre = precond == RESTIR_POISSON_PRECOND_MULTIGRID ? &mg : NULL;
     const size_t n = (size_t)w * (size_t)h;
-    struct rp_sys s = {w, h, n, (double)alpha * (double)alpha, NULL, NULL, NULL, rp_alloc(RP_ROW_SUMS * (size_t)h)};
-    double *b = rp_alloc(3 * n), *x = rp_alloc(3 * n);
-    double *wp = rp_alloc(n), *wx = rp_alloc(n), *wy = rp_alloc(n);
+    struct rp_sys s = {w, h, n, (double)alpha * (double)alpha, NULL, NULL, NULL,
+                       restir_rp_alloc(RP_ROW_SUMS * (size_t)h)};
+    double *b = restir_rp_alloc(3 * n), *x = restir_rp_alloc(3 * n);
+    double *wp = restir_rp_alloc(n), *wx = restir_rp_alloc(n), *wy = restir_rp_alloc(n);
     int rc = -1, total = 0;
-    if (!b || !x || !wp || !wx || !wy || !s.rows || rp_cg_work_alloc(&work, n) != 0)
+    if (!b || !x || !wp || !wx || !wy || !s.rows || restir_rp_cg_work_alloc(&work, n) != 0)
         goto done;
-    rp_rhs(&s, primal, dx, dy, b);
-    if (rp_dct_solve(w, h, s.a2, b, x) != 0)
+    restir_rp_rhs(&s, primal, dx, dy, b);
+    if (restir_rp_dct_solve(w, h, s.a2, b, x) != 0)
         goto done;
     for (int k = 1; k <= iterations; k++) {
         const double reg = 0.05 * pow(0.5, k - 1);
         rp_weights(&s, alpha, primal, dx, dy, x, reg, wp, wx, wy);
         s.wp = wp, s.wx = wx, s.wy = wy;
-        rp_rhs(&s, primal, dx, dy, b);
-        if (pre && rp_mg_build(pre, &s, RP_MG_SWEEPS) != 0)
+        restir_rp_rhs(&s, primal, dx, dy, b);
+        if (pre && restir_rp_mg_build(pre, &s, RP_MG_SWEEPS) != 0)
             goto done;
-        const int it = rp_cg(&s, b, x, 0.0, cg_steps, pre, &work);
+        const int it = restir_rp_cg(&s, b, x, 0.0, cg_steps, pre, &work);
         if (it < 0)
             goto done;
         total += it;
     }
     double rel[3];
-    rp_residual(&s, b, x, rel);
-    rp_store(n, x, out);
+    restir_rp_residual(&s, b, x, rel);
+    restir_rp_store(n, x, out);
     if (st) {
         st->iterations = total;
         st->residual = fmax(rel[0], fmax(rel[1], rel[2]));
@@ -104,8 +105,8 @@ int restir_poisson_l1(int w, int h, const float *primal, const float *dx, const 
     }
     rc = 0;
 done:;
-    rp_mg_free(&mg);
-    rp_cg_work_free(&work);
+    restir_rp_mg_free(&mg);
+    restir_rp_cg_work_free(&work);
     free(b), free(x), free(wp), free(wx), free(wy), free(s.rows);
     return rc;
 }
@@ -113,7 +114,7 @@ done:;
 double restir_poisson_l1_energy(int w, int h, const float *primal, const float *dx, const float *dy, float alpha,
                                 const float *x)
 {
-    if (rp_check(w, h, primal, dx, dy, alpha, x) != 0)
+    if (restir_rp_check(w, h, primal, dx, dy, alpha, x) != 0)
         return NAN;
     double e = 0.0;
     for (int j = 0; j < h; j++) {

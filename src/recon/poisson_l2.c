@@ -1,6 +1,5 @@
 /* poisson_l2.c: L2 screened Poisson reconstruction (restir/poisson.h): the DCT direct solve and
  * the CG path. */
-#include <fftw3.h>
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
@@ -9,16 +8,24 @@
 #include "recon/poisson_ops.h"
 #include "restir/poisson.h"
 
+#ifdef RESTIR_HAVE_FFTW
+#include <fftw3.h>
+#endif
+
 /* The Neumann grid Laplacian is Lx (+) Ly with Lx the path-graph Laplacian of w nodes, whose
  * eigenvectors cos(pi k (i + 1/2) / w) are the DCT-II basis, eigenvalue 2 - 2 cos(pi k / w).
  * FFTW's REDFT10 (DCT-II) followed by REDFT01 (DCT-III) multiplies by 2w per dimension, hence
  * the 1 / (4 w h). Channels are planar copies so one plan serves all three (fftw_execute_r2r on
  * equally aligned fftw_malloc arrays, which is thread-safe; the planner is not). */
-int rp_dct_solve(int w, int h, double a2, const double *b, double *x)
+int restir_rp_dct_solve(int w, int h, double a2, const double *b, double *x)
 {
+#ifndef RESTIR_HAVE_FFTW
+    (void)w, (void)h, (void)a2, (void)b, (void)x;
+    return -1; /* librestir built without FFTW: the DCT solve is not there (restir/poisson.h) */
+#else
     const size_t n = (size_t)w * (size_t)h;
     double *ch[3] = {fftw_alloc_real(n), fftw_alloc_real(n), fftw_alloc_real(n)};
-    double *lx = rp_alloc((size_t)w), *ly = rp_alloc((size_t)h);
+    double *lx = restir_rp_alloc((size_t)w), *ly = restir_rp_alloc((size_t)h);
     fftw_plan fwd = NULL, inv = NULL;
     int rc = -1;
     if (!ch[0] || !ch[1] || !ch[2] || !lx || !ly)
@@ -74,6 +81,7 @@ done:;
     free(lx);
     free(ly);
     return rc;
+#endif
 }
 
 int restir_poisson_l2(int w, int h, const float *primal, const float *dx, const float *dy, float alpha,
@@ -81,34 +89,34 @@ int restir_poisson_l2(int w, int h, const float *primal, const float *dx, const 
                       struct restir_poisson_stats *st)
 {
     const double t0 = omp_get_wtime();
-    if (rp_check(w, h, primal, dx, dy, alpha, out) != 0)
+    if (restir_rp_check(w, h, primal, dx, dy, alpha, out) != 0)
         return -1;
     if (solver != RESTIR_POISSON_DCT &&
         (solver != RESTIR_POISSON_CG || !(tol > 0.0) || !isfinite(tol) || max_iters < 1))
         return -1;
     const size_t n = (size_t)w * (size_t)h;
     const struct rp_sys s = {w, h, n, (double)alpha * (double)alpha, NULL, NULL, NULL,
-                             rp_alloc(RP_ROW_SUMS * (size_t)h)};
-    double *b = rp_alloc(3 * n), *x = rp_alloc(3 * n);
+                             restir_rp_alloc(RP_ROW_SUMS * (size_t)h)};
+    double *b = restir_rp_alloc(3 * n), *x = restir_rp_alloc(3 * n);
     int iters = 0, rc = -1;
     if (!b || !x || !s.rows)
         goto done;
-    rp_rhs(&s, primal, dx, dy, b);
+    restir_rp_rhs(&s, primal, dx, dy, b);
     if (solver == RESTIR_POISSON_DCT) {
-        if (rp_dct_solve(w, h, s.a2, b, x) != 0)
+        if (restir_rp_dct_solve(w, h, s.a2, b, x) != 0)
             goto done;
     } else {
         const long m = (long)(3 * n);
 #pragma omp parallel for schedule(static)
         for (long k = 0; k < m; k++)
             x[k] = rp_in(primal[k]);
-        iters = rp_cg(&s, b, x, tol, max_iters, NULL, NULL);
+        iters = restir_rp_cg(&s, b, x, tol, max_iters, NULL, NULL);
         if (iters < 0)
             goto done;
     }
     double rel[3];
-    rp_residual(&s, b, x, rel);
-    rp_store(n, x, out);
+    restir_rp_residual(&s, b, x, rel);
+    restir_rp_store(n, x, out);
     if (st) {
         st->iterations = iters;
         st->residual = fmax(rel[0], fmax(rel[1], rel[2]));

@@ -9,7 +9,7 @@
  * (the partition does not change the result). */
 #define MG_PARALLEL_MIN 16384
 
-void rp_mg_free(struct rp_mg *mg)
+void restir_rp_mg_free(struct rp_mg *mg)
 {
     for (int k = 0; k < RP_MG_MAX_LEVELS; k++) {
         struct rp_mg_level *l = &mg->lv[k];
@@ -66,11 +66,11 @@ static inline void mg_add(double s[3], double e, const double *xq)
     s[2] += e * xq[2];
 }
 
-int rp_mg_build(struct rp_mg *mg, const struct rp_sys *s, int sweeps)
+int restir_rp_mg_build(struct rp_mg *mg, const struct rp_sys *s, int sweeps)
 {
     struct rp_mg_level *l0 = &mg->lv[0];
-    if (!l0->inv && !(l0->inv = rp_alloc(s->n))) {
-        rp_mg_free(mg);
+    if (!l0->inv && !(l0->inv = restir_rp_alloc(s->n))) {
+        restir_rp_mg_free(mg);
         return -1;
     }
     l0->w = s->w, l0->h = s->h, l0->a2 = s->a2;
@@ -82,10 +82,10 @@ int rp_mg_build(struct rp_mg *mg, const struct rp_sys *s, int sweeps)
         c->w = (f->w + 1) / 2, c->h = (f->h + 1) / 2, c->a2 = 1.0;
         const size_t n = (size_t)c->w * (size_t)c->h;
         if (!c->own_d) {
-            c->own_d = rp_alloc(n), c->own_ex = rp_alloc(n), c->own_ey = rp_alloc(n);
-            c->x = rp_alloc(3 * n), c->b = rp_alloc(3 * n), c->inv = rp_alloc(n);
+            c->own_d = restir_rp_alloc(n), c->own_ex = restir_rp_alloc(n), c->own_ey = restir_rp_alloc(n);
+            c->x = restir_rp_alloc(3 * n), c->b = restir_rp_alloc(3 * n), c->inv = restir_rp_alloc(n);
             if (!c->own_d || !c->own_ex || !c->own_ey || !c->x || !c->b || !c->inv) {
-                rp_mg_free(mg);
+                restir_rp_mg_free(mg);
                 return -1;
             }
         }
@@ -208,7 +208,7 @@ static void mg_vcycle(struct rp_mg *mg, int k, const double *b, double *x)
     }
 }
 
-void rp_mg_apply(struct rp_mg *mg, const double *r, double *z)
+void restir_rp_mg_apply(struct rp_mg *mg, const double *r, double *z)
 {
     mg_vcycle(mg, 0, r, z);
 }

@@ -37,9 +37,9 @@ struct rp_mg {
 /* Builds (or rebuilds, for the same w x h) the hierarchy for s's current weights. The level-0
  * coefficients are read from s at apply time, so s and its weights must outlive the applies.
  * Returns 0, or -1 on allocation failure (mg is then freed). mg must start zeroed. */
-int rp_mg_build(struct rp_mg *mg, const struct rp_sys *s, int sweeps);
+int restir_rp_mg_build(struct rp_mg *mg, const struct rp_sys *s, int sweeps);
 /* z = M^-1 r: one V-cycle from z = 0. r and z are 3 n interleaved RGB doubles, not aliased. */
-void rp_mg_apply(struct rp_mg *mg, const double *r, double *z);
-void rp_mg_free(struct rp_mg *mg);
+void restir_rp_mg_apply(struct rp_mg *mg, const double *r, double *z);
+void restir_rp_mg_free(struct rp_mg *mg);
 
 #endif

@@ -6,14 +6,14 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-double *rp_alloc(size_t n)
+double *restir_rp_alloc(size_t n)
 {
     if (n == 0 || n > SIZE_MAX / sizeof(double))
         return NULL;
     return malloc(n * sizeof(double));
 }
 
-void rp_sum_rows(const struct rp_sys *s, int nv, double *out)
+void restir_rp_sum_rows(const struct rp_sys *s, int nv, double *out)
 {
     for (int v = 0; v < nv; v++)
         out[v] = 0.0;
@@ -22,7 +22,7 @@ void rp_sum_rows(const struct rp_sys *s, int nv, double *out)
             out[v] += s->rows[(size_t)j * RP_ROW_SUMS + v];
 }
 
-int rp_check(int w, int h, const float *primal, const float *dx, const float *dy, float alpha, const float *out)
+int restir_rp_check(int w, int h, const float *primal, const float *dx, const float *dy, float alpha, const float *out)
 {
     if (w < 1 || h < 1 || !primal || !dx || !dy || !out || !isfinite(alpha) || !(alpha > 0.0f))
         return -1;
@@ -32,7 +32,7 @@ int rp_check(int w, int h, const float *primal, const float *dx, const float *dy
     return 0;
 }
 
-void rp_store(size_t n, const double *x, float *out)
+void restir_rp_store(size_t n, const double *x, float *out)
 {
     const long m = (long)(3 * n);
 #pragma omp parallel for schedule(static)
@@ -46,7 +46,7 @@ static inline void rp_ax(const struct rp_sys *s, const double *x, int i, int j, 
     rp_apply_at(s->w, s->h, s->a2, s->wp, s->wx, s->wy, x, i, j, y);
 }
 
-void rp_rhs(const struct rp_sys *s, const float *primal, const float *dx, const float *dy, double *b)
+void restir_rp_rhs(const struct rp_sys *s, const float *primal, const float *dx, const float *dy, double *b)
 {
     const int w = s->w, h = s->h;
 #pragma omp parallel for schedule(static)
@@ -93,12 +93,12 @@ static void rp_residual_sq(const struct rp_sys *s, const double *b, const double
         row[0] = r0, row[1] = r1, row[2] = r2, row[3] = b0, row[4] = b1, row[5] = b2;
     }
     double sums[6];
-    rp_sum_rows(s, 6, sums);
+    restir_rp_sum_rows(s, 6, sums);
     rr[0] = sums[0], rr[1] = sums[1], rr[2] = sums[2];
     bb[0] = sums[3], bb[1] = sums[4], bb[2] = sums[5];
 }
 
-void rp_residual(const struct rp_sys *s, const double *b, const double *x, double rel[3])
+void restir_rp_residual(const struct rp_sys *s, const double *b, const double *x, double rel[3])
 {
     double rr[3], bb[3];
     rp_residual_sq(s, b, x, rr, bb);

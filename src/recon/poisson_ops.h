@@ -16,14 +16,14 @@ struct rp_sys {
     size_t n;
     double a2;
     const double *wp, *wx, *wy;
-    double *rows; /* RP_ROW_SUMS * h scratch doubles for deterministic reductions (rp_alloc) */
+    double *rows; /* RP_ROW_SUMS * h scratch doubles for deterministic reductions (restir_rp_alloc) */
 };
 
 /* Reductions are summed per image row (a partition that does not depend on the thread count) and
  * then over the rows in order, so every result is bit-identical whatever the number of threads. */
 #define RP_ROW_SUMS 9
 /* out[v] = sum over rows j in order of s->rows[j * RP_ROW_SUMS + v], v < nv. */
-void rp_sum_rows(const struct rp_sys *s, int nv, double *out);
+void restir_rp_sum_rows(const struct rp_sys *s, int nv, double *out);
 
 /* A non-finite input value reads as 0. */
 static inline double rp_in(float v)
@@ -93,16 +93,16 @@ static inline void rp_apply_at(int w, int h, double a2, const double *wd, const 
 }
 
 /* n doubles (malloc), NULL on overflow or failure. */
-double *rp_alloc(size_t n);
+double *restir_rp_alloc(size_t n);
 /* b of the system from the float inputs. */
-void rp_rhs(const struct rp_sys *s, const float *primal, const float *dx, const float *dy, double *b);
+void restir_rp_rhs(const struct rp_sys *s, const float *primal, const float *dx, const float *dy, double *b);
 /* Per channel c: rel[c] = |b - A x| / |b| (|b - A x| where |b| = 0). */
-void rp_residual(const struct rp_sys *s, const double *b, const double *x, double rel[3]);
+void restir_rp_residual(const struct rp_sys *s, const double *b, const double *x, double rel[3]);
 /* Direct solve of the unweighted system (wp = wx = wy = 1) by DCT. Returns 0 or -1. */
-int rp_dct_solve(int w, int h, double a2, const double *b, double *x);
+int restir_rp_dct_solve(int w, int h, double a2, const double *b, double *x);
 /* Shared argument check of the public functions: 0 when usable. */
-int rp_check(int w, int h, const float *primal, const float *dx, const float *dy, float alpha, const float *out);
+int restir_rp_check(int w, int h, const float *primal, const float *dx, const float *dy, float alpha, const float *out);
 /* Rounds x to float. */
-void rp_store(size_t n, const double *x, float *out);
+void restir_rp_store(size_t n, const double *x, float *out);
 
 #endif

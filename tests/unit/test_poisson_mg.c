@@ -72,7 +72,7 @@ static void check_size(int w, int h, int rough)
     double *rows = dalloc(RP_ROW_SUMS * (size_t)h);
     const struct rp_sys s = {w, h, n, 0.04, wp, wx, wy, rows};
     struct rp_mg mg = {0};
-    EXPECT(rp_mg_build(&mg, &s, RP_MG_SWEEPS) == 0, "build %dx%d", w, h);
+    EXPECT(restir_rp_mg_build(&mg, &s, RP_MG_SWEEPS) == 0, "build %dx%d", w, h);
     EXPECT(mg.levels >= 1 && mg.lv[mg.levels - 1].w <= 4 && mg.lv[mg.levels - 1].h <= 4, "%dx%d: %d levels", w, h,
            mg.levels);
 
@@ -81,8 +81,8 @@ static void check_size(int w, int h, int rough)
     for (int t = 0; t < 4; t++) {
         for (size_t i = 0; i < m; i++)
             u[i] = rnd() - 0.5, v[i] = rnd() - 0.5;
-        rp_mg_apply(&mg, u, mu);
-        rp_mg_apply(&mg, v, mv);
+        restir_rp_mg_apply(&mg, u, mu);
+        restir_rp_mg_apply(&mg, v, mv);
         const double a = dot(u, mv, m), b = dot(v, mu, m);
         EXPECT(fabs(a - b) <= 1e-11 * (fabs(a) + fabs(b)), "%dx%d: u.Mv %.17g != v.Mu %.17g", w, h, a, b);
         EXPECT(dot(v, mv, m) > 0.0 && dot(u, mu, m) > 0.0, "%dx%d: not positive", w, h);
@@ -98,7 +98,7 @@ static void check_size(int w, int h, int rough)
         apply(&s, x, ax);
         for (size_t i = 0; i < m; i++)
             r[i] = b[i] - ax[i];
-        rp_mg_apply(&mg, r, e);
+        restir_rp_mg_apply(&mg, r, e);
         for (size_t i = 0; i < m; i++)
             x[i] += e[i];
         double d2 = 0.0;
@@ -115,7 +115,8 @@ static void check_size(int w, int h, int rough)
     /* Preconditioned CG: same solution, far fewer steps than Jacobi. */
     double *xj = dalloc(m), *xm = dalloc(m);
     struct rp_mg *none = NULL;
-    const int ij = rp_cg(&s, b, xj, 1e-10, 100000, none, NULL), im = rp_cg(&s, b, xm, 1e-10, 100000, &mg, NULL);
+    const int ij = restir_rp_cg(&s, b, xj, 1e-10, 100000, none, NULL);
+    const int im = restir_rp_cg(&s, b, xm, 1e-10, 100000, &mg, NULL);
     double dj = 0.0, dm = 0.0;
     for (size_t i = 0; i < m; i++)
         dj += (xj[i] - xs[i]) * (xj[i] - xs[i]), dm += (xm[i] - xs[i]) * (xm[i] - xs[i]);
@@ -126,7 +127,7 @@ static void check_size(int w, int h, int rough)
     if (n >= 256)
         EXPECT(2 * im < ij, "%dx%d: multigrid %d steps vs Jacobi %d", w, h, im, ij);
 
-    rp_mg_free(&mg);
+    restir_rp_mg_free(&mg);
     free(wp), free(wx), free(wy), free(rows), free(u), free(v), free(mu), free(mv);
     free(xs), free(b), free(x), free(r), free(ax), free(e), free(xj), free(xm);
 }
