@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # check_core.sh SRC: librestir builds alone (cmake -DRESTIR_BUILD_RENDERER=OFF: no Embree, OpenEXR,
-# assimp or SDL2 needed), with FFTW and, hiding every pkg-config package, without it; and it exports
-# only restir_-prefixed symbols. Exits 1 naming what failed. Run by ctest as lint.core_alone.
+# assimp or SDL2 needed), with FFTW and, hiding every pkg-config package, without it; it exports
+# only restir_-prefixed symbols; and `cmake --install` gives a package that examples/ris_1d builds
+# and runs against through find_package(restir) and through pkg-config. Exits 1 naming what failed.
+# Run by ctest as lint.core_alone.
 set -euo pipefail
 src=${1:?usage: check_core.sh SRC}
 work=$(mktemp -d)
@@ -9,7 +11,8 @@ trap 'rm -rf "$work"' EXIT
 build() { # $1: folder; the rest: environment for the configure step
   local dir=$1
   shift
-  if ! env "$@" cmake -S "$src" -B "$dir" -DRESTIR_BUILD_RENDERER=OFF -DCMAKE_BUILD_TYPE=Release > "$dir.log" 2>&1 ||
+  if ! env "$@" cmake -S "$src" -B "$dir" -DRESTIR_BUILD_RENDERER=OFF -DCMAKE_BUILD_TYPE=Release \
+       -DCMAKE_INSTALL_PREFIX="$dir.prefix" > "$dir.log" 2>&1 ||
      ! cmake --build "$dir" -j 2 >> "$dir.log" 2>&1; then
     echo "check_core: librestir alone does not build ($*):"; tail -20 "$dir.log"; exit 1
   fi
@@ -23,4 +26,20 @@ bad=$(nm -g --defined-only "$work/with_fftw/librestir_core.a" | awk '$2 ~ /^[TDB
 if [ -n "$bad" ]; then
   echo "check_core: librestir exports symbols without the restir_ prefix:"; echo "$bad"; exit 1
 fi
-echo "check_core: librestir builds alone with and without FFTW; every exported symbol is restir_-prefixed"
+prefix="$work/with_fftw.prefix"
+if ! cmake --install "$work/with_fftw" > "$work/install.log" 2>&1; then
+  echo "check_core: cmake --install failed:"; tail -20 "$work/install.log"; exit 1
+fi
+if ! cmake -S "$src/examples/ris_1d" -B "$work/example" -DCMAKE_PREFIX_PATH="$prefix" > "$work/example.log" 2>&1 ||
+   ! cmake --build "$work/example" >> "$work/example.log" 2>&1 || ! "$work/example/ris_1d"; then
+  echo "check_core: examples/ris_1d through find_package(restir):"; tail -20 "$work/example.log"; exit 1
+fi
+pc="$prefix/lib/pkgconfig"
+[ -d "$pc" ] || pc=$(dirname "$(find "$prefix" -name restir.pc | head -1)")
+flags=$(PKG_CONFIG_PATH="$pc" pkg-config --cflags --libs --static restir)
+# shellcheck disable=SC2086
+if ! cc -std=c11 -O2 "$src/examples/ris_1d/ris_1d.c" $flags -o "$work/ris_1d_pc" || ! "$work/ris_1d_pc"; then
+  echo "check_core: examples/ris_1d through pkg-config ($flags) failed"; exit 1
+fi
+echo "check_core: librestir builds alone with and without FFTW, exports only restir_ symbols, installs, and"
+echo "examples/ris_1d builds and passes against the installed package (find_package and pkg-config)"
