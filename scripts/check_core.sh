@@ -26,6 +26,14 @@ bad=$(nm -g --defined-only "$work/with_fftw/librestir_core.a" | awk '$2 ~ /^[TDB
 if [ -n "$bad" ]; then
   echo "check_core: librestir exports symbols without the restir_ prefix:"; echo "$bad"; exit 1
 fi
+so=$(ls "$work"/with_fftw/librestir.so.* 2> /dev/null | head -1)
+[ -n "$so" ] || { echo "check_core: no shared librestir.so.N was built"; exit 1; }
+# (a named OpenMP critical section is the symbol .gomp_critical_user_NAME; ours are named restir_*)
+bad=$(nm -D --defined-only "$so" | awk '$2 ~ /^[TDBRVW]$/ && $3 !~ /^restir_/ && $3 !~ /^_(init|fini)$/ &&
+                                        $3 !~ /^\.gomp_critical_user_restir_/ {print $3}' | sort -u)
+if [ -n "$bad" ]; then
+  echo "check_core: $so exports symbols without the restir_ prefix:"; echo "$bad"; exit 1
+fi
 prefix="$work/with_fftw.prefix"
 if ! cmake --install "$work/with_fftw" > "$work/install.log" 2>&1; then
   echo "check_core: cmake --install failed:"; tail -20 "$work/install.log"; exit 1
@@ -41,5 +49,6 @@ flags=$(PKG_CONFIG_PATH="$pc" pkg-config --cflags --libs --static restir)
 if ! cc -std=c11 -O2 "$src/examples/ris_1d/ris_1d.c" $flags -o "$work/ris_1d_pc" || ! "$work/ris_1d_pc"; then
   echo "check_core: examples/ris_1d through pkg-config ($flags) failed"; exit 1
 fi
-echo "check_core: librestir builds alone with and without FFTW, exports only restir_ symbols, installs, and"
+echo "check_core: librestir (static and $(basename "$so")) builds alone with and without FFTW, exports only"
+echo "restir_ symbols, installs, and"
 echo "examples/ris_1d builds and passes against the installed package (find_package and pkg-config)"
