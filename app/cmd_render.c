@@ -31,7 +31,7 @@ static void render_usage(FILE *out)
             "frame_NNNN_{primal,dx,dy}.png (gradients in false colour: red positive, blue negative).\n\n"
             "Parameters (--set key=value, defaults shown):\n");
     render_params_help(out);
-    fprintf(out, "\nMetrics (against --ref):\n%s", restir_metrics_help());
+    fprintf(out, "\nMetrics (against --ref):\n%s", restir_metrics_definitions());
     cli_options_help(out, "render");
 }
 

@@ -32,7 +32,7 @@ static void render_gi(const struct scene *s, const struct render_params *base, c
         struct camera cam = scene_camera_at(s, 1, (float)f);
         renderer_render(&r, f, &cam, &st);
     }
-    restir_luminance_image(r.image, (size_t)p.width * (size_t)p.height, lum);
+    restir_metrics_luminance(r.image, (size_t)p.width * (size_t)p.height, lum);
     renderer_fini(&r);
 }
 

@@ -44,7 +44,7 @@ struct gb_result {
     double ms;      /* per frame over the timed frames, all instances, one reconstruction */
     double grad_ms; /* the PASS_GRAD_* passes (gpt: PASS_GPT), per frame, all instances */
     int spp, instances;
-    struct restir_error l2, l1; /* l2: the L2 reconstruction, or the image of a primal method */
+    struct restir_metrics_error l2, l1; /* l2: the L2 reconstruction, or the image of a primal method */
     double grad_err;            /* gradient error (gradient_error) */
     double mean_l2, mean_l1;    /* image mean luminance / the reference's (L2 or image; L1) */
     float *image, *l1_image, *dx, *dy; /* last frame (averaged): copies, freed by gb_result_free */
@@ -371,7 +371,7 @@ static void run_method(const struct scene *s, const struct gb_config *c, const s
         res->l1_image = copy3(renderer_gradients(&r0)->l1, npix);
         res->dx = copy3(renderer_gradients(&r0)->dx, npix);
         res->dy = copy3(renderer_gradients(&r0)->dy, npix);
-        restir_error_compute(res->l1_image, ref->rgb, npix, NULL, &res->l1);
+        restir_metrics_compute(res->l1_image, ref->rgb, npix, NULL, &res->l1);
         res->mean_l1 = mean_lum(res->l1_image, npix) / mean_lum(ref->rgb, npix);
     } else {
         res->dx = xmalloc(n3 * sizeof(float));
@@ -379,7 +379,7 @@ static void run_method(const struct scene *s, const struct gb_config *c, const s
         forward_differences(r0.image, c->width, c->height, res->dx, res->dy);
     }
     res->image = copy3(r0.image, npix);
-    restir_error_compute(res->image, ref->rgb, npix, NULL, &res->l2);
+    restir_metrics_compute(res->image, ref->rgb, npix, NULL, &res->l2);
     res->mean_l2 = mean_lum(res->image, npix) / mean_lum(ref->rgb, npix);
     res->grad_err = gradient_error(res->dx, res->dy, ref, npix);
     renderer_fini(&r0);

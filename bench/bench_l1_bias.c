@@ -41,8 +41,8 @@ static void print_case(const struct l1_case *c, int w, int h, const float *p, co
                (double)c->alpha);
         return;
     }
-    struct restir_error e;
-    restir_error_compute(out, ref, n, NULL, &e);
+    struct restir_metrics_error e;
+    restir_metrics_compute(out, ref, n, NULL, &e);
     const char *pre = c->solve[1] == '2'                            ? ""
                       : c->precond == RESTIR_POISSON_PRECOND_JACOBI ? "Jacobi"
                                                                     : "multigrid";

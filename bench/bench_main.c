@@ -214,8 +214,8 @@ static void bench_equal_time(const struct bench_config *c, const struct method *
         total += st.ms_total;
     }
     double budget = total / c->frames;
-    struct restir_error e_m;
-    restir_error_compute(r.image, ref, npix, NULL, &e_m);
+    struct restir_metrics_error e_m;
+    restir_metrics_compute(r.image, ref, npix, NULL, &e_m);
     renderer_fini(&r);
 
     /* pt cost per path: time 1 and 4 spp (the difference removes per-frame overhead). */
@@ -234,8 +234,8 @@ static void bench_equal_time(const struct bench_config *c, const struct method *
     q.spp = equal_time_spp(budget, t[0], t[1]); /* as restir compare --equal-time */
     renderer_init(&r, &s, method_named("pt"), &q);
     renderer_render(&r, last, &cam, &st);
-    struct restir_error e_pt;
-    restir_error_compute(r.image, ref, npix, NULL, &e_pt);
+    struct restir_metrics_error e_pt;
+    restir_metrics_compute(r.image, ref, npix, NULL, &e_pt);
     double pt_ms = st.ms_total;
     renderer_fini(&r);
 
@@ -484,7 +484,7 @@ int main(int argc, char **argv)
             c.temporal_frames = 16;
         } else {
             fprintf(stderr, "usage: restir_bench [passes] [equal-time] [visibility] [temporal] [pt] [spmis] [--quick]\n"
-                    "       restir_bench poisson [--runs N]\n"
+                    "       restir_bench poisson [--runs N] [--res WxH[,WxH...]] [--lib-threads N]\n"
                     "       restir_bench l1-bias FRAME.exr REF.exr\n"
                     "       restir_bench gi-bias [--scenes a,b] [--res WxH] [--runs N] [--frames N]\n"
                     "       restir_bench streams [--res WxH] [--rounds N]\n"

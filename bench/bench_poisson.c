@@ -1,9 +1,10 @@
 /* bench_poisson.c: the `poisson` section of restir_bench: wall time of the screened Poisson
- * reconstruction (restir/poisson.h), L2 by DCT, L2 by CG to 1e-6 and L1 (20 x 50), at 640x360 and
- * 1920x1080 on a synthetic noisy image; median of N runs (5 by default). Also the relative RMS
- * error of each result against the clean image. Must never be run by the tests. */
+ * reconstruction (restir/poisson.h), L2 by DCT, L2 by CG to 1e-6 and L1 (20 x 50 Jacobi, 20 x 4
+ * multigrid), at 640x360 and 1920x1080 (or the sizes of --res) on a synthetic noisy image; median
+ * of N runs (5 by default). Also the relative RMS error of each result against the clean image.
+ * --lib-threads N sets librestir's thread count (restir_threads_set; 0: OpenMP's). Must never be
+ * run by the tests. */
 #include <math.h>
-#include <omp.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +12,7 @@
 
 #include "bench_common.h"
 #include "restir/poisson.h"
+#include "restir/threads.h"
 
 static uint64_t bp_state = 0x2545f4914f6cdd1dull;
 
@@ -74,28 +76,51 @@ static int bp_cmp(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* Parses "WxH[,WxH...]" into res (at most max sizes, each side 2..8192): the count, or -1. */
+static int bp_parse_sizes(const char *text, int (*res)[2], int max)
+{
+    int n = 0;
+    for (const char *p = text; p; p = strchr(p, ',') ? strchr(p, ',') + 1 : NULL) {
+        if (n == max || sscanf(p, "%dx%d", &res[n][0], &res[n][1]) != 2 || res[n][0] < 2 || res[n][1] < 2 ||
+            res[n][0] > 8192 || res[n][1] > 8192)
+            return -1;
+        n++;
+    }
+    return n;
+}
+
 int bench_poisson(int argc, char **argv)
 {
-    int runs = 5;
+    int runs = 5, lib_threads = 0, n_res = 2;
+    int res[8][2] = {{640, 360}, {1920, 1080}};
     for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--runs") && i + 1 < argc && sscanf(argv[i + 1], "%d", &runs) == 1 && runs > 0)
+        if (!strcmp(argv[i], "--runs") && i + 1 < argc && sscanf(argv[i + 1], "%d", &runs) == 1 && runs > 0) {
             i++;
-        else {
-            fprintf(stderr, "usage: restir_bench poisson [--runs N]\n");
+        } else if (!strcmp(argv[i], "--lib-threads") && i + 1 < argc &&
+                   sscanf(argv[i + 1], "%d", &lib_threads) == 1 && restir_threads_set(lib_threads) == 0) {
+            i++;
+        } else if (!strcmp(argv[i], "--res") && i + 1 < argc) {
+            n_res = bp_parse_sizes(argv[++i], res, 8);
+            if (n_res < 1) {
+                fprintf(stderr, "restir_bench poisson: --res wants WxH[,WxH...] (2..8192 each, up to 8 sizes)\n");
+                return 2;
+            }
+        } else {
+            fprintf(stderr, "usage: restir_bench poisson [--runs N] [--res WxH[,WxH...]] [--lib-threads N]\n");
             return 2;
         }
     }
-    static const int res[2][2] = {{640, 360}, {1920, 1080}};
     static const char *const names[4] = {"L2 DCT", "L2 CG (tol 1e-6)", "L1 IRLS (20 x 50 Jacobi CG)",
                                          "L1 IRLS (20 x 4 multigrid CG)"};
-    printf("\n### Poisson reconstruction, synthetic noisy image, median of %d runs (%d threads)\n\n", runs,
-           omp_get_max_threads());
+    printf("\n### Poisson reconstruction, synthetic noisy image, median of %d runs (librestir: %d threads, "
+           "restir_threads_set(%d))\n\n",
+           runs, restir_threads_get(), lib_threads);
     printf("| resolution | solver | median ms | min ms | iterations | residual | rel. RMS error vs clean |\n"
            "|---|---|---|---|---|---|---|\n");
     double *ms = malloc((size_t)runs * sizeof(double));
     if (!ms)
         return 1;
-    for (int r = 0; r < 2; r++) {
+    for (int r = 0; r < n_res; r++) {
         const int w = res[r][0], h = res[r][1];
         const size_t m = (size_t)w * h * 3;
         float *clean = bp_alloc(m), *P = bp_alloc(m), *dx = bp_alloc(m), *dy = bp_alloc(m), *out = bp_alloc(m);

@@ -75,10 +75,10 @@ static void run_config(const struct scene *s, const struct method *m, const stru
         }
         long long marked = renderer_disoccluded(&r, DISOCCLUSION_FRAMES, mask);
         long long valid = renderer_valid_pixels(&r);
-        struct restir_error e;
-        restir_error_compute(r.image, ref, npix, NULL, &e);
+        struct restir_metrics_error e;
+        restir_metrics_compute(r.image, ref, npix, NULL, &e);
         res->mape += e.mape / c->runs;
-        if (marked > 0 && restir_error_compute(r.image, ref, npix, mask, &e) == 0)
+        if (marked > 0 && restir_metrics_compute(r.image, ref, npix, mask, &e) == 0)
             res->mape_dis += e.mape / c->runs;
         res->dis_fraction += (double)marked / (double)(valid > 0 ? valid : 1) / c->runs;
         if (k == 0) {

@@ -47,8 +47,8 @@ static void variants_table(const struct scene *s, const char *title, const struc
                 rays += (double)st.rays;
             }
         }
-        struct restir_error e;
-        restir_error_compute(r.image, ref, npix, NULL, &e);
+        struct restir_metrics_error e;
+        restir_metrics_compute(r.image, ref, npix, NULL, &e);
         ms /= frames - 1;
         printf("| %s | %.1f | %.2f | %.5g | %.4f | %.2f | %.1f |\n", v[k].label, ms, rays / (frames - 1) / (double)npix,
                e.relmse, e.mape, e.smape, e.relmse * ms);

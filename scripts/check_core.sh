@@ -1,54 +1,99 @@
 #!/usr/bin/env bash
-# check_core.sh SRC: librestir builds alone (cmake -DRESTIR_BUILD_RENDERER=OFF: no Embree, OpenEXR,
-# assimp or SDL2 needed), with FFTW and, hiding every pkg-config package, without it; it exports
-# only restir_-prefixed symbols; and `cmake --install` gives a package that examples/ris_1d builds
-# and runs against through find_package(restir) and through pkg-config. Exits 1 naming what failed.
-# Run by ctest as lint.core_alone.
+# check_core.sh SRC: librestir alone, as an engine programmer gets it. Run by ctest as
+# lint.core_alone; exits 1 naming what failed.
+#  - Three core-only builds (cmake -DRESTIR_BUILD_RENDERER=OFF): "full" (OpenMP and FFTW), "clean"
+#    (pkg-config sees no package: what a Debian 12 machine with only build-essential, cmake and
+#    pkg-config has, OpenMP coming with gcc) and "minimal" (no OpenMP, no FFTW). For each: it
+#    compiles with no include folder outside the source and build trees, the shared library needs
+#    no library beyond what that configuration allows (readelf NEEDED), and its ctest (core.*, the
+#    bad-input contract) passes.
+#  - The static and shared libraries define only restir_-prefixed global symbols (nm, nm -D).
+#  - The public headers compile as C++ (g++ -std=c++11 -Wall -Wextra -Wpedantic -Werror).
+#  - `cmake --install` of the full and clean builds gives packages that the examples (ris_1d,
+#    restir_di, poisson) build and run against through find_package(restir) and through
+#    pkg-config; examples/cuda is compiled with nvcc and run (its CPU half without a GPU) when nvcc
+#    is on the PATH, and skipped with a message when not.
 set -euo pipefail
 src=${1:?usage: check_core.sh SRC}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-build() { # $1: folder; the rest: environment for the configure step
-  local dir=$1
-  shift
-  if ! env "$@" cmake -S "$src" -B "$dir" -DRESTIR_BUILD_RENDERER=OFF -DCMAKE_BUILD_TYPE=Release \
-       -DCMAKE_INSTALL_PREFIX="$dir.prefix" > "$dir.log" 2>&1 ||
-     ! cmake --build "$dir" -j 2 >> "$dir.log" 2>&1; then
-    echo "check_core: librestir alone does not build ($*):"; tail -20 "$dir.log"; exit 1
-  fi
+fail() {
+  echo "check_core: $1"
+  [ -z "${2:-}" ] || tail -20 "$2"
+  exit 1
 }
-build "$work/with_fftw"
-build "$work/without_fftw" PKG_CONFIG_LIBDIR=/nonexistent
-if grep -q 'fftw' <(nm "$work/without_fftw/librestir_core.a"); then
-  echo "check_core: the build without FFTW still references it"; exit 1
+
+# build NAME ALLOWED_NEEDED CMAKE_ARGS...: configure, build and test one core-only build in
+# $work/NAME (prefix $work/NAME.prefix). ALLOWED_NEEDED: a regex of the shared libraries
+# librestir.so may need. PKG_CONFIG_LIBDIR in the environment is passed on to the configure step.
+build() {
+  local name=$1 allowed=$2 dir="$work/$1"
+  shift 2
+  cmake -S "$src" -B "$dir" -DRESTIR_BUILD_RENDERER=OFF -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXPORT_COMPILE_COMMANDS=ON \
+    -DCMAKE_INSTALL_PREFIX="$dir.prefix" "$@" > "$dir.log" 2>&1 || fail "the $name build does not configure:" "$dir.log"
+  cmake --build "$dir" -j 2 >> "$dir.log" 2>&1 || fail "the $name build does not build:" "$dir.log"
+  local outside
+  outside=$(grep -oE -- '-(I|isystem) ?[^ "]+' "$dir/compile_commands.json" | sed -E 's/^-(I|isystem) ?//' | sort -u |
+    grep -vE "^($src|$dir)(/|\$)" || true)
+  [ -z "$outside" ] || fail "the $name build includes from outside the source and build trees: $outside"
+  local so needed
+  so=$(ls "$dir"/librestir.so.* 2> /dev/null | head -1)
+  [ -n "$so" ] || fail "the $name build made no shared librestir.so.N"
+  needed=$(readelf -d "$so" | sed -nE 's/.*NEEDED.*\[(.*)\]/\1/p' | grep -vE "^($allowed)" || true)
+  [ -z "$needed" ] || fail "the $name build's $(basename "$so") needs $needed"
+  (cd "$dir" && ctest --output-on-failure > "$dir.ctest.log" 2>&1) || fail "the $name build's tests fail:" "$dir.ctest.log"
+  cmake --install "$dir" > "$dir.install.log" 2>&1 || fail "cmake --install of the $name build failed:" "$dir.install.log"
+}
+base='libc\.so|libm\.so|ld-linux'
+build full "$base|libgomp\.so|libfftw3\.so|libpthread\.so"
+PKG_CONFIG_LIBDIR=/nonexistent build clean "$base|libgomp\.so"
+PKG_CONFIG_LIBDIR=/nonexistent build minimal "$base" -DRESTIR_WITH_OPENMP=OFF -DRESTIR_WITH_FFTW=OFF
+for b in clean minimal; do
+  ! nm "$work/$b/librestir_core.a" | grep -q fftw || fail "the $b build references FFTW"
+done
+! nm "$work/minimal/librestir_core.a" | grep -q GOMP_ || fail "the minimal build references OpenMP"
+
+bad=$(nm -g --defined-only "$work/full/librestir_core.a" | awk '$2 ~ /^[TDBR]$/ && $3 !~ /^restir_/ {print $3}' | sort -u)
+[ -z "$bad" ] || fail "librestir_core.a defines symbols without the restir_ prefix: $bad"
+so=$(ls "$work"/full/librestir.so.* | head -1)
+bad=$(nm -D --defined-only "$so" | awk '$2 ~ /^[TDBRVW]$/ && $3 !~ /^restir_/ && $3 !~ /^_(init|fini)$/ {print $3}' | sort -u)
+[ -z "$bad" ] || fail "$so exports symbols without the restir_ prefix: $bad"
+
+g++ -std=c++11 -Wall -Wextra -Wpedantic -Werror -I"$src/include" -I"$work/full/generated" "$src/tests/core/all_headers.cpp" \
+  -o "$work/all_headers" > "$work/cpp.log" 2>&1 || fail "the public headers do not compile as C++:" "$work/cpp.log"
+"$work/all_headers" > /dev/null || fail "tests/core/all_headers.cpp (C++) fails"
+
+# example PREFIX NAME: examples/NAME against the package in PREFIX, through find_package(restir)
+# and through pkg-config.
+example() {
+  local prefix=$1 ex=$2 dir="$work/example_$(basename "$1")_$2" pc flags
+  { cmake -S "$src/examples/$ex" -B "$dir" -DCMAKE_PREFIX_PATH="$prefix" && cmake --build "$dir" && "$dir/$ex"; } \
+    > "$dir.log" 2>&1 || fail "examples/$ex against $(basename "$prefix") through find_package(restir):" "$dir.log"
+  pc=$(dirname "$(find "$prefix" -name restir.pc | head -1)")
+  flags=$(PKG_CONFIG_PATH="$pc" pkg-config --cflags --libs restir)
+  # shellcheck disable=SC2086
+  { cc -std=c11 -O2 "$src/examples/$ex/$ex.c" $flags -o "$dir.pc" && "$dir.pc"; } > "$dir.pc.log" 2>&1 ||
+    fail "examples/$ex against $(basename "$prefix") through pkg-config ($flags):" "$dir.pc.log"
+}
+examples="ris_1d restir_di poisson"
+for ex in $examples; do
+  example "$work/full.prefix" "$ex"
+  example "$work/clean.prefix" "$ex"
+done
+example "$work/minimal.prefix" poisson
+
+if command -v nvcc > /dev/null; then
+  { cmake -S "$src/examples/cuda" -B "$work/cuda" -DCMAKE_PREFIX_PATH="$work/clean.prefix" &&
+    cmake --build "$work/cuda" && "$work/cuda/ris_pairwise"; } > "$work/cuda.log" 2>&1 ||
+    fail "examples/cuda (nvcc $(nvcc --version | sed -n 's/.*release \([0-9.]*\).*/\1/p')):" "$work/cuda.log"
+  if grep -q 'GPU vs CPU' "$work/cuda.log"; then
+    cuda="examples/cuda compiled with nvcc and run on the GPU"
+  else
+    cuda="examples/cuda compiled with nvcc and run (its CPU half: no GPU here)"
+  fi
+else
+  cuda="examples/cuda SKIPPED: nvcc is not on the PATH"
 fi
-bad=$(nm -g --defined-only "$work/with_fftw/librestir_core.a" | awk '$2 ~ /^[TDBR]$/ && $3 !~ /^restir_/ {print $3}' | sort -u)
-if [ -n "$bad" ]; then
-  echo "check_core: librestir exports symbols without the restir_ prefix:"; echo "$bad"; exit 1
-fi
-so=$(ls "$work"/with_fftw/librestir.so.* 2> /dev/null | head -1)
-[ -n "$so" ] || { echo "check_core: no shared librestir.so.N was built"; exit 1; }
-# (a named OpenMP critical section is the symbol .gomp_critical_user_NAME; ours are named restir_*)
-bad=$(nm -D --defined-only "$so" | awk '$2 ~ /^[TDBRVW]$/ && $3 !~ /^restir_/ && $3 !~ /^_(init|fini)$/ &&
-                                        $3 !~ /^\.gomp_critical_user_restir_/ {print $3}' | sort -u)
-if [ -n "$bad" ]; then
-  echo "check_core: $so exports symbols without the restir_ prefix:"; echo "$bad"; exit 1
-fi
-prefix="$work/with_fftw.prefix"
-if ! cmake --install "$work/with_fftw" > "$work/install.log" 2>&1; then
-  echo "check_core: cmake --install failed:"; tail -20 "$work/install.log"; exit 1
-fi
-if ! cmake -S "$src/examples/ris_1d" -B "$work/example" -DCMAKE_PREFIX_PATH="$prefix" > "$work/example.log" 2>&1 ||
-   ! cmake --build "$work/example" >> "$work/example.log" 2>&1 || ! "$work/example/ris_1d"; then
-  echo "check_core: examples/ris_1d through find_package(restir):"; tail -20 "$work/example.log"; exit 1
-fi
-pc="$prefix/lib/pkgconfig"
-[ -d "$pc" ] || pc=$(dirname "$(find "$prefix" -name restir.pc | head -1)")
-flags=$(PKG_CONFIG_PATH="$pc" pkg-config --cflags --libs --static restir)
-# shellcheck disable=SC2086
-if ! cc -std=c11 -O2 "$src/examples/ris_1d/ris_1d.c" $flags -o "$work/ris_1d_pc" || ! "$work/ris_1d_pc"; then
-  echo "check_core: examples/ris_1d through pkg-config ($flags) failed"; exit 1
-fi
-echo "check_core: librestir (static and $(basename "$so")) builds alone with and without FFTW, exports only"
-echo "restir_ symbols, installs, and"
-echo "examples/ris_1d builds and passes against the installed package (find_package and pkg-config)"
+echo "check_core: librestir builds alone (full, clean: no pkg-config package, minimal: no OpenMP or FFTW), passes its"
+echo "core tests in each, exports only restir_ symbols, its headers compile as C++, it installs, and"
+echo "examples/{${examples// /,}} pass against the installed packages (find_package and pkg-config); $cuda"

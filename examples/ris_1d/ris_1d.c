@@ -8,7 +8,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "restir/reservoir.h"
+#include "restir/gris.h"
 #include "restir/version.h"
 
 /* A small generator of the application's own (xorshift64*): librestir leaves random numbers to it. */
@@ -26,13 +26,13 @@ int main(void)
     uint64_t s = 0x9e3779b97f4a7c15ull;
     double sum = 0.0, sum2 = 0.0;
     for (int r = 0; r < RUNS; r++) {
-        struct restir_wrs wrs;
-        restir_wrs_init(&wrs);
+        struct restir_reservoir wrs;
+        restir_reservoir_init(&wrs);
         float y = 0.0f;
         for (int k = 0; k < M; k++) {
             const float x = (float)uniform(&s);
             const float w = x / (float)M; /* m_i p_hat(x) / p(x), m_i = 1/M, p = 1 */
-            if (restir_wrs_offer(&wrs, w, (float)uniform(&s)))
+            if (restir_reservoir_offer(&wrs, w, (float)uniform(&s)))
                 y = x;
         }
         const float W = restir_gris_contribution_weight(&wrs, y); /* p_hat(Y) = Y */

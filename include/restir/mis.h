@@ -1,8 +1,17 @@
-/* restir/mis.h: resampling MIS weights for GRIS (004 Sec. 2.4-2.7): 1/M, generalized balance and
- * defensive generalized pairwise. Pure functions of confidences and target values.
- * Must never depend on a ray tracer, files or the renderer. */
+/* restir/mis.h: resampling MIS weights for one GRIS merge (004 Sec. 2.4-2.7): 1/M, generalized
+ * balance and defensive generalized pairwise. Pure functions of confidences and target values; the
+ * RESTIR_HD ones are per-sample code for C, C++ and CUDA device code (restir/hd.h). Thread-safe.
+ *
+ * The target matrix. A merge of n reservoirs into canonical domain 0 has samples Y_j = T_j(X_j)
+ * shifted into domain 0, and p[k * n + j] = p_hat_{<-k}(Y_j): the target of domain k at Y_j
+ * shifted back into domain k, times the Jacobian of that back shift (004 Eq. 10; 0 where Y_j is
+ * outside the image of T_k). Row 0 holds the canonical targets p_hat(Y_j). A mode reads only the
+ * entries restir_mis_needs names: O(n) for pairwise, O(n^2) for balance, none for 1/M.
+ * Confidences c[k] and targets that are negative, NaN or infinite are read as 0. */
 #ifndef RESTIR_MIS_H
 #define RESTIR_MIS_H
+
+#include "restir/hd.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -14,18 +23,136 @@ enum restir_mis {
     RESTIR_MIS_PAIRWISE     /* defensive generalized pairwise MIS, 004 Eq. 11-12 */
 };
 
-/* Parses "1/M" (or "uniform"), "balance", "pairwise". Returns 0, or -1 for an unknown name. */
+/* Parses "1/M" (or "uniform"), "balance", "pairwise" into *out. Returns 0, or -1 (out untouched)
+ * for an unknown name or a NULL argument. */
 int restir_mis_parse(const char *name, enum restir_mis *out);
+/* The name restir_mis_parse reads for mode (a static string), "unknown" for a value outside the
+ * enum. */
 const char *restir_mis_name(enum restir_mis mode);
 
-/* Which entries of the target matrix a mode reads: 1 when p_hat_{<-k}(Y_j) is needed. */
-int restir_mis_needs(enum restir_mis mode, int k, int j);
+/* 1 when `mode`'s MIS weights read p[k * n + j] = p_hat_{<-k}(Y_j), else 0 (also for negative k or
+ * j). Row 0 (the canonical targets p_hat(Y_j)) is needed in every mode all the same: the resampling
+ * weights m_j p_hat(Y_j) W_j J_j of restir/gris.h read it, 1/M included. */
+RESTIR_HD int restir_mis_needs(enum restir_mis mode, int k, int j)
+{
+    if (k < 0 || j < 0)
+        return 0;
+    switch (mode) {
+    case RESTIR_MIS_UNIFORM:
+        return 0; /* confidences only */
+    case RESTIR_MIS_BALANCE:
+        return 1; /* 004 Eq. 9: every p_hat_{<-k}(Y_j) */
+    case RESTIR_MIS_PAIRWISE:
+        /* 004 Eq. 11a reads (j,j) and (0,j); Eq. 11b reads (0,0) and (j,0) */
+        return k == j || k == 0 || j == 0;
+    }
+    return 0;
+}
 
-/* Resampling MIS weights m_j(Y_j), j = 0..n-1, for one GRIS merge whose domain 0 is canonical.
- * c[k] are confidence weights; p[k * n + j] = p_hat_{<-k}(Y_j), the Jacobian-corrected target of
- * domain k at sample j shifted into the target domain (004 Eq. 10; 0 where Y_j is outside the
- * image of T_k). Only entries with restir_mis_needs(mode, k, j) are read. */
-void restir_mis_weights(enum restir_mis mode, int n, const float *c, const float *p, float *m);
+/* The three modes' weights, which restir_mis_weights dispatches to: each writes m[0..n) and does
+ * nothing for n < 1 or a NULL array.
+ *
+ * "1/M" weights m_j = c_j / sum_k c_k (1/n each when the sum is 0). BIASED in general: Eq. 8 needs
+ * the weights of the domains that can produce y to sum to one, but constant weights also hand
+ * mass to domains that cannot produce y (shift failed, or their target is zero at T_k^{-1}(y));
+ * that mass is lost, darkening the estimate wherever some domain cannot reach y. */
+RESTIR_HD void restir_mis_weights_uniform(int n, const float *c, float *m)
+{
+    if (n < 1 || !c || !m)
+        return;
+    double total = 0.0;
+    for (int k = 0; k < n; k++)
+        total += restir_hd_weight(c[k]);
+    for (int j = 0; j < n; j++)
+        m[j] = total > 0.0 ? (float)(restir_hd_weight(c[j]) / total) : 1.0f / (float)n;
+}
+
+/* 004 Eq. 9, the generalized balance heuristic at Y_j:
+ * m_j(Y_j) = c_j p_hat_{<-j}(Y_j) / sum_k c_k p_hat_{<-k}(Y_j).
+ * A zero denominator means no domain can produce Y_j (it lies outside every p_hat_{<-k} support,
+ * in particular outside supp p_hat), so its weight is irrelevant to Eq. 6 and set to 0. Wherever
+ * some c_k p_hat_{<-k}(y) > 0 the weights are an exact partition of unity (Eq. 8). */
+RESTIR_HD void restir_mis_weights_balance(int n, const float *c, const float *p, float *m)
+{
+    if (n < 1 || !c || !p || !m)
+        return;
+    for (int j = 0; j < n; j++) {
+        double denom = 0.0;
+        for (int k = 0; k < n; k++)
+            denom += (double)restir_hd_weight(c[k]) * (double)restir_hd_weight(p[k * n + j]);
+        double num = (double)restir_hd_weight(c[j]) * (double)restir_hd_weight(p[j * n + j]);
+        m[j] = denom > 0.0 ? (float)(num / denom) : 0.0f;
+    }
+}
+
+/* 004 Eq. 11a/11b/12, defensive generalized pairwise MIS, domain 0 canonical.
+ * The pair denominator c_S p_hat_{<-j}(y) + c_0 p_hat(y) is zero only where both targets vanish
+ * (given c_0 > 0); such a term contributes 0. That never happens where p_hat(y) > 0, so there the
+ * weights are an exact partition of unity. The canonical's pair terms c_0 p_hat(Y_0) / (...) are 0
+ * when p_hat(Y_0) = 0 and its defensive share c_0 / (c_S + c_0) is kept (Eq. 11b literally).
+ * Outside supp p_hat no weights sum to one and none need to: a sample with p_hat(Y) = 0 has
+ * resampling weight 0 in Eq. 6. Partition of unity needs c_0 > 0, the canonical being the
+ * defensive fallback; when c_S + c_0 = 0 everything goes to the canonical. */
+RESTIR_HD void restir_mis_weights_pairwise(int n, const float *c, const float *p, float *m)
+{
+    if (n < 1 || !c || !p || !m)
+        return;
+    double c0 = restir_hd_weight(c[0]);
+    double cs = 0.0; /* 004 Eq. 12: c_Sigma, the sum of non-canonical confidences */
+    for (int k = 1; k < n; k++)
+        cs += restir_hd_weight(c[k]);
+    double ctot = cs + c0;
+    if (!(ctot > 0.0)) {
+        m[0] = 1.0f;
+        for (int j = 1; j < n; j++)
+            m[j] = 0.0f;
+        return;
+    }
+    double p00 = restir_hd_weight(p[0]); /* p_hat(Y_0) */
+    double m0 = c0 / ctot;               /* 004 Eq. 11b: defensive share of the canonical */
+    for (int j = 1; j < n; j++) {
+        double cj = restir_hd_weight(c[j]);
+        /* 004 Eq. 11a:
+         * (c_S / (c_S + c_0)) c_j p_hat_{<-j}(Y_j) / (c_S p_hat_{<-j}(Y_j) + c_0 p_hat(Y_j)) */
+        double pjj = restir_hd_weight(p[j * n + j]);
+        double p0j = restir_hd_weight(p[0 * n + j]);
+        double dj = cs * pjj + c0 * p0j;
+        m[j] = dj > 0.0 ? (float)((cs / ctot) * cj * pjj / dj) : 0.0f;
+        /* 004 Eq. 11b:
+         * (c_j / (c_S + c_0)) c_0 p_hat(Y_0) / (c_S p_hat_{<-j}(Y_0) + c_0 p_hat(Y_0)) */
+        double pj0 = restir_hd_weight(p[j * n + 0]);
+        double d0 = cs * pj0 + c0 * p00;
+        if (d0 > 0.0)
+            m0 += (cj / ctot) * c0 * p00 / d0;
+    }
+    m[0] = (float)m0;
+}
+
+/* Resampling MIS weights m_j(Y_j), j = 0..n-1, of one merge whose domain 0 is canonical, from the
+ * confidences c[0..n) and the target matrix p (may be NULL for RESTIR_MIS_UNIFORM). n = 1 gives
+ * m_0 = 1. Returns 0, or -1 without writing for n < 1, a NULL array or an unknown mode. */
+RESTIR_HD int restir_mis_weights(enum restir_mis mode, int n, const float *c, const float *p, float *m)
+{
+    if (n < 1 || !c || !m || (mode != RESTIR_MIS_UNIFORM && !p) ||
+        (mode != RESTIR_MIS_UNIFORM && mode != RESTIR_MIS_BALANCE && mode != RESTIR_MIS_PAIRWISE))
+        return -1;
+    if (n == 1) {
+        m[0] = 1.0f; /* only the canonical: it alone covers p_hat (004 Sec. 2.3.3) */
+        return 0;
+    }
+    switch (mode) {
+    case RESTIR_MIS_UNIFORM:
+        restir_mis_weights_uniform(n, c, m);
+        return 0;
+    case RESTIR_MIS_BALANCE:
+        restir_mis_weights_balance(n, c, p, m);
+        return 0;
+    case RESTIR_MIS_PAIRWISE:
+        restir_mis_weights_pairwise(n, c, p, m);
+        return 0;
+    }
+    return -1;
+}
 
 #ifdef __cplusplus
 }

@@ -3,7 +3,7 @@
  * files or the renderer.
  *
  * Images are interleaved RGB floats, row-major, w*h*3 values. The gradient images hold forward
- * differences, the convention of restir/paired_pixel.h:
+ * differences, the convention of restir/grad.h:
  *   dx[p] ~ I(x+1, y) - I(x, y)   (the last column of dx is ignored)
  *   dy[p] ~ I(x, y+1) - I(x, y)   (the last row of dy is ignored)
  * Per channel the reconstruction I minimizes, over the rows r of the stacked system
@@ -17,15 +17,19 @@
  *
  * Shared conventions: a non-finite primal or gradient value (NaN, +-inf) is read as 0, so it
  * cannot spread through the solve. The solves run in double precision; per-pixel loops use
- * OpenMP. Every function returns 0, or -1 on bad input (w or h < 1, w*h too large, alpha <= 0
- * or not finite, a NULL image pointer, bad solver parameters) or allocation failure; out is then
- * left untouched and st (optional, may be NULL) is not written. out may not alias the inputs.
+ * OpenMP. Every function returns 0, or -1 on bad input (w or h < 1, w + h > INT_MAX or w*h too
+ * large to address, alpha <= 0 or not finite, a NULL image pointer, bad solver parameters or an
+ * enum value outside its enum) or allocation failure; out is then left untouched and st
+ * (optional, may be NULL) is not written. out may not alias the inputs.
  *
- * Threading: the DCT path (RESTIR_POISSON_DCT, and the start of restir_poisson_l1) creates its
- * FFTW plans on the calling thread for every call (FFTW_ESTIMATE, no wisdom is kept). FFTW's
- * planner is not thread-safe; planning is serialized by an OpenMP named critical section, which
- * covers callers that are OpenMP threads. Callers on other threading systems must not run DCT
- * solves concurrently. The CG solver does not use FFTW. */
+ * Threading: the per-pixel loops run on restir_threads_get() threads (restir/threads.h); every
+ * function may be called from several threads at once on distinct outputs. The DCT path
+ * (RESTIR_POISSON_DCT, and the start of restir_poisson_l1) keeps the FFTW plans of the last 8 image
+ * sizes (FFTW_ESTIMATE, no wisdom), made and destroyed under a mutex of librestir's own, so the
+ * first solve of a size plans and later ones reuse. FFTW's planner is global to the process: an
+ * application that itself plans FFTW transforms while a librestir DCT solve may run must make
+ * FFTW's planner thread-safe (fftw_make_planner_thread_safe, FFTW >= 3.3.5). The CG solver does
+ * not use FFTW. Nothing here writes to stdout or stderr or aborts. */
 #ifndef RESTIR_POISSON_H
 #define RESTIR_POISSON_H
 
@@ -36,8 +40,16 @@ extern "C" {
 #define RESTIR_POISSON_ALPHA 0.2f   /* G-PT's primal weight */
 #define RESTIR_POISSON_TOL 1e-6     /* CG relative residual */
 #define RESTIR_POISSON_L1_ITERATIONS 20
+#define RESTIR_POISSON_L1_MAX_ITERATIONS 1000 /* more would take reg_k below the double range */
 #define RESTIR_POISSON_L1_CG_STEPS 50 /* per reweighting, Jacobi preconditioner */
 #define RESTIR_POISSON_L1_MG_STEPS 4  /* per reweighting, multigrid preconditioner */
+
+/* 1 when this librestir has the DCT solve (it was built with FFTW), else 0. Thread-safe. */
+int restir_poisson_has_dct(void);
+
+/* Destroys the cached FFTW plans no solve is using (all of them when none runs), e.g. before the
+ * application unloads librestir or calls fftw_cleanup. Thread-safe; a no-op without FFTW. */
+void restir_poisson_release_plans(void);
 
 struct restir_poisson_stats {
     int iterations;  /* CG iterations (the maximum over channels); 0 for the DCT solve; for L1 the
@@ -71,7 +83,7 @@ int restir_poisson_l2(int w, int h, const float *primal, const float *dx, const 
 enum restir_poisson_precond {
     /* One multigrid V-cycle per CG step: 2x2 aggregation down to 4 x 4, Galerkin coarse
      * operators (sums of the fine weights), one red-black Gauss-Seidel pair before and after the
-     * coarse correction (recon/poisson_mg.h). Smooth error, which Jacobi removes one pixel per
+     * coarse correction. Smooth error, which Jacobi removes one pixel per
      * step, is corrected on the coarse grids: 3-4x fewer steps to a given residual. */
     RESTIR_POISSON_PRECOND_MULTIGRID = 0,
     /* 1 / diag(A), the public G-PT solver's choice (there without preconditioning at all). */
@@ -92,10 +104,9 @@ enum restir_poisson_precond {
  * primal) as IRLS iteration 1, so its 20 iterations are 19 reweightings, and it uses plain CG
  * and averages the weights over its 3N rows including the ignored last-column / last-row ones.
  * Defaults: RESTIR_POISSON_L1_ITERATIONS and RESTIR_POISSON_L1_MG_STEPS (multigrid) or
- * RESTIR_POISSON_L1_CG_STEPS (Jacobi); iterations >= 0 (0 gives the L2 solution), cg_steps >= 1.
- * Both preconditioners converge to the same IRLS iterates; at the defaults they reach the same
- * L1 energy to 0.03-0.15% on ajar (docs/BENCHMARKS.md, the section on L1 reconstruction with a
- * multigrid-preconditioned CG). */
+ * RESTIR_POISSON_L1_CG_STEPS (Jacobi); 0 <= iterations <= RESTIR_POISSON_L1_MAX_ITERATIONS (0 gives
+ * the L2 solution), cg_steps >= 1. Both preconditioners converge to the same IRLS iterates; at the
+ * defaults, on a rendered 640x360 frame, they reached the same L1 energy to 0.03-0.15%. */
 int restir_poisson_l1(int w, int h, const float *primal, const float *dx, const float *dy, float alpha,
                       int iterations, enum restir_poisson_precond precond, int cg_steps, float *out,
                       struct restir_poisson_stats *st);

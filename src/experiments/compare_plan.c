@@ -323,9 +323,9 @@ int compare_merge(const char *dir)
                 break;
             }
             struct compare_result one = {.method = st.specs[k].method};
-            restir_error_compute(image, ref, npix, NULL, &one.err);
+            restir_metrics_compute(image, ref, npix, NULL, &one.err);
             compare_disoccluded_error(image, ref, mask, npix, &one.mape_dis, &one.dis_share);
-            one.grad_relmse = grad ? restir_gradient_relmse(grad, grad + 3 * npix, ref, st.p.width, st.p.height) : NAN;
+            one.grad_relmse = grad ? restir_metrics_gradient_relmse(grad, grad + 3 * npix, ref, st.p.width, st.p.height) : NAN;
             if (!grad && method_has(st.specs[k].method, METHOD_GRADIENT))
                 fprintf(stderr,
                         "restir: compare --merge: %s, run %d: its job was written without gradients (by a restir "

@@ -115,7 +115,7 @@ static int heat_maps(struct html_page *pg, const struct compare_report_run *run,
     char srcs[MAX_REPORT_METHODS][64], path[4300];
     const char *src_ptr[MAX_REPORT_METHODS];
     for (int k = 0; k < n; k++) {
-        restir_error_map_mape(m[k].image, run->reference, npix, maps + (size_t)k * npix);
+        restir_metrics_mape_map(m[k].image, run->reference, npix, maps + (size_t)k * npix);
         snprintf(srcs[k], sizeof srcs[k], "report/heat_%d.png", k);
         snprintf(path, sizeof path, "%s/%s", run->out_dir, srcs[k]);
         if (png_write_heatmap(path, maps + (size_t)k * npix, run->width, run->height, HEAT_MAX, msg) != 0)

@@ -16,7 +16,7 @@ struct compare_report_method {
     const float *image; /* its last frame, linear RGB */
     double ms_per_frame;
     int spp, instances;
-    struct restir_error err;
+    struct restir_metrics_error err;
 };
 
 struct compare_report_run {

@@ -50,8 +50,8 @@ void compare_disoccluded_error(const float *image, const float *ref, const unsig
     for (size_t i = 0; i < npix; i++)
         marked += mask[i] != 0;
     *share = npix ? (double)marked / (double)npix : NAN;
-    struct restir_error e;
-    if (marked > 0 && restir_error_compute(image, ref, npix, mask, &e) == 0)
+    struct restir_metrics_error e;
+    if (marked > 0 && restir_metrics_compute(image, ref, npix, mask, &e) == 0)
         *mape = e.mape;
 }
 
@@ -148,10 +148,10 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     res->grad_relmse = NAN;
     const struct grad_frame *g = grad[0];
     if (ref) { /* a planned job measures nothing: the merge does, from the frame, mask and gradients it writes */
-        restir_error_compute(r[0].image, ref, npix, NULL, &res->err);
+        restir_metrics_compute(r[0].image, ref, npix, NULL, &res->err);
         compare_disoccluded_error(r[0].image, ref, mask, npix, &res->mape_dis, &res->dis_share);
         if (g)
-            res->grad_relmse = restir_gradient_relmse(g->dx, g->dy, ref, p->width, p->height);
+            res->grad_relmse = restir_metrics_gradient_relmse(g->dx, g->dy, ref, p->width, p->height);
         free(mask);
     } else {
         res->mask = mask;
@@ -183,7 +183,7 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
 
 void compare_runs_add(struct compare_runs *a, const struct compare_result *r)
 {
-    const struct restir_error *e = &r->err;
+    const struct restir_metrics_error *e = &r->err;
     const double x[7] = {e->relmse, e->mape, e->smape, e->luma_rmse, r->mape_dis, r->dis_share, r->grad_relmse};
     a->n++;
     for (int k = 0; k < 7; k++)
@@ -197,12 +197,12 @@ void compare_runs_finish(const struct compare_runs *a, struct compare_result *re
     for (int k = 0; k < 7; k++)
         sem[k] = running_mean_sem(&a->m[k]);
     if (runs > 1) { /* one run keeps its error bit for bit */
-        res->err = (struct restir_error){a->m[0].mean, a->m[1].mean, a->m[2].mean, a->m[3].mean};
+        res->err = (struct restir_metrics_error){a->m[0].mean, a->m[1].mean, a->m[2].mean, a->m[3].mean};
         res->mape_dis = a->m[4].mean;
         res->dis_share = a->m[5].mean;
         res->grad_relmse = a->m[6].mean;
     }
-    res->sem = (struct restir_error){sem[0], sem[1], sem[2], sem[3]};
+    res->sem = (struct restir_metrics_error){sem[0], sem[1], sem[2], sem[3]};
     res->mape_dis_sem = sem[4];
     res->grad_relmse_sem = sem[6];
     res->runs = runs;

@@ -32,14 +32,14 @@ struct compare_result {
     int spp;
     int instances;           /* independently seeded renderers averaged per run (equal time) */
     int runs;                /* independently seeded runs measured (--runs) */
-    struct restir_error err; /* of the last frame, the mean over the runs */
-    struct restir_error sem; /* the standard error of that mean over the runs (NaN with one run) */
+    struct restir_metrics_error err; /* of the last frame, the mean over the runs */
+    struct restir_metrics_error sem; /* the standard error of that mean over the runs (NaN with one run) */
     /* 004 Sec. 6.2: MAPE over the last frame's disoccluded pixels (renderer_disoccluded: history
      * rejected in any of the last DISOCCLUSION_FRAMES frames), its standard error over the runs, and
      * the disoccluded share of the image's pixels (mean over the runs); NaN for methods without a
      * G-buffer history (pt, gpt), MAPE also when no pixel is disoccluded */
     double mape_dis, mape_dis_sem, dis_share;
-    /* gradient methods (002 Fig. 7): restir_gradient_relmse of the last frame's (instance-averaged)
+    /* gradient methods (002 Fig. 7): restir_metrics_gradient_relmse of the last frame's (instance-averaged)
      * gradients, mean over the runs, and its standard error; NaN for the other methods */
     double grad_relmse, grad_relmse_sem;
     unsigned char *mask; /* a planned job's disocclusion mask for the merge (else NULL; caller frees) */

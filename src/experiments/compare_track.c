@@ -82,9 +82,9 @@ void compare_track_image(struct compare_track *t, int run, int f, const float *i
     const size_t npix = (size_t)t->width * (size_t)t->height;
     const int k = reference_index(t, f);
     if (k >= 0) {
-        struct restir_error e;
-        restir_error_compute(image, t->ref[k], npix, NULL, &e);
-        struct restir_error *s = &t->sums[f].err;
+        struct restir_metrics_error e;
+        restir_metrics_compute(image, t->ref[k], npix, NULL, &e);
+        struct restir_metrics_error *s = &t->sums[f].err;
         s->relmse += e.relmse;
         s->mape += e.mape;
         s->smape += e.smape;
@@ -93,7 +93,7 @@ void compare_track_image(struct compare_track *t, int run, int f, const float *i
     if (t->seq && f >= t->cov_first) {
         const size_t window = (size_t)(t->frames - t->cov_first);
         float *out = &t->seq[((size_t)run * window + (size_t)(f - t->cov_first)) * npix];
-        for (size_t i = 0; i < npix; i++) /* Rec. 709 luminance, as restir_luminance_image */
+        for (size_t i = 0; i < npix; i++) /* Rec. 709 luminance, as restir_metrics_luminance */
             out[i] = 0.2126f * image[3 * i] + 0.7152f * image[3 * i + 1] + 0.0722f * image[3 * i + 2];
     }
 }
@@ -116,7 +116,7 @@ double compare_track_end(struct compare_track *t, const char *label)
     const int window = t->frames - t->cov_first;
     if (!t->seq || window < COMPARE_COV_LAG + 1)
         return NAN;
-    return restir_temporal_autocovariance(t->seq, t->runs, window, t->width, t->height, COMPARE_COV_LAG, COV_EPS,
+    return restir_metrics_temporal_autocovariance(t->seq, t->runs, window, t->width, t->height, COMPARE_COV_LAG, COV_EPS,
                                           NULL);
 }
 

@@ -23,7 +23,7 @@
 struct compare_frame_sums {
     double ms_frame, ms_temporal;
     double accept, bp_received, bp_accepted, splat_received, splat_accepted; /* shares of valid pixels */
-    struct restir_error err; /* at frames with a reference */
+    struct restir_metrics_error err; /* at frames with a reference */
 };
 
 struct compare_track {

@@ -151,7 +151,7 @@ int render_run(const struct cli_options *desc)
     progress_begin(&pg, o.method, o.frames);
     double ms_sum = 0.0, rays_sum = 0.0;
     long long nonfinite_sum = 0;
-    struct restir_error err = {0, 0, 0, 0}, err_sum = {0, 0, 0, 0};
+    struct restir_metrics_error err = {0, 0, 0, 0}, err_sum = {0, 0, 0, 0};
     size_t npix = (size_t)o.params.width * (size_t)o.params.height;
     unsigned char *mask = xcalloc(npix, 1);
     rc = 0;
@@ -164,7 +164,7 @@ int render_run(const struct cli_options *desc)
         ms_sum += st.ms_total;
         rays_sum += (double)st.rays;
         if (ref) {
-            restir_error_compute(r.image, ref, npix, NULL, &err);
+            restir_metrics_compute(r.image, ref, npix, NULL, &err);
             err_sum.relmse += err.relmse;
             err_sum.mape += err.mape;
             err_sum.smape += err.smape;
@@ -183,8 +183,8 @@ int render_run(const struct cli_options *desc)
         if (method_has(method, METHOD_HISTORY)) {
             long long marked = renderer_disoccluded(&r, DISOCCLUSION_FRAMES, mask);
             disoccluded = st.valid_pixels > 0 ? (double)marked / (double)st.valid_pixels : 0.0;
-            struct restir_error e;
-            if (ref && marked > 0 && restir_error_compute(r.image, ref, npix, mask, &e) == 0)
+            struct restir_metrics_error e;
+            if (ref && marked > 0 && restir_metrics_compute(r.image, ref, npix, mask, &e) == 0)
                 mape_disoccluded = e.mape;
         }
         char passes[512] = "";

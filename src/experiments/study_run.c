@@ -131,7 +131,7 @@ int study_hard_pixel_mask(const struct scene *s, const struct render_params *p, 
         normals[3 * i + 1] = g.normal[i].y;
         normals[3 * i + 2] = g.normal[i].z;
     }
-    int hard = restir_hard_pixels(normals, g.depth, g.valid, p->width, p->height, HARD_RADIUS, p->spatial_normal,
+    int hard = restir_metrics_hard_pixels(normals, g.depth, g.valid, p->width, p->height, HARD_RADIUS, p->spatial_normal,
                                   p->spatial_depth, HARD_FRACTION, mask, NULL);
     free(normals);
     gbuffer_fini(&g);
@@ -183,7 +183,7 @@ int study_run_unit(const struct scene *s, const struct method *method, const str
         const int t = f - o->warmup;
         if (t < 0)
             continue;
-        restir_luminance_image(r.image, u->npix, &u->luminance[(size_t)t * u->npix]);
+        restir_metrics_luminance(r.image, u->npix, &u->luminance[(size_t)t * u->npix]);
         u->ms[3 * t] = st.ms[PASS_SELECT];
         u->ms[3 * t + 1] = st.ms[PASS_SPATIAL];
         u->ms[3 * t + 2] = st.ms_total;
@@ -260,8 +260,8 @@ void study_row_add(struct study_row *row, const struct study_unit *u, const floa
     for (int t = 0; t < frames; t++) {
         const double *lum = &u->luminance[(size_t)t * npix];
         double all = 0.0, hard_smape = 0.0;
-        restir_smape_luminance(lum, ref, npix, NULL, &all);
-        if (restir_smape_luminance(lum, ref, npix, hard, &hard_smape) != 0)
+        restir_metrics_smape_luminance(lum, ref, npix, NULL, &all);
+        if (restir_metrics_smape_luminance(lum, ref, npix, hard, &hard_smape) != 0)
             hard_smape = 0.0;
         res->smape_all += all * k;
         res->smape_hard += hard_smape * k;
@@ -316,12 +316,12 @@ void study_row_end(struct study_row *row, const unsigned char *hard, struct stud
     double *theta_t = xcalloc((size_t)runs, sizeof(double)), *theta_s = xcalloc((size_t)runs, sizeof(double)),
            *theta_h = xcalloc((size_t)runs, sizeof(double));
     const size_t seq_block = (size_t)frames * npix;
-    res->temporal_cov = restir_temporal_autocovariance(row->seq, runs, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
-    res->temporal_cov_hard = restir_temporal_autocovariance(row->seq, runs, frames, w, h, STUDY_COV_LAG, COV_EPS, hard);
+    res->temporal_cov = restir_metrics_temporal_autocovariance(row->seq, runs, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
+    res->temporal_cov_hard = restir_metrics_temporal_autocovariance(row->seq, runs, frames, w, h, STUDY_COV_LAG, COV_EPS, hard);
     for (int i = 0; i < runs && jack; i++) {
         swap_blocks(row->seq, seq_block, i, runs - 1);
-        theta_t[i] = restir_temporal_autocovariance(row->seq, runs - 1, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
-        theta_h[i] = restir_temporal_autocovariance(row->seq, runs - 1, frames, w, h, STUDY_COV_LAG, COV_EPS, hard);
+        theta_t[i] = restir_metrics_temporal_autocovariance(row->seq, runs - 1, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
+        theta_h[i] = restir_metrics_temporal_autocovariance(row->seq, runs - 1, frames, w, h, STUDY_COV_LAG, COV_EPS, hard);
         swap_blocks(row->seq, seq_block, i, runs - 1);
     }
     /* Spatial covariance of each measured frame across runs, averaged over frames. */
@@ -329,10 +329,10 @@ void study_row_end(struct study_row *row, const unsigned char *hard, struct stud
     for (int t = 0; t < frames; t++) {
         for (int n = 0; n < runs; n++)
             memcpy(&at_t[(size_t)n * npix], &row->seq[((size_t)n * frames + t) * npix], sizeof(float) * npix);
-        res->spatial_cov += restir_spatial_covariance(at_t, runs, w, h, COV_RADIUS, COV_EPS, NULL) / frames;
+        res->spatial_cov += restir_metrics_spatial_covariance(at_t, runs, w, h, COV_RADIUS, COV_EPS, NULL) / frames;
         for (int i = 0; i < runs && jack; i++) {
             swap_blocks(at_t, npix, i, runs - 1);
-            theta_s[i] += restir_spatial_covariance(at_t, runs - 1, w, h, COV_RADIUS, COV_EPS, NULL) / frames;
+            theta_s[i] += restir_metrics_spatial_covariance(at_t, runs - 1, w, h, COV_RADIUS, COV_EPS, NULL) / frames;
             swap_blocks(at_t, npix, i, runs - 1);
         }
     }

@@ -39,7 +39,7 @@ struct study_result {
 struct study_unit {
     int frames;
     size_t npix;
-    double *luminance; /* frames * npix: L of each measured frame (restir_luminance_image) */
+    double *luminance; /* frames * npix: L of each measured frame (restir_metrics_luminance) */
     double *ms;        /* frames * 3: the select pass, the spatial pass, the whole frame */
 };
 

@@ -6,7 +6,7 @@
 
 #include "render/restir_pt.h"
 #include "render/tiles.h"
-#include "restir/paired_pixel.h"
+#include "restir/grad.h"
 
 void grad_os_clear(float *os, size_t n) { memset(os, 0, sizeof(float) * 3 * GRAD_DIRS * n); }
 

@@ -3,7 +3,7 @@
  * one-sided differences toward the four neighbors, directly seen emission, and the combination
  * of one-sided differences into gradients (002 Eq. 3 and Eq. 12).
  *
- * Sign convention (restir/paired_pixel.h): dx[a] = F(a + x) - F(a), dy[a] = F(a + y) - F(a); the last
+ * Sign convention (restir/grad.h): dx[a] = F(a + x) - F(a), dy[a] = F(a + y) - F(a); the last
  * column of dx and the last row of dy are 0 (those pairs leave the image; the reconstruction
  * ignores them). One-sided differences are stored per pixel and direction, os[dir][a] =
  * <Delta'_{a, a+dir}> = omega_{a,n}(x) (f_a(x) - f_n(T x) |T'|) / p(x) (Eq. 3's integrands, Eq. 11),

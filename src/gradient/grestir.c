@@ -4,7 +4,7 @@
  * (Omega_b x {1}) (Eq. 14). Its two pixel domains are pt_domains (path_shift.h), so the outer
  * shift of (x, k) from pair A to pair B is the pixel shift of x from A's pixel k to B's pixel k with
  * k kept (Eq. 21), and its Jacobian is that shift's (Eq. 22). Evaluating the target in B then needs
- * the inner shift of the result into B's other pixel (restir/paired_pixel.h gives h and the targets). */
+ * the inner shift of the result into B's other pixel (restir/grad.h gives h and the targets). */
 #include "gradient/grestir.h"
 
 #include <stdlib.h>
@@ -166,14 +166,14 @@ long long grestir_initial_pass(const struct pt_frame *fr, const struct gbuffer *
                 pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, a * 2 + (size_t)dir, RNG_PASS_GRAD_INITIAL);
                 for (int s = 0; s < ns; s++) {
                     enum restir_grad_sign sg = sign_of(p, s);
-                    struct restir_wrs wrs;
-                    restir_wrs_init(&wrs);
+                    struct restir_reservoir wrs;
+                    restir_reservoir_init(&wrs);
                     int chosen = -1;
                     float target[2];
                     for (int k = 0; k < 2; k++) {
                         target[k] = pt_reservoir_has_sample(src[k]) ? restir_grad_target(sg, hk[k]) : 0.0f;
                         /* Eq. 20 with m = 1 (disjoint parts) and the pixel path's UCW */
-                        if (restir_wrs_offer(&wrs, target[k] * src[k]->W, pcg32_float(&rng)))
+                        if (restir_reservoir_offer(&wrs, restir_gris_resampling_weight(1.0f, target[k], src[k]->W, 1.0f), pcg32_float(&rng)))
                             chosen = k;
                     }
                     struct pair_reservoir *out = &st->work[dir][s][a];
@@ -265,7 +265,7 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
     }
     const int chosen = restir_gris_resample(p->mis, n, c, P, W, J, u, &W_Y); /* Eq. 20, 004 Eq. 5-7 */
     struct pair_reservoir result;
-    pair_clear(&result, restir_confidence_merge(c_sum, p->confidence_cap));
+    pair_clear(&result, restir_gris_confidence_merge(c_sum, p->confidence_cap));
     if (chosen >= 0) {
         result.y = Y[chosen];
         result.k = in[chosen]->k;

@@ -10,10 +10,10 @@
 
 #include "render/gbuffer.h"
 #include "render/restir_pt.h"
-#include "restir/paired_pixel.h"
+#include "restir/grad.h"
 
 /* A paired-pixel reservoir: the base path y in pixel k of its pair (a, b) (k = 0: a, 1: b), its
- * unbiased contribution weight W, confidence c, and h(y, k) (restir/paired_pixel.h) with the target it
+ * unbiased contribution weight W, confidence c, and h(y, k) (restir/grad.h) with the target it
  * gives, both cached by the last shift into the pair. */
 struct pair_reservoir {
     struct path_sample y;

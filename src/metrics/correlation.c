@@ -1,7 +1,9 @@
 /* correlation.c: correlation metrics of independent runs (000 Appendix A, Eq. 16-17) and the hard
  * pixel classification of 000 Sec. 7, as declared in restir/metrics.h. Serial code (librestir
  * does not link OpenMP). Must never depend on src/ headers, a ray tracer, files or the renderer. */
+#include <limits.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -11,6 +13,13 @@
 static int corr_selected(const unsigned char *mask, size_t i)
 {
     return mask == NULL || mask[i] != 0;
+}
+
+/* 1 when `images` images of w x h (w, h >= 1) cannot be addressed: as floats, and as doubles with
+ * one prefix sum more per row (the scratch arrays; images >= 1). */
+static int corr_too_big(int width, int height, size_t images)
+{
+    return (size_t)width + 1 > SIZE_MAX / sizeof(double) / (size_t)height / images;
 }
 
 /* Per-pixel sample mean over the runs and 1 / (mean + eps); image n starts at base + n * stride. */
@@ -54,10 +63,11 @@ static void disk_row_span(const int *half, int x, int y, int yy, int width, int 
     *x1 = x + h > width - 1 ? width - 1 : x + h;
 }
 
-double restir_spatial_covariance(const float *runs, int n_runs, int width, int height, int radius, float eps,
+double restir_metrics_spatial_covariance(const float *runs, int n_runs, int width, int height, int radius, float eps,
                                  const unsigned char *mask)
 {
-    if (runs == NULL || n_runs < 2 || width <= 0 || height <= 0 || radius < 0)
+    if (runs == NULL || n_runs < 2 || width <= 0 || height <= 0 || radius < 0 ||
+        corr_too_big(width, height, (size_t)n_runs))
         return NAN;
     /* Rows farther than the image is tall never hold a neighbor. */
     int r = radius < height - 1 ? radius : height - 1;
@@ -146,10 +156,11 @@ done:
     return result;
 }
 
-double restir_temporal_autocovariance(const float *seq, int n_runs, int frames, int width, int height, int lag,
+double restir_metrics_temporal_autocovariance(const float *seq, int n_runs, int frames, int width, int height, int lag,
                                       float eps, const unsigned char *mask)
 {
-    if (seq == NULL || n_runs < 2 || frames <= 0 || width <= 0 || height <= 0 || lag < 0 || lag >= frames)
+    if (seq == NULL || n_runs < 2 || frames <= 0 || width <= 0 || height <= 0 || lag < 0 || lag >= frames ||
+        (size_t)n_runs > SIZE_MAX / (size_t)frames || corr_too_big(width, height, (size_t)n_runs * (size_t)frames))
         return NAN;
     size_t n_pixels = (size_t)width * (size_t)height;
     size_t selected = 0;
@@ -210,11 +221,15 @@ static int corr_rank_cmp(const void *pa, const void *pb)
     return (a->index > b->index) - (a->index < b->index);
 }
 
-int restir_hard_pixels(const float *normals, const float *depth, const unsigned char *valid, int width, int height,
+int restir_metrics_hard_pixels(const float *normals, const float *depth, const unsigned char *valid, int width, int height,
                        float radius, float normal_min, float depth_max, float fraction, unsigned char *mask_out,
                        float *ratio_out)
 {
     if (normals == NULL || depth == NULL || mask_out == NULL || width <= 0 || height <= 0 || !(radius >= 0.0f))
+        return -1;
+    /* The count returned is an int; rank holds 16 bytes per pixel (more than the 3 normal floats). */
+    if ((size_t)width > (size_t)INT_MAX / (size_t)height ||
+        (size_t)width * (size_t)height > SIZE_MAX / sizeof(struct corr_rank))
         return -1;
     size_t n_pixels = (size_t)width * (size_t)height;
     /* Disk rows: |dy| <= floor(radius), clipped to the image height; half-widths clipped to its width. */
@@ -260,7 +275,7 @@ int restir_hard_pixels(const float *normals, const float *depth, const unsigned 
                     if (j == i || (valid != NULL && !valid[j]))
                         continue;
                     total++;
-                    compatible += restir_bitterli_compatible(n_i, normals + 3 * j, d_i, depth[j], normal_min,
+                    compatible += restir_neighbors_bitterli(n_i, normals + 3 * j, d_i, depth[j], normal_min,
                                                              depth_max) != 0;
                 }
             }

@@ -2,6 +2,7 @@
  * in restir/metrics.h. Must never depend on src/ headers, a ray tracer, files or the renderer. */
 #include <math.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "restir/metrics.h"
 
@@ -15,22 +16,33 @@ static int metrics_selected(const unsigned char *mask, size_t i)
     return mask == NULL || mask[i] != 0;
 }
 
-void restir_luminance_image(const float *image, size_t n_pixels, double *out)
+/* 1 when n RGB pixels cannot be an array (3 n floats overflow the address range). */
+static int metrics_too_many(size_t n_pixels)
 {
-    for (size_t i = 0; i < n_pixels; i++)
-        out[i] = metrics_luminance(image + 3 * i);
+    return n_pixels > SIZE_MAX / (3 * sizeof(double));
 }
 
-/* SMAPE's per-pixel term, shared by restir_error_compute and restir_smape_luminance so that both
+int restir_metrics_luminance(const float *image, size_t n_pixels, double *out)
+{
+    if (!image || !out || metrics_too_many(n_pixels))
+        return -1;
+    for (size_t i = 0; i < n_pixels; i++)
+        out[i] = metrics_luminance(image + 3 * i);
+    return 0;
+}
+
+/* SMAPE's per-pixel term, shared by restir_metrics_compute and restir_metrics_smape_luminance so that both
  * give the same bits. */
 static double smape_term(double li, double lr)
 {
     return fabs(li - lr) / (fabs(li) + fabs(lr) + 1e-4);
 }
 
-int restir_smape_luminance(const double *luminance, const float *reference, size_t n_pixels,
+int restir_metrics_smape_luminance(const double *luminance, const float *reference, size_t n_pixels,
                            const unsigned char *mask, double *smape)
 {
+    if (!luminance || !reference || !smape || metrics_too_many(n_pixels))
+        return -1;
     size_t count = 0;
     double sum = 0.0;
     for (size_t i = 0; i < n_pixels; i++) {
@@ -45,9 +57,11 @@ int restir_smape_luminance(const double *luminance, const float *reference, size
     return 0;
 }
 
-int restir_error_compute(const float *image, const float *reference, size_t n_pixels,
-                         const unsigned char *mask, struct restir_error *out)
+int restir_metrics_compute(const float *image, const float *reference, size_t n_pixels,
+                         const unsigned char *mask, struct restir_metrics_error *out)
 {
+    if (!image || !reference || !out || metrics_too_many(n_pixels))
+        return -1;
     /* First pass: count selected pixels and the reference mean that MAPE's denominator uses. */
     size_t count = 0;
     double ref_sum = 0.0;
@@ -90,9 +104,10 @@ int restir_error_compute(const float *image, const float *reference, size_t n_pi
     return 0;
 }
 
-double restir_gradient_relmse(const float *dx, const float *dy, const float *reference, int width, int height)
+double restir_metrics_gradient_relmse(const float *dx, const float *dy, const float *reference, int width, int height)
 {
-    if (!dx || !dy || !reference || width < 1 || height < 1 || (width < 2 && height < 2))
+    if (!dx || !dy || !reference || width < 1 || height < 1 || (width < 2 && height < 2) ||
+        (size_t)width > SIZE_MAX / (3 * sizeof(double)) / (size_t)height)
         return NAN;
     double sum = 0.0;
     size_t terms = 0;
@@ -115,7 +130,7 @@ double restir_gradient_relmse(const float *dx, const float *dy, const float *ref
     return sum / (double)terms;
 }
 
-const char *restir_metrics_help(void)
+const char *restir_metrics_definitions(void)
 {
     return "Error metrics (image I against reference R; interleaved RGB; only pixels selected by\n"
            "the mask, if any; sums in double precision):\n"
@@ -131,8 +146,10 @@ const char *restir_metrics_help(void)
            "  L(x)      = 0.2126 x_r + 0.7152 x_g + 0.0722 x_b (Rec. 709 luminance)\n";
 }
 
-void restir_error_map_mape(const float *image, const float *reference, size_t n_pixels, float *out)
+int restir_metrics_mape_map(const float *image, const float *reference, size_t n_pixels, float *out)
 {
+    if (!image || !reference || !out || metrics_too_many(n_pixels))
+        return -1;
     double ref_sum = 0.0;
     for (size_t i = 0; i < 3 * n_pixels; i++)
         ref_sum += (double)reference[i];
@@ -141,9 +158,10 @@ void restir_error_map_mape(const float *image, const float *reference, size_t n_
         double e = 0.0;
         for (int c = 0; c < 3; c++) {
             double d = (double)image[3 * i + (size_t)c] - (double)reference[3 * i + (size_t)c];
-            if (d != 0.0) /* as restir_error_compute: an exact match is 0 where R + offset is 0 */
+            if (d != 0.0) /* as restir_metrics_compute: an exact match is 0 where R + offset is 0 */
                 e += fabs(d) / ((double)reference[3 * i + (size_t)c] + offset);
         }
         out[i] = (float)(e / 3.0);
     }
+    return 0;
 }

@@ -14,7 +14,7 @@
 static void rp_apply_dot(const struct rp_sys *s, const double *x, double *y, double dot[3])
 {
     const int w = s->w, h = s->h;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(restir_rp_threads((size_t)w * (size_t)h))
     for (int j = 0; j < h; j++) {
         double d0 = 0.0, d1 = 0.0, d2 = 0.0;
         for (int i = 0; i < w; i++) {
@@ -35,7 +35,7 @@ static void rp_apply_dot(const struct rp_sys *s, const double *x, double *y, dou
 static void rp_dot(const struct rp_sys *s, const double *r, const double *z, double out[3])
 {
     const int w = s->w, h = s->h;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(restir_rp_threads((size_t)w * (size_t)h))
     for (int j = 0; j < h; j++) {
         double d0 = 0.0, d1 = 0.0, d2 = 0.0;
         for (long k = (long)j * w; k < (long)(j + 1) * w; k++) {
@@ -84,7 +84,7 @@ int restir_rp_cg(const struct rp_sys *s, const double *b, double *x, double tol,
     const int w = s->w, h = s->h;
     /* Jacobi preconditioner: 1 / diag(A). diag(A) >= a2 wp > 0 for positive weights. */
     if (!mg) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(restir_rp_threads((size_t)w * (size_t)h))
         for (int j = 0; j < h; j++) {
             for (int i = 0; i < w; i++) {
                 const size_t k = (size_t)j * (size_t)w + (size_t)i;
@@ -98,7 +98,7 @@ int restir_rp_cg(const struct rp_sys *s, const double *b, double *x, double tol,
     double rr[3], bb[3], bn[3], rz[3], a[3], beta[3], dot[3];
     int active[3];
     rp_apply_dot(s, x, q, dot);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(restir_rp_threads((size_t)w * (size_t)h))
     for (int j = 0; j < h; j++) {
         double acc[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
         const long k0 = (long)j * w, k1 = (long)(j + 1) * w;
@@ -155,7 +155,7 @@ int restir_rp_cg(const struct rp_sys *s, const double *b, double *x, double tol,
                 active[c] = 0; /* breakdown: stop this channel where it is */
             a[c] = active[c] ? rz[c] / dot[c] : 0.0;
         }
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(restir_rp_threads((size_t)w * (size_t)h))
         for (int j = 0; j < h; j++) {
             double s0 = 0.0, s1 = 0.0, s2 = 0.0, t0 = 0.0, t1 = 0.0, t2 = 0.0;
             const long k0 = (long)j * w, k1 = (long)(j + 1) * w;
@@ -203,11 +203,11 @@ int restir_rp_cg(const struct rp_sys *s, const double *b, double *x, double tol,
                 rz[c] = rzn[c];
         }
         if (mg) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(restir_rp_threads((size_t)w * (size_t)h))
             for (long k = 0; k < 3 * ln; k++)
                 p[k] = z[k] + beta[k % 3] * p[k];
         } else {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(restir_rp_threads((size_t)w * (size_t)h))
             for (long k = 0; k < ln; k++) {
                 double *pk = p + 3 * k;
                 const double *rk = r + 3 * k;

@@ -1,7 +1,6 @@
 /* poisson_l1.c: L1 screened Poisson reconstruction by IRLS (restir/poisson.h), after the public
  * G-PT solver's "L1D" preset (see the header for where it differs). */
 #include <math.h>
-#include <omp.h>
 #include <stdlib.h>
 
 #include "recon/poisson_cg.h"
@@ -20,7 +19,7 @@ static void rp_weights(const struct rp_sys *s, double alpha, const float *primal
                        const double *x, double reg, double *wp, double *wx, double *wy)
 {
     const int w = s->w, h = s->h;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(restir_rp_threads((size_t)w * (size_t)h))
     for (int j = 0; j < h; j++) {
         double sum = 0.0;
         for (int i = 0; i < w; i++) {
@@ -53,7 +52,7 @@ static void rp_weights(const struct rp_sys *s, double alpha, const float *primal
     const double rows = (double)s->n + (double)(w - 1) * h + (double)w * (h - 1);
     const double scale = rows / sum;
     const long ln = (long)s->n;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(restir_rp_threads((size_t)w * (size_t)h))
     for (long k = 0; k < ln; k++) {
         wp[k] *= scale;
         wx[k] *= scale;
@@ -65,8 +64,9 @@ int restir_poisson_l1(int w, int h, const float *primal, const float *dx, const 
                       int iterations, enum restir_poisson_precond precond, int cg_steps, float *out,
                       struct restir_poisson_stats *st)
 {
-    const double t0 = omp_get_wtime();
-    if (restir_rp_check(w, h, primal, dx, dy, alpha, out) != 0 || iterations < 0 || cg_steps < 1 ||
+    const double t0 = restir_rp_now_ms();
+    if (restir_rp_check(w, h, primal, dx, dy, alpha, out) != 0 || iterations < 0 ||
+        iterations > RESTIR_POISSON_L1_MAX_ITERATIONS || cg_steps < 1 ||
         (precond != RESTIR_POISSON_PRECOND_MULTIGRID && precond != RESTIR_POISSON_PRECOND_JACOBI))
         return -1;
     struct rp_mg mg = {0};
@@ -101,7 +101,7 @@ int restir_poisson_l1(int w, int h, const float *primal, const float *dx, const 
     if (st) {
         st->iterations = total;
         st->residual = fmax(rel[0], fmax(rel[1], rel[2]));
-        st->ms = 1e3 * (omp_get_wtime() - t0);
+        st->ms = restir_rp_now_ms() - t0;
     }
     rc = 0;
 done:;

@@ -5,10 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Levels smaller than this run on the calling thread: a parallel region costs more than they do
- * (the partition does not change the result). */
-#define MG_PARALLEL_MIN 16384
-
 void restir_rp_mg_free(struct rp_mg *mg)
 {
     for (int k = 0; k < RP_MG_MAX_LEVELS; k++) {
@@ -22,7 +18,7 @@ void restir_rp_mg_free(struct rp_mg *mg)
 static void mg_coarsen(const struct rp_mg_level *f, struct rp_mg_level *c)
 {
     const int fw = f->w, fh = f->h, cw = c->w, ch = c->h;
-#pragma omp parallel for schedule(static) if ((size_t)fw * (size_t)fh > MG_PARALLEL_MIN)
+#pragma omp parallel for schedule(static) if ((size_t)fw * (size_t)fh > RP_PARALLEL_MIN) num_threads(restir_threads_get())
     for (int J = 0; J < ch; J++) {
         for (int I = 0; I < cw; I++) {
             const size_t q = (size_t)J * (size_t)cw + (size_t)I;
@@ -49,7 +45,7 @@ static void mg_divisors(struct rp_mg_level *l)
 {
     const int w = l->w, h = l->h;
     const size_t W = (size_t)w;
-#pragma omp parallel for schedule(static) if (W * (size_t)h > MG_PARALLEL_MIN)
+#pragma omp parallel for schedule(static) if (W * (size_t)h > RP_PARALLEL_MIN) num_threads(restir_threads_get())
     for (int j = 0; j < h; j++) {
         for (int i = 0; i < w; i++) {
             const size_t p = (size_t)j * W + (size_t)i;
@@ -106,7 +102,7 @@ static void mg_gs(const struct rp_mg_level *l, const double *b, double *x, int c
     const int w = l->w, h = l->h;
     const size_t W = (size_t)w;
     const double *ex = l->ex, *ey = l->ey;
-#pragma omp parallel for schedule(static) if (W * (size_t)h > MG_PARALLEL_MIN)
+#pragma omp parallel for schedule(static) if (W * (size_t)h > RP_PARALLEL_MIN) num_threads(restir_threads_get())
     for (int j = 0; j < h; j++) {
         for (int i = (j + colour) & 1; i < w; i += 2) {
             const size_t p = (size_t)j * W + (size_t)i;
@@ -133,7 +129,7 @@ static void mg_gs_from_zero(const struct rp_mg_level *l, const double *b, double
 {
     const int w = l->w, h = l->h;
     const size_t W = (size_t)w;
-#pragma omp parallel for schedule(static) if (W * (size_t)h > MG_PARALLEL_MIN)
+#pragma omp parallel for schedule(static) if (W * (size_t)h > RP_PARALLEL_MIN) num_threads(restir_threads_get())
     for (int j = 0; j < h; j++) {
         for (int i = 0; i < w; i++) {
             const size_t p = (size_t)j * W + (size_t)i;
@@ -151,7 +147,7 @@ static void mg_restrict_residual(const struct rp_mg_level *f, const double *b, c
 {
     const int fw = f->w, fh = f->h, cw = c->w;
     const size_t W = (size_t)fw;
-#pragma omp parallel for schedule(static) if (W * (size_t)fh > MG_PARALLEL_MIN)
+#pragma omp parallel for schedule(static) if (W * (size_t)fh > RP_PARALLEL_MIN) num_threads(restir_threads_get())
     for (int J = 0; J < c->h; J++) {
         for (int I = 0; I < cw; I++) {
             double acc[3] = {0.0, 0.0, 0.0};
@@ -174,7 +170,7 @@ static void mg_restrict_residual(const struct rp_mg_level *f, const double *b, c
 static void mg_prolong_add(const struct rp_mg_level *f, const struct rp_mg_level *c, double *x)
 {
     const int fw = f->w, cw = c->w;
-#pragma omp parallel for schedule(static) if ((size_t)fw * (size_t)f->h > MG_PARALLEL_MIN)
+#pragma omp parallel for schedule(static) if ((size_t)fw * (size_t)f->h > RP_PARALLEL_MIN) num_threads(restir_threads_get())
     for (int j = 0; j < f->h; j++) {
         for (int i = 0; i < fw; i++) {
             const double *cx = c->x + 3 * ((size_t)(j / 2) * (size_t)cw + (size_t)(i / 2));

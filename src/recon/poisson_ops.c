@@ -3,8 +3,10 @@
  * rows in order (deterministic). */
 #include "recon/poisson_ops.h"
 
+#include <limits.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <time.h>
 
 double *restir_rp_alloc(size_t n)
 {
@@ -26,8 +28,9 @@ int restir_rp_check(int w, int h, const float *primal, const float *dx, const fl
 {
     if (w < 1 || h < 1 || !primal || !dx || !dy || !out || !isfinite(alpha) || !(alpha > 0.0f))
         return -1;
-    /* Five 3n double vectors must be addressable. */
-    if ((size_t)w > SIZE_MAX / (size_t)h / (16 * sizeof(double)))
+    /* Five 3n double vectors must be addressable, and the loops' int sums of coordinates (i + j,
+     * 2 i + 2 on the multigrid levels) must not overflow. */
+    if ((size_t)w > SIZE_MAX / (size_t)h / (16 * sizeof(double)) || w > INT_MAX - h)
         return -1;
     return 0;
 }
@@ -35,7 +38,7 @@ int restir_rp_check(int w, int h, const float *primal, const float *dx, const fl
 void restir_rp_store(size_t n, const double *x, float *out)
 {
     const long m = (long)(3 * n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(restir_rp_threads(n))
     for (long i = 0; i < m; i++)
         out[i] = (float)x[i];
 }
@@ -49,7 +52,7 @@ static inline void rp_ax(const struct rp_sys *s, const double *x, int i, int j, 
 void restir_rp_rhs(const struct rp_sys *s, const float *primal, const float *dx, const float *dy, double *b)
 {
     const int w = s->w, h = s->h;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(restir_rp_threads((size_t)w * (size_t)h))
     for (int j = 0; j < h; j++) {
         for (int i = 0; i < w; i++) {
             const size_t p = (size_t)j * (size_t)w + (size_t)i;
@@ -74,7 +77,7 @@ void restir_rp_rhs(const struct rp_sys *s, const float *primal, const float *dx,
 static void rp_residual_sq(const struct rp_sys *s, const double *b, const double *x, double rr[3], double bb[3])
 {
     const int w = s->w, h = s->h;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(restir_rp_threads((size_t)w * (size_t)h))
     for (int j = 0; j < h; j++) {
         double r0 = 0.0, r1 = 0.0, r2 = 0.0, b0 = 0.0, b1 = 0.0, b2 = 0.0;
         for (int i = 0; i < w; i++) {
@@ -104,4 +107,12 @@ void restir_rp_residual(const struct rp_sys *s, const double *b, const double *x
     rp_residual_sq(s, b, x, rr, bb);
     for (int c = 0; c < 3; c++)
         rel[c] = bb[c] > 0.0 ? sqrt(rr[c] / bb[c]) : sqrt(rr[c]);
+}
+
+double restir_rp_now_ms(void)
+{
+    struct timespec ts;
+    if (timespec_get(&ts, TIME_UTC) != TIME_UTC)
+        return 0.0;
+    return 1e3 * (double)ts.tv_sec + 1e-6 * (double)ts.tv_nsec;
 }

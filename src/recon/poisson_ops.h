@@ -7,6 +7,8 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "restir/threads.h"
+
 /* The system A x = b of one reconstruction:
  *   A = a2 Wp + Dx^T Wx Dx + Dy^T Wy Dy,   b = a2 Wp P + Dx^T Wx Gx + Dy^T Wy Gy.
  * wp / wx / wy are per-row weights (n each; wx[p] weighs the pair (p, p+1), wy[p] the pair
@@ -102,6 +104,20 @@ void restir_rp_residual(const struct rp_sys *s, const double *b, const double *x
 int restir_rp_dct_solve(int w, int h, double a2, const double *b, double *x);
 /* Shared argument check of the public functions: 0 when usable. */
 int restir_rp_check(int w, int h, const float *primal, const float *dx, const float *dy, float alpha, const float *out);
+/* Images below this many pixels run their loops on the calling thread: a parallel region's fork
+ * and barriers cost more than the loop there (a 48 x 32 CG solve took 330 ms on 2 threads and 1.3
+ * ms on 1, docs/BENCHMARKS.md "librestir's thread count"). The multigrid's coarse levels use the
+ * same bound. Results do not depend on the thread count (reductions are summed per row, in order). */
+#define RP_PARALLEL_MIN 16384
+
+/* Threads for a loop over an image of n pixels: 1 below RP_PARALLEL_MIN, else restir_threads_get(). */
+static inline int restir_rp_threads(size_t n)
+{
+    return n < RP_PARALLEL_MIN ? 1 : restir_threads_get();
+}
+
+/* Wall-clock milliseconds since an arbitrary origin (C11 timespec_get), for the stats' ms. */
+double restir_rp_now_ms(void);
 /* Rounds x to float. */
 void restir_rp_store(size_t n, const double *x, float *out);
 

@@ -9,7 +9,7 @@
 #include "render/light_pool.h"
 #include "render/restir_di.h"
 #include "render/tiles.h"
-#include "restir/reservoir.h"
+#include "restir/gris.h"
 #include "scene/env_light.h"
 #include "shading/lights.h"
 
@@ -152,8 +152,8 @@ static int pick_by_weight(const float *w, int n, float u, float *total)
 static void initial_pixel(const struct scene *s, const struct light_pool *lp, const struct render_params *p,
                           const struct shading_point *sp, pcg32 *rng, struct di_reservoir *r, long long *rays)
 {
-    struct restir_wrs wrs;
-    restir_wrs_init(&wrs);
+    struct restir_reservoir wrs;
+    restir_reservoir_init(&wrs);
     di_reservoir_clear(r, 1.0f);
     const int nl = s->num_emitters > 0 || s->env ? p->light_candidates : 0, nb = p->bsdf_candidates;
     struct light_batch lb;
@@ -161,11 +161,11 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
     for (int done = 0; done < nl; done += DI_BATCH) {
         int n = nl - done < DI_BATCH ? nl - done : DI_BATCH, first = offset + done;
         light_batch_fill(lp, first, sp, n, nl, nb, &lb);
-        struct restir_wrs batch;
-        restir_wrs_init(&batch);
+        struct restir_reservoir batch;
+        restir_reservoir_init(&batch);
         batch.offered = n;
         batch.selected = pick_by_weight(lb.w, n, pcg32_float(rng), &batch.w_sum);
-        if (restir_wrs_merge(&wrs, &batch, pcg32_float(rng))) {
+        if (restir_reservoir_merge(&wrs, &batch, pcg32_float(rng))) {
             struct di_sample *y = &r->y;
             light_pool_entry(lp, first + batch.selected, &y->tri, &y->b1, &y->b2, &y->p, &y->n, &y->Le);
         }
@@ -192,7 +192,7 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
                 continue;
             float p_light = nl ? lights_pdf_area(s, h.tri) * (1.0f - s->env_prob) : 0.0f;
             float w = target / ((float)nl * p_light + (float)nb * p_bsdf);
-            if (restir_wrs_offer(&wrs, w, pcg32_float(rng)))
+            if (restir_reservoir_offer(&wrs, w, pcg32_float(rng)))
                 r->y = y;
         }
         (*rays)++; /* the final ray that left the emitters */
@@ -208,7 +208,7 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
             if (target > 0.0f) {
                 float p_light = nl ? s->env_prob * env_pdf(s->env_sampler, wi) : 0.0f;
                 float w = target / ((float)nl * p_light + (float)nb * p_bsdf);
-                if (restir_wrs_offer(&wrs, w, pcg32_float(rng)))
+                if (restir_reservoir_offer(&wrs, w, pcg32_float(rng)))
                     r->y = y;
             }
         }

@@ -32,7 +32,7 @@ static const char *const select_names[] = {"bitterli", "compat", "compat-binary"
 static const char *const reuse_names[] = {"standard", "spmis", NULL};
 static const char *const search_names[] = {"always", "sparse", "low-confidence", NULL};
 static const char *const pick_names[] = {"uniform", "confidence", NULL};
-static const char *const search_score_names[] = {"confidence", "compat", NULL}; /* enum restir_cell_score */
+static const char *const search_score_names[] = {"confidence", "compat", NULL}; /* enum restir_cells_score */
 static const char *const history_names[] = {"spatial", "temporal", NULL};
 static const char *const grad_spatial_names[] = {"off", "dense", "adaptive", NULL};
 static const char *const base_names[] = {"independent", "shared", NULL};
@@ -58,7 +58,7 @@ static int name_index(const char *const *names, const char *val)
 _Static_assert(sizeof(enum spatial_select_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum spatial_reuse_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum spmis_search_mode) == sizeof(int), "enum size");
-_Static_assert(sizeof(enum restir_cell_score) == sizeof(int), "enum size");
+_Static_assert(sizeof(enum restir_cells_score) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum grad_spatial_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum recon_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum di_visibility_mis) == sizeof(int), "enum size");
@@ -160,7 +160,7 @@ static const struct param_def params[] = {
      "spmis: neighbor draws N (004 Eq. 15-17); M = deterministic pairwise over the whole cell", NULL},
     {"spmis.canonical_candidates", P_COUNT, F(spmis_canonical_candidates), 1, RESTIR_SPMIS_MAX_DRAWS, "1", NULL,
      "spmis: canonical-weight draws N_c (004 Eq. 18); M = the exact Eq. 11b sum", NULL},
-    {"spmis.tile", P_INT, F(spmis_tile), 1, RESTIR_CELL_MAX_TILE, "8", NULL, "spmis: reuse-cell tile edge in pixels (004 Sec. 5)", NULL},
+    {"spmis.tile", P_INT, F(spmis_tile), 1, RESTIR_CELLS_MAX_TILE, "8", NULL, "spmis: reuse-cell tile edge in pixels (004 Sec. 5)", NULL},
     {"spmis.normal_bins", P_INT, F(spmis_normal_bins), 1, 64, "4", NULL,
      "spmis: cell key quantizes each normal component into this many buckets", NULL},
     {"spmis.search_steps", P_INT, F(spmis_search_steps), 0, SPMIS_MAX_SEARCH_STEPS, "12", NULL,

@@ -99,7 +99,7 @@ struct render_params {
     float spmis_search_growth;      /* ... radius factor per tap */
     float spmis_search_normal;      /* ... a tap is rejected when n . n_tap is below */
     enum spmis_search_mode spmis_search;
-    enum restir_cell_score spmis_search_score; /* spmis.search_score: confidence (004) or compat (ours) */
+    enum restir_cells_score spmis_search_score; /* spmis.search_score: confidence (004) or compat (ours) */
     int spmis_sparse_count;         /* sparse search: own cell used when it has more contributing pixels */
     float spmis_search_confidence;  /* low-confidence search: own cell used when its mean c reaches this */
     int spmis_confidence_adjust;    /* scale non-canonical confidences by N / M (Sec. 4.3) */

@@ -12,7 +12,7 @@
 
 #include "core/check.h"
 #include "render/tiles.h"
-#include "restir/reservoir.h"
+#include "restir/gris.h"
 
 void pt_splat_buffers_init(struct pt_splat_buffers *b, int width, int height, int steps)
 {
@@ -108,7 +108,7 @@ struct pixel_merge {
     float c_bp;
     struct pt_domain dom, dom_bp;     /* this pixel; the backprojected previous pixel */
     long long rays;
-    struct restir_wrs wrs;
+    struct restir_reservoir wrs;
     float c_offered;                  /* 1/M: the confidences of the candidates offered */
     struct path_sample chosen;
     float chosen_target;
@@ -164,8 +164,8 @@ static void offer(struct pixel_merge *m, int own, float own_term, float c_own, c
         const double denom = (double)term[0] + term[1] + term[2];
         mis = denom > 0.0 ? (float)(term[own] / denom) : 0.0f;
     }
-    const float w = mis * P0 * W * J;
-    if (restir_wrs_offer(&m->wrs, w, pcg32_float(rng))) {
+    const float w = restir_gris_resampling_weight(mis, P0, W, J); /* 004 Eq. 6 */
+    if (restir_reservoir_offer(&m->wrs, w, pcg32_float(rng))) {
         m->chosen = *y;
         m->chosen_target = P0;
     }
@@ -189,7 +189,7 @@ static void merge_pixel(struct pixel_merge *m, const struct gbuffer *g, const st
     pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_TEMPORAL);
     const struct pt_reservoir canonical = io[i];
     unsigned char fl = 0;
-    restir_wrs_init(&m->wrs);
+    restir_reservoir_init(&m->wrs);
     m->c_offered = 0.0f;
     m->c0 = capped(m, canonical.c);
     if (pt_reservoir_has_sample(&canonical))
@@ -230,7 +230,7 @@ static void merge_pixel(struct pixel_merge *m, const struct gbuffer *g, const st
     }
     flags[i] = fl;
     struct pt_reservoir out;
-    pt_reservoir_clear(&out, restir_confidence_merge(canonical.c + history_confidence(g, prev_g, m->prev_res, i),
+    pt_reservoir_clear(&out, restir_gris_confidence_merge(canonical.c + history_confidence(g, prev_g, m->prev_res, i),
                                                      p->confidence_cap));
     if (m->wrs.selected >= 0) {
         if (p->mis == RESTIR_MIS_UNIFORM && m->c_offered > 0.0f)

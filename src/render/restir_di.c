@@ -93,7 +93,7 @@ static void merge_end(const struct render_params *p, struct di_merge *mg)
     }
     const int chosen = restir_gris_resample(p->mis, n, mg->c, mg->P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
     struct di_reservoir result;
-    di_reservoir_clear(&result, restir_confidence_merge(c_sum, p->confidence_cap));
+    di_reservoir_clear(&result, restir_gris_confidence_merge(c_sum, p->confidence_cap));
     if (chosen >= 0) {
         result.y = mg->in[chosen]->y;
         result.target = mg->P[chosen];

@@ -6,7 +6,7 @@
 #include "render/restir_di.h"
 #include "render/reuse_cells.h"
 #include "render/tiles.h"
-#include "restir/reservoir.h"
+#include "restir/gris.h"
 
 static int has_sample(const struct di_reservoir *r) { return r->y.tri >= 0 && r->W > 0.0f; }
 
@@ -71,12 +71,12 @@ long long di_spmis_reuse_pass(const struct scene *s, const struct render_params 
             float merged_c;
             pcg32 rng = spmis_neighbor_plan(f, p, frame, c, &k, &merged_c, &draws);
             spmis_prefetch_draws(&draws, in, sizeof in[0]);
-            struct restir_wrs wrs;
-            restir_wrs_init(&wrs);
+            struct restir_reservoir wrs;
+            restir_reservoir_init(&wrs);
             struct di_reservoir result;
             di_reservoir_clear(&result, merged_c);
             /* Lines 11-12: w~_c = m~_c p_hat(X_c) W_c (Eq. 14) */
-            if (has_sample(&in[c]) && restir_wrs_offer(&wrs, f->m_c[c] * in[c].target * in[c].W, pcg32_float(&rng))) {
+            if (has_sample(&in[c]) && restir_reservoir_offer(&wrs, restir_gris_resampling_weight(f->m_c[c], in[c].target, in[c].W, 1.0f), pcg32_float(&rng))) {
                 result.y = in[c].y;
                 result.target = in[c].target;
             }
@@ -87,7 +87,7 @@ long long di_spmis_reuse_pass(const struct scene *s, const struct render_params 
                 float p_c = di_domain_target(s, with_visibility, sp, &in[z].y, &rays); /* p_hat(y) */
                 float wz = (float)(restir_spmis_noncanonical(&k, f->conf[z], in[z].target, p_c, draws.factor[d]) *
                                    p_c * in[z].W);
-                if (restir_wrs_offer(&wrs, wz, pcg32_float(&rng))) {
+                if (restir_reservoir_offer(&wrs, wz, pcg32_float(&rng))) {
                     result.y = in[z].y;
                     result.target = p_c;
                 }

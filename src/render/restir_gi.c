@@ -158,9 +158,9 @@ static long long initial_sample(const struct gi_frame *fr, const struct path_ver
     if (!evaluate(s, fr->p, x1, &y, 0, 1, &rays))
         return rays;
     const float target = v3_luminance(y.f);
-    struct restir_wrs wrs;
-    restir_wrs_init(&wrs);
-    if (restir_wrs_offer(&wrs, target / pdf, u_wrs)) {
+    struct restir_reservoir wrs;
+    restir_reservoir_init(&wrs);
+    if (restir_reservoir_offer(&wrs, target / pdf, u_wrs)) {
         res->y = y;
         res->target = target;
         res->W = restir_gris_contribution_weight(&wrs, target); /* 1 / p(w) */
@@ -276,7 +276,7 @@ static long long gris_merge(const struct gi_frame *fr, int n, const struct path_
     }
     const int chosen = restir_gris_resample(p->mis, n, c, P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
     struct gi_reservoir result;
-    gi_reservoir_clear(&result, restir_confidence_merge(c_sum, p->confidence_cap));
+    gi_reservoir_clear(&result, restir_gris_confidence_merge(c_sum, p->confidence_cap));
     if (chosen >= 0) {
         result.y = Y[chosen];
         result.target = P[chosen];

@@ -30,7 +30,7 @@ void pt_shift_params(const struct render_params *p, float scene_diagonal, struct
 struct initial_ctx {
     const struct scene *s;
     const struct shift_params *shift;
-    struct restir_wrs wrs;
+    struct restir_reservoir wrs;
     pcg32 *rng;
     float inv_paths;          /* 1 / number of initial paths: the MIS weight between paths */
     struct path_sample trial; /* u and seed of the path being walked */
@@ -49,7 +49,7 @@ static void offer_candidate(void *vctx, const struct path_walk *w, const struct 
     struct initial_ctx *ctx = vctx;
     float target = v3_luminance(c->f);
     float weight = c->pdf > 0.0f ? c->mis * target / c->pdf * ctx->inv_paths : 0.0f;
-    if (restir_wrs_offer(&ctx->wrs, weight, pcg32_float(ctx->rng))) {
+    if (restir_reservoir_offer(&ctx->wrs, weight, pcg32_float(ctx->rng))) {
         ctx->chosen = *c;
         ctx->chosen_here = 1;
         ctx->resampling_target = target;
@@ -85,7 +85,7 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
             struct initial_ctx ctx;
             ctx.s = s;
             ctx.shift = &fr->shift;
-            restir_wrs_init(&ctx.wrs);
+            restir_reservoir_init(&ctx.wrs);
             ctx.rng = &rng;
             ctx.inv_paths = 1.0f / (float)p->pt_candidates;
             ctx.r = res;
@@ -188,7 +188,7 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
     }
     const int chosen = restir_gris_resample(p->mis, n, c, P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
     struct pt_reservoir result;
-    pt_reservoir_clear(&result, restir_confidence_merge(c_sum, p->confidence_cap));
+    pt_reservoir_clear(&result, restir_gris_confidence_merge(c_sum, p->confidence_cap));
     if (chosen >= 0) {
         result.y = Y[chosen];
         result.target = P[chosen];

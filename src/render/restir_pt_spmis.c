@@ -5,7 +5,7 @@
 #include "render/restir_pt.h"
 #include "render/reuse_cells.h"
 #include "render/tiles.h"
-#include "restir/reservoir.h"
+#include "restir/gris.h"
 
 static struct pt_domain domain_of(const struct pt_frame *fr, const struct gbuffer *g, int i)
 {
@@ -79,13 +79,13 @@ long long pt_spmis_reuse_pass(const struct pt_frame *fr, const struct gbuffer *g
             float merged_c;
             pcg32 rng = spmis_neighbor_plan(f, p, fr->frame, c, &k, &merged_c, &draws);
             spmis_prefetch_draws(&draws, in, sizeof in[0]);
-            struct restir_wrs wrs;
-            restir_wrs_init(&wrs);
+            struct restir_reservoir wrs;
+            restir_reservoir_init(&wrs);
             struct pt_reservoir result;
             pt_reservoir_clear(&result, merged_c);
             /* Algorithm 2 lines 11-12: the canonical sample with w~_c = m~_c p_hat(X_c) W_c (Eq. 14) */
             if (pt_reservoir_has_sample(&in[c]) &&
-                restir_wrs_offer(&wrs, f->m_c[c] * in[c].target * in[c].W, pcg32_float(&rng))) {
+                restir_reservoir_offer(&wrs, restir_gris_resampling_weight(f->m_c[c], in[c].target, in[c].W, 1.0f), pcg32_float(&rng))) {
                 result.y = in[c].y;
                 result.target = in[c].target;
             }
@@ -105,7 +105,7 @@ long long pt_spmis_reuse_pass(const struct pt_frame *fr, const struct gbuffer *g
                     wz = (float)(restir_spmis_noncanonical(&k, f->conf[z], p_from, p_c, draws.factor[d]) * p_c *
                                  in[z].W * jac);
                 }
-                if (restir_wrs_offer(&wrs, wz, pcg32_float(&rng))) {
+                if (restir_reservoir_offer(&wrs, wz, pcg32_float(&rng))) {
                     result.y = yz;
                     result.target = v3_luminance(yz.f);
                 }

@@ -6,7 +6,7 @@
 
 #include "core/check.h"
 #include "render/tiles.h"
-#include "restir/reservoir.h"
+#include "restir/gris.h"
 
 /* n uniforms into u, n clamped to cap (the size of u): params.c bounds every count by it already. */
 static void uniforms(pcg32 *rng, int n, float *u, int cap)
@@ -49,7 +49,7 @@ void spmis_cells_pass(struct spmis_frame *f, const struct render_params *p, cons
         int x = i % w, y = i / w;
         uint32_t t = (uint32_t)((y / tile) * tiles_x + x / tile);
         const float n3[3] = {g->normal[i].x, g->normal[i].y, g->normal[i].z};
-        f->key[i] = restir_cell_key(t, g->object[i], n3, p->spmis_normal_bins);
+        f->key[i] = restir_cells_key(t, g->object[i], n3, p->spmis_normal_bins);
     }
     restir_cells_build(&f->cells, f->key, g->valid, f->conf, f->weight);
     restir_cells_pack_taps(&f->cells, (const float *)(const void *)g->normal, g->object); /* vec3: 3 floats */
@@ -58,7 +58,7 @@ void spmis_cells_pass(struct spmis_frame *f, const struct render_params *p, cons
 void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g, int frame)
 {
     const struct restir_cells *cells = &f->cells;
-    const struct restir_cell_search s = {p->spmis_search_steps,
+    const struct restir_cells_search s = {p->spmis_search_steps,
                                          p->spmis_search_radius,
                                          p->spmis_search_growth,
                                          p->spmis_search_normal,
@@ -90,7 +90,7 @@ void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, con
             float u[3 * SPMIS_MAX_SEARCH_STEPS];
             pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_CELL_SEARCH);
             uniforms(&rng, 3 * s.steps, u, 3 * SPMIS_MAX_SEARCH_STEPS);
-            f->cell[i] = restir_cell_search_packed(cells, &s, i, u);
+            f->cell[i] = restir_cells_search_packed(cells, &s, i, u);
         }
     }
 }
@@ -108,7 +108,7 @@ static void spmis_pixel_conf(const struct spmis_frame *f, const struct render_pa
     restir_spmis_conf_set(k, f->conf[c], c_sigma, scale);
     if (merged) {
         float evaluated = restir_spmis_confidence_scale(p->spmis_candidates, m, 1); /* min(1, N / M) */
-        *merged = restir_confidence_merge(f->conf[c] + evaluated * c_sigma, p->confidence_cap);
+        *merged = restir_gris_confidence_merge(f->conf[c] + evaluated * c_sigma, p->confidence_cap);
     }
 }
 

@@ -6,6 +6,7 @@
 #include "core/sampling.h"
 #include "render/tiles.h"
 #include "restir/neighbors.h"
+#include "restir/select.h"
 
 static const float *key_of(const struct gbuffer *g, int i) { return &g->select_key[(size_t)i * GBUFFER_KEY]; }
 
@@ -23,7 +24,7 @@ static int disk_pixel(const struct render_params *p, const struct gbuffer *g, in
 static int bitterli_ok(const struct render_params *p, const float *ki, const float *kj)
 {
     return kj[7] != 0.0f &&
-           restir_bitterli_compatible(&ki[3], &kj[3], ki[6], kj[6], p->spatial_normal, p->spatial_depth);
+           restir_neighbors_bitterli(&ki[3], &kj[3], ki[6], kj[6], p->spatial_normal, p->spatial_depth);
 }
 
 /* The taps land at random within the radius, so each key read is a cache miss; both selections
@@ -92,8 +93,8 @@ static int select_compat(const struct render_params *p, const struct gbuffer *g,
                          const float *offsets, struct pixel_search *ps, int *out)
 {
     const float *ki = key_of(g, y * g->width + x);
-    struct restir_compat_scorer scorer;
-    restir_compat_scorer_init(&scorer, ki, &ki[3], ki[6], p->spatial_omega, p->spatial_beta);
+    struct restir_neighbors_scorer scorer;
+    restir_neighbors_scorer_init(&scorer, ki, &ki[3], ki[6], p->spatial_omega, p->spatial_beta);
     struct restir_select sel;
     restir_select_init(&sel, m);
     pcg32 *rng = &ps->rng;
@@ -109,7 +110,7 @@ static int select_compat(const struct render_params *p, const struct gbuffer *g,
         if (kj[7] == 0.0f)
             continue; /* no primary hit */
         float h = binary ? (bitterli_ok(p, ki, kj) ? 1.0f : 0.0f)
-                         : restir_compat_scorer_score(&scorer, kj, &kj[3]);
+                         : restir_neighbors_scorer_score(&scorer, kj, &kj[3]);
         if (!(h > 0.0f))
             continue;
         restir_select_offer(&sel, j, h, pcg32_float(rng));

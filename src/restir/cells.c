@@ -1,43 +1,26 @@
 /* restir/cells.c: screen-space reuse cells (004 Sec. 5, Algorithm 1), draws from a cell (uniform and
  * Eq. 17) and the cell search (Sec. 5.1). Must never depend on a ray tracer, files or the renderer. */
+#include <float.h>
+#include <limits.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "restir/cells.h"
 #include "restir/neighbors.h"
-
-uint32_t restir_pcg_hash(uint32_t v)
-{
-    uint32_t state = v * 747796405u + 2891336453u;
-    uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-
-static int quantize(float n, int bins)
-{
-    /* floor((n + 1) bins / 2), clamped to [0, bins - 1]: a negative component must not wrap
-     * around when cast (the pitfall of one public implementation). */
-    float q = floorf((n + 1.0f) * 0.5f * (float)bins);
-    if (!(q >= 0.0f))
-        return 0;
-    return q >= (float)bins ? bins - 1 : (int)q;
-}
-
-uint32_t restir_cell_key(uint32_t tile, int32_t object, const float normal[3], int bins)
-{
-    if (bins < 1)
-        bins = 1;
-    uint32_t h = restir_pcg_hash(tile);
-    h = restir_pcg_hash(h ^ (uint32_t)object);
-    uint32_t nq = (uint32_t)(quantize(normal[0], bins) + bins * (quantize(normal[1], bins) + bins * quantize(normal[2], bins)));
-    return restir_pcg_hash(h ^ nq);
-}
+#include "restir/threads.h"
 
 int restir_cells_init(struct restir_cells *c, int width, int height, int tile)
 {
+    if (!c)
+        return -1;
     memset(c, 0, sizeof(*c));
-    if (width < 1 || height < 1 || tile < 1 || tile > RESTIR_CELL_MAX_TILE)
+    if (width < 1 || height < 1 || tile < 1 || tile > RESTIR_CELLS_MAX_TILE)
+        return -1;
+    /* Pixel, cell and entry indices are ints (w h + tile too), and every array must be addressable. */
+    if ((size_t)width > ((size_t)INT_MAX - RESTIR_CELLS_MAX_TILE) / (size_t)height ||
+        (size_t)width * (size_t)height > SIZE_MAX / sizeof(struct restir_cells_tap))
         return -1;
     size_t n = (size_t)width * (size_t)height;
     c->width = width;
@@ -50,18 +33,23 @@ int restir_cells_init(struct restir_cells *c, int width, int height, int tile)
     c->entry = malloc(sizeof(int) * n);
     c->cell_of = malloc(sizeof(int) * n);
     c->slot_of = malloc(sizeof(int) * n);
-    c->count = malloc(sizeof(int) * n);
-    c->contributing = malloc(sizeof(int) * n);
+    c->count = calloc(n, sizeof(int)); /* 0 at every index that names no cell (cell_ok) */
+    c->contributing = calloc(n, sizeof(int));
     c->conf_sum = malloc(sizeof(float) * n);
     c->cdf = malloc(sizeof(double) * n);
     c->conf_cdf = malloc(sizeof(double) * n);
     c->key = malloc(sizeof(uint32_t) * n);
     /* 32-byte records on 32-byte boundaries: a tap never straddles two cache lines */
-    c->tap = aligned_alloc(32, sizeof(struct restir_cell_tap) * n);
+    c->tap = aligned_alloc(32, sizeof(struct restir_cells_tap) * n);
     if (!c->tile_base || !c->entry || !c->cell_of || !c->slot_of || !c->count || !c->contributing ||
         !c->conf_sum || !c->cdf || !c->conf_cdf || !c->key || !c->tap) {
         restir_cells_fini(c);
         return -1;
+    }
+    /* Before the first build no pixel is in a cell and no tap is accepted (cell_search). */
+    for (size_t i = 0; i < n; i++) {
+        c->cell_of[i] = -1;
+        c->tap[i] = (struct restir_cells_tap){-1, -1, 0.0f, {0.0f, 0.0f, 0.0f}, {0, 0}};
     }
     /* A tile's entries start after all pixels of the tiles before it (row-major tile order). */
     int base = 0;
@@ -78,6 +66,8 @@ int restir_cells_init(struct restir_cells *c, int width, int height, int tile)
 
 void restir_cells_fini(struct restir_cells *c)
 {
+    if (!c)
+        return;
     free(c->tile_base);
     free(c->entry);
     free(c->cell_of);
@@ -118,7 +108,7 @@ static int item_before(const struct tile_item *a, const struct tile_item *b)
 static int build_tile(struct restir_cells *c, int t, const uint32_t *key, const unsigned char *valid,
                       const float *conf, const float *weight)
 {
-    struct tile_item items[RESTIR_CELL_MAX_TILE * RESTIR_CELL_MAX_TILE];
+    struct tile_item items[RESTIR_CELLS_MAX_TILE * RESTIR_CELLS_MAX_TILE];
     int tx = t % c->tiles_x, ty = t / c->tiles_x, n = 0;
     int x0 = tx * c->tile, y0 = ty * c->tile;
     int x1 = x0 + c->tile < c->width ? x0 + c->tile : c->width;
@@ -158,27 +148,48 @@ static int build_tile(struct restir_cells *c, int t, const uint32_t *key, const 
                 prefix += (double)usable(weight[i]);
             }
             c->cdf[slot] = prefix;
+            c->count[slot] = c->contributing[slot] = 0; /* set below at the cell's own index */
             end++;
         }
         c->count[cell] = end - k;
         c->contributing[cell] = contributing;
-        c->conf_sum[cell] = conf_sum;
+        c->conf_sum[cell] = conf_sum <= FLT_MAX ? conf_sum : FLT_MAX; /* a sum past the float range */
         c->key[cell] = items[k].key;
         cells++;
         k = end;
     }
+    /* The slots of the tile's pixels in no cell name no cell either. */
+    for (int k = n; k < (x1 - x0) * (y1 - y0); k++)
+        c->count[base + k] = c->contributing[base + k] = 0;
     return cells;
 }
 
-void restir_cells_build(struct restir_cells *c, const uint32_t *key, const unsigned char *valid, const float *conf,
-                        const float *weight)
+int restir_cells_build(struct restir_cells *c, const uint32_t *key, const unsigned char *valid, const float *conf,
+                       const float *weight)
 {
+    if (!c || !c->tile_base || !key || !valid || !conf || !weight)
+        return -1;
     const int ntiles = c->tiles_x * c->tiles_y;
     int cells = 0;
-#pragma omp parallel for schedule(static) reduction(+ : cells)
+#pragma omp parallel for schedule(static) reduction(+ : cells) num_threads(restir_threads_get())
     for (int t = 0; t < ntiles; t++)
         cells += build_tile(c, t, key, valid, conf, weight);
     c->n_cells = cells;
+    return 0;
+}
+
+/* 0 when `cell` is outside [0, w h). Inside it, count[cell] (and contributing[cell]) is 0 at
+ * every index that is not a cell of the last build (zeroed by init and by every build), so a
+ * function that reads count or contributing needs no other test to treat it as an empty cell. */
+static inline int cell_in_range(const struct restir_cells *c, int cell)
+{
+    return c && cell >= 0 && cell < c->width * c->height;
+}
+
+/* 1 when `cell` is a cell of the last build. */
+static inline int cell_ok(const struct restir_cells *c, int cell)
+{
+    return cell_in_range(c, cell) && c->count[cell] > 0;
 }
 
 static int in_cell(const struct restir_cells *c, int cell, int pixel)
@@ -188,14 +199,14 @@ static int in_cell(const struct restir_cells *c, int cell, int pixel)
 
 int restir_cells_others(const struct restir_cells *c, int cell, int exclude)
 {
-    if (cell < 0)
-        return 0;
+    if (!cell_in_range(c, cell))
+        return 0; /* elsewhere count is 0 and no pixel is in the cell when it is not a cell */
     return c->count[cell] - in_cell(c, cell, exclude);
 }
 
 float restir_cells_confidence_others(const struct restir_cells *c, int cell, int exclude, const float *conf)
 {
-    if (cell < 0)
+    if (!cell_ok(c, cell) || !conf)
         return 0.0f;
     float s = c->conf_sum[cell] - (in_cell(c, cell, exclude) ? usable(conf[exclude]) : 0.0f);
     return s > 0.0f ? s : 0.0f;
@@ -206,9 +217,9 @@ int restir_cells_pick_uniform(const struct restir_cells *c, int cell, int exclud
     int m = restir_cells_others(c, cell, exclude);
     if (m <= 0)
         return -1;
-    int k = (int)(u * (float)m);
-    if (k >= m)
-        k = m - 1;
+    /* u * M clamped into [0, M - 1] before the cast (u outside [0,1), NaN reads as 0) */
+    const float t = u * (float)m;
+    int k = t >= 0.0f ? (t < (float)m ? (int)t : m - 1) : 0;
     /* Skip the excluded pixel's slot: the M others stay equally likely. */
     if (in_cell(c, cell, exclude) && cell + k >= c->slot_of[exclude])
         k++;
@@ -216,12 +227,20 @@ int restir_cells_pick_uniform(const struct restir_cells *c, int cell, int exclud
 }
 
 /* Draws slot s in [cell, cell + len) with probability (cdf[s] - cdf[s - 1]) / total, the slot of
- * `exclude` cut out, by inverting the inclusive prefix sums cdf of the cell with u. */
-static int pick_from_cdf(const struct restir_cells *c, const double *cdf, int cell, int len, int exclude, float u,
-                         double *prob)
+ * `exclude` cut out, by inverting the inclusive prefix sums of the cell with u: the Eq. 17 ones over
+ * its contributing pixels (weighted) or the confidence ones over all its pixels. */
+static int pick_from_cdf(const struct restir_cells *c, int weighted, int cell, int exclude, float u, double *prob)
 {
+    double unused;
+    if (!prob)
+        prob = &unused;
     *prob = 0.0;
-    if (cell < 0 || len <= 0)
+    if (!cell_in_range(c, cell))
+        return -1;
+    /* the contributing pixels come first in the cell, so the Eq. 17 prefix sums cover them */
+    const double *cdf = weighted ? c->cdf : c->conf_cdf;
+    const int len = weighted ? c->contributing[cell] : c->count[cell];
+    if (len <= 0) /* also when `cell` is not a cell */
         return -1;
     int last = cell + len - 1;
     double total = cdf[last];
@@ -234,12 +253,12 @@ static int pick_from_cdf(const struct restir_cells *c, const double *cdf, int ce
     double others = total - w_x;
     if (!(others > 0.0) || (xs >= 0 && len == 1))
         return -1;
-    double t = (double)u * others;
+    double t = (double)(u > 0.0f ? u : 0.0f) * others; /* NaN reads as 0 */
     if (xs >= 0 && t >= (xs > cell ? cdf[xs - 1] : 0.0))
         t += w_x; /* skip the excluded interval */
     int lo = cell, hi = last;
     while (lo < hi) {
-        int mid = (lo + hi) / 2;
+        int mid = (lo + hi) >> 1; /* lo + hi >= 0 */
         if (cdf[mid] > t)
             hi = mid;
         else
@@ -270,21 +289,22 @@ static int pick_from_cdf(const struct restir_cells *c, const double *cdf, int ce
 
 int restir_cells_pick_weighted(const struct restir_cells *c, int cell, int exclude, float u, double *prob)
 {
-    /* the contributing pixels come first in the cell, so the Eq. 17 prefix sums cover them */
-    return pick_from_cdf(c, c->cdf, cell, cell >= 0 ? c->contributing[cell] : 0, exclude, u, prob);
+    return pick_from_cdf(c, 1, cell, exclude, u, prob);
 }
 
 int restir_cells_pick_confidence(const struct restir_cells *c, int cell, int exclude, float u, double *prob)
 {
-    return pick_from_cdf(c, c->conf_cdf, cell, cell >= 0 ? c->count[cell] : 0, exclude, u, prob);
+    return pick_from_cdf(c, 0, cell, exclude, u, prob);
 }
 
-void restir_cells_pack_taps(struct restir_cells *c, const float *normal, const int *object)
+int restir_cells_pack_taps(struct restir_cells *c, const float *normal, const int *object)
 {
+    if (!c || !c->tap || !normal || !object)
+        return -1;
     const long n = (long)c->width * (long)c->height;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(restir_threads_get())
     for (long q = 0; q < n; q++) {
-        struct restir_cell_tap *t = &c->tap[q];
+        struct restir_cells_tap *t = &c->tap[q];
         const int cell = c->cell_of[q];
         t->cell = cell;
         t->object = object[q];
@@ -292,33 +312,36 @@ void restir_cells_pack_taps(struct restir_cells *c, const float *normal, const i
         t->normal[0] = normal[3 * q], t->normal[1] = normal[3 * q + 1], t->normal[2] = normal[3 * q + 2];
         t->pad[0] = t->pad[1] = 0;
     }
+    return 0;
 }
 
 /* What a tap sees of pixel q: from the packed records when tap is not NULL, else from the arrays. */
-static inline struct restir_cell_tap tap_at(const struct restir_cells *c, const struct restir_cell_tap *tap,
+static inline struct restir_cells_tap tap_at(const struct restir_cells *c, const struct restir_cells_tap *tap,
                                             const float *normal, const int *object, int q)
 {
     if (tap)
         return tap[q];
-    struct restir_cell_tap t = {c->cell_of[q], object[q], 0.0f, {normal[3 * (size_t)q], normal[3 * (size_t)q + 1],
+    struct restir_cells_tap t = {c->cell_of[q], object[q], 0.0f, {normal[3 * (size_t)q], normal[3 * (size_t)q + 1],
                                                                    normal[3 * (size_t)q + 2]}, {0, 0}};
     t.conf_sum = t.cell >= 0 ? c->conf_sum[t.cell] : 0.0f;
     return t;
 }
 
-/* The search of restir_cell_search over either data layout (tap_at). */
-static inline int cell_search(const struct restir_cells *c, const struct restir_cell_search *s, int pixel,
-                              const struct restir_cell_tap *tap, const float *normal, const int *object,
+/* The search of restir_cells_search over either data layout (tap_at). */
+static inline int cell_search(const struct restir_cells *c, const struct restir_cells_search *s, int pixel,
+                              const struct restir_cells_tap *tap, const float *normal, const int *object,
                               const float *u)
 {
-    if (pixel < 0 || pixel >= c->width * c->height || c->cell_of[pixel] < 0)
+    if (!s || !u || pixel < 0 || pixel >= c->width * c->height || c->cell_of[pixel] < 0)
+        return -1;
+    const int compat = s->score == RESTIR_CELLS_SCORE_COMPAT;
+    if (compat && (!s->position || !s->depth))
         return -1;
     const int x = pixel % c->width, y = pixel / c->width;
-    const struct restir_cell_tap me = tap_at(c, tap, normal, object, pixel);
-    const int compat = s->score == RESTIR_CELL_SCORE_COMPAT;
-    struct restir_compat_scorer scorer;
+    const struct restir_cells_tap me = tap_at(c, tap, normal, object, pixel);
+    struct restir_neighbors_scorer scorer = {{0.0f}, {0.0f}, 0.0f, 0.0f, -1};
     if (compat)
-        restir_compat_scorer_init(&scorer, s->position + 3 * (size_t)pixel, me.normal, s->depth[pixel], s->omega,
+        restir_neighbors_scorer_init(&scorer, s->position + 3 * (size_t)pixel, me.normal, s->depth[pixel], s->omega,
                                   s->beta);
     double w_sum = 0.0;
     int chosen = -1;
@@ -336,8 +359,13 @@ static inline int cell_search(const struct restir_cells *c, const struct restir_
         for (int t = t0; t < t1; t++, radius = fminf(radius * s->growth, r_max)) {
             /* A uniform point in the disk (polar map: r = R sqrt(u), area-uniform). */
             float r = radius * sqrtf(u[3 * t]), phi = 6.28318530717958647f * u[3 * t + 1];
-            int qx = x + (int)lrintf(r * cosf(phi)), qy = y + (int)lrintf(r * sinf(phi));
-            const int q = qx < 0 || qy < 0 || qx >= c->width || qy >= c->height ? -1 : qy * c->width + qx;
+            /* Unsigned sums wrap a negative coordinate past the image, so one test per axis rejects
+             * both sides; an offset lrintf cannot represent (u outside [0,1), NaN radius or growth)
+             * gives an unspecified value there, still tested, never an undefined sum. */
+            const unsigned long qx = (unsigned long)x + (unsigned long)lrintf(r * cosf(phi));
+            const unsigned long qy = (unsigned long)y + (unsigned long)lrintf(r * sinf(phi));
+            const int outside = qx >= (unsigned long)c->width || qy >= (unsigned long)c->height;
+            const int q = outside ? -1 : (int)qy * c->width + (int)qx;
             qs[t - t0] = q;
             if (tap && q >= 0)
                 __builtin_prefetch(&tap[q]);
@@ -347,7 +375,7 @@ static inline int cell_search(const struct restir_cells *c, const struct restir_
         for (int t = t0; t < t1; t++) {
             if (qs[t - t0] < 0)
                 continue;
-            const struct restir_cell_tap q = tap_at(c, tap, normal, object, qs[t - t0]);
+            const struct restir_cells_tap q = tap_at(c, tap, normal, object, qs[t - t0]);
             if (q.cell < 0 || q.object != me.object)
                 continue;
             if (me.normal[0] * q.normal[0] + me.normal[1] * q.normal[1] + me.normal[2] * q.normal[2] <
@@ -355,7 +383,7 @@ static inline int cell_search(const struct restir_cells *c, const struct restir_
                 continue;
             double w = q.conf_sum;
             if (compat)
-                w *= restir_compat_scorer_score(&scorer, s->position + 3 * (size_t)qs[t - t0], q.normal);
+                w *= restir_neighbors_scorer_score(&scorer, s->position + 3 * (size_t)qs[t - t0], q.normal);
             if (!(w > 0.0))
                 continue;
             w_sum += w;
@@ -366,14 +394,18 @@ static inline int cell_search(const struct restir_cells *c, const struct restir_
     return chosen >= 0 ? chosen : c->cell_of[pixel];
 }
 
-int restir_cell_search(const struct restir_cells *c, const struct restir_cell_search *s, int pixel,
+int restir_cells_search(const struct restir_cells *c, const struct restir_cells_search *s, int pixel,
                        const float *normal, const int *object, const float *u)
 {
+    if (!c || !normal || !object)
+        return -1;
     return cell_search(c, s, pixel, NULL, normal, object, u);
 }
 
-int restir_cell_search_packed(const struct restir_cells *c, const struct restir_cell_search *s, int pixel,
+int restir_cells_search_packed(const struct restir_cells *c, const struct restir_cells_search *s, int pixel,
                               const float *u)
 {
+    if (!c || !c->tap)
+        return -1;
     return cell_search(c, s, pixel, c->tap, NULL, NULL, u);
 }

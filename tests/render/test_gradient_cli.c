@@ -438,7 +438,7 @@ static void check_compare(void)
         rows++;
     }
     EXPECT(rows == 4, "%s has %d rows, want 4", path, rows);
-    /* the gradient rows' gradient_relmse is restir_gradient_relmse of the frame's dx, dy layers
+    /* the gradient rows' gradient_relmse is restir_metrics_gradient_relmse of the frame's dx, dy layers
      * against the reference (the written frame is the measured one: instances = 1); the others have none */
     float *ref = read_layer(dir, "reference.exr", NULL);
     for (int k = 0; k < 2; k++) {
@@ -446,7 +446,7 @@ static void check_compare(void)
         float *dx = read_layer(sub, "frame_0002.exr", "dx"), *dy = read_layer(sub, "frame_0002.exr", "dy");
         if (dx)
             EXPECT(all_finite(dx, NPIX), "compare: %s/frame_0002.exr has a non-finite dx", sub);
-        const double want = dx && dy && ref ? restir_gradient_relmse(dx, dy, ref, W, H) : NAN;
+        const double want = dx && dy && ref ? restir_metrics_gradient_relmse(dx, dy, ref, W, H) : NAN;
         EXPECT(rows == 4 && isfinite(want) && fabs(grad_relmse[k] - want) <= 1e-5 * want,
                "compare: %s gradient_relmse %.9g, its frame's %.9g", methods[k], rows == 4 ? grad_relmse[k] : NAN,
                want);

@@ -1,5 +1,5 @@
 /* test_gradient_toy.c: the toy of 002 Figure 3 as a statistical test of the gradient arithmetic
- * (restir/paired_pixel.h: paired-pixel integrand, balance weight Eq. 13, positivized targets) driven by
+ * (restir/grad.h: paired-pixel integrand, balance weight Eq. 13, positivized targets) driven by
  * the project's RIS / GRIS bookkeeping (restir/reservoir.h, restir/mis.h). Must never depend on
  * Embree, files or the renderer.
  *
@@ -55,8 +55,8 @@
 #include "chi2_util.h"
 #include "core/rng.h"
 #include "restir/mis.h"
-#include "restir/paired_pixel.h"
-#include "restir/reservoir.h"
+#include "restir/grad.h"
+#include "restir/gris.h"
 #include "test_util.h"
 
 #define TOY_PI 3.14159265358979323846
@@ -189,8 +189,8 @@ static void expect_detected(const struct acc3 *a, const double exact[3], const d
 /* RIS in one pixel (Eq. 10): M uniform candidates, target luminance(f_pix), m = 1/M. Returns Y. */
 static double ris_pixel(pcg32 *rng, int pix, int M, float *W)
 {
-    struct restir_wrs r;
-    restir_wrs_init(&r);
+    struct restir_reservoir r;
+    restir_reservoir_init(&r);
     double y = 0.0;
     float py = 0.0f;
     for (int i = 0; i < M; i++) {
@@ -198,7 +198,7 @@ static double ris_pixel(pcg32 *rng, int pix, int M, float *W)
         float f[3];
         toy_f(pix, x, f);
         float p = restir_grad_luminance(f);
-        if (restir_wrs_offer(&r, (float)(p / ((double)M * SRC_PDF)), pcg32_float(rng))) {
+        if (restir_reservoir_offer(&r, (float)(p / ((double)M * SRC_PDF)), pcg32_float(rng))) {
             y = x;
             py = p;
         }
@@ -234,7 +234,7 @@ struct pair_sample {
 /* One reservoir over X for one sign s (ABS: target Eq. 19; POS / NEG: Eq. 25 / 26). */
 struct gres {
     enum restir_grad_sign s;
-    struct restir_wrs r;
+    struct restir_reservoir r;
     struct pair_sample y;
     float W;
 };
@@ -242,7 +242,7 @@ struct gres {
 static void gres_init(struct gres *g, enum restir_grad_sign s)
 {
     g->s = s;
-    restir_wrs_init(&g->r);
+    restir_reservoir_init(&g->r);
     g->y.x = 0.0;
     g->y.k = 0;
     g->y.h[0] = g->y.h[1] = g->y.h[2] = 0.0f;
@@ -267,7 +267,7 @@ static void gres_candidates(pcg32 *rng, const int n[2], const double mis[2], str
             pair_h(k, c.x, c.h);
             for (int j = 0; j < nres; j++) {
                 double w = mis[k] * (double)restir_grad_target(g[j].s, c.h) / SRC_PDF;
-                if (restir_wrs_offer(&g[j].r, (float)w, pcg32_float(rng)))
+                if (restir_reservoir_offer(&g[j].r, (float)w, pcg32_float(rng)))
                     g[j].y = c;
             }
         }
@@ -310,7 +310,7 @@ static void gres_merge(pcg32 *rng, const struct gres *in, const float *conf, int
     gres_init(out, s);
     for (int j = 0; j < n; j++) {
         double w = (double)m[j] * (double)p[j * n + j] * (double)in[j].W;
-        if (restir_wrs_offer(&out->r, (float)w, pcg32_float(rng)))
+        if (restir_reservoir_offer(&out->r, (float)w, pcg32_float(rng)))
             out->y = in[j].y;
     }
     gres_finish(out);

@@ -25,7 +25,7 @@
 #include "accum.h"
 #include "core/rng.h"
 #include "restir/mis.h"
-#include "restir/reservoir.h"
+#include "restir/gris.h"
 #include "synthetic_domains.h"
 #include "synthetic_integrand.h"
 #include "test_util.h"
@@ -111,13 +111,13 @@ static void domain_input(pcg32 *rng, int k, enum target t, enum inputs in, doubl
         *W = 1.0 / synthetic_pdf(&dom[k], *x);
         return;
     }
-    struct restir_wrs r;
-    restir_wrs_init(&r);
+    struct restir_reservoir r;
+    restir_reservoir_init(&r);
     double sel = 0.0;
     for (int i = 0; i < RIS_K; i++) {
         double cand = synthetic_pdf_sample(&dom[k], pcg32_float(rng));
         float w = (float)(target_of(k, t, cand) / ((double)RIS_K * synthetic_pdf(&dom[k], cand)));
-        if (restir_wrs_offer(&r, w, pcg32_float(rng)))
+        if (restir_reservoir_offer(&r, w, pcg32_float(rng)))
             sel = cand;
     }
     *x = sel;
@@ -143,13 +143,13 @@ static double gris_once(pcg32 *rng, enum restir_mis mode, enum target t, enum in
             p[k * NDOM + j] =
                 ok[j] && restir_mis_needs(mode, k, j) ? (float)phat_from(k, t, y[j]) : 0.0f;
     restir_mis_weights(mode, NDOM, conf, p, m); /* Eq. 9, Eq. 11-12, or 1/M */
-    struct restir_wrs r;
-    restir_wrs_init(&r);
+    struct restir_reservoir r;
+    restir_reservoir_init(&r);
     double ysel = 0.0;
     for (int j = 0; j < NDOM; j++) {
         /* Eq. 6: w_j = [X_j in D(T_j)] m_j(Y_j) p_hat(Y_j) W_{X_j} |dT_j/dX_j| */
         double w = ok[j] ? (double)m[j] * phat0(t, y[j]) * W[j] * jac[j] : 0.0;
-        if (restir_wrs_offer(&r, (float)w, pcg32_float(rng)))
+        if (restir_reservoir_offer(&r, (float)w, pcg32_float(rng)))
             ysel = y[j];
     }
     double Wy = (double)restir_gris_contribution_weight(&r, (float)phat0(t, ysel)); /* Eq. 7 */

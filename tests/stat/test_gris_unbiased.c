@@ -5,7 +5,7 @@
 #include "accum.h"
 #include "core/rng.h"
 #include "restir/mis.h"
-#include "restir/reservoir.h"
+#include "restir/gris.h"
 #include "test_util.h"
 
 #define TRIALS 400000
@@ -39,8 +39,8 @@ static double linear_sample(float u) { return -0.5 + sqrt(0.25 + 2.0 * (double)u
 
 static double ris_estimate(pcg32 *rng, int M, enum source src)
 {
-    struct restir_wrs r;
-    restir_wrs_init(&r);
+    struct restir_reservoir r;
+    restir_reservoir_init(&r);
     double y = 0.0;
     for (int i = 0; i < M; i++) {
         int linear = src == SRC_LINEAR || (src == SRC_MIXED && (i & 1));
@@ -54,7 +54,7 @@ static double ris_estimate(pcg32 *rng, int M, enum source src)
         }
         /* Eq. 2 with the 1/M resampling MIS weight: every source covers all of [0,1] */
         float w = (float)(g_hat(x) / (pdf * (double)M));
-        if (restir_wrs_offer(&r, w, pcg32_float(rng)))
+        if (restir_reservoir_offer(&r, w, pcg32_float(rng)))
             y = x;
     }
     float W = restir_gris_contribution_weight(&r, (float)g_hat(y)); /* Eq. 7 */
@@ -127,12 +127,12 @@ static double target_from(int k, double y)
 /* Initial sample of pixel k: RIS from INIT_M uniform candidates; W = 0 when none is valid. */
 static void initial_sample(pcg32 *rng, int k, double *x_out, double *W_out)
 {
-    struct restir_wrs r;
-    restir_wrs_init(&r);
+    struct restir_reservoir r;
+    restir_reservoir_init(&r);
     double x = 0.0;
     for (int i = 0; i < INIT_M; i++) {
         double cand = (double)pcg32_float(rng);
-        if (restir_wrs_offer(&r, (float)(target(k, cand) / INIT_M), pcg32_float(rng)))
+        if (restir_reservoir_offer(&r, (float)(target(k, cand) / INIT_M), pcg32_float(rng)))
             x = cand;
     }
     *x_out = x;
@@ -156,14 +156,14 @@ static double gris_estimate(pcg32 *rng, enum restir_mis mode, const float *conf,
             p[k * NPIX + j] =
                 ok[j] && restir_mis_needs(mode, k, j) ? (float)target_from(k, y[j]) : 0.0f;
     restir_mis_weights(mode, NPIX, conf, p, m);
-    struct restir_wrs r;
-    restir_wrs_init(&r);
+    struct restir_reservoir r;
+    restir_reservoir_init(&r);
     double ysel = 0.0;
     for (int j = 0; j < NPIX; j++) {
         /* Eq. 6: w_j = [X_j in D(T_j)] m_j(Y_j) p_hat(Y_j) W_{X_j} |dT_j/dX_j| */
         double w = ok[j] ? (double)m[j] * target(0, y[j]) * W[j] * (use_jacobian ? jac[j] : 1.0)
                          : 0.0;
-        if (restir_wrs_offer(&r, (float)w, pcg32_float(rng)))
+        if (restir_reservoir_offer(&r, (float)w, pcg32_float(rng)))
             ysel = y[j];
     }
     double Wy = (double)restir_gris_contribution_weight(&r, (float)target(0, ysel)); /* Eq. 7 */

@@ -9,7 +9,7 @@
  *    against an exact enumeration of ordered triples;
  *  - the chi-square has power: it rejects uniform selection, a product-proportional pair law and
  *    a naive "largest u w" sampler (negative controls);
- *  - restir_compat_score matches a double evaluation of 000 Eq. 14-15 to 1e-5 relative;
+ *  - restir_neighbors_compat matches a double evaluation of 000 Eq. 14-15 to 1e-5 relative;
  *  - r2_disk_offsets gives 8192 points in the unit disk whose radial and 16x16-cell counts are
  *    far closer to uniform than random points.
  * Fixed seeds; the chi-square family rejects a correct implementation with probability 0.01
@@ -23,6 +23,7 @@
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "restir/neighbors.h"
+#include "restir/select.h"
 #include "test_util.h"
 
 #define FAMILY_ALPHA 0.01
@@ -403,7 +404,7 @@ static void test_degenerate(void)
     EXPECT(s.m == RESTIR_SELECT_MAX, "m = 100 clamps to %d (m %d)", RESTIR_SELECT_MAX, s.m);
 }
 
-/* ---- 3. restir_compat_score (000 Eq. 14-15) --------------------------------------------------- */
+/* ---- 3. restir_neighbors_compat (000 Eq. 14-15) --------------------------------------------------- */
 
 static double compat_ref(const float x[3], const float nx[3], float d, const float y[3], const float ny[3],
                          float omega, float beta)
@@ -423,7 +424,7 @@ static double compat_ref(const float x[3], const float nx[3], float d, const flo
 static void check_compat(const char *what, const float x[3], const float nx[3], float d, const float y[3],
                          const float ny[3], float omega, float beta, int print)
 {
-    double got = restir_compat_score(x, nx, d, y, ny, omega, beta);
+    double got = restir_neighbors_compat(x, nx, d, y, ny, omega, beta);
     double ref = compat_ref(x, nx, d, y, ny, omega, beta);
     if (print)
         printf("  compat %-34s got %.9g ref %.9g\n", what, got, ref);
@@ -450,22 +451,22 @@ static void test_compat(void)
     float nd[3] = {1.0f, 2.0f, 2.0f};
     norm3(nd);
 
-    EXPECT(restir_compat_score(x, z, 4.0f, x, z, om, beta) == 1.0f, "identical points and normals give 1 (%.9g)",
-           (double)restir_compat_score(x, z, 4.0f, x, z, om, beta));
+    EXPECT(restir_neighbors_compat(x, z, 4.0f, x, z, om, beta) == 1.0f, "identical points and normals give 1 (%.9g)",
+           (double)restir_neighbors_compat(x, z, 4.0f, x, z, om, beta));
     check_compat("identical, normal (1,2,2)/3", x, nd, 4.0f, x, nd, om, beta, 1);
 
     float y1[3] = {1.1f, 2.0f, 3.0f}; /* 0.1 away at d = 2: s = sqrt(0.05 * 4 / pi) = 0.2523 */
     check_compat("dist 0.1, d 2", x, z, 2.0f, y1, z, om, beta, 1);
     double s = sqrt(0.05 * 4.0 / 3.14159265358979323846);
     double ref = exp(-0.1 / s);
-    double got = restir_compat_score(x, z, 2.0f, y1, z, om, beta);
+    double got = restir_neighbors_compat(x, z, 2.0f, y1, z, om, beta);
     EXPECT(fabs(got - ref) <= 1e-5 * ref, "exp(-0.1 / s): %.9g vs %.9g", got, ref);
 
     float y2[3] = {0.7f, 2.4f, 3.5f};
     check_compat("dist 0.71, d 10", x, z, 10.0f, y2, z, om, beta, 1);
     check_compat("dist 0.71, d 1.5", x, z, 1.5f, y2, z, om, beta, 1);
     check_compat("30 deg normals, same point", x, z, 3.0f, x, tilt, om, beta, 1);
-    got = restir_compat_score(x, z, 3.0f, x, tilt, om, beta);
+    got = restir_neighbors_compat(x, z, 3.0f, x, tilt, om, beta);
     ref = pow(cos(3.14159265358979323846 / 6.0), 8.0);
     EXPECT(fabs(got - ref) <= 1e-5 * ref, "cos(30 deg)^8: %.9g vs %.9g", got, ref);
     check_compat("30 deg normals, dist 0.71, d 5", x, z, 5.0f, y2, tilt, om, beta, 1);

@@ -4,7 +4,7 @@
  * Model: a 1-D image of pixels [j, j+1), j = 0..P-1 (P = 8). The previous frame holds in every
  * pixel q an independent RIS reservoir: X_q in [q, q+1) from M_q = 1 + q % 3 uniform candidates
  * with target p_prev(x) = 1 + 0.5 sin(3x), its unbiased contribution weight W_q = (sum of RIS
- * weights) / p_prev(X_q) (restir_wrs + restir_gris_contribution_weight), confidence c_q = M_q.
+ * weights) / p_prev(X_q) (restir_reservoir + restir_gris_contribution_weight), confidence c_q = M_q.
  * Camera motion is the monotone bijection T(x) = a x + b + e sin(x), a = 1.15, b = -0.4, e = 0.05
  * (a primary hit projected into the new camera), |T'(x)| = a + e cos(x) its Jacobian. The current
  * pixel p (p = 3 and p = 5) integrates I_p = int_p^{p+1} f(y) dy, f(y) = 1 + y/4 + 0.3 cos(5y),
@@ -19,7 +19,7 @@
  * Balance weights (004 Eq. 9) with c_s = c_{q*(y)} / 2, c_b = c_{q_b} / 2:
  *    m_t(y) = c_t p_hat_t(y) / (c_0 f(y) + c_s p_hat_s(y) + c_b p_hat_b(y)).
  * Every candidate (canonical, every landed splat, backprojection) gets the resampling weight
- * w = m_t(Y) f(Y) W |J| (004 Eq. 6); one is selected by restir_wrs, W_sel = sum w / f(Y_sel)
+ * w = m_t(Y) f(Y) W |J| (004 Eq. 6); one is selected by restir_reservoir, W_sel = sum w / f(Y_sel)
  * (004 Eq. 7), and the estimate is F = f(Y_sel) W_sel. Fresh previous reservoirs every trial.
  *
  * Checks: (1) the three weights sum to 1 at many y; (2) the splat technique's proposal density:
@@ -38,7 +38,7 @@
 
 #include "accum.h"
 #include "core/rng.h"
-#include "restir/reservoir.h"
+#include "restir/gris.h"
 #include "test_util.h"
 
 #define P 8
@@ -74,12 +74,12 @@ static double integral(double lo, double hi)
 /* RIS in [lo, lo + 1) from m uniform candidates with target g: the sample and its W. */
 static double ris(pcg32 *rng, double lo, int m, double (*g)(double), double *W)
 {
-    struct restir_wrs wrs;
-    restir_wrs_init(&wrs);
+    struct restir_reservoir wrs;
+    restir_reservoir_init(&wrs);
     double chosen = lo;
     for (int k = 0; k < m; k++) {
         double x = lo + (double)pcg32_float(rng);
-        if (restir_wrs_offer(&wrs, (float)(g(x) / m), pcg32_float(rng)))
+        if (restir_reservoir_offer(&wrs, (float)(g(x) / m), pcg32_float(rng)))
             chosen = x;
     }
     *W = (double)restir_gris_contribution_weight(&wrs, (float)g(chosen));
@@ -137,8 +137,8 @@ static struct estimate trial(pcg32 *rng, int p, enum mode mode)
     double c_sum = 0.0;
     for (int k = 0; k < n; k++)
         c_sum += cs[k];
-    struct restir_wrs wrs;
-    restir_wrs_init(&wrs);
+    struct restir_reservoir wrs;
+    restir_reservoir_init(&wrs);
     double y_sel = p;
     for (int k = 0; k < n; k++) {
         double m;
@@ -149,7 +149,7 @@ static struct estimate trial(pcg32 *rng, int p, enum mode mode)
             technique_terms(&px, ys[k], !(mode == SPLAT_PHAT_NO_JACOBIAN && tech[k] == SPLAT), term);
             m = term[tech[k]] / (term[0] + term[1] + term[2]);
         }
-        if (restir_wrs_offer(&wrs, (float)(m * f(ys[k]) * Ws[k] * Js[k]), pcg32_float(rng)))
+        if (restir_reservoir_offer(&wrs, (float)(m * f(ys[k]) * Ws[k] * Js[k]), pcg32_float(rng)))
             y_sel = ys[k];
     }
     est.merged = f(y_sel) * (double)restir_gris_contribution_weight(&wrs, (float)f(y_sel));

@@ -48,7 +48,7 @@
 #include "accum.h"
 #include "core/rng.h"
 #include "restir/cells.h"
-#include "restir/reservoir.h"
+#include "restir/gris.h"
 #include "restir/spmis.h"
 #include "synthetic_domains.h"
 #include "synthetic_integrand.h"
@@ -146,13 +146,13 @@ static double phat_from(int k, double y)
  * (004 Eq. 2 and 7 with m = 1/K). W = 0 when no candidate contributes. */
 static void domain_input(pcg32 *rng, int k, double *x, double *W)
 {
-    struct restir_wrs r;
-    restir_wrs_init(&r);
+    struct restir_reservoir r;
+    restir_reservoir_init(&r);
     double sel = 0.0;
     for (int i = 0; i < RIS_K; i++) {
         double cand = synthetic_pdf_sample(&dom[k], pcg32_float(rng));
         float w = (float)(target_of(k, cand) / ((double)RIS_K * synthetic_pdf(&dom[k], cand)));
-        if (restir_wrs_offer(&r, w, pcg32_float(rng)))
+        if (restir_reservoir_offer(&r, w, pcg32_float(rng)))
             sel = cand;
     }
     *x = sel;
@@ -228,8 +228,8 @@ static double spmis_once(pcg32 *rng, struct restir_cells *cells, const struct co
     struct restir_spmis_conf k;
     restir_spmis_conf_set(&k, conf[CANONICAL], cs_raw, scale);
 
-    struct restir_wrs r;
-    restir_wrs_init(&r);
+    struct restir_reservoir r;
+    restir_reservoir_init(&r);
     double ysel = 0.0;
     struct restir_spmis_draws d;
     float u[RESTIR_SPMIS_MAX_DRAWS];
@@ -247,7 +247,7 @@ static double spmis_once(pcg32 *rng, struct restir_cells *cells, const struct co
                                               d.factor[j]);
         }
         double w = mc * pc0 * W[CANONICAL];
-        if (restir_wrs_offer(&r, (float)w, pcg32_float(rng)))
+        if (restir_reservoir_offer(&r, (float)w, pcg32_float(rng)))
             ysel = x[CANONICAL];
     }
 
@@ -270,7 +270,7 @@ static double spmis_once(pcg32 *rng, struct restir_cells *cells, const struct co
             factor = (float)m / (float)g->n;
         const double pc = phat0(y);
         double w = restir_spmis_noncanonical(&k, conf[z], (float)phat_from(z, y), (float)pc, factor) * pc * W[z] * jac;
-        if (restir_wrs_offer(&r, (float)w, pcg32_float(rng)))
+        if (restir_reservoir_offer(&r, (float)w, pcg32_float(rng)))
             ysel = y;
     }
     double Wy = (double)restir_gris_contribution_weight(&r, (float)phat0(ysel)); /* Eq. 7 */

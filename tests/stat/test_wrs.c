@@ -3,7 +3,7 @@
 #include <math.h>
 
 #include "core/rng.h"
-#include "restir/reservoir.h"
+#include "restir/gris.h"
 #include "test_util.h"
 
 #define NCAND 10
@@ -58,11 +58,11 @@ static void test_streaming(void)
     int mismatch = 0, bad_sum = 0, bad_offered = 0;
     pcg32 rng = rng_for(1u, 0u, 0u, 0u);
     for (long t = 0; t < TRIALS; t++) {
-        struct restir_wrs r;
-        restir_wrs_init(&r);
+        struct restir_reservoir r;
+        restir_reservoir_init(&r);
         int kept = -1; /* what the caller stores when offer returns 1 */
         for (int i = 0; i < NCAND; i++)
-            if (restir_wrs_offer(&r, cand_weight(i), pcg32_float(&rng)))
+            if (restir_reservoir_offer(&r, cand_weight(i), pcg32_float(&rng)))
                 kept = i;
         if (kept != r.selected)
             mismatch++;
@@ -88,22 +88,22 @@ static void test_merge_tree(void)
     int mismatch = 0, bad_offered = 0;
     pcg32 rng = rng_for(2u, 0u, 0u, 0u);
     for (long t = 0; t < TRIALS; t++) {
-        struct restir_wrs sub[4];
+        struct restir_reservoir sub[4];
         int kept[4];
         for (int s = 0; s < 4; s++) {
-            restir_wrs_init(&sub[s]);
+            restir_reservoir_init(&sub[s]);
             kept[s] = -1;
             for (int i = start[s]; i < start[s + 1]; i++)
-                if (restir_wrs_offer(&sub[s], cand_weight(i), pcg32_float(&rng)))
+                if (restir_reservoir_offer(&sub[s], cand_weight(i), pcg32_float(&rng)))
                     kept[s] = i; /* the caller's stored sample, as a global index */
         }
         int left = kept[0], right = kept[2];
-        if (restir_wrs_merge(&sub[0], &sub[1], pcg32_float(&rng)))
+        if (restir_reservoir_merge(&sub[0], &sub[1], pcg32_float(&rng)))
             left = kept[1];
-        if (restir_wrs_merge(&sub[2], &sub[3], pcg32_float(&rng)))
+        if (restir_reservoir_merge(&sub[2], &sub[3], pcg32_float(&rng)))
             right = kept[3];
         int final = left;
-        if (restir_wrs_merge(&sub[0], &sub[2], pcg32_float(&rng)))
+        if (restir_reservoir_merge(&sub[0], &sub[2], pcg32_float(&rng)))
             final = right;
         if (final != sub[0].selected)
             mismatch++;
@@ -119,31 +119,31 @@ static void test_merge_tree(void)
 
 static void test_edge_cases(void)
 {
-    struct restir_wrs r, e;
-    restir_wrs_init(&r);
+    struct restir_reservoir r, e;
+    restir_reservoir_init(&r);
     EXPECT(r.selected == -1 && r.offered == 0 && r.w_sum == 0.0f, "init");
     EXPECT(restir_gris_contribution_weight(&r, 1.0f) == 0.0f, "W = 0 when nothing selected");
-    EXPECT(restir_wrs_offer(&r, 0.6f, 0.999f) == 1, "a single valid candidate is always taken");
+    EXPECT(restir_reservoir_offer(&r, 0.6f, 0.999f) == 1, "a single valid candidate is always taken");
     /* 004 Eq. 7 with one candidate: W = w / p_hat */
     EXPECT_NEAR(restir_gris_contribution_weight(&r, 0.3f), 0.6 / 0.3, 1e-6, "single-candidate W");
     EXPECT(restir_gris_contribution_weight(&r, 0.0f) == 0.0f, "W = 0 when target is 0");
     EXPECT(restir_gris_contribution_weight(&r, -1.0f) == 0.0f, "W = 0 when target is negative");
 
     /* merging an empty reservoir changes nothing but the offered count */
-    restir_wrs_init(&e);
+    restir_reservoir_init(&e);
     e.offered = 3;
-    EXPECT(restir_wrs_merge(&r, &e, 0.0f) == 0, "empty b never wins");
+    EXPECT(restir_reservoir_merge(&r, &e, 0.0f) == 0, "empty b never wins");
     EXPECT(r.selected == 0 && r.offered == 4 && r.w_sum == 0.6f, "merge of empty b");
     /* merging into an empty reservoir always takes b */
-    struct restir_wrs a;
-    restir_wrs_init(&a);
+    struct restir_reservoir a;
+    restir_reservoir_init(&a);
     a.offered = 2;
-    EXPECT(restir_wrs_merge(&a, &r, 0.999f) == 1, "empty a always takes b");
+    EXPECT(restir_reservoir_merge(&a, &r, 0.999f) == 1, "empty a always takes b");
     EXPECT(a.selected == 2 && a.offered == 6 && a.w_sum == 0.6f, "b's index offset by a.offered");
 
-    EXPECT(restir_confidence_merge(7.0f, 20.0f) == 7.0f, "confidence below cap");
-    EXPECT(restir_confidence_merge(27.0f, 20.0f) == 20.0f, "confidence capped");
-    EXPECT(restir_confidence_merge(27.0f, 0.0f) == 27.0f, "cap <= 0 means uncapped");
+    EXPECT(restir_gris_confidence_merge(7.0f, 20.0f) == 7.0f, "confidence below cap");
+    EXPECT(restir_gris_confidence_merge(27.0f, 20.0f) == 20.0f, "confidence capped");
+    EXPECT(restir_gris_confidence_merge(27.0f, 0.0f) == 27.0f, "cap <= 0 means uncapped");
 }
 
 int main(void)

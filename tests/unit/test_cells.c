@@ -43,8 +43,8 @@ static void test_hash_and_key(void)
     static const uint32_t out[7] = {129708002u, 2831084092u, 2055130248u, 1223963391u,
                                     2572358369u, 3861530882u, 566699590u};
     for (int i = 0; i < 7; i++)
-        EXPECT(restir_pcg_hash(in[i]) == out[i], "pcg_hash(0x%x) = %u, expected %u", (unsigned)in[i],
-               (unsigned)restir_pcg_hash(in[i]), (unsigned)out[i]);
+        EXPECT(restir_cells_hash(in[i]) == out[i], "pcg_hash(0x%x) = %u, expected %u", (unsigned)in[i],
+               (unsigned)restir_cells_hash(in[i]), (unsigned)out[i]);
     /* v = 0 step by step: state = 2891336453 = 0xAC564B05, shift 0xA + 4 = 14,
      * 0xAC564B05 ^ (0xAC564B05 >> 14) = 0xAC54FA5C. */
     {
@@ -59,7 +59,7 @@ static void test_hash_and_key(void)
     /* Same inputs, same key. */
     const float nz[3] = {0.0f, 0.0f, 1.0f};
     const float nz_copy[3] = {0.0f, 0.0f, 1.0f};
-    EXPECT(restir_cell_key(5u, 3, nz, 8) == restir_cell_key(5u, 3, nz_copy, 8), "same inputs same key");
+    EXPECT(restir_cells_key(5u, 3, nz, 8) == restir_cells_key(5u, 3, nz_copy, 8), "same inputs same key");
 
     /* Negative components do not wrap: -1 is bucket 0, +1 is bucket bins - 1. */
     const int bins = 8;
@@ -67,17 +67,17 @@ static void test_hash_and_key(void)
     const float nm099[3] = {-0.99f, 0.0f, 0.0f}, np099[3] = {0.99f, 0.0f, 0.0f};
     const float nm15[3] = {-1.5f, 0.0f, 0.0f}, np15[3] = {1.5f, 0.0f, 0.0f};
     const float nb1[3] = {-0.7f, 0.0f, 0.0f}, nbl[3] = {0.7f, 0.0f, 0.0f}; /* buckets 1 and 6 */
-    uint32_t km1 = restir_cell_key(9u, 2, nm1, bins), kp1 = restir_cell_key(9u, 2, np1, bins);
-    uint32_t km099 = restir_cell_key(9u, 2, nm099, bins), kp099 = restir_cell_key(9u, 2, np099, bins);
+    uint32_t km1 = restir_cells_key(9u, 2, nm1, bins), kp1 = restir_cells_key(9u, 2, np1, bins);
+    uint32_t km099 = restir_cells_key(9u, 2, nm099, bins), kp099 = restir_cells_key(9u, 2, np099, bins);
     EXPECT(km1 != kp1, "normals (-1,0,0) and (1,0,0) share a key");
     EXPECT(km099 != kp099, "normals (-0.99,0,0) and (0.99,0,0) share a key");
     EXPECT(km099 != kp1 && km1 != kp099, "(-0.99,0,0) / (-1,0,0) share a key with a +x normal");
     EXPECT(km1 == km099, "-1 and -0.99 are both bucket 0 (bins 8) but got different keys");
     EXPECT(kp1 == kp099, "+1 and 0.99 are both bucket bins-1 (bins 8) but got different keys");
-    EXPECT(restir_cell_key(9u, 2, nm15, bins) == km1, "-1.5 must clamp to bucket 0 like -1");
-    EXPECT(restir_cell_key(9u, 2, np15, bins) == kp1, "+1.5 must clamp to bucket bins-1 like +1");
-    EXPECT(restir_cell_key(9u, 2, nb1, bins) != km1, "-0.7 (bucket 1) shares a key with -1 (bucket 0)");
-    EXPECT(restir_cell_key(9u, 2, nbl, bins) != kp1, "0.7 (bucket 6) shares a key with +1 (bucket 7)");
+    EXPECT(restir_cells_key(9u, 2, nm15, bins) == km1, "-1.5 must clamp to bucket 0 like -1");
+    EXPECT(restir_cells_key(9u, 2, np15, bins) == kp1, "+1.5 must clamp to bucket bins-1 like +1");
+    EXPECT(restir_cells_key(9u, 2, nb1, bins) != km1, "-0.7 (bucket 1) shares a key with -1 (bucket 0)");
+    EXPECT(restir_cells_key(9u, 2, nbl, bins) != kp1, "0.7 (bucket 6) shares a key with +1 (bucket 7)");
 
     /* Keys are equal exactly when the bucket triples are equal: values at bucket centres and
      * near (but not on) bucket edges, plus +-1 and out-of-range values, for bins 4 and 8. */
@@ -104,7 +104,7 @@ static void test_hash_and_key(void)
                     na[comp] = (float)vals[a];
                     nbv[comp] = (float)vals[b];
                     int same = ref_bucket(vals[a], nb) == ref_bucket(vals[b], nb);
-                    int keq = restir_cell_key(3u, 1, na, nb) == restir_cell_key(3u, 1, nbv, nb);
+                    int keq = restir_cells_key(3u, 1, na, nb) == restir_cells_key(3u, 1, nbv, nb);
                     pairs++;
                     if (same != keq) {
                         if (bad < 5)
@@ -122,7 +122,7 @@ static void test_hash_and_key(void)
                 for (int b2 = 0; b2 < nb; b2++) {
                     float n3[3] = {(float)(-1.0 + (2.0 * b0 + 1.0) / nb), (float)(-1.0 + (2.0 * b1 + 1.0) / nb),
                                    (float)(-1.0 + (2.0 * b2 + 1.0) / nb)};
-                    keys[nk++] = restir_cell_key(3u, 1, n3, nb);
+                    keys[nk++] = restir_cells_key(3u, 1, n3, nb);
                 }
         int dup = 0;
         for (int i = 0; i < nk; i++)
@@ -138,14 +138,14 @@ static void test_hash_and_key(void)
     static const int32_t objs[8] = {0, 1, 2, 3, -1, 7, 1000, -123456};
     for (uint32_t t = 0; t < 64; t++)
         for (int o = 0; o < 8; o++)
-            ks[nk++] = restir_cell_key(t, objs[o], nz, 8);
+            ks[nk++] = restir_cells_key(t, objs[o], nz, 8);
     int dup = 0;
     for (int i = 0; i < nk; i++)
         for (int j = i + 1; j < nk; j++)
             dup += ks[i] == ks[j];
     EXPECT(dup == 0, "%d equal keys among 64 tiles x 8 objects with one normal", dup);
-    EXPECT(restir_cell_key(0u, 0, nz, 8) != restir_cell_key(1u, 0, nz, 8), "tile 0 vs 1");
-    EXPECT(restir_cell_key(0u, 0, nz, 8) != restir_cell_key(0u, 1, nz, 8), "object 0 vs 1");
+    EXPECT(restir_cells_key(0u, 0, nz, 8) != restir_cells_key(1u, 0, nz, 8), "tile 0 vs 1");
+    EXPECT(restir_cells_key(0u, 0, nz, 8) != restir_cells_key(0u, 1, nz, 8), "object 0 vs 1");
     printf("hash/key: %d pcg values, bucket-equivalence for bins 4 and 8, %d tile x object keys distinct\n", 7, nk);
 }
 
@@ -773,7 +773,7 @@ static void scene_alloc(struct scene *s, int w, int h, int tile)
 static void scene_build(struct scene *s)
 {
     for (int p = 0; p < s->w * s->h; p++)
-        s->g.key[p] = restir_cell_key((uint32_t)tile_of(s->w, s->tile, p), s->object[p], &s->normal[3 * p], 8);
+        s->g.key[p] = restir_cells_key((uint32_t)tile_of(s->w, s->tile, p), s->object[p], &s->normal[3 * p], 8);
     EXPECT(restir_cells_init(&s->c, s->w, s->h, s->tile) == 0, "scene init");
     restir_cells_build(&s->c, s->g.key, s->g.valid, s->g.conf, s->g.weight);
 }
@@ -806,7 +806,7 @@ static void aim_tap(float *u, int t, float rt, int dx, int dy)
 }
 
 /* Is tap pixel q (or -1 outside) accepted for `pixel` by the documented rules? */
-static int tap_accepted(const struct scene *s, const struct restir_cell_search *sp, int pixel, int q)
+static int tap_accepted(const struct scene *s, const struct restir_cells_search *sp, int pixel, int q)
 {
     if (q < 0 || s->c.cell_of[q] < 0 || s->object[q] != s->object[pixel])
         return 0;
@@ -853,14 +853,14 @@ static void test_search_fallback(void)
                 s.g.valid[y * 32 + x] = 0;
             }
     scene_build(&s);
-    struct restir_cell_search sp = {12, 30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
+    struct restir_cells_search sp = {12, 30.0f, 1.25f, 0.9f, RESTIR_CELLS_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
     float u[3 * 12];
     pcg32 rng = rng_for(51u, 0u, 0u, 0u);
     int bad_corner = 0, bad_centre = 0;
     for (int d = 0; d < 20000; d++) {
         random_u(&rng, u, 12);
-        bad_corner += restir_cell_search(&s.c, &sp, 0, s.normal, s.object, u) != s.c.cell_of[0];
-        bad_centre += restir_cell_search(&s.c, &sp, centre, s.normal, s.object, u) != s.c.cell_of[centre];
+        bad_corner += restir_cells_search(&s.c, &sp, 0, s.normal, s.object, u) != s.c.cell_of[0];
+        bad_centre += restir_cells_search(&s.c, &sp, centre, s.normal, s.object, u) != s.c.cell_of[centre];
     }
     EXPECT(s.c.cell_of[0] >= 0 && s.c.cell_of[centre] >= 0, "fallback scene cells");
     EXPECT(bad_corner == 0, "(a) corner pixel with only outside / other-object taps: %d of 20000 not its own cell",
@@ -870,7 +870,7 @@ static void test_search_fallback(void)
     /* A pixel in no cell gives -1. */
     int nocell = 17 * 32 + 17;
     EXPECT(s.c.cell_of[nocell] == -1, "no-cell pixel");
-    EXPECT(restir_cell_search(&s.c, &sp, nocell, s.normal, s.object, u) == -1, "pixel in no cell must give -1");
+    EXPECT(restir_cells_search(&s.c, &sp, nocell, s.normal, s.object, u) == -1, "pixel in no cell must give -1");
     scene_free(&s);
 
     /* (b) One object; pixel (20, 20) has normal +z, every other pixel (0.6, 0, 0.8) (dot 0.8). */
@@ -903,7 +903,7 @@ static void test_search_fallback(void)
         none_inside += !any_other;
         for (int k = 0; k < 3; k++) {
             sp.normal_min = mins[k];
-            int own = restir_cell_search(&s.c, &sp, p0, s.normal, s.object, u) == s.c.cell_of[p0];
+            int own = restir_cells_search(&s.c, &sp, p0, s.normal, s.object, u) == s.c.cell_of[p0];
             if (k == 0)
                 own_rej += !own;
             else if (k == 1)
@@ -925,7 +925,7 @@ static void test_search_fallback(void)
 static const int law_off[7][2] = {{-6, 0}, {7, 2}, {2, -2}, {-9, 3}, {21, -8}, {-17, 8}, {0, 14}};
 
 /* rt[t]: sp's disk radius at tap t (12 taps); u: taps 0..6 aimed at law_off. */
-static void aim_law_taps(const struct restir_cell_search *sp, float *rt, float *u)
+static void aim_law_taps(const struct restir_cells_search *sp, float *rt, float *u)
 {
     float r = sp->radius;
     for (int t = 0; t < 12; t++, r *= sp->growth)
@@ -936,14 +936,14 @@ static void aim_law_taps(const struct restir_cell_search *sp, float *rt, float *
 
 /* SEARCH_DRAWS searches from `pixel` with the taps of u and fresh WRS numbers u[3t+2] (t < 7) from
  * rng: count[k] += 1 for each result ucell[k]; returns the number of results that are none of them. */
-static long count_search_results(const struct scene *s, const struct restir_cell_search *sp, int pixel, float *u,
+static long count_search_results(const struct scene *s, const struct restir_cells_search *sp, int pixel, float *u,
                                  const int *ucell, int nu, pcg32 *rng, double *count)
 {
     long other = 0;
     for (long d = 0; d < SEARCH_DRAWS; d++) {
         for (int t = 0; t < 7; t++)
             u[3 * t + 2] = pcg32_float(rng);
-        const int res = restir_cell_search(&s->c, sp, pixel, s->normal, s->object, u);
+        const int res = restir_cells_search(&s->c, sp, pixel, s->normal, s->object, u);
         int k = 0;
         while (k < nu && ucell[k] != res)
             k++;
@@ -974,7 +974,7 @@ static void test_search_law(void)
     }
     scene_build(&s);
     const int x0 = 20, y0 = 12, pixel = y0 * 48 + x0; /* tile (2, 1) */
-    struct restir_cell_search sp = {7, 10.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
+    struct restir_cells_search sp = {7, 10.0f, 1.25f, 0.9f, RESTIR_CELLS_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
     /* Taps: 0 -> tile (1,1), 1 -> tile (3,1), 2 -> own tile, 3 -> tile (1,1) again, 4 -> object 2
      * (rejected), 5 -> dissimilar normal (rejected) , 6 -> outside the image (rejected). */
     const int (*off)[2] = law_off;
@@ -1043,7 +1043,7 @@ static void test_search_law(void)
 
     /* Membership over fully random u arrays, 12 taps; and steps = 1 exactness. Confidences > 0
      * everywhere, so every accepted tap is a candidate of positive weight. */
-    struct restir_cell_search sp12 = {12, 30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
+    struct restir_cells_search sp12 = {12, 30.0f, 1.25f, 0.9f, RESTIR_CELLS_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
     float rt12[12], r = sp12.radius;
     for (int t = 0; t < 12; t++, r *= sp12.growth)
         rt12[t] = r;
@@ -1053,7 +1053,7 @@ static void test_search_law(void)
     for (int d = 0; d < 20000; d++) {
         int pix = pixels[d % 4];
         random_u(&rng, u, 12);
-        int res = restir_cell_search(&s.c, &sp12, pix, s.normal, s.object, u);
+        int res = restir_cells_search(&s.c, &sp12, pix, s.normal, s.object, u);
         int maybe_none = 1, member = 0;
         for (int t = 0; t < 12; t++) {
             int q[4], k = tap_pixels(&s, pix, rt12[t], u, t, q), all = 1;
@@ -1071,7 +1071,7 @@ static void test_search_law(void)
         if (!member && !(maybe_none && res == s.c.cell_of[pix]))
             bad_member++;
         /* steps = 1 */
-        struct restir_cell_search one = sp12;
+        struct restir_cells_search one = sp12;
         one.steps = 1;
         int q[4];
         if (tap_pixels(&s, pix, rt12[0], u, 0, q) == 1) {
@@ -1079,7 +1079,7 @@ static void test_search_law(void)
             int a = tap_accepted(&s, &one, pix, q[0]);
             single_acc += a;
             int want = a ? s.c.cell_of[q[0]] : s.c.cell_of[pix];
-            bad_single += restir_cell_search(&s.c, &one, pix, s.normal, s.object, u) != want;
+            bad_single += restir_cells_search(&s.c, &one, pix, s.normal, s.object, u) != want;
         }
     }
     printf("search (c) random taps: 20000 searches, own cell %ld; steps 1: %ld of %ld taps accepted\n", own_count,
@@ -1100,10 +1100,10 @@ static void test_search_law(void)
         random_u(&rng, u, 12);
         float ucopy[36];
         memcpy(ucopy, u, sizeof ucopy);
-        int a = restir_cell_search(&s.c, &sp12, pix, s.normal, s.object, u);
+        int a = restir_cells_search(&s.c, &sp12, pix, s.normal, s.object, u);
         umod += memcmp(ucopy, u, sizeof ucopy) != 0;
-        int b = restir_cell_search(&s.c, &sp12, pix, s.normal, s.object, ucopy);
-        int c = restir_cell_search(&c2, &sp12, pix, s.normal, s.object, u);
+        int b = restir_cells_search(&s.c, &sp12, pix, s.normal, s.object, ucopy);
+        int c = restir_cells_search(&c2, &sp12, pix, s.normal, s.object, u);
         nondet += a != b || a != c;
     }
     EXPECT(nondet == 0, "(e) %ld searches not deterministic in their inputs", nondet);
@@ -1123,16 +1123,16 @@ static void test_search_growth(void)
         if (p % 200 < 100 && p != pixel)
             s.object[p] = 2;
     scene_build(&s);
-    struct restir_cell_search grow = {6, 10.0f, 2.0f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f},
-                              fixed = {6, 10.0f, 1.0f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
+    struct restir_cells_search grow = {6, 10.0f, 2.0f, 0.9f, RESTIR_CELLS_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f},
+                              fixed = {6, 10.0f, 1.0f, 0.9f, RESTIR_CELLS_SCORE_CONFIDENCE, NULL, NULL, 0.0f, 0.0f};
     float u[18];
     pcg32 rng = rng_for(71u, 0u, 0u, 0u);
     long far_grow = 0, far_fixed = 0, too_far = 0;
     const int own = s.c.cell_of[pixel];
     for (int d = 0; d < 20000; d++) {
         random_u(&rng, u, 6);
-        int a = restir_cell_search(&s.c, &grow, pixel, s.normal, s.object, u);
-        int b = restir_cell_search(&s.c, &fixed, pixel, s.normal, s.object, u);
+        int a = restir_cells_search(&s.c, &grow, pixel, s.normal, s.object, u);
+        int b = restir_cells_search(&s.c, &fixed, pixel, s.normal, s.object, u);
         if (a != own) {
             far_grow++;
             /* the cell lies in the far region */
@@ -1165,7 +1165,7 @@ static void random_scene(struct scene *s, pcg32 *rng)
     scene_build(s);
 }
 
-/* (f) The packed search (restir_cells_pack_taps + restir_cell_search_packed, what the renderer
+/* (f) The packed search (restir_cells_pack_taps + restir_cells_search_packed, what the renderer
  * runs) returns exactly the cell of the reference search over the separate arrays, for every
  * pixel of a scene with a second object on 15% of the pixels, random normals (some below the 0.9
  * similarity), invalid pixels, zero and positive confidences, odd size and tiles; on 1 and 2
@@ -1175,7 +1175,7 @@ static void test_search_packed(void)
     struct scene s;
     pcg32 rng = rng_for(83u, 0u, 0u, 0u);
     random_scene(&s, &rng);
-    const struct restir_cell_search sp = {12,   30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE,
+    const struct restir_cells_search sp = {12,   30.0f, 1.25f, 0.9f, RESTIR_CELLS_SCORE_CONFIDENCE,
                                           NULL, NULL,  0.0f,  0.0f};
     float u[36];
     long differ = 0, own = 0, searched = 0;
@@ -1185,8 +1185,8 @@ static void test_search_packed(void)
         for (int rep = 0; rep < 4; rep++)
             for (int p = 0; p < 77 * 41; p++) {
                 random_u(&rng, u, 12);
-                const int a = restir_cell_search(&s.c, &sp, p, s.normal, s.object, u);
-                const int b = restir_cell_search_packed(&s.c, &sp, p, u);
+                const int a = restir_cells_search(&s.c, &sp, p, s.normal, s.object, u);
+                const int b = restir_cells_search_packed(&s.c, &sp, p, u);
                 differ += a != b;
                 own += a >= 0 && a == s.c.cell_of[p];
                 searched += a >= 0;
@@ -1218,7 +1218,7 @@ static void test_search_compat(void)
     }
     scene_build(&s);
     const int x0 = 20, y0 = 12, pixel = y0 * 48 + x0;
-    struct restir_cell_search sp = {7, 10.0f, 1.25f, -1.0f, RESTIR_CELL_SCORE_COMPAT, pos, depth, 0.05f, 8.0f};
+    struct restir_cells_search sp = {7, 10.0f, 1.25f, -1.0f, RESTIR_CELLS_SCORE_COMPAT, pos, depth, 0.05f, 8.0f};
     /* Taps (law_off): 0 -> tile (1,1), 1 -> tile (3,1), 2 -> own tile, 3 -> tile (1,1) again
      * farther, 4 -> far tile (5,0), 5 -> the facing-away block (score 0), 6 -> outside the image. */
     float rt[12], u[3 * 12];
@@ -1231,7 +1231,7 @@ static void test_search_compat(void)
         if (!tap_accepted(&s, &sp, pixel, q[0]))
             continue;
         const double w = s.c.conf_sum[s.c.cell_of[q[0]]] *
-                         restir_compat_score(&pos[3 * pixel], &s.normal[3 * pixel], depth[pixel], &pos[3 * q[0]],
+                         restir_neighbors_compat(&pos[3 * pixel], &s.normal[3 * pixel], depth[pixel], &pos[3 * q[0]],
                                              &s.normal[3 * q[0]], sp.omega, sp.beta);
         if (!(w > 0.0))
             continue;
@@ -1271,16 +1271,16 @@ static void test_search_compat(void)
         depth[q] = 2.0f + 8.0f * pcg32_float(&rng);
     }
     restir_cells_pack_taps(&s.c, s.normal, s.object);
-    const struct restir_cell_search cs = {12,  30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_COMPAT,
+    const struct restir_cells_search cs = {12,  30.0f, 1.25f, 0.9f, RESTIR_CELLS_SCORE_COMPAT,
                                           pos, depth, 0.05f, 8.0f};
-    const struct restir_cell_search conf = {12, 30.0f, 1.25f, 0.9f, RESTIR_CELL_SCORE_CONFIDENCE, NULL, NULL, 0, 0};
+    const struct restir_cells_search conf = {12, 30.0f, 1.25f, 0.9f, RESTIR_CELLS_SCORE_CONFIDENCE, NULL, NULL, 0, 0};
     long differ = 0, searched = 0, law_differs = 0;
     float uu[36];
     for (int q = 0; q < 77 * 41; q++) {
         random_u(&rng, uu, 12);
-        const int a = restir_cell_search(&s.c, &cs, q, s.normal, s.object, uu);
-        differ += a != restir_cell_search_packed(&s.c, &cs, q, uu);
-        law_differs += a != restir_cell_search(&s.c, &conf, q, s.normal, s.object, uu);
+        const int a = restir_cells_search(&s.c, &cs, q, s.normal, s.object, uu);
+        differ += a != restir_cells_search_packed(&s.c, &cs, q, uu);
+        law_differs += a != restir_cells_search(&s.c, &conf, q, s.normal, s.object, uu);
         searched += a >= 0;
     }
     printf("search (g) compat: packed vs arrays: %ld of %ld searches differ; %ld differ from the confidence "

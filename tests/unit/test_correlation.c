@@ -96,17 +96,17 @@ static double mean_relvar(const float *seq, int n_runs, int frames, size_t np, i
 static void test_spatial_hand(void)
 {
     const float runs[9] = {1, 2, 4, /* run 0 */ 2, 2, 0, /* run 1 */ 3, 5, 2 /* run 2 */};
-    EXPECT_NEAR(restir_spatial_covariance(runs, 3, 3, 1, 1, 0.0f, NULL), 0.125, 1e-14, "3x1 radius 1");
+    EXPECT_NEAR(restir_metrics_spatial_covariance(runs, 3, 3, 1, 1, 0.0f, NULL), 0.125, 1e-14, "3x1 radius 1");
     const unsigned char first_two[3] = {1, 1, 0};
-    EXPECT_NEAR(restir_spatial_covariance(runs, 3, 3, 1, 1, 0.0f, first_two), 0.1875, 1e-14, "3x1 masked");
-    EXPECT_NEAR(restir_spatial_covariance(runs, 3, 3, 1, 2, 0.0f, NULL), 0.0, 1e-14, "3x1 radius 2");
+    EXPECT_NEAR(restir_metrics_spatial_covariance(runs, 3, 3, 1, 1, 0.0f, first_two), 0.1875, 1e-14, "3x1 masked");
+    EXPECT_NEAR(restir_metrics_spatial_covariance(runs, 3, 3, 1, 2, 0.0f, NULL), 0.0, 1e-14, "3x1 radius 2");
     /* With eps, every z_i scales by mean_i / (mean_i + eps): r_01 = 1/4 * 2/(2+eps) * 3/(3+eps),
      * r_12 stays 0, and the mean is (r_01 + r_01 / 2 + 0) / 3 = r_01 / 2. */
     double e = (double)EPS;
-    EXPECT_NEAR(restir_spatial_covariance(runs, 3, 3, 1, 1, EPS, NULL), 0.125 * (2.0 / (2.0 + e)) * (3.0 / (3.0 + e)),
+    EXPECT_NEAR(restir_metrics_spatial_covariance(runs, 3, 3, 1, 1, EPS, NULL), 0.125 * (2.0 / (2.0 + e)) * (3.0 / (3.0 + e)),
                 1e-14, "3x1 radius 1 eps");
     /* A large radius covers the whole row: same as radius 2. */
-    EXPECT_NEAR(restir_spatial_covariance(runs, 3, 3, 1, 1000000, 0.0f, NULL), 0.0, 1e-14, "3x1 huge radius");
+    EXPECT_NEAR(restir_metrics_spatial_covariance(runs, 3, 3, 1, 1000000, 0.0f, NULL), 0.0, 1e-14, "3x1 huge radius");
 
     /* 2x2 image, 2 runs (N - 1 = 1), eps = 0; pixels p0 (0,0) p1 (1,0) p2 (0,1) p3 (1,1):
      *   p0 (1, 3) z = (-1/2, 1/2); p1 (3, 1) z = (1/2, -1/2); p2 (2, 2) z = 0; p3 (1, 3) like p0.
@@ -115,18 +115,18 @@ static void test_spatial_hand(void)
      * p3 (r_31 + r_32) / 2 = -1/4: mean -1/4. Radius 2 (diagonals too): p0 (-1/2 + 0 + 1/2) / 3 = 0,
      * p1 (-1/2 + 0 - 1/2) / 3 = -1/3, p2 0, p3 (1/2 - 1/2 + 0) / 3 = 0: mean -1/12. */
     const float quad[8] = {1, 3, 2, 1, /* run 0 */ 3, 1, 2, 3 /* run 1 */};
-    EXPECT_NEAR(restir_spatial_covariance(quad, 2, 2, 2, 1, 0.0f, NULL), -0.25, 1e-14, "2x2 radius 1");
-    EXPECT_NEAR(restir_spatial_covariance(quad, 2, 2, 2, 2, 0.0f, NULL), -1.0 / 12.0, 1e-14, "2x2 radius 2");
+    EXPECT_NEAR(restir_metrics_spatial_covariance(quad, 2, 2, 2, 1, 0.0f, NULL), -0.25, 1e-14, "2x2 radius 1");
+    EXPECT_NEAR(restir_metrics_spatial_covariance(quad, 2, 2, 2, 2, 0.0f, NULL), -1.0 / 12.0, 1e-14, "2x2 radius 2");
     const unsigned char only_p1[4] = {0, 9, 0, 0};
-    EXPECT_NEAR(restir_spatial_covariance(quad, 2, 2, 2, 1, 0.0f, only_p1), -0.5, 1e-14, "2x2 mask p1");
+    EXPECT_NEAR(restir_metrics_spatial_covariance(quad, 2, 2, 2, 1, 0.0f, only_p1), -0.5, 1e-14, "2x2 mask p1");
 
     /* Undefined cases. */
     const unsigned char none[3] = {0, 0, 0};
-    EXPECT(isnan(restir_spatial_covariance(runs, 3, 3, 1, 1, 0.0f, none)), "empty mask");
-    EXPECT(isnan(restir_spatial_covariance(runs, 3, 3, 1, 0, 0.0f, NULL)), "radius 0: no neighbors");
-    EXPECT(isnan(restir_spatial_covariance(runs, 1, 3, 1, 1, 0.0f, NULL)), "one run");
-    EXPECT(isnan(restir_spatial_covariance(runs, 3, 3, 1, -1, 0.0f, NULL)), "negative radius");
-    EXPECT(isnan(restir_spatial_covariance(NULL, 3, 3, 1, 1, 0.0f, NULL)), "NULL runs");
+    EXPECT(isnan(restir_metrics_spatial_covariance(runs, 3, 3, 1, 1, 0.0f, none)), "empty mask");
+    EXPECT(isnan(restir_metrics_spatial_covariance(runs, 3, 3, 1, 0, 0.0f, NULL)), "radius 0: no neighbors");
+    EXPECT(isnan(restir_metrics_spatial_covariance(runs, 1, 3, 1, 1, 0.0f, NULL)), "one run");
+    EXPECT(isnan(restir_metrics_spatial_covariance(runs, 3, 3, 1, -1, 0.0f, NULL)), "negative radius");
+    EXPECT(isnan(restir_metrics_spatial_covariance(NULL, 3, 3, 1, 1, 0.0f, NULL)), "NULL runs");
 }
 
 /* One pixel, 3 runs, 2 frames, eps = 0 (seq[n * frames + t]):
@@ -136,13 +136,13 @@ static void test_spatial_hand(void)
 static void test_temporal_hand(void)
 {
     const float seq[6] = {1, 2, /* run 0 */ 2, 2, /* run 1 */ 3, 5 /* run 2 */};
-    EXPECT_NEAR(restir_temporal_autocovariance(seq, 3, 2, 1, 1, 1, 0.0f, NULL), 0.25, 1e-14, "lag 1");
-    EXPECT_NEAR(restir_temporal_autocovariance(seq, 3, 2, 1, 1, 0, 0.0f, NULL), 7.0 / 24.0, 1e-14, "lag 0");
-    EXPECT(isnan(restir_temporal_autocovariance(seq, 3, 2, 1, 1, 2, 0.0f, NULL)), "lag >= frames");
-    EXPECT(isnan(restir_temporal_autocovariance(seq, 3, 2, 1, 1, -1, 0.0f, NULL)), "negative lag");
-    EXPECT(isnan(restir_temporal_autocovariance(seq, 1, 2, 1, 1, 1, 0.0f, NULL)), "one run");
+    EXPECT_NEAR(restir_metrics_temporal_autocovariance(seq, 3, 2, 1, 1, 1, 0.0f, NULL), 0.25, 1e-14, "lag 1");
+    EXPECT_NEAR(restir_metrics_temporal_autocovariance(seq, 3, 2, 1, 1, 0, 0.0f, NULL), 7.0 / 24.0, 1e-14, "lag 0");
+    EXPECT(isnan(restir_metrics_temporal_autocovariance(seq, 3, 2, 1, 1, 2, 0.0f, NULL)), "lag >= frames");
+    EXPECT(isnan(restir_metrics_temporal_autocovariance(seq, 3, 2, 1, 1, -1, 0.0f, NULL)), "negative lag");
+    EXPECT(isnan(restir_metrics_temporal_autocovariance(seq, 1, 2, 1, 1, 1, 0.0f, NULL)), "one run");
     const unsigned char none[1] = {0};
-    EXPECT(isnan(restir_temporal_autocovariance(seq, 3, 2, 1, 1, 1, 0.0f, none)), "empty mask");
+    EXPECT(isnan(restir_metrics_temporal_autocovariance(seq, 3, 2, 1, 1, 1, 0.0f, none)), "empty mask");
 }
 
 /* The prefix-sum evaluation against the literal Eq. 16 on random data with uneven means, with and
@@ -162,10 +162,10 @@ static void test_spatial_brute(void)
     runs[5] = runs[W * H + 5] = runs[2 * W * H + 5] = runs[3 * W * H + 5] = runs[4 * W * H + 5] = 0.0f; /* black */
     const int radii[5] = {1, 2, 3, 8, 30};
     for (int k = 0; k < 5; k++) {
-        double got = restir_spatial_covariance(runs, N, W, H, radii[k], EPS, NULL);
+        double got = restir_metrics_spatial_covariance(runs, N, W, H, radii[k], EPS, NULL);
         double want = brute_spatial(runs, N, W, H, radii[k], EPS, NULL);
         EXPECT(fabs(got - want) <= 1e-12 * (1.0 + fabs(want)), "radius %d: %.15g vs %.15g", radii[k], got, want);
-        got = restir_spatial_covariance(runs, N, W, H, radii[k], EPS, mask);
+        got = restir_metrics_spatial_covariance(runs, N, W, H, radii[k], EPS, mask);
         want = brute_spatial(runs, N, W, H, radii[k], EPS, mask);
         EXPECT(fabs(got - want) <= 1e-12 * (1.0 + fabs(want)), "masked radius %d: %.15g vs %.15g", radii[k], got, want);
     }
@@ -182,7 +182,7 @@ static void test_independent_noise(void)
     const double relvar = 1.0 / 12.0;
     float *runs = malloc(sizeof(float) * N * W * H);
     fill_noise(runs, (size_t)N * W * H, 1001u);
-    double cov = restir_spatial_covariance(runs, N, W, H, 8, EPS, NULL);
+    double cov = restir_metrics_spatial_covariance(runs, N, W, H, 8, EPS, NULL);
     double se = sqrt(2.0 * N / ((double)W * H * 150.0)) * relvar / (N - 1);
     EXPECT(fabs(cov) < 5.0 * se, "independent spatial covariance %.3g (5 SE = %.3g, relvar %.3g)", cov, 5.0 * se,
            relvar);
@@ -192,13 +192,13 @@ static void test_independent_noise(void)
      * and the F - LAG frame pairs. */
     float *seq = malloc(sizeof(float) * N * F * W * H);
     fill_noise(seq, (size_t)N * F * W * H, 2002u);
-    double auto_cov = restir_temporal_autocovariance(seq, N, F, W, H, LAG, EPS, NULL);
+    double auto_cov = restir_metrics_temporal_autocovariance(seq, N, F, W, H, LAG, EPS, NULL);
     double se_t = sqrt((double)N / ((double)W * H * (F - LAG))) * relvar / (N - 1);
     EXPECT(fabs(auto_cov) < 5.0 * se_t, "independent autocovariance %.3g (5 SE = %.3g)", auto_cov, 5.0 * se_t);
     /* Lag 0 is the mean relative variance: exactly the direct computation, and near 1/12 times
      * 1 + 3 s^2 / N = 1 + 1/32, the bias of dividing by the squared sample mean (E[1/m^2] ~
      * (1 + 3 Var(m)) for mean 1); the estimate's own spread is about 0.3%. */
-    double lag0 = restir_temporal_autocovariance(seq, N, F, W, H, 0, EPS, NULL);
+    double lag0 = restir_metrics_temporal_autocovariance(seq, N, F, W, H, 0, EPS, NULL);
     EXPECT_NEAR(lag0, mean_relvar(seq, N, F, (size_t)W * H, 0, F, NULL), 1e-12, "lag 0 = relative variance");
     EXPECT_NEAR(lag0, relvar * (1.0 + 1.0 / 32.0), 0.02 * relvar, "lag 0 near 1/12 (1 + 1/32)");
     free(seq);
@@ -223,12 +223,12 @@ static void test_perfect_spatial(void)
     for (int n = 0; n < N; n++)
         s += (c[n] - cm) * (c[n] - cm) / (N - 1);
     double want = s / ((cm + (double)EPS) * (cm + (double)EPS));
-    double got = restir_spatial_covariance(runs, N, W, H, 8, EPS, NULL);
+    double got = restir_metrics_spatial_covariance(runs, N, W, H, 8, EPS, NULL);
     EXPECT(fabs(got - want) <= 1e-12 * want, "perfect spatial %.15g vs relvar %.15g", got, want);
     unsigned char mask[W * H];
     for (int i = 0; i < W * H; i++)
         mask[i] = (unsigned char)(i % 7 == 0);
-    got = restir_spatial_covariance(runs, N, W, H, 3, EPS, mask);
+    got = restir_metrics_spatial_covariance(runs, N, W, H, 3, EPS, mask);
     EXPECT(fabs(got - want) <= 1e-12 * want, "perfect spatial masked %.15g vs relvar %.15g", got, want);
 }
 
@@ -244,7 +244,7 @@ static void test_perfect_temporal(void)
             memcpy(seq + ((size_t)n * F + t) * NP, seq + ((size_t)n * F + t - LAG) * NP, sizeof(float) * NP);
     }
     double want = mean_relvar(seq, N, F, NP, 0, F - LAG, NULL);
-    double got = restir_temporal_autocovariance(seq, N, F, W, H, LAG, EPS, NULL);
+    double got = restir_metrics_temporal_autocovariance(seq, N, F, W, H, LAG, EPS, NULL);
     EXPECT(fabs(got - want) <= 1e-12 * want, "perfect temporal %.15g vs relvar %.15g", got, want);
     /* Near 1/12 (1 + 1/32) as for lag 0 in test_independent_noise; 3 distinct frames of 768
      * pixels: spread about 1%. */
@@ -254,11 +254,11 @@ static void test_perfect_temporal(void)
     for (int i = 0; i < NP; i++)
         mask[i] = (unsigned char)(i % 5 == 1 ? 3 : 0);
     want = mean_relvar(seq, N, F, NP, 0, F - LAG, mask);
-    got = restir_temporal_autocovariance(seq, N, F, W, H, LAG, EPS, mask);
+    got = restir_metrics_temporal_autocovariance(seq, N, F, W, H, LAG, EPS, mask);
     EXPECT(fabs(got - want) <= 1e-12 * want, "perfect temporal masked %.15g vs %.15g", got, want);
 
     /* Lag 2 pairs independent frames of this sequence: about 0 again. */
-    got = restir_temporal_autocovariance(seq, N, F, W, H, 2, EPS, NULL);
+    got = restir_metrics_temporal_autocovariance(seq, N, F, W, H, 2, EPS, NULL);
     double se = sqrt((double)N / ((double)NP * (F - 2))) / 12.0 / (N - 1);
     EXPECT(fabs(got) < 5.0 * se, "lag 2 of the copy sequence %.3g (5 SE = %.3g)", got, 5.0 * se);
     free(seq);
@@ -304,7 +304,7 @@ static void test_hard_strip(void)
             n_valid += valid[i];
         }
     EXPECT(n_valid == 368, "valid count %d", n_valid);
-    int hard = restir_hard_pixels(normals, depth, valid, W, H, 2.0f, 0.5f, 0.1f, 0.1f, mask, ratio);
+    int hard = restir_metrics_hard_pixels(normals, depth, valid, W, H, 2.0f, 0.5f, 0.1f, 0.1f, mask, ratio);
     EXPECT(hard == 37, "hard count %d (round(36.8) = 37)", hard);
     int wrong = 0, marked = 0;
     for (int y = 0; y < H; y++)
@@ -333,19 +333,19 @@ static void test_hard_strip(void)
     EXPECT_NEAR(ratio[11 * W + 20], 1.0, 0.0, "above the invalid block");
 
     /* fraction 1 marks exactly the valid pixels; 0 marks none; no ratio_out is fine. */
-    hard = restir_hard_pixels(normals, depth, valid, W, H, 2.0f, 0.5f, 0.1f, 1.0f, mask, NULL);
+    hard = restir_metrics_hard_pixels(normals, depth, valid, W, H, 2.0f, 0.5f, 0.1f, 1.0f, mask, NULL);
     int same = 1;
     for (int i = 0; i < NP; i++)
         same &= mask[i] == valid[i];
     EXPECT(hard == 368 && same, "fraction 1: %d hard, mask == valid %d", hard, same);
     memset(mask, 7, sizeof mask);
-    hard = restir_hard_pixels(normals, depth, valid, W, H, 2.0f, 0.5f, 0.1f, 0.0f, mask, NULL);
+    hard = restir_metrics_hard_pixels(normals, depth, valid, W, H, 2.0f, 0.5f, 0.1f, 0.0f, mask, NULL);
     int any = 0;
     for (int i = 0; i < NP; i++)
         any |= mask[i];
     EXPECT(hard == 0 && any == 0, "fraction 0: %d hard, mask bits %d", hard, any);
-    EXPECT(restir_hard_pixels(NULL, depth, valid, W, H, 2.0f, 0.5f, 0.1f, 0.1f, mask, NULL) == -1, "NULL normals");
-    EXPECT(restir_hard_pixels(normals, depth, valid, W, H, -1.0f, 0.5f, 0.1f, 0.1f, mask, NULL) == -1,
+    EXPECT(restir_metrics_hard_pixels(NULL, depth, valid, W, H, 2.0f, 0.5f, 0.1f, 0.1f, mask, NULL) == -1, "NULL normals");
+    EXPECT(restir_metrics_hard_pixels(normals, depth, valid, W, H, -1.0f, 0.5f, 0.1f, 0.1f, mask, NULL) == -1,
            "negative radius");
 }
 
@@ -364,7 +364,7 @@ static void test_hard_depth_step(void)
         normals[3 * i + 2] = 1.0f;
         depth[i] = i % W < 8 ? 1.0f : 1.5f;
     }
-    int hard = restir_hard_pixels(normals, depth, NULL, W, H, 2.0f, 0.5f, 0.1f, 0.125f, mask, ratio);
+    int hard = restir_metrics_hard_pixels(normals, depth, NULL, W, H, 2.0f, 0.5f, 0.1f, 0.125f, mask, ratio);
     EXPECT(hard == 16, "depth step hard count %d", hard);
     int wrong = 0, ones = 1;
     for (int i = 0; i < NP; i++) {
@@ -383,7 +383,7 @@ static void test_hard_depth_step(void)
     /* Every pixel tied (uniform plane, ratio 1): the lowest indices win. */
     for (int i = 0; i < NP; i++)
         depth[i] = 2.0f;
-    hard = restir_hard_pixels(normals, depth, NULL, W, H, 3.5f, 0.5f, 0.1f, 0.1f, mask, NULL);
+    hard = restir_metrics_hard_pixels(normals, depth, NULL, W, H, 3.5f, 0.5f, 0.1f, 0.1f, mask, NULL);
     int first = 1;
     for (int i = 0; i < NP; i++)
         first &= mask[i] == (i < 13);

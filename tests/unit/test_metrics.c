@@ -1,4 +1,4 @@
-/* test_metrics.c: unit tests for restir_error_compute and restir_gradient_relmse on small images with hand-computed values.
+/* test_metrics.c: unit tests for restir_metrics_compute and restir_metrics_gradient_relmse on small images with hand-computed values.
  * Must never depend on src/ headers, files or the renderer; only on include/restir/metrics.h. */
 #include <math.h>
 #include <string.h>
@@ -14,8 +14,8 @@ static const float img2[6] = {1.0f, 0.5f, 1.0f, 0.5f, 1.0f, 1.5f};
 
 static void test_two_pixels(void)
 {
-    struct restir_error e;
-    EXPECT(restir_error_compute(img2, ref2, 2, NULL, &e) == 0, "compute failed");
+    struct restir_metrics_error e;
+    EXPECT(restir_metrics_compute(img2, ref2, 2, NULL, &e) == 0, "compute failed");
 
     /* relMSE: terms 0/(1+1e-3), 0.25/(0+1e-3) = 250, 1/(4+1e-3), 0, 0, 1/(0.25+1e-3);
      * sum = 250 + 0.2499375156 + 3.9840637450 = 254.2340012607, mean over 6 = 42.37233354. */
@@ -47,9 +47,9 @@ static void test_two_pixels(void)
 
 static void test_mask(void)
 {
-    struct restir_error e;
+    struct restir_metrics_error e;
     const unsigned char only_second[2] = {0, 7};
-    EXPECT(restir_error_compute(img2, ref2, 2, only_second, &e) == 0, "masked compute failed");
+    EXPECT(restir_metrics_compute(img2, ref2, 2, only_second, &e) == 0, "masked compute failed");
     /* Pixel 1 only: relMSE = (1 / 0.251) / 3 = 1.3280212483. */
     EXPECT_NEAR(e.relmse, 1.0 / 0.251 / 3.0, 1e-12, "masked relmse");
     /* mean(R) over the selected pixel = 2/3, offset 1/150: MAPE = (1 / (0.5 + 1/150)) / 3
@@ -61,33 +61,33 @@ static void test_mask(void)
 
     const unsigned char none[2] = {0, 0};
     memset(&e, 0, sizeof e);
-    EXPECT(restir_error_compute(img2, ref2, 2, none, &e) == -1, "empty mask accepted");
-    EXPECT(restir_error_compute(img2, ref2, 0, NULL, &e) == -1, "zero pixels accepted");
+    EXPECT(restir_metrics_compute(img2, ref2, 2, none, &e) == -1, "empty mask accepted");
+    EXPECT(restir_metrics_compute(img2, ref2, 0, NULL, &e) == -1, "zero pixels accepted");
 }
 
 static void test_identical(void)
 {
-    struct restir_error e;
-    EXPECT(restir_error_compute(ref2, ref2, 2, NULL, &e) == 0, "compute failed");
+    struct restir_metrics_error e;
+    EXPECT(restir_metrics_compute(ref2, ref2, 2, NULL, &e) == 0, "compute failed");
     EXPECT(e.relmse == 0.0 && e.mape == 0.0 && e.smape == 0.0 && e.luma_rmse == 0.0,
            "identical: %g %g %g %g", e.relmse, e.mape, e.smape, e.luma_rmse);
 
     /* An all-black reference matched exactly: 0, not NaN, although MAPE's denominator is 0. */
     const float black[9] = {0};
-    EXPECT(restir_error_compute(black, black, 3, NULL, &e) == 0, "compute failed");
+    EXPECT(restir_metrics_compute(black, black, 3, NULL, &e) == 0, "compute failed");
     EXPECT(e.relmse == 0.0 && e.mape == 0.0 && e.smape == 0.0 && e.luma_rmse == 0.0,
            "black identical: %g %g %g %g", e.relmse, e.mape, e.smape, e.luma_rmse);
 }
 
 static void test_help(void)
 {
-    const char *h = restir_metrics_help();
+    const char *h = restir_metrics_definitions();
     EXPECT(h && strstr(h, "relMSE") && strstr(h, "MAPE") && strstr(h, "SMAPE") &&
                strstr(h, "RMSE") && strstr(h, "0.7152") && strstr(h, "gradient relMSE"),
            "help text incomplete");
 }
 
-/* SMAPE from the luminance alone (what study jobs keep) has restir_error_compute's exact bits. */
+/* SMAPE from the luminance alone (what study jobs keep) has restir_metrics_compute's exact bits. */
 static void test_smape_from_luminance(void)
 {
     enum { N = 999 };
@@ -103,17 +103,17 @@ static void test_smape_from_luminance(void)
     }
     for (int i = 0; i < N; i++)
         mask[i] = (unsigned char)(i % 3 == 0);
-    restir_luminance_image(img, N, lum);
-    struct restir_error e;
+    restir_metrics_luminance(img, N, lum);
+    struct restir_metrics_error e;
     double smape = -1.0;
-    EXPECT(restir_error_compute(img, ref, N, NULL, &e) == 0 && restir_smape_luminance(lum, ref, N, NULL, &smape) == 0,
+    EXPECT(restir_metrics_compute(img, ref, N, NULL, &e) == 0 && restir_metrics_smape_luminance(lum, ref, N, NULL, &smape) == 0,
            "smape from luminance");
     EXPECT(memcmp(&smape, &e.smape, sizeof smape) == 0, "smape from luminance %.17g != %.17g", smape, e.smape);
-    EXPECT(restir_error_compute(img, ref, N, mask, &e) == 0 && restir_smape_luminance(lum, ref, N, mask, &smape) == 0,
+    EXPECT(restir_metrics_compute(img, ref, N, mask, &e) == 0 && restir_metrics_smape_luminance(lum, ref, N, mask, &smape) == 0,
            "masked smape from luminance");
     EXPECT(memcmp(&smape, &e.smape, sizeof smape) == 0, "masked smape %.17g != %.17g", smape, e.smape);
     memset(mask, 0, sizeof mask);
-    EXPECT(restir_smape_luminance(lum, ref, N, mask, &smape) == -1, "empty mask accepted");
+    EXPECT(restir_metrics_smape_luminance(lum, ref, N, mask, &smape) == -1, "empty mask accepted");
 }
 
 /* A 2x2 grey reference R = [1 3; 0 1]: its forward differences are dx = (2, 1) on the rows, dy = (-1, -2)
@@ -131,14 +131,14 @@ static void test_gradient_relmse(void)
             dx[3 * i + c] = gx[i];
             dy[3 * i + c] = gy[i];
         }
-    EXPECT_NEAR(restir_gradient_relmse(dx, dy, ref, 2, 2), 0.75 / 4.001 / 12.0, 1e-12, "gradient relmse");
+    EXPECT_NEAR(restir_metrics_gradient_relmse(dx, dy, ref, 2, 2), 0.75 / 4.001 / 12.0, 1e-12, "gradient relmse");
     dx[0] = dx[1] = dx[2] = 2.0f;
-    EXPECT(restir_gradient_relmse(dx, dy, ref, 2, 2) == 0.0, "exact gradients");
+    EXPECT(restir_metrics_gradient_relmse(dx, dy, ref, 2, 2) == 0.0, "exact gradients");
     /* one row: only x pairs exist, dy must not be read */
     dy[0] = dy[1] = dy[2] = dy[3] = dy[4] = dy[5] = junk;
-    EXPECT_NEAR(restir_gradient_relmse(dx, dy, ref, 2, 1), 0.0, 0.0, "one row");
-    EXPECT(isnan(restir_gradient_relmse(dx, dy, ref, 1, 1)), "a single pixel has no pair");
-    EXPECT(isnan(restir_gradient_relmse(NULL, dy, ref, 2, 2)), "NULL gradients");
+    EXPECT_NEAR(restir_metrics_gradient_relmse(dx, dy, ref, 2, 1), 0.0, 0.0, "one row");
+    EXPECT(isnan(restir_metrics_gradient_relmse(dx, dy, ref, 1, 1)), "a single pixel has no pair");
+    EXPECT(isnan(restir_metrics_gradient_relmse(NULL, dy, ref, 2, 2)), "NULL gradients");
 }
 
 int main(void)
