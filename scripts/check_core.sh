@@ -12,7 +12,7 @@
 #  - `cmake --install` of the full and clean builds gives packages that the examples (ris_1d,
 #    restir_di, poisson) build and run against through find_package(restir) and through
 #    pkg-config; examples/cuda is compiled with nvcc and run (its CPU half without a GPU) when nvcc
-#    is on the PATH, and skipped with a message when not.
+#    is on the PATH or in /usr/local/cuda/bin, and skipped with a message when not.
 set -euo pipefail
 src=${1:?usage: check_core.sh SRC}
 work=$(mktemp -d)
@@ -82,17 +82,20 @@ for ex in $examples; do
 done
 example "$work/minimal.prefix" poisson
 
-if command -v nvcc > /dev/null; then
-  { cmake -S "$src/examples/cuda" -B "$work/cuda" -DCMAKE_PREFIX_PATH="$work/clean.prefix" &&
+nvcc=$(command -v nvcc || true)
+[ -n "$nvcc" ] || [ ! -x /usr/local/cuda/bin/nvcc ] || nvcc=/usr/local/cuda/bin/nvcc
+if [ -n "$nvcc" ]; then
+  { cmake -S "$src/examples/cuda" -B "$work/cuda" -DCMAKE_PREFIX_PATH="$work/clean.prefix" \
+      -DCMAKE_CUDA_COMPILER="$nvcc" &&
     cmake --build "$work/cuda" && "$work/cuda/ris_pairwise"; } > "$work/cuda.log" 2>&1 ||
-    fail "examples/cuda (nvcc $(nvcc --version | sed -n 's/.*release \([0-9.]*\).*/\1/p')):" "$work/cuda.log"
+    fail "examples/cuda ($nvcc):" "$work/cuda.log"
   if grep -q 'GPU vs CPU' "$work/cuda.log"; then
     cuda="examples/cuda compiled with nvcc and run on the GPU"
   else
     cuda="examples/cuda compiled with nvcc and run (its CPU half: no GPU here)"
   fi
 else
-  cuda="examples/cuda SKIPPED: nvcc is not on the PATH"
+  cuda="examples/cuda SKIPPED: no nvcc on the PATH or in /usr/local/cuda/bin"
 fi
 echo "check_core: librestir builds alone (full, clean: no pkg-config package, minimal: no OpenMP or FFTW), passes its"
 echo "core tests in each, exports only restir_ symbols, its headers compile as C++, it installs, and"

@@ -3,6 +3,12 @@
  * built by grouping each tile's pixels by key into flat arrays (the CPU form of the GPU
  * multimap: a counting sort by tile, then by key inside the tile; no allocation per frame), the
  * uniform and Eq. 17 draws from a cell, and the confidence-weighted search for a cell.
+ * Ownership and threads: struct restir_cells is the caller's; restir_cells_init allocates its arrays
+ * and restir_cells_fini frees them. restir_cells_build and restir_cells_pack_taps write it, running
+ * on restir_threads_get() threads (restir/threads.h), and must not overlap any other call on the
+ * same cells; the draws and searches only read it and may run concurrently from any threads. The
+ * RESTIR_HD functions are per-sample code for C, C++ and CUDA device code (restir/hd.h). Nothing
+ * here aborts or writes to stdout or stderr.
  * Must never depend on a ray tracer, files or the renderer. */
 #ifndef RESTIR_CELLS_H
 #define RESTIR_CELLS_H

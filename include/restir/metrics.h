@@ -3,7 +3,8 @@
  * Pixel values are taken as they are: negative ones count like any other, and a NaN or infinite one
  * makes the metrics it enters NaN or infinite (a broken image must not look converged). A count
  * of pixels whose 3 doubles per pixel overflow the address range is refused like a NULL pointer.
- * Nothing here aborts or writes to stdout or stderr.
+ * Nothing here aborts or writes to stdout or stderr. Every function is thread-safe, runs on the
+ * calling thread and keeps no pointer past the call.
  * Must never depend on a ray tracer, files or the renderer. */
 #ifndef RESTIR_METRICS_H
 #define RESTIR_METRICS_H

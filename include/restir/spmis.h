@@ -3,6 +3,8 @@
  * draws of Algorithm 2 (N_c uniform picks for the canonical weight, N picks by Eq. 17 for the
  * neighbors) from one reuse cell. The sample type stays the caller's: it shifts, evaluates
  * targets and offers w~ to a reservoir; these functions supply the weights.
+ * Threads: every function is thread-safe on distinct outputs (the draws only read the cells); the
+ * RESTIR_HD weight functions are per-sample code for C, C++ and CUDA device code (restir/hd.h).
  * Must never depend on a ray tracer, files or the renderer. */
 #ifndef RESTIR_SPMIS_H
 #define RESTIR_SPMIS_H
