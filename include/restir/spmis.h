@@ -48,6 +48,26 @@ RESTIR_HD void restir_spmis_conf_set(struct restir_spmis_conf *k, float c_c, flo
     k->c_sigma = k->scale * restir_hd_weight(c_sigma_raw);
 }
 
+/* What Eq. 11a and Eq. 19 share for domain i: the targets and the scaled c_i (bad values read as 0),
+ * c_S + c_c and the pair denominator c_S p_from + c_c p_c. Returns 0 when k is NULL or either sum
+ * is not positive (the weight is then 0). */
+struct restir_spmis_pair {
+    double pf, pc, ci, ctot, d;
+};
+
+RESTIR_HD int restir_spmis_pair_terms(const struct restir_spmis_conf *k, float c_i, float p_from, float p_c,
+                                      struct restir_spmis_pair *t)
+{
+    if (!k || !t)
+        return 0;
+    t->pf = restir_hd_weight(p_from);
+    t->pc = restir_hd_weight(p_c);
+    t->ci = (double)k->scale * restir_hd_weight(c_i); /* c_i and c_sigma scaled alike */
+    t->ctot = (double)k->c_sigma + (double)k->c_c;
+    t->d = (double)k->c_sigma * t->pf + (double)k->c_c * t->pc;
+    return t->ctot > 0.0 && t->d > 0.0;
+}
+
 /* 004 Eq. 11a, deterministic defensive pairwise weight of non-canonical domain i at its shifted
  * sample y = T_i(X_i): (c_S / (c_S + c_c)) c_i p_from / (c_S p_from + c_c p_c), with c_i the
  * unscaled confidence (scaled inside), p_from = p_hat_{<-i}(y) (Eq. 10) and p_c = p_hat(y), the
@@ -55,15 +75,10 @@ RESTIR_HD void restir_spmis_conf_set(struct restir_spmis_conf *k, float c_c, flo
  * p_from, p_c are read as 0. */
 RESTIR_HD double restir_spmis_pairwise(const struct restir_spmis_conf *k, float c_i, float p_from, float p_c)
 {
-    if (!k)
+    struct restir_spmis_pair t;
+    if (!restir_spmis_pair_terms(k, c_i, p_from, p_c, &t))
         return 0.0;
-    /* 004 Eq. 11a with c_i and c_sigma scaled alike */
-    double pf = restir_hd_weight(p_from), pc = restir_hd_weight(p_c);
-    double cs = k->c_sigma, cc = k->c_c, ci = (double)k->scale * restir_hd_weight(c_i);
-    double ctot = cs + cc, d = cs * pf + cc * pc;
-    if (!(ctot > 0.0) || !(d > 0.0))
-        return 0.0;
-    return (cs / ctot) * ci * pf / d;
+    return ((double)k->c_sigma / t.ctot) * t.ci * t.pf / t.d; /* 004 Eq. 11a */
 }
 
 /* 004 Eq. 16 for one draw with replacement: m_i^pw(y) / (N P(i)), i.e. Eq. 15 with the
@@ -93,15 +108,11 @@ RESTIR_HD double restir_spmis_canonical_share(const struct restir_spmis_conf *k)
 RESTIR_HD double restir_spmis_canonical_term(const struct restir_spmis_conf *k, float c_i, float p_from, float p_c,
                                              double factor)
 {
-    if (!k)
+    struct restir_spmis_pair t;
+    if (!restir_spmis_pair_terms(k, c_i, p_from, p_c, &t))
         return 0.0;
     /* 004 Eq. 19, weighted by the Eq. 18 factor K(i) / (N_c P_c(i)) one draw at a time */
-    double pf = restir_hd_weight(p_from), pc = restir_hd_weight(p_c);
-    double cs = k->c_sigma, cc = k->c_c, ci = (double)k->scale * restir_hd_weight(c_i);
-    double ctot = cs + cc, d = cs * pf + cc * pc;
-    if (!(ctot > 0.0) || !(d > 0.0))
-        return 0.0;
-    return factor * (ci / ctot) * cc * pc / d;
+    return factor * (t.ci / t.ctot) * (double)k->c_c * t.pc / t.d;
 }
 
 /* Most draws one merge makes (enumerating a whole cell of at most RESTIR_CELLS_MAX_TILE^2 pixels). */

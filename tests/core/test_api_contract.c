@@ -325,10 +325,15 @@ static void test_per_sample(void)
     CHECK(restir_spmis_canonical_share(&k) == 1.0);
     CHECK(restir_spmis_canonical_share(NULL) == 1.0);
     CHECK(restir_spmis_pairwise(NULL, 1.0f, 1.0f, 1.0f) == 0.0);
+    struct restir_spmis_pair pair_terms;
+    CHECK(restir_spmis_pair_terms(NULL, 1.0f, 1.0f, 1.0f, &pair_terms) == 0);
     CHECK(restir_spmis_noncanonical(NULL, 1.0f, 1.0f, 1.0f, 1.0) == 0.0);
     CHECK(restir_spmis_canonical_term(NULL, 1.0f, 1.0f, 1.0f, 1.0) == 0.0);
     restir_spmis_conf_set(&k, 1.0f, 1.0f, 1.0f);
     CHECK(restir_spmis_pairwise(&k, 1.0f, 1.0f, 1.0f) == 0.25);
+    CHECK(restir_spmis_pair_terms(&k, 1.0f, 1.0f, 1.0f, NULL) == 0);
+    CHECK(restir_spmis_pair_terms(&k, NaN, INF, -1.0f, &pair_terms) == 0 && pair_terms.pf == 0.0 &&
+          pair_terms.pc == 0.0 && pair_terms.ci == 0.0);
     const float bad3[3] = {NaN, INF, -1.0f};
     for (int b = 0; b < 3; b++) { /* each bad argument read as 0 */
         CHECK(restir_spmis_pairwise(&k, bad3[b], 1.0f, 1.0f) == 0.0);
