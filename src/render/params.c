@@ -43,6 +43,7 @@ static const char *const visibility_mis_names[] = {"rays", "none", NULL};
 static const char *const temporal_reuse_names[] = {"backproject", "splat", "both", NULL};
 static const char *const missing_texture_names[] = {"error", "warn", NULL};
 static const char *const gi_radiance_names[] = {"reevaluate", "stored", NULL}; /* enum gi_radiance_mode */
+static const char *const sampler_names[] = {"independent", "sobol", NULL}; /* enum pt_sampler */
 static const char *const preset_names[] = {"fast", "balanced", "conservative", NULL};
 
 /* Index of val among the NULL-terminated names, or -1. */
@@ -72,6 +73,10 @@ static const struct param_def params[] = {
     {"pt.max_bounces", P_INT, F(max_bounces), 1, 64, "8", NULL,
      "pt: maximum scattering events (1 = direct lighting; set for you when comparing DI methods)", NULL},
     {"pt.rr_bounces", P_INT, F(rr_bounces), 0, 1024, "3", NULL, "pt: Russian roulette after this many bounces", NULL},
+    {"sampler", P_NAMES, F(sampler), 0, 0, "independent", NULL,
+     "pt's random numbers: independent (PCG32 streams) or sobol (Owen-scrambled Sobol' points, a (0,2)-net per "
+     "dimension pair over each frame's samples in a pixel; unbiased, independent across seeds and frames)",
+     sampler_names},
     {"di.light_candidates", P_INT, F(light_candidates), 0, 4096, "32", NULL, "initial RIS: light-sampled candidates", NULL},
     {"di.bsdf_candidates", P_INT, F(bsdf_candidates), 0, 64, "1", NULL, "initial RIS: BSDF-sampled candidates", NULL},
     {"di.visibility_reuse", P_BOOL, F(di_visibility_reuse), 0, 1, "on", NULL,

@@ -35,6 +35,9 @@ enum temporal_reuse_mode { TEMPORAL_BACKPROJECT = 0, TEMPORAL_SPLAT, TEMPORAL_BO
  * point sent toward the pixel that first traced it (Ouyang et al. 2021; BIASED where the sample
  * point is glossy). */
 enum gi_radiance_mode { GI_RADIANCE_REEVALUATE = 0, GI_RADIANCE_STORED };
+/* pt's random numbers: independent PCG32 streams per pixel and vertex, or Owen-scrambled, shuffled
+ * Sobol' points per pixel (core/sobol.h: a (0,m,2)-net per dimension pair over each frame's samples). */
+enum pt_sampler { PT_SAMPLER_INDEPENDENT = 0, PT_SAMPLER_SOBOL };
 /* Which screened Poisson reconstruction fills the image (the other one is written as a layer). */
 enum recon_mode { RECON_L2 = 0, RECON_L1, RECON_BOTH };
 /* Most cell-search taps spmis.search_steps takes (reuse_cells.c keeps this many uniforms). */
@@ -51,6 +54,7 @@ struct render_params {
     /* path tracer */
     int max_bounces;  /* scattering events; 1 = direct lighting only */
     int rr_bounces;   /* Russian roulette starts after this many bounces */
+    enum pt_sampler sampler; /* pt's random numbers */
 
     /* ReSTIR DI */
     int light_candidates;

@@ -80,11 +80,11 @@ static long long next_event_env(const struct scene *s, const struct path_walk *w
  * reported as a candidate of length nv + 1 when it contributes. prefix_f / prefix_pdf describe
  * x_1 .. x. */
 static long long next_event(const struct scene *s, const struct path_walk *w, const struct bsdf_frame *bf, vec3 n,
-                            vec3 prefix_f, float prefix_pdf, pcg32 *rng, path_candidate_fn emit, void *ctx)
+                            vec3 prefix_f, float prefix_pdf, const float u[3], path_candidate_fn emit, void *ctx)
 {
     const struct path_vertex *x = &w->v[w->nv - 1];
     struct light_sample ls;
-    float u0 = pcg32_float(rng), u1 = pcg32_float(rng), u2 = pcg32_float(rng);
+    float u0 = u[0], u1 = u[1], u2 = u[2];
     float emitter_share = 1.0f; /* the probability of sampling an emitter rather than the environment */
     if (s->env) {
         if (u0 < s->env_prob)
@@ -113,8 +113,26 @@ static long long next_event(const struct scene *s, const struct path_walk *w, co
     return 1;
 }
 
+/* The replayable numbers: vertex j's stream path_rng(seed, j), drawn in the order of path_walk.h. */
+static void numbers_from_seed(const void *ctx, int vertex, struct path_vertex_numbers *u)
+{
+    pcg32 rng = path_rng(*(const uint64_t *)ctx, vertex);
+    for (int k = 0; k < 3; k++)
+        u->bsdf[k] = pcg32_float(&rng);
+    for (int k = 0; k < 3; k++)
+        u->nee[k] = pcg32_float(&rng);
+    u->rr = pcg32_float(&rng);
+}
+
 long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uint64_t seed, int max_bounces,
                         int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx)
+{
+    const struct path_numbers numbers = {numbers_from_seed, &seed};
+    return path_walk_run_numbers(s, x1, &numbers, max_bounces, rr_bounces, w, emit, ctx);
+}
+
+long long path_walk_run_numbers(const struct scene *s, const struct path_vertex *x1, const struct path_numbers *numbers,
+                                int max_bounces, int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx)
 {
     long long rays = 0;
     if (max_bounces > PATH_MAX_VERTICES)
@@ -128,8 +146,8 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
         const int j = w->nv;
         if (j > max_bounces)
             break;
-        pcg32 rng = path_rng(seed, j);
-        float ub0 = pcg32_float(&rng), ub1 = pcg32_float(&rng), ub2 = pcg32_float(&rng);
+        struct path_vertex_numbers u;
+        numbers->fill(numbers->ctx, j, &u);
         /* One frame for NEE and the continuation: f and pdf of both strategies come from
          * bsdf_frame_eval, so their MIS weights see the same densities. */
         struct bsdf b;
@@ -137,11 +155,11 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
         path_vertex_bsdf(s, x, &b);
         const vec3 n = bsdf_shading_normal(x->ns, x->ng, x->wo);
         bsdf_frame_init(&bf, &b, n, x->wo);
-        rays += next_event(s, w, &bf, n, prefix_f, prefix_pdf, &rng, emit, ctx);
-        float u_rr = pcg32_float(&rng);
+        rays += next_event(s, w, &bf, n, prefix_f, prefix_pdf, u.nee, emit, ctx);
+        const float u_rr = u.rr;
         vec3 wi, f;
         float pdf;
-        if (!bsdf_frame_sample(&bf, ub0, ub1, ub2, &wi, &pdf, &f))
+        if (!bsdf_frame_sample(&bf, u.bsdf[0], u.bsdf[1], u.bsdf[2], &wi, &pdf, &f))
             break;
         /* A sampled direction below the geometric surface would leak through it. */
         if (v3_dot(wi, x->ng) <= 0.0f)

@@ -9,7 +9,7 @@
  * f = prod_j f_s(x_j) |n_j . w_j| * Le(x_D) and densities are products of solid-angle pdfs.
  *
  * Random numbers: vertex j draws from its own stream path_rng(seed, j), first the three BSDF
- * numbers, then three NEE numbers, then one for Russian roulette. A shift mapping that replays a
+ * numbers, then three NEE numbers, then one for Russian roulette (struct path_vertex_numbers). A shift mapping that replays a
  * path therefore needs only the seed (random replay, Lin et al. 2022 Sec. 7).
  * Must never depend on reservoirs. */
 #ifndef RESTIR_RENDER_PATH_WALK_H
@@ -66,11 +66,28 @@ static inline pcg32 path_rng(uint64_t seed, int vertex)
     return pcg32_make(rng_mix64(seed + 0x632be59bd9b4e019ull * (uint64_t)vertex), seed ^ 0x9e3779b97f4a7c15ull);
 }
 
+/* The random numbers vertex j of a walk consumes: bsdf[0] picks the BSDF lobe and bsdf[1..2] the
+ * direction; nee[0] picks the environment or an emitter (and then the emitter) and nee[1..2] the
+ * point on it; rr decides Russian roulette. */
+struct path_vertex_numbers {
+    float bsdf[3], nee[3], rr;
+};
+
+/* Where a walk's numbers come from: fill(ctx, j, u) writes vertex j's (1-based). path_walk_run
+ * uses the replayable streams path_rng(seed, j); pt's low-discrepancy sampler its own. */
+struct path_numbers {
+    void (*fill)(const void *ctx, int vertex, struct path_vertex_numbers *u);
+    const void *ctx;
+};
+
 /* Walks from the primary hit x1 (x1.wo toward the camera; x1's own emission is not reported:
  * paths of length 1 are the caller's) with up to max_bounces scattering events, Russian roulette
  * after rr_bounces, calling emit for every candidate. Returns the number of rays traced. */
 long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uint64_t seed, int max_bounces,
                         int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx);
+/* path_walk_run with the numbers from `numbers` instead of the seed's streams. */
+long long path_walk_run_numbers(const struct scene *s, const struct path_vertex *x1, const struct path_numbers *numbers,
+                                int max_bounces, int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx);
 
 /* The primary vertex from a camera-ray hit (wo = -ray direction). */
 struct path_vertex path_vertex_from_hit(const struct surface_hit *h, vec3 ray_dir);

@@ -2,6 +2,7 @@
  * summed as m f / p, plus emission seen directly. Must never depend on reservoirs. */
 #include "render/pt.h"
 
+#include "core/sobol.h"
 #include "render/path_walk.h"
 #include "render/tiles.h"
 #include "scene/scene_env.h"
@@ -15,8 +16,36 @@ static void accumulate(void *ctx, const struct path_walk *w, const struct path_c
         *L = v3_add(*L, v3_scale(c->f, c->mis / c->pdf));
 }
 
-vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, uint64_t path_seed, int rr_bounces,
-              long long *rays)
+/* The padded Sobol' dimensions of sample `index` in one pixel and frame (core/sobol.h), each pair or
+ * single named by a key hashed from the pixel's key and its dimension number: 0 the pixel position
+ * (pair), 1 the lens (pair), 2 the shutter time, then five per path vertex j >= 1 at 3 + 5 (j - 1):
+ * the BSDF direction (pair), the BSDF lobe, the NEE point (pair), the NEE light choice, Russian
+ * roulette. Vertices past any fixed count keep getting fresh dimensions, so there is no padding
+ * limit. */
+struct sobol_numbers {
+    uint64_t pixel_key;
+    uint32_t index;
+};
+
+static uint64_t sobol_dim_key(const struct sobol_numbers *sn, int dim)
+{
+    return rng_mix64(sn->pixel_key ^ rng_mix64((uint64_t)dim));
+}
+
+static void sobol_vertex_numbers(const void *ctx, int vertex, struct path_vertex_numbers *u)
+{
+    const struct sobol_numbers *sn = ctx;
+    const int base = 3 + 5 * (vertex - 1);
+    sobol_sample_2d(sn->index, sobol_dim_key(sn, base), &u->bsdf[1]);
+    u->bsdf[0] = sobol_sample_1d(sn->index, sobol_dim_key(sn, base + 1));
+    sobol_sample_2d(sn->index, sobol_dim_key(sn, base + 2), &u->nee[1]);
+    u->nee[0] = sobol_sample_1d(sn->index, sobol_dim_key(sn, base + 3));
+    u->rr = sobol_sample_1d(sn->index, sobol_dim_key(sn, base + 4));
+}
+
+/* Radiance along (o, d) with the walk's numbers from `numbers`. */
+static vec3 pt_trace_numbers(const struct scene *s, vec3 o, vec3 d, int max_bounces, const struct path_numbers *numbers,
+                             uint64_t path_seed, int rr_bounces, long long *rays)
 {
     struct surface_hit h;
     (*rays)++;
@@ -27,8 +56,47 @@ vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, uint64_t p
         L = lights_radiance(s, h.tri, h.b1, h.b2, v3_neg(d));
     struct path_walk w;
     struct path_vertex x1 = path_vertex_from_hit(&h, d);
-    *rays += path_walk_run(s, &x1, path_seed, max_bounces, rr_bounces, &w, accumulate, &L);
+    *rays += numbers ? path_walk_run_numbers(s, &x1, numbers, max_bounces, rr_bounces, &w, accumulate, &L)
+                     : path_walk_run(s, &x1, path_seed, max_bounces, rr_bounces, &w, accumulate, &L);
     return L;
+}
+
+vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, uint64_t path_seed, int rr_bounces,
+              long long *rays)
+{
+    return pt_trace_numbers(s, o, d, max_bounces, NULL, path_seed, rr_bounces, rays);
+}
+
+/* One pixel's spp paths with pt's Sobol' sampler: a frame's samples are the first spp points of the
+ * pixel's padded sequence for that (seed, frame), so each frame is an independent randomized
+ * quasi-Monte Carlo estimate (Owen scrambling makes every point uniform). */
+static vec3 pixel_sobol(const struct scene *s, const struct camera_view *view, const struct render_params *p, int frame,
+                        int x, int y, int i, int spp, long long *rays)
+{
+    struct sobol_numbers sn = {rng_mix64(p->seed ^ rng_mix64((uint64_t)frame ^ rng_mix64((uint64_t)i ^
+                                                                                        rng_mix64(RNG_PASS_PT_SOBOL)))),
+                               0u};
+    const struct path_numbers numbers = {sobol_vertex_numbers, &sn};
+    vec3 sum = v3s(0.0f);
+    for (int k = 0; k < spp; k++) {
+        sn.index = (uint32_t)k;
+        float jitter[2] = {0.5f, 0.5f}, lens[2];
+        if (p->jitter)
+            sobol_sample_2d(sn.index, sobol_dim_key(&sn, 0), jitter);
+        struct camera_sample cs = {{0.0f, 0.0f}, 0.0f};
+        if (view->lens_radius > 0.0f) {
+            sobol_sample_2d(sn.index, sobol_dim_key(&sn, 1), lens);
+            cs.lens[0] = lens[0], cs.lens[1] = lens[1];
+        }
+        if (view->shutter > 0.0f)
+            cs.time = sobol_sample_1d(sn.index, sobol_dim_key(&sn, 2));
+        vec3 o, d;
+        camera_sample_ray(view, &cs, (float)x + jitter[0], (float)y + jitter[1], &o, &d);
+        vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, &numbers, 0u, p->rr_bounces, rays);
+        if (v3_is_finite(L))
+            sum = v3_add(sum, L);
+    }
+    return sum;
 }
 
 long long pt_pass(const struct scene *s, const struct camera_view *view, const struct render_params *p,
@@ -42,7 +110,9 @@ long long pt_pass(const struct scene *s, const struct camera_view *view, const s
             const int x = px.x, y = px.y, i = px.i;
             pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_PT);
             vec3 sum = v3s(0.0f);
-            for (int k = 0; k < spp; k++) {
+            if (p->sampler == PT_SAMPLER_SOBOL)
+                sum = pixel_sobol(s, view, p, frame, x, y, i, spp, &rays);
+            for (int k = 0; p->sampler == PT_SAMPLER_INDEPENDENT && k < spp; k++) {
                 float jx = p->jitter ? pcg32_float(&rng) : 0.5f, jy = p->jitter ? pcg32_float(&rng) : 0.5f;
                 uint64_t path_seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
                 struct camera_sample cs = camera_sample_draw(view, &rng);

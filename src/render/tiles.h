@@ -103,7 +103,8 @@ enum rng_pass {
     RNG_PASS_LIGHT_POOL,
     RNG_PASS_GI_INITIAL,
     RNG_PASS_GI_TEMPORAL,
-    RNG_PASS_GI_SPATIAL
+    RNG_PASS_GI_SPATIAL,
+    RNG_PASS_PT_SOBOL /* not a PCG32 stream: the key of pt's Sobol' dimensions (pt.c) */
 };
 
 #endif

@@ -1,0 +1,104 @@
+/* test_sobol_unbiased.c: pt with `sampler=sobol` (Owen-scrambled, shuffled Sobol' points,
+ * core/sobol.h) is unbiased and its runs are independent across seeds: K seeded runs of it match K
+ * runs of pt with independent PCG32 numbers per pixel (Welch t-test, Sidak-corrected) and over the
+ * whole image (pooled z). A run renders several frames and spp paths per frame, so both the nets
+ * within a frame (spp a power of two and not) and the independence of frames are exercised; the
+ * scenes cover area lights, the environment (sky with a sun), depth of field and motion blur, glossy
+ * transport and Russian roulette. The per-pixel test is valid only for independent runs: with
+ * the run seed left out of the Sobol' keys (every run the same points) cornell fails it in 125 of
+ * 240 pixels with pooled z 10.5 (checked).
+ * Usage for experiments: render_test_sobol_unbiased [SCENE RUNS key=value...]. */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "methods/renderer.h"
+#include "scene/scene_file.h"
+#include "test_util.h"
+#include "unbiased_util.h"
+
+#define RUNS 1024
+
+/* K runs of pt with the given sampler, `frames` frames of `spp` paths each along the camera path,
+ * averaged per run. */
+static void run_pt(const struct scene *s, const struct render_params *base, const char *sampler, uint64_t seed0,
+                   int runs, int frames, struct pixel_stats *st)
+{
+    char msg[256];
+    const int n = base->width * base->height;
+    float *sum = malloc(sizeof(float) * 3 * (size_t)n);
+    for (int k = 0; k < runs; k++) {
+        struct render_params p = *base;
+        EXPECT(render_params_set(&p, sampler, msg) == 0, "%s", msg);
+        p.seed = seed0 + (uint64_t)k;
+        struct renderer r;
+        renderer_init(&r, s, method_named("pt"), &p);
+        for (int i = 0; i < 3 * n; i++)
+            sum[i] = 0.0f;
+        for (int f = 0; f < frames; f++) {
+            struct frame_stats fs;
+            struct camera cam = scene_camera_at(s, 1, (float)(6 * f)); /* along the camera path */
+            renderer_render(&r, f, &cam, &fs);
+            for (int i = 0; i < 3 * n; i++)
+                sum[i] += r.image[i] / (float)frames;
+        }
+        pixel_stats_add(st, sum);
+        renderer_fini(&r);
+    }
+    free(sum);
+}
+
+static void check(const char *scene_name, int runs, const char *const *sets, int nsets)
+{
+    struct scene s;
+    char msg[512];
+    EXPECT(scene_load(scene_name, &s, msg) == 0, "%s", msg);
+    struct render_params p;
+    render_params_defaults(&p);
+    p.width = 20;
+    p.height = 12;
+    EXPECT(render_params_set(&p, "pt.max_bounces=4", msg) == 0, "%s", msg);
+    for (int k = 0; k < nsets; k++)
+        EXPECT(render_params_set(&p, sets[k], msg) == 0, "%s", msg);
+    struct pixel_stats sobol, independent;
+    pixel_stats_init(&sobol, p.width * p.height);
+    pixel_stats_init(&independent, p.width * p.height);
+    run_pt(&s, &p, "sampler=sobol", 1000, runs, 2, &sobol);
+    run_pt(&s, &p, "sampler=independent", 900000, runs, 2, &independent);
+    printf("%s 20x12 pt sampler=sobol against sampler=independent, %d runs of 2 frames:", scene_name, runs);
+    for (int k = 0; k < nsets; k++)
+        printf(" %s", sets[k]);
+    printf("\n");
+    struct unbiased_report rep = unbiased_compare(&sobol, &independent, 0.01);
+    EXPECT(rep.pixels_failed == 0, "%s: %d pixels fail the Sidak-corrected Welch test", scene_name, rep.pixels_failed);
+    EXPECT(fabs(rep.pooled_z) < 4.5, "%s: pooled z = %.2f", scene_name, rep.pooled_z);
+    pixel_stats_free(&sobol);
+    pixel_stats_free(&independent);
+    scene_destroy(&s);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc >= 3) {
+        check(argv[1], atoi(argv[2]), (const char *const *)argv + 3, argc - 3);
+        return test_finish();
+    }
+    const char *spp4[] = {"spp=4"}, *spp3[] = {"spp=3"}, *spp1[] = {"spp=1"};
+    check("cornell", RUNS, spp4, 1);
+    check("cornell", RUNS, spp3, 1);
+    check("ajar", RUNS, spp4, 1);
+    check("many-lights", RUNS, spp1, 1);
+    const char *rr[] = {"spp=4", "pt.rr_bounces=0"};
+    check("cornell", RUNS, rr, 2);
+    char real[1024];
+    const char *data = getenv("RESTIR_TEST_DATA");
+    EXPECT(data != NULL, "RESTIR_TEST_DATA is not set (run through ctest)");
+    if (data) {
+        /* the environment light: a sky map with a sun */
+        snprintf(real, sizeof real, "%s/scenes/sky_only.json", data);
+        check(real, RUNS, spp4, 1);
+    }
+    /* a thin lens and an open shutter along the camera path: the lens pair and the time dimension */
+    const char *lens[] = {"spp=4", "camera.aperture=0.05", "camera.shutter=0.5"};
+    check("cornell", RUNS, lens, 3);
+    return test_finish();
+}
