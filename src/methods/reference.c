@@ -47,7 +47,9 @@ long long reference_accum_step(struct reference_accum *a)
     RESTIR_CHECK(a->done < a->spp);
     const int c = a->first_chunk + a->done / REFERENCE_CHUNK_SPP;
     const int k = a->spp - a->done < REFERENCE_CHUNK_SPP ? a->spp - a->done : REFERENCE_CHUNK_SPP;
-    long long rays = pt_pass(a->scene, &a->view, &a->params, REFERENCE_FRAME_BASE + c, k, a->chunk);
+    /* sampler=sobol: chunk c continues one sequence at point c REFERENCE_CHUNK_SPP */
+    long long rays = pt_pass_chunk(a->scene, &a->view, &a->params, REFERENCE_FRAME_BASE + c, REFERENCE_FRAME_BASE,
+                                   (uint32_t)c * REFERENCE_CHUNK_SPP, k, a->chunk);
     const double done = a->done, total = a->done + k;
     const ptrdiff_t n = 3 * (ptrdiff_t)a->params.width * a->params.height;
 #pragma omp parallel for schedule(static)
@@ -79,6 +81,8 @@ void reference_describe(const struct reference_accum *a, char *out, size_t len)
     size_t used = strlen(out);
     if (v->lens_radius > 0.0f && used < len)
         used += (size_t)snprintf(out + used, len - used, "; lens=%a,%a", v->lens_radius, v->focus_distance);
+    if (p->sampler == PT_SAMPLER_SOBOL && used < len) /* as the lens: earlier references keep their id */
+        used += (size_t)snprintf(out + used, len - used, "; sampler=sobol");
     if (v->shutter > 0.0f && used < len)
         snprintf(out + used, len - used, "; shutter=%a; open=%a,%a,%a/%a,%a,%a/%a,%a,%a/%a", v->shutter,
                  v->open_position.x, v->open_position.y, v->open_position.z, v->open_forward.x, v->open_forward.y,

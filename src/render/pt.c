@@ -20,27 +20,40 @@ static void accumulate(void *ctx, const struct path_walk *w, const struct path_c
  * single named by a key hashed from the pixel's key and its dimension number: 0 the pixel position
  * (pair), 1 the lens (pair), 2 the shutter time, then five per path vertex j >= 1 at 3 + 5 (j - 1):
  * the BSDF direction (pair), the BSDF lobe, the NEE point (pair), the NEE light choice, Russian
- * roulette. Vertices past any fixed count keep getting fresh dimensions, so there is no padding
- * limit. */
+ * roulette. Vertices past PT_SOBOL_VERTICES draw independent PCG32 numbers from a stream keyed by
+ * their first dimension and the sample index: deep bounces gain little from stratification and the
+ * scrambles cost (docs/BENCHMARKS.md, pt's samplers). */
+#define PT_SOBOL_VERTICES 2
 struct sobol_numbers {
     uint64_t pixel_key;
     uint32_t index;
+    int rr_bounces; /* render_params.rr_bounces */
 };
 
 static uint64_t sobol_dim_key(const struct sobol_numbers *sn, int dim)
 {
-    return rng_mix64(sn->pixel_key ^ rng_mix64((uint64_t)dim));
+    return rng_mix64(sn->pixel_key + 0x9e3779b97f4a7c15ull * (uint64_t)(dim + 1));
 }
 
 static void sobol_vertex_numbers(const void *ctx, int vertex, struct path_vertex_numbers *u)
 {
     const struct sobol_numbers *sn = ctx;
     const int base = 3 + 5 * (vertex - 1);
+    if (vertex > PT_SOBOL_VERTICES) { /* deeper vertices: independent numbers, keyed like a dimension */
+        pcg32 rng = pcg32_make(sobol_dim_key(sn, base), (uint64_t)sn->index);
+        for (int k = 0; k < 3; k++)
+            u->bsdf[k] = pcg32_float(&rng);
+        for (int k = 0; k < 3; k++)
+            u->nee[k] = pcg32_float(&rng);
+        u->rr = pcg32_float(&rng);
+        return;
+    }
     sobol_sample_2d(sn->index, sobol_dim_key(sn, base), &u->bsdf[1]);
     u->bsdf[0] = sobol_sample_1d(sn->index, sobol_dim_key(sn, base + 1));
     sobol_sample_2d(sn->index, sobol_dim_key(sn, base + 2), &u->nee[1]);
     u->nee[0] = sobol_sample_1d(sn->index, sobol_dim_key(sn, base + 3));
-    u->rr = sobol_sample_1d(sn->index, sobol_dim_key(sn, base + 4));
+    /* the walk reads rr only past rr_bounces (path_walk.c) */
+    u->rr = vertex > sn->rr_bounces ? sobol_sample_1d(sn->index, sobol_dim_key(sn, base + 4)) : 0.0f;
 }
 
 /* Radiance along (o, d) with the walk's numbers from `numbers`. */
@@ -67,19 +80,20 @@ vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, uint64_t p
     return pt_trace_numbers(s, o, d, max_bounces, NULL, path_seed, rr_bounces, rays);
 }
 
-/* One pixel's spp paths with pt's Sobol' sampler: a frame's samples are the first spp points of the
- * pixel's padded sequence for that (seed, frame), so each frame is an independent randomized
- * quasi-Monte Carlo estimate (Owen scrambling makes every point uniform). */
-static vec3 pixel_sobol(const struct scene *s, const struct camera_view *view, const struct render_params *p, int frame,
-                        int x, int y, int i, int spp, long long *rays)
+/* One pixel's spp paths with pt's Sobol' sampler: points first_index .. first_index + spp - 1 of the
+ * pixel's padded sequence for (seed, sequence). Owen scrambling makes every point uniform, so each
+ * such set is an unbiased randomized quasi-Monte Carlo estimate, and sequences of different seeds or
+ * sequence numbers are independent. */
+static vec3 pixel_sobol(const struct scene *s, const struct camera_view *view, const struct render_params *p,
+                        int sequence, uint32_t first_index, int x, int y, int i, int spp, long long *rays)
 {
-    struct sobol_numbers sn = {rng_mix64(p->seed ^ rng_mix64((uint64_t)frame ^ rng_mix64((uint64_t)i ^
-                                                                                        rng_mix64(RNG_PASS_PT_SOBOL)))),
-                               0u};
+    struct sobol_numbers sn = {rng_mix64(p->seed ^ rng_mix64((uint64_t)sequence ^ rng_mix64((uint64_t)i ^
+                                                                                           rng_mix64(RNG_PASS_PT_SOBOL)))),
+                               0u, p->rr_bounces};
     const struct path_numbers numbers = {sobol_vertex_numbers, &sn};
     vec3 sum = v3s(0.0f);
     for (int k = 0; k < spp; k++) {
-        sn.index = (uint32_t)k;
+        sn.index = first_index + (uint32_t)k;
         float jitter[2] = {0.5f, 0.5f}, lens[2];
         if (p->jitter)
             sobol_sample_2d(sn.index, sobol_dim_key(&sn, 0), jitter);
@@ -102,6 +116,12 @@ static vec3 pixel_sobol(const struct scene *s, const struct camera_view *view, c
 long long pt_pass(const struct scene *s, const struct camera_view *view, const struct render_params *p,
                   int frame, int spp, float *rgb)
 {
+    return pt_pass_chunk(s, view, p, frame, frame, 0u, spp, rgb);
+}
+
+long long pt_pass_chunk(const struct scene *s, const struct camera_view *view, const struct render_params *p,
+                        int frame, int sequence, uint32_t first_index, int spp, float *rgb)
+{
     long long rays = 0;
     const int w = view->width, hgt = view->height, ntiles = tile_count(w, hgt);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
@@ -111,7 +131,7 @@ long long pt_pass(const struct scene *s, const struct camera_view *view, const s
             pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_PT);
             vec3 sum = v3s(0.0f);
             if (p->sampler == PT_SAMPLER_SOBOL)
-                sum = pixel_sobol(s, view, p, frame, x, y, i, spp, &rays);
+                sum = pixel_sobol(s, view, p, sequence, first_index, x, y, i, spp, &rays);
             for (int k = 0; p->sampler == PT_SAMPLER_INDEPENDENT && k < spp; k++) {
                 float jx = p->jitter ? pcg32_float(&rng) : 0.5f, jy = p->jitter ? pcg32_float(&rng) : 0.5f;
                 uint64_t path_seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);

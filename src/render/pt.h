@@ -18,5 +18,11 @@ vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, uint64_t p
 /* Renders spp paths per pixel into rgb (w*h*3, the mean). Returns the number of rays traced. */
 long long pt_pass(const struct scene *s, const struct camera_view *view, const struct render_params *p,
                   int frame, int spp, float *rgb);
+/* pt_pass whose sampler=sobol samples are points first_index .. first_index + spp - 1 of the
+ * pixels' sequences numbered `sequence` (pt_pass: sequence = frame, first_index = 0), so that
+ * chunks of one reference continue one sequence instead of starting independent ones. The
+ * independent sampler reads only frame. */
+long long pt_pass_chunk(const struct scene *s, const struct camera_view *view, const struct render_params *p,
+                        int frame, int sequence, uint32_t first_index, int spp, float *rgb);
 
 #endif

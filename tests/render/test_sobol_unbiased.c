@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "methods/reference.h"
 #include "methods/renderer.h"
 #include "scene/scene_file.h"
 #include "test_util.h"
@@ -47,6 +48,55 @@ static void run_pt(const struct scene *s, const struct render_params *base, cons
     free(sum);
 }
 
+/* K references of `spp` samples with sampler=sobol, whose chunks continue one sequence per pixel
+ * (reference.c), against K runs of pt with independent numbers and the same spp. */
+static void check_reference(const char *scene_name, int runs, int spp)
+{
+    struct scene s;
+    char msg[512];
+    EXPECT(scene_load(scene_name, &s, msg) == 0, "%s", msg);
+    struct render_params p;
+    render_params_defaults(&p);
+    p.width = 20;
+    p.height = 12;
+    EXPECT(render_params_set(&p, "pt.max_bounces=4", msg) == 0, "%s", msg);
+    struct pixel_stats sobol, independent;
+    pixel_stats_init(&sobol, p.width * p.height);
+    pixel_stats_init(&independent, p.width * p.height);
+    struct camera cam = scene_camera_at(&s, 0, 0.0f);
+    for (int k = 0; k < runs; k++) {
+        struct render_params q = p;
+        EXPECT(render_params_set(&q, "sampler=sobol", msg) == 0, "%s", msg);
+        q.seed = 5000 + (uint64_t)k;
+        struct reference_accum a;
+        reference_accum_init(&a, &s, method_named("pt"), &q, &cam, NULL, spp);
+        while (a.done < a.spp)
+            reference_accum_step(&a);
+        pixel_stats_add(&sobol, a.mean);
+        reference_accum_fini(&a);
+    }
+    p.spp = spp;
+    for (int k = 0; k < runs; k++) {
+        struct render_params q = p;
+        q.seed = 700000 + (uint64_t)k;
+        struct renderer r;
+        renderer_init(&r, &s, method_named("pt"), &q);
+        struct frame_stats fs;
+        renderer_render(&r, 0, &cam, &fs);
+        pixel_stats_add(&independent, r.image);
+        renderer_fini(&r);
+    }
+    printf("%s 20x12 references of %d spp with sampler=sobol (chunks of %d continuing one sequence) against pt "
+           "sampler=independent, %d runs\n",
+           scene_name, spp, REFERENCE_CHUNK_SPP, runs);
+    struct unbiased_report rep = unbiased_compare(&sobol, &independent, 0.01);
+    EXPECT(rep.pixels_failed == 0, "%s: %d pixels fail the Sidak-corrected Welch test", scene_name, rep.pixels_failed);
+    EXPECT(fabs(rep.pooled_z) < 4.5, "%s: pooled z = %.2f", scene_name, rep.pooled_z);
+    pixel_stats_free(&sobol);
+    pixel_stats_free(&independent);
+    scene_destroy(&s);
+}
+
 static void check(const char *scene_name, int runs, const char *const *sets, int nsets)
 {
     struct scene s;
@@ -71,6 +121,12 @@ static void check(const char *scene_name, int runs, const char *const *sets, int
     struct unbiased_report rep = unbiased_compare(&sobol, &independent, 0.01);
     EXPECT(rep.pixels_failed == 0, "%s: %d pixels fail the Sidak-corrected Welch test", scene_name, rep.pixels_failed);
     EXPECT(fabs(rep.pooled_z) < 4.5, "%s: pooled z = %.2f", scene_name, rep.pooled_z);
+    double var_sobol = 0.0, var_independent = 0.0; /* summed per-pixel variances of a run's luminance */
+    for (int i = 0; i < sobol.n_pixels; i++) {
+        var_sobol += sobol.m2[i] / (sobol.runs - 1);
+        var_independent += independent.m2[i] / (independent.runs - 1);
+    }
+    printf("  variance of a run, sobol / independent: %.3f (printed, not asserted)\n", var_sobol / var_independent);
     pixel_stats_free(&sobol);
     pixel_stats_free(&independent);
     scene_destroy(&s);
@@ -97,6 +153,8 @@ int main(int argc, char **argv)
         snprintf(real, sizeof real, "%s/scenes/sky_only.json", data);
         check(real, RUNS, spp4, 1);
     }
+    /* references: 2 chunks (16 + 4 samples) of one sequence per pixel */
+    check_reference("cornell", 256, 20);
     /* a thin lens and an open shutter along the camera path: the lens pair and the time dimension */
     const char *lens[] = {"spp=4", "camera.aperture=0.05", "camera.shutter=0.5"};
     check("cornell", RUNS, lens, 3);
