@@ -83,6 +83,8 @@ void reference_describe(const struct reference_accum *a, char *out, size_t len)
         used += (size_t)snprintf(out + used, len - used, "; lens=%a,%a", v->lens_radius, v->focus_distance);
     if (p->sampler == PT_SAMPLER_SOBOL && used < len) /* as the lens: earlier references keep their id */
         used += (size_t)snprintf(out + used, len - used, "; sampler=sobol");
+    if (p->light_sampling == LIGHT_SAMPLING_SOLID_ANGLE && used < len)
+        used += (size_t)snprintf(out + used, len - used, "; lights=solid-angle");
     if (v->shutter > 0.0f && used < len)
         snprintf(out + used, len - used, "; shutter=%a; open=%a,%a,%a/%a,%a,%a/%a,%a,%a/%a", v->shutter,
                  v->open_position.x, v->open_position.y, v->open_position.z, v->open_forward.x, v->open_forward.y,

@@ -44,6 +44,7 @@ static const char *const temporal_reuse_names[] = {"backproject", "splat", "both
 static const char *const missing_texture_names[] = {"error", "warn", NULL};
 static const char *const gi_radiance_names[] = {"reevaluate", "stored", NULL}; /* enum gi_radiance_mode */
 static const char *const sampler_names[] = {"independent", "sobol", NULL}; /* enum pt_sampler */
+static const char *const light_sampling_names[] = {"area", "solid-angle", NULL}; /* enum light_sampling */
 static const char *const preset_names[] = {"fast", "balanced", "conservative", NULL};
 
 /* Index of val among the NULL-terminated names, or -1. */
@@ -77,6 +78,11 @@ static const struct param_def params[] = {
      "pt's random numbers: independent (PCG32 streams) or sobol (Owen-scrambled Sobol' points, a (0,2)-net per "
      "dimension pair over each frame's samples in a pixel; unbiased, independent across seeds and frames)",
      sampler_names},
+    {"lights.sample", P_NAMES, F(light_sampling), 0, 0, "area", NULL,
+     "pt's point on the chosen emitting triangle: area (uniform on it) or solid-angle (uniform in the solid angle "
+     "it subtends, Arvo 1995; area below 3e-4 sr), with the matching density in NEE and in the MIS weight of "
+     "BSDF-sampled hits",
+     light_sampling_names},
     {"di.light_candidates", P_INT, F(light_candidates), 0, 4096, "32", NULL, "initial RIS: light-sampled candidates", NULL},
     {"di.bsdf_candidates", P_INT, F(bsdf_candidates), 0, 64, "1", NULL, "initial RIS: BSDF-sampled candidates", NULL},
     {"di.visibility_reuse", P_BOOL, F(di_visibility_reuse), 0, 1, "on", NULL,

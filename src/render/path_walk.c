@@ -80,7 +80,8 @@ static long long next_event_env(const struct scene *s, const struct path_walk *w
  * reported as a candidate of length nv + 1 when it contributes. prefix_f / prefix_pdf describe
  * x_1 .. x. */
 static long long next_event(const struct scene *s, const struct path_walk *w, const struct bsdf_frame *bf, vec3 n,
-                            vec3 prefix_f, float prefix_pdf, const float u[3], path_candidate_fn emit, void *ctx)
+                            vec3 prefix_f, float prefix_pdf, const float u[3], enum light_sampling lights,
+                            path_candidate_fn emit, void *ctx)
 {
     const struct path_vertex *x = &w->v[w->nv - 1];
     struct light_sample ls;
@@ -92,7 +93,8 @@ static long long next_event(const struct scene *s, const struct path_walk *w, co
         emitter_share = 1.0f - s->env_prob;
         u0 = (u0 - s->env_prob) / emitter_share;
     }
-    if (!lights_sample(s, u0, u1, u2, &ls))
+    if (!(lights == LIGHT_SAMPLING_SOLID_ANGLE ? lights_sample_toward(s, x->p, u0, u1, u2, &ls)
+                                               : lights_sample(s, u0, u1, u2, &ls)))
         return 0;
     vec3 to = v3_sub(ls.p, x->p);
     float d2 = v3_length2(to);
@@ -127,12 +129,19 @@ static void numbers_from_seed(const void *ctx, int vertex, struct path_vertex_nu
 long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uint64_t seed, int max_bounces,
                         int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx)
 {
-    const struct path_numbers numbers = {numbers_from_seed, &seed};
-    return path_walk_run_numbers(s, x1, &numbers, max_bounces, rr_bounces, w, emit, ctx);
+    const struct path_numbers numbers = path_numbers_seeded(&seed);
+    return path_walk_run_numbers(s, x1, &numbers, LIGHT_SAMPLING_AREA, max_bounces, rr_bounces, w, emit, ctx);
+}
+
+struct path_numbers path_numbers_seeded(const uint64_t *seed)
+{
+    const struct path_numbers numbers = {numbers_from_seed, seed};
+    return numbers;
 }
 
 long long path_walk_run_numbers(const struct scene *s, const struct path_vertex *x1, const struct path_numbers *numbers,
-                                int max_bounces, int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx)
+                                enum light_sampling lights, int max_bounces, int rr_bounces, struct path_walk *w,
+                                path_candidate_fn emit, void *ctx)
 {
     long long rays = 0;
     if (max_bounces > PATH_MAX_VERTICES)
@@ -155,7 +164,7 @@ long long path_walk_run_numbers(const struct scene *s, const struct path_vertex 
         path_vertex_bsdf(s, x, &b);
         const vec3 n = bsdf_shading_normal(x->ns, x->ng, x->wo);
         bsdf_frame_init(&bf, &b, n, x->wo);
-        rays += next_event(s, w, &bf, n, prefix_f, prefix_pdf, u.nee, emit, ctx);
+        rays += next_event(s, w, &bf, n, prefix_f, prefix_pdf, u.nee, lights, emit, ctx);
         const float u_rr = u.rr;
         vec3 wi, f;
         float pdf;
@@ -213,7 +222,10 @@ long long path_walk_run_numbers(const struct scene *s, const struct path_vertex 
             c.f = v3_mul(prefix_f, c.Le);
             c.pdf = prefix_pdf;
             float cos_l = fabsf(v3_dot(c.light_n, wi));
-            float pdf_light = lights_pdf_area(s, h.tri) * h.t * h.t / max_f(cos_l, 1e-12f) * (1.0f - s->env_prob);
+            float pdf_light =
+                (lights == LIGHT_SAMPLING_SOLID_ANGLE ? lights_pdf_toward(s, x->p, h.tri, h.t, cos_l)
+                                                      : lights_pdf_area(s, h.tri) * h.t * h.t / max_f(cos_l, 1e-12f)) *
+                (1.0f - s->env_prob);
             c.mis = power_heuristic(pdf, pdf_light);
             emit(ctx, w, &c);
         }

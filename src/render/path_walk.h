@@ -16,6 +16,7 @@
 #define RESTIR_RENDER_PATH_WALK_H
 
 #include "core/rng.h"
+#include "render/params.h"
 #include "scene/scene.h"
 
 /* Vertices a walk can hold: x_1 .. x_{max_bounces}; max_bounces is capped to this. */
@@ -85,9 +86,15 @@ struct path_numbers {
  * after rr_bounces, calling emit for every candidate. Returns the number of rays traced. */
 long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uint64_t seed, int max_bounces,
                         int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx);
-/* path_walk_run with the numbers from `numbers` instead of the seed's streams. */
+/* path_walk_run with the numbers from `numbers` instead of the seed's streams, and NEE sampling
+ * points on emitting triangles by `lights` (path_walk_run: area) with the matching density in the
+ * MIS weights of both strategies. */
 long long path_walk_run_numbers(const struct scene *s, const struct path_vertex *x1, const struct path_numbers *numbers,
-                                int max_bounces, int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx);
+                                enum light_sampling lights, int max_bounces, int rr_bounces, struct path_walk *w,
+                                path_candidate_fn emit, void *ctx);
+/* The numbers path_walk_run draws: the replayable streams path_rng(*seed, j). seed must outlive the
+ * walk. */
+struct path_numbers path_numbers_seeded(const uint64_t *seed);
 
 /* The primary vertex from a camera-ray hit (wo = -ray direction). */
 struct path_vertex path_vertex_from_hit(const struct surface_hit *h, vec3 ray_dir);

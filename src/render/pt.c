@@ -58,7 +58,7 @@ static void sobol_vertex_numbers(const void *ctx, int vertex, struct path_vertex
 
 /* Radiance along (o, d) with the walk's numbers from `numbers`. */
 static vec3 pt_trace_numbers(const struct scene *s, vec3 o, vec3 d, int max_bounces, const struct path_numbers *numbers,
-                             uint64_t path_seed, int rr_bounces, long long *rays)
+                             uint64_t path_seed, enum light_sampling lights, int rr_bounces, long long *rays)
 {
     struct surface_hit h;
     (*rays)++;
@@ -69,15 +69,16 @@ static vec3 pt_trace_numbers(const struct scene *s, vec3 o, vec3 d, int max_boun
         L = lights_radiance(s, h.tri, h.b1, h.b2, v3_neg(d));
     struct path_walk w;
     struct path_vertex x1 = path_vertex_from_hit(&h, d);
-    *rays += numbers ? path_walk_run_numbers(s, &x1, numbers, max_bounces, rr_bounces, &w, accumulate, &L)
-                     : path_walk_run(s, &x1, path_seed, max_bounces, rr_bounces, &w, accumulate, &L);
+    const struct path_numbers seeded = path_numbers_seeded(&path_seed);
+    *rays += path_walk_run_numbers(s, &x1, numbers ? numbers : &seeded, lights, max_bounces, rr_bounces, &w, accumulate,
+                                   &L);
     return L;
 }
 
 vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, uint64_t path_seed, int rr_bounces,
               long long *rays)
 {
-    return pt_trace_numbers(s, o, d, max_bounces, NULL, path_seed, rr_bounces, rays);
+    return pt_trace_numbers(s, o, d, max_bounces, NULL, path_seed, LIGHT_SAMPLING_AREA, rr_bounces, rays);
 }
 
 /* One pixel's spp paths with pt's Sobol' sampler: points first_index .. first_index + spp - 1 of the
@@ -106,7 +107,7 @@ static vec3 pixel_sobol(const struct scene *s, const struct camera_view *view, c
             cs.time = sobol_sample_1d(sn.index, sobol_dim_key(&sn, 2));
         vec3 o, d;
         camera_sample_ray(view, &cs, (float)x + jitter[0], (float)y + jitter[1], &o, &d);
-        vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, &numbers, 0u, p->rr_bounces, rays);
+        vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, &numbers, 0u, p->light_sampling, p->rr_bounces, rays);
         if (v3_is_finite(L))
             sum = v3_add(sum, L);
     }
@@ -138,7 +139,8 @@ long long pt_pass_chunk(const struct scene *s, const struct camera_view *view, c
                 struct camera_sample cs = camera_sample_draw(view, &rng);
                 vec3 o, d;
                 camera_sample_ray(view, &cs, (float)x + jx, (float)y + jy, &o, &d);
-                vec3 L = pt_trace(s, o, d, p->max_bounces, path_seed, p->rr_bounces, &rays);
+                vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, NULL, path_seed, p->light_sampling, p->rr_bounces,
+                                          &rays);
                 if (v3_is_finite(L))
                     sum = v3_add(sum, L);
             }

@@ -4,6 +4,8 @@
 
 #include <math.h>
 
+#include "shading/spherical_triangle.h"
+
 static vec3 tri_vertex(const struct scene *s, int tri, int k) { return s->verts[s->indices[3 * tri + k]]; }
 
 /* Emission at a point: the material's factor, times its emission texture there; none where an
@@ -70,6 +72,72 @@ int lights_sample(const struct scene *s, float u_select, float u1, float u2, str
     warp_uniform_triangle(u1, u2, &b1, &b2);
     lights_emitter_point(s, &s->emitters[e], b1, b2, ls);
     return ls->pdf_area > 0.0f;
+}
+
+/* The solid angle emitter em subtends from x when solid-angle sampling applies there, else 0. A
+ * triangle whose area over the squared distance of its centroid is below LIGHTS_SOLID_ANGLE_MIN is
+ * not even measured: that test costs a few multiplies where the solid angle costs an atan2 and three
+ * square roots, and in tessellated scenes most chosen triangles fail it. */
+static double emitter_solid_angle(const struct emitter *em, vec3 x)
+{
+    const vec3 centroid = v3_add(em->v0, v3_scale(v3_add(em->e1, em->e2), 1.0f / 3.0f));
+    const float area = 0.5f * v3_length(v3_cross(em->e1, em->e2));
+    if (area < (float)LIGHTS_SOLID_ANGLE_MIN * v3_length2(v3_sub(centroid, x)))
+        return 0.0;
+    const double omega =
+        spherical_triangle_solid_angle(x, em->v0, v3_add(em->v0, em->e1), v3_add(em->v0, em->e2));
+    return omega >= LIGHTS_SOLID_ANGLE_MIN ? omega : 0.0;
+}
+
+int lights_sample_toward(const struct scene *s, vec3 x, float u_select, float u1, float u2, struct light_sample *ls)
+{
+    if (s->num_emitters < 1)
+        return 0;
+    const int e = alias_table_sample(&s->emitter_table, u_select);
+    const struct emitter *em = &s->emitters[e];
+    const double omega = emitter_solid_angle(em, x);
+    vec3 dir;
+    if (!(omega > 0.0) || !spherical_triangle_sample(x, em->v0, v3_add(em->v0, em->e1), v3_add(em->v0, em->e2), u1,
+                                                     u2, &dir)) {
+        float b1, b2;
+        warp_uniform_triangle(u1, u2, &b1, &b2);
+        lights_emitter_point(s, em, b1, b2, ls);
+        return ls->pdf_area > 0.0f;
+    }
+    /* The point where dir meets the triangle's plane, as barycentrics (clamped into the triangle
+     * against rounding). */
+    const vec3 n = v3_cross(em->e1, em->e2), to = v3_sub(em->v0, x);
+    const float denom = v3_dot(dir, n);
+    if (denom == 0.0f)
+        return 0;
+    const vec3 q = v3_sub(v3_add(x, v3_scale(dir, v3_dot(to, n) / denom)), em->v0);
+    const float d00 = v3_dot(em->e1, em->e1), d01 = v3_dot(em->e1, em->e2), d11 = v3_dot(em->e2, em->e2);
+    const float d20 = v3_dot(q, em->e1), d21 = v3_dot(q, em->e2), det = d00 * d11 - d01 * d01;
+    float b1 = (d11 * d20 - d01 * d21) / det, b2 = (d00 * d21 - d01 * d20) / det;
+    b1 = b1 < 0.0f ? 0.0f : b1;
+    b2 = b2 < 0.0f ? 0.0f : b2;
+    if (b1 + b2 > 1.0f) {
+        const float sum = b1 + b2;
+        b1 /= sum, b2 /= sum;
+    }
+    lights_emitter_point(s, em, b1, b2, ls);
+    /* pdf_area with pdf_area d^2 / cos_l = P(e) / omega, the density the direction was drawn with */
+    const vec3 d = v3_sub(ls->p, x);
+    const float dist2 = v3_length2(d), cos_l = fabsf(v3_dot(ls->n, d)) / sqrtf(dist2);
+    ls->pdf_area = dist2 > 0.0f ? (float)(s->emitter_table.pmf[e] / omega) * cos_l / dist2 : 0.0f;
+    return ls->pdf_area > 0.0f;
+}
+
+float lights_pdf_toward(const struct scene *s, vec3 x, int tri, float dist, float cos_l)
+{
+    const float pdf_area = lights_pdf_area(s, tri);
+    if (!(pdf_area > 0.0f))
+        return 0.0f;
+    const struct emitter *em = &s->emitters[s->tri_emitter[tri]];
+    const double omega = emitter_solid_angle(em, x);
+    if (omega > 0.0)
+        return (float)(s->emitter_table.pmf[s->tri_emitter[tri]] / omega);
+    return pdf_area * dist * dist / (cos_l > 1e-12f ? cos_l : 1e-12f);
 }
 
 /* Emission is one-sided: only the front (counter-clockwise, geometric normal) side emits. */
