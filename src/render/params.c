@@ -80,8 +80,8 @@ static const struct param_def params[] = {
      sampler_names},
     {"lights.sample", P_NAMES, F(light_sampling), 0, 0, "area", NULL,
      "pt's point on the chosen emitting triangle: area (uniform on it) or solid-angle (uniform in the solid angle "
-     "it subtends, Arvo 1995; area below 3e-4 sr), with the matching density in NEE and in the MIS weight of "
-     "BSDF-sampled hits",
+     "it subtends, Arvo 1995; area where it subtends less than 0.02 sr), with the matching density in NEE and in "
+     "the MIS weight of BSDF-sampled hits",
      light_sampling_names},
     {"di.light_candidates", P_INT, F(light_candidates), 0, 4096, "32", NULL, "initial RIS: light-sampled candidates", NULL},
     {"di.bsdf_candidates", P_INT, F(bsdf_candidates), 0, 64, "1", NULL, "initial RIS: BSDF-sampled candidates", NULL},

@@ -39,7 +39,8 @@ enum gi_radiance_mode { GI_RADIANCE_REEVALUATE = 0, GI_RADIANCE_STORED };
  * Sobol' points per pixel (core/sobol.h: a (0,m,2)-net per dimension pair over each frame's samples). */
 enum pt_sampler { PT_SAMPLER_INDEPENDENT = 0, PT_SAMPLER_SOBOL };
 /* How pt's next-event estimation picks a point on the chosen emitting triangle: uniform in its area,
- * or uniform in the solid angle it subtends (Arvo 1995; area where that is below 3e-4 sr). */
+ * or uniform in the solid angle it subtends (Arvo 1995; area where that is below
+ * LIGHTS_SOLID_ANGLE_MIN, shading/lights.h). */
 enum light_sampling { LIGHT_SAMPLING_AREA = 0, LIGHT_SAMPLING_SOLID_ANGLE };
 /* Which screened Poisson reconstruction fills the image (the other one is written as a layer). */
 enum recon_mode { RECON_L2 = 0, RECON_L1, RECON_BOTH };

@@ -50,18 +50,25 @@ static void run_pt(const struct scene *s, const struct render_params *base, cons
     free(sum);
 }
 
+/* The scene and the parameters every case starts from: 20x12, up to 4 bounces. */
+static void load_case(const char *scene_name, struct scene *s, struct render_params *p)
+{
+    char msg[512];
+    EXPECT(scene_load(scene_name, s, msg) == 0, "%s", msg);
+    render_params_defaults(p);
+    p->width = 20;
+    p->height = 12;
+    EXPECT(render_params_set(p, "pt.max_bounces=4", msg) == 0, "%s", msg);
+}
+
 /* K references of `spp` samples with sampler=sobol, whose chunks continue one sequence per pixel
  * (reference.c), against K runs of pt with independent numbers and the same spp. */
 static void check_reference(const char *scene_name, int runs, int spp)
 {
     struct scene s;
-    char msg[512];
-    EXPECT(scene_load(scene_name, &s, msg) == 0, "%s", msg);
     struct render_params p;
-    render_params_defaults(&p);
-    p.width = 20;
-    p.height = 12;
-    EXPECT(render_params_set(&p, "pt.max_bounces=4", msg) == 0, "%s", msg);
+    char msg[512];
+    load_case(scene_name, &s, &p);
     struct pixel_stats sobol, independent;
     pixel_stats_init(&sobol, p.width * p.height);
     pixel_stats_init(&independent, p.width * p.height);
@@ -103,13 +110,9 @@ static void check_variant(const char *variant, const char *variant2, const char 
                           const char *const *sets, int nsets)
 {
     struct scene s;
-    char msg[512];
-    EXPECT(scene_load(scene_name, &s, msg) == 0, "%s", msg);
     struct render_params p;
-    render_params_defaults(&p);
-    p.width = 20;
-    p.height = 12;
-    EXPECT(render_params_set(&p, "pt.max_bounces=4", msg) == 0, "%s", msg);
+    char msg[512];
+    load_case(scene_name, &s, &p);
     for (int k = 0; k < nsets; k++)
         EXPECT(render_params_set(&p, sets[k], msg) == 0, "%s", msg);
     struct pixel_stats sobol, independent;
