@@ -97,8 +97,8 @@ int lights_sample_toward(const struct scene *s, vec3 x, float u_select, float u1
     const struct emitter *em = &s->emitters[e];
     const double omega = emitter_solid_angle(em, x);
     vec3 dir;
-    if (!(omega > 0.0) || !spherical_triangle_sample(x, em->v0, v3_add(em->v0, em->e1), v3_add(em->v0, em->e2), u1,
-                                                     u2, &dir)) {
+    if (!(omega > 0.0) || !spherical_triangle_sample(x, em->v0, v3_add(em->v0, em->e1), v3_add(em->v0, em->e2), omega,
+                                                     u1, u2, &dir)) {
         float b1, b2;
         warp_uniform_triangle(u1, u2, &b1, &b2);
         lights_emitter_point(s, em, b1, b2, ls);

@@ -33,14 +33,6 @@ static struct dvec dorthogonal(struct dvec v, struct dvec u) { return dnorm(dsub
 
 static double dclamp1(double v) { return v < -1.0 ? -1.0 : (v > 1.0 ? 1.0 : v); }
 
-/* The angle between unit vectors, accurate near 0 and pi (the half-chord form). */
-static double dangle(struct dvec a, struct dvec b)
-{
-    if (ddot(a, b) < 0.0)
-        return 3.14159265358979323846 - 2.0 * asin(dclamp1(dlen(dadd(a, b)) / 2.0));
-    return 2.0 * asin(dclamp1(dlen(dsub(b, a)) / 2.0));
-}
-
 double spherical_triangle_solid_angle(vec3 x, vec3 a, vec3 b, vec3 c)
 {
     const struct dvec A = dsub(dv(a), dv(x)), B = dsub(dv(b), dv(x)), C = dsub(dv(c), dv(x));
@@ -53,23 +45,22 @@ double spherical_triangle_solid_angle(vec3 x, vec3 a, vec3 b, vec3 c)
     return omega > 0.0 ? omega : 0.0;
 }
 
-int spherical_triangle_sample(vec3 x, vec3 a, vec3 b, vec3 c, float u1, float u2, vec3 *dir)
+int spherical_triangle_sample(vec3 x, vec3 a, vec3 b, vec3 c, double omega, float u1, float u2, vec3 *dir)
 {
+    if (!(omega > 0.0))
+        return 0;
     const struct dvec A = dnorm(dsub(dv(a), dv(x))), B = dnorm(dsub(dv(b), dv(x))), C = dnorm(dsub(dv(c), dv(x)));
-    /* The great-circle planes of the sides and the spherical triangle's angles at its vertices. */
-    const struct dvec n_ab = dnorm(dcross(A, B)), n_bc = dnorm(dcross(B, C)), n_ca = dnorm(dcross(C, A));
-    if (dlen(n_ab) == 0.0 || dlen(n_bc) == 0.0 || dlen(n_ca) == 0.0)
+    /* The angle alpha at vertex A, between the great circles A B and A C, as its cosine and sine from
+     * the sides' plane normals (no trigonometry: Arvo's formulas need only these and omega). */
+    const struct dvec n_ab = dnorm(dcross(A, B)), n_ac = dnorm(dcross(A, C));
+    if (dlen(n_ab) == 0.0 || dlen(n_ac) == 0.0)
         return 0;
-    const double alpha = dangle(n_ab, dscale(n_ca, -1.0));
-    const double beta = dangle(n_bc, dscale(n_ab, -1.0));
-    const double gamma = dangle(n_ca, dscale(n_bc, -1.0));
-    const double area = alpha + beta + gamma - 3.14159265358979323846;
-    if (!(area > 0.0))
-        return 0;
-    /* Arvo 1995 Fig. 2: the sub-triangle A B C' of area u1 * area, then C' on the arc A C. */
-    const double area_sub = (double)u1 * area;
-    const double s = sin(area_sub - alpha), t = cos(area_sub - alpha);
-    const double cos_alpha = cos(alpha), sin_alpha = sin(alpha);
+    const double cos_alpha = dclamp1(ddot(n_ab, n_ac)), sin_alpha = dlen(dcross(n_ab, n_ac));
+    /* Arvo 1995 Fig. 2: the sub-triangle A B C' of area u1 * omega, then C' on the arc A C. With
+     * phi = u1 omega - alpha: s = sin(phi), t = cos(phi) by the angle-difference identities. */
+    const double area_sub = (double)u1 * omega;
+    const double sin_area = sin(area_sub), cos_area = cos(area_sub);
+    const double s = sin_area * cos_alpha - cos_area * sin_alpha, t = cos_area * cos_alpha + sin_area * sin_alpha;
     const double cos_c = ddot(A, B); /* the arc A B */
     const double u = t - cos_alpha, v = s + sin_alpha * cos_c;
     const double den = (v * s + u * t) * sin_alpha;

@@ -12,10 +12,11 @@
 double spherical_triangle_solid_angle(vec3 x, vec3 a, vec3 b, vec3 c);
 
 /* A direction from x uniform in the solid angle of triangle a, b, c (Arvo 1995) from u1, u2 in
- * [0,1): the area fraction u1 selects the sub-triangle A B' C', u2 the point along the arc from B
- * to C'. Writes the unit direction to *dir. Returns 0 when the triangle subtends no solid angle (x
- * in its plane, a degenerate triangle); the density of the direction is then undefined, otherwise
- * it is 1 / spherical_triangle_solid_angle(x, a, b, c) over the spherical triangle. */
-int spherical_triangle_sample(vec3 x, vec3 a, vec3 b, vec3 c, float u1, float u2, vec3 *dir);
+ * [0,1): the area fraction u1 selects the sub-triangle A B C', u2 the point along the arc from B
+ * to C'. omega is spherical_triangle_solid_angle(x, a, b, c), which the caller has computed to
+ * decide whether to sample this way and to weigh the sample; the direction's density is 1 / omega
+ * over the spherical triangle. Writes the unit direction to *dir. Returns 0 when the triangle
+ * subtends no solid angle (omega <= 0, x in its plane, a degenerate triangle). */
+int spherical_triangle_sample(vec3 x, vec3 a, vec3 b, vec3 c, double omega, float u1, float u2, vec3 *dir);
 
 #endif

@@ -112,7 +112,9 @@ int main(void)
         for (int n = 0; n < N; n++) {
             vec3 dir;
             const float u1 = pcg32_float(&rng), u2 = pcg32_float(&rng);
-            int cell = spherical_triangle_sample(g->x, g->a, g->b, g->c, u1, u2, &dir) ? cell_of(g->x, dir, g->a, g->b, g->c) : -1;
+            int cell = spherical_triangle_sample(g->x, g->a, g->b, g->c, omega, u1, u2, &dir)
+                           ? cell_of(g->x, dir, g->a, g->b, g->c)
+                           : -1;
             if (cell < 0)
                 missed++;
             else
