@@ -34,7 +34,7 @@ build() {
   cmake --build "$dir" -j 2 >> "$dir.log" 2>&1 || fail "the $name build does not build:" "$dir.log"
   local outside
   outside=$(grep -oE -- '-(I|isystem) ?[^ "]+' "$dir/compile_commands.json" | sed -E 's/^-(I|isystem) ?//' | sort -u |
-    grep -vE "^($src|$dir)(/|\$)" || true)
+    awk -v a="$src" -v b="$dir" 'index($0 "/", a "/") != 1 && index($0 "/", b "/") != 1' || true)
   [ -z "$outside" ] || fail "the $name build includes from outside the source and build trees: $outside"
   local so needed
   so=$(ls "$dir"/librestir.so.* 2> /dev/null | head -1)
