@@ -43,10 +43,17 @@ static inline pcg32 pcg32_make(uint64_t state, uint64_t stream)
 /* Uniform float in [0, 1): 24 random mantissa bits, never exactly 1. */
 static inline float pcg32_float(pcg32 *r) { return (float)(pcg32_next(r) >> 8) * 0x1.0p-24f; }
 
-/* Stream for one (seed, frame, pixel, pass): the project-wide seeding rule (DESIGN.md). */
+/* The 64-bit key of one (seed, frame, pixel, pass): the project-wide seeding rule (DESIGN.md), which
+ * rng_for turns into a PCG32 stream and pt's Sobol' sampler into its dimensions' keys. */
+static inline uint64_t rng_key(uint64_t seed, uint64_t frame, uint64_t pixel, uint64_t pass)
+{
+    return rng_mix64(seed ^ rng_mix64(frame ^ rng_mix64(pixel ^ rng_mix64(pass))));
+}
+
+/* Stream for one (seed, frame, pixel, pass). */
 static inline pcg32 rng_for(uint64_t seed, uint64_t frame, uint64_t pixel, uint64_t pass)
 {
-    uint64_t h = rng_mix64(seed ^ rng_mix64(frame ^ rng_mix64(pixel ^ rng_mix64(pass))));
+    uint64_t h = rng_key(seed, frame, pixel, pass);
     return pcg32_make(h, rng_mix64(h ^ 0x5851f42d4c957f2dull));
 }
 

@@ -62,12 +62,6 @@ static inline uint32_t sobol_lk_hash(uint32_t x, uint32_t seed)
     return x;
 }
 
-/* The nested uniform scramble of the 32 fraction bits x (most significant = first digit). */
-static inline uint32_t sobol_owen_scramble(uint32_t x, uint32_t seed)
-{
-    return sobol_reverse_bits(sobol_lk_hash(sobol_reverse_bits(x), seed));
-}
-
 /* 32 fraction bits to a float in [0, 1): the top 24 bits, never 1. */
 static inline float sobol_to_float(uint32_t x) { return (float)(x >> 8) * 0x1.0p-24f; }
 
@@ -78,14 +72,20 @@ static inline uint32_t sobol_seed_shuffle(uint64_t key) { return (uint32_t)key; 
 static inline uint32_t sobol_seed_x(uint64_t key) { return (uint32_t)(key >> 32); }
 static inline uint32_t sobol_seed_y(uint64_t key) { return (uint32_t)((key * 0xd1b54a32d192ed03ull) >> 32); }
 
+/* The index shuffle of the dimension named by `key`: the nested scramble of the index's bits, which
+ * maps any aligned block of 2^m indices onto an aligned block of 2^m indices. */
+static inline uint32_t sobol_shuffle(uint32_t index, uint64_t key)
+{
+    return sobol_reverse_bits(sobol_lk_hash(sobol_reverse_bits(index), sobol_seed_shuffle(key)));
+}
+
 /* Point `index` of the padded pair named by `key` (a well-mixed 64-bit hash: its bits are the seeds):
  * u[0], u[1] in [0,1). The shuffled index is
  * i = scramble(index); u[0] = scramble(dim0(i)), u[1] = scramble(dim1(i)), with the bit reversals
  * that cancel left out (dim0(i) = reverse(i)). */
 static inline void sobol_sample_2d(uint32_t index, uint64_t key, float u[2])
 {
-    const uint32_t i_rev = sobol_lk_hash(sobol_reverse_bits(index), sobol_seed_shuffle(key)); /* reverse(i) */
-    const uint32_t i = sobol_reverse_bits(i_rev);
+    const uint32_t i = sobol_shuffle(index, key);
     u[0] = sobol_to_float(sobol_reverse_bits(sobol_lk_hash(i, sobol_seed_x(key))));
     u[1] = sobol_to_float(sobol_reverse_bits(sobol_lk_hash(sobol_dim1_reversed(i), sobol_seed_y(key))));
 }
@@ -94,7 +94,7 @@ static inline void sobol_sample_2d(uint32_t index, uint64_t key, float u[2])
  * der Corput sequence (stratified over any 2^m consecutive samples). */
 static inline float sobol_sample_1d(uint32_t index, uint64_t key)
 {
-    const uint32_t i = sobol_reverse_bits(sobol_lk_hash(sobol_reverse_bits(index), sobol_seed_shuffle(key)));
+    const uint32_t i = sobol_shuffle(index, key);
     return sobol_to_float(sobol_reverse_bits(sobol_lk_hash(i, sobol_seed_x(key))));
 }
 

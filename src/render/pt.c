@@ -88,26 +88,42 @@ vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, uint64_t p
 static vec3 pixel_sobol(const struct scene *s, const struct camera_view *view, const struct render_params *p,
                         int sequence, uint32_t first_index, int x, int y, int i, int spp, long long *rays)
 {
-    struct sobol_numbers sn = {rng_mix64(p->seed ^ rng_mix64((uint64_t)sequence ^ rng_mix64((uint64_t)i ^
-                                                                                           rng_mix64(RNG_PASS_PT_SOBOL)))),
-                               0u, p->rr_bounces};
+    struct sobol_numbers sn = {rng_key(p->seed, (uint64_t)sequence, (uint64_t)i, RNG_PASS_PT_SOBOL), 0u, p->rr_bounces};
     const struct path_numbers numbers = {sobol_vertex_numbers, &sn};
     vec3 sum = v3s(0.0f);
     for (int k = 0; k < spp; k++) {
         sn.index = first_index + (uint32_t)k;
-        float jitter[2] = {0.5f, 0.5f}, lens[2];
+        float jitter[2] = {0.5f, 0.5f};
         if (p->jitter)
             sobol_sample_2d(sn.index, sobol_dim_key(&sn, 0), jitter);
-        struct camera_sample cs = {{0.0f, 0.0f}, 0.0f};
-        if (view->lens_radius > 0.0f) {
-            sobol_sample_2d(sn.index, sobol_dim_key(&sn, 1), lens);
-            cs.lens[0] = lens[0], cs.lens[1] = lens[1];
-        }
+        struct camera_sample cs = {{0.0f, 0.0f}, 0.0f}; /* what camera_sample_draw leaves unset */
+        if (view->lens_radius > 0.0f)
+            sobol_sample_2d(sn.index, sobol_dim_key(&sn, 1), cs.lens);
         if (view->shutter > 0.0f)
             cs.time = sobol_sample_1d(sn.index, sobol_dim_key(&sn, 2));
         vec3 o, d;
         camera_sample_ray(view, &cs, (float)x + jitter[0], (float)y + jitter[1], &o, &d);
         vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, &numbers, 0u, p->light_sampling, p->rr_bounces, rays);
+        if (v3_is_finite(L))
+            sum = v3_add(sum, L);
+    }
+    return sum;
+}
+
+/* One pixel's spp paths with independent numbers: the pixel's PCG32 stream for (seed, frame) gives
+ * each path its jitter, seed and camera dimensions; the walk replays from the seed (path_walk.h). */
+static vec3 pixel_independent(const struct scene *s, const struct camera_view *view, const struct render_params *p,
+                              int frame, int x, int y, int i, int spp, long long *rays)
+{
+    pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_PT);
+    vec3 sum = v3s(0.0f);
+    for (int k = 0; k < spp; k++) {
+        float jx = p->jitter ? pcg32_float(&rng) : 0.5f, jy = p->jitter ? pcg32_float(&rng) : 0.5f;
+        uint64_t path_seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
+        struct camera_sample cs = camera_sample_draw(view, &rng);
+        vec3 o, d;
+        camera_sample_ray(view, &cs, (float)x + jx, (float)y + jy, &o, &d);
+        vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, NULL, path_seed, p->light_sampling, p->rr_bounces, rays);
         if (v3_is_finite(L))
             sum = v3_add(sum, L);
     }
@@ -129,21 +145,9 @@ long long pt_pass_chunk(const struct scene *s, const struct camera_view *view, c
     for (int t = 0; t < ntiles; t++) {
         for (struct tile_pixel px = tile_first_pixel(w, hgt, t); px.i >= 0; tile_advance(&px)) {
             const int x = px.x, y = px.y, i = px.i;
-            pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_PT);
-            vec3 sum = v3s(0.0f);
-            if (p->sampler == PT_SAMPLER_SOBOL)
-                sum = pixel_sobol(s, view, p, sequence, first_index, x, y, i, spp, &rays);
-            for (int k = 0; p->sampler == PT_SAMPLER_INDEPENDENT && k < spp; k++) {
-                float jx = p->jitter ? pcg32_float(&rng) : 0.5f, jy = p->jitter ? pcg32_float(&rng) : 0.5f;
-                uint64_t path_seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
-                struct camera_sample cs = camera_sample_draw(view, &rng);
-                vec3 o, d;
-                camera_sample_ray(view, &cs, (float)x + jx, (float)y + jy, &o, &d);
-                vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, NULL, path_seed, p->light_sampling, p->rr_bounces,
-                                          &rays);
-                if (v3_is_finite(L))
-                    sum = v3_add(sum, L);
-            }
+            const vec3 sum = p->sampler == PT_SAMPLER_SOBOL
+                                 ? pixel_sobol(s, view, p, sequence, first_index, x, y, i, spp, &rays)
+                                 : pixel_independent(s, view, p, frame, x, y, i, spp, &rays);
             vec3 mean = v3_scale(sum, 1.0f / (float)spp);
             rgb[3 * i] = mean.x;
             rgb[3 * i + 1] = mean.y;

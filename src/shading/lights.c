@@ -63,15 +63,20 @@ void lights_point(const struct scene *s, int tri, float b1, float b2, struct lig
     lights_emitter_point(s, &s->emitters[e], b1, b2, ls);
 }
 
+/* A point uniform on emitter em's area from u1, u2. Returns 1 when its density is positive. */
+static int sample_area(const struct scene *s, const struct emitter *em, float u1, float u2, struct light_sample *ls)
+{
+    float b1, b2;
+    warp_uniform_triangle(u1, u2, &b1, &b2);
+    lights_emitter_point(s, em, b1, b2, ls);
+    return ls->pdf_area > 0.0f;
+}
+
 int lights_sample(const struct scene *s, float u_select, float u1, float u2, struct light_sample *ls)
 {
     if (s->num_emitters < 1)
         return 0;
-    int e = alias_table_sample(&s->emitter_table, u_select);
-    float b1, b2;
-    warp_uniform_triangle(u1, u2, &b1, &b2);
-    lights_emitter_point(s, &s->emitters[e], b1, b2, ls);
-    return ls->pdf_area > 0.0f;
+    return sample_area(s, &s->emitters[alias_table_sample(&s->emitter_table, u_select)], u1, u2, ls);
 }
 
 /* The solid angle emitter em subtends from x when solid-angle sampling applies there, else 0. A
@@ -98,12 +103,8 @@ int lights_sample_toward(const struct scene *s, vec3 x, float u_select, float u1
     const double omega = emitter_solid_angle(em, x);
     vec3 dir;
     if (!(omega > 0.0) || !spherical_triangle_sample(x, em->v0, v3_add(em->v0, em->e1), v3_add(em->v0, em->e2), omega,
-                                                     u1, u2, &dir)) {
-        float b1, b2;
-        warp_uniform_triangle(u1, u2, &b1, &b2);
-        lights_emitter_point(s, em, b1, b2, ls);
-        return ls->pdf_area > 0.0f;
-    }
+                                                     u1, u2, &dir))
+        return sample_area(s, em, u1, u2, ls);
     /* The point where dir meets the triangle's plane, as barycentrics (clamped into the triangle
      * against rounding). */
     const vec3 n = v3_cross(em->e1, em->e2), to = v3_sub(em->v0, x);
