@@ -38,6 +38,10 @@ static inline int v3_is_finite(vec3 a) { return isfinite(a.x) && isfinite(a.y) &
 static inline float max_f(float a, float b) { return a > b ? a : b; }
 static inline float min_f(float a, float b) { return a < b ? a : b; }
 
+/* Componentwise min / max (box bounds). */
+static inline vec3 v3_min(vec3 a, vec3 b) { return v3(min_f(a.x, b.x), min_f(a.y, b.y), min_f(a.z, b.z)); }
+static inline vec3 v3_max(vec3 a, vec3 b) { return v3(max_f(a.x, b.x), max_f(a.y, b.y), max_f(a.z, b.z)); }
+
 /* Rec. 709 luminance, as DESIGN.md defines it. */
 static inline float v3_luminance(vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 

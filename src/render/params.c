@@ -45,6 +45,7 @@ static const char *const missing_texture_names[] = {"error", "warn", NULL};
 static const char *const gi_radiance_names[] = {"reevaluate", "stored", NULL}; /* enum gi_radiance_mode */
 static const char *const sampler_names[] = {"independent", "sobol", NULL}; /* enum pt_sampler */
 static const char *const light_sampling_names[] = {"area", "solid-angle", NULL}; /* enum light_sampling */
+static const char *const light_selection_names[] = {"power", "bvh", NULL};        /* enum light_selection */
 static const char *const preset_names[] = {"fast", "balanced", "conservative", NULL};
 
 /* Index of val among the NULL-terminated names, or -1. */
@@ -66,6 +67,8 @@ _Static_assert(sizeof(enum recon_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum di_visibility_mis) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum temporal_reuse_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum gi_radiance_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(enum light_sampling) == sizeof(int), "enum size");
+_Static_assert(sizeof(enum light_selection) == sizeof(int), "enum size");
 
 #define F(field) offsetof(struct render_params, field)
 static const struct param_def params[] = {
@@ -83,6 +86,12 @@ static const struct param_def params[] = {
      "it subtends, Arvo 1995; area where it subtends less than 0.02 sr), with the matching density in NEE and in "
      "the MIS weight of BSDF-sampled hits",
      light_sampling_names},
+    {"lights.select", P_NAMES, F(light_selection), 0, 0, "power", NULL,
+     "pt's choice of emitting triangle for next-event estimation: power (in proportion to its power, one alias "
+     "table) or bvh (down the emitters' BVH by each node's importance at the shading point from its power, "
+     "distance and orientation bounds, Conty Estevez & Kulla 2018), with the matching probability in NEE and in "
+     "the MIS weight of BSDF-sampled hits; unbiased either way",
+     light_selection_names},
     {"di.light_candidates", P_INT, F(light_candidates), 0, 4096, "32", NULL, "initial RIS: light-sampled candidates", NULL},
     {"di.bsdf_candidates", P_INT, F(bsdf_candidates), 0, 64, "1", NULL, "initial RIS: BSDF-sampled candidates", NULL},
     {"di.visibility_reuse", P_BOOL, F(di_visibility_reuse), 0, 1, "on", NULL,

@@ -8,6 +8,7 @@
 #include <stdio.h>
 
 #include "render/shift_kind.h"
+#include "shading/lights.h" /* enum light_sampling, light_selection */
 #include "restir/cells.h"
 #include "restir/mis.h"
 
@@ -38,10 +39,6 @@ enum gi_radiance_mode { GI_RADIANCE_REEVALUATE = 0, GI_RADIANCE_STORED };
 /* pt's random numbers: independent PCG32 streams per pixel and vertex, or Owen-scrambled, shuffled
  * Sobol' points per pixel (core/sobol.h: a (0,m,2)-net per dimension pair over each frame's samples). */
 enum pt_sampler { PT_SAMPLER_INDEPENDENT = 0, PT_SAMPLER_SOBOL };
-/* How pt's next-event estimation picks a point on the chosen emitting triangle: uniform in its area,
- * or uniform in the solid angle it subtends (Arvo 1995; area where that is below
- * LIGHTS_SOLID_ANGLE_MIN, shading/lights.h). */
-enum light_sampling { LIGHT_SAMPLING_AREA = 0, LIGHT_SAMPLING_SOLID_ANGLE };
 /* Which screened Poisson reconstruction fills the image (the other one is written as a layer). */
 enum recon_mode { RECON_L2 = 0, RECON_L1, RECON_BOTH };
 /* Most cell-search taps spmis.search_steps takes (reuse_cells.c keeps this many uniforms). */
@@ -59,7 +56,8 @@ struct render_params {
     int max_bounces;  /* scattering events; 1 = direct lighting only */
     int rr_bounces;   /* Russian roulette starts after this many bounces */
     enum pt_sampler sampler; /* pt's random numbers */
-    enum light_sampling light_sampling; /* pt's points on emitting triangles */
+    enum light_sampling light_sampling;   /* pt's points on emitting triangles (shading/lights.h) */
+    enum light_selection light_selection; /* pt's choice of emitting triangle (shading/lights.h) */
 
     /* ReSTIR DI */
     int light_candidates;

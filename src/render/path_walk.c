@@ -80,7 +80,7 @@ static long long next_event_env(const struct scene *s, const struct path_walk *w
  * reported as a candidate of length nv + 1 when it contributes. prefix_f / prefix_pdf describe
  * x_1 .. x. */
 static long long next_event(const struct scene *s, const struct path_walk *w, const struct bsdf_frame *bf, vec3 n,
-                            vec3 prefix_f, float prefix_pdf, const float u[3], enum light_sampling lights,
+                            vec3 prefix_f, float prefix_pdf, const float u[3], struct light_choice lights,
                             path_candidate_fn emit, void *ctx)
 {
     const struct path_vertex *x = &w->v[w->nv - 1];
@@ -93,8 +93,7 @@ static long long next_event(const struct scene *s, const struct path_walk *w, co
         emitter_share = 1.0f - s->env_prob;
         u0 = (u0 - s->env_prob) / emitter_share;
     }
-    if (!(lights == LIGHT_SAMPLING_SOLID_ANGLE ? lights_sample_toward(s, x->p, u0, u1, u2, &ls)
-                                               : lights_sample(s, u0, u1, u2, &ls)))
+    if (!lights_sample_at(s, lights, x->p, n, u0, u1, u2, &ls))
         return 0;
     vec3 to = v3_sub(ls.p, x->p);
     float d2 = v3_length2(to);
@@ -130,7 +129,8 @@ long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uin
                         int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx)
 {
     const struct path_numbers numbers = path_numbers_seeded(&seed);
-    return path_walk_run_numbers(s, x1, &numbers, LIGHT_SAMPLING_AREA, max_bounces, rr_bounces, w, emit, ctx);
+    const struct light_choice lights = {LIGHT_SELECT_POWER, LIGHT_SAMPLING_AREA};
+    return path_walk_run_numbers(s, x1, &numbers, lights, max_bounces, rr_bounces, w, emit, ctx);
 }
 
 struct path_numbers path_numbers_seeded(const uint64_t *seed)
@@ -140,7 +140,7 @@ struct path_numbers path_numbers_seeded(const uint64_t *seed)
 }
 
 long long path_walk_run_numbers(const struct scene *s, const struct path_vertex *x1, const struct path_numbers *numbers,
-                                enum light_sampling lights, int max_bounces, int rr_bounces, struct path_walk *w,
+                                struct light_choice lights, int max_bounces, int rr_bounces, struct path_walk *w,
                                 path_candidate_fn emit, void *ctx)
 {
     long long rays = 0;
@@ -222,10 +222,8 @@ long long path_walk_run_numbers(const struct scene *s, const struct path_vertex 
             c.f = v3_mul(prefix_f, c.Le);
             c.pdf = prefix_pdf;
             float cos_l = fabsf(v3_dot(c.light_n, wi));
-            float pdf_light =
-                (lights == LIGHT_SAMPLING_SOLID_ANGLE ? lights_pdf_toward(s, x->p, h.tri, h.t, cos_l)
-                                                      : lights_pdf_area(s, h.tri) * h.t * h.t / max_f(cos_l, 1e-12f)) *
-                (1.0f - s->env_prob);
+            /* x and n as next_event saw them, so both strategies' densities agree */
+            float pdf_light = lights_pdf_at(s, lights, x->p, n, h.tri, h.t, cos_l) * (1.0f - s->env_prob);
             c.mis = power_heuristic(pdf, pdf_light);
             emit(ctx, w, &c);
         }

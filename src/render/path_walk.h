@@ -86,11 +86,11 @@ struct path_numbers {
  * after rr_bounces, calling emit for every candidate. Returns the number of rays traced. */
 long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uint64_t seed, int max_bounces,
                         int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx);
-/* path_walk_run with the numbers from `numbers` instead of the seed's streams, and NEE sampling
- * points on emitting triangles by `lights` (path_walk_run: area) with the matching density in the
- * MIS weights of both strategies. */
+/* path_walk_run with the numbers from `numbers` instead of the seed's streams, and NEE choosing
+ * emitters and points on them by `lights` (path_walk_run: power, area) with the matching density in
+ * the MIS weights of both strategies. */
 long long path_walk_run_numbers(const struct scene *s, const struct path_vertex *x1, const struct path_numbers *numbers,
-                                enum light_sampling lights, int max_bounces, int rr_bounces, struct path_walk *w,
+                                struct light_choice lights, int max_bounces, int rr_bounces, struct path_walk *w,
                                 path_candidate_fn emit, void *ctx);
 /* The numbers path_walk_run draws: the replayable streams path_rng(*seed, j). seed must outlive the
  * walk. */

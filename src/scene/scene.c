@@ -10,6 +10,7 @@
 
 #include "core/check.h"
 #include "scene/scene_env.h"
+#include "scene/scene_light_bvh.h"
 #include "scene/scene_lights.h"
 #include "scene/scene_rt.h"
 
@@ -394,6 +395,7 @@ void scene_destroy(struct scene *s)
     free(s->texture_keys);
     if (s->num_emitters > 0)
         alias_table_fini(&s->emitter_table);
+    scene_light_bvh_free(&s->light_bvh);
     memset(s, 0, sizeof(*s));
 }
 

@@ -1,4 +1,5 @@
-/* scene_lights.c: the emitter table a scene owns (which triangles emit, their power alias table).
+/* scene_lights.c: the emitter table a scene owns (which triangles emit, their power alias table and
+ * BVH).
  * Must never depend on shading: light sampling (src/shading/lights.c) reads this table, not back. */
 #include "scene/scene_lights.h"
 
@@ -6,6 +7,7 @@
 #include <stdlib.h>
 
 #include "core/check.h"
+#include "scene/scene_light_bvh.h"
 
 static vec3 tri_emission(const struct scene *s, int tri) { return s->materials[s->tri_material[tri]].emission; }
 
@@ -34,8 +36,8 @@ int scene_lights_build(struct scene *s, char *msg)
     for (int i = 0; i < s->num_emitters; i++)
         power[i] = lights_emitter_power(s, s->emitter_tri[i]);
     int rc = alias_table_init(&s->emitter_table, power, s->num_emitters);
-    free(power);
     if (rc != 0) {
+        free(power);
         snprintf(msg, RESTIR_MSG_LEN, "scene '%s': emitter powers are invalid (negative or NaN emission)",
                  s->name);
         return -1;
@@ -54,5 +56,7 @@ int scene_lights_build(struct scene *s, char *msg)
         em->pdf_area = s->emitter_table.pmf[e] / s->tri_area[t];
         em->tri = t;
     }
+    scene_light_bvh_build(s, power);
+    free(power);
     return 0;
 }

@@ -79,6 +79,27 @@ struct emitter {
     int textured;    /* 1: Le is modulated by an emission texture (scene_material_at) */
 };
 
+/* A node of the emitter BVH (scene_light_bvh.h): bounds of the emitters below it in position, power
+ * and orientation (Conty Estevez & Kulla 2018, Sec. 4.1). Every emitting normal below lies within
+ * angle theta_o of axis (cos_o = cos theta_o; -1: any direction), and each emits into directions
+ * within theta_e of its normal (cos_e = cos theta_e: 0, a hemisphere, for our one-sided emitters). */
+struct light_bvh_node {
+    vec3 lo, hi;    /* bounding box */
+    vec3 axis;      /* unit axis of the normal cone */
+    float cos_o, cos_e;
+    float power;    /* sum of lights_emitter_power below */
+    int second;     /* interior: index of the second child (the first is this node + 1); leaf: -1 */
+    int emitter;    /* leaf: its emitter index; interior: -1 */
+    int parent;     /* -1 at the root */
+};
+
+/* The emitter BVH a scene owns, one emitter per leaf, nodes in depth-first order. */
+struct light_bvh {
+    int num_nodes;
+    struct light_bvh_node *nodes;
+    int *emitter_leaf; /* per emitter: the index of its leaf */
+};
+
 /* An indexed triangle soup with per-triangle material and object ids, its materials and textures,
  * the emitter table (built by scene_lights.c), the default camera and camera path, and the opaque
  * handle of the ray-tracing back end. */
@@ -111,6 +132,7 @@ struct scene {
     int *emitter_tri;
     struct emitter *emitters; /* compact copy of what light sampling reads, per emitter */
     struct alias_table emitter_table;
+    struct light_bvh light_bvh; /* the emitters' BVH, for selection by importance at a point */
 
     /* Environment light (scene_env.h): radiance from infinitely far away, or NULL; its sampler;
      * the probability that a light sample picks it rather than an emitter. */

@@ -1,9 +1,11 @@
-/* lights.c: emitter selection through the scene's alias table, uniform points on emissive triangles,
- * one-sided emission, area-to-solid-angle conversion. Must never depend on the ray tracer or render. */
+/* lights.c: emitter selection through the scene's alias table or emitter BVH, points on emissive
+ * triangles uniform in area or solid angle, one-sided emission, area-to-solid-angle conversion.
+ * Must never depend on the ray tracer or render. */
 #include "shading/lights.h"
 
 #include <math.h>
 
+#include "shading/light_tree.h"
 #include "shading/spherical_triangle.h"
 
 static vec3 tri_vertex(const struct scene *s, int tri, int k) { return s->verts[s->indices[3 * tri + k]]; }
@@ -94,24 +96,47 @@ static double emitter_solid_angle(const struct emitter *em, vec3 x)
     return omega >= LIGHTS_SOLID_ANGLE_MIN ? omega : 0.0;
 }
 
-int lights_sample_toward(const struct scene *s, vec3 x, float u_select, float u1, float u2, struct light_sample *ls)
+/* The emitter for shading point x, normal n, by `select`, with its probability. -1 when none. */
+static int select_emitter(const struct scene *s, enum light_selection select, vec3 x, vec3 n, float u, float *pmf)
+{
+    if (select == LIGHT_SELECT_BVH)
+        return light_tree_sample(&s->light_bvh, x, n, u, pmf);
+    const int e = alias_table_sample(&s->emitter_table, u);
+    *pmf = s->emitter_table.pmf[e];
+    return e;
+}
+
+static float emitter_pmf(const struct scene *s, enum light_selection select, vec3 x, vec3 n, int e)
+{
+    return select == LIGHT_SELECT_BVH ? light_tree_pmf(&s->light_bvh, x, n, e) : s->emitter_table.pmf[e];
+}
+
+int lights_sample_at(const struct scene *s, struct light_choice choice, vec3 x, vec3 n, float u_select, float u1,
+                     float u2, struct light_sample *ls)
 {
     if (s->num_emitters < 1)
         return 0;
-    const int e = alias_table_sample(&s->emitter_table, u_select);
+    float pmf;
+    const int e = select_emitter(s, choice.select, x, n, u_select, &pmf);
+    if (e < 0)
+        return 0;
     const struct emitter *em = &s->emitters[e];
-    const double omega = emitter_solid_angle(em, x);
+    const double omega = choice.point == LIGHT_SAMPLING_SOLID_ANGLE ? emitter_solid_angle(em, x) : 0.0;
     vec3 dir;
     if (!(omega > 0.0) || !spherical_triangle_sample(x, em->v0, v3_add(em->v0, em->e1), v3_add(em->v0, em->e2), omega,
-                                                     u1, u2, &dir))
-        return sample_area(s, em, u1, u2, ls);
+                                                     u1, u2, &dir)) {
+        if (!sample_area(s, em, u1, u2, ls))
+            return 0;
+        ls->pdf_area = pmf / s->tri_area[em->tri]; /* em->pdf_area's formula with this selection's pmf */
+        return ls->pdf_area > 0.0f;
+    }
     /* The point where dir meets the triangle's plane, as barycentrics (clamped into the triangle
      * against rounding). */
-    const vec3 n = v3_cross(em->e1, em->e2), to = v3_sub(em->v0, x);
-    const float denom = v3_dot(dir, n);
+    const vec3 nt = v3_cross(em->e1, em->e2), to = v3_sub(em->v0, x);
+    const float denom = v3_dot(dir, nt);
     if (denom == 0.0f)
         return 0;
-    const vec3 q = v3_sub(v3_add(x, v3_scale(dir, v3_dot(to, n) / denom)), em->v0);
+    const vec3 q = v3_sub(v3_add(x, v3_scale(dir, v3_dot(to, nt) / denom)), em->v0);
     const float d00 = v3_dot(em->e1, em->e1), d01 = v3_dot(em->e1, em->e2), d11 = v3_dot(em->e2, em->e2);
     const float d20 = v3_dot(q, em->e1), d21 = v3_dot(q, em->e2), det = d00 * d11 - d01 * d01;
     float b1 = (d11 * d20 - d01 * d21) / det, b2 = (d00 * d21 - d01 * d20) / det;
@@ -125,19 +150,21 @@ int lights_sample_toward(const struct scene *s, vec3 x, float u_select, float u1
     /* pdf_area with pdf_area d^2 / cos_l = P(e) / omega, the density the direction was drawn with */
     const vec3 d = v3_sub(ls->p, x);
     const float dist2 = v3_length2(d), cos_l = fabsf(v3_dot(ls->n, d)) / sqrtf(dist2);
-    ls->pdf_area = dist2 > 0.0f ? (float)(s->emitter_table.pmf[e] / omega) * cos_l / dist2 : 0.0f;
+    ls->pdf_area = dist2 > 0.0f ? (float)(pmf / omega) * cos_l / dist2 : 0.0f;
     return ls->pdf_area > 0.0f;
 }
 
-float lights_pdf_toward(const struct scene *s, vec3 x, int tri, float dist, float cos_l)
+float lights_pdf_at(const struct scene *s, struct light_choice choice, vec3 x, vec3 n, int tri, float dist,
+                    float cos_l)
 {
-    const float pdf_area = lights_pdf_area(s, tri);
-    if (!(pdf_area > 0.0f))
+    if (!(lights_pdf_area(s, tri) > 0.0f))
         return 0.0f;
-    const struct emitter *em = &s->emitters[s->tri_emitter[tri]];
-    const double omega = emitter_solid_angle(em, x);
+    const int e = s->tri_emitter[tri];
+    const float pmf = emitter_pmf(s, choice.select, x, n, e);
+    const double omega = choice.point == LIGHT_SAMPLING_SOLID_ANGLE ? emitter_solid_angle(&s->emitters[e], x) : 0.0;
     if (omega > 0.0)
-        return (float)(s->emitter_table.pmf[s->tri_emitter[tri]] / omega);
+        return (float)(pmf / omega);
+    const float pdf_area = pmf / s->tri_area[tri];
     return pdf_area * dist * dist / (cos_l > 1e-12f ? cos_l : 1e-12f);
 }
 

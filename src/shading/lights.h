@@ -1,5 +1,6 @@
 /* lights.h: emitter sampling through the scene's emitter table (scene/scene_lights.h): a triangle
- * chosen by power, a uniform point on it, its emission. Must never depend on render passes. */
+ * chosen by power (or by importance down the emitter BVH), a point on it uniform in area (or in
+ * solid angle), its emission. Must never depend on render passes. */
 #ifndef RESTIR_SHADING_LIGHTS_H
 #define RESTIR_SHADING_LIGHTS_H
 
@@ -18,16 +19,32 @@ struct light_sample {
 
 /* Samples a point on the emitters from three uniforms. Returns 0 when the scene has no lights. */
 int lights_sample(const struct scene *s, float u_select, float u1, float u2, struct light_sample *ls);
-/* lights_sample for a point seen from x: the emitter chosen by power as there, then the point uniform
- * in the solid angle the triangle subtends from x (Arvo 1995) when both that solid angle and its
- * area over the squared distance of its centroid are at least LIGHTS_SOLID_ANGLE_MIN, else uniform
- * in its area. ls->pdf_area is the area density that gives the
- * solid-angle density of the choice, P(triangle) / omega, under lights_pdf_solid_angle. */
-int lights_sample_toward(const struct scene *s, vec3 x, float u_select, float u1, float u2, struct light_sample *ls);
-/* The solid-angle density with which lights_sample_toward(s, x, ...) produces a point of triangle tri
- * at distance dist from x, where the triangle's normal and the direction make cosine cos_l: the same
- * rule for the same x and tri. 0 when tri is not an emitter. */
-float lights_pdf_toward(const struct scene *s, vec3 x, int tri, float dist, float cos_l);
+/* How next-event estimation picks an emitter: by power from the scene's alias table (the same
+ * everywhere), or by importance at the shading point down the emitter BVH (light_tree.h). */
+enum light_selection { LIGHT_SELECT_POWER = 0, LIGHT_SELECT_BVH };
+/* How it then picks a point on the emitting triangle: uniform in its area, or uniform in the solid
+ * angle it subtends (Arvo 1995; area where that is below LIGHTS_SOLID_ANGLE_MIN). */
+enum light_sampling { LIGHT_SAMPLING_AREA = 0, LIGHT_SAMPLING_SOLID_ANGLE };
+/* Both choices: {power, area} is what lights_sample does. */
+struct light_choice {
+    enum light_selection select;
+    enum light_sampling point;
+};
+
+/* lights_sample for a shading point x with unit normal n (its side does not matter), by the
+ * strategy `choice`: the emitter by choice.select, then the point uniform in the solid angle the
+ * triangle subtends from x (Arvo 1995) when choice.point is solid-angle and both that solid angle
+ * and its area over the squared distance of its centroid are at least LIGHTS_SOLID_ANGLE_MIN, else
+ * uniform in its area. ls->pdf_area is the area density that gives the solid-angle density of the
+ * choice under lights_pdf_solid_angle (P(triangle) / omega when spherical). Returns 0 when no
+ * emitter is chosen (none in the scene, or by BVH none that can light x). */
+int lights_sample_at(const struct scene *s, struct light_choice choice, vec3 x, vec3 n, float u_select, float u1,
+                     float u2, struct light_sample *ls);
+/* The solid-angle density with which lights_sample_at(s, choice, x, n, ...) produces a point of
+ * triangle tri at distance dist from x, where the triangle's normal and the direction make cosine
+ * cos_l: the same rules for the same x, n and tri. 0 when tri is not an emitter. */
+float lights_pdf_at(const struct scene *s, struct light_choice choice, vec3 x, vec3 n, int tri, float dist,
+                    float cos_l);
 /* Below this solid angle (sr, a cone of about 0.08 rad half-angle) the sampler uses area sampling:
  * there the area density varies across the triangle by a few percent only, so the spherical form's
  * trigonometry would cost without lowering variance (measured in docs/BENCHMARKS.md: at 3e-4 sr the
