@@ -212,10 +212,13 @@ static struct bounds build(struct builder *b, int first, int n, int parent, int 
         bd = bounds_add(left, &right);
         nd = &b->t->nodes[at];
     }
-    nd->lo = bd.lo;
-    nd->hi = bd.hi;
+    const vec3 diag = v3_sub(bd.hi, bd.lo);
+    nd->center = v3_scale(v3_add(bd.lo, bd.hi), 0.5f);
+    nd->radius2 = 0.25f * v3_length2(diag);
+    nd->d2_min = 0.5f * v3_length(diag);
     nd->axis = bd.axis;
     nd->cos_o = bd.cos_o;
+    nd->sin_o = sqrtf(fmaxf(0.0f, 1.0f - bd.cos_o * bd.cos_o));
     nd->power = bd.power;
     return bd;
 }

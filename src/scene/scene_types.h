@@ -80,13 +80,15 @@ struct emitter {
 };
 
 /* A node of the emitter BVH (scene_light_bvh.h): bounds of the emitters below it in position, power
- * and orientation (Conty Estevez & Kulla 2018, Sec. 4.1). Every emitting normal below lies within
+ * and orientation (Conty Estevez & Kulla 2018, Sec. 4.1), in the form the importance reads. Every emitting normal below lies within
  * angle theta_o of axis (cos_o = cos theta_o; -1: any direction), and each emits into directions
  * within theta_e of its normal (cos_e = cos theta_e: 0, a hemisphere, for our one-sided emitters). */
 struct light_bvh_node {
-    vec3 lo, hi;    /* bounding box */
+    vec3 center;    /* of the bounding box */
+    float radius2;  /* squared radius of the box's bounding sphere (its half-diagonal squared) */
+    float d2_min;   /* half the box's diagonal: the least squared distance the importance divides by */
     vec3 axis;      /* unit axis of the normal cone */
-    float cos_o, cos_e;
+    float cos_o, sin_o, cos_e;
     float power;    /* sum of lights_emitter_power below */
     int second;     /* interior: index of the second child (the first is this node + 1); leaf: -1 */
     int emitter;    /* leaf: its emitter index; interior: -1 */

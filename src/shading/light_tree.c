@@ -20,18 +20,18 @@ static float sin_sub_clamped(float sin_a, float cos_a, float sin_b, float cos_b)
 
 float light_tree_importance(const struct light_bvh_node *nd, vec3 p, vec3 n)
 {
-    const vec3 center = v3_scale(v3_add(nd->lo, nd->hi), 0.5f), diag = v3_sub(nd->hi, nd->lo);
-    const vec3 to_p = v3_sub(p, center);
+    const vec3 to_p = v3_sub(p, nd->center);
     const float d2_center = v3_length2(to_p);
     /* the distance term, kept away from 0 inside the box (Conty Estevez & Kulla 2018, Sec. 4.2) */
-    const float d2 = max_f(d2_center, 0.5f * v3_length(diag));
+    const float d2 = max_f(d2_center, nd->d2_min);
     const vec3 wi = d2_center > 0.0f ? v3_scale(to_p, 1.0f / sqrtf(d2_center)) : nd->axis;
     /* theta_w: between the cone's axis and the direction to p */
     const float cos_w = v3_dot(nd->axis, wi), sin_w = safe_sqrt(1.0f - cos_w * cos_w);
     /* theta_b: half-angle of the box's bounding sphere seen from p (every direction from inside) */
-    const float r2 = 0.25f * v3_length2(diag);
-    const float cos_b = d2_center <= r2 ? -1.0f : safe_sqrt(1.0f - r2 / d2_center), sin_b = safe_sqrt(1.0f - cos_b * cos_b);
-    const float sin_o = safe_sqrt(1.0f - nd->cos_o * nd->cos_o);
+    const float r2 = nd->radius2;
+    const float cos_b = d2_center <= r2 ? -1.0f : safe_sqrt(1.0f - r2 / d2_center);
+    const float sin_b = d2_center <= r2 ? 0.0f : sqrtf(r2 / d2_center);
+    const float sin_o = nd->sin_o;
     /* theta' = max(0, theta_w - theta_o - theta_b): the smallest angle between an emitting normal
      * below and a direction from the node toward p */
     const float cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, nd->cos_o);
