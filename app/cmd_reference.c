@@ -15,7 +15,8 @@
 static void reference_usage(FILE *out)
 {
     fprintf(out,
-            "usage: restir reference --scene NAME --method NAME [--res WxH] [--spp N] [--camera static|path]\n"
+            "usage: restir reference --scene NAME --method NAME [--res WxH] [--spp N] [--target-relmse X]\n"
+            "                        [--camera static|path]\n"
             "                        [--frame F] [--seed N] [--threads N] [--checkpoint-every SECONDS]\n"
             "                        [--max-memory MB] --out FILE.exr | --shards N --plan DIR\n"
             "       restir reference --merge DIR --out FILE.exr\n"
@@ -36,9 +37,26 @@ static void reference_usage(FILE *out)
             "restir study --help and docs/CLUSTER.md); `restir reference --merge DIR --out FILE.exr` then\n"
             "averages the shards, weighted by samples: the same samples as the unsplit reference, equal to\n"
             "it up to the order of the floating-point sums (relative difference at most (2C+1) 2^-24 for C\n"
-            "chunks).\n",
-            REFERENCE_CHUNK_SPP);
+            "chunks).\n"
+            "--target-relmse X stops once the estimated relMSE of the image against the converged one is at\n"
+            "most X (checked after every chunk from the 4th on): per pixel and channel, the variance of the\n"
+            "mean from the spread of the chunks' means, over (mean^2 + 1e-3), averaged. --spp is then the\n"
+            "most samples it renders (default %d); the image records restir.relmse_estimate. With\n"
+            "sampler=sobol the chunks continue one sequence and the estimate is an upper bound. Checkpoints\n"
+            "keep the variance (layer m2); with --shards N each shard stops at N X.\n",
+            REFERENCE_CHUNK_SPP, REFERENCE_TARGET_MAX_SPP);
     cli_options_help(out, "reference");
+}
+
+/* The finished image, with its estimated relMSE when it ran to a target. */
+static int write_reference(const struct cli_options *o, const struct reference_accum *a,
+                           const struct reference_checkpoint *c, char *msg)
+{
+    char text[64];
+    snprintf(text, sizeof text, "%.6g", reference_accum_relmse_estimate(a));
+    const struct exr_attribute est = {"restir.relmse_estimate", text};
+    return reference_write_image(o->out, a->mean, a->params.width, a->params.height, a->done, a->spp, c->run,
+                                  o->method, o->scene, NULL, &est, c->target > 0.0 ? 1 : 0, msg);
 }
 
 int cmd_reference(int argc, char **argv)
@@ -75,6 +93,7 @@ int cmd_reference(int argc, char **argv)
     reference_accum_init(&a, &s, method, &o.params, &cam, &open, spp);
     struct reference_checkpoint c;
     reference_checkpoint_init(&c, &a, o.out, o.checkpoint_every, o.method, o.scene);
+    c.target = o.target_relmse;
     int resumed = 0;
     if (reference_checkpoint_resume(&c, &a, &resumed, msg) != 0) {
         cli_error("%s", msg);
@@ -90,7 +109,7 @@ int cmd_reference(int argc, char **argv)
         rc = cli_stop_signal ? 128 + (int)cli_stop_signal : EXIT_RUNTIME;
         if (cli_stop_signal)
             cli_error("%s", msg);
-    } else if (a.done < spp) { /* stopped by a signal */
+    } else if (a.done < a.spp) { /* stopped by a signal */
         const char *sig = cli_stop_signal_name();
         if (c.every < 0.0)
             cli_error("interrupted by %s at %d of %d samples; nothing written (--checkpoint-every makes a reference "
@@ -99,16 +118,18 @@ int cmd_reference(int argc, char **argv)
             cli_error("interrupted by %s at %d of %d samples; checkpoint %s (the same command continues)", sig,
                       a.done, spp, c.path);
         rc = 128 + (int)cli_stop_signal;
-    } else if (reference_write_image(o.out, a.mean, a.params.width, a.params.height, a.done, a.spp, c.run, o.method,
-                                     o.scene, NULL, NULL, msg) != 0) {
+    } else if (write_reference(&o, &a, &c, msg) != 0) {
         rc = EXIT_RUNTIME;
     } else {
         reference_checkpoint_remove(&c);
         printf("reference of %s on %s (%dx%d, %d spp) written to %s\n", o.method, o.scene, o.params.width,
-               o.params.height, spp, o.out);
+               o.params.height, a.done, o.out);
+        if (c.target > 0.0)
+            printf("estimated relMSE %.4g (target %.4g%s)\n", reference_accum_relmse_estimate(&a), c.target,
+                   reference_accum_relmse_estimate(&a) <= c.target ? "" : ": not reached within --spp");
         if (c.saved > 0)
             printf("%d checkpoints, %.1f ms each; %.1f ms per chunk of %d samples rendered\n", c.saved,
-                   1e3 * c.t_saves / c.saved, 1e3 * c.t_render * REFERENCE_CHUNK_SPP / (spp - first),
+                   1e3 * c.t_saves / c.saved, 1e3 * c.t_render * REFERENCE_CHUNK_SPP / (a.done - first),
                    REFERENCE_CHUNK_SPP);
     }
     if (rc == EXIT_RUNTIME)

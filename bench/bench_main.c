@@ -452,6 +452,8 @@ int main(int argc, char **argv)
         return bench_gi_bias(argc - 1, argv + 1);
     if (argc > 1 && !strcmp(argv[1], "l1-bias")) /* its own arguments; not part of the default run */
         return bench_l1_bias(argc - 1, argv + 1);
+    if (argc > 1 && !strcmp(argv[1], "error")) /* its own arguments; not part of the default run */
+        return bench_error(argc - 1, argv + 1);
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "passes"))
             run_passes = 1;
@@ -486,6 +488,7 @@ int main(int argc, char **argv)
             fprintf(stderr, "usage: restir_bench [passes] [equal-time] [visibility] [temporal] [pt] [spmis] [--quick]\n"
                     "       restir_bench poisson [--runs N] [--res WxH[,WxH...]] [--lib-threads N]\n"
                     "       restir_bench l1-bias FRAME.exr REF.exr\n"
+                    "       restir_bench error IMAGE.exr REF.exr\n"
                     "       restir_bench gi-bias [--scenes a,b] [--res WxH] [--runs N] [--frames N]\n"
                     "       restir_bench streams [--res WxH] [--rounds N]\n"
                     "       restir_bench gradient [--res WxH] [--frames N] [--ref-spp N] [--scenes a,b,c] [--quick]\n"

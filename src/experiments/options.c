@@ -109,6 +109,7 @@ enum opt_kind {
     OPT_LLONG,    /* a long long in [lo, hi] */
     OPT_U64,      /* a uint64_t in [lo, hi] */
     OPT_SECONDS,  /* a double in [lo, hi] */
+    OPT_POSITIVE, /* a double in (0, hi] */
     OPT_RES,      /* WxH into params.width, params.height */
     OPT_CAMERA,   /* static | path, or (render, view) a camera file */
     OPT_NAMES,    /* one of names[]: the int field gets its index */
@@ -204,6 +205,8 @@ static const struct opt_def option_table[] = {
      NULL},
     {"--checkpoint-every", " reference ", OPT_SECONDS, O(checkpoint_every), 0, 10000000, NO_GIVEN, NULL, "SECONDS",
      "save the running mean this often (0: after every chunk; default: never)", NULL},
+    {"--target-relmse", " reference ", OPT_POSITIVE, O(target_relmse), 0, 1, NO_GIVEN, NULL, "X",
+     "stop once the image's estimated relMSE is at most X (--spp: the most samples; default 65536)", NULL},
     {"--plan", NOT_RENDER_VIEW, OPT_TEXT, O(plan), 0, 0, NO_GIVEN, NULL, "DIR",
      "write the work as independent jobs into DIR instead of running it", NULL},
     {"--merge", NOT_RENDER_VIEW, OPT_TEXT, O(merge), 0, 0, NO_GIVEN, NULL, "DIR", "merge the finished jobs of plan DIR",
@@ -278,6 +281,17 @@ static int opt_apply(const struct opt_def *d, const char *command, const char *v
             return -1;
         }
         *(double *)(base + d->offset) = s;
+        break;
+    }
+    case OPT_POSITIVE: {
+        char *end = NULL;
+        errno = 0;
+        double x = strtod(val, &end);
+        if (end == val || *end != '\0' || errno != 0 || !(x > 0.0 && x <= (double)d->hi)) {
+            snprintf(msg, RESTIR_MSG_LEN, "%s expects a number in (0, %g], got '%s'", d->name, (double)d->hi, val);
+            return -1;
+        }
+        *(double *)(base + d->offset) = x;
         break;
     }
     case OPT_RES:
@@ -395,7 +409,7 @@ static const char *opt_key(const char *name) { return name + (name[1] == '-' ? 2
 
 static int opt_is_number(const struct opt_def *d)
 {
-    return d->kind == OPT_INT || d->kind == OPT_LLONG || d->kind == OPT_SECONDS;
+    return d->kind == OPT_INT || d->kind == OPT_LLONG || d->kind == OPT_SECONDS || d->kind == OPT_POSITIVE;
 }
 
 cJSON *cli_options_describe(const char *command, int argc, char **argv, char *msg)

@@ -34,6 +34,7 @@ struct cli_options {
     int ref_every;       /* compare: also measure frames K-1, 2K-1, ... against their own references */
     int warmup;          /* study: frames before measuring */
     double checkpoint_every; /* reference: seconds between checkpoints (< 0: none, 0: every chunk) */
+    double target_relmse;    /* reference: stop at this estimated relMSE (0: render --spp samples) */
     const char *plan;        /* study, reference, compare: write jobs into this folder instead of running */
     const char *merge;       /* study, reference, compare: merge the finished jobs of this plan folder */
     int shards;              /* reference --plan: jobs the samples are split into (0: not given) */

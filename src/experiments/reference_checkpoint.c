@@ -53,11 +53,29 @@ static void first_difference(const char *theirs, const char *ours, char *out, si
 static int save(struct reference_checkpoint *c, const struct reference_accum *a, char *msg)
 {
     const double t0 = omp_get_wtime();
+    char obs[32];
+    snprintf(obs, sizeof obs, "%d", a->var_obs);
+    const struct exr_attribute var_obs = {"restir.var_obs", obs};
     const int rc = reference_write_image(c->path, a->mean, a->params.width, a->params.height, a->done, a->spp,
-                                         c->run, c->method, c->scene, NULL, NULL, msg);
+                                         c->run, c->method, c->scene, a->m2, &var_obs, a->m2 ? 1 : 0, msg);
     c->t_saves += omp_get_wtime() - t0;
     c->saved += rc == 0;
     return rc;
+}
+
+/* The checkpoint's variance state when it has a usable one, else tracking from here on. */
+static void resume_variance(const char *path, struct reference_accum *a)
+{
+    char text[32], why[RESTIR_MSG_LEN], *end = NULL;
+    float *m2 = NULL;
+    int w = 0, h = 0;
+    long obs = exr_read_attribute(path, "restir.var_obs", text, sizeof text, why) == 0 ? strtol(text, &end, 10) : -1;
+    int usable = end && end != text && *end == '\0' && obs >= 1 && obs <= (1L << 20) &&
+                 exr_read_layer(path, "m2", &m2, &w, &h, why) == 0 && w == a->params.width && h == a->params.height;
+    for (size_t i = 0; usable && i < 3 * (size_t)w * (size_t)h; i++)
+        usable = isfinite(m2[i]) && m2[i] >= 0.0f;
+    reference_accum_track_variance(a, usable ? m2 : NULL, (int)obs);
+    free(m2);
 }
 
 int reference_checkpoint_resume(struct reference_checkpoint *c, struct reference_accum *a, int *resumed, char *msg)
@@ -118,6 +136,8 @@ int reference_checkpoint_resume(struct reference_checkpoint *c, struct reference
         }
     reference_accum_resume(a, mean, (int)done);
     free(mean);
+    if (c->target > 0.0)
+        resume_variance(path, a);
     *resumed = 1;
     return 0;
 }
@@ -142,11 +162,15 @@ int reference_checkpoint_render(struct reference_checkpoint *c, struct reference
     progress_begin(&pg, "reference", a->spp);
     double last = omp_get_wtime();
     int rc = 0;
+    if (c->target > 0.0 && !a->m2)
+        reference_accum_track_variance(a, NULL, 0);
     while (a->done < a->spp && !cli_stop_signal) {
         const double t0 = omp_get_wtime();
         reference_accum_step(a);
         c->t_render += omp_get_wtime() - t0;
         progress_update(&pg, a->done);
+        if (c->target > 0.0 && reference_accum_relmse_estimate(a) <= c->target)
+            a->spp = a->done; /* reached: the image holds what it needs */
         if (c->every >= 0.0 && a->done < a->spp && !cli_stop_signal && omp_get_wtime() - last >= c->every) {
             if ((rc = save(c, a, msg)) != 0)
                 break;

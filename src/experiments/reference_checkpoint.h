@@ -17,6 +17,8 @@ struct reference_checkpoint {
     char run[RUN_TEXT_MAX];     /* reference_describe of the accumulation: what a checkpoint must match */
     const char *method, *scene; /* restir.method and restir.scene of the saved images */
     double every;               /* seconds between saves; < 0: none, and a stop loses the work */
+    double target;              /* stop once the estimated relMSE is at most this (0: render a->spp; the
+                                   caller sets it after reference_checkpoint_init, before resuming) */
     int saved;                  /* saves so far, and their time and the rendering's, in seconds */
     double t_saves, t_render;
 };
@@ -26,13 +28,16 @@ struct reference_checkpoint {
  * temporaries a kill during an earlier save left beside it and beside out. */
 void reference_checkpoint_init(struct reference_checkpoint *c, const struct reference_accum *a, const char *out,
                                double every, const char *method, const char *scene);
-/* Continues a from c's file when it holds this run's state. Returns 0 (*resumed: 1 when it did, 0
- * when there is no checkpoint), or -1 with msg saying why the file cannot be used (another run's,
+/* Continues a from c's file when it holds this run's state, and with c->target > 0 tracks a's
+ * variance (continuing the checkpoint's when it holds one, else from the resume point on).
+ * Returns 0 (*resumed: 1 when it did, 0 when there is no checkpoint), or -1 with msg saying why the file cannot be used (another run's,
  * not a checkpoint, a sample count that cannot continue exactly, a non-finite pixel). */
 int reference_checkpoint_resume(struct reference_checkpoint *c, struct reference_accum *a, int *resumed, char *msg);
-/* Renders a's chunks until it holds a->spp samples or a stop signal arrives (cli_stop_signal),
- * printing progress, saving every c->every seconds and, when c->every >= 0, at a stop. Returns 0
- * (a->done < a->spp: stopped), or -1 with msg when a save failed. */
+/* Renders a's chunks until it holds a->spp samples, or (c->target > 0) until its estimated relMSE
+ * (reference_accum_relmse_estimate) is at most c->target, which sets a->spp to the samples it
+ * holds, or until a stop signal arrives (cli_stop_signal), printing progress, saving every
+ * c->every seconds and, when c->every >= 0, at a stop. Returns 0 (a->done < a->spp: stopped), or
+ * -1 with msg when a save failed. */
 int reference_checkpoint_render(struct reference_checkpoint *c, struct reference_accum *a, char *msg);
 /* Removes the checkpoint once the finished image is written (a missing one is fine). */
 void reference_checkpoint_remove(const struct reference_checkpoint *c);

@@ -19,7 +19,9 @@
  * FILE.exr` averages them weighted by their sample counts, in double, rounded once. The merged
  * image differs from the unsplit one only by the order of the floating-point sums: both are within
  * C 2^-24 (relative) of the exact mean of the same samples, so within (2 C + 1) 2^-24 of each other
- * (tests/render/test_plans.c). */
+ * (tests/render/test_plans.c). With --target-relmse X each shard stops early once its own estimate
+ * is at most N X (restir.shard then says how many samples it holds), and the merge weights each by
+ * what it holds. */
 
 /* Chunks and samples of shard s of n over spp samples. */
 static void shard_range(int spp, int n, int s, int *first_chunk, int *samples)
@@ -81,9 +83,10 @@ struct shard_ctx {
     const char *run;
 };
 
-/* A shard's file: this run's, of its chunks and samples, the right size, finite. With mean not
- * NULL, its pixels are returned. */
-static int read_shard(const struct plan *pl, int k, const struct shard_ctx *c, float **mean, char *why)
+/* A shard's file: this run's, of its chunks and samples (with a relMSE target, a shard may stop
+ * early: any positive count up to its range's), the right size, finite. With mean not NULL, its
+ * pixels and its sample count are returned. */
+static int read_shard(const struct plan *pl, int k, const struct shard_ctx *c, float **mean, int *samples, char *why)
 {
     char path[PLAN_PATH_MAX + 200], text[RUN_TEXT_MAX];
     plan_output_path(pl, k, path, sizeof path);
@@ -97,21 +100,22 @@ static int read_shard(const struct plan *pl, int k, const struct shard_ctx *c, f
                  rc > 0 ? "missing" : "differs");
         return -1;
     }
-    char want[64];
-    snprintf(want, sizeof want, "%d+%d", c0, n);
     rc = exr_read_attribute(path, "restir.shard", text, sizeof text, why);
     if (rc < 0)
         return -1;
-    if (rc > 0 || strcmp(text, want) != 0) {
-        snprintf(why, RESTIR_MSG_LEN, "%.300s: holds chunks+samples '%.40s', not the plan's %s", path,
-                 rc > 0 ? "(none)" : text, want);
+    int their_c0 = -1, their_n = -1, used = 0;
+    const int parsed = rc == 0 && sscanf(text, "%d+%d%n", &their_c0, &their_n, &used) == 2 && text[used] == '\0';
+    const int early = c->st->o.target_relmse > 0.0 && their_n > 0 && their_n < n;
+    if (!parsed || their_c0 != c0 || (their_n != n && !early)) {
+        snprintf(why, RESTIR_MSG_LEN, "%.300s: holds chunks+samples '%.40s', not the plan's %d+%d%s", path,
+                 rc > 0 ? "(none)" : text, c0, n, c->st->o.target_relmse > 0.0 ? " or fewer samples" : "");
         return -1;
     }
     float *img = NULL; /* cli_load_reference also refuses NaN and infinite values */
     if (cli_load_reference(path, c->st->o.params.width, c->st->o.params.height, &img, why) != 0)
         return -1;
     if (mean)
-        *mean = img;
+        *mean = img, *samples = their_n;
     else
         free(img);
     return 0;
@@ -119,7 +123,7 @@ static int read_shard(const struct plan *pl, int k, const struct shard_ctx *c, f
 
 static int shard_valid(const struct plan *pl, int k, char *why, void *ctx)
 {
-    return read_shard(pl, k, ctx, NULL, why);
+    return read_shard(pl, k, ctx, NULL, NULL, why);
 }
 
 int reference_run_job(const struct plan *pl, int k)
@@ -136,24 +140,33 @@ int reference_run_job(const struct plan *pl, int k)
     run_text(&st, run, sizeof run);
     plan_output_path(pl, k, path, sizeof path);
     const struct shard_ctx ctx = {&st, run};
-    if (read_shard(pl, k, &ctx, NULL, msg) == 0) {
+    if (read_shard(pl, k, &ctx, NULL, NULL, msg) == 0) {
         printf("job %d of %d (%s): already done: %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
         scene_destroy(&st.s);
         return 0;
     }
     int c0, n;
     shard_range(st.spp, pl->n_jobs, k, &c0, &n);
-    snprintf(shard, sizeof shard, "%d+%d", c0, n);
     cli_catch_stop_signals();
     struct reference_accum a;
     reference_accum_init_shard(&a, &st.s, st.method, &st.o.params, &st.cam, &st.cam_open, c0, n);
-    while (a.done < a.spp && !cli_stop_signal)
+    /* With a target X over N shards each stops at N X: the merged mean of N such shards has about
+     * 1 / N of their error. */
+    const double target = st.o.target_relmse * pl->n_jobs;
+    if (target > 0.0)
+        reference_accum_track_variance(&a, NULL, 0);
+    while (a.done < a.spp && !cli_stop_signal) {
         reference_accum_step(&a);
+        if (target > 0.0 && reference_accum_relmse_estimate(&a) <= target)
+            a.spp = a.done;
+    }
+    snprintf(shard, sizeof shard, "%d+%d", c0, a.done);
     if (a.done < a.spp) {
         cli_error("interrupted by %s at %d of %d samples; nothing written", cli_stop_signal_name(), a.done, a.spp);
         rc = 128 + (int)cli_stop_signal;
-    } else if (reference_write_image(path, a.mean, st.o.params.width, st.o.params.height, n, st.spp, run,
-                                     st.o.method, st.o.scene, "restir.shard", shard, msg) != 0) {
+    } else if (reference_write_image(path, a.mean, st.o.params.width, st.o.params.height, a.done, st.spp, run,
+                                     st.o.method, st.o.scene, NULL, &(struct exr_attribute){"restir.shard", shard}, 1,
+                                     msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     } else {
@@ -200,32 +213,34 @@ int reference_merge(int argc, char **argv)
     }
     const size_t n3 = 3 * (size_t)st.o.params.width * st.o.params.height;
     double *sum = xcalloc(n3, sizeof(double));
+    long long total = 0;
     for (int k = 0; k < pl.n_jobs && rc == 0; k++) {
         float *mean = NULL;
-        int c0, n;
-        shard_range(st.spp, pl.n_jobs, k, &c0, &n);
-        if (read_shard(&pl, k, &ctx, &mean, msg) != 0) {
+        int n;
+        if (read_shard(&pl, k, &ctx, &mean, &n, msg) != 0) {
             cli_error("cannot merge: %s", msg);
             rc = EXIT_RUNTIME;
             break;
         }
         for (size_t i = 0; i < n3; i++)
             sum[i] += (double)mean[i] * n;
+        total += n;
         free(mean);
     }
     float *img = xmalloc(sizeof(float) * n3);
-    for (size_t i = 0; i < n3; i++)
-        img[i] = (float)(sum[i] / st.spp);
+    for (size_t i = 0; i < n3 && total > 0; i++)
+        img[i] = (float)(sum[i] / (double)total);
     char shards[32];
     snprintf(shards, sizeof shards, "%d", pl.n_jobs);
-    if (rc == 0 && reference_write_image(out, img, st.o.params.width, st.o.params.height, st.spp, st.spp, run,
-                                         st.o.method, st.o.scene, "restir.shards", shards, msg) != 0) {
+    if (rc == 0 && reference_write_image(out, img, st.o.params.width, st.o.params.height, (int)total, st.spp, run,
+                                         st.o.method, st.o.scene, NULL,
+                                         &(struct exr_attribute){"restir.shards", shards}, 1, msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }
     if (rc == 0)
-        printf("reference of %s on %s (%dx%d, %d spp) merged from %d shards into %s\n", st.o.method, st.o.scene,
-               st.o.params.width, st.o.params.height, st.spp, pl.n_jobs, out);
+        printf("reference of %s on %s (%dx%d, %lld spp) merged from %d shards into %s\n", st.o.method, st.o.scene,
+               st.o.params.width, st.o.params.height, total, pl.n_jobs, out);
     free(img);
     free(sum);
     scene_destroy(&st.s);

@@ -1,6 +1,7 @@
 /* reference.c: the running-mean reference (reference.h). */
 #include "methods/reference.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -52,17 +53,60 @@ long long reference_accum_step(struct reference_accum *a)
                                    (uint32_t)c * REFERENCE_CHUNK_SPP, k, a->chunk);
     const double done = a->done, total = a->done + k;
     const ptrdiff_t n = 3 * (ptrdiff_t)a->params.width * a->params.height;
+    float *m2 = a->m2;
 #pragma omp parallel for schedule(static)
-    for (ptrdiff_t i = 0; i < n; i++)
-        a->mean[i] = (float)(((double)a->mean[i] * done + (double)a->chunk[i] * k) / total);
+    for (ptrdiff_t i = 0; i < n; i++) {
+        const float old = a->mean[i];
+        a->mean[i] = (float)(((double)old * done + (double)a->chunk[i] * k) / total);
+        if (m2) /* West 1979: M2 += w (x - mean_old)(x - mean_new) */
+            m2[i] = (float)((double)m2[i] + k * ((double)a->chunk[i] - old) * ((double)a->chunk[i] - a->mean[i]));
+    }
     a->done += k;
+    a->var_obs += m2 != NULL;
     return rays;
+}
+
+void reference_accum_track_variance(struct reference_accum *a, const float *m2, int var_obs)
+{
+    const size_t n = 3 * (size_t)a->params.width * (size_t)a->params.height;
+    free(a->m2);
+    a->m2 = xcalloc(n, sizeof(float));
+    if (m2) {
+        memcpy(a->m2, m2, n * sizeof(float));
+        a->var_obs = var_obs;
+    } else {
+        a->var_obs = a->done > 0;
+    }
+}
+
+double reference_accum_relmse_estimate(const struct reference_accum *a)
+{
+    if (!a->m2 || a->var_obs < REFERENCE_VARIANCE_MIN_OBS || a->done < 1)
+        return INFINITY;
+    const int w = a->params.width, h = a->params.height;
+    const double scale = 1.0 / ((double)(a->var_obs - 1) * a->done);
+    /* per-row sums, added in row order: the same number whatever the thread count, so the stop
+     * rule that reads it stops every run at the same chunk */
+    double *row = xmalloc(sizeof(double) * (size_t)h);
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < h; y++) {
+        double sum = 0.0;
+        for (ptrdiff_t i = 3 * (ptrdiff_t)y * w; i < 3 * (ptrdiff_t)(y + 1) * w; i++)
+            sum += (double)a->m2[i] * scale / ((double)a->mean[i] * a->mean[i] + 1e-3);
+        row[y] = sum;
+    }
+    double sum = 0.0;
+    for (int y = 0; y < h; y++)
+        sum += row[y];
+    free(row);
+    return sum / (3.0 * w * (double)h);
 }
 
 void reference_accum_fini(struct reference_accum *a)
 {
     free(a->mean);
     free(a->chunk);
+    free(a->m2);
     memset(a, 0, sizeof *a);
 }
 

@@ -29,7 +29,15 @@ struct reference_accum {
     int done;    /* samples in mean so far */
     float *mean; /* w*h*3: the running mean of the done samples */
     float *chunk;
+    /* With reference_accum_track_variance: w*h*3 sums of weighted squared deviations of the chunk
+     * means (West 1979's weighted update: a chunk of k samples is an observation of weight k; the
+     * samples before tracking began, if any, one observation), and the observations so far. */
+    float *m2;
+    int var_obs;
 };
+
+/* The least observations (chunks) reference_accum_relmse_estimate reports from. */
+#define REFERENCE_VARIANCE_MIN_OBS 4
 
 /* Prepares a reference of what method estimates (pt over the same integrand) from cam with spp
  * samples, starting empty. open is the camera at the shutter opening (the previous frame's; NULL:
@@ -50,6 +58,19 @@ int reference_accum_can_resume(int done, int spp);
  * the rays traced. Call only while done < spp. */
 long long reference_accum_step(struct reference_accum *a);
 void reference_accum_fini(struct reference_accum *a);
+
+/* Tracks the per-pixel variance of the samples from now on (after init or a resume): a->m2 zeroed
+ * and a->var_obs = 1 when samples are already in (their mean is one observation), else 0. Or
+ * continues a saved state: m2 (w*h*3, copied) with var_obs observations, when m2 is not NULL. */
+void reference_accum_track_variance(struct reference_accum *a, const float *m2, int var_obs);
+/* The expected relMSE of a->mean against the converged image (DESIGN.md's relMSE: mean over pixels
+ * and channels of E[(mean - R)^2] / (R^2 + 1e-3)), estimated as Var(mean) / (mean^2 + 1e-3) with
+ * Var(mean) = (m2 / (var_obs - 1)) / done, the spread of the chunk means scaled to one sample. The
+ * chunk means are independent with sampler=independent; sampler=sobol's chunks continue one
+ * scrambled sequence, whose mean converges faster than independent chunks would, so the estimate
+ * is then an upper bound in expectation. INFINITY while fewer than REFERENCE_VARIANCE_MIN_OBS
+ * observations are in or without tracking. */
+double reference_accum_relmse_estimate(const struct reference_accum *a);
 
 /* The params and camera a reference's samples depend on, as "key=value; ..." text: scene content
  * (scene_content_hash), camera, resolution, seed and pt's parameters. Two runs with the same text

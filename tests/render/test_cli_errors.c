@@ -107,6 +107,20 @@ static void check_bad_render_input(void)
                    2, "--checkpoint-every", "-1");
     expect_failure("--checkpoint-every outside reference", RENDER_ARGS("--checkpoint-every 5"), 2,
                    "--checkpoint-every", NULL);
+    const char *const bad_targets[] = {"0", "-0.01", "nan", "2", "abc", "1e-3x"};
+    for (int k = 0; k < 6; k++) {
+        char args[256], what[64];
+        snprintf(args, sizeof args, "reference --scene cornell --method pt --target-relmse %s --out '%%1$s/r.exr'",
+                 bad_targets[k]);
+        snprintf(what, sizeof what, "bad --target-relmse %s", bad_targets[k]);
+        expect_failure(what, args, 2, "--target-relmse", bad_targets[k]);
+    }
+    expect_failure("--target-relmse outside reference", RENDER_ARGS("--target-relmse 0.01"), 2, "--target-relmse",
+                   NULL);
+    expect_failure("unknown lights.select", RENDER_ARGS("--set lights.select=tree"), 2, "lights.select", "tree");
+    expect_failure("lights.select for a method that does not read it",
+                   "render --scene cornell --method restir-pt --res 16x9 --set lights.select=bvh --out '%1$s'", 2,
+                   "lights.select", "restir-pt");
     expect_failure("huge width", "render --scene cornell --method pt --res 100000x10 --out '%1$s'", 2, "--res",
                    "100000");
     expect_failure("malformed resolution", "render --scene cornell --method pt --res abc --out '%1$s'", 2, "--res",
