@@ -37,7 +37,7 @@ struct reference_accum {
 };
 
 /* The least observations (chunks) reference_accum_relmse_estimate reports from. */
-#define REFERENCE_VARIANCE_MIN_OBS 4
+#define REFERENCE_VARIANCE_MIN_OBS 8
 
 /* Prepares a reference of what method estimates (pt over the same integrand) from cam with spp
  * samples, starting empty. open is the camera at the shutter opening (the previous frame's; NULL:
@@ -67,9 +67,10 @@ void reference_accum_track_variance(struct reference_accum *a, const float *m2, 
  * and channels of E[(mean - R)^2] / (R^2 + 1e-3)), estimated as Var(mean) / (mean^2 + 1e-3) with
  * Var(mean) = (m2 / (var_obs - 1)) / done, the spread of the chunk means scaled to one sample. The
  * chunk means are independent with sampler=independent; sampler=sobol's chunks continue one
- * scrambled sequence, whose mean converges faster than independent chunks would, so the estimate
- * is then an upper bound in expectation. INFINITY while fewer than REFERENCE_VARIANCE_MIN_OBS
- * observations are in or without tracking. */
+ * scrambled sequence, whose mean usually converges faster than independent chunks' would (the
+ * estimate then runs high). The ratio of noisy terms runs low where rare bright samples dominate
+ * a pixel's variance and few are in: a chunk that holds one raises the mean it divides by.
+ * INFINITY while fewer than REFERENCE_VARIANCE_MIN_OBS observations are in or without tracking. */
 double reference_accum_relmse_estimate(const struct reference_accum *a);
 
 /* The params and camera a reference's samples depend on, as "key=value; ..." text: scene content

@@ -62,15 +62,15 @@ static void test_stop_rule(char *out, char *err)
     const double e003 = attribute("t003.exr", "restir.relmse_estimate");
     printf("target 0.01: %.0f samples, estimate %.4g; target 0.003: %.0f samples, estimate %.4g\n", n01, e01, n003,
            e003);
-    EXPECT(n01 >= 64 && (int)n01 % 16 == 0, "target 0.01 stopped at %.0f samples", n01);
+    EXPECT(n01 >= 128 && (int)n01 % 16 == 0, "target 0.01 stopped at %.0f samples", n01);
     EXPECT(n003 > n01 && (int)n003 % 16 == 0, "target 0.003 stopped at %.0f samples (0.01: %.0f)", n003, n01);
     EXPECT(e01 > 0.0 && e01 <= 0.01 && e003 > 0.0 && e003 <= 0.003, "estimates %.4g, %.4g above their targets", e01,
            e003);
     EXPECT(attribute("t01.exr", "restir.spp") == n01, "restir.spp is not the samples held");
     /* --spp caps it: a target it cannot reach stops at --spp and says so */
-    EXPECT(reference("--target-relmse 1e-7 --spp 64", "cap.exr", out, err) == 0 && strstr(out, "not reached"),
+    EXPECT(reference("--target-relmse 1e-7 --spp 96", "cap.exr", out, err) == 0 && strstr(out, "not reached"),
            "an unreachable target: %s%s", out, err);
-    EXPECT(attribute("cap.exr", "restir.samples") == 64, "the capped run holds %.0f samples",
+    EXPECT(attribute("cap.exr", "restir.samples") == 96, "the capped run holds %.0f samples",
            attribute("cap.exr", "restir.samples"));
 }
 
@@ -111,7 +111,7 @@ static void test_resume(char *out, char *err)
     EXPECT(reference("--spp 4096 --target-relmse 0.003 --threads 2 --checkpoint-every 0", "plain.exr", out, err) == 0,
            "resume of a plain checkpoint with a target: %s", err);
     const double n = attribute("plain.exr", "restir.samples"), e = attribute("plain.exr", "restir.relmse_estimate");
-    EXPECT(n >= 48 + 3 * 16 && n < 4096 && e > 0.0 && e <= 0.003, "plain checkpoint + target: %.0f samples, %.4g", n,
+    EXPECT(n >= 48 + 7 * 16 && n < 4096 && e > 0.0 && e <= 0.003, "plain checkpoint + target: %.0f samples, %.4g", n,
            e);
 }
 
@@ -130,7 +130,7 @@ static void test_plan(char *out, char *err)
         char shard[64];
         snprintf(shard, sizeof shard, "plan/runs/shard_%04d.exr", k);
         const double n = attribute(shard, "restir.samples");
-        EXPECT(n >= 64 && n < 2048, "shard %d stopped at %.0f samples", k, n);
+        EXPECT(n >= 128 && n < 2048, "shard %d stopped at %.0f samples", k, n);
         held += n;
     }
     snprintf(args, sizeof args, "reference --merge '%s' --out '%s/merged.exr'", plan, tmp);

@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "chi2_util.h"
+#include "emitter_material.h"
 #include "core/check.h"
 #include "core/rng.h"
 #include "scene/scene.h"
@@ -29,16 +30,6 @@
 #define NUM_EMITTERS 300
 #define N_SAMPLES 400000
 #define FAMILY_ALPHA 0.01
-
-static struct material emissive(vec3 e)
-{
-    struct material m;
-    memset(&m, 0, sizeof m);
-    m.base_color = v3s(0.5f);
-    m.roughness = 1.0f;
-    m.emission = e;
-    return m;
-}
 
 static vec3 random_unit(pcg32 *r)
 {
@@ -53,10 +44,10 @@ static int build_scene(struct scene *s)
     struct scene_builder b;
     char msg[RESTIR_MSG_LEN];
     scene_builder_begin(&b, s, "light_tree_test");
-    const int grey = scene_add_material(&b, emissive(v3s(0.0f)));
-    const int mats[3] = {scene_add_material(&b, emissive(v3(20.0f, 18.0f, 15.0f))),
-                         scene_add_material(&b, emissive(v3(1.0f, 0.5f, 0.2f))),
-                         scene_add_material(&b, emissive(v3(0.2f, 0.3f, 5.0f)))};
+    const int grey = scene_add_material(&b, emitter_material(v3s(0.0f)));
+    const int mats[3] = {scene_add_material(&b, emitter_material(v3(20.0f, 18.0f, 15.0f))),
+                         scene_add_material(&b, emitter_material(v3(1.0f, 0.5f, 0.2f))),
+                         scene_add_material(&b, emitter_material(v3(0.2f, 0.3f, 5.0f)))};
     const int obj = scene_new_object(&b);
     scene_add_quad(&b, v3(-20, -12, -20), v3(-20, -12, 20), v3(20, -12, 20), v3(20, -12, -20), grey, obj);
     pcg32 r = pcg32_make(41u, 7u);
@@ -207,7 +198,7 @@ int main(void)
     struct scene_builder b;
     char msg[RESTIR_MSG_LEN];
     scene_builder_begin(&b, &one, "one_light");
-    const int m = scene_add_material(&b, emissive(v3s(3.0f)));
+    const int m = scene_add_material(&b, emitter_material(v3s(3.0f)));
     scene_add_triangle(&b, v3(0, 2, 0), v3(1, 2, 0), v3(0, 2, 1), m, scene_new_object(&b));
     EXPECT(scene_builder_end(&b, msg) == 0, "%s", msg);
     const vec3 nrm = one.emitters[0].n;

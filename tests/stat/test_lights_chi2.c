@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "chi2_util.h"
+#include "emitter_material.h"
 #include "core/check.h"
 #include "core/rng.h"
 #include "core/sampling.h"
@@ -19,16 +20,6 @@
 #define N_SAMPLES 1000000
 #define FAMILY_ALPHA 0.01
 
-static struct material emissive(vec3 e)
-{
-    struct material m;
-    memset(&m, 0, sizeof m);
-    m.base_color = v3s(0.5f);
-    m.roughness = 1.0f;
-    m.emission = e;
-    return m;
-}
-
 /* Emitters of different power and size (and one facing away from the probe point), plus
  * non-emissive geometry so that triangle and emitter indices differ. */
 static int build_scene(struct scene *s)
@@ -36,10 +27,10 @@ static int build_scene(struct scene *s)
     struct scene_builder b;
     char msg[RESTIR_MSG_LEN];
     scene_builder_begin(&b, s, "lights_test");
-    int grey = scene_add_material(&b, emissive(v3s(0.0f)));
-    int hot = scene_add_material(&b, emissive(v3(20.0f, 18.0f, 15.0f)));
-    int warm = scene_add_material(&b, emissive(v3(1.0f, 0.5f, 0.2f)));
-    int blue = scene_add_material(&b, emissive(v3(0.2f, 0.3f, 5.0f)));
+    int grey = scene_add_material(&b, emitter_material(v3s(0.0f)));
+    int hot = scene_add_material(&b, emitter_material(v3(20.0f, 18.0f, 15.0f)));
+    int warm = scene_add_material(&b, emitter_material(v3(1.0f, 0.5f, 0.2f)));
+    int blue = scene_add_material(&b, emitter_material(v3(0.2f, 0.3f, 5.0f)));
     int obj = scene_new_object(&b);
     /* Floor (not emissive), normal +y. */
     scene_add_quad(&b, v3(-5, 0, -5), v3(-5, 0, 5), v3(5, 0, 5), v3(5, 0, -5), grey, obj);
