@@ -1,6 +1,7 @@
-/* cmd_scene.c: `restir scene info NAME|FILE` (what a scene holds and what loading it costs) and
- * `restir scene export NAME --out DIR` (a built-in scene as an editable JSON scene file).
- * Must never render. */
+/* cmd_scene.c: `restir scene info NAME|FILE` (what a scene holds and what loading it costs),
+ * `restir scene export NAME --out DIR` (a built-in scene as an editable JSON scene file) and
+ * `restir scene export NAME|FILE --mesh --out DIR` (any scene as a triangle soup for another
+ * renderer). Must never render. */
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
@@ -12,6 +13,7 @@
 #include "experiments/options.h"
 #include "io/atomic_file.h"
 #include "io/scene_export.h"
+#include "io/scene_export_mesh.h"
 #include "scene/scene_file.h"
 #include "scene/scenes_builtin.h"
 
@@ -19,10 +21,17 @@ static void scene_usage(FILE *out)
 {
     fprintf(out, "usage: restir scene info NAME|FILE [--set scene.missing_textures=warn]\n"
                  "       restir scene export NAME --out DIR\n"
+                 "       restir scene export NAME|FILE --mesh --out DIR [--set scene.shading_normals=off] [--env FILE|none]\n"
                  "info: triangles, emitters, materials, textures, bounds, load and BVH build time of a\n"
                  "      built-in scene or a scene file (.json, .gltf, .glb, .obj, .ply; docs/SCENES.md).\n"
                  "export: writes the built-in scene NAME as DIR/NAME.json; rendering that file gives the\n"
-                 "      same images as the built-in scene, bit for bit with the same seed.\n");
+                 "      same images as the built-in scene, bit for bit with the same seed.\n"
+                 "export --mesh: writes any scene as DIR/NAME.mesh.json, a triangle soup for another renderer\n"
+                 "      (bench/cycles): world-space vertices and indices, a material per triangle, the materials'\n"
+                 "      diffuse albedo and front-side emission, the pinhole camera and a constant environment.\n"
+                 "      Refuses (exit 2, naming the material) what a Lambert-only renderer cannot match: a used\n"
+                 "      material without \"lambert\": true, a textured or alpha-masked one, shading normals, a thin\n"
+                 "      lens, an environment image.\n");
 }
 
 static int scene_info(int argc, char **argv)
@@ -70,8 +79,66 @@ static int scene_info(int argc, char **argv)
     return 0;
 }
 
+/* `scene export NAME|FILE --mesh --out DIR [--set ...] [--env ...]`: the scene loaded as the
+ * renderer loads it (scene settings and --env apply), written as DIR/NAME.mesh.json. */
+static int scene_export_mesh(int argc, char **argv)
+{
+    const char *name = NULL;
+    char **rest = xmalloc(sizeof(char *) * (size_t)(argc + 1));
+    int n = 0;
+    for (int i = 0; i < argc; i++) {
+        if (!strcmp(argv[i], "--mesh"))
+            continue;
+        if (argv[i][0] == '-') {
+            rest[n++] = argv[i];
+            if (cli_option_takes_value("scene export", argv[i]) && i + 1 < argc)
+                rest[n++] = argv[++i];
+        } else if (!name) {
+            name = argv[i];
+        } else {
+            rest[n++] = argv[i];
+        }
+    }
+    struct cli_options o;
+    char msg[RESTIR_MSG_LEN];
+    int parsed = cli_parse_options("scene export", n, rest, &o, msg);
+    free(rest);
+    if (parsed != 0) {
+        cli_error("scene export --mesh: %s", msg);
+        return EXIT_USAGE;
+    }
+    if (!name || !o.out) {
+        cli_error("scene export --mesh needs a scene (a built-in name or a file) and --out DIR");
+        return EXIT_USAGE;
+    }
+    struct scene s;
+    if (cli_scene_load(&o.params, o.env, name, &s, msg) != 0) {
+        cli_error("scene export --mesh: %s", msg);
+        return EXIT_USAGE;
+    }
+    int rc = 0;
+    char path[4200];
+    if (scene_export_mesh_check(&s, msg) != 0) {
+        cli_error("scene export --mesh: %s", msg);
+        rc = EXIT_USAGE;
+    } else if (snprintf(path, sizeof path, "%s/%s.mesh.json", o.out, s.name) >= (int)sizeof path) {
+        cli_error("scene export --mesh: the output path is too long");
+        rc = EXIT_USAGE;
+    } else if (io_make_dirs(o.out, msg) != 0 || scene_export_mesh_json(&s, name, path, msg) != 0) {
+        cli_error("scene export --mesh: %s", msg);
+        rc = EXIT_RUNTIME;
+    } else {
+        printf("%s\n", path);
+    }
+    scene_destroy(&s);
+    return rc;
+}
+
 static int scene_export(int argc, char **argv)
 {
+    for (int i = 0; i < argc; i++)
+        if (!strcmp(argv[i], "--mesh"))
+            return scene_export_mesh(argc, argv);
     const char *name = NULL, *out = NULL;
     for (int i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--out") && i + 1 < argc)
@@ -124,7 +191,7 @@ int cmd_scene(int argc, char **argv)
         return scene_info(argc - 1, argv + 1);
     if (!strcmp(argv[0], "export"))
         return scene_export(argc - 1, argv + 1);
-    cli_error("scene: expected 'info NAME|FILE' or 'export NAME --out DIR'");
+    cli_error("scene: expected 'info NAME|FILE', 'export NAME --out DIR' or 'export NAME|FILE --mesh --out DIR'");
     scene_usage(stderr);
     return EXIT_USAGE;
 }
