@@ -77,7 +77,7 @@ static const struct param_def params[] = {
     {"pt.max_bounces", P_INT, F(max_bounces), 1, 64, "8", NULL,
      "pt: maximum scattering events (1 = direct lighting; set for you when comparing DI methods)", NULL},
     {"pt.rr_bounces", P_INT, F(rr_bounces), 0, 1024, "3", NULL, "pt: Russian roulette after this many bounces", NULL},
-    {"sampler", P_NAMES, F(sampler), 0, 0, "independent", NULL,
+    {"sampler", P_NAMES, F(sampler), 0, 0, "sobol", NULL,
      "pt's random numbers: independent (PCG32 streams) or sobol (Owen-scrambled Sobol' points, a (0,2)-net per "
      "dimension pair over each frame's samples in a pixel; unbiased, independent across seeds and frames)",
      sampler_names},
@@ -86,7 +86,7 @@ static const struct param_def params[] = {
      "it subtends, Arvo 1995; area where it subtends less than 0.02 sr), with the matching density in NEE and in "
      "the MIS weight of BSDF-sampled hits",
      light_sampling_names},
-    {"lights.select", P_NAMES, F(light_selection), 0, 0, "power", NULL,
+    {"lights.select", P_NAMES, F(light_selection), 0, 0, "bvh", NULL,
      "pt's choice of emitting triangle for next-event estimation: power (in proportion to its power, one alias "
      "table) or bvh (down the emitters' BVH by each node's importance at the shading point from its power, "
      "distance and orientation bounds, Conty Estevez & Kulla 2018), with the matching probability in NEE and in "

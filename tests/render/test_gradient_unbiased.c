@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "reference_pt.h"
 #include "gradient/grad_frame.h"
 #include "unbiased_runs.h"
 
@@ -44,6 +45,7 @@ static void run_reference(const struct scene *s, const struct render_params *bas
     float *dx = malloc(sizeof(float) * 3 * (size_t)n), *dy = malloc(sizeof(float) * 3 * (size_t)n);
     for (int k = 0; k < runs; k++) {
         struct render_params q = *base;
+        reference_pt_pin(&q);
         q.spp = REF_SPP;
         q.seed = 900000 + (uint64_t)k;
         struct renderer r;

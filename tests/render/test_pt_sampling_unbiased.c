@@ -15,6 +15,7 @@
 #include <stdlib.h>
 
 #include "methods/reference.h"
+#include "reference_pt.h"
 #include "methods/renderer.h"
 #include "scene/scene_file.h"
 #include "test_util.h"
@@ -57,6 +58,7 @@ static void load_case(const char *scene_name, struct scene *s, struct render_par
     char msg[512];
     EXPECT(scene_load(scene_name, s, msg) == 0, "%s", msg);
     render_params_defaults(p);
+    reference_pt_pin(p); /* both sides start from the pinned pt; the tested side adds its options */
     p->width = 20;
     p->height = 12;
     EXPECT(render_params_set(p, "pt.max_bounces=4", msg) == 0, "%s", msg);

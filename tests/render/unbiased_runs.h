@@ -6,6 +6,7 @@
 
 #include <string.h>
 
+#include "reference_pt.h"
 #include "methods/renderer.h"
 #include "scene/scene_file.h"
 #include "test_util.h"
@@ -38,6 +39,7 @@ static inline void unbiased_run_reference(const struct scene *s, const struct me
 {
     struct render_params rp = *base;
     method_reference_params(m, &rp);
+    reference_pt_pin(&rp);
     rp.spp = spp;
     for (int k = 0; k < runs; k++) {
         struct render_params q = rp;
