@@ -55,7 +55,7 @@ asan: deps test-deps
 
 # ASan + UBSan over the unit, statistical, CLI, scene and report tests (what CI runs; `make asan`
 # runs every test). The viewer's test is left out: SDL's video drivers leak on their own.
-SANITIZE_TESTS = ^(unit|stat|core)\.|cli_errors|scene_export|report|determinism|reference_resume|interrupt|plans|params_replay
+SANITIZE_TESTS = ^(unit|stat|core)\.|cli_errors|scene_export|report|determinism|reference_resume|reference_target|interrupt|plans|params_replay
 sanitize: deps test-deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DRESTIR_SANITIZE=ON
 	cmake --build build-asan -j $(JOBS)
