@@ -6,7 +6,9 @@
  * i.i.d. draws of p_light and initial RIS is unchanged in distribution, while the candidate loop
  * reads contiguous memory and vectorizes. Two pixels share candidates only when their windows
  * overlap (probability about 2 M / LIGHT_POOL_SIZE), a weak correlation between pixels that no
- * pixel's expectation sees. Must never trace rays. */
+ * pixel's expectation sees. pt's per-point strategies (lights.select=bvh, lights.sample=
+ * solid-angle) have no place here: the pool is drawn before any shading point exists, and a
+ * per-pixel descent would give up the shared, contiguous candidates. Must never trace rays. */
 #ifndef RESTIR_RENDER_LIGHT_POOL_H
 #define RESTIR_RENDER_LIGHT_POOL_H
 
