@@ -115,9 +115,15 @@ static int bucket_of(const struct item *it, int axis, float lo, float extent)
     return k < 0 ? 0 : k >= SPLIT_BUCKETS ? SPLIT_BUCKETS - 1 : k;
 }
 
-/* The split of items[0 .. n-1] of least cost: *axis and *split (items of bucket < split go left).
- * Returns 0 when every centroid coincides (no split separates them). */
-static int best_split(const struct item *items, int n, int *axis, int *split)
+/* Where the items go: those of bucket < split along axis (buckets over [lo, lo + extent]) left. */
+struct split {
+    int axis, bucket;
+    float lo, extent;
+};
+
+/* The split of items[0 .. n-1] of least cost. Returns 0 when every centroid coincides (no split
+ * separates them). */
+static int best_split(const struct item *items, int n, struct split *best_split)
 {
     vec3 clo = items[0].centroid, chi = items[0].centroid, lo = items[0].lo, hi = items[0].hi;
     for (int i = 1; i < n; i++) {
@@ -156,24 +162,19 @@ static int best_split(const struct item *items, int n, int *axis, int *split)
             const double cost = split_cost(&left, k_r) + split_cost(&right, k_r);
             if (cost < best) {
                 best = cost;
-                *axis = a;
-                *split = s;
+                *best_split = (struct split){a, s, axis_of(clo, a), cext};
             }
         }
     }
     return best < INFINITY;
 }
 
-/* Moves the items of bucket < split to the front; returns how many there are. */
-static int partition(struct item *items, int n, int axis, int split)
+/* Moves the items that go left to the front; returns how many there are. */
+static int partition(struct item *items, int n, const struct split *sp)
 {
-    vec3 clo = items[0].centroid, chi = items[0].centroid;
-    for (int i = 1; i < n; i++)
-        clo = v3_min(clo, items[i].centroid), chi = v3_max(chi, items[i].centroid);
-    const float lo = axis_of(clo, axis), extent = axis_of(chi, axis) - lo;
     int left = 0;
     for (int i = 0; i < n; i++)
-        if (bucket_of(&items[i], axis, lo, extent) < split) {
+        if (bucket_of(&items[i], sp->axis, sp->lo, sp->extent) < sp->bucket) {
             struct item tmp = items[left];
             items[left++] = items[i];
             items[i] = tmp;
@@ -201,9 +202,10 @@ static struct bounds build(struct builder *b, int first, int n, int parent, int 
         nd->emitter = it->emitter;
         b->t->emitter_leaf[it->emitter] = at;
     } else {
-        int axis = 0, split = 0, nl = n / 2;
-        if (depth < SAOH_MAX_DEPTH && best_split(b->items + first, n, &axis, &split))
-            nl = partition(b->items + first, n, axis, split);
+        struct split sp;
+        int nl = n / 2;
+        if (depth < SAOH_MAX_DEPTH && best_split(b->items + first, n, &sp))
+            nl = partition(b->items + first, n, &sp);
         const struct bounds left = build(b, first, nl, at, depth + 1);
         nd = &b->t->nodes[at];
         nd->second = b->t->num_nodes;

@@ -61,13 +61,21 @@ static int child_probs(const struct light_bvh *t, int k, vec3 p, vec3 n, float p
     return 1;
 }
 
+/* A tree of one emitter (the root a leaf) chooses it with probability 1 where it can light p. */
+static float single_emitter_prob(const struct light_bvh *t, vec3 p, vec3 n)
+{
+    return light_tree_importance(&t->nodes[0], p, n) > 0.0f ? 1.0f : 0.0f;
+}
+
 int light_tree_sample(const struct light_bvh *t, vec3 p, vec3 n, float u, float *pmf)
 {
     *pmf = 0.0f;
     if (t->num_nodes < 1)
         return -1;
-    if (t->nodes[0].second < 0) /* a single emitter: chosen wherever it can light p */
-        return light_tree_importance(&t->nodes[0], p, n) > 0.0f ? (*pmf = 1.0f, t->nodes[0].emitter) : -1;
+    if (t->nodes[0].second < 0) { /* a single emitter: chosen wherever it can light p */
+        *pmf = single_emitter_prob(t, p, n);
+        return *pmf > 0.0f ? t->nodes[0].emitter : -1;
+    }
     /* u is remapped into each chosen interval, so one uniform makes the whole descent (its 24 bits
      * resolve leaves down to a probability of about 2^-24, as the alias table's) */
     float prob = 1.0f;
@@ -95,7 +103,7 @@ float light_tree_pmf(const struct light_bvh *t, vec3 p, vec3 n, int e)
     if (e < 0 || e >= (t->num_nodes + 1) / 2) /* one emitter per leaf: 2 n - 1 nodes */
         return 0.0f;
     if (t->nodes[0].second < 0)
-        return light_tree_importance(&t->nodes[0], p, n) > 0.0f ? 1.0f : 0.0f;
+        return single_emitter_prob(t, p, n);
     /* the path root -> leaf, gathered leaf -> root, then multiplied in the sampler's order */
     int path[LIGHT_TREE_MAX_DEPTH], depth = 0;
     for (int k = t->emitter_leaf[e]; k >= 0 && depth < LIGHT_TREE_MAX_DEPTH; k = t->nodes[k].parent)

@@ -157,9 +157,9 @@ int lights_sample_at(const struct scene *s, struct light_choice choice, vec3 x, 
 float lights_pdf_at(const struct scene *s, struct light_choice choice, vec3 x, vec3 n, int tri, float dist,
                     float cos_l)
 {
-    if (!(lights_pdf_area(s, tri) > 0.0f))
-        return 0.0f;
-    const int e = s->tri_emitter[tri];
+    const int e = tri >= 0 && tri < s->num_tris ? s->tri_emitter[tri] : -1;
+    if (e < 0)
+        return 0.0f; /* not an emitter (tri_emitter holds only triangles of positive area) */
     const float pmf = emitter_pmf(s, choice.select, x, n, e);
     const double omega = choice.point == LIGHT_SAMPLING_SOLID_ANGLE ? emitter_solid_angle(&s->emitters[e], x) : 0.0;
     if (omega > 0.0)
