@@ -6,6 +6,9 @@
 # one-frame renders with A and with B against it. Prints per (scene, spp) the mean relMSE and MAPE
 # over the seeds, the mean frame time, and the B / A ratios of MAPE and of relMSE x time (below 1:
 # B reaches the error sooner). Machines are noisy: A and B run alternately, seed by seed.
+# METHOD (default pt) renders with another method that reads A's and B's settings (restir-pt reads
+# the walk's lights.*), FRAMES frames (default 1) from a static camera, the last frame's error
+# measured; spp is then pt's only and SPPS is ignored.
 set -euo pipefail
 bin=${1:-build/restir}
 res=${2:-160x120}
@@ -15,11 +18,14 @@ out=${5:-out/pt-options-compare}
 threads=${THREADS:-2}
 scenes=${SCENES:-cornell ajar many-lights}
 spps=${SPPS:-1 4 16 64}
+method=${METHOD:-pt}
+frames=${FRAMES:-1}
+[ "$method" = pt ] || spps=1
 a_sets=${A:-sampler=independent}
 b_sets=${B:-sampler=sobol}
 sets_args() { for kv in $1; do printf -- '--set %s ' "$kv"; done; }
 mkdir -p "$out"
-echo "A: $a_sets; B: $b_sets"
+echo "$method, $frames frame(s); A: $a_sets; B: $b_sets"
 echo "| scene | spp | relMSE A | relMSE B | MAPE A | MAPE B | ms A | ms B | MAPE ratio | relMSE x time ratio |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
 for scene in $scenes; do
@@ -34,8 +40,11 @@ for scene in $scenes; do
         sets=$a_sets
         [ "$side" = B ] && sets=$b_sets
         # shellcheck disable=SC2046
-        line=$("$bin" render --scene "$scene" --method pt --res "$res" --frames 1 --seed "$seed" --threads "$threads" \
-          --set spp="$spp" $(sets_args "$sets") --ref "$ref" --save last --out "$out/render" | grep "ms/frame")
+        spp_set=""
+        [ "$method" = pt ] && spp_set="spp=$spp"
+        line=$("$bin" render --scene "$scene" --method "$method" --res "$res" --frames "$frames" --seed "$seed" \
+          --threads "$threads" $(sets_args "$spp_set $sets") --ref "$ref" --save last --out "$out/render" |
+          grep "ms/frame")
         ms=$(sed -n 's/.*: \([0-9.]*\) ms\/frame.*/\1/p' <<< "$line")
         relmse=$(sed -n 's/.*relMSE \([0-9.e+-]*\).*/\1/p' <<< "$line")
         mape=$(sed -n 's/.* MAPE \([0-9.e+-]*\) SMAPE.*/\1/p' <<< "$line")

@@ -82,12 +82,14 @@ static const struct param_def params[] = {
      "dimension pair over each frame's samples in a pixel; unbiased, independent across seeds and frames)",
      sampler_names},
     {"lights.sample", P_NAMES, F(light_sampling), 0, 0, "area", NULL,
-     "pt's point on the chosen emitting triangle: area (uniform on it) or solid-angle (uniform in the solid angle "
-     "it subtends, Arvo 1995; area where it subtends less than 0.02 sr), with the matching density in NEE and in "
-     "the MIS weight of BSDF-sampled hits",
+     "next-event estimation's point on the chosen emitting triangle in every path walk (pt, restir-pt and the "
+     "methods on its passes, restir-gi, gpt; not restir-di's light pool): area (uniform on it) or solid-angle "
+     "(uniform in the solid angle it subtends, Arvo 1995; area where it subtends less than 0.02 sr), with the "
+     "matching density in NEE and in the MIS weight of BSDF-sampled hits",
      light_sampling_names},
     {"lights.select", P_NAMES, F(light_selection), 0, 0, "bvh", NULL,
-     "pt's choice of emitting triangle for next-event estimation: power (in proportion to its power, one alias "
+     "next-event estimation's choice of emitting triangle in every path walk (pt, restir-pt and the methods on "
+     "its passes, restir-gi, gpt; not restir-di's light pool): power (in proportion to its power, one alias "
      "table) or bvh (down the emitters' BVH by each node's importance at the shading point from its power, "
      "distance and orientation bounds, Conty Estevez & Kulla 2018), with the matching probability in NEE and in "
      "the MIS weight of BSDF-sampled hits; unbiased either way",

@@ -56,8 +56,8 @@ struct render_params {
     int max_bounces;  /* scattering events; 1 = direct lighting only */
     int rr_bounces;   /* Russian roulette starts after this many bounces */
     enum pt_sampler sampler; /* pt's random numbers */
-    enum light_sampling light_sampling;   /* pt's points on emitting triangles (shading/lights.h) */
-    enum light_selection light_selection; /* pt's choice of emitting triangle (shading/lights.h) */
+    enum light_sampling light_sampling;   /* NEE's points on emitting triangles in every path walk (shading/lights.h) */
+    enum light_selection light_selection; /* NEE's choice of emitting triangle in every path walk (shading/lights.h) */
 
     /* ReSTIR DI */
     int light_candidates;
@@ -139,6 +139,14 @@ struct render_params {
 
 /* Spatial neighbors a method tries: spatial.neighbors, or when 0 the default of 001 for ReSTIR DI
  * (1) and of Lin et al. 2022 for ReSTIR PT (3). */
+/* The light strategy of next-event estimation in every path walk (path_walk.h): pt, references,
+ * restir-pt and the methods built on its passes, restir-gi and gpt. */
+static inline struct light_choice render_params_light_choice(const struct render_params *p)
+{
+    const struct light_choice c = {p->light_selection, p->light_sampling};
+    return c;
+}
+
 static inline int render_params_spatial_neighbors(const struct render_params *p, int path_reuse)
 {
     return p->spatial_neighbors > 0 ? p->spatial_neighbors : (path_reuse ? 3 : 1);

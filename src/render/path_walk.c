@@ -125,11 +125,10 @@ static void numbers_from_seed(const void *ctx, int vertex, struct path_vertex_nu
     u->rr = pcg32_float(&rng);
 }
 
-long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uint64_t seed, int max_bounces,
-                        int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx)
+long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uint64_t seed, struct light_choice lights,
+                        int max_bounces, int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx)
 {
     const struct path_numbers numbers = path_numbers_seeded(&seed);
-    const struct light_choice lights = {LIGHT_SELECT_POWER, LIGHT_SAMPLING_AREA};
     return path_walk_run_numbers(s, x1, &numbers, lights, max_bounces, rr_bounces, w, emit, ctx);
 }
 

@@ -84,11 +84,12 @@ struct path_numbers {
 /* Walks from the primary hit x1 (x1.wo toward the camera; x1's own emission is not reported:
  * paths of length 1 are the caller's) with up to max_bounces scattering events, Russian roulette
  * after rr_bounces, calling emit for every candidate. Returns the number of rays traced. */
-long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uint64_t seed, int max_bounces,
-                        int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx);
-/* path_walk_run with the numbers from `numbers` instead of the seed's streams, and NEE choosing
- * emitters and points on them by `lights` (path_walk_run: power, area) with the matching density in
- * the MIS weights of both strategies. */
+/* NEE chooses emitters and points on them by `lights`, with the matching density in the MIS weights
+ * of both strategies. Only the walk reads that density: shifts reconnect to a light vertex or
+ * replay BSDF numbers, so reservoirs never need it. */
+long long path_walk_run(const struct scene *s, const struct path_vertex *x1, uint64_t seed, struct light_choice lights,
+                        int max_bounces, int rr_bounces, struct path_walk *w, path_candidate_fn emit, void *ctx);
+/* path_walk_run with the numbers from `numbers` instead of the seed's streams. */
 long long path_walk_run_numbers(const struct scene *s, const struct path_vertex *x1, const struct path_numbers *numbers,
                                 struct light_choice lights, int max_bounces, int rr_bounces, struct path_walk *w,
                                 path_candidate_fn emit, void *ctx);

@@ -56,12 +56,6 @@ static void sobol_vertex_numbers(const void *ctx, int vertex, struct path_vertex
     u->rr = vertex > sn->rr_bounces ? sobol_sample_1d(sn->index, sobol_dim_key(sn, base + 4)) : 0.0f;
 }
 
-static struct light_choice pt_light_choice(const struct render_params *p)
-{
-    const struct light_choice c = {p->light_selection, p->light_sampling};
-    return c;
-}
-
 /* Radiance along (o, d) with the walk's numbers from `numbers`. */
 static vec3 pt_trace_numbers(const struct scene *s, vec3 o, vec3 d, int max_bounces, const struct path_numbers *numbers,
                              uint64_t path_seed, struct light_choice lights, int rr_bounces, long long *rays)
@@ -84,8 +78,7 @@ static vec3 pt_trace_numbers(const struct scene *s, vec3 o, vec3 d, int max_boun
 vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, uint64_t path_seed, int rr_bounces,
               long long *rays)
 {
-    const struct light_choice lights = {LIGHT_SELECT_POWER, LIGHT_SAMPLING_AREA};
-    return pt_trace_numbers(s, o, d, max_bounces, NULL, path_seed, lights, rr_bounces, rays);
+    return pt_trace_numbers(s, o, d, max_bounces, NULL, path_seed, LIGHT_CHOICE_POWER_AREA, rr_bounces, rays);
 }
 
 /* One pixel's spp paths with pt's Sobol' sampler: points first_index .. first_index + spp - 1 of the
@@ -110,7 +103,7 @@ static vec3 pixel_sobol(const struct scene *s, const struct camera_view *view, c
             cs.time = sobol_sample_1d(sn.index, sobol_dim_key(&sn, 2));
         vec3 o, d;
         camera_sample_ray(view, &cs, (float)x + jitter[0], (float)y + jitter[1], &o, &d);
-        vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, &numbers, 0u, pt_light_choice(p), p->rr_bounces, rays);
+        vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, &numbers, 0u, render_params_light_choice(p), p->rr_bounces, rays);
         if (v3_is_finite(L))
             sum = v3_add(sum, L);
     }
@@ -130,7 +123,7 @@ static vec3 pixel_independent(const struct scene *s, const struct camera_view *v
         struct camera_sample cs = camera_sample_draw(view, &rng);
         vec3 o, d;
         camera_sample_ray(view, &cs, (float)x + jx, (float)y + jy, &o, &d);
-        vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, NULL, path_seed, pt_light_choice(p), p->rr_bounces, rays);
+        vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, NULL, path_seed, render_params_light_choice(p), p->rr_bounces, rays);
         if (v3_is_finite(L))
             sum = v3_add(sum, L);
     }

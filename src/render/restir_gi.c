@@ -50,7 +50,7 @@ static vec3 suffix_radiance(const struct scene *s, const struct render_params *p
     struct path_walk walk;
     vec3 L = v3s(0.0f);
     const int rr = p->rr_bounces > 1 ? p->rr_bounces - 1 : 0;
-    *rays += path_walk_run(s, x2, seed, p->max_bounces - 1, rr, &walk, accumulate, &L);
+    *rays += path_walk_run(s, x2, seed, render_params_light_choice(p), p->max_bounces - 1, rr, &walk, accumulate, &L);
     return L;
 }
 
@@ -215,7 +215,7 @@ long long gi_initial_pass(const struct gi_frame *fr, const struct gbuffer *g, st
             const struct path_vertex v = path_vertex_from_hit(&hit, d);
             /* D: paths of length 2, NEE and BSDF hit MIS'd as in pt. */
             vec3 D = v3s(0.0f);
-            rays += path_walk_run(s, &v, draw_seed(&rng), direct_bounces, p->rr_bounces, &walk, accumulate, &D);
+            rays += path_walk_run(s, &v, draw_seed(&rng), render_params_light_choice(p), direct_bounces, p->rr_bounces, &walk, accumulate, &D);
             base[i] = v3_is_finite(D) ? v3_add(Le, D) : Le;
             x1[i] = v;
             res->c = 1.0f;

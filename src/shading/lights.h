@@ -30,6 +30,8 @@ struct light_choice {
     enum light_selection select;
     enum light_sampling point;
 };
+/* The strategy lights_sample implements: by power from the alias table, uniform in area. */
+#define LIGHT_CHOICE_POWER_AREA ((struct light_choice){LIGHT_SELECT_POWER, LIGHT_SAMPLING_AREA})
 
 /* lights_sample for a shading point x with unit normal n (its side does not matter), by the
  * strategy `choice`: the emitter by choice.select, then the point uniform in the solid angle the

@@ -118,9 +118,10 @@ static void check_bad_render_input(void)
     expect_failure("--target-relmse outside reference", RENDER_ARGS("--target-relmse 0.01"), 2, "--target-relmse",
                    NULL);
     expect_failure("unknown lights.select", RENDER_ARGS("--set lights.select=tree"), 2, "lights.select", "tree");
+    /* restir-di's candidates come from the frame's light pool, drawn before any shading point */
     expect_failure("lights.select for a method that does not read it",
-                   "render --scene cornell --method restir-pt --res 16x9 --set lights.select=bvh --out '%1$s'", 2,
-                   "lights.select", "restir-pt");
+                   "render --scene cornell --method restir-di --res 16x9 --set lights.select=bvh --out '%1$s'", 2,
+                   "lights.select", "restir-di");
     expect_failure("huge width", "render --scene cornell --method pt --res 100000x10 --out '%1$s'", 2, "--res",
                    "100000");
     expect_failure("malformed resolution", "render --scene cornell --method pt --res abc --out '%1$s'", 2, "--res",

@@ -40,7 +40,9 @@ int main(int argc, char **argv)
     EXPECT(data != NULL, "RESTIR_TEST_DATA is not set (run through ctest)");
     if (data) {
         snprintf(real, sizeof real, "%s/scenes/textured.json", data);
-        check(real, RUNS, pairwise, 1, 1);
+        /* Heavy tails in its dark pixels: with the light BVH in the walk one pixel reached |t| 4.18
+         * at 2048 runs (limit 4.10); the same runs doubled put the worst pixel at 2.68. */
+        check(real, 2 * RUNS, pairwise, 1, 1);
         snprintf(real, sizeof real, "%s/scenes/smooth.json", data);
         check(real, RUNS, pairwise, 1, 1);
     }

@@ -54,7 +54,9 @@ int main(int argc, char **argv)
     check(method_named("restir-pt"), "pillars", 4096, none, 1, 1); /* worst |t| 4.17 at 2048 runs: heavy tails */
     check(method_named("restir-pt"), "cornell", 1024, none, 1, 1);
     check(method_named("restir-pt"), "pillars", 1024, far_cells, 2, 1);
-    check(method_named("restir-pt"), "pillars", 4096, no_adjust, 1, 1); /* heavy tails: worst |t| 5.6 at 1024 runs, 4.0 at 4096 */
+    /* Heavy tails: worst |t| 5.6 at 1024 runs, 4.0 at 4096 (power-chosen emitters in the walk);
+     * with the light BVH 4.60 at 4096, 3.20 at 8192, 4.02 at 16384 (pooled z -0.19): not a bias. */
+    check(method_named("restir-pt"), "pillars", 8192, no_adjust, 1, 1);
     check(method_named("restir-pt"), "cornell", 1024, no_adjust, 1, 1);
     check(method_named("restir-pt"), "pillars", 1024, one, 1, 1);
     check(method_named("restir-pt"), "pillars", 1024, hist_temporal, 1, 1);

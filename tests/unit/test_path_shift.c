@@ -234,7 +234,7 @@ static int walk_prefix(const struct scene *s, const struct pt_domain *d, const f
     if (!scene_intersect(s, d->view->position, dir, 0.0f, INFINITY, &h))
         return 0;
     struct path_vertex x1 = path_vertex_from_hit(&h, dir);
-    path_walk_run(s, &x1, seed, k - 2, 1 << 20, w, ignore_candidate, NULL);
+    path_walk_run(s, &x1, seed, LIGHT_CHOICE_POWER_AREA, k - 2, 1 << 20, w, ignore_candidate, NULL);
     return w->nv == k - 1;
 }
 
@@ -345,7 +345,7 @@ static void test_scene(const char *name, int paths)
                 if (!scene_intersect(&s, cur.position, d, 0.0f, INFINITY, &hit))
                     continue;
                 struct path_vertex x1 = path_vertex_from_hit(&hit, d);
-                path_walk_run(&s, &x1, ctx.trial.seed, MAX_BOUNCES, RR_BOUNCES, &walk, collect, &ctx);
+                path_walk_run(&s, &x1, ctx.trial.seed, LIGHT_CHOICE_POWER_AREA, MAX_BOUNCES, RR_BOUNCES, &walk, collect, &ctx);
             }
         }
     }

@@ -198,7 +198,7 @@ static void test_splat(const struct scene *s, const struct camera *c0, const str
                 continue;
             struct path_vertex x1 = path_vertex_from_hit(&h, d);
             ctx.pixel = y * WIDTH + x;
-            path_walk_run(s, &x1, ctx.trial.seed, 5, 64, &walk, collect, &ctx);
+            path_walk_run(s, &x1, ctx.trial.seed, LIGHT_CHOICE_POWER_AREA, 5, 64, &walk, collect, &ctx);
         }
     }
     int landed = 0, refused = 0, far = 0, bad_pixel = 0, bad_round = 0;
