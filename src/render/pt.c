@@ -81,16 +81,30 @@ vec3 pt_trace(const struct scene *s, vec3 o, vec3 d, int max_bounces, uint64_t p
     return pt_trace_numbers(s, o, d, max_bounces, NULL, path_seed, LIGHT_CHOICE_POWER_AREA, rr_bounces, rays);
 }
 
+/* A pixel's sum of path radiances, in double: summed in float, 4096 paths of a constant sky came
+ * out 3.5e-5 too bright (each addition rounds at the running sum's precision, the same way every
+ * time for the same value), a bias that a reference's flat regions show at any z. */
+struct sum3d {
+    double x, y, z;
+};
+
+static void sum3d_add(struct sum3d *s, vec3 v)
+{
+    s->x += v.x;
+    s->y += v.y;
+    s->z += v.z;
+}
+
 /* One pixel's spp paths with pt's Sobol' sampler: points first_index .. first_index + spp - 1 of the
  * pixel's padded sequence for (seed, sequence). Owen scrambling makes every point uniform, so each
  * such set is an unbiased randomized quasi-Monte Carlo estimate, and sequences of different seeds or
  * sequence numbers are independent. */
-static vec3 pixel_sobol(const struct scene *s, const struct camera_view *view, const struct render_params *p,
+static struct sum3d pixel_sobol(const struct scene *s, const struct camera_view *view, const struct render_params *p,
                         int sequence, uint32_t first_index, int x, int y, int i, int spp, long long *rays)
 {
     struct sobol_numbers sn = {rng_key(p->seed, (uint64_t)sequence, (uint64_t)i, RNG_PASS_PT_SOBOL), 0u, p->rr_bounces};
     const struct path_numbers numbers = {sobol_vertex_numbers, &sn};
-    vec3 sum = v3s(0.0f);
+    struct sum3d sum = {0.0, 0.0, 0.0};
     for (int k = 0; k < spp; k++) {
         sn.index = first_index + (uint32_t)k;
         float jitter[2] = {0.5f, 0.5f};
@@ -105,18 +119,18 @@ static vec3 pixel_sobol(const struct scene *s, const struct camera_view *view, c
         camera_sample_ray(view, &cs, (float)x + jitter[0], (float)y + jitter[1], &o, &d);
         vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, &numbers, 0u, render_params_light_choice(p), p->rr_bounces, rays);
         if (v3_is_finite(L))
-            sum = v3_add(sum, L);
+            sum3d_add(&sum, L);
     }
     return sum;
 }
 
 /* One pixel's spp paths with independent numbers: the pixel's PCG32 stream for (seed, frame) gives
  * each path its jitter, seed and camera dimensions; the walk replays from the seed (path_walk.h). */
-static vec3 pixel_independent(const struct scene *s, const struct camera_view *view, const struct render_params *p,
+static struct sum3d pixel_independent(const struct scene *s, const struct camera_view *view, const struct render_params *p,
                               int frame, int x, int y, int i, int spp, long long *rays)
 {
     pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_PT);
-    vec3 sum = v3s(0.0f);
+    struct sum3d sum = {0.0, 0.0, 0.0};
     for (int k = 0; k < spp; k++) {
         float jx = p->jitter ? pcg32_float(&rng) : 0.5f, jy = p->jitter ? pcg32_float(&rng) : 0.5f;
         uint64_t path_seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
@@ -125,7 +139,7 @@ static vec3 pixel_independent(const struct scene *s, const struct camera_view *v
         camera_sample_ray(view, &cs, (float)x + jx, (float)y + jy, &o, &d);
         vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, NULL, path_seed, render_params_light_choice(p), p->rr_bounces, rays);
         if (v3_is_finite(L))
-            sum = v3_add(sum, L);
+            sum3d_add(&sum, L);
     }
     return sum;
 }
@@ -145,13 +159,12 @@ long long pt_pass_chunk(const struct scene *s, const struct camera_view *view, c
     for (int t = 0; t < ntiles; t++) {
         for (struct tile_pixel px = tile_first_pixel(w, hgt, t); px.i >= 0; tile_advance(&px)) {
             const int x = px.x, y = px.y, i = px.i;
-            const vec3 sum = p->sampler == PT_SAMPLER_SOBOL
-                                 ? pixel_sobol(s, view, p, sequence, first_index, x, y, i, spp, &rays)
-                                 : pixel_independent(s, view, p, frame, x, y, i, spp, &rays);
-            vec3 mean = v3_scale(sum, 1.0f / (float)spp);
-            rgb[3 * i] = mean.x;
-            rgb[3 * i + 1] = mean.y;
-            rgb[3 * i + 2] = mean.z;
+            const struct sum3d sum = p->sampler == PT_SAMPLER_SOBOL
+                                         ? pixel_sobol(s, view, p, sequence, first_index, x, y, i, spp, &rays)
+                                         : pixel_independent(s, view, p, frame, x, y, i, spp, &rays);
+            rgb[3 * i] = (float)(sum.x / spp);
+            rgb[3 * i + 1] = (float)(sum.y / spp);
+            rgb[3 * i + 2] = (float)(sum.z / spp);
         }
     }
     return rays;
