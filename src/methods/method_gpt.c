@@ -65,7 +65,7 @@ const struct method method_gpt = {
     .description = "gradient-domain path tracing (Kettunen et al. 2015, 002 B.2): pt base paths shifted to the 4 "
                    "neighbors (hybrid shift), Poisson reconstruction",
     .caps = METHOD_GRADIENT | METHOD_BUDGET_BY_SPP,
-    .settings = "spp pt.max_bounces pt.rr_bounces lights.sample lights.select shift shift. recon recon.",
+    .settings = "spp pt.max_bounces pt.rr_bounces lights. shift shift. recon recon.",
     .create = gpt_create,
     .destroy = gpt_destroy,
     .render_frame = gpt_render_frame,

@@ -117,7 +117,7 @@ const struct method method_restir_gi = {
     .description = "ReSTIR GI (Ouyang et al. 2021) as GRIS: one secondary vertex per pixel with its path suffix, "
                    "temporal and spatial reuse by reconnection; gi.radiance=reevaluate (unbiased) or stored",
     .caps = METHOD_HISTORY,
-    .settings = "pt.max_bounces pt.rr_bounces lights.sample lights.select temporal temporal. spatial spatial. history "
+    .settings = "pt.max_bounces pt.rr_bounces lights. temporal temporal. spatial spatial. history "
                 "confidence_cap mis gi.",
     .check = restir_gi_check,
     .create = restir_gi_create,

@@ -21,7 +21,7 @@ struct restir_pt_state {
 
 /* The settings ReSTIR PT's passes read (struct method.settings). */
 #define RESTIR_PT_SETTINGS                                                                                        \
-    "pt. lights.sample lights.select temporal temporal. spatial spatial. history confidence_cap mis spmis. shift "  \
+    "pt. lights. temporal temporal. spatial spatial. history confidence_cap mis spmis. shift "  \
     "shift."
 
 void restir_pt_state_init(struct restir_pt_state *t, const struct renderer *r);

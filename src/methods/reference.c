@@ -131,6 +131,8 @@ void reference_describe(const struct reference_accum *a, char *out, size_t len)
         used += (size_t)snprintf(out + used, len - used, "; lights=solid-angle");
     if (p->light_selection == LIGHT_SELECT_BVH && used < len)
         used += (size_t)snprintf(out + used, len - used, "; lights.select=bvh");
+    if (p->light_env == LIGHT_ENV_COMPENSATED && used < len)
+        used += (size_t)snprintf(out + used, len - used, "; lights.env=compensated");
     if (v->shutter > 0.0f && used < len)
         snprintf(out + used, len - used, "; shutter=%a; open=%a,%a,%a/%a,%a,%a/%a,%a,%a/%a", v->shutter,
                  v->open_position.x, v->open_position.y, v->open_position.z, v->open_forward.x, v->open_forward.y,

@@ -46,6 +46,7 @@ static const char *const gi_radiance_names[] = {"reevaluate", "stored", NULL}; /
 static const char *const sampler_names[] = {"independent", "sobol", NULL}; /* enum pt_sampler */
 static const char *const light_sampling_names[] = {"area", "solid-angle", NULL}; /* enum light_sampling */
 static const char *const light_selection_names[] = {"power", "bvh", NULL};        /* enum light_selection */
+static const char *const light_env_names[] = {"map", "compensated", NULL};        /* enum light_env_sampling */
 static const char *const preset_names[] = {"fast", "balanced", "conservative", NULL};
 
 /* Index of val among the NULL-terminated names, or -1. */
@@ -69,6 +70,7 @@ _Static_assert(sizeof(enum temporal_reuse_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum gi_radiance_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum light_sampling) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum light_selection) == sizeof(int), "enum size");
+_Static_assert(sizeof(enum light_env_sampling) == sizeof(int), "enum size");
 
 #define F(field) offsetof(struct render_params, field)
 static const struct param_def params[] = {
@@ -94,6 +96,13 @@ static const struct param_def params[] = {
      "distance and orientation bounds, Conty Estevez & Kulla 2018), with the matching probability in NEE and in "
      "the MIS weight of BSDF-sampled hits; unbiased either way",
      light_selection_names},
+    {"lights.env", P_NAMES, F(light_env), 0, 0, "compensated", NULL,
+     "next-event estimation's directions toward an environment map in every path walk (pt, restir-pt and the "
+     "methods on its passes, restir-gi, gpt; not restir-di's light pool): map (in proportion to the map's "
+     "luminance) or compensated (in proportion to its luminance above the map's mean, MIS compensation, Karlik et "
+     "al. 2019: BSDF sampling, which every walk combines with it by MIS, covers the rest; the map's distribution "
+     "where nothing is above the mean, as for a constant sky); unbiased either way",
+     light_env_names},
     {"di.light_candidates", P_INT, F(light_candidates), 0, 4096, "32", NULL, "initial RIS: light-sampled candidates", NULL},
     {"di.bsdf_candidates", P_INT, F(bsdf_candidates), 0, 64, "1", NULL, "initial RIS: BSDF-sampled candidates", NULL},
     {"di.visibility_reuse", P_BOOL, F(di_visibility_reuse), 0, 1, "on", NULL,

@@ -58,6 +58,7 @@ struct render_params {
     enum pt_sampler sampler; /* pt's random numbers */
     enum light_sampling light_sampling;   /* NEE's points on emitting triangles in every path walk (shading/lights.h) */
     enum light_selection light_selection; /* NEE's choice of emitting triangle in every path walk (shading/lights.h) */
+    enum light_env_sampling light_env;    /* NEE's directions toward the environment in every path walk */
 
     /* ReSTIR DI */
     int light_candidates;
@@ -143,7 +144,7 @@ struct render_params {
  * restir-pt and the methods built on its passes, restir-gi and gpt. */
 static inline struct light_choice render_params_light_choice(const struct render_params *p)
 {
-    const struct light_choice c = {p->light_selection, p->light_sampling};
+    const struct light_choice c = {p->light_selection, p->light_sampling, p->light_env};
     return c;
 }
 

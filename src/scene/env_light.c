@@ -27,13 +27,14 @@ static float clamp_unit(float u)
     return u >= 0.0f ? (u < below_one ? u : below_one) : 0.0f;
 }
 
-/* Weight of texel (x, y): its luminance times the sine at its row's centre, which is proportional
- * to the texel's solid angle. Non-finite or negative luminance (impossible for a validated map)
- * counts as 0, so the CDFs stay well formed whatever the caller filled in. */
-static double texel_weight(const struct environment *env, int x, int y, double sin_centre)
+/* Weight of texel (x, y): its luminance less `lum_floor` times the sine at its row's centre, which is
+ * proportional to the texel's solid angle. Non-finite or negative luminance (impossible for a
+ * validated map) and luminance at or below the floor count as 0, so the CDFs stay well formed
+ * whatever the caller filled in. */
+static double texel_weight(const struct environment *env, int x, int y, double sin_centre, double lum_floor)
 {
     double l = v3_luminance(environment_texel(env, x, y));
-    return l > 0.0 && l < INFINITY ? l * sin_centre : 0.0;
+    return l > lum_floor && l < INFINITY ? (l - lum_floor) * sin_centre : 0.0;
 }
 
 static double row_sin(int y, int height) { return sin(ENV_PI_D * ((double)y + 0.5) / (double)height); }
@@ -47,12 +48,12 @@ static double build_row(struct env_sampler *s, int y)
     const double sc = row_sin(y, s->height);
     double sum = 0.0;
     for (int x = 0; x < w; x++)
-        sum += texel_weight(s->env, x, y, sc);
+        sum += texel_weight(s->env, x, y, sc, s->lum_floor);
     float *cdf = s->conditional + (size_t)y * (size_t)(w + 1);
     double run = 0.0;
     cdf[0] = 0.0f;
     for (int x = 0; x < w; x++) {
-        run += texel_weight(s->env, x, y, sc);
+        run += texel_weight(s->env, x, y, sc, s->lum_floor);
         cdf[x + 1] = sum > 0.0 ? (float)(run / sum) : (float)(x + 1) / (float)w;
     }
     cdf[w] = 1.0f;
@@ -74,6 +75,13 @@ static double build_marginal(struct env_sampler *s, const double *row_total)
     return sum;
 }
 
+/* Solid angle of a texel of row y of a width x height map: (2 pi / width) (cos theta_top -
+ * cos theta_bottom). */
+static double texel_solid_angle(int y, int width, int height)
+{
+    return 2.0 * ENV_PI_D / (double)width * (cos(ENV_PI_D * y / height) - cos(ENV_PI_D * (y + 1) / height));
+}
+
 /* Per-texel density factor P(texel) * width * height / (2 pi^2), and the exact luminance integral of
  * the piecewise-constant map: texel luminance times its solid angle (2 pi / width) (cos theta_top -
  * cos theta_bottom). */
@@ -84,9 +92,9 @@ static void build_density(struct env_sampler *s)
     double integral = 0.0;
     for (int y = 0; y < h; y++) {
         const double sc = row_sin(y, h);
-        const double band = 2.0 * ENV_PI_D / (double)w * (cos(ENV_PI_D * y / h) - cos(ENV_PI_D * (y + 1) / h));
+        const double band = texel_solid_angle(y, w, h);
         for (int x = 0; x < w; x++) {
-            s->density[(size_t)y * (size_t)w + (size_t)x] = (float)(texel_weight(s->env, x, y, sc) * scale);
+            s->density[(size_t)y * (size_t)w + (size_t)x] = (float)(texel_weight(s->env, x, y, sc, s->lum_floor) * scale);
             integral += v3_luminance(environment_texel(s->env, x, y)) * band;
         }
     }
@@ -112,10 +120,11 @@ static void build_guide(const float *cdf, int n, int g, int *guide)
 /* Guide cells per CDF: one per four entries, a few cache lines of search at most on average. */
 static int guide_size(int n) { return (n + 3) / 4; }
 
-int env_sampler_init(struct env_sampler *s, const struct environment *env)
+static int sampler_build(struct env_sampler *s, const struct environment *env, double lum_floor)
 {
     memset(s, 0, sizeof *s);
     s->env = env;
+    s->lum_floor = lum_floor;
     if (!env->rgb) {
         double l = v3_luminance(env->constant);
         s->total = l > 0.0 && l < INFINITY ? l : 0.0;
@@ -142,6 +151,34 @@ int env_sampler_init(struct env_sampler *s, const struct environment *env)
     free(row_total);
     build_density(s);
     return s->total > 0.0 ? 0 : -1;
+}
+
+int env_sampler_init(struct env_sampler *s, const struct environment *env) { return sampler_build(s, env, 0.0); }
+
+/* The map's mean luminance over the sphere (without intensity, as the texel weights). */
+static double map_mean_luminance(const struct environment *env)
+{
+    double sum = 0.0;
+    for (int y = 0; y < env->height; y++) {
+        const double band = texel_solid_angle(y, env->width, env->height);
+        for (int x = 0; x < env->width; x++) {
+            const double l = v3_luminance(environment_texel(env, x, y));
+            sum += l > 0.0 && l < INFINITY ? l * band : 0.0;
+        }
+    }
+    return sum / (4.0 * ENV_PI_D);
+}
+
+int env_sampler_init_compensated(struct env_sampler *s, const struct environment *env)
+{
+    if (!env->rgb) { /* a constant environment: nothing above its mean */
+        const int rc = sampler_build(s, env, 0.0); /* keeps its luminance integral */
+        s->total = 0.0;
+        return rc == 0 ? -1 : rc;
+    }
+    /* 1e-6 above the mean, so that rounding in the mean cannot leave a constant map a distribution
+     * of rounding residues (any floor keeps the combination unbiased; this one samples nothing there) */
+    return sampler_build(s, env, map_mean_luminance(env) * (1.0 + 1e-6));
 }
 
 void env_sampler_fini(struct env_sampler *s)

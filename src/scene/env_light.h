@@ -24,12 +24,25 @@ struct env_sampler {
     int *conditional_guide;        /* height rows of guide_cols + 1 entries */
     float *density;                /* per texel: P(texel) * width * height / (2 pi^2) */
     double total;                  /* sum of the weights w; 0: nothing to sample */
+    double lum_floor;              /* luminance subtracted from every texel's (0, or the compensated
+                                      sampler's mean) */
     double luminance_integral;     /* integral of luminance(environment_radiance) over the sphere */
 };
 
 /* Builds the distribution of env (intensity does not change it). Returns 0, or -1 when env has no
  * direction of positive luminance; s is then still valid and every sample has pdf 0. */
 int env_sampler_init(struct env_sampler *s, const struct environment *env);
+/* The MIS-compensated distribution (Karlik et al. 2019, "MIS Compensation: Optimizing Sampling
+ * Techniques in Multiple Importance Sampling", Sec. 4; pbrt-v4's image infinite light): texel
+ * weights w(x, y) = max(0, luminance - mean) * sin theta, the mean being the map's average
+ * luminance over the sphere (solid-angle weighted, exact for the piecewise-constant map; raised by
+ * 1e-6 of itself so that a constant map has nothing above it). It
+ * samples only where the map is brighter than its mean and has density 0 elsewhere, so it is
+ * unbiased ONLY when combined by MIS with a strategy that covers every direction (BSDF sampling in
+ * a path walk): that strategy takes the flat part, which it samples better. Returns 0, or -1 when
+ * no texel exceeds the mean (a constant map or environment), with s valid and every pdf 0.
+ * luminance_integral stays the environment's own. */
+int env_sampler_init_compensated(struct env_sampler *s, const struct environment *env);
 void env_sampler_fini(struct env_sampler *s);
 
 /* A unit world direction toward the environment from two uniforms in [0, 1) (values outside are

@@ -13,6 +13,10 @@ void scene_env_free(struct scene *s)
     if (s->env_sampler)
         env_sampler_fini(s->env_sampler);
     free(s->env_sampler);
+    if (s->env_sampler_compensated)
+        env_sampler_fini(s->env_sampler_compensated);
+    free(s->env_sampler_compensated);
+    s->env_sampler_compensated = NULL;
     if (s->env)
         environment_fini(s->env);
     free(s->env);
@@ -38,5 +42,12 @@ int scene_set_environment(struct scene *s, struct environment *env, char *msg)
     s->env = env;
     s->env_sampler = sampler;
     s->env_prob = s->num_emitters > 0 ? 0.5f : 1.0f;
+    struct env_sampler *compensated = xmalloc(sizeof *compensated);
+    if (env_sampler_init_compensated(compensated, env) == 0) {
+        s->env_sampler_compensated = compensated;
+    } else {
+        env_sampler_fini(compensated);
+        free(compensated);
+    }
     return 0;
 }

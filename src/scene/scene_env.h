@@ -11,7 +11,8 @@
  * sets env_prob: 1 without emitters, else 1/2 (a light sample picks the environment or an emitter
  * with equal odds: both strategies stay unbiased whatever the split, and a power-based split would
  * need a scene scale the two do not share). Returns 0, or -1 with msg when the environment has no
- * direction of positive radiance. */
+ * direction of positive radiance. Also builds the MIS-compensated sampler path walks may use
+ * (env_light.h), left NULL where no direction is brighter than the mean. */
 int scene_set_environment(struct scene *s, struct environment *env, char *msg);
 /* Radiance arriving from direction d at infinity (a ray that escapes): the environment's, or black
  * without one. */

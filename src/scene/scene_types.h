@@ -137,9 +137,11 @@ struct scene {
     struct light_bvh light_bvh; /* the emitters' BVH, for selection by importance at a point */
 
     /* Environment light (scene_env.h): radiance from infinitely far away, or NULL; its sampler;
+     * its MIS-compensated sampler for path walks (NULL where nothing is brighter than the mean);
      * the probability that a light sample picks it rather than an emitter. */
     struct environment *env;
     struct env_sampler *env_sampler;
+    struct env_sampler *env_sampler_compensated;
     float env_prob;
 
     struct camera camera;           /* default static camera */

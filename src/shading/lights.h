@@ -25,13 +25,18 @@ enum light_selection { LIGHT_SELECT_POWER = 0, LIGHT_SELECT_BVH };
 /* How it then picks a point on the emitting triangle: uniform in its area, or uniform in the solid
  * angle it subtends (Arvo 1995; area where that is below LIGHTS_SOLID_ANGLE_MIN). */
 enum light_sampling { LIGHT_SAMPLING_AREA = 0, LIGHT_SAMPLING_SOLID_ANGLE };
-/* Both choices: {power, area} is what lights_sample does. */
+/* How a path walk samples the environment: its map's distribution (scene->env_sampler), or the
+ * MIS-compensated one (scene->env_sampler_compensated, env_light.h; the map's where that is empty),
+ * unbiased only next to BSDF sampling, which every path walk does. */
+enum light_env_sampling { LIGHT_ENV_MAP = 0, LIGHT_ENV_COMPENSATED };
+/* The choices: {power, area, map} is what lights_sample does (with the scene's env_sampler). */
 struct light_choice {
     enum light_selection select;
     enum light_sampling point;
+    enum light_env_sampling env;
 };
 /* The strategy lights_sample implements: by power from the alias table, uniform in area. */
-#define LIGHT_CHOICE_POWER_AREA ((struct light_choice){LIGHT_SELECT_POWER, LIGHT_SAMPLING_AREA})
+#define LIGHT_CHOICE_POWER_AREA ((struct light_choice){LIGHT_SELECT_POWER, LIGHT_SAMPLING_AREA, LIGHT_ENV_MAP})
 
 /* lights_sample for a shading point x with unit normal n (its side does not matter), by the
  * strategy `choice`: the emitter by choice.select, then the point uniform in the solid angle the

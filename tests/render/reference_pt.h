@@ -15,6 +15,7 @@ static inline void reference_pt_pin(struct render_params *p)
 {
     p->sampler = PT_SAMPLER_INDEPENDENT;
     p->light_selection = LIGHT_SELECT_POWER;
+    p->light_env = LIGHT_ENV_MAP;
 }
 
 #endif

@@ -3,6 +3,9 @@
  * and on a constant environment: the density integrates to 1, samples fit it (chi-square over a
  * binning of the sphere that does not line up with the texels), env_pdf agrees with env_sample and
  * with the weights computed here, no sample lands on a black texel, and rotation turns samples.
+ * The same for the MIS-compensated distribution (weights above the map's mean only): its density
+ * is 0 exactly on the texels at or below the mean, and it has nothing to sample on a constant
+ * environment or a constant map.
  * Must never depend on render passes. */
 #include <math.h>
 #include <stdint.h>
@@ -26,7 +29,7 @@
 #define NBINS (NB_PHI * NB_THETA)
 #define THETA_STEPS 64 /* midpoint sub-steps in theta per refined cell (see bin_probabilities) */
 #define FAMILY_ALPHA 0.01
-#define N_CHI2 3 /* chi-square tests in the family: map, rotated map, constant */
+#define N_CHI2 4 /* chi-square tests in the family: map, rotated map, constant, compensated map */
 #define ROTATION 1.3f
 #define PI_D 3.14159265358979323846
 
@@ -168,12 +171,29 @@ static void check_integrals(const struct env_sampler *s, const struct environmen
            want, mean, se);
 }
 
-/* Weight of the texel containing d, computed here from the image: luminance * sin(row centre). */
-static double own_weight(const float *rgb, int x, int y)
+static double own_luminance(const float *rgb, int x, int y)
 {
     const float *p = rgb + 3 * (y * W + x);
-    double l = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
-    return l * sin(PI_D * (y + 0.5) / H);
+    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
+
+/* Weight of the texel containing d, computed here from the image: (luminance - lum_floor, at least 0)
+ * * sin(row centre); lum_floor 0 for the map's own distribution. */
+static double own_weight(const float *rgb, int x, int y, double lum_floor)
+{
+    double l = own_luminance(rgb, x, y);
+    return (l > lum_floor ? l - lum_floor : 0.0) * sin(PI_D * (y + 0.5) / H);
+}
+
+/* The compensated sampler's lum_floor, computed here: the map's mean luminance over the sphere (each
+ * texel's exact solid angle), raised by 1e-6 of itself as env_light.h says. */
+static double own_floor(const float *rgb)
+{
+    double sum = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            sum += own_luminance(rgb, x, y) * 2.0 * PI_D / W * (cos(PI_D * y / H) - cos(PI_D * (y + 1) / H));
+    return sum / (4.0 * PI_D) * (1.0 + 1e-6);
 }
 
 struct sample_stats {
@@ -185,8 +205,8 @@ struct sample_stats {
  * pdf * 2 pi^2 sin(theta) / (W H) equals this file's own weight / total (relative 1e-4, skipping
  * the rare directions within 1e-5 of a texel edge, where the two mappings may round differently);
  * (d) the direction's radiance is not black. */
-static void draw(const struct env_sampler *s, const struct environment *env, const float *rgb, double weight_total,
-                 uint64_t seed, struct sample_stats *st)
+static void draw(const struct env_sampler *s, const struct environment *env, const float *rgb, double lum_floor,
+                 double weight_total, uint64_t seed, struct sample_stats *st)
 {
     memset(st, 0, sizeof *st);
     pcg32 r = pcg32_make(seed, 1u);
@@ -206,7 +226,7 @@ static void draw(const struct env_sampler *s, const struct environment *env, con
         int x = (int)u, y = (int)v;
         if (fabs(u - floor(u + 0.5)) < 1e-5 || fabs(v - floor(v + 0.5)) < 1e-5 || x >= W || y >= H)
             continue;
-        double want = own_weight(rgb, x, y) / weight_total;
+        double want = own_weight(rgb, x, y, lum_floor) / weight_total;
         double got = pdf * 2.0 * PI_D * PI_D * sin(theta) / (W * H);
         st->weight_mismatch += fabs(got - want) > 1e-4 * want;
     }
@@ -214,13 +234,13 @@ static void draw(const struct env_sampler *s, const struct environment *env, con
 
 /* Runs draw, the per-sample checks and the chi-square test; returns the bin probabilities. */
 static void check_sampling(const struct env_sampler *s, const struct environment *env, const float *rgb,
-                           const char *name, uint64_t seed, struct sample_stats *st)
+                           double lum_floor, const char *name, uint64_t seed, struct sample_stats *st)
 {
     double weight_total = 0.0, prob[NBINS];
     for (int y = 0; rgb && y < H; y++)
         for (int x = 0; x < W; x++)
-            weight_total += own_weight(rgb, x, y);
-    draw(s, env, rgb, weight_total, seed, st);
+            weight_total += own_weight(rgb, x, y, lum_floor);
+    draw(s, env, rgb, lum_floor, weight_total, seed, st);
     EXPECT(st->pdf_mismatch == 0, "%s: %ld samples whose pdf differs from env_pdf", name, st->pdf_mismatch);
     EXPECT(st->pdf_nonpositive == 0, "%s: %ld samples with pdf <= 0 or not finite", name, st->pdf_nonpositive);
     EXPECT(st->black == 0, "%s: %ld samples on zero-radiance texels", name, st->black);
@@ -328,8 +348,8 @@ static void test_map(void)
     check_integrals(&s, &env, "map");
     check_integrals(&sr, &rot, "rotated map");
     struct sample_stats *st = xmalloc(sizeof *st);
-    check_sampling(&sr, &rot, rgb, "rotated map", 22u, st);
-    check_sampling(&s, &env, rgb, "map", 11u, st);
+    check_sampling(&sr, &rot, rgb, 0.0, "rotated map", 22u, st);
+    check_sampling(&s, &env, rgb, 0.0, "map", 11u, st);
     check_power(st);
     free(st);
     check_rotation(&s, &env, &sr, &rot);
@@ -352,8 +372,56 @@ static void test_constant(void)
                 "constant luminance integral");
     check_integrals(&s, &env, "constant");
     struct sample_stats *st = xmalloc(sizeof *st);
-    check_sampling(&s, &env, NULL, "constant", 33u, st);
+    check_sampling(&s, &env, NULL, 0.0, "constant", 33u, st);
     free(st);
+    env_sampler_fini(&s);
+    struct env_sampler c;
+    EXPECT(env_sampler_init_compensated(&c, &env) == -1, "a constant environment has nothing above its mean");
+    float pdf = 1.0f;
+    env_sample(&c, 0.3f, 0.6f, &pdf);
+    EXPECT(pdf == 0.0f && env_pdf(&c, v3(0.3f, -0.2f, 0.9f)) == 0.0f, "compensated constant: pdf 0");
+    EXPECT_NEAR(env_luminance_integral(&c), env_luminance_integral(&s) > 0.0 ? env_luminance_integral(&s) : 4.0 *
+                PI_D * 3.0 * v3_luminance(v3(0.5f, 1.0f, 2.0f)), 1e-4, "compensated keeps the luminance integral");
+    env_sampler_fini(&c);
+    environment_fini(&env);
+}
+
+/* The compensated distribution of the synthetic map: everything the map's own passes, with the
+ * weights above the mean; density 0 exactly on the texels at or below it; a constant map has none. */
+static void test_compensated(void)
+{
+    float rgb[W * H * 3];
+    make_image(rgb, 4.0f); /* a dimmer sun, so that part of the gradient is above the mean too */
+    char msg[RESTIR_MSG_LEN];
+    struct environment env;
+    struct env_sampler s;
+    EXPECT(environment_from_rgb("test", "synthetic", rgb, W, H, 2.0f, 0.0f, &env, msg) == 0, "%s", msg);
+    EXPECT(env_sampler_init_compensated(&s, &env) == 0, "compensated sampler builds");
+    const double lum_floor = own_floor(rgb);
+    /* the sampler sums float luminances, this file doubles */
+    EXPECT_NEAR(s.lum_floor, lum_floor, 1e-6 * lum_floor, "compensated floor: the mean luminance");
+    int above = 0, wrong = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            vec3 centre = environment_uv_to_dir(&env, ((float)x + 0.5f) / W, ((float)y + 0.5f) / H);
+            const int bright = own_luminance(rgb, x, y) > lum_floor;
+            above += bright;
+            wrong += bright != (env_pdf(&s, centre) > 0.0f);
+        }
+    printf("compensated map: %d of %d texels above the mean %.4f\n", above, W * H, lum_floor);
+    EXPECT(wrong == 0, "%d texels whose density is not positive exactly where they exceed the mean", wrong);
+    EXPECT(above > 1 && above < W * H / 2, "the test map has a few texels above its mean (%d)", above);
+    check_integrals(&s, &env, "compensated map");
+    struct sample_stats *st = xmalloc(sizeof *st);
+    check_sampling(&s, &env, rgb, lum_floor, "compensated map", 44u, st);
+    free(st);
+    env_sampler_fini(&s);
+    environment_fini(&env);
+
+    for (int k = 0; k < W * H * 3; k++)
+        rgb[k] = 0.37f;
+    EXPECT(environment_from_rgb("test", "flat", rgb, W, H, 1.0f, 0.0f, &env, msg) == 0, "%s", msg);
+    EXPECT(env_sampler_init_compensated(&s, &env) == -1, "a constant map has nothing above its mean");
     env_sampler_fini(&s);
     environment_fini(&env);
 }
@@ -362,5 +430,6 @@ int main(void)
 {
     test_map();
     test_constant();
+    test_compensated();
     return test_finish();
 }
