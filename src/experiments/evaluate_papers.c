@@ -206,10 +206,13 @@ static void steps_004(const struct eval_options *o, const char *scene, const cha
     add(s, "--camera");
     add(s, "path");
     add(s, "--methods");
-    if (ablation) /* Figure 2 (N / M confidence scaling), Figure 7 (N of M), Figure 6 (N_c) */
+    /* Figure 2 (N / M confidence scaling), Figure 7 (N of M; its N = M, "standard deterministic reuse
+     * over the whole tile", needs N_c = M too, or the canonical weight stays stochastic), Figure 6 (N_c) */
+    if (ablation)
         add(s,
             "%s:spatial.reuse=spmis,%s:spatial.reuse=spmis:spmis.confidence_adjust=off,"
-            "%s:spatial.reuse=spmis:spmis.candidates=1,%s:spatial.reuse=spmis:spmis.candidates=M,"
+            "%s:spatial.reuse=spmis:spmis.candidates=1,"
+            "%s:spatial.reuse=spmis:spmis.candidates=M:spmis.canonical_candidates=M,"
             "%s:spatial.reuse=spmis:spmis.canonical_candidates=4,%s:spatial.reuse=spmis:spmis.canonical_candidates="
             "M",
             base, base, base, base, base, base);
