@@ -93,6 +93,20 @@ int restir_metrics_hard_pixels(const float *normals, const float *depth, const u
                        float radius, float normal_min, float depth_max, float fraction, unsigned char *mask_out,
                        float *ratio_out);
 
+/* Which neighbors a hard-pixel ratio counts. */
+enum restir_hard_neighbors {
+    RESTIR_HARD_NEIGHBORS_VALID = 0, /* the valid pixels only (restir_metrics_hard_pixels) */
+    RESTIR_HARD_NEIGHBORS_ALL        /* every pixel of the disk inside the image, an invalid one (the sky)
+                                        counting as failing Eq. 7: 000 Sec. 7's wording */
+};
+/* restir_metrics_hard_pixels with the ratio's neighbors counted as `counting` says: with
+ * RESTIR_HARD_NEIGHBORS_ALL a valid pixel's ratio is the fraction of all pixels j != i of the disk
+ * (clipped to the image) that are valid and pass Eq. 7, so a leaf against the sky is hard; ranking,
+ * ties, arguments and returns as restir_metrics_hard_pixels (an unknown `counting` returns -1). */
+int restir_metrics_hard_pixels_counting(const float *normals, const float *depth, const unsigned char *valid, int width,
+                                        int height, float radius, float normal_min, float depth_max, float fraction,
+                                        enum restir_hard_neighbors counting, unsigned char *mask_out, float *ratio_out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -141,6 +141,7 @@ struct opt_def {
 #define NOT_RENDER_VIEW " study reference compare scene info "
 
 static const char *const save_names[] = {"last", "all", NULL};
+static const char *const hard_neighbor_names[] = {"valid", "all", NULL}; /* enum restir_hard_neighbors */
 
 static const struct opt_def option_table[] = {
     /* evaluate's own: zero means the paper's value (evaluate_papers.c) */
@@ -203,6 +204,10 @@ static const struct opt_def option_table[] = {
      "also measure frames K-1, 2K-1, ... against references of their own", NULL},
     {"--warmup", ALL, OPT_INT, O(warmup), 0, 100000, NO_GIVEN, "40", "N", "study: frames before measuring (000 Sec. 7)",
      NULL},
+    {"--hard-neighbors", ALL, OPT_NAMES, O(hard_neighbors), 0, 0, NO_GIVEN, "valid", "valid|all",
+     "study: the neighbors 000's hard-pixel ratio counts within 30 px: valid (pixels with a surface) or all "
+     "(000 Sec. 7's wording: the sky counts as failing Eq. 7, so leaves against it are hard)",
+     hard_neighbor_names},
     {"--checkpoint-every", " reference ", OPT_SECONDS, O(checkpoint_every), 0, 10000000, NO_GIVEN, NULL, "SECONDS",
      "save the running mean this often (0: after every chunk; default: never)", NULL},
     {"--target-relmse", " reference ", OPT_POSITIVE, O(target_relmse), 0, 1, NO_GIVEN, NULL, "X",

@@ -33,6 +33,7 @@ struct cli_options {
     int runs;            /* study: independent sequences per configuration; compare: per spec */
     int ref_every;       /* compare: also measure frames K-1, 2K-1, ... against their own references */
     int warmup;          /* study: frames before measuring */
+    int hard_neighbors;  /* study: enum restir_hard_neighbors, which neighbors the hard-pixel ratio counts */
     double checkpoint_every; /* reference: seconds between checkpoints (< 0: none, 0: every chunk) */
     double target_relmse;    /* reference: stop at this estimated relMSE (0: render --spp samples) */
     const char *plan;        /* study, reference, compare: write jobs into this folder instead of running */

@@ -353,7 +353,7 @@ static int study_finish(const struct study_setup *st, const struct plan *pl, con
     const int w = st->o.params.width, h = st->o.params.height;
     const struct camera cam = study_camera(&st->s);
     unsigned char *hard = xcalloc((size_t)w * h, 1);
-    const int nhard = study_hard_pixel_mask(&st->s, &st->o.params, &cam, hard);
+    const int nhard = study_hard_pixel_mask(&st->s, &st->o.params, &cam, st->o.hard_neighbors, hard);
     const int strip_y = study_strip_row(hard, w, h);
     float *strips = xmalloc(sizeof(float) * (size_t)w * st->o.frames * st->ncfg);
     static struct study_result res[STUDY_MAX_CONFIGS];

@@ -117,7 +117,7 @@ int study_parse_configs(const struct cli_options *o, struct study_config *cfg, i
 
 /* From a pixel-centre G-buffer. */
 int study_hard_pixel_mask(const struct scene *s, const struct render_params *p, const struct camera *cam,
-                           unsigned char *mask)
+                           int counting, unsigned char *mask)
 {
     struct camera_view view;
     camera_view_init(&view, cam, p->width, p->height);
@@ -131,8 +131,9 @@ int study_hard_pixel_mask(const struct scene *s, const struct render_params *p, 
         normals[3 * i + 1] = g.normal[i].y;
         normals[3 * i + 2] = g.normal[i].z;
     }
-    int hard = restir_metrics_hard_pixels(normals, g.depth, g.valid, p->width, p->height, HARD_RADIUS, p->spatial_normal,
-                                  p->spatial_depth, HARD_FRACTION, mask, NULL);
+    int hard = restir_metrics_hard_pixels_counting(normals, g.depth, g.valid, p->width, p->height, HARD_RADIUS,
+                                                   p->spatial_normal, p->spatial_depth, HARD_FRACTION,
+                                                   (enum restir_hard_neighbors)counting, mask, NULL);
     free(normals);
     gbuffer_fini(&g);
     return hard;

@@ -49,9 +49,10 @@ struct study_unit {
 int study_pareto_series(const struct study_config *c);
 /* --configs and --radii into cfg (at most STUDY_MAX_CONFIGS). Returns 0, or -1 with msg. */
 int study_parse_configs(const struct cli_options *o, struct study_config *cfg, int *n, char *msg);
-/* The hard-pixel mask of the static view (000 Sec. 7). Returns the number of hard pixels. */
+/* The hard-pixel mask of the static view (000 Sec. 7), the ratio counting the neighbors as
+ * `counting` (enum restir_hard_neighbors) says. Returns the number of hard pixels. */
 int study_hard_pixel_mask(const struct scene *s, const struct render_params *p, const struct camera *cam,
-                          unsigned char *mask);
+                          int counting, unsigned char *mask);
 /* The row the strip plot shows: the one with the most hard pixels. */
 int study_strip_row(const unsigned char *hard, int w, int h);
 /* The static camera every study run uses. */

@@ -225,8 +225,18 @@ int restir_metrics_hard_pixels(const float *normals, const float *depth, const u
                        float radius, float normal_min, float depth_max, float fraction, unsigned char *mask_out,
                        float *ratio_out)
 {
-    if (normals == NULL || depth == NULL || mask_out == NULL || width <= 0 || height <= 0 || !(radius >= 0.0f))
+    return restir_metrics_hard_pixels_counting(normals, depth, valid, width, height, radius, normal_min, depth_max,
+                                               fraction, RESTIR_HARD_NEIGHBORS_VALID, mask_out, ratio_out);
+}
+
+int restir_metrics_hard_pixels_counting(const float *normals, const float *depth, const unsigned char *valid, int width,
+                                        int height, float radius, float normal_min, float depth_max, float fraction,
+                                        enum restir_hard_neighbors counting, unsigned char *mask_out, float *ratio_out)
+{
+    if (normals == NULL || depth == NULL || mask_out == NULL || width <= 0 || height <= 0 || !(radius >= 0.0f) ||
+        (counting != RESTIR_HARD_NEIGHBORS_VALID && counting != RESTIR_HARD_NEIGHBORS_ALL))
         return -1;
+    const int count_invalid = counting == RESTIR_HARD_NEIGHBORS_ALL;
     /* The count returned is an int; rank holds 16 bytes per pixel (more than the 3 normal floats). */
     if ((size_t)width > (size_t)INT_MAX / (size_t)height ||
         (size_t)width * (size_t)height > SIZE_MAX / sizeof(struct corr_rank))
@@ -272,8 +282,12 @@ int restir_metrics_hard_pixels(const float *normals, const float *depth, const u
                 size_t row = (size_t)yy * (size_t)width;
                 for (int xx = x0; xx <= x1; xx++) {
                     size_t j = row + (size_t)xx;
-                    if (j == i || (valid != NULL && !valid[j]))
+                    if (j == i)
                         continue;
+                    if (valid != NULL && !valid[j]) {
+                        total += count_invalid; /* counted as failing Eq. 7, or not at all */
+                        continue;
+                    }
                     total++;
                     compatible += restir_neighbors_bitterli(n_i, normals + 3 * j, d_i, depth[j], normal_min,
                                                              depth_max) != 0;

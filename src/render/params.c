@@ -32,6 +32,7 @@ static const char *const select_names[] = {"bitterli", "compat", "compat-binary"
 static const char *const reuse_names[] = {"standard", "spmis", NULL};
 static const char *const search_names[] = {"always", "sparse", "low-confidence", NULL};
 static const char *const pick_names[] = {"uniform", "confidence", NULL};
+static const char *const confidence_update_names[] = {"cell", "drawn", NULL}; /* enum spmis_confidence_update */
 static const char *const search_score_names[] = {"confidence", "compat", NULL}; /* enum restir_cells_score */
 static const char *const history_names[] = {"spatial", "temporal", NULL};
 static const char *const grad_spatial_names[] = {"off", "dense", "adaptive", NULL};
@@ -62,6 +63,7 @@ static int name_index(const char *const *names, const char *val)
 _Static_assert(sizeof(enum spatial_select_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum spatial_reuse_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum spmis_search_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(enum spmis_confidence_update) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum restir_cells_score) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum grad_spatial_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum recon_mode) == sizeof(int), "enum size");
@@ -219,6 +221,11 @@ static const struct param_def params[] = {
      "spmis: scale non-canonical confidences by N / M (004 Sec. 4.3)", NULL},
     {"spmis.canonical_pick", P_NAMES, F(spmis_canonical_pick), 0, 0, "uniform", NULL,
      "spmis: canonical draws P_c uniform (004) or proportional to confidence", pick_names},
+    {"spmis.confidence_update", P_NAMES, F(spmis_confidence_update), 0, 0, "cell", NULL,
+     "spmis: the confidence a merge stores (004 leaves it open), capped by confidence_cap: cell (c_c + min(1, "
+     "N / M) c_Sigma, the cell's mean confidence per draw) or drawn (c_c + the confidences of the distinct pixels "
+     "drawn, as one public implementation); unbiased either way (confidences only weight later merges)",
+     confidence_update_names},
     {"pt.candidates", P_INT, F(pt_candidates), 1, 64, "1", NULL, "restir-pt: initial paths resampled per pixel", NULL},
     {"shift", P_SHIFT, F(shift), 0, 0, "hybrid", NULL,
      "restir-pt shift mapping: hybrid (replay until two rough, distant vertices, then reconnect), "

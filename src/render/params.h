@@ -20,6 +20,9 @@ enum spatial_reuse_mode { REUSE_STANDARD = 0, REUSE_SPMIS };
  * has few contributing pixels (BIASED: that count depends on the samples); or only where the own
  * cell's mean confidence is low (unbiased: confidences depend on history, not on samples). */
 enum spmis_search_mode { SPMIS_SEARCH_ALWAYS = 0, SPMIS_SEARCH_SPARSE, SPMIS_SEARCH_LOW_CONFIDENCE };
+/* The confidence an SPMIS merge stores (004 leaves it open): c_c + min(1, N / M) c_Sigma, or c_c plus
+ * the confidences of the distinct pixels drawn (reuse_cells.c). */
+enum spmis_confidence_update { SPMIS_CONFIDENCE_CELL = 0, SPMIS_CONFIDENCE_DRAWN };
 /* Spatial reuse of paired-pixel samples (002 Sec. 4.3.2, Fig. 10): none, a random similar pair for
  * every pair, or only for edge pairs. */
 enum grad_spatial_mode { GRAD_SPATIAL_OFF = 0, GRAD_SPATIAL_DENSE, GRAD_SPATIAL_ADAPTIVE };
@@ -112,6 +115,7 @@ struct render_params {
     float spmis_search_confidence;  /* low-confidence search: own cell used when its mean c reaches this */
     int spmis_confidence_adjust;    /* scale non-canonical confidences by N / M (Sec. 4.3) */
     int spmis_canonical_pick;       /* enum restir_spmis_pick: P_c uniform or proportional to c */
+    enum spmis_confidence_update spmis_confidence_update; /* the confidence a merge stores */
 
     /* ReSTIR PT */
     int pt_candidates;      /* initial paths per pixel */

@@ -123,6 +123,20 @@ void spmis_canonical_plan(const struct spmis_frame *f, const struct render_param
                                  (enum restir_spmis_pick)p->spmis_canonical_pick, u, draws);
 }
 
+/* The confidences of the distinct pixels among the draws (with replacement, a pixel may repeat). */
+static float drawn_confidence(const struct spmis_frame *f, const struct restir_spmis_draws *draws)
+{
+    float sum = 0.0f;
+    for (int d = 0; d < draws->count; d++) {
+        int seen = 0;
+        for (int e = 0; e < d && !seen; e++)
+            seen = draws->pixel[e] == draws->pixel[d];
+        if (!seen)
+            sum += f->conf[draws->pixel[d]];
+    }
+    return sum;
+}
+
 pcg32 spmis_neighbor_plan(const struct spmis_frame *f, const struct render_params *p, int frame, int c,
                           struct restir_spmis_conf *k, float *merged, struct restir_spmis_draws *draws)
 {
@@ -131,6 +145,10 @@ pcg32 spmis_neighbor_plan(const struct spmis_frame *f, const struct render_param
     float u[RESTIR_SPMIS_MAX_DRAWS];
     uniforms(&rng, p->spmis_candidates, u, RESTIR_SPMIS_MAX_DRAWS);
     restir_spmis_neighbor_draws(&f->cells, f->cell[c], c, p->spmis_candidates, u, draws);
+    /* The drawn pixels depend on the samples (Eq. 17), but a confidence only weights later merges,
+     * whose pairwise weights sum to 1 for any confidences: unbiased either way. */
+    if (merged && p->spmis_confidence_update == SPMIS_CONFIDENCE_DRAWN)
+        *merged = restir_gris_confidence_merge(f->conf[c] + drawn_confidence(f, draws), p->confidence_cap);
     return rng;
 }
 

@@ -39,8 +39,9 @@ void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, con
 void spmis_canonical_plan(const struct spmis_frame *f, const struct render_params *p, int frame, int c,
                           struct restir_spmis_conf *k, struct restir_spmis_draws *draws);
 /* The neighbor draws of pixel c (lines 13-14: spmis.candidates picks by Eq. 17), the confidences
- * k of its merge, and in *merged the confidence its output keeps: min(cap, c_c + min(1, N / M)
- * c_sigma), the confidence of the reservoirs the merge actually evaluated (004 leaves it open).
+ * k of its merge, and in *merged the confidence its output keeps (004 leaves it open): min(cap, c_c
+ * + min(1, N / M) c_sigma), the cell's mean confidence per evaluated draw, or with
+ * spmis.confidence_update=drawn min(cap, c_c + the confidences of the distinct pixels drawn).
  * It does not depend on spmis.confidence_adjust, which changes only the MIS weights, so the
  * Fig. 2 ablation changes one thing. Returns the pixel's stream, to drive the merge's WRS. */
 pcg32 spmis_neighbor_plan(const struct spmis_frame *f, const struct render_params *p, int frame, int c,

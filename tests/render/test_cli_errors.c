@@ -270,6 +270,14 @@ static void check_compare_specs(void)
 
 static void check_study(void)
 {
+    expect_failure("study with an unknown --hard-neighbors",
+                   "study --scene cornell --method restir-pt --configs bitterli --hard-neighbors sky --res 16x16 "
+                   "--out '%1$s'",
+                   2, "--hard-neighbors", "sky");
+    expect_failure("unknown spmis.confidence_update",
+                   "render --scene cornell --method restir-pt --res 16x16 --set spatial.reuse=spmis --set "
+                   "spmis.confidence_update=max --out '%1$s'",
+                   2, "spmis.confidence_update", "max");
     expect_failure("study with an unknown configuration",
                    "study --scene cornell --method restir-pt --configs bitterli,no-such-config --res 16x16 "
                    "--out '%1$s'",

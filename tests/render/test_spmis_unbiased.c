@@ -3,8 +3,8 @@
  * of K independently seeded camera-path runs matches K runs of the path tracer per pixel (Welch,
  * Sidak-corrected) and over the image (pooled z), with the confidence adjustment on and off, with
  * N = 1, N = N_c = M, confidence-proportional canonical draws, the low-confidence search, the
- * compatibility-scored search (spmis.search_score=compat, ours) and the history taken before
- * spatial reuse, on `pillars` (disocclusion) and `cornell`. The BIASED
+ * compatibility-scored search (spmis.search_score=compat, ours), the stored confidence from the
+ * drawn pixels (spmis.confidence_update=drawn) and the history taken before spatial reuse, on `pillars` (disocclusion) and `cornell`. The BIASED
  * sparse search is measured and reported, not asserted.
  * Usage for experiments: render_test_spmis_unbiased pt|di SCENE RUNS key=value... */
 #include <stdlib.h>
@@ -46,6 +46,8 @@ int main(int argc, char **argv)
     const char *sparse[] = {"spmis.search=sparse"};
     const char *low_conf[] = {"spmis.search=low-confidence", "spmis.search_confidence=3"};
     const char *hist_temporal[] = {"history=temporal"};
+    /* the stored confidence from the drawn pixels, with taps that move pixels to other cells */
+    const char *drawn[] = {"spmis.confidence_update=drawn", "spmis.search_radius=4", "spmis.search_growth=1.5"};
     /* A 4 px start growing by 1.5 per tap keeps most taps inside 24 x 16, so pixels really move to
      * other cells (with the paper's 30 px most taps fall outside and the own cell is the fallback). */
     const char *far_cells[] = {"spmis.search_radius=4", "spmis.search_growth=1.5"};
@@ -73,6 +75,8 @@ int main(int argc, char **argv)
     check(method_named("restir-di"), "pillars", 2048, hist_temporal, 1, 1);
     check(method_named("restir-pt"), "pillars", 1024, compat, 3, 1);
     check(method_named("restir-di"), "pillars", 2048, compat, 3, 1);
+    check(method_named("restir-pt"), "pillars", 1024, drawn, 3, 1);
+    check(method_named("restir-di"), "pillars", 2048, drawn, 3, 1);
     /* BIASED option: its bias is printed (pooled z, relative bias of the image mean), not asserted. */
     check(method_named("restir-di"), "pillars", 2048, sparse, 1, 0);
     return test_finish();

@@ -331,6 +331,20 @@ static void test_hard_strip(void)
     EXPECT_NEAR(ratio[5 * W + 12], 11.0 / 12.0, 1e-7, "two right of strip");
     EXPECT_NEAR(ratio[15 * W + 8], 7.0 / 8.0, 1e-7, "two left of strip, bottom row");
     EXPECT_NEAR(ratio[11 * W + 20], 1.0, 0.0, "above the invalid block");
+    /* 000's wording: every pixel of the disk counts, an invalid one as failing Eq. 7. Above the
+     * invalid block, 3 of the 12 neighbors within radius 2 are invalid: (20,12), (21,12), (20,13). */
+    float ratio_all[NP];
+    unsigned char mask_all[NP];
+    int hard_all = restir_metrics_hard_pixels_counting(normals, depth, valid, W, H, 2.0f, 0.5f, 0.1f, 0.1f,
+                                                       RESTIR_HARD_NEIGHBORS_ALL, mask_all, ratio_all);
+    EXPECT(hard_all == 37, "all neighbors: hard count %d", hard_all);
+    EXPECT_NEAR(ratio_all[11 * W + 20], 0.75, 1e-7, "all neighbors: above the invalid block");
+    EXPECT_NEAR(ratio_all[11 * W + 19], 11.0 / 12.0, 1e-7, "all neighbors: above-left of the block: (20,12) only");
+    EXPECT_NEAR(ratio_all[5 * W + 10], 1.0 / 3.0, 1e-7, "all neighbors: strip interior unchanged");
+    EXPECT(ratio_all[12 * W + 20] == -1.0f, "all neighbors: an invalid pixel has no ratio");
+    EXPECT(restir_metrics_hard_pixels_counting(normals, depth, valid, W, H, 2.0f, 0.5f, 0.1f, 0.1f,
+                                               (enum restir_hard_neighbors)7, mask_all, NULL) == -1,
+           "unknown counting mode");
 
     /* fraction 1 marks exactly the valid pixels; 0 marks none; no ratio_out is fine. */
     hard = restir_metrics_hard_pixels(normals, depth, valid, W, H, 2.0f, 0.5f, 0.1f, 1.0f, mask, NULL);
