@@ -1,6 +1,7 @@
 /* grad_frame.c: gradient-domain frame buffers and the reconstruction calls (see grad_frame.h). */
 #include "gradient/grad_frame.h"
 
+#include <float.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -53,10 +54,13 @@ void grad_frame_begin(struct grad_frame *g)
 
 void grad_reconstruct_l2(const struct render_params *p, struct grad_frame *g)
 {
-    /* Inputs are sized and alpha is range-checked by the parameter table: this cannot fail. */
+    /* Inputs are sized and alpha is range-checked by the parameter table: this cannot fail. A fixed
+     * step count runs CG to a tolerance it cannot reach (DBL_MIN; an exact zero residual still stops
+     * it, with the exact solution). */
+    const int fixed = p->recon_iterations > 0;
     int rc = restir_poisson_l2(g->width, g->height, g->primal, g->dx, g->dy, p->recon_alpha,
-                               (enum restir_poisson_solver)p->recon_solver, RESTIR_POISSON_TOL, 2000, g->l2,
-                               &g->l2_stats);
+                               (enum restir_poisson_solver)p->recon_solver, fixed ? DBL_MIN : RESTIR_POISSON_TOL,
+                               fixed ? p->recon_iterations : 2000, g->l2, &g->l2_stats);
     RESTIR_CHECK(rc == 0);
 }
 

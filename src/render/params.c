@@ -10,6 +10,7 @@
 
 #include "core/check.h"
 #include "restir/cells.h"
+#include "restir/poisson.h"
 #include "restir/spmis.h"
 
 /* P_NAMES: an enum stored as int, spelled by the def's names; P_COUNT: an int where "M" means 0
@@ -267,7 +268,12 @@ static const struct param_def params[] = {
      recon_names},
     {"recon.alpha", P_FLOAT, F(recon_alpha), 1e-6, 1e6, "0.2", NULL, "screened Poisson: weight alpha of the primal term", NULL},
     {"recon.solver", P_NAMES, F(recon_solver), 0, 0, "dct", NULL,
-     "L2 solver: dct (direct, exact) or cg (conjugate gradient to a relative residual of 1e-6)", solver_names},
+     "L2 solver: dct (direct, exact) or cg (conjugate gradient to a relative residual of 1e-6, or recon.iterations "
+     "steps)", solver_names},
+    {"recon.iterations", P_INT, F(recon_iterations), 0, 100000, "0", NULL,
+     "L2 with recon.solver=cg: 0 solves to a relative residual of 1e-6; N stops after exactly N CG steps from the "
+     "primal, as 002's public code and Kettunen et al. do (BIASED: a truncated CG is not linear in its noisy "
+     "inputs; measured in docs/BENCHMARKS.md)", NULL},
     {"recon.l1_iterations", P_INT, F(recon_l1_iterations), 1, 1000, "20", NULL, "L1: IRLS reweighting iterations", NULL},
     {"recon.l1_precond", P_NAMES, F(recon_l1_precond), 0, 0, "multigrid", NULL,
      "L1: preconditioner of the inner CG: multigrid (V-cycle) or jacobi (the public G-PT solver's kind)", precond_names},
@@ -412,6 +418,11 @@ int render_params_validate(const struct render_params *p, char *msg)
     }
     if (p->light_candidates + p->bsdf_candidates < 1) {
         snprintf(msg, RESTIR_MSG_LEN, "di.light_candidates + di.bsdf_candidates must be at least 1");
+        return -1;
+    }
+    if (p->recon_iterations > 0 && p->recon_solver != RESTIR_POISSON_CG) {
+        snprintf(msg, RESTIR_MSG_LEN, "recon.iterations = %d needs recon.solver=cg (dct solves exactly)",
+                 p->recon_iterations);
         return -1;
     }
     if (p->ratio_lo > p->ratio_hi) {

@@ -138,6 +138,7 @@ struct render_params {
     enum recon_mode recon;
     float recon_alpha;      /* screened Poisson weight alpha of the primal (0.2) */
     int recon_solver;       /* enum restir_poisson_solver: dct or cg for L2 */
+    int recon_iterations;   /* CG steps of L2 from the primal; 0: to the tolerance */
     int recon_l1_iterations, recon_l1_cg; /* IRLS reweightings and CG steps per reweighting (0: default) */
     int recon_l1_precond;   /* enum restir_poisson_precond of the L1 solve's CG */
 };

@@ -396,6 +396,40 @@ static void check_rejected(void)
     expect_rejected("gpt", "recon=l3", recon, 5);
     expect_rejected("grestir-pt", "grad.spatial=sparse", spatial, 5);
     expect_rejected("grad-after-restir", "recon.alpha=0", alpha, 2);
+    const char *iterations[] = {"recon.iterations", "recon.solver=cg"};
+    expect_rejected("gpt", "recon.iterations=50", iterations, 2);
+}
+
+/* 4b. recon.iterations=N: N CG steps of L2 from the primal. One step leaves the solve visibly short
+ * of DCT's exact one; 400 steps reach it (to 1e-4 relative), on the same inputs (the paths do not
+ * depend on the solver). */
+static void check_fixed_iterations(void)
+{
+    char exact[DIR_MAX], one[DIR_MAX], many[DIR_MAX];
+    EXPECT(render("gpt-dct", "gpt", "--set recon=l2", exact) == 0, "gpt: DCT render failed");
+    EXPECT(render("gpt-cg1", "gpt", "--set recon=l2 --set recon.solver=cg --set recon.iterations=1", one) == 0,
+           "gpt: 1-step CG render failed");
+    EXPECT(render("gpt-cg400", "gpt", "--set recon=l2 --set recon.solver=cg --set recon.iterations=400", many) == 0,
+           "gpt: 400-step CG render failed");
+    float *a = read_layer(exact, "frame_0002.exr", NULL), *b = read_layer(one, "frame_0002.exr", NULL),
+          *c = read_layer(many, "frame_0002.exr", NULL), *pa = read_layer(exact, "frame_0002.exr", "primal"),
+          *pb = read_layer(one, "frame_0002.exr", "primal");
+    if (a && b && c && pa && pb) {
+        EXPECT(count_bit_diffs(pa, pb, NPIX) == 0, "the solver changed the primal");
+        double d1 = 0.0, d400 = 0.0, norm = 0.0;
+        for (int k = 0; k < NPIX; k++) {
+            d1 += ((double)b[k] - a[k]) * ((double)b[k] - a[k]);
+            d400 += ((double)c[k] - a[k]) * ((double)c[k] - a[k]);
+            norm += (double)a[k] * a[k];
+        }
+        printf("recon.iterations: |cg1 - dct|^2 / |dct|^2 = %.3g, |cg400 - dct|^2 / |dct|^2 = %.3g\n", d1 / norm,
+               d400 / norm);
+        EXPECT(d1 / norm > 1e-6, "one CG step reproduced the exact solve (%g)", d1 / norm);
+        EXPECT(d400 / norm < 1e-8, "400 CG steps did not reach the exact solve (%g)", d400 / norm);
+    } else {
+        EXPECT(0, "missing layers of the recon.iterations renders");
+    }
+    free(a), free(b), free(c), free(pa), free(pb);
 }
 
 /* 5. compare at equal time with gradient and non-gradient methods. */
@@ -504,6 +538,7 @@ int main(void)
     check_default_recon();
     check_threads();
     check_rejected();
+    check_fixed_iterations();
     check_compare();
     check_list_and_help();
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
