@@ -30,7 +30,7 @@ void grad_combine(int w, int h, const float *os, float *dx, float *dy)
 }
 
 long long grad_shift_other(const struct scene *s, const struct shift_params *sp, const struct path_sample *x,
-                           const struct pt_domain *from, const struct pt_domain *to, float other[3])
+                           const struct pt_domain *from, const struct pt_domain *to, float other[3], float *jacobian)
 {
     long long rays = 0;
     struct path_sample y;
@@ -40,7 +40,11 @@ long long grad_shift_other(const struct scene *s, const struct shift_params *sp,
         other[0] = y.f.x * J;
         other[1] = y.f.y * J;
         other[2] = y.f.z * J;
+    } else {
+        J = 0.0f;
     }
+    if (jacobian)
+        *jacobian = J;
     return rays;
 }
 
@@ -67,7 +71,7 @@ long long grad_one_sided_all(const struct scene *s, const struct shift_params *s
             continue;
         struct pt_domain to = pt_pixel_domain(view, px + ox, py + oy);
         float other[3], diff[3];
-        rays += grad_shift_other(s, sp, x, &from, &to, other);
+        rays += grad_shift_other(s, sp, x, &from, &to, other, NULL);
         restir_grad_one_sided(own, other, diff);
         if (v3_is_finite(v3(diff[0], diff[1], diff[2])))
             add_scaled(grad_os(os, n, d, i), diff, weight);

@@ -36,9 +36,10 @@ void grad_os_clear(float *os, size_t n);
 void grad_combine(int w, int h, const float *os, float *dx, float *dy);
 
 /* Shifts x from pixel domain `from` to `to` and writes f(T x) |T'| into other (0 where T is
- * undefined). Returns rays traced. */
+ * undefined), and |T'| into *jacobian when it is not NULL (0 where T is undefined). Returns rays
+ * traced. */
 long long grad_shift_other(const struct scene *s, const struct shift_params *sp, const struct path_sample *x,
-                           const struct pt_domain *from, const struct pt_domain *to, float other[3]);
+                           const struct pt_domain *from, const struct pt_domain *to, float other[3], float *jacobian);
 
 /* os[dir][i] += weight * omega (f_own - f_other) for a base path x of pixel (x, y) shifted into each
  * neighbor inside the image (Eq. 3's integrand for base paths of known density: weight = m / p;

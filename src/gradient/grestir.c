@@ -61,6 +61,7 @@ void grestir_state_init(struct grestir_state *st, int width, int height)
         st->edge[d] = xcalloc(n, 1);
     }
     st->base_other = xcalloc(n * 3 * GRAD_DIRS, sizeof(float));
+    st->base_inner_J = xcalloc(n * GRAD_DIRS, sizeof(float));
 }
 
 void grestir_state_fini(struct grestir_state *st)
@@ -75,6 +76,7 @@ void grestir_state_fini(struct grestir_state *st)
         free(st->edge[d]);
     }
     free(st->base_other);
+    free(st->base_inner_J);
     memset(st, 0, sizeof(*st));
 }
 
@@ -93,26 +95,42 @@ static enum restir_grad_sign sign_of(const struct render_params *p, int s)
     return p->grad_positivize ? (s == 0 ? RESTIR_GRAD_POS : RESTIR_GRAD_NEG) : RESTIR_GRAD_ABS;
 }
 
-/* h(y, k) in pair dom, y in pixel dom->px[k]: the inner shift of y into the other pixel. */
+/* h(y, k) in pair dom, y in pixel dom->px[k]: the inner shift of y into the other pixel, whose
+ * |T'| goes to *inner_J. */
 static long long pair_integrand(const struct pt_frame *fr, const struct path_sample *y, int k,
-                                const struct pair_domain *dom, float h[3])
+                                const struct pair_domain *dom, float h[3], float *inner_J)
 {
     float other[3];
-    long long rays = grad_shift_other(fr->s, &fr->shift, y, &dom->px[k], &dom->px[1 - k], other);
+    long long rays = grad_shift_other(fr->s, &fr->shift, y, &dom->px[k], &dom->px[1 - k], other, inner_J);
     const float own[3] = {y->f.x, y->f.y, y->f.z};
     restir_grad_pair_integrand(k, own, other, h);
     return rays;
 }
 
-/* Outer shift T* of (x, k) from pair `from` to pair `to` (Eq. 21-22) and h there. Returns 1 with y,
- * h and |T*'|, or 0 where tau is undefined. */
-static int pair_shift(const struct pt_frame *fr, const struct path_sample *x, int k, const struct pair_domain *from,
-                      const struct pair_domain *to, struct path_sample *y, float h[3], float *J, long long *rays)
+/* grad.inner_jacobian_ratio (002's public code: 10): are the inner shifts' Jacobians of a path
+ * before and after an outer shift too far apart (ratio above `ratio`, or one undefined and the
+ * other not)? Symmetric in the two, so a rejected outer shift is rejected back too: the rule only
+ * narrows the shift's domain, as a failed shift does. 0 turns it off. */
+static int inner_jacobians_disagree(float a, float b, float ratio)
+{
+    if (!(ratio > 0.0f))
+        return 0;
+    if (!(a > 0.0f) || !(b > 0.0f))
+        return (a > 0.0f) != (b > 0.0f);
+    return a > ratio * b || b > ratio * a;
+}
+
+/* Outer shift T* of (x, k) from pair `from` to pair `to` (Eq. 21-22) and h there; x_inner_J is
+ * x's inner-shift Jacobian in `from`. Returns 1 with y, h, |T*'| and y's inner-shift Jacobian, or 0
+ * where tau is undefined (or grad.inner_jacobian_ratio rejects it). */
+static int pair_shift(const struct pt_frame *fr, const struct path_sample *x, float x_inner_J, int k,
+                      const struct pair_domain *from, const struct pair_domain *to, struct path_sample *y, float h[3],
+                      float *J, float *y_inner_J, long long *rays)
 {
     if (!path_shift(fr->s, &fr->shift, x, &from->px[k], &to->px[k], y, J, rays))
         return 0;
-    *rays += pair_integrand(fr, y, k, to, h);
-    return 1;
+    *rays += pair_integrand(fr, y, k, to, h, y_inner_J);
+    return !inner_jacobians_disagree(x_inner_J, *y_inner_J, fr->p->grad_inner_jacobian_ratio);
 }
 
 /* ---- initial candidates ------------------------------------------------------------------------ */
@@ -133,13 +151,15 @@ long long grestir_initial_pass(const struct pt_frame *fr, const struct gbuffer *
             struct pt_domain from = pt_pixel_domain(fr->view, x, y);
             for (int d = 0; d < GRAD_DIRS; d++) {
                 float *other = grad_os(st->base_other, n, d, i);
+                float *inner_J = &st->base_inner_J[(size_t)d * n + i];
                 other[0] = other[1] = other[2] = 0.0f;
+                *inner_J = 0.0f;
                 int ox, oy;
                 grad_dir_offset(d, &ox, &oy);
                 if (!pt_reservoir_has_sample(&base[i]) || x + ox < 0 || x + ox >= w || y + oy < 0 || y + oy >= h)
                     continue;
                 struct pt_domain to = pt_pixel_domain(fr->view, x + ox, y + oy);
-                rays += grad_shift_other(fr->s, &fr->shift, &base[i].y, &from, &to, other);
+                rays += grad_shift_other(fr->s, &fr->shift, &base[i].y, &from, &to, other, inner_J);
             }
         }
     }
@@ -155,13 +175,14 @@ long long grestir_initial_pass(const struct pt_frame *fr, const struct gbuffer *
                     continue;
                 size_t b = dir == GRAD_PAIR_X ? a + 1 : a + (size_t)w;
                 const struct pt_reservoir *src[2] = {&base[a], &base[b]};
-                float hk[2][3];
+                float hk[2][3], inner_J[2];
                 for (int k = 0; k < 2; k++) {
                     const float own[3] = {src[k]->y.f.x, src[k]->y.f.y, src[k]->y.f.z};
                     /* a's path toward b: RIGHT / DOWN; b's path toward a: LEFT / UP */
                     int d = k == 0 ? (dir == GRAD_PAIR_X ? GRAD_RIGHT : GRAD_DOWN)
                                    : (dir == GRAD_PAIR_X ? GRAD_LEFT : GRAD_UP);
                     restir_grad_pair_integrand(k, own, grad_os(st->base_other, n, d, k ? b : a), hk[k]);
+                    inner_J[k] = st->base_inner_J[(size_t)d * n + (k ? b : a)];
                 }
                 pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, a * 2 + (size_t)dir, RNG_PASS_GRAD_INITIAL);
                 for (int s = 0; s < ns; s++) {
@@ -182,6 +203,7 @@ long long grestir_initial_pass(const struct pt_frame *fr, const struct gbuffer *
                         continue;
                     out->y = src[chosen]->y;
                     out->k = chosen;
+                    out->inner_J = inner_J[chosen];
                     memcpy(out->h, hk[chosen], sizeof(out->h));
                     out->target = target[chosen];
                     out->W = restir_gris_contribution_weight(&wrs, out->target); /* Eq. 18 */
@@ -209,7 +231,7 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
     float c[PAIR_MAX_DOMAINS], J[PAIR_MAX_DOMAINS];
     float P[PAIR_MAX_DOMAINS * PAIR_MAX_DOMAINS] = {0};
     struct path_sample Y[PAIR_MAX_DOMAINS];
-    float H[PAIR_MAX_DOMAINS][3];
+    float H[PAIR_MAX_DOMAINS][3], YJ[PAIR_MAX_DOMAINS]; /* YJ: Y_j's inner-shift Jacobian */
     int ok[PAIR_MAX_DOMAINS];
     float c_sum = 0.0f;
     for (int j = 0; j < n; j++) {
@@ -223,10 +245,12 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
         if (dom_id[j] == dom_id[0]) {
             Y[j] = in[j]->y;
             memcpy(H[j], in[j]->h, sizeof(H[j]));
+            YJ[j] = in[j]->inner_J;
             J[j] = 1.0f;
             ok[j] = 1;
         } else {
-            ok[j] = pair_shift(fr, &in[j]->y, in[j]->k, &dom[dom_id[j]], &dom[dom_id[0]], &Y[j], H[j], &J[j], &rays);
+            ok[j] = pair_shift(fr, &in[j]->y, in[j]->inner_J, in[j]->k, &dom[dom_id[j]], &dom[dom_id[0]], &Y[j], H[j],
+                               &J[j], &YJ[j], &rays);
         }
         if (ok[j])
             P[j] = restir_grad_target(sg[0], H[j]);
@@ -236,7 +260,7 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
             continue;
         const int kj = in[j]->k;
         int shifted_to = -1; /* dom_id whose back-shift of Y_j is cached in hz, Jb */
-        float hz[3] = {0, 0, 0}, Jb = 0.0f;
+        float hz[3] = {0, 0, 0}, Jb = 0.0f, zJ;
         for (int k = 1; k < n; k++) {
             if (!restir_mis_needs(p->mis, k, j))
                 continue;
@@ -251,7 +275,7 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
             if (shifted_to != dom_id[k]) {
                 struct path_sample z;
                 shifted_to = dom_id[k];
-                if (!pair_shift(fr, &Y[j], kj, &dom[dom_id[0]], &dom[dom_id[k]], &z, hz, &Jb, &rays))
+                if (!pair_shift(fr, &Y[j], YJ[j], kj, &dom[dom_id[0]], &dom[dom_id[k]], &z, hz, &Jb, &zJ, &rays))
                     Jb = 0.0f;
             }
             P[k * n + j] = Jb > 0.0f ? restir_grad_target(sg[k], hz) * Jb : 0.0f;
@@ -269,6 +293,7 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
     if (chosen >= 0) {
         result.y = Y[chosen];
         result.k = in[chosen]->k;
+        result.inner_J = YJ[chosen];
         memcpy(result.h, H[chosen], sizeof(result.h));
         result.target = P[chosen];
         result.W = W_Y; /* Eq. 18 */

@@ -20,6 +20,7 @@ struct pair_reservoir {
     int k;
     float W, c, target;
     float h[3];
+    float inner_J; /* |T'| of y's inner shift into its pair's other pixel (0: undefined there) */
 };
 
 /* Pair directions: dx pairs (a, a + x) and dy pairs (a, a + y), stored at their first pixel a. */
@@ -34,6 +35,7 @@ struct grestir_state {
     int *neighbor[GRAD_PAIR_DIRS]; /* the spatial neighbor pair of each pair (-1: none) */
     unsigned char *edge[GRAD_PAIR_DIRS]; /* per pair: an edge pair (Sec. 4.3.2), of the last select pass */
     float *base_other;             /* per pixel and direction: f(T x) |T'| of its initial path */
+    float *base_inner_J;           /* per pixel and direction: that shift's |T'| */
     long long edge_pairs, neighbors_found; /* of the last select pass */
 };
 

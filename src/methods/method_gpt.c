@@ -20,8 +20,8 @@ static void *gpt_create(const struct renderer *r)
     struct gpt_state *g = xcalloc(1, sizeof(*g));
     grad_frame_init(&g->grad, &r->p, 0);
     g->scene_diagonal = scene_diagonal(r->scene);
-    struct shift_params sp;
-    pt_shift_params(&r->p, g->scene_diagonal, &sp);
+    struct shift_params sp; /* for the roughness table only: no camera needed */
+    pt_shift_params(&r->p, g->scene_diagonal, v3s(0.0f), &sp);
     g->material_rough = xcalloc((size_t)r->scene->num_materials + 1, 1);
     path_shift_rough_table(r->scene, &sp, g->material_rough);
     return g;
@@ -40,7 +40,7 @@ static void gpt_render_frame(struct renderer *r, void *state, const struct camer
     struct gpt_state *g = state;
     struct grad_frame *gf = &g->grad;
     struct shift_params sp;
-    pt_shift_params(&r->p, g->scene_diagonal, &sp);
+    pt_shift_params(&r->p, g->scene_diagonal, view->position, &sp);
     sp.rough = g->material_rough;
     grad_frame_begin(gf);
     RENDERER_TIMED(st, PASS_GPT, {

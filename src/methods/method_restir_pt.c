@@ -27,8 +27,8 @@ void restir_pt_state_init(struct restir_pt_state *t, const struct renderer *r)
         pt_splat_buffers_init(t->splat, p->width, p->height, pt_splat_steps(p));
     }
     t->scene_diagonal = scene_diagonal(r->scene);
-    struct shift_params sp;
-    pt_shift_params(p, t->scene_diagonal, &sp);
+    struct shift_params sp; /* for the roughness table only: no camera needed */
+    pt_shift_params(p, t->scene_diagonal, v3s(0.0f), &sp);
     t->material_rough = xcalloc((size_t)r->scene->num_materials + 1, 1);
     path_shift_rough_table(r->scene, &sp, t->material_rough);
 }
@@ -58,7 +58,7 @@ void restir_pt_frame(struct renderer *r, struct restir_pt_state *t, const struct
     struct gbuffer *g = screen_history_gbuffer(h), *prev_g = screen_history_prev_gbuffer(h);
     struct pt_reservoir *out = t->hist[h->cur], *prev_res = t->hist[1 - h->cur];
     struct pt_frame fr = {r->scene, p, {0}, view, &r->prev_view, r->frame};
-    pt_shift_params(p, t->scene_diagonal, &fr.shift);
+    pt_shift_params(p, t->scene_diagonal, view->position, &fr.shift);
     fr.shift.rough = t->material_rough;
     RENDERER_TIMED(st, PASS_GBUFFER,
                    st->rays += gbuffer_pass(g, r->scene, view, h->has_history ? &r->prev_view : NULL, 0, p->seed,

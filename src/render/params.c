@@ -33,6 +33,7 @@ static const char *const select_names[] = {"bitterli", "compat", "compat-binary"
 static const char *const reuse_names[] = {"standard", "spmis", NULL};
 static const char *const search_names[] = {"always", "sparse", "low-confidence", NULL};
 static const char *const pick_names[] = {"uniform", "confidence", NULL};
+static const char *const distance_mode_names[] = {"scene", "absolute", "relative", NULL}; /* shift_kind.h */
 static const char *const confidence_update_names[] = {"cell", "drawn", NULL}; /* enum spmis_confidence_update */
 static const char *const search_score_names[] = {"confidence", "compat", NULL}; /* enum restir_cells_score */
 static const char *const history_names[] = {"spatial", "temporal", NULL};
@@ -232,8 +233,14 @@ static const struct param_def params[] = {
      "restir-pt shift mapping: hybrid (replay until two rough, distant vertices, then reconnect), "
      "reconnection (at the secondary vertex), replay (whole prefix; reconnects only at the light)", NULL},
     {"shift.roughness", P_FLOAT, F(shift_roughness), 0, 1, "0.2", NULL, "hybrid shift: GGX alpha at or above which a vertex is rough", NULL},
-    {"shift.distance", P_FLOAT, F(shift_distance), 0, 1, "0.01", NULL,
-     "hybrid shift: minimum reconnection length as a fraction of the scene diagonal", NULL},
+    {"shift.distance", P_FLOAT, F(shift_distance), 0, 1e9, "0.01", NULL,
+     "hybrid shift: minimum reconnection length, in shift.distance_mode's measure", NULL},
+    {"shift.distance_mode", P_NAMES, F(shift_distance_mode), 0, 0, "scene", NULL,
+     "hybrid shift: shift.distance is a fraction of the scene diagonal (scene; 1% of a 400 m ground plane "
+     "is 5.66 m on the forest), a length in scene units (absolute), or a fraction of the camera's distance to "
+     "the segment's first vertex (relative: every domain judges with its own camera, so shifts stay "
+     "invertible); unbiased either way",
+     distance_mode_names},
     {"gi.radiance", P_NAMES, F(gi_radiance), 0, 0, "reevaluate", "stored",
      "restir-gi: the outgoing radiance of a reused sample point toward the reusing shading point: reevaluate "
      "(the sample point's path estimate traced again from its own random numbers) or stored (the radiance it "
@@ -258,6 +265,10 @@ static const struct param_def params[] = {
      NULL},
     {"grad.search", P_INT, F(grad_search), 1, 4096, "256", NULL, "grestir-pt: random neighbor pairs tried per pair (N)", NULL},
     {"grad.radius", P_FLOAT, F(grad_radius), 1, 512, "4", NULL, "grestir-pt: pair-search radius in pixels", NULL},
+    {"grad.inner_jacobian_ratio", P_FLOAT, F(grad_inner_jacobian_ratio), 0, 1e30, "0", NULL,
+     "grestir-pt: reject an outer shift when the path's inner-shift Jacobians before and after it differ by more "
+     "than this factor or one of them is undefined, as 002's public code does with 10 (0: off); the rule is "
+     "symmetric, so the reverse shift is rejected too and reuse stays unbiased (render.gradient_unbiased)", NULL},
     {"grad.edge_albedo", P_FLOAT, F(grad_edge_albedo), 0, 1e30, "0.1", NULL, "edge pair: max albedo difference above", NULL},
     {"grad.edge_normal", P_FLOAT, F(grad_edge_normal), -1, 1, "0.9", NULL,
      "edge pair: n_a . n_b below this (the paper's text says '>', which cannot mark an edge)", NULL},
@@ -418,6 +429,11 @@ int render_params_validate(const struct render_params *p, char *msg)
     }
     if (p->light_candidates + p->bsdf_candidates < 1) {
         snprintf(msg, RESTIR_MSG_LEN, "di.light_candidates + di.bsdf_candidates must be at least 1");
+        return -1;
+    }
+    if (p->grad_inner_jacobian_ratio > 0.0f && p->grad_inner_jacobian_ratio < 1.0f) {
+        snprintf(msg, RESTIR_MSG_LEN, "grad.inner_jacobian_ratio = %g: 0 (off) or a factor of at least 1",
+                 (double)p->grad_inner_jacobian_ratio);
         return -1;
     }
     if (p->recon_iterations > 0 && p->recon_solver != RESTIR_POISSON_CG) {

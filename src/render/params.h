@@ -121,7 +121,8 @@ struct render_params {
     int pt_candidates;      /* initial paths per pixel */
     enum shift_kind shift;
     float shift_roughness;  /* hybrid: GGX alpha at or above which a vertex is rough */
-    float shift_distance;   /* hybrid: minimum reconnection length, fraction of the scene diagonal */
+    float shift_distance;   /* hybrid: minimum reconnection length, in shift.distance_mode's measure */
+    int shift_distance_mode; /* enum shift_distance_mode (shift_kind.h) */
 
     /* ReSTIR GI */
     enum gi_radiance_mode gi_radiance; /* what a reused sample point's outgoing radiance is */
@@ -134,6 +135,7 @@ struct render_params {
     int grad_cross_sign;    /* r+ and r- also reuse the other sign's neighbor reservoir */
     int grad_search;        /* N: random neighbor pairs tried by the pair search (256) */
     float grad_radius;      /* pair-search neighborhood radius, pixels */
+    float grad_inner_jacobian_ratio; /* reject outer shifts whose inner Jacobians differ more (0: off) */
     float grad_edge_albedo, grad_edge_normal, grad_edge_depth; /* edge-pair thresholds (Sec. 4.3.2) */
     enum recon_mode recon;
     float recon_alpha;      /* screened Poisson weight alpha of the primal (0.2) */

@@ -26,14 +26,25 @@ static int material_rough(const struct scene *s, const struct shift_params *sp, 
     return sp->rough ? sp->rough[material] : material_rough_eval(s, sp, material);
 }
 
+/* The shortest reconnection segment from pa the hybrid rule allows, seen from a domain whose camera
+ * is at `camera`. Each domain applies its own rule: the shift into a domain checks the shifted path
+ * against that domain's (shift_from_primary), which keeps the shift invertible. */
+static float min_segment(const struct shift_params *sp, vec3 camera, vec3 pa)
+{
+    if (sp->distance_mode == SHIFT_DISTANCE_RELATIVE)
+        return sp->distance_factor * v3_length(v3_sub(pa, camera));
+    return sp->min_distance;
+}
+
 /* Hybrid rule: may the path reconnect at b, coming from a? light_b marks b as a light vertex,
  * which has no BSDF and always counts as rough. */
-static int connectable(const struct scene *s, const struct shift_params *sp, vec3 pa, int mat_a, vec3 pb,
+static int connectable(const struct scene *s, const struct shift_params *sp, vec3 camera, vec3 pa, int mat_a, vec3 pb,
                        int mat_b, int light_b)
 {
     if (!material_rough(s, sp, mat_a) || (!light_b && !material_rough(s, sp, mat_b)))
         return 0;
-    return v3_length2(v3_sub(pb, pa)) > sp->min_distance * sp->min_distance;
+    const float m = min_segment(sp, camera, pa);
+    return v3_length2(v3_sub(pb, pa)) > m * m;
 }
 
 /* Reconnection vertex index k of a walked path of length D (vertices x_j = w->v[j-1]). */
@@ -43,7 +54,8 @@ static int choose_rc(const struct scene *s, const struct shift_params *sp, const
         return 2;
     if (sp->kind == SHIFT_HYBRID)
         for (int j = 2; j <= D - 1; j++)
-            if (connectable(s, sp, w->v[j - 2].p, w->v[j - 2].material, w->v[j - 1].p, w->v[j - 1].material, 0))
+            if (connectable(s, sp, sp->camera, w->v[j - 2].p, w->v[j - 2].material, w->v[j - 1].p,
+                            w->v[j - 1].material, 0))
                 return j;
     return D;
 }
@@ -177,8 +189,9 @@ static int reconnection_visible(const struct scene *s, const struct path_vertex 
  * sampled at y_1 .. y_{k-2}, through the same sampling routine as the walk (bsdf_frame_sample),
  * so that an identity shift reproduces its densities bit for bit, then the reconnection of
  * y_{k-1} to x_k. Writes the Jacobian of everything after the primary vertex to *jacobian. */
-static int shift_from_primary(const struct scene *s, const struct shift_params *sp, const struct path_sample *x,
-                              struct path_vertex v, struct path_sample *y, float *jacobian, long long *rays)
+static int shift_from_primary(const struct scene *s, const struct shift_params *sp, vec3 camera,
+                              const struct path_sample *x, struct path_vertex v, struct path_sample *y, float *jacobian,
+                              long long *rays)
 {
     const int D = x->length, k = x->rc;
     const int hybrid = sp->kind == SHIFT_HYBRID;
@@ -204,13 +217,13 @@ static int shift_from_primary(const struct scene *s, const struct shift_params *
             return fail(y);
         struct path_vertex next = path_vertex_from_hit(&h, wi);
         /* The shifted path must pick the same reconnection vertex, or T would not be invertible. */
-        if (hybrid && connectable(s, sp, v.p, v.material, next.p, next.material, 0))
+        if (hybrid && connectable(s, sp, camera, v.p, v.material, next.p, next.material, 0))
             return fail(y);
         v = next;
         path_vertex_bsdf(s, &v, &b);
     }
     /* Reconnect y_{k-1} = v to x_k. */
-    if (hybrid && k < D && !connectable(s, sp, v.p, v.material, x->rc_p, x->rc_material, 0))
+    if (hybrid && k < D && !connectable(s, sp, camera, v.p, v.material, x->rc_p, x->rc_material, 0))
         return fail(y);
     float cos_k, d2;
     vec3 f = v3_mul(F, reconnection_eval(s, &v, &b, x, &cos_k, &d2));
@@ -253,7 +266,7 @@ int path_shift(const struct scene *s, const struct shift_params *sp, const struc
         return fail(y);
     struct path_vertex v = path_vertex_from_hit(&h, dir);
     keep_primary(y, &v);
-    return shift_from_primary(s, sp, x, v, y, jacobian, rays);
+    return shift_from_primary(s, sp, to->view->position, x, v, y, jacobian, rays);
 }
 
 /* x's primary hit projected from its lens point through view at `time`: the pose, the image
@@ -315,7 +328,8 @@ int path_shift_splat(const struct scene *s, const struct shift_params *sp, const
     float a_from = camera_pose_area_per_pixel(from_view, &from_pose, o_from, x->x1_p, h.ng);
     float a_to = camera_pose_area_per_pixel(to_view, &to_pose, o, x->x1_p, h.ng);
     float J_rest;
-    if (!(a_from > 0.0f && a_to > 0.0f) || !shift_from_primary(s, sp, x, path_vertex_from_hit(&h, dir), y, &J_rest, rays))
+    if (!(a_from > 0.0f && a_to > 0.0f) ||
+        !shift_from_primary(s, sp, to_view->position, x, path_vertex_from_hit(&h, dir), y, &J_rest, rays))
         return fail(y);
     float J = a_from / a_to * J_rest * time_scale;
     if (!(J > 0.0f) || !isfinite(J))

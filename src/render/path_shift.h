@@ -29,7 +29,13 @@
 struct shift_params {
     enum shift_kind kind;
     float min_roughness; /* hybrid: a vertex is rough when its GGX alpha is at least this */
-    float min_distance;  /* hybrid: reconnection segments must be longer (scene units) */
+    float min_distance;  /* hybrid: reconnection segments must be longer (scene units; scene and
+                            absolute distance modes) */
+    enum shift_distance_mode distance_mode;
+    float distance_factor; /* relative mode: ... longer than this times the camera's distance to their
+                              first vertex */
+    vec3 camera;         /* relative mode: the camera position of the domain paths are created in
+                            (path_sample_from_candidate); shifts use their target domain's */
     const unsigned char *rough; /* per material: 1 when rough (path_shift_rough_table); NULL: computed
                                    on every query */
 };

@@ -15,11 +15,15 @@
 /* Canonical domain + at most 5 spatial neighbors. */
 #define PT_MAX_DOMAINS 6
 
-void pt_shift_params(const struct render_params *p, float scene_diagonal, struct shift_params *out)
+void pt_shift_params(const struct render_params *p, float scene_diagonal, vec3 camera, struct shift_params *out)
 {
     out->kind = (enum shift_kind)p->shift;
     out->min_roughness = p->shift_roughness;
-    out->min_distance = p->shift_distance * scene_diagonal;
+    out->distance_mode = (enum shift_distance_mode)p->shift_distance_mode;
+    out->min_distance =
+        out->distance_mode == SHIFT_DISTANCE_SCENE ? p->shift_distance * scene_diagonal : p->shift_distance;
+    out->distance_factor = p->shift_distance;
+    out->camera = camera;
     out->rough = NULL;
 }
 

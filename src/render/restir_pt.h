@@ -46,7 +46,7 @@ struct pt_frame {
 };
 
 /* The shift parameters the render parameters ask for; scene_diagonal scales shift.distance. */
-void pt_shift_params(const struct render_params *p, float scene_diagonal, struct shift_params *out);
+void pt_shift_params(const struct render_params *p, float scene_diagonal, vec3 camera, struct shift_params *out);
 
 /* Initial sampling: p->pt_candidates paths per pixel by the shared path walk, each from its own
  * jittered primary ray, every NEE/BSDF candidate resampled with weight m f / p into one

@@ -278,6 +278,13 @@ static void check_study(void)
                    "render --scene cornell --method restir-pt --res 16x16 --set spatial.reuse=spmis --set "
                    "spmis.confidence_update=max --out '%1$s'",
                    2, "spmis.confidence_update", "max");
+    expect_failure("unknown shift.distance_mode",
+                   "render --scene cornell --method restir-pt --res 16x16 --set shift.distance_mode=pixels --out '%1$s'", 2,
+                   "shift.distance_mode", "pixels");
+    expect_failure("grad.inner_jacobian_ratio below 1",
+                   "render --scene cornell --method grestir-pt --res 16x16 --set grad.inner_jacobian_ratio=0.5 --out "
+                   "'%1$s'",
+                   2, "grad.inner_jacobian_ratio", "at least 1");
     expect_failure("study with an unknown configuration",
                    "study --scene cornell --method restir-pt --configs bitterli,no-such-config --res 16x16 "
                    "--out '%1$s'",

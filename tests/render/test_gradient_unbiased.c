@@ -168,6 +168,10 @@ int main(int argc, char **argv)
                                  {"recon=l2", "grad.base=shared"}};
     for (int k = 0; k < 5; k++)
         check("cornell", "grestir-pt", 2048, variants[k], 2, 1);
+    /* 002's public rejection of outer shifts whose inner Jacobians disagree (there by 10x), here at
+     * 1.5x so that it rejects often on ajar's glossy paths: symmetric, so unbiased. */
+    const char *inner_ratio[] = {"recon=l2", "grad.inner_jacobian_ratio=1.5"};
+    check("ajar", "grestir-pt", 6144, inner_ratio, 2, 1);
     /* Under an environment light: base and offset paths ending in a direction (a sky map
      * with a sun and no emitter), and alpha-cut leaves with a masked lamp under the same sky. */
     const char *data = getenv("RESTIR_TEST_DATA");

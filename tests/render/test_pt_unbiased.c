@@ -79,6 +79,12 @@ int main(int argc, char **argv)
      * a sun as the only light, along its walk. */
     const char *forest[] = {"shift=hybrid", "mis=pairwise"};
     check("forest", RUNS, forest, 2, 1);
+    /* The hybrid rule's length relative to each domain's camera distance, along the camera path
+     * (temporal shifts cross cameras, each domain judging by its own), and in scene units. */
+    const char *relative[] = {"shift=hybrid", "mis=pairwise", "shift.distance_mode=relative", "shift.distance=0.1"};
+    check("ajar", RUNS, relative, 4, 1);
+    const char *absolute[] = {"shift=hybrid", "mis=pairwise", "shift.distance_mode=absolute", "shift.distance=0.5"};
+    check("cornell", RUNS, absolute, 4, 1);
     /* The test has power: the BIASED 1/M weights are caught on the same setup. */
     const char *uniform[] = {"shift=hybrid", "mis=1/M"};
     EXPECT(check("cornell", RUNS, uniform, 2, 0) > 0, "1/M weights were not detected as biased");

@@ -51,23 +51,27 @@
 
 /* ---- shift configurations ------------------------------------------------------------------ */
 
-enum { CFG_RECONNECTION, CFG_REPLAY, CFG_HYBRID, CFG_HYBRID_NOROUGH, NCFG };
+enum { CFG_RECONNECTION, CFG_REPLAY, CFG_HYBRID, CFG_HYBRID_NOROUGH, CFG_HYBRID_RELATIVE, NCFG };
 
 struct config {
     const char *name;
     enum shift_kind kind;
     float min_roughness;
-    float distance_frac; /* min_distance as a fraction of the scene diagonal */
+    float distance_frac; /* min_distance as a fraction of the scene diagonal, or (relative) of the
+                            camera's distance to the segment's first vertex */
+    enum shift_distance_mode distance_mode;
 };
 
 /* Metals here have GGX alpha 0.06 .. 0.16 and anything with a diffuse lobe reports roughness 1
  * (bsdf_roughness), so 0.3 makes the hybrid shift replay through every metal vertex; 2 makes
  * nothing rough, so it replays up to the light like random replay. */
 static const struct config configs[NCFG] = {
-    {"reconnection", SHIFT_RECONNECTION, 0.2f, 0.01f},
-    {"replay", SHIFT_REPLAY, 0.2f, 0.01f},
-    {"hybrid", SHIFT_HYBRID, 0.3f, 0.05f},
-    {"hybrid-norough", SHIFT_HYBRID, 2.0f, 0.01f},
+    {"reconnection", SHIFT_RECONNECTION, 0.2f, 0.01f, SHIFT_DISTANCE_SCENE},
+    {"replay", SHIFT_REPLAY, 0.2f, 0.01f, SHIFT_DISTANCE_SCENE},
+    {"hybrid", SHIFT_HYBRID, 0.3f, 0.05f, SHIFT_DISTANCE_SCENE},
+    {"hybrid-norough", SHIFT_HYBRID, 2.0f, 0.01f, SHIFT_DISTANCE_SCENE},
+    /* each domain judges segments by its own camera: the motion round trips cross cameras */
+    {"hybrid-relative", SHIFT_HYBRID, 0.3f, 0.1f, SHIFT_DISTANCE_RELATIVE},
 };
 
 /* ---- target domains of the round trips ------------------------------------------------------ */
@@ -254,10 +258,13 @@ static int rough(const struct scene *s, const struct shift_params *sp, int mater
     return bsdf_roughness(&b) >= sp->min_roughness;
 }
 
-static int connectable(const struct scene *s, const struct shift_params *sp, vec3 pa, int ma, vec3 pb, int mb)
+/* The hybrid rule as the domain whose camera is at `camera` applies it (path_shift.h). */
+static int connectable(const struct scene *s, const struct shift_params *sp, vec3 camera, vec3 pa, int ma, vec3 pb,
+                       int mb)
 {
-    return rough(s, sp, ma) && (mb < 0 || rough(s, sp, mb)) &&
-           v3_length(v3_sub(pb, pa)) > sp->min_distance;
+    const float m = sp->distance_mode == SHIFT_DISTANCE_RELATIVE ? sp->distance_factor * v3_length(v3_sub(pa, camera))
+                                                                  : sp->min_distance;
+    return rough(s, sp, ma) && (mb < 0 || rough(s, sp, mb)) && v3_length(v3_sub(pb, pa)) > m;
 }
 
 /* Solid angle per unit area of x_k seen from p: |n_k . (p - x_k)| / |p - x_k|^3. */
@@ -321,6 +328,9 @@ static void test_scene(const char *name, int paths)
         sp[k].kind = configs[k].kind;
         sp[k].min_roughness = configs[k].min_roughness;
         sp[k].min_distance = configs[k].distance_frac * scene_diagonal(&s);
+        sp[k].distance_mode = configs[k].distance_mode;
+        sp[k].distance_factor = configs[k].distance_frac;
+        sp[k].camera = cur.position; /* the samples are made in the current view */
         sp[k].rough = NULL; /* roughness computed per query */
     }
 
@@ -507,10 +517,11 @@ static void test_scene(const char *name, int paths)
                     int rule = 1;
                     if (cfg->kind == SHIFT_HYBRID) {
                         for (int j = 2; j <= kk - 1; j++)
-                            rule &= !connectable(&s, &sp[k], walk_b.v[j - 2].p, walk_b.v[j - 2].material,
-                                                 walk_b.v[j - 1].p, walk_b.v[j - 1].material);
+                            rule &= !connectable(&s, &sp[k], B.view->position, walk_b.v[j - 2].p,
+                                                 walk_b.v[j - 2].material, walk_b.v[j - 1].p, walk_b.v[j - 1].material);
                         if (kk < x->length)
-                            rule &= connectable(&s, &sp[k], walk_b.v[kk - 2].p, walk_b.v[kk - 2].material, x->rc_p,
+                            rule &= connectable(&s, &sp[k], B.view->position, walk_b.v[kk - 2].p,
+                                                walk_b.v[kk - 2].material, x->rc_p,
                                                 x->rc_material);
                     }
                     r->geo++;
@@ -611,8 +622,8 @@ static void test_scene(const char *name, int paths)
         if (k == CFG_REPLAY || k == CFG_HYBRID_NOROUGH)
             EXPECT(mid == 0, "%s %s: %ld samples reconnect before the light", name, cfg->name, mid);
         /* The hybrid shift replays through smooth or short segments and then reconnects. */
-        if (k == CFG_HYBRID)
-            EXPECT(mid >= 200, "%s hybrid: only %ld samples with 3 <= k < D", name, mid);
+        if (k == CFG_HYBRID || k == CFG_HYBRID_RELATIVE)
+            EXPECT(mid >= 200, "%s %s: only %ld samples with 3 <= k < D", name, cfg->name, mid);
     }
     printf("%s: %lld rays traced by shifts\n", name, rays);
     for (int k = 0; k < NCFG; k++)

@@ -176,7 +176,11 @@ static void test_splat(const struct scene *s, const struct camera *c0, const str
         camera_view_set_shutter(&vp, c0, shutter); /* a still previous frame: its shutter sees c0 only */
         camera_view_set_shutter(&vc, c0, shutter);
     }
-    struct shift_params sp = {kind, 0.25f, 0.01f * scene_diagonal(s), NULL};
+    struct shift_params sp = {.kind = kind,
+                              .min_roughness = 0.25f,
+                              .min_distance = 0.01f * scene_diagonal(s),
+                              .distance_mode = SHIFT_DISTANCE_SCENE,
+                              .rough = NULL};
     struct collect_ctx ctx = {s, &sp, {0}, NULL, 0, 4000, 0, NULL};
     ctx.out = calloc((size_t)ctx.cap, sizeof(*ctx.out));
     ctx.pixels = calloc((size_t)ctx.cap, sizeof(int));
