@@ -129,6 +129,9 @@ const char *const eval_000_configs[] = {"bitterli",
                                         "bitterli-r50",
                                         "bitterli-r100",
                                         "compat-r10-k32", /* Figure 3's radii */
+                                        "spatial-off",
+                                        "bitterli-history-temporal",
+                                        "fast-history-temporal", /* issue 42: does spatial reuse itself help? */
                                         NULL};
 
 /* Whether name is an item of the comma-separated list. */
@@ -173,8 +176,10 @@ static int check_configs_000(const struct eval_options *o, char *msg)
 
 /* 000 Sec. 7: the error-correlation study of ReSTIR PT with M = 1 neighbor, Bitterli's R = 30
  * against FAST / BALANCED / CONSERVATIVE (Table 1); on the first scene also the R x K grid of
- * Table 2 (K = 32 is the presets' row) and Figure 3's Pareto curves (Bitterli at R 10, 30, 50,
- * 100; ours at K 32 and R 10 and the presets' 30, 50, 100). --configs keeps a subset. */
+ * Table 2 (K = 32 is the presets' row), Figure 3's Pareto curves (Bitterli at R 10, 30, 50,
+ * 100; ours at K 32 and R 10 and the presets' 30, 50, 100) and the rows that decide whether
+ * spatial reuse itself helps there (no spatial reuse; Bitterli and FAST with the temporal output
+ * as history). --configs keeps a subset. */
 static void steps_000(const struct eval_options *o, const char *scene, int first, struct eval_step *steps, int *n)
 {
     struct eval_step *s = begin(steps, n, "000", "study", scene, "", o);

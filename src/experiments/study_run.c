@@ -56,6 +56,16 @@ static int named_config(const char *name, float r, int candidates, struct study_
         c->select = SELECT_COMPAT; /* 000 Table 2: radius R and candidates K */
         c->radius = grid_r;
         c->candidates = grid_k;
+    } else if (!strcmp(name, "spatial-off")) {
+        c->select = SELECT_BITTERLI; /* no spatial pass: temporal reuse alone */
+        c->candidates = 0;
+        c->spatial_off = 1;
+    } else if (!strcmp(name, "bitterli-history-temporal") || !strcmp(name, "fast-history-temporal")) {
+        /* the spatial output shown, not fed back: spatial reuse cannot compound over frames */
+        c->select = name[0] == 'b' ? SELECT_BITTERLI : SELECT_COMPAT;
+        c->candidates = name[0] == 'b' ? 0 : 32;
+        c->radius = name[0] == 'b' ? r : 30.0f; /* as bitterli and fast */
+        c->history_temporal = 1;
     } else if (!strcmp(name, "compat")) {
         c->select = SELECT_COMPAT;
         c->candidates = candidates;
@@ -65,7 +75,8 @@ static int named_config(const char *name, float r, int candidates, struct study_
     } else {
         snprintf(msg, RESTIR_MSG_LEN,
                  "--configs: unknown configuration '%s' (bitterli, bitterli-rR, fast, balanced, conservative, "
-                 "compat, compat-binary, compat-rR-kK)",
+                 "compat, compat-binary, compat-rR-kK, spatial-off, bitterli-history-temporal, "
+                 "fast-history-temporal)",
                  name);
         return -1;
     }
@@ -74,6 +85,8 @@ static int named_config(const char *name, float r, int candidates, struct study_
 
 int study_pareto_series(const struct study_config *c)
 {
+    if (c->spatial_off || c->history_temporal)
+        return -1; /* not a point of either radius curve */
     return c->select == SELECT_BITTERLI ? 0 : c->select == SELECT_COMPAT && c->candidates == 32 ? 1 : -1;
 }
 
@@ -165,6 +178,10 @@ int study_run_unit(const struct scene *s, const struct method *method, const str
     p.spatial_radius = c->radius;
     if (c->candidates > 0)
         p.spatial_candidates = c->candidates;
+    if (c->spatial_off)
+        p.spatial = 0;
+    if (c->history_temporal)
+        p.history_temporal = 1;
     p.seed = base->seed + STUDY_RUN_SEED_STRIDE * (uint64_t)run;
     const struct camera cam = study_camera(s);
     u->frames = o->frames;

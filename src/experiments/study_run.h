@@ -22,6 +22,8 @@ struct study_config {
     enum spatial_select_mode select;
     float radius;
     int candidates;
+    int spatial_off;      /* no spatial reuse at all (issue 42: does spatial reuse itself help?) */
+    int history_temporal; /* the next frame's history is the temporal output (history=temporal) */
 };
 
 struct study_result {

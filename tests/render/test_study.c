@@ -134,6 +134,39 @@ int main(void)
         EXPECT(file_size(path) > 100, "%s missing or empty", path);
     }
     EXPECT(cli_count_entries(out, ".tmp-") == 0, "temporary files left in %s", out);
+
+    /* Issue 42's deciding rows: no spatial pass at all (no selection or spatial time), and Bitterli
+     * and FAST with the temporal output as history. */
+    snprintf(out, sizeof(out), "%s/study42", tmp);
+    snprintf(args, sizeof(args),
+             "study --scene cornell --method restir-pt --configs spatial-off,bitterli-history-temporal,"
+             "fast-history-temporal --runs 2 --warmup 2 --frames 5 --res 32x18 --ref-spp 16 --set pt.max_bounces=2 "
+             "--out '%s'",
+             out);
+    rc = cli_run(tmp, args, err);
+    EXPECT(rc == 0, "restir %s exited %d: %s", args, rc, err);
+    snprintf(path, sizeof(path), "%s/study.csv", out);
+    csv = read_text(path);
+    EXPECT(csv != NULL, "no %s", path);
+    if (csv) {
+        const char *names[] = {"spatial-off,", "bitterli-history-temporal,", "fast-history-temporal,"};
+        int rows = 0;
+        for (char *line = strchr(csv, '\n'); line && line[1] && rows < 3; line = strchr(line + 1, '\n'), rows++) {
+            const char *row = line + 1;
+            EXPECT(strncmp(row, names[rows], strlen(names[rows])) == 0, "row %d: %.60s", rows, row);
+            double v[9];
+            const char *q = strchr(row, ',');
+            for (int k = 0; k < 9 && q; k++, q = strchr(q + 1, ','))
+                v[k] = strtod(q + 1, NULL);
+            /* v: radius, K, M, SMAPE, hard SMAPE, temporal cov, spatial cov, ms_select, ms_spatial */
+            if (rows == 0)
+                EXPECT(v[7] == 0.0 && v[8] == 0.0, "spatial-off: selection %g ms, spatial %g ms", v[7], v[8]);
+            else
+                EXPECT(v[8] > 0.0, "%s: no spatial pass time", names[rows]);
+        }
+        EXPECT(rows == 3, "study.csv has %d rows, want 3", rows);
+        free(csv);
+    }
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
     return test_finish();
 }
