@@ -200,8 +200,8 @@ static void steps_000(const struct eval_options *o, const char *scene, int first
 }
 
 /* 004 Sec. 6: the last frame of a camera animation; standard reuse (3 neighbors in 30 px, pairwise
- * MIS) against SPMIS (8x8 cells, N = 3, N_c = 1, the 12-tap search from 30 px) and SPMIS with our
- * compatibility-scored cell search. ReSTIR PT: 1 initial candidate, 8 bounces, cap 20. The
+ * MIS) against SPMIS (8x8 cells, N = 3, N_c = 1, the 12-tap search from 30 px), SPMIS with our
+ * compatibility-scored cell search, with the own cell only, and with the low-confidence search. ReSTIR PT: 1 initial candidate, 8 bounces, cap 20. The
  * ablation step varies SPMIS alone as Figures 2, 6 and 7 do. */
 static void steps_004(const struct eval_options *o, const char *scene, const char *base, int ablation,
                       struct eval_step *steps, int *n)
@@ -222,7 +222,12 @@ static void steps_004(const struct eval_options *o, const char *scene, const cha
             "M",
             base, base, base, base, base, base);
     else
-        add(s, "%s,%s:spatial.reuse=spmis,%s:spatial.reuse=spmis:spmis.search_score=compat", base, base, base);
+        /* issue 42's deciding rows: the own cell only (does the search cost SPMIS its overall loss?),
+         * and the search only where the own cell's confidence is low */
+        add(s,
+            "%s,%s:spatial.reuse=spmis,%s:spatial.reuse=spmis:spmis.search_score=compat,"
+            "%s:spatial.reuse=spmis:spmis.search_steps=0,%s:spatial.reuse=spmis:spmis.search=low-confidence",
+            base, base, base, base, base);
     set(s, "spatial.neighbors=3");
     set(s, "spatial.radius=30");
     set(s, "mis=pairwise");

@@ -302,7 +302,7 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
 /* 004: the main table (MAPE overall and over disoccluded pixels) and its claims. */
 /* 004 Table 2's layout: each reuse's pass times per frame (run 0's means over the frames). */
 static int table2_004(struct text *md, const char *dir, const struct eval_step *s, char (*label)[160],
-                      const char *const *names)
+                      const char *const *names, int rows)
 {
     struct csv_table p;
     if (read_step_csv(dir, s, "passes", &p) != 0)
@@ -313,7 +313,7 @@ static int table2_004(struct text *md, const char *dir, const struct eval_step *
             "search, canonical weight m_c, stochastic neighbor reuse):\n\n| reuse | initial | temporal | select | "
             "spatial | cells | cell search | m_c | neighbor reuse | shade "
             "|\n|---|---|---|---|---|---|---|---|---|---|\n");
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < rows; k++) {
         const int r = csv_table_find(&p, label[k]);
         put(md, "| %s |", names[k]);
         for (size_t q = 0; q < sizeof pass / sizeof pass[0]; q++)
@@ -327,21 +327,26 @@ static int table2_004(struct text *md, const char *dir, const struct eval_step *
 static int paper_004(struct text *md, struct claims *cl, const struct eval_options *o, const char *dir,
                      const struct eval_step *s, const struct csv_table *t)
 {
-    char a[64], b[64], c[64], label[3][160];
+#define ROWS_004 5
+    char a[64], b[64], c[64], label[ROWS_004][160];
     struct step_text x;
     step_text(o, s, &x);
     const char *scene = x.heading, *where = x.where, *diff = x.diff;
-    snprintf(label[0], sizeof label[0], "%s", s->base);
-    snprintf(label[1], sizeof label[1], "%s:spatial.reuse=spmis", s->base);
-    snprintf(label[2], sizeof label[2], "%s:spatial.reuse=spmis:spmis.search_score=compat", s->base);
-    static const char *const names[] = {"standard (3 neighbors, 30 px)", "SPMIS (004)",
-                                        "SPMIS, compat search (ours)"};
+    static const char *const suffix[ROWS_004] = {"", ":spatial.reuse=spmis",
+                                                 ":spatial.reuse=spmis:spmis.search_score=compat",
+                                                 ":spatial.reuse=spmis:spmis.search_steps=0",
+                                                 ":spatial.reuse=spmis:spmis.search=low-confidence"};
+    for (int k = 0; k < ROWS_004; k++)
+        snprintf(label[k], sizeof label[k], "%s%s", s->base, suffix[k]);
+    static const char *const names[ROWS_004] = {"standard (3 neighbors, 30 px)", "SPMIS (004)",
+                                                "SPMIS, compat search (ours)", "SPMIS, own cell only",
+                                                "SPMIS, low-confidence search (ours)"};
     put(md,
         "\n### %s, %s\n\nLast frame (%d) of the camera path, means over %d runs +- standard errors:\n\n"
         "| reuse | ms/frame | MAPE | MAPE disoccluded | disoccluded share | relMSE |\n|---|---|---|---|---|---|\n",
         scene, s->base, eval_frames(o, "004") - 1, eval_runs(o));
-    int row[3];
-    for (int k = 0; k < 3; k++) {
+    int row[ROWS_004];
+    for (int k = 0; k < ROWS_004; k++) {
         const int r = row[k] = csv_table_find(t, label[k]);
         fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), a, sizeof a);
         fmt_pm(csv_table_num(t, r, "mape_disoccluded"), csv_table_num(t, r, "mape_disoccluded_sem"), b, sizeof b);
@@ -352,10 +357,13 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
     }
     const int pt = !strcmp(s->base, "restir-pt");
     static const char *const col[2][2] = {{"mape", "mape_sem"}, {"mape_disoccluded", "mape_disoccluded_sem"}};
-    static const char *const what[2][2] = {
+    static const char *const what[ROWS_004 - 1][2] = {
         {"SPMIS: MAPE overall vs standard", "SPMIS: MAPE disoccluded vs standard"},
-        {"compat search (ours): MAPE overall vs standard", "compat search (ours): MAPE disoccluded vs standard"}};
-    for (int v = 0; v < 2; v++)
+        {"compat search (ours): MAPE overall vs standard", "compat search (ours): MAPE disoccluded vs standard"},
+        {"SPMIS, own cell only: MAPE overall vs standard", "SPMIS, own cell only: MAPE disoccluded vs standard"},
+        {"low-confidence search (ours): MAPE overall vs standard",
+         "low-confidence search (ours): MAPE disoccluded vs standard"}};
+    for (int v = 0; v < ROWS_004 - 1; v++)
         for (int m = 0; m < 2; m++)
             claim(cl, "004", what[v][m], where,
                   rel_change_of(csv_table_num(t, row[v + 1], col[m][0]), csv_table_num(t, row[v + 1], col[m][1]),
@@ -365,7 +373,8 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
                        : (m ? "lower in disocclusions (the paper: ReSTIR PT only)"
                             : "lower (the paper: ReSTIR PT only)"),
                   v ? NO_CLAIM : REDUCTION(0.0), diff);
-    return table2_004(md, dir, s, label, names) == 0 ? 0 : EXIT_RUNTIME;
+    return table2_004(md, dir, s, label, names, ROWS_004) == 0 ? 0 : EXIT_RUNTIME;
+#undef ROWS_004
 }
 
 /* 004 Figures 2, 6 and 7: SPMIS's own variants on one scene, and the claims the figures make. */

@@ -84,7 +84,8 @@ static void test_bad_input(char *err)
     EXPECT(cli_run(tmp, args, err) == 0, "the same evaluation planned again: %s", err);
 
     /* only the first step's jobs done: a merge is refused, a --partial merge names the others */
-    EXPECT(sh("head -n 7 '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel -j 2 > '%s/parallel.log' 2>&1", dir, dir) == 0,
+    /* the reference and 5 reuse rows x 2 runs */
+    EXPECT(sh("head -n 11 '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel -j 2 > '%s/parallel.log' 2>&1", dir, dir) == 0,
            "the first step's jobs failed");
     snprintf(args, sizeof args, "evaluate --merge '%s'", dir);
     EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "004-cornell-restir-di are missing"),
@@ -213,7 +214,9 @@ static void test_tables_are_compares(char *err)
     snprintf(out, sizeof out, "%s/compare_004", tmp);
     snprintf(args, sizeof args,
              "compare --scene cornell --res 208x208 --runs 2 --ref-spp 8 --frames 4 --camera path --methods "
-             "'restir-pt,restir-pt:spatial.reuse=spmis,restir-pt:spatial.reuse=spmis:spmis.search_score=compat' "
+             "'restir-pt,restir-pt:spatial.reuse=spmis,restir-pt:spatial.reuse=spmis:spmis.search_score=compat,"
+             "restir-pt:spatial.reuse=spmis:spmis.search_steps=0,restir-pt:spatial.reuse=spmis:spmis.search=low-"
+             "confidence' "
              "--set spatial.neighbors=3 --set spatial.radius=30 --set mis=pairwise --set confidence_cap=20 --set "
              "pt.candidates=1 --set pt.max_bounces=8 --out '%s'",
              out);
