@@ -485,6 +485,12 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
                          csv_table_num(t, r, "gradient_relmse"), csv_table_num(t, r, "gradient_relmse_sem")),
               "lower at equal time (images only)", REDUCTION(0.0), diff);
     }
+    /* Gradient after ReSTIR once: the same samples per frame as ours, not the paper's equal time */
+    const int once = csv_table_find(t, "grad-after-restir");
+    claim(cl, "002", "gradient relMSE vs Gradient after ReSTIR x 1 (equal samples)", where,
+          rel_change_of(csv_table_num(t, me, "gradient_relmse"), csv_table_num(t, me, "gradient_relmse_sem"),
+                     csv_table_num(t, once, "gradient_relmse"), csv_table_num(t, once, "gradient_relmse_sem")),
+          "none (not in the paper)", NO_CLAIM, diff);
 }
 
 static const char *paper_title(const char *paper)
