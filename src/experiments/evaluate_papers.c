@@ -134,6 +134,12 @@ const char *const eval_000_configs[] = {"bitterli",
                                         "fast-history-temporal", /* issue 42: does spatial reuse itself help? */
                                         NULL};
 
+const char *const eval_004_suffixes[EVAL_004_ROWS] = {
+    "", ":spatial.reuse=spmis", ":spatial.reuse=spmis:spmis.search_score=compat",
+    /* issue 42's deciding rows: the own cell only (does the search cost SPMIS its overall loss?),
+     * and the search only where the own cell's confidence is low */
+    ":spatial.reuse=spmis:spmis.search_steps=0", ":spatial.reuse=spmis:spmis.search=low-confidence"};
+
 /* Whether name is an item of the comma-separated list. */
 static int in_list(const char *list, const char *name)
 {
@@ -201,7 +207,8 @@ static void steps_000(const struct eval_options *o, const char *scene, int first
 
 /* 004 Sec. 6: the last frame of a camera animation; standard reuse (3 neighbors in 30 px, pairwise
  * MIS) against SPMIS (8x8 cells, N = 3, N_c = 1, the 12-tap search from 30 px), SPMIS with our
- * compatibility-scored cell search, with the own cell only, and with the low-confidence search. ReSTIR PT: 1 initial candidate, 8 bounces, cap 20. The
+ * compatibility-scored cell search, with the own cell only, and with the low-confidence search
+ * (eval_004_suffixes). ReSTIR PT: 1 initial candidate, 8 bounces, cap 20. The
  * ablation step varies SPMIS alone as Figures 2, 6 and 7 do. */
 static void steps_004(const struct eval_options *o, const char *scene, const char *base, int ablation,
                       struct eval_step *steps, int *n)
@@ -221,13 +228,14 @@ static void steps_004(const struct eval_options *o, const char *scene, const cha
             "%s:spatial.reuse=spmis:spmis.canonical_candidates=4,%s:spatial.reuse=spmis:spmis.canonical_candidates="
             "M",
             base, base, base, base, base, base);
-    else
-        /* issue 42's deciding rows: the own cell only (does the search cost SPMIS its overall loss?),
-         * and the search only where the own cell's confidence is low */
-        add(s,
-            "%s,%s:spatial.reuse=spmis,%s:spatial.reuse=spmis:spmis.search_score=compat,"
-            "%s:spatial.reuse=spmis:spmis.search_steps=0,%s:spatial.reuse=spmis:spmis.search=low-confidence",
-            base, base, base, base, base);
+    else {
+        char list[512] = "";
+        size_t used = 0;
+        for (int k = 0; k < EVAL_004_ROWS; k++)
+            used += (size_t)snprintf(list + used, sizeof list - used, "%s%s%s", k ? "," : "", base,
+                                     eval_004_suffixes[k]);
+        add(s, "%s", list);
+    }
     set(s, "spatial.neighbors=3");
     set(s, "spatial.radius=30");
     set(s, "mis=pairwise");

@@ -43,6 +43,11 @@ extern const struct eval_scene_note eval_scene_notes[];
 extern const char *const eval_000_configs[];
 #define EVAL_000_TABLE1_CONFIGS 4
 
+/* 004's main table: the reuse variants each step runs, as suffixes of the base method's spec (the
+ * first, "", is standard reuse), in the order of the table's rows. */
+#define EVAL_004_ROWS 5
+extern const char *const eval_004_suffixes[EVAL_004_ROWS];
+
 /* The steps of o->paper ("all": 000, 004 and 002 in turn) into steps (at most EVAL_MAX_STEPS).
  * Returns 0, or -1 with msg (RESTIR_MSG_LEN): an unknown paper, a resolution below what the
  * paper's pixel radii allow (named), or --configs naming what 000 does not run or leaving out its

@@ -327,26 +327,21 @@ static int table2_004(struct text *md, const char *dir, const struct eval_step *
 static int paper_004(struct text *md, struct claims *cl, const struct eval_options *o, const char *dir,
                      const struct eval_step *s, const struct csv_table *t)
 {
-#define ROWS_004 5
-    char a[64], b[64], c[64], label[ROWS_004][160];
+    char a[64], b[64], c[64], label[EVAL_004_ROWS][160];
     struct step_text x;
     step_text(o, s, &x);
     const char *scene = x.heading, *where = x.where, *diff = x.diff;
-    static const char *const suffix[ROWS_004] = {"", ":spatial.reuse=spmis",
-                                                 ":spatial.reuse=spmis:spmis.search_score=compat",
-                                                 ":spatial.reuse=spmis:spmis.search_steps=0",
-                                                 ":spatial.reuse=spmis:spmis.search=low-confidence"};
-    for (int k = 0; k < ROWS_004; k++)
-        snprintf(label[k], sizeof label[k], "%s%s", s->base, suffix[k]);
-    static const char *const names[ROWS_004] = {"standard (3 neighbors, 30 px)", "SPMIS (004)",
+    for (int k = 0; k < EVAL_004_ROWS; k++)
+        snprintf(label[k], sizeof label[k], "%s%s", s->base, eval_004_suffixes[k]);
+    static const char *const names[EVAL_004_ROWS] = {"standard (3 neighbors, 30 px)", "SPMIS (004)",
                                                 "SPMIS, compat search (ours)", "SPMIS, own cell only",
                                                 "SPMIS, low-confidence search (ours)"};
     put(md,
         "\n### %s, %s\n\nLast frame (%d) of the camera path, means over %d runs +- standard errors:\n\n"
         "| reuse | ms/frame | MAPE | MAPE disoccluded | disoccluded share | relMSE |\n|---|---|---|---|---|---|\n",
         scene, s->base, eval_frames(o, "004") - 1, eval_runs(o));
-    int row[ROWS_004];
-    for (int k = 0; k < ROWS_004; k++) {
+    int row[EVAL_004_ROWS];
+    for (int k = 0; k < EVAL_004_ROWS; k++) {
         const int r = row[k] = csv_table_find(t, label[k]);
         fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), a, sizeof a);
         fmt_pm(csv_table_num(t, r, "mape_disoccluded"), csv_table_num(t, r, "mape_disoccluded_sem"), b, sizeof b);
@@ -357,13 +352,13 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
     }
     const int pt = !strcmp(s->base, "restir-pt");
     static const char *const col[2][2] = {{"mape", "mape_sem"}, {"mape_disoccluded", "mape_disoccluded_sem"}};
-    static const char *const what[ROWS_004 - 1][2] = {
+    static const char *const what[EVAL_004_ROWS - 1][2] = {
         {"SPMIS: MAPE overall vs standard", "SPMIS: MAPE disoccluded vs standard"},
         {"compat search (ours): MAPE overall vs standard", "compat search (ours): MAPE disoccluded vs standard"},
         {"SPMIS, own cell only: MAPE overall vs standard", "SPMIS, own cell only: MAPE disoccluded vs standard"},
         {"low-confidence search (ours): MAPE overall vs standard",
          "low-confidence search (ours): MAPE disoccluded vs standard"}};
-    for (int v = 0; v < ROWS_004 - 1; v++)
+    for (int v = 0; v < EVAL_004_ROWS - 1; v++)
         for (int m = 0; m < 2; m++)
             claim(cl, "004", what[v][m], where,
                   rel_change_of(csv_table_num(t, row[v + 1], col[m][0]), csv_table_num(t, row[v + 1], col[m][1]),
@@ -373,8 +368,7 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
                        : (m ? "lower in disocclusions (the paper: ReSTIR PT only)"
                             : "lower (the paper: ReSTIR PT only)"),
                   v ? NO_CLAIM : REDUCTION(0.0), diff);
-    return table2_004(md, dir, s, label, names, ROWS_004) == 0 ? 0 : EXIT_RUNTIME;
-#undef ROWS_004
+    return table2_004(md, dir, s, label, names, EVAL_004_ROWS) == 0 ? 0 : EXIT_RUNTIME;
 }
 
 /* 004 Figures 2, 6 and 7: SPMIS's own variants on one scene, and the claims the figures make. */

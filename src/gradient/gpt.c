@@ -76,8 +76,8 @@ long long gpt_pass(const struct scene *s, const struct shift_params *sp, const s
                 if (s->tri_emitter[hit.tri] >= 0 && hit.front)
                     Le = v3_add(Le, v3_scale(lights_radiance(s, hit.tri, hit.b1, hit.b2, v3_neg(d)), ctx.inv_spp));
                 struct path_vertex x1 = path_vertex_from_hit(&hit, d);
-                ctx.rays += path_walk_run(s, &x1, ctx.trial.seed, render_params_light_choice(p), p->max_bounces, p->rr_bounces, &walk,
-                                          candidate, &ctx);
+                ctx.rays += path_walk_run(s, &x1, ctx.trial.seed, render_params_light_choice(p), p->max_bounces,
+                                          p->rr_bounces, &walk, candidate, &ctx);
             }
             vec3 L = v3_is_finite(ctx.primal) ? ctx.primal : v3s(0.0f);
             primal[3 * i] = L.x + Le.x;

@@ -117,7 +117,8 @@ static struct sum3d pixel_sobol(const struct scene *s, const struct camera_view 
             cs.time = sobol_sample_1d(sn.index, sobol_dim_key(&sn, 2));
         vec3 o, d;
         camera_sample_ray(view, &cs, (float)x + jitter[0], (float)y + jitter[1], &o, &d);
-        vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, &numbers, 0u, render_params_light_choice(p), p->rr_bounces, rays);
+        vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, &numbers, 0u, render_params_light_choice(p), p->rr_bounces,
+                                  rays);
         if (v3_is_finite(L))
             sum3d_add(&sum, L);
     }
@@ -126,8 +127,9 @@ static struct sum3d pixel_sobol(const struct scene *s, const struct camera_view 
 
 /* One pixel's spp paths with independent numbers: the pixel's PCG32 stream for (seed, frame) gives
  * each path its jitter, seed and camera dimensions; the walk replays from the seed (path_walk.h). */
-static struct sum3d pixel_independent(const struct scene *s, const struct camera_view *view, const struct render_params *p,
-                              int frame, int x, int y, int i, int spp, long long *rays)
+static struct sum3d pixel_independent(const struct scene *s, const struct camera_view *view,
+                                      const struct render_params *p, int frame, int x, int y, int i, int spp,
+                                      long long *rays)
 {
     pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_PT);
     struct sum3d sum = {0.0, 0.0, 0.0};
@@ -137,7 +139,8 @@ static struct sum3d pixel_independent(const struct scene *s, const struct camera
         struct camera_sample cs = camera_sample_draw(view, &rng);
         vec3 o, d;
         camera_sample_ray(view, &cs, (float)x + jx, (float)y + jy, &o, &d);
-        vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, NULL, path_seed, render_params_light_choice(p), p->rr_bounces, rays);
+        vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, NULL, path_seed, render_params_light_choice(p),
+                                  p->rr_bounces, rays);
         if (v3_is_finite(L))
             sum3d_add(&sum, L);
     }

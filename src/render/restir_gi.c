@@ -215,7 +215,8 @@ long long gi_initial_pass(const struct gi_frame *fr, const struct gbuffer *g, st
             const struct path_vertex v = path_vertex_from_hit(&hit, d);
             /* D: paths of length 2, NEE and BSDF hit MIS'd as in pt. */
             vec3 D = v3s(0.0f);
-            rays += path_walk_run(s, &v, draw_seed(&rng), render_params_light_choice(p), direct_bounces, p->rr_bounces, &walk, accumulate, &D);
+            rays += path_walk_run(s, &v, draw_seed(&rng), render_params_light_choice(p), direct_bounces, p->rr_bounces,
+                                  &walk, accumulate, &D);
             base[i] = v3_is_finite(D) ? v3_add(Le, D) : Le;
             x1[i] = v;
             res->c = 1.0f;

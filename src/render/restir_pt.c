@@ -116,8 +116,8 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
                     Le = v3_add(Le, lights_radiance(s, hit.tri, hit.b1, hit.b2, v3_neg(d)));
                 struct path_vertex x1 = path_vertex_from_hit(&hit, d);
                 ctx.trial.seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
-                rays += path_walk_run(s, &x1, ctx.trial.seed, render_params_light_choice(p), p->max_bounces, p->rr_bounces, &walk,
-                                      offer_candidate, &ctx);
+                rays += path_walk_run(s, &x1, ctx.trial.seed, render_params_light_choice(p), p->max_bounces,
+                                      p->rr_bounces, &walk, offer_candidate, &ctx);
                 keep_chosen(&ctx, &walk);
             }
             emission[i] = v3_scale(Le, ctx.inv_paths);

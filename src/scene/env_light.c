@@ -94,7 +94,8 @@ static void build_density(struct env_sampler *s)
         const double sc = row_sin(y, h);
         const double band = texel_solid_angle(y, w, h);
         for (int x = 0; x < w; x++) {
-            s->density[(size_t)y * (size_t)w + (size_t)x] = (float)(texel_weight(s->env, x, y, sc, s->lum_floor) * scale);
+            const double weight = texel_weight(s->env, x, y, sc, s->lum_floor);
+            s->density[(size_t)y * (size_t)w + (size_t)x] = (float)(weight * scale);
             integral += v3_luminance(environment_texel(s->env, x, y)) * band;
         }
     }

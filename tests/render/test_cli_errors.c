@@ -279,8 +279,9 @@ static void check_study(void)
                    "spmis.confidence_update=max --out '%1$s'",
                    2, "spmis.confidence_update", "max");
     expect_failure("unknown shift.distance_mode",
-                   "render --scene cornell --method restir-pt --res 16x16 --set shift.distance_mode=pixels --out '%1$s'", 2,
-                   "shift.distance_mode", "pixels");
+                   "render --scene cornell --method restir-pt --res 16x16 --set shift.distance_mode=pixels "
+                   "--out '%1$s'",
+                   2, "shift.distance_mode", "pixels");
     expect_failure("grad.inner_jacobian_ratio below 1",
                    "render --scene cornell --method grestir-pt --res 16x16 --set grad.inner_jacobian_ratio=0.5 --out "
                    "'%1$s'",

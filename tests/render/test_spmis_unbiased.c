@@ -4,8 +4,9 @@
  * Sidak-corrected) and over the image (pooled z), with the confidence adjustment on and off, with
  * N = 1, N = N_c = M, confidence-proportional canonical draws, the low-confidence search, the
  * compatibility-scored search (spmis.search_score=compat, ours), the stored confidence from the
- * drawn pixels (spmis.confidence_update=drawn) and the history taken before spatial reuse, on `pillars` (disocclusion) and `cornell`. The BIASED
- * sparse search is measured and reported, not asserted.
+ * drawn pixels (spmis.confidence_update=drawn) and the history taken before spatial reuse, on
+ * `pillars` (disocclusion) and `cornell`. The BIASED sparse search is measured and reported, not
+ * asserted.
  * Usage for experiments: render_test_spmis_unbiased pt|di SCENE RUNS key=value... */
 #include <stdlib.h>
 #include <string.h>

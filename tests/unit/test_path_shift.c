@@ -355,7 +355,8 @@ static void test_scene(const char *name, int paths)
                 if (!scene_intersect(&s, cur.position, d, 0.0f, INFINITY, &hit))
                     continue;
                 struct path_vertex x1 = path_vertex_from_hit(&hit, d);
-                path_walk_run(&s, &x1, ctx.trial.seed, LIGHT_CHOICE_POWER_AREA, MAX_BOUNCES, RR_BOUNCES, &walk, collect, &ctx);
+                path_walk_run(&s, &x1, ctx.trial.seed, LIGHT_CHOICE_POWER_AREA, MAX_BOUNCES, RR_BOUNCES, &walk, collect,
+                              &ctx);
             }
         }
     }
