@@ -17,8 +17,9 @@
 #include "restir/mis.h"
 #include "restir/reservoir.h"
 
-/* The most domains one merge sees: canonical, neighbor r+, neighbor r- (cross-sign reuse). */
-#define PAIR_MAX_DOMAINS 3
+/* The most domains one merge sees: canonical, neighbor r+, neighbor r- (cross-sign reuse); the
+ * canonical and four previous pairs (temporal.subpixel=search). */
+#define PAIR_MAX_DOMAINS 5
 
 struct pair_domain {
     struct pt_domain px[2];
@@ -221,10 +222,10 @@ long long grestir_initial_pass(const struct pt_frame *fr, const struct gbuffer *
 /* One GRIS merge into dom[0] (the canonical pair, identity shift) of n reservoirs; reservoir j lives
  * in pair dom_id[j] (dom[] indexed by it) with target sign sg[j]. P[k * n + j] = p_hat_{<-k}(Y_j)
  * (004 Eq. 10) as in restir_pt.c's gris_merge, with the outer shift and each technique's own
- * target. c_sum counts each pair once. */
+ * target, under resampling MIS `mis`. c_sum counts each pair once, times share[dom_id] (NULL: 1). */
 static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_domain *dom, const int *dom_id,
-                            const enum restir_grad_sign *sg, const struct pair_reservoir *const *in, pcg32 *rng,
-                            struct pair_reservoir *out)
+                            const enum restir_grad_sign *sg, const struct pair_reservoir *const *in,
+                            enum restir_mis mis, const float *share, pcg32 *rng, struct pair_reservoir *out)
 {
     const struct render_params *p = fr->p;
     long long rays = 0;
@@ -237,7 +238,7 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
     for (int j = 0; j < n; j++) {
         c[j] = fminf(in[j]->c, p->confidence_cap);
         if (j == 0 || dom_id[j] != dom_id[j - 1])
-            c_sum += c[j];
+            c_sum += share ? share[dom_id[j]] * c[j] : c[j];
         J[j] = 0.0f;
         ok[j] = 0;
         if (!pair_has_sample(in[j]))
@@ -262,7 +263,7 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
         int shifted_to = -1; /* dom_id whose back-shift of Y_j is cached in hz, Jb */
         float hz[3] = {0, 0, 0}, Jb = 0.0f, zJ;
         for (int k = 1; k < n; k++) {
-            if (!restir_mis_needs(p->mis, k, j))
+            if (!restir_mis_needs(mis, k, j))
                 continue;
             if (dom_id[k] == dom_id[j]) {
                 P[k * n + j] = restir_grad_target(sg[k], in[j]->h) / J[j]; /* p_hat_k(X_j) |dT^-1/dy| */
@@ -287,7 +288,7 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
         u[j] = pcg32_float(rng);
         J[j] = ok[j] ? J[j] : 0.0f;
     }
-    const int chosen = restir_gris_resample(p->mis, n, c, P, W, J, u, &W_Y); /* Eq. 20, 004 Eq. 5-7 */
+    const int chosen = restir_gris_resample(mis, n, c, P, W, J, u, &W_Y); /* Eq. 20, 004 Eq. 5-7 */
     struct pair_reservoir result;
     pair_clear(&result, restir_gris_confidence_merge(c_sum, p->confidence_cap));
     if (chosen >= 0) {
@@ -306,11 +307,70 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
 
 /* ---- temporal reuse ----------------------------------------------------------------------------- */
 
+/* The previous pairs that pair (x, y) along dir reuses: dom[1 .. n], their first pixels qa[0 .. n),
+ * and the share of each in the merged confidence (share[0] = 1 for the canonical dom[0]). The pair
+ * moves with the nearer pixel's fractional motion (Sec. 4.3.1). wrap: the pair under it, with its
+ * offsets translated on the torus; search: the up to four pairs the pair's squares overlap, with
+ * clipped shifts and their overlap areas as shares (restir_pt.c's temporal_search_merge says why the
+ * balance heuristic over them is unbiased). Returns n (0: no history). */
+static int temporal_pairs(const struct pt_frame *fr, const struct gbuffer *g, const struct gbuffer *prev_g, int x,
+                          int y, int dir, struct pair_domain *dom, int *qa, float *share)
+{
+    const struct render_params *p = fr->p;
+    const int w = g->width, a = y * w + x;
+    int ex, ey;
+    pair_offset(dir, &ex, &ey);
+    const int b = a + ex + ey * w;
+    int pivot = -1;
+    if (g->valid[a] && (!g->valid[b] || g->depth[a] <= g->depth[b]))
+        pivot = a;
+    else if (g->valid[b])
+        pivot = b;
+    if (pivot < 0)
+        return 0;
+    struct gbuffer_history_cell cells[4];
+    int m;
+    const int search = p->temporal_subpixel == TEMPORAL_SUBPIXEL_SEARCH;
+    if (search) {
+        m = gbuffer_history_square(g, pivot, prev_g, p->temporal_normal, p->temporal_plane, cells);
+    } else {
+        cells[0].q = gbuffer_history_pixel(g, pivot, prev_g, p->temporal_normal, p->temporal_plane);
+        cells[0].area = 1.0f;
+        m = cells[0].q >= 0;
+    }
+    dom[0] = pair_current(fr->view, x, y, dir);
+    share[0] = 1.0f;
+    int n = 0;
+    for (int c = 0; c < m; c++) {
+        const int q = cells[c].q, off = pivot == a ? 0 : ex + ey * w;
+        const int qax = q % w - (pivot == a ? 0 : ex), qay = q / w - (pivot == a ? 0 : ey);
+        if (!pair_inside(w, g->height, qax, qay, dir))
+            continue;
+        struct pair_domain *d = &dom[n + 1];
+        *d = pair_current(fr->prev_view, qax, qay, dir);
+        for (int k = 0; k < 2; k++) {
+            if (p->jitter) {
+                /* Area ReSTIR: the previous pair's offsets move with the pair motion */
+                d->px[k].origin[0] -= g->motion[2 * pivot];
+                d->px[k].origin[1] -= g->motion[2 * pivot + 1];
+            }
+            d->px[k].clip = dom[0].px[k].clip = search;
+        }
+        qa[n] = q - off;
+        share[n + 1] = cells[c].area;
+        n++;
+    }
+    return n;
+}
+
 long long grestir_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct gbuffer *prev_g,
                                 struct grestir_state *st, int prev_slot, long long *accepted)
 {
     const struct render_params *p = fr->p;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h), ns = sign_count(p);
+    /* search: the balance heuristic (the pairwise one would dilute each region's previous pair) */
+    const enum restir_mis mis =
+        p->temporal_subpixel == TEMPORAL_SUBPIXEL_SEARCH && p->mis != RESTIR_MIS_UNIFORM ? RESTIR_MIS_BALANCE : p->mis;
     long long rays = 0, acc = 0;
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays, acc)
     for (int t = 0; t < ntiles; t++) {
@@ -319,43 +379,24 @@ long long grestir_temporal_pass(const struct pt_frame *fr, const struct gbuffer 
             for (int dir = 0; dir < GRAD_PAIR_DIRS; dir++) {
                 if (!pair_inside(w, h, x, y, dir))
                     continue;
-                int ex, ey;
-                pair_offset(dir, &ex, &ey);
-                const int b = a + ex + ey * w;
-                /* Pair motion (Sec. 4.3.1): the nearer pixel's fractional motion. */
-                int pivot = -1;
-                if (g->valid[a] && (!g->valid[b] || g->depth[a] <= g->depth[b]))
-                    pivot = a;
-                else if (g->valid[b])
-                    pivot = b;
-                if (pivot < 0)
+                struct pair_domain dom[PAIR_MAX_DOMAINS];
+                int qa[PAIR_MAX_DOMAINS - 1];
+                float share[PAIR_MAX_DOMAINS];
+                const int m = temporal_pairs(fr, g, prev_g, x, y, dir, dom, qa, share);
+                if (m == 0)
                     continue;
-                int q = gbuffer_history_pixel(g, pivot, prev_g, p->temporal_normal, p->temporal_plane);
-                if (q < 0)
-                    continue;
-                int qa = pivot == a ? q : q - ex - ey * w;
-                int qax = pivot == a ? q % w : q % w - ex, qay = pivot == a ? q / w : q / w - ey;
-                if (!pair_inside(w, h, qax, qay, dir))
-                    continue;
-                struct pair_domain dom[2];
-                dom[0] = pair_current(fr->view, x, y, dir);
-                dom[1] = pair_current(fr->prev_view, qax, qay, dir);
-                if (p->jitter) {
-                    /* Area ReSTIR: the previous pair's offsets move with the pair motion */
-                    for (int k = 0; k < 2; k++) {
-                        dom[1].px[k].origin[0] -= g->motion[2 * pivot];
-                        dom[1].px[k].origin[1] -= g->motion[2 * pivot + 1];
-                    }
-                }
-                const int dom_id[2] = {0, 1};
+                const int dom_id[PAIR_MAX_DOMAINS] = {0, 1, 2, 3, 4};
                 pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)a * 2 + (uint64_t)dir,
                                     RNG_PASS_GRAD_TEMPORAL);
                 for (int s = 0; s < ns; s++) {
-                    const enum restir_grad_sign sg[2] = {sign_of(p, s), sign_of(p, s)};
-                    const struct pair_reservoir *in[2] = {&st->work[dir][s][a],
-                                                          &st->hist[prev_slot][dir][s][qa]};
+                    enum restir_grad_sign sg[PAIR_MAX_DOMAINS];
+                    const struct pair_reservoir *in[PAIR_MAX_DOMAINS] = {&st->work[dir][s][a]};
+                    for (int k = 0; k <= m; k++)
+                        sg[k] = sign_of(p, s);
+                    for (int k = 0; k < m; k++)
+                        in[k + 1] = &st->hist[prev_slot][dir][s][qa[k]];
                     struct pair_reservoir res;
-                    rays += pair_merge(fr, 2, dom, dom_id, sg, in, &rng, &res);
+                    rays += pair_merge(fr, m + 1, dom, dom_id, sg, in, mis, share, &rng, &res);
                     st->work[dir][s][a] = res;
                 }
                 acc++;
@@ -502,7 +543,8 @@ long long grestir_spatial_pass(const struct pt_frame *fr, const struct gbuffer *
                     const enum restir_grad_sign sg[3] = {sign_of(p, s), sign_of(p, s), sign_of(p, 1 - s)};
                     const struct pair_reservoir *in[3] = {&st->work[dir][s][a], &st->work[dir][s][c],
                                                           &st->work[dir][1 - s][c]};
-                    rays += pair_merge(fr, cross ? 3 : 2, dom, dom_id, sg, in, &rng, &st->hist[slot][dir][s][a]);
+                    rays += pair_merge(fr, cross ? 3 : 2, dom, dom_id, sg, in, p->mis, NULL, &rng,
+                                       &st->hist[slot][dir][s][a]);
                 }
             }
         }

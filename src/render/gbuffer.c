@@ -143,14 +143,47 @@ int gbuffer_motion_pixel(const struct gbuffer *g, int i, const struct gbuffer *p
     return prev_g->valid[q] ? q : -1;
 }
 
+/* Does valid previous pixel q show pixel i's surface (gbuffer_history_pixel's test)? */
+static int same_surface(const struct gbuffer *g, int i, const struct gbuffer *prev_g, int q, float normal_min,
+                        float plane_max)
+{
+    if (prev_g->material[q] != g->material[i] || v3_dot(g->normal[i], prev_g->normal[q]) < normal_min)
+        return 0;
+    float plane = fabsf(v3_dot(prev_g->normal[q], v3_sub(g->position[i], prev_g->position[q])));
+    return plane <= plane_max * g->depth[i];
+}
+
 int gbuffer_history_pixel(const struct gbuffer *g, int i, const struct gbuffer *prev_g, float normal_min,
                           float plane_max)
 {
     int q = gbuffer_motion_pixel(g, i, prev_g);
-    if (q < 0 || prev_g->material[q] != g->material[i])
-        return -1;
-    if (v3_dot(g->normal[i], prev_g->normal[q]) < normal_min)
-        return -1;
-    float plane = fabsf(v3_dot(prev_g->normal[q], v3_sub(g->position[i], prev_g->position[q])));
-    return plane <= plane_max * g->depth[i] ? q : -1;
+    return q >= 0 && same_surface(g, i, prev_g, q, normal_min, plane_max) ? q : -1;
+}
+
+int gbuffer_history_square(const struct gbuffer *g, int i, const struct gbuffer *prev_g, float normal_min,
+                           float plane_max, struct gbuffer_history_cell cells[4])
+{
+    if (!g->valid[i] || g->motion[2 * i] == GBUFFER_NO_MOTION)
+        return 0;
+    /* pixel i's square [x, x+1) x [y, y+1) moved by the motion vector */
+    const float sx = (float)(i % g->width) + g->motion[2 * i], sy = (float)(i / g->width) + g->motion[2 * i + 1];
+    const float fx = floorf(sx), fy = floorf(sy);
+    const float wx[2] = {fx + 1.0f - sx, sx - fx}, wy[2] = {fy + 1.0f - sy, sy - fy};
+    int n = 0;
+    for (int dy = 0; dy < 2; dy++) {
+        for (int dx = 0; dx < 2; dx++) {
+            const float qx = fx + (float)dx, qy = fy + (float)dy, area = wx[dx] * wy[dy];
+            if (!(area > 0.0f && qx >= 0.0f && qy >= 0.0f && qx < (float)prev_g->width && qy < (float)prev_g->height))
+                continue;
+            const int q = (int)qy * prev_g->width + (int)qx;
+            if (!prev_g->valid[q] || !same_surface(g, i, prev_g, q, normal_min, plane_max))
+                continue;
+            cells[n].q = q;
+            cells[n].area = area;
+            cells[n].origin[0] = qx - g->motion[2 * i];
+            cells[n].origin[1] = qy - g->motion[2 * i + 1];
+            n++;
+        }
+    }
+    return n;
 }

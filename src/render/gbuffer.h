@@ -63,6 +63,21 @@ int gbuffer_motion_pixel(const struct gbuffer *g, int i, const struct gbuffer *p
 int gbuffer_history_pixel(const struct gbuffer *g, int i, const struct gbuffer *prev_g, float normal_min,
                           float plane_max);
 
+/* A previous pixel that pixel i's square overlaps once moved by its backward motion vector. */
+struct gbuffer_history_cell {
+    int q;           /* previous pixel, row-major */
+    float area;      /* the overlap's area, in pixels (the cells' areas sum to 1 when all pass) */
+    float origin[2]; /* q's corner moved by -motion into the current image (a struct pt_domain origin) */
+};
+
+/* The 2x2 previous pixels that pixel i's square [x, x+1) x [y, y+1), moved by its backward motion
+ * vector, overlaps (Area ReSTIR, Zhang et al. 2024, Sec. 4.3.1), each kept when it is inside the
+ * image, valid, shows pixel i's surface (gbuffer_history_pixel's test) and overlaps with area > 0.
+ * Writes them to cells[0 .. n) and returns n (0 to 4; 0 for an invalid pixel or one without motion).
+ * Reads only G-buffers, so it cannot bias GRIS. */
+int gbuffer_history_square(const struct gbuffer *g, int i, const struct gbuffer *prev_g, float normal_min,
+                           float plane_max, struct gbuffer_history_cell cells[4]);
+
 /* Pixel i's primary hit as a shading point (built once per frame by gbuffer_pass). */
 static inline const struct shading_point *gbuffer_shading(const struct gbuffer *g, int i) { return &g->shading[i]; }
 

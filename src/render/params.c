@@ -44,6 +44,7 @@ static const char *const solver_names[] = {"dct", "cg", NULL};
 static const char *const precond_names[] = {"multigrid", "jacobi", NULL}; /* enum restir_poisson_precond */
 static const char *const visibility_mis_names[] = {"rays", "none", NULL};
 static const char *const temporal_reuse_names[] = {"backproject", "splat", "both", NULL};
+static const char *const temporal_subpixel_names[] = {"wrap", "search", NULL}; /* enum temporal_subpixel_mode */
 static const char *const missing_texture_names[] = {"error", "warn", NULL};
 static const char *const gi_radiance_names[] = {"reevaluate", "stored", NULL}; /* enum gi_radiance_mode */
 static const char *const sampler_names[] = {"independent", "sobol", NULL}; /* enum pt_sampler */
@@ -154,6 +155,13 @@ static const struct param_def params[] = {
      "reservoir lands where its primary hit is seen now; needs jitter=on), or both, combined by balance "
      "MIS (docs/RESTIR_PT.md); all unbiased with mis=pairwise or balance",
      temporal_reuse_names},
+    {"temporal.subpixel", P_NAMES, F(temporal_subpixel), 0, 0, "wrap", NULL,
+     "backprojected sub-pixel samples (restir-pt, area-restir, grad-after-restir, grestir-pt's pairs; needs "
+     "jitter=on and temporal.reuse=backproject): wrap (the previous pixel under the motion vector; a sample "
+     "leaving the current pixel re-enters at its other side) or search (the 2x2 previous pixels the current "
+     "pixel overlaps, each kept where its samples land inside it, Area ReSTIR Sec. 4.3.1; the merge then uses "
+     "balance MIS). Both unbiased",
+     temporal_subpixel_names},
     {"scene.shading_normals", P_BOOL, F(shading_normals), 0, 1, "on", NULL,
      "off: every triangle shades with its geometric normal (no vertex normals, no normal maps), as before "
      "the renderer read them. This CHANGES THE SCENE: for looking at what they do, never for comparing images", NULL},
@@ -451,6 +459,12 @@ int render_params_validate(const struct render_params *p, char *msg)
                  "temporal.reuse=%s needs jitter=on: a splatted path lands anywhere inside its new pixel, which "
                  "only a pixel integrated over its area (jitter) can receive",
                  p->temporal_reuse == TEMPORAL_SPLAT ? "splat" : "both");
+        return -1;
+    }
+    if (p->temporal_subpixel == TEMPORAL_SUBPIXEL_SEARCH && (!p->jitter || p->temporal_reuse != TEMPORAL_BACKPROJECT)) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "temporal.subpixel=search needs jitter=on and temporal.reuse=backproject: it searches the previous "
+                 "pixels a pixel's area overlaps, and splatted paths are not backprojected");
         return -1;
     }
     /* Every key's range or names, also for values set other than through --set (options of their

@@ -34,6 +34,12 @@ enum di_visibility_mis { DI_VIS_MIS_RAYS = 0, DI_VIS_MIS_NONE };
  * ReSTIR), reservoir splatting (Liu et al. 2025: each previous reservoir forward-projected by its
  * primary hit), or both techniques combined by MIS. */
 enum temporal_reuse_mode { TEMPORAL_BACKPROJECT = 0, TEMPORAL_SPLAT, TEMPORAL_BOTH };
+/* Backprojection of sub-pixel samples (jitter on): the previous pixel under the motion vector,
+ * whose samples are translated onto the current pixel on the unit torus (wrap: one leaving the
+ * pixel re-enters at its other side), or the 2x2 previous pixels the current pixel's square
+ * overlaps, each keeping only the samples that land inside it (search: Area ReSTIR, Zhang et al.
+ * 2024, Sec. 4.3.1). Both are unbiased (docs/RESTIR_PT.md). */
+enum temporal_subpixel_mode { TEMPORAL_SUBPIXEL_WRAP = 0, TEMPORAL_SUBPIXEL_SEARCH };
 /* ReSTIR GI: a reused sample point's outgoing radiance toward the shading point that reuses it is
  * estimated again from the sample's own random numbers (unbiased), or the radiance the sample
  * point sent toward the pixel that first traced it (Ouyang et al. 2021; BIASED where the sample
@@ -87,6 +93,7 @@ struct render_params {
     int temporal_ratio_guard; /* 001 Sec. 5 target-ratio guard (biased) */
     float ratio_lo, ratio_hi;
     enum temporal_reuse_mode temporal_reuse; /* path reservoirs only (restir-pt and its relatives) */
+    enum temporal_subpixel_mode temporal_subpixel; /* backprojection of sub-pixel samples */
     int shading_normals;       /* scene.shading_normals: vertex normals and normal maps (1) or flat (0) */
     int alpha_masks;           /* scene.alpha: honour alpha-masked materials (1) or make every one opaque (0) */
     int ray_streams;           /* rays.streams: batched passes trace through Embree streams (1) or ray by ray */

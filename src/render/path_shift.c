@@ -252,8 +252,16 @@ int path_shift(const struct scene *s, const struct shift_params *sp, const struc
     *jacobian = 0.0f;
     if (x->length < 2)
         return fail(y);
-    y->u[0] = translate_offset(x->u[0], from->origin[0] - to->origin[0]);
-    y->u[1] = translate_offset(x->u[1], from->origin[1] - to->origin[1]);
+    if (from->clip || to->clip) {
+        for (int a = 0; a < 2; a++) {
+            y->u[a] = x->u[a] + (from->origin[a] - to->origin[a]);
+            if (!(y->u[a] >= 0.0f && y->u[a] < 1.0f))
+                return fail(y); /* the path lands outside pixel `to` */
+        }
+    } else {
+        y->u[0] = translate_offset(x->u[0], from->origin[0] - to->origin[0]);
+        y->u[1] = translate_offset(x->u[1], from->origin[1] - to->origin[1]);
+    }
     float px, py;
     path_image_position(to->x, to->y, y->u, &px, &py);
     struct camera_pose pose;

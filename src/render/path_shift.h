@@ -71,13 +71,16 @@ struct path_sample {
 
 /* A pixel integration domain: a pixel seen through a camera view, and the translation of the
  * sub-pixel square into a common image frame: a path with offset u in domain A has offset
- * wrap(u + origin_A - origin_B) in domain B. Current-frame pixels use their own coordinates as
+ * wrap(u + origin_A - origin_B) in domain B (with clip: u + origin_A - origin_B where that is in
+ * [0,1)^2, else none). Current-frame pixels use their own coordinates as
  * origin (spatial shifts keep u); a previous-frame pixel uses its coordinates minus the backward
  * motion vector (temporal shifts follow the fractional motion, Zhang et al. 2024). */
 struct pt_domain {
     const struct camera_view *view;
     int x, y;
     float origin[2];
+    int clip; /* a shift from or to this domain translates u without wrapping and is undefined where
+                 the offset leaves [0,1)^2 (temporal.subpixel=search) */
 };
 
 /* Fills the reconnection data of a candidate just produced by a path walk (seed and u already

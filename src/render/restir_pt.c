@@ -160,12 +160,13 @@ static float merge_target(void *vctx, const void *y, int domain)
 }
 
 /* One GRIS merge into domain dom[0] (canonical, identity shift) of n reservoirs living in the
- * domains dom[j] (004 Eq. 5-7). P[k * n + j] = p_hat_{<-k}(Y_j) (004 Eq. 10): row 0 from the
- * forward shifts, the diagonal from the cached target over the forward Jacobian, the rest by
- * shifting Y_j back into domain k. */
+ * domains dom[j] (004 Eq. 5-7) under resampling MIS `mis`. P[k * n + j] = p_hat_{<-k}(Y_j) (004
+ * Eq. 10): row 0 from the forward shifts, the diagonal from the cached target over the forward
+ * Jacobian, the rest by shifting Y_j back into domain k. The output's confidence sums the inputs'
+ * c_j times share[j] (NULL: 1 each) before the cap. */
 static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_domain *dom,
-                            const struct pt_reservoir *const *in, pcg32 *rng, struct pt_reservoir *out,
-                            unsigned *shifted)
+                            const struct pt_reservoir *const *in, enum restir_mis mis, const float *share, pcg32 *rng,
+                            struct pt_reservoir *out, unsigned *shifted)
 {
     const struct render_params *p = fr->p;
     struct merge_shift ctx = {fr, dom, 0};
@@ -176,11 +177,11 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
     struct path_sample Y[PT_MAX_DOMAINS], z;
     for (int j = 0; j < n; j++) {
         c[j] = min_f(in[j]->c, p->confidence_cap); /* fminf is a libm call */
-        c_sum += c[j];
+        c_sum += share ? share[j] * c[j] : c[j];
         x[j] = pt_reservoir_has_sample(in[j]) ? &in[j]->y : NULL;
         cached[j] = in[j]->target;
     }
-    restir_gris_targets(p->mis, n, &shift, x, cached, Y, P, J, &z); /* 004 Eq. 10 */
+    restir_gris_targets(mis, n, &shift, x, cached, Y, P, J, &z); /* 004 Eq. 10 */
     if (shifted) {
         *shifted = 0;
         for (int j = 0; j < n; j++)
@@ -190,7 +191,7 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
         W[j] = in[j]->W;
         u[j] = pcg32_float(rng);
     }
-    const int chosen = restir_gris_resample(p->mis, n, c, P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
+    const int chosen = restir_gris_resample(mis, n, c, P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
     struct pt_reservoir result;
     pt_reservoir_clear(&result, restir_gris_confidence_merge(c_sum, p->confidence_cap));
     if (chosen >= 0) {
@@ -206,6 +207,46 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
 
 /* ---- temporal and spatial reuse ---------------------------------------------------------------- */
 
+/* temporal.subpixel=search: pixel i's reservoir merged with those of the previous pixels its
+ * square overlaps (gbuffer_history_square; Area ReSTIR Sec. 4.3.1). Their domains are translated
+ * pixel squares that tile the image, so a path in the current pixel has exactly one previous
+ * pixel q(y) that a clipped shift reaches, and p_hat_{<-k}(y) = 0 for every other k. The generalized
+ * balance heuristic over all of them (004 Eq. 9) is then the two-domain balance heuristic of the
+ * current pixel and q(y), region by region: a partition of unity wherever p_hat(y) > 0, hence
+ * unbiased. (Pairwise MIS would hand each region only c_q / (c_0 + sum c) of its weight; 1/M stays
+ * 1/M, BIASED.) The merged confidence adds each previous confidence times its overlap area, what a
+ * path drawn uniformly in the pixel meets on average. Returns bit 0: some previous pixel was
+ * merged; bit j > 0: the path of merge input j reached pixel i. */
+static unsigned temporal_search_merge(const struct pt_frame *fr, const struct gbuffer *g, const struct gbuffer *prev_g,
+                                      const struct pt_reservoir *prev_res, int i, struct pt_reservoir *io,
+                                      long long *rays)
+{
+    const struct render_params *p = fr->p;
+    struct gbuffer_history_cell cells[4];
+    const int m = gbuffer_history_square(g, i, prev_g, p->temporal_normal, p->temporal_plane, cells);
+    if (m == 0)
+        return 0;
+    struct pt_domain dom[5];
+    const struct pt_reservoir *in[5] = {io};
+    float share[5] = {1.0f};
+    dom[0] = pt_pixel_domain(fr->view, i % g->width, i / g->width);
+    dom[0].clip = 1;
+    for (int k = 0; k < m; k++) {
+        const int q = cells[k].q;
+        dom[k + 1] = pt_pixel_domain(fr->prev_view, q % g->width, q / g->width);
+        dom[k + 1].origin[0] = cells[k].origin[0];
+        dom[k + 1].origin[1] = cells[k].origin[1];
+        dom[k + 1].clip = 1;
+        in[k + 1] = &prev_res[q];
+        share[k + 1] = cells[k].area;
+    }
+    const enum restir_mis mis = p->mis == RESTIR_MIS_UNIFORM ? RESTIR_MIS_UNIFORM : RESTIR_MIS_BALANCE;
+    pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_TEMPORAL);
+    unsigned shifted;
+    *rays += gris_merge(fr, m + 1, dom, in, mis, share, &rng, io, &shifted);
+    return 1u | (shifted & ~1u);
+}
+
 long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, const struct gbuffer *prev_g,
                            const struct pt_reservoir *prev_res, struct pt_reservoir *io, long long *accepted,
                            unsigned char *flags)
@@ -217,8 +258,15 @@ long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, c
     for (int t = 0; t < ntiles; t++) {
         for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
             const int x = px.x, y = px.y, i = px.i;
-            int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
             flags[i] = 0;
+            if (p->temporal_subpixel == TEMPORAL_SUBPIXEL_SEARCH) {
+                unsigned shifted = temporal_search_merge(fr, g, prev_g, prev_res, i, &io[i], &rays);
+                flags[i] = (unsigned char)(shifted & 1u ? TEMPORAL_BP_RECEIVED : 0) |
+                           (unsigned char)(shifted & ~1u ? TEMPORAL_BP_ACCEPTED : 0);
+                acc += shifted & 1u;
+                continue;
+            }
+            int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
             if (q < 0)
                 continue;
             struct pt_domain dom[2];
@@ -233,7 +281,7 @@ long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, c
             pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_TEMPORAL);
             const struct pt_reservoir *in[2] = {&io[i], &prev_res[q]};
             unsigned shifted;
-            rays += gris_merge(fr, 2, dom, in, &rng, &io[i], &shifted);
+            rays += gris_merge(fr, 2, dom, in, p->mis, NULL, &rng, &io[i], &shifted);
             flags[i] = (unsigned char)(TEMPORAL_BP_RECEIVED | (shifted & 2u ? TEMPORAL_BP_ACCEPTED : 0));
             acc++;
         }
@@ -287,7 +335,7 @@ long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, co
                 dom[n] = pt_pixel_domain(fr->view, j % w, j / w);
                 src[n++] = &in[j];
             }
-            rays += gris_merge(fr, n, dom, src, &rng, &out[i], NULL);
+            rays += gris_merge(fr, n, dom, src, p->mis, NULL, &rng, &out[i], NULL);
         }
     }
     return rays;

@@ -31,7 +31,7 @@ static inline int pt_reservoir_has_sample(const struct pt_reservoir *r) { return
 /* The domain of pixel (x, y) of the current frame: spatial shifts keep the sub-pixel offset. */
 static inline struct pt_domain pt_pixel_domain(const struct camera_view *view, int x, int y)
 {
-    struct pt_domain d = {view, x, y, {(float)x, (float)y}};
+    struct pt_domain d = {view, x, y, {(float)x, (float)y}, 0};
     return d;
 }
 

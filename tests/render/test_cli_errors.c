@@ -282,6 +282,13 @@ static void check_study(void)
                    "render --scene cornell --method restir-pt --res 16x16 --set shift.distance_mode=pixels "
                    "--out '%1$s'",
                    2, "shift.distance_mode", "pixels");
+    expect_failure("unknown temporal.subpixel",
+                   "render --scene cornell --method restir-pt --res 16x16 --set temporal.subpixel=nearest --out '%1$s'",
+                   2, "temporal.subpixel", "nearest");
+    expect_failure("temporal.subpixel=search without jitter",
+                   "render --scene cornell --method restir-pt --res 16x16 --set temporal.subpixel=search --set "
+                   "jitter=off --out '%1$s'",
+                   2, "temporal.subpixel=search", "jitter=on");
     expect_failure("grad.inner_jacobian_ratio below 1",
                    "render --scene cornell --method grestir-pt --res 16x16 --set grad.inner_jacobian_ratio=0.5 --out "
                    "'%1$s'",

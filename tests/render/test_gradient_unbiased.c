@@ -165,8 +165,10 @@ int main(int argc, char **argv)
                                  {"recon=l2", "grad.cross_sign=on"},
                                  {"recon=l2", "grad.spatial=dense"},
                                  {"recon=l2", "history=temporal"},
-                                 {"recon=l2", "grad.base=shared"}};
-    for (int k = 0; k < 5; k++)
+                                 {"recon=l2", "grad.base=shared"},
+                                 /* the 2x2 previous pairs with clipped shifts (Area ReSTIR Sec. 4.3.1) */
+                                 {"recon=l2", "temporal.subpixel=search"}};
+    for (int k = 0; k < 6; k++)
         check("cornell", "grestir-pt", 2048, variants[k], 2, 1);
     /* 002's public rejection of outer shifts whose inner Jacobians disagree (there by 10x), here at
      * 1.5x so that it rejects often on ajar's glossy paths: symmetric, so unbiased. */

@@ -85,6 +85,11 @@ int main(int argc, char **argv)
     check("ajar", RUNS, relative, 4, 1);
     const char *absolute[] = {"shift=hybrid", "mis=pairwise", "shift.distance_mode=absolute", "shift.distance=0.5"};
     check("cornell", RUNS, absolute, 4, 1);
+    /* Backprojection searching the 2x2 previous pixels with clipped shifts (temporal.subpixel=search,
+     * balance MIS over them) along both camera paths. */
+    const char *search[] = {"shift=hybrid", "mis=pairwise", "temporal.subpixel=search"};
+    for (int sc = 0; sc < 2; sc++)
+        check(scenes[sc], RUNS, search, 3, 1);
     /* The test has power: the BIASED 1/M weights are caught on the same setup. */
     const char *uniform[] = {"shift=hybrid", "mis=1/M"};
     EXPECT(check("cornell", RUNS, uniform, 2, 0) > 0, "1/M weights were not detected as biased");

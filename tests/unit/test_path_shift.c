@@ -12,7 +12,8 @@
  *    previous-frame pixel with a fixed fractional offset, so u wraps around the pixel; a distant
  *    pixel) recovers the original path (u, reconnection vertex, prefix density, f) and the
  *    Jacobians of the two shifts multiply to 1;
- *  - forward: the shifted path's offset is u + origin_A - origin_B wrapped, its prefix is the
+ *  - forward: the shifted path's offset is u + origin_A - origin_B wrapped (clipped domains: that
+ *    sum, and no shift into a pixel it falls outside of), its prefix is the
  *    one the path walk generates in the target with the same seed, |T'| equals the ratio of the
  *    two walks' prefix densities times the ratio of the solid angles of x_k seen from the two
  *    y_{k-1}, and the hybrid rule holds in the target;
@@ -76,8 +77,8 @@ static const struct config configs[NCFG] = {
 
 /* ---- target domains of the round trips ------------------------------------------------------ */
 
-enum { DOM_SPATIAL, DOM_MOTION, DOM_FRACTION, DOM_DISTANT, NDOM };
-static const char *const dom_names[NDOM] = {"spatial", "motion", "fraction", "distant"};
+enum { DOM_SPATIAL, DOM_MOTION, DOM_FRACTION, DOM_DISTANT, DOM_CLIPPED, NDOM };
+static const char *const dom_names[NDOM] = {"spatial", "motion", "fraction", "distant", "clipped"};
 
 /* ---- samples --------------------------------------------------------------------------------- */
 
@@ -194,7 +195,7 @@ static int v3_same(vec3 a, vec3 b) { return a.x == b.x && a.y == b.y && a.z == b
 
 static struct pt_domain make_domain(const struct camera_view *v, int x, int y, float ox, float oy)
 {
-    struct pt_domain d = {v, x, y, {ox, oy}};
+    struct pt_domain d = {v, x, y, {ox, oy}, 0};
     return d;
 }
 
@@ -292,6 +293,7 @@ struct rt_stats {
     double worst_geo;
     double worst_uf; /* forward: |y.u - wrap(x.u + origin_A - origin_B)| */
     long wrong, wrong_caught; /* control: inverse shifts into the wrong pixel, and how many are flagged */
+    long outside;             /* clipped: shifts into the next previous pixel tried (each must fail) */
 };
 
 static int bad_printed;
@@ -477,6 +479,27 @@ static void test_scene(const char *name, int paths)
                     bx = smp->px;
                     by = smp->py;
                     B = make_domain(&prev, bx, by, (float)bx - 0.37f, (float)by + 0.61f);
+                } else if (dk == DOM_CLIPPED) {
+                    /* temporal.subpixel=search (restir_pt.c): the previous pixel of the 2x2 under the
+                     * motion that x's image position falls in, origin q - motion, shifts clipped to
+                     * [0,1)^2; the previous pixel beside it must refuse x. */
+                    int pi = smp->py * WIDTH + smp->px;
+                    if (!motion_ok[pi])
+                        continue;
+                    float mx = motion[pi][0], my = motion[pi][1];
+                    bx = (int)floorf((float)smp->px + x->u[0] + mx);
+                    by = (int)floorf((float)smp->py + x->u[1] + my);
+                    B = make_domain(&prev, bx, by, (float)bx - mx, (float)by - my);
+                    B.clip = 1;
+                    struct pt_domain side = make_domain(&prev, bx + 1, by, (float)(bx + 1) - mx, (float)by - my);
+                    side.clip = 1;
+                    struct path_sample ys;
+                    float Js;
+                    rt[dk].outside++;
+                    if (path_shift(&s, &sp[k], x, &A, &side, &ys, &Js, &rays)) {
+                        rt[dk].bad++;
+                        report_bad("clipped shift outside its pixel", name, cfg, smp, 0.0, 0.0, 0.0);
+                    }
                 } else {
                     bx = (smp->px + WIDTH / 2) % WIDTH;
                     by = (smp->py + HEIGHT / 3) % HEIGHT;
@@ -592,6 +615,10 @@ static void test_scene(const char *name, int paths)
                    "|Jf| vs walks %.3g)",
                    name, cfg->name, dom_names[dk], r->bad, r->worst_j, r->worst_f, r->worst_u, r->worst_geo);
         }
+        /* Clipped shifts happen, and none reached the previous pixel beside the right one. */
+        EXPECT(rt[DOM_CLIPPED].fwd_ok >= 200 && rt[DOM_CLIPPED].outside >= rt[DOM_CLIPPED].fwd_ok,
+               "%s %s: only %ld clipped shifts (%ld beside)", name, cfg->name, rt[DOM_CLIPPED].fwd_ok,
+               rt[DOM_CLIPPED].outside);
         /* Control: the round-trip checks flag inverse shifts into the wrong pixel. */
         const struct rt_stats *sr = &rt[DOM_SPATIAL];
         printf("  control: %ld of %ld shifts back into the wrong pixel flagged\n", sr->wrong_caught, sr->wrong);
