@@ -20,7 +20,9 @@ extern "C" {
 enum restir_mis {
     RESTIR_MIS_UNIFORM = 0, /* m_i = c_i / sum c: the "1/M" weights; BIASED when domains differ */
     RESTIR_MIS_BALANCE,     /* generalized balance heuristic, 004 Eq. 9 */
-    RESTIR_MIS_PAIRWISE     /* defensive generalized pairwise MIS, 004 Eq. 11-12 */
+    RESTIR_MIS_PAIRWISE,    /* defensive generalized pairwise MIS, 004 Eq. 11-12 */
+    RESTIR_MIS_PAIRWISE_TILED /* the same for non-canonical domains that tile the canonical one
+                                 (restir_mis_weights_pairwise_tiled); BIASED where they overlap */
 };
 
 /* Parses "1/M" (or "uniform"), "balance", "pairwise" into *out. Returns 0, or -1 (out untouched)
@@ -29,6 +31,13 @@ int restir_mis_parse(const char *name, enum restir_mis *out);
 /* The name restir_mis_parse reads for mode (a static string), "unknown" for a value outside the
  * enum. */
 const char *restir_mis_name(enum restir_mis mode);
+
+/* 1 when mode is one of enum restir_mis, else 0. */
+RESTIR_HD int restir_mis_valid(enum restir_mis mode)
+{
+    return mode == RESTIR_MIS_UNIFORM || mode == RESTIR_MIS_BALANCE || mode == RESTIR_MIS_PAIRWISE ||
+           mode == RESTIR_MIS_PAIRWISE_TILED;
+}
 
 /* 1 when `mode`'s MIS weights read p[k * n + j] = p_hat_{<-k}(Y_j), else 0 (also for negative k or
  * j). Row 0 (the canonical targets p_hat(Y_j)) is needed in every mode all the same: the resampling
@@ -43,6 +52,7 @@ RESTIR_HD int restir_mis_needs(enum restir_mis mode, int k, int j)
     case RESTIR_MIS_BALANCE:
         return 1; /* 004 Eq. 9: every p_hat_{<-k}(Y_j) */
     case RESTIR_MIS_PAIRWISE:
+    case RESTIR_MIS_PAIRWISE_TILED:
         /* 004 Eq. 11a reads (j,j) and (0,j); Eq. 11b reads (0,0) and (j,0) */
         return k == j || k == 0 || j == 0;
     }
@@ -128,13 +138,48 @@ RESTIR_HD void restir_mis_weights_pairwise(int n, const float *c, const float *p
     m[0] = (float)m0;
 }
 
+/* Defensive pairwise MIS when the non-canonical domains 1..n-1 tile the canonical one: each reaches
+ * a part of it disjoint from the others' (the previous pixels that a moved pixel overlaps, with
+ * shifts that are undefined outside the pixel: temporal.subpixel=search). A sample y can then come
+ * from the canonical and from at most one other domain r(y), and 004 Eq. 11 is applied to the two
+ * domains {0, r(y)} with c_S = c_r:
+ *   m_j(Y_j) = c_j / (c_0 + c_j) * c_j p_hat_{<-j}(Y_j) / (c_j p_hat_{<-j}(Y_j) + c_0 p_hat(Y_j)),
+ *   m_0(Y_0) = c_0 / (c_0 + c_r) + c_r / (c_0 + c_r) * c_0 p_hat(Y_0) / (c_r p_hat_{<-r}(Y_0) + c_0 p_hat(Y_0)),
+ * with r the first k >= 1 where p_hat_{<-k}(Y_0) > 0 (m_0 = 1 when there is none: nothing else
+ * reaches Y_0). For each y the weights of the domains that can produce it, 0 and r(y), sum to one
+ * wherever p_hat(y) > 0 (004 Eq. 8). Plain pairwise MIS is unbiased here too, but it divides the
+ * non-canonical share among n - 1 domains of which only one reaches y; balance has no defensive
+ * share, which measured heavier tails for grestir-pt's signed gradient targets. BIASED where the
+ * domains overlap, which the caller must rule out. Reads the entries restir_mis_needs(PAIRWISE)
+ * names; zero denominators as restir_mis_weights_pairwise. */
+RESTIR_HD void restir_mis_weights_pairwise_tiled(int n, const float *c, const float *p, float *m)
+{
+    if (n < 1 || !c || !p || !m)
+        return;
+    const double c0 = restir_hd_weight(c[0]), p00 = restir_hd_weight(p[0]);
+    int r = 0;
+    for (int k = 1; k < n && !r; k++)
+        if (restir_hd_weight(p[k * n]) > 0.0f)
+            r = k;
+    double m0 = 1.0;
+    if (r) {
+        const double cr = restir_hd_weight(c[r]), ct = c0 + cr, d0 = cr * restir_hd_weight(p[r * n]) + c0 * p00;
+        m0 = ct > 0.0 ? c0 / ct + (d0 > 0.0 ? (cr / ct) * c0 * p00 / d0 : 0.0) : 1.0;
+    }
+    m[0] = (float)m0;
+    for (int j = 1; j < n; j++) {
+        const double cj = restir_hd_weight(c[j]), ct = c0 + cj, pjj = restir_hd_weight(p[j * n + j]);
+        const double dj = cj * pjj + c0 * restir_hd_weight(p[j]);
+        m[j] = ct > 0.0 && dj > 0.0 ? (float)((cj / ct) * cj * pjj / dj) : 0.0f;
+    }
+}
+
 /* Resampling MIS weights m_j(Y_j), j = 0..n-1, of one merge whose domain 0 is canonical, from the
  * confidences c[0..n) and the target matrix p (may be NULL for RESTIR_MIS_UNIFORM). n = 1 gives
  * m_0 = 1. Returns 0, or -1 without writing for n < 1, a NULL array or an unknown mode. */
 RESTIR_HD int restir_mis_weights(enum restir_mis mode, int n, const float *c, const float *p, float *m)
 {
-    if (n < 1 || !c || !m || (mode != RESTIR_MIS_UNIFORM && !p) ||
-        (mode != RESTIR_MIS_UNIFORM && mode != RESTIR_MIS_BALANCE && mode != RESTIR_MIS_PAIRWISE))
+    if (n < 1 || !c || !m || (mode != RESTIR_MIS_UNIFORM && !p) || !restir_mis_valid(mode))
         return -1;
     if (n == 1) {
         m[0] = 1.0f; /* only the canonical: it alone covers p_hat (004 Sec. 2.3.3) */
@@ -149,6 +194,9 @@ RESTIR_HD int restir_mis_weights(enum restir_mis mode, int n, const float *c, co
         return 0;
     case RESTIR_MIS_PAIRWISE:
         restir_mis_weights_pairwise(n, c, p, m);
+        return 0;
+    case RESTIR_MIS_PAIRWISE_TILED:
+        restir_mis_weights_pairwise_tiled(n, c, p, m);
         return 0;
     }
     return -1;

@@ -201,6 +201,10 @@ static void steps_000(const struct eval_options *o, const char *scene, int first
             used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", used ? "," : "", eval_000_configs[i]);
     add(s, "--configs");
     add(s, "%s", list);
+    /* 000 Sec. 7's hard pixels: every neighbor within 30 px counts, the sky's included (study's
+     * default leaves sky neighbors out) */
+    add(s, "--hard-neighbors");
+    add(s, "all");
     set(s, "spatial.neighbors=1");
     set(s, "temporal.reuse=splat"); /* 000 Sec. 7: Area ReSTIR's reservoirs with splatting */
 }

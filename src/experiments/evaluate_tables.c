@@ -69,6 +69,21 @@ static void fmt_pm(double v, double sem, char *out, size_t len)
         snprintf(out, len, "%.4g", v);
 }
 
+/* Appends to out (len bytes, NUL-terminated) what a deciding pair of rows shows: "what: +x% +- sd,
+ * reading" with reading[0] when the change is above zero at two standard deviations, reading[1]
+ * when below, "no significant difference" otherwise; nothing when either row is missing. */
+static void finding(char *out, size_t len, const char *what, struct rel_change c, const char *const reading[2])
+{
+    if (!isfinite(c.pct))
+        return;
+    char ch[64];
+    fmt_change(c, ch, sizeof ch);
+    const double sd = isfinite(c.sd) ? c.sd : 0.0;
+    const char *r = c.pct - 2.0 * sd > 0.0 ? reading[0] : c.pct + 2.0 * sd < 0.0 ? reading[1] : "no significant difference";
+    const size_t used = strlen(out);
+    snprintf(out + used, len - used, "%s%s: %s, %s", used ? "; " : "", what, ch, r);
+}
+
 /* The claims, as lines of evaluation.md and rows of claims.csv. */
 struct claims {
     struct text md;
@@ -82,11 +97,11 @@ struct claims {
 static void claim(struct claims *cl, const char *paper, const char *what, const char *where, struct rel_change c,
                   const char *paper_figure, struct claim k, const char *differences)
 {
-    char ours[64], why[160], f[4][400];
+    char ours[64], why[160], f[4][1100];
     fmt_change(c, ours, sizeof ours);
     const char *v = claim_verdict(c, k, why, sizeof why);
     const int ok = !strcmp(v, "reproduced") || !strcmp(v, "undefined") || k.kind == CLAIM_NONE;
-    char reason[600];
+    char reason[1100];
     snprintf(reason, sizeof reason, "%s%s%s", why, ok || !why[0] ? "" : "; ", ok ? "" : differences);
     put(&cl->md, "| %s | %s | %s | %s | **%s** | %s |\n", what, where, ours, paper_figure, v,
         reason[0] ? reason : "-");
@@ -211,6 +226,37 @@ static void pareto_000(struct text *md, struct claims *cl, const struct eval_ste
     }
 }
 
+/* What 000's deciding rows (the first scene's; issue 42) show about FAST's claims, before the setup's
+ * differences diff, into out: whether spatial reuse itself helps on the scene (Bitterli against no
+ * spatial reuse), and FAST against Bitterli when the spatial output is not fed back (both with the
+ * temporal history). Just diff when the rows were not run. */
+static void deciding_000(const struct csv_table *t, int bit, int fast, const char *diff, char *out, size_t len)
+{
+    const int off = csv_table_find(t, "spatial-off"), bt = csv_table_find(t, "bitterli-history-temporal"),
+              ft = csv_table_find(t, "fast-history-temporal");
+    static const char *const reuse[2] = {"spatial reuse itself hurts on this scene with our base",
+                                         "spatial reuse helps on this scene"};
+    static const char *const fed[2] = {"FAST loses without the feedback too", "FAST gains without the feedback"};
+    static const char *const feedback[2] = {"feeding the spatial output back costs FAST",
+                                            "feeding the spatial output back helps FAST"};
+    out[0] = '\0';
+#define CHANGE(a, b, col)                                                                                          \
+    rel_change_of(csv_table_num(t, a, col), csv_table_num(t, a, col "_sem"), csv_table_num(t, b, col),              \
+                  csv_table_num(t, b, col "_sem"))
+    if (off >= 0 && bit >= 0)
+        finding(out, len, "Bitterli vs no spatial reuse, SMAPE", CHANGE(bit, off, "smape_all"), reuse);
+    if (bt >= 0 && ft >= 0) {
+        finding(out, len, "FAST vs Bitterli, both with the temporal history, SMAPE", CHANGE(ft, bt, "smape_all"), fed);
+        finding(out, len, "the same, temporal covariance", CHANGE(ft, bt, "temporal_cov"), fed);
+    }
+    if (fast >= 0 && ft >= 0)
+        finding(out, len, "FAST (spatial history) vs FAST (temporal history), SMAPE", CHANGE(fast, ft, "smape_all"),
+                feedback);
+#undef CHANGE
+    const size_t used = strlen(out);
+    snprintf(out + used, len - used, "%s%s", used ? "; " : "", diff);
+}
+
 static void paper_000(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
                       const struct csv_table *t)
 {
@@ -234,7 +280,7 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
     }
     put(md, "\nTable 2 layout (SMAPE in %% with standard errors over the runs; relative temporal covariance at lag "
             "3 and spatial covariance within 8 px, 000 Appendix A, with jackknife standard errors over the runs; "
-            "hard pixels: 000 Sec. 7):\n\n"
+            "hard pixels: 000 Sec. 7, every neighbor within 30 px counted):\n\n"
             "| config | R | K | SMAPE | hard SMAPE | temporal cov | hard temporal cov | spatial cov | frame ms |\n"
             "|---|---|---|---|---|---|---|---|---|\n");
     for (int r = 0; r < t->nrow; r++) {
@@ -252,22 +298,24 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
      * 1.3-4.4%, BALANCED 2.0-6.4%, CONSERVATIVE 4.3-7.4%. */
     const int emerald = strstr(heading, "EMERALD") != NULL;
     const int fast = csv_table_find(t, "fast");
+    char fast_diff[1000];
+    deciding_000(t, bit, fast, diff, fast_diff, sizeof fast_diff);
     claim(cl, "000", "FAST: SMAPE vs Bitterli R = 30", where,
           rel_change_of(csv_table_num(t, fast, "smape_all"), csv_table_num(t, fast, "smape_all_sem"),
                      csv_table_num(t, bit, "smape_all"), csv_table_num(t, bit, "smape_all_sem")),
-          emerald ? "-29% (EMERALD SQUARE)" : "-5.8% to -13.7% (simpler scenes)", REDUCTION(emerald ? 29.0 : 5.8), diff);
+          emerald ? "-29% (EMERALD SQUARE)" : "-5.8% to -13.7% (simpler scenes)", REDUCTION(emerald ? 29.0 : 5.8), fast_diff);
     claim(cl, "000", "FAST: temporal covariance vs Bitterli", where,
           rel_change_of(csv_table_num(t, fast, "temporal_cov"), csv_table_num(t, fast, "temporal_cov_sem"),
                      csv_table_num(t, bit, "temporal_cov"), csv_table_num(t, bit, "temporal_cov_sem")),
-          emerald ? "-49% (EMERALD SQUARE)" : "-22% to -31% (simpler scenes)", REDUCTION(emerald ? 49.0 : 22.0), diff);
+          emerald ? "-49% (EMERALD SQUARE)" : "-22% to -31% (simpler scenes)", REDUCTION(emerald ? 49.0 : 22.0), fast_diff);
     claim(cl, "000", "FAST: hard-pixel SMAPE vs Bitterli", where,
           rel_change_of(csv_table_num(t, fast, "smape_hard"), csv_table_num(t, fast, "smape_hard_sem"),
                      csv_table_num(t, bit, "smape_hard"), csv_table_num(t, bit, "smape_hard_sem")),
-          "-26% to -29%", REDUCTION(26.0), diff);
+          "-26% to -29%", REDUCTION(26.0), fast_diff);
     claim(cl, "000", "FAST: hard-pixel temporal covariance vs Bitterli", where,
           rel_change_of(csv_table_num(t, fast, "temporal_cov_hard"), csv_table_num(t, fast, "temporal_cov_hard_sem"),
                      csv_table_num(t, bit, "temporal_cov_hard"), csv_table_num(t, bit, "temporal_cov_hard_sem")),
-          "-43% to -57%", REDUCTION(43.0), diff);
+          "-43% to -57%", REDUCTION(43.0), fast_diff);
     static const char *const cost_figure[] = {"+1.3% to +4.4%", "+2.0% to +6.4%", "+4.3% to +7.4%"};
     static const double cost_max[] = {4.4, 6.4, 7.4};
     for (int k = 0; k < 3; k++) {
@@ -352,6 +400,25 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
     }
     const int pt = !strcmp(s->base, "restir-pt");
     static const char *const col[2][2] = {{"mape", "mape_sem"}, {"mape_disoccluded", "mape_disoccluded_sem"}};
+    /* What decides SPMIS's claims (issue 42): does the cell search cost it (own cell only vs the
+     * 12-tap search), and where does the own cell stand against standard reuse. */
+    char spmis_diff[2][1000];
+    static const char *const search_costs[2] = {"the cell search costs SPMIS", "the cell search helps SPMIS"};
+    static const char *const own_vs_std[2] = {"SPMIS loses to standard reuse even without the search",
+                                              "SPMIS with the own cell beats standard reuse"};
+    for (int m = 0; m < 2; m++) {
+        spmis_diff[m][0] = '\0';
+        const struct rel_change search = rel_change_of(
+            csv_table_num(t, row[1], col[m][0]), csv_table_num(t, row[1], col[m][1]),
+            csv_table_num(t, row[3], col[m][0]), csv_table_num(t, row[3], col[m][1]));
+        const struct rel_change own = rel_change_of(
+            csv_table_num(t, row[3], col[m][0]), csv_table_num(t, row[3], col[m][1]),
+            csv_table_num(t, row[0], col[m][0]), csv_table_num(t, row[0], col[m][1]));
+        finding(spmis_diff[m], sizeof spmis_diff[m], "SPMIS (12-tap search) vs own cell only", search, search_costs);
+        finding(spmis_diff[m], sizeof spmis_diff[m], "own cell only vs standard", own, own_vs_std);
+        const size_t used = strlen(spmis_diff[m]);
+        snprintf(spmis_diff[m] + used, sizeof spmis_diff[m] - used, "%s%s", used ? "; " : "", diff);
+    }
     static const char *const what[EVAL_004_ROWS - 1][2] = {
         {"SPMIS: MAPE overall vs standard", "SPMIS: MAPE disoccluded vs standard"},
         {"compat search (ours): MAPE overall vs standard", "compat search (ours): MAPE disoccluded vs standard"},
@@ -367,7 +434,7 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
                   : pt ? (m ? "lower, \"especially in disocclusions\"" : "lower overall")
                        : (m ? "lower in disocclusions (the paper: ReSTIR PT only)"
                             : "lower (the paper: ReSTIR PT only)"),
-                  v ? NO_CLAIM : REDUCTION(0.0), diff);
+                  v ? NO_CLAIM : REDUCTION(0.0), v ? diff : spmis_diff[m]);
     return table2_004(md, dir, s, label, names, EVAL_004_ROWS) == 0 ? 0 : EXIT_RUNTIME;
 }
 

@@ -97,12 +97,15 @@ static enum restir_grad_sign sign_of(const struct render_params *p, int s)
 }
 
 /* h(y, k) in pair dom, y in pixel dom->px[k]: the inner shift of y into the other pixel, whose
- * |T'| goes to *inner_J. */
+ * |T'| goes to *inner_J. The pair's pixels share their offsets (origins a whole pixel apart), so the
+ * inner shift keeps u even where the pair's outer shifts clip (temporal.subpixel=search). */
 static long long pair_integrand(const struct pt_frame *fr, const struct path_sample *y, int k,
                                 const struct pair_domain *dom, float h[3], float *inner_J)
 {
     float other[3];
-    long long rays = grad_shift_other(fr->s, &fr->shift, y, &dom->px[k], &dom->px[1 - k], other, inner_J);
+    struct pt_domain from = dom->px[k], to = dom->px[1 - k];
+    from.clip = to.clip = 0;
+    long long rays = grad_shift_other(fr->s, &fr->shift, y, &from, &to, other, inner_J);
     const float own[3] = {y->f.x, y->f.y, y->f.z};
     restir_grad_pair_integrand(k, own, other, h);
     return rays;
@@ -368,9 +371,7 @@ long long grestir_temporal_pass(const struct pt_frame *fr, const struct gbuffer 
 {
     const struct render_params *p = fr->p;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h), ns = sign_count(p);
-    /* search: the balance heuristic (the pairwise one would dilute each region's previous pair) */
-    const enum restir_mis mis =
-        p->temporal_subpixel == TEMPORAL_SUBPIXEL_SEARCH && p->mis != RESTIR_MIS_UNIFORM ? RESTIR_MIS_BALANCE : p->mis;
+    const enum restir_mis mis = p->temporal_subpixel == TEMPORAL_SUBPIXEL_SEARCH ? render_params_tiled_mis(p) : p->mis;
     long long rays = 0, acc = 0;
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays, acc)
     for (int t = 0; t < ntiles; t++) {

@@ -159,8 +159,8 @@ static const struct param_def params[] = {
      "backprojected sub-pixel samples (restir-pt, area-restir, grad-after-restir, grestir-pt's pairs; needs "
      "jitter=on and temporal.reuse=backproject): wrap (the previous pixel under the motion vector; a sample "
      "leaving the current pixel re-enters at its other side) or search (the 2x2 previous pixels the current "
-     "pixel overlaps, each kept where its samples land inside it, Area ReSTIR Sec. 4.3.1; the merge then uses "
-     "balance MIS). Both unbiased",
+     "pixel overlaps, each kept where its samples land inside it, Area ReSTIR Sec. 4.3.1; mis=pairwise "
+     "then weighs each path against the one previous pixel that reaches it). Both unbiased",
      temporal_subpixel_names},
     {"scene.shading_normals", P_BOOL, F(shading_normals), 0, 1, "on", NULL,
      "off: every triangle shades with its geometric normal (no vertex normals, no normal maps), as before "

@@ -188,4 +188,11 @@ const char *render_params_key(size_t i);
  * (n bytes) and returns how many there are (0: every setting in p is unbiased). */
 int render_params_biased(const struct render_params *p, char *out, size_t n);
 
+/* The MIS of a merge whose non-canonical domains tile the canonical one (temporal.subpixel=search):
+ * mis=pairwise as restir_mis_weights_pairwise_tiled, balance and 1/M as they are. */
+static inline enum restir_mis render_params_tiled_mis(const struct render_params *p)
+{
+    return p->mis == RESTIR_MIS_PAIRWISE ? RESTIR_MIS_PAIRWISE_TILED : p->mis;
+}
+
 #endif

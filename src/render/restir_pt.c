@@ -210,11 +210,11 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
 /* temporal.subpixel=search: pixel i's reservoir merged with those of the previous pixels its
  * square overlaps (gbuffer_history_square; Area ReSTIR Sec. 4.3.1). Their domains are translated
  * pixel squares that tile the image, so a path in the current pixel has exactly one previous
- * pixel q(y) that a clipped shift reaches, and p_hat_{<-k}(y) = 0 for every other k. The generalized
- * balance heuristic over all of them (004 Eq. 9) is then the two-domain balance heuristic of the
- * current pixel and q(y), region by region: a partition of unity wherever p_hat(y) > 0, hence
- * unbiased. (Pairwise MIS would hand each region only c_q / (c_0 + sum c) of its weight; 1/M stays
- * 1/M, BIASED.) The merged confidence adds each previous confidence times its overlap area, what a
+ * pixel q(y) that a clipped shift reaches, and p_hat_{<-k}(y) = 0 for every other k. mis=pairwise
+ * merges by restir_mis_weights_pairwise_tiled (004 Eq. 11 over the current pixel and q(y)),
+ * mis=balance by the balance heuristic over all of them (004 Eq. 9, which reduces to the same two
+ * domains); both are partitions of unity wherever p_hat(y) > 0, hence unbiased (1/M stays 1/M,
+ * BIASED). The merged confidence adds each previous confidence times its overlap area, what a
  * path drawn uniformly in the pixel meets on average. Returns bit 0: some previous pixel was
  * merged; bit j > 0: the path of merge input j reached pixel i. */
 static unsigned temporal_search_merge(const struct pt_frame *fr, const struct gbuffer *g, const struct gbuffer *prev_g,
@@ -240,10 +240,9 @@ static unsigned temporal_search_merge(const struct pt_frame *fr, const struct gb
         in[k + 1] = &prev_res[q];
         share[k + 1] = cells[k].area;
     }
-    const enum restir_mis mis = p->mis == RESTIR_MIS_UNIFORM ? RESTIR_MIS_UNIFORM : RESTIR_MIS_BALANCE;
     pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_TEMPORAL);
     unsigned shifted;
-    *rays += gris_merge(fr, m + 1, dom, in, mis, share, &rng, io, &shifted);
+    *rays += gris_merge(fr, m + 1, dom, in, render_params_tiled_mis(p), share, &rng, io, &shifted);
     return 1u | (shifted & ~1u);
 }
 

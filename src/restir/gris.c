@@ -7,8 +7,7 @@ int restir_gris_targets(enum restir_mis mode, int n, const struct restir_gris_sh
                         const float *cached, void *Y, float *P, float *J, void *tmp)
 {
     if (!s || !s->shift || !s->target || !x || !cached || !Y || !P || !J || !tmp || n < 1 ||
-        n > RESTIR_GRIS_MAX_SAMPLES ||
-        (mode != RESTIR_MIS_UNIFORM && mode != RESTIR_MIS_BALANCE && mode != RESTIR_MIS_PAIRWISE))
+        n > RESTIR_GRIS_MAX_SAMPLES || !restir_mis_valid(mode))
         return -1;
     char *y = Y;
     const size_t size = s->sample_size;

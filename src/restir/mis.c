@@ -32,6 +32,8 @@ const char *restir_mis_name(enum restir_mis mode)
         return "balance";
     case RESTIR_MIS_PAIRWISE:
         return "pairwise";
+    case RESTIR_MIS_PAIRWISE_TILED:
+        return "pairwise-tiled"; /* not parsed: only callers that know their domains tile use it */
     }
     return "unknown";
 }

@@ -154,6 +154,7 @@ static void test_mis_gris(void)
     CHECK(strcmp(restir_mis_name((enum restir_mis)77), "unknown") == 0);
     CHECK(strcmp(restir_mis_name((enum restir_mis)-1), "unknown") == 0);
     CHECK(strcmp(restir_mis_name(RESTIR_MIS_PAIRWISE), "pairwise") == 0);
+    CHECK(restir_mis_valid(RESTIR_MIS_PAIRWISE_TILED) && !restir_mis_valid((enum restir_mis)17));
     CHECK(restir_mis_needs(RESTIR_MIS_BALANCE, -1, 0) == 0 && restir_mis_needs(RESTIR_MIS_BALANCE, 0, -3) == 0);
     CHECK(restir_mis_needs((enum restir_mis)77, 1, 1) == 0);
 
@@ -172,6 +173,13 @@ static void test_mis_gris(void)
     const float c2_bad[2] = {-INF, NaN}, p_ok[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     restir_mis_weights_pairwise(2, c2_bad, p_ok, m);
     CHECK(m[0] == 1.0f && m[1] == 0.0f);
+    /* tiled: bad confidences leave everything to the canonical; NULL arrays write nothing */
+    restir_mis_weights_pairwise_tiled(2, c2_bad, p_ok, m);
+    CHECK(m[0] == 1.0f && m[1] == 0.0f);
+    m[0] = 5.0f;
+    restir_mis_weights_pairwise_tiled(2, NULL, p_ok, m);
+    restir_mis_weights_pairwise_tiled(0, c2, p_ok, m);
+    CHECK(m[0] == 5.0f);
     restir_mis_weights_pairwise(2, c2, p_bad, m);
     CHECK(isfinite(m[0]) && m[1] == 0.0f);
     fill(m, 4, 7.0f);

@@ -85,11 +85,13 @@ int main(int argc, char **argv)
     check("ajar", RUNS, relative, 4, 1);
     const char *absolute[] = {"shift=hybrid", "mis=pairwise", "shift.distance_mode=absolute", "shift.distance=0.5"};
     check("cornell", RUNS, absolute, 4, 1);
-    /* Backprojection searching the 2x2 previous pixels with clipped shifts (temporal.subpixel=search,
-     * balance MIS over them) along both camera paths. */
+    /* Backprojection searching the 2x2 previous pixels with clipped shifts (temporal.subpixel=search)
+     * along both camera paths: pairwise MIS over tiling domains, and the balance heuristic. */
     const char *search[] = {"shift=hybrid", "mis=pairwise", "temporal.subpixel=search"};
     for (int sc = 0; sc < 2; sc++)
         check(scenes[sc], RUNS, search, 3, 1);
+    const char *search_balance[] = {"shift=hybrid", "mis=balance", "temporal.subpixel=search"};
+    check("ajar", RUNS, search_balance, 3, 1);
     /* The test has power: the BIASED 1/M weights are caught on the same setup. */
     const char *uniform[] = {"shift=hybrid", "mis=1/M"};
     EXPECT(check("cornell", RUNS, uniform, 2, 0) > 0, "1/M weights were not detected as biased");

@@ -120,7 +120,7 @@ static void test_needs_and_unread_entries(void)
     enum { N = 5 };
     const float c[N] = {2.0f, 1.0f, 5.0f, 20.0f, 1.0f};
     pcg32 rng = pcg32_make(99u, 3u);
-    for (int mode = RESTIR_MIS_UNIFORM; mode <= RESTIR_MIS_PAIRWISE; mode++) {
+    for (int mode = RESTIR_MIS_UNIFORM; mode <= RESTIR_MIS_PAIRWISE_TILED; mode++) {
         float p[N * N], m[N];
         for (int k = 0; k < N; k++)
             for (int j = 0; j < N; j++)
@@ -198,6 +198,50 @@ static void test_zero_denominators(void)
     EXPECT(m[0] == 0.0f && m[1] == 0.0f && m[2] == 0.0f, "balance zero confidence -> 0");
 }
 
+/* Pairwise MIS over tiling domains: at a point y that the canonical and exactly one other domain r
+ * reach (every other p_hat_{<-k}(y) = 0), the weights of 0 and r sum to one and equal the two-domain
+ * pairwise weights; where r's target is zero too, the canonical takes everything. */
+static void test_pairwise_tiled(void)
+{
+    pcg32 rng = pcg32_make(777u, 5u);
+    int bad_sum = 0, bad_two = 0, bad_zero = 0;
+    for (int trial = 0; trial < 20000; trial++) {
+        const int n = 2 + (int)(pcg32_next(&rng) % 4); /* canonical and 1..4 previous pixels */
+        const int r = 1 + (int)(pcg32_next(&rng) % (uint32_t)(n - 1));
+        float c[MAXN], q[MAXN] = {0}, m[MAXN];
+        for (int k = 0; k < n; k++)
+            c[k] = 0.5f + 20.0f * pcg32_float(&rng);
+        q[0] = 1e-3f + 5.0f * pcg32_float(&rng);
+        q[r] = pcg32_float(&rng) < 0.2f ? 0.0f : 1e-3f + 5.0f * pcg32_float(&rng);
+        double s = weights_at_common_y(RESTIR_MIS_PAIRWISE_TILED, n, c, q, m);
+        if (fabs(s - 1.0) > 1e-5)
+            bad_sum++;
+        for (int k = 1; k < n; k++)
+            bad_zero += k != r && m[k] != 0.0f;
+        const float c2[2] = {c[0], c[r]}, q2[2] = {q[0], q[r]};
+        float m2[2];
+        weights_at_common_y(RESTIR_MIS_PAIRWISE, 2, c2, q2, m2);
+        if (fabs((double)m[0] - (double)m2[0]) > 1e-6 || fabs((double)m[r] - (double)m2[1]) > 1e-6)
+            bad_two++;
+        if (q[r] == 0.0f && m[0] != 1.0f)
+            bad_two++;
+    }
+    EXPECT(bad_sum == 0, "pairwise-tiled weights not summing to 1 in %d cases", bad_sum);
+    EXPECT(bad_zero == 0, "pairwise-tiled gave weight to %d domains that cannot reach y", bad_zero);
+    EXPECT(bad_two == 0, "pairwise-tiled differs from two-domain pairwise in %d cases", bad_two);
+    /* hand-computed: c = (1, 3, 2), Y_0 reached by domain 2 only (p_hat_{<-2}(Y_0) = 4, p_hat(Y_0) = 2);
+     * Y_1 with p_hat_{<-1}(Y_1) = 1, p_hat(Y_1) = 3; Y_2 with p_hat_{<-2}(Y_2) = 5, p_hat(Y_2) = 1 */
+    const float c[3] = {1.0f, 3.0f, 2.0f};
+    const float p[9] = {2.0f, 3.0f, 1.0f, /* k = 0 */
+                        0.0f, 1.0f, NAN,  /* k = 1 (entry (1,2) must not be read) */
+                        4.0f, NAN, 5.0f}; /* k = 2 */
+    float m[3];
+    restir_mis_weights(RESTIR_MIS_PAIRWISE_TILED, 3, c, p, m);
+    EXPECT_NEAR(m[0], 1.0 / 3.0 + (2.0 / 3.0) * 2.0 / (2.0 * 4.0 + 2.0), 1e-6, "tiled m_0");
+    EXPECT_NEAR(m[1], (3.0 / 4.0) * 3.0 / (3.0 + 3.0), 1e-6, "tiled m_1");
+    EXPECT_NEAR(m[2], (2.0 / 3.0) * 10.0 / (10.0 + 1.0), 1e-6, "tiled m_2");
+}
+
 static void test_parse_name(void)
 {
     enum restir_mis mode;
@@ -215,6 +259,7 @@ static void test_parse_name(void)
     EXPECT(restir_mis_parse("Balance", &mode) == -1, "names are case sensitive");
     EXPECT(restir_mis_parse("", &mode) == -1, "empty name rejected");
     EXPECT(restir_mis_parse("talbot", &mode) == -1, "unknown name rejected");
+    EXPECT(restir_mis_parse("pairwise-tiled", &mode) == -1, "the tiled mode is not a user's choice");
 }
 
 int main(void)
@@ -223,6 +268,7 @@ int main(void)
     test_known_values();
     test_needs_and_unread_entries();
     test_zero_denominators();
+    test_pairwise_tiled();
     test_parse_name();
     return test_finish();
 }
