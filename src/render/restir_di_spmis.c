@@ -1,7 +1,8 @@
 /* restir_di_spmis.c: stochastic pairwise MIS spatial reuse for ReSTIR DI (004 Algorithm 2): the
  * canonical weight m~_c from N_c cell pixels (Eq. 18-19), then a GRIS merge of the canonical light
  * sample and N samples drawn by Eq. 17 (Eq. 14-16). Light samples need no shift (identity, |J| = 1).
- * Must never allocate per pixel. */
+ * The canonical pass evaluates a tile's Eq. 19 targets together (SIMD across pixels, shadow rays as Embree
+ * streams). Must never allocate per pixel. */
 #include "render/di_visibility.h"
 #include "render/restir_di.h"
 #include "render/reuse_cells.h"
@@ -34,7 +35,10 @@ static int di_canonical_has_sample(const void *ctx, int c)
     return has_sample(&((const struct di_canonical_ctx *)ctx)->in[c]);
 }
 
-static float di_canonical_target(const void *ctx, int c) { return ((const struct di_canonical_ctx *)ctx)->in[c].target; }
+static float di_canonical_target(const void *ctx, int c)
+{
+    return ((const struct di_canonical_ctx *)ctx)->in[c].target;
+}
 
 /* Eq. 19 with p_hat_{<-i}(Y_c) = pixel i's target at the same light point (no shift, |J| = 1) */
 static float di_canonical_target_from(const void *ctx, int c, int i, long long *rays)
@@ -43,12 +47,34 @@ static float di_canonical_target_from(const void *ctx, int c, int i, long long *
     return di_domain_target(k->s, k->with_visibility, gbuffer_shading(k->g, i), &k->in[c].y, rays);
 }
 
+/* di_canonical_target_from for n pairs at once (SIMD across the pairs, shadow rays as streams), in
+ * chunks whose scratch fits the stack. */
+#define DI_CANONICAL_CHUNK 256
+static void di_canonical_targets_from(const void *ctx, int n, const int *c, const int *i, float *out,
+                                      long long *rays)
+{
+    const struct di_canonical_ctx *k = ctx;
+    const struct shading_point *sp[DI_CANONICAL_CHUNK];
+    const struct di_sample *y[DI_CANONICAL_CHUNK];
+    struct ray_query q[DI_CANONICAL_CHUNK];
+    int ray_entry[DI_CANONICAL_CHUNK];
+    unsigned char occluded[DI_CANONICAL_CHUNK];
+    for (int first = 0; first < n; first += DI_CANONICAL_CHUNK) {
+        const int m = n - first < DI_CANONICAL_CHUNK ? n - first : DI_CANONICAL_CHUNK;
+        for (int e = 0; e < m; e++) {
+            sp[e] = gbuffer_shading(k->g, i[first + e]);
+            y[e] = &k->in[c[first + e]].y;
+        }
+        *rays += di_domain_target_many(k->s, k->with_visibility, m, sp, y, out + first, q, ray_entry, occluded);
+    }
+}
+
 long long di_spmis_canonical_pass(const struct scene *s, const struct render_params *p, int frame,
                                   const struct gbuffer *g, const struct di_reservoir *in, struct spmis_frame *f)
 {
     const struct di_canonical_ctx ctx = {s, g, in, di_targets_visible(p)};
     const struct spmis_canonical_ops ops = {&ctx, di_canonical_has_sample, di_canonical_target,
-                                            di_canonical_target_from};
+                                            di_canonical_target_from, di_canonical_targets_from};
     return spmis_canonical_pass(f, p, frame, g, &ops);
 }
 
