@@ -4,7 +4,7 @@
 # spmis with the paper's cell search (`spmis.search=always`), with our low-confidence search, and
 # standard reuse, camera path, three alternating repetitions (the machine is noisy: compare within
 # one repetition), medians over frames 2 .. FRAMES-1 of metrics.csv. BASE=path/to/old/restir adds
-# the paper's search on an older binary to each repetition (before / after in one run).
+# the paper's search and standard reuse on an older binary to each repetition (before / after in one run).
 set -euo pipefail
 scene=${1:-pillars}
 method=${2:-restir-pt}
@@ -28,8 +28,11 @@ EOF
 printf '%-22s %-3s %8s %8s %8s %8s %8s %8s %8s %8s\n' config rep ms/frame select spatial cells search \
   canonical reuse reuse-sum
 for rep in 1 2 3; do
-  configs=("spmis-always|$bin|--set spatial.reuse=spmis" "spmis-low-confidence|$bin|--set spatial.reuse=spmis --set spmis.search=low-confidence" "standard|$bin|")
-  [ -n "${BASE:-}" ] && configs=("spmis-always-BASE|$BASE|--set spatial.reuse=spmis" "${configs[@]}")
+  configs=("spmis-always|$bin|--set spatial.reuse=spmis"
+           "spmis-low-confidence|$bin|--set spatial.reuse=spmis --set spmis.search=low-confidence"
+           "standard|$bin|")
+  [ -n "${BASE:-}" ] &&
+    configs=("spmis-always-BASE|$BASE|--set spatial.reuse=spmis" "${configs[@]}" "standard-BASE|$BASE|")
   for c in "${configs[@]}"; do
     IFS='|' read -r name b sets <<< "$c"
     d="$out/$scene-$method-$name-$rep"

@@ -25,3 +25,26 @@ float di_domain_target(const struct scene *s, int with_visibility, const struct 
     (*rays)++;
     return di_sample_visible(s, sp, y) ? t : 0.0f;
 }
+
+long long di_domain_target_many(const struct scene *s, int with_visibility, int n,
+                                const struct shading_point *const *sp, const struct di_sample *const *y, float *out,
+                                struct ray_query *q, int *ray_entry, unsigned char *occluded)
+{
+    di_target_many(n, sp, y, out);
+    if (!with_visibility)
+        return 0;
+    long long rays = 0;
+    int traced = 0;
+    for (int e = 0; e < n; e++) {
+        if (!(out[e] > 0.0f))
+            continue;
+        rays++; /* counted as di_domain_target counts it, also where the points coincide */
+        if (di_visibility_query(sp[e], y[e], &q[traced]))
+            ray_entry[traced++] = e;
+    }
+    scene_occluded_batch(s, q, traced, occluded);
+    for (int r = 0; r < traced; r++)
+        if (occluded[r])
+            out[ray_entry[r]] = 0.0f;
+    return rays;
+}

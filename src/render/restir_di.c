@@ -20,9 +20,9 @@
 /* One GRIS merge (004 Eq. 5-7) into domain 0 (canonical), split around its cross-domain targets
  * and shadow rays so that those of many pixels' merges are evaluated together, across pixels with
  * vector instructions, and traced together as one stream (merge_begin, then merge_batch_flush).
- * For DI the sample space is the same in every pixel (points on lights, area measure), so every shift is the identity with Jacobian 1 and p_hat_{<-k}(y) is simply domain
- * k's target at y (004 Eq. 10), with visibility when the reservoirs' targets have it
- * (di_visibility.h). */
+ * For DI the sample space is the same in every pixel (points on lights, area measure), so every
+ * shift is the identity with Jacobian 1 and p_hat_{<-k}(y) is simply domain k's target at y
+ * (004 Eq. 10), with visibility when the reservoirs' targets have it (di_visibility.h). */
 struct di_merge {
     int n;
     const struct di_reservoir *in[DI_MAX_DOMAINS];
@@ -37,15 +37,15 @@ struct di_merge {
 #define DI_BATCH_MERGES 64
 #define DI_BATCH_ENTRIES (DI_BATCH_MERGES * DI_MAX_DOMAINS * (DI_MAX_DOMAINS - 1))
 struct di_merge_batch {
-    int merges, entries, rays;
+    int merges, entries;
     struct di_merge mg[DI_BATCH_MERGES];
     /* entry e: P entry *entry_P[e] = p_hat of domain entry_sp[e] at sample entry_y[e] */
     const struct shading_point *entry_sp[DI_BATCH_ENTRIES];
     const struct di_sample *entry_y[DI_BATCH_ENTRIES];
     float *entry_P[DI_BATCH_ENTRIES];
     float target[DI_BATCH_ENTRIES];
-    struct ray_query q[DI_BATCH_ENTRIES];
-    float *zero_if_occluded[DI_BATCH_ENTRIES]; /* the P entry each ray decides */
+    struct ray_query q[DI_BATCH_ENTRIES]; /* scratch of di_domain_target_many */
+    int ray_entry[DI_BATCH_ENTRIES];
     unsigned char occluded[DI_BATCH_ENTRIES];
 };
 
@@ -104,36 +104,25 @@ static void merge_end(const struct render_params *p, struct di_merge *mg)
     *mg->out = result;
 }
 
-/* Evaluates the queued targets across the merges at once (SIMD across pixels, di_target_many),
- * traces the shadow rays of the positive ones as one stream (with visibility in the targets, as
- * di_domain_target), then finishes every queued merge in order. Returns the rays counted. */
+/* Evaluates the queued targets across the merges at once (SIMD across pixels) with the shadow rays
+ * of the positive ones as one stream (di_domain_target_many), then finishes every queued merge in
+ * order. Returns the rays counted. */
 static long long merge_batch_flush(struct di_merge_batch *b, const struct scene *s, const struct render_params *p)
 {
-    di_target_many(b->entries, b->entry_sp, b->entry_y, b->target);
-    long long rays = 0;
-    const int with_visibility = di_targets_visible(p);
-    for (int e = 0; e < b->entries; e++) {
+    long long rays = di_domain_target_many(s, di_targets_visible(p), b->entries, b->entry_sp, b->entry_y, b->target,
+                                           b->q, b->ray_entry, b->occluded);
+    for (int e = 0; e < b->entries; e++)
         *b->entry_P[e] = b->target[e];
-        if (!with_visibility || !(b->target[e] > 0.0f))
-            continue;
-        rays++;
-        if (di_visibility_query(b->entry_sp[e], b->entry_y[e], &b->q[b->rays]))
-            b->zero_if_occluded[b->rays++] = b->entry_P[e];
-    }
-    scene_occluded_batch(s, b->q, b->rays, b->occluded);
-    for (int r = 0; r < b->rays; r++)
-        if (b->occluded[r])
-            *b->zero_if_occluded[r] = 0.0f;
     for (int k = 0; k < b->merges; k++)
         merge_end(p, &b->mg[k]);
-    b->merges = b->entries = b->rays = 0;
+    b->merges = b->entries = 0;
     return rays;
 }
 
 static struct di_merge_batch *merge_batch_new(void)
 {
     struct di_merge_batch *b = xmalloc(sizeof(*b));
-    b->merges = b->entries = b->rays = 0;
+    b->merges = b->entries = 0;
     return b;
 }
 

@@ -56,7 +56,7 @@ long long pt_spmis_canonical_pass(const struct pt_frame *fr, const struct gbuffe
 {
     const struct pt_canonical_ctx ctx = {fr, g, in};
     const struct spmis_canonical_ops ops = {&ctx, pt_canonical_has_sample, pt_canonical_target,
-                                            pt_canonical_target_from};
+                                            pt_canonical_target_from, NULL}; /* one shift at a time */
     return spmis_canonical_pass(f, fr->p, fr->frame, g, &ops);
 }
 

@@ -152,30 +152,75 @@ pcg32 spmis_neighbor_plan(const struct spmis_frame *f, const struct render_param
     return rng;
 }
 
+/* Pixels waiting for their Eq. 19 targets in the canonical pass: at most a tile's pixels, and
+ * draws enough for the largest plan (RESTIR_SPMIS_MAX_DRAWS) several times over. */
+#define CANONICAL_QUEUE_PIXELS (RESTIR_TILE_W * RESTIR_TILE_H)
+#define CANONICAL_QUEUE_DRAWS (4 * RESTIR_SPMIS_MAX_DRAWS)
+struct canonical_queue {
+    int pixels, draws;
+    int pixel[CANONICAL_QUEUE_PIXELS], end[CANONICAL_QUEUE_PIXELS]; /* pixel j's draws end at end[j] */
+    struct restir_spmis_conf k[CANONICAL_QUEUE_PIXELS];
+    int c[CANONICAL_QUEUE_DRAWS], i[CANONICAL_QUEUE_DRAWS]; /* draw e: p_hat_{<-i[e]}(Y_{c[e]}) */
+    double factor[CANONICAL_QUEUE_DRAWS];
+    float p_from[CANONICAL_QUEUE_DRAWS];
+};
+
+/* Evaluates the queued draws' targets, then m~_c of each queued pixel (Eq. 18, the terms of Eq. 19
+ * summed in draw order). Returns the rays traced. */
+static long long canonical_flush(struct canonical_queue *q, struct spmis_frame *f,
+                                 const struct spmis_canonical_ops *ops)
+{
+    long long rays = 0;
+    if (ops->targets_from)
+        ops->targets_from(ops->ctx, q->draws, q->c, q->i, q->p_from, &rays);
+    else
+        for (int e = 0; e < q->draws; e++)
+            q->p_from[e] = ops->target_from(ops->ctx, q->c[e], q->i[e], &rays);
+    for (int j = 0, e = 0; j < q->pixels; j++) {
+        const int c = q->pixel[j];
+        const float p_c = ops->target(ops->ctx, c);
+        double m_c = restir_spmis_canonical_share(&q->k[j]);
+        for (; e < q->end[j]; e++) /* Eq. 19 */
+            m_c += restir_spmis_canonical_term(&q->k[j], f->conf[q->i[e]], q->p_from[e], p_c, q->factor[e]);
+        f->m_c[c] = (float)m_c; /* Eq. 18 */
+    }
+    q->pixels = q->draws = 0;
+    return rays;
+}
+
 long long spmis_canonical_pass(struct spmis_frame *f, const struct render_params *p, int frame,
                                const struct gbuffer *g, const struct spmis_canonical_ops *ops)
 {
     long long rays = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
-    for (int t = 0; t < ntiles; t++) {
+#pragma omp parallel reduction(+ : rays)
+    {
+        struct canonical_queue *q = xmalloc(sizeof(*q)); /* one per thread and pass */
+        q->pixels = q->draws = 0;
         struct restir_spmis_draws draws;
-        for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
-            const int c = px.i;
-            f->m_c[c] = 1.0f;
-            if (!g->valid[c] || !ops->has_sample(ops->ctx, c))
-                continue;
-            struct restir_spmis_conf k;
-            spmis_canonical_plan(f, p, frame, c, &k, &draws);
-            const float p_c = ops->target(ops->ctx, c);
-            double m_c = restir_spmis_canonical_share(&k);
-            for (int d = 0; d < draws.count; d++) {
-                const int i = draws.pixel[d];
-                const float p_from = ops->target_from(ops->ctx, c, i, &rays);
-                m_c += restir_spmis_canonical_term(&k, f->conf[i], p_from, p_c, draws.factor[d]); /* Eq. 19 */
+#pragma omp for schedule(dynamic, 1)
+        for (int t = 0; t < ntiles; t++) {
+            for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
+                const int c = px.i;
+                f->m_c[c] = 1.0f;
+                if (!g->valid[c] || !ops->has_sample(ops->ctx, c))
+                    continue;
+                struct restir_spmis_conf k;
+                spmis_canonical_plan(f, p, frame, c, &k, &draws);
+                if (q->pixels == CANONICAL_QUEUE_PIXELS || q->draws + draws.count > CANONICAL_QUEUE_DRAWS)
+                    rays += canonical_flush(q, f, ops);
+                for (int d = 0; d < draws.count; d++) {
+                    q->c[q->draws] = c;
+                    q->i[q->draws] = draws.pixel[d];
+                    q->factor[q->draws++] = draws.factor[d];
+                }
+                q->pixel[q->pixels] = c;
+                q->k[q->pixels] = k;
+                q->end[q->pixels++] = q->draws;
             }
-            f->m_c[c] = (float)m_c; /* Eq. 18 */
+            rays += canonical_flush(q, f, ops);
         }
+        free(q);
     }
     return rays;
 }

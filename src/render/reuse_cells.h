@@ -69,11 +69,17 @@ struct spmis_canonical_ops {
     /* p_hat_{<-i}(Y_c) of Eq. 19: pixel i's target for pixel c's sample brought into i's domain
      * (with the shift's Jacobian), adding the rays it traces to *rays */
     float (*target_from)(const void *ctx, int c, int i, long long *rays);
+    /* Optional (NULL: target_from one pair at a time): out[e] = target_from(ctx, c[e], i[e]) for
+     * n pairs at once, the same values, so that a method can evaluate them across pixels with
+     * vector instructions and trace their rays as streams (restir_di_spmis.c) */
+    void (*targets_from)(const void *ctx, int n, const int *c, const int *i, float *out, long long *rays);
 };
 
 /* 004 Algorithm 2 lines 6-12 for every pixel: the stochastic canonical weight m~_c from
  * spmis.canonical_candidates draws of the pixel's cell (Eq. 18-19) into f->m_c (1 where the pixel
- * is invalid or has no sample). Returns the rays traced. */
+ * is invalid or has no sample). The draws of many pixels (a tile's, at most) are queued and their
+ * p_hat_{<-i}(Y_c) evaluated together before each pixel's sum is taken in draw order, the same sum
+ * as one pixel at a time. Returns the rays traced. */
 long long spmis_canonical_pass(struct spmis_frame *f, const struct render_params *p, int frame,
                                const struct gbuffer *g, const struct spmis_canonical_ops *ops);
 
