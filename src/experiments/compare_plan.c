@@ -325,7 +325,7 @@ int compare_merge(const char *dir)
             struct compare_result one = {.method = st.specs[k].method};
             restir_metrics_compute(image, ref, npix, NULL, &one.err);
             compare_disoccluded_error(image, ref, mask, npix, &one.mape_dis, &one.dis_share);
-            one.grad_relmse = grad ? restir_metrics_gradient_relmse(grad, grad + 3 * npix, ref, st.p.width, st.p.height) : NAN;
+            compare_gradient_errors(grad, grad ? grad + 3 * npix : NULL, ref, st.p.width, st.p.height, &one);
             if (!grad && method_has(st.specs[k].method, METHOD_GRADIENT))
                 fprintf(stderr,
                         "restir: compare --merge: %s, run %d: its job was written without gradients (by a restir "
