@@ -64,8 +64,10 @@ static void compare_usage(void)
                "its _sem)\n"
                "and each row's last frame to DIR/FOLDER/, where FOLDER is the SPEC with every character other\n"
                "than A-Z a-z 0-9 . _ - replaced by _ (and _2, _3, ... appended when two SPECs give the same\n"
-               "name). Default DIR: out/compare-SCENE.\n"
-               "DIR/frames.csv has a row per SPEC and frame: frame time, temporal pass time, the shares of\n"
+               "name). Default DIR: out/compare-SCENE. For gradient rows DIR/FOLDER_grad_worst1.png shows where\n"
+               "the worst 1%% of gradient_relmse's pixel pairs are (issue 42), over the dimmed reference: red the\n"
+               "pair with the right neighbour, cyan with the one below, white both.\n");
+    printf("DIR/frames.csv has a row per SPEC and frame: frame time, temporal pass time, the shares of\n"
                "valid pixels whose history shifted in (temporal_accept) and, for path reservoirs, that were\n"
                "offered / took a backprojected or a splatted candidate (as restir render's metrics.csv), and\n"
                "the error of the frames that have a reference: the last, and with --ref-every K also frames\n"

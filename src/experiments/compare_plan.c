@@ -12,6 +12,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/compare_run.h"
+#include "experiments/compare_worst.h"
 #include "experiments/plan.h"
 #include "experiments/reference_checkpoint.h"
 #include "io/atomic_file.h"
@@ -332,6 +333,11 @@ int compare_merge(const char *dir)
                         "before gradient errors): no gradient_relmse for the row\n",
                         st.specs[k].label, n);
             compare_runs_add(&acc, &one);
+            if (n == 0 && grad && compare_write_worst_pairs(pl.dir, st.specs[k].dir, grad, grad + 3 * npix, ref,
+                                                            st.p.width, st.p.height, COMPARE_GRAD_TRIM, msg) != 0) {
+                cli_error("%s", msg);
+                rc = EXIT_RUNTIME;
+            }
             free(mask);
             free(grad);
             if (n > 0) {

@@ -13,6 +13,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/compare_report.h"
+#include "experiments/compare_worst.h"
 #include "experiments/options.h"
 #include "experiments/reference_checkpoint.h"
 #include "gradient/grad_frame.h"
@@ -187,6 +188,8 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     int rc = io_make_dirs(path, msg);
     if (rc == 0)
         rc = cli_write_frame(path, frames - 1, &r[0], msg);
+    if (rc == 0 && ref && g) /* issue 42: where the worst pairs of the gradient relMSE are */
+        rc = compare_write_worst_pairs(out_dir, c->dir, g->dx, g->dy, ref, p->width, p->height, COMPARE_GRAD_TRIM, msg);
     for (int k = 0; k < instances; k++)
         renderer_fini(&r[k]);
     return rc;

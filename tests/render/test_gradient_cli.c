@@ -506,6 +506,11 @@ static void check_compare(void)
                grad_trim[k], grad_mape[k]);
     snprintf(sub, sizeof(sub), "%s/pt", dir);
     expect_no_layer(sub, "frame_0002.exr", "dx");
+    /* issue 42: the image of the worst 1% of the gradient pairs, for the gradient rows only */
+    EXPECT(cli_count_entries(dir, "grestir-pt_grad_worst1.png") == 1 && cli_count_entries(dir, "gpt_grad_worst1.png") == 1,
+           "compare: no worst-pairs image for a gradient row in %s", dir);
+    EXPECT(cli_count_entries(dir, "_grad_worst1.png") == 2, "compare: a worst-pairs image for a row without "
+           "gradients in %s", dir);
 }
 
 /* 6. list names the gradient methods; render --help calls L1 BIASED on the recon line. */
