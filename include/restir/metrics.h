@@ -56,9 +56,10 @@ double restir_metrics_gradient_relmse(const float *dx, const float *dy, const fl
  * before the y pair (a, a + y)). The first round(fraction * P) of the P pairs (halves rounded up) are left out
  * and the mean is over the other pairs' channels; fraction = 0 gives restir_metrics_gradient_relmse's exact
  * bits. We use fraction = 0.01. Dimensionless (G and R in the same radiance units); the inputs are only read,
- * on the calling thread, and a scratch buffer is freed before returning. NaN as restir_metrics_gradient_relmse, and for a NaN, negative or >= 1
- * fraction, one that leaves no pair, a pair whose sum is NaN or infinite (a broken image must not be trimmed
- * into looking converged) and when a scratch allocation of 34 bytes per pixel fails. */
+ * on the calling thread, and a scratch buffer is freed before returning. NaN as restir_metrics_gradient_relmse,
+ * and for a NaN, negative or >= 1 fraction, one that leaves no pair, a pair whose sum is NaN or infinite (a
+ * broken image must not be trimmed into looking converged) and when a scratch allocation of 34 bytes per pixel
+ * fails. */
 double restir_metrics_gradient_relmse_trimmed(const float *dx, const float *dy, const float *reference, int width,
                                               int height, double fraction);
 /* Where the pairs that restir_metrics_gradient_relmse_trimmed leaves out are: mask_out (width * height bytes,

@@ -61,8 +61,8 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
     struct csv_writer csv;
     if (csv_open(&csv, csv_path,
                  "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse,runs,temporal_cov,relmse_sem,mape_sem,"
-                 "smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share,gradient_relmse,gradient_relmse_sem,"
-                 "gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem",
+                 "smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share,gradient_relmse,"
+                 "gradient_relmse_sem,gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem",
                  msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;

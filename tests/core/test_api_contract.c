@@ -764,7 +764,8 @@ static void test_metrics(void)
           restir_metrics_gradient_worst_pairs(g, g, ref, 2, 1, NAN, wm) == -1 &&
           restir_metrics_gradient_worst_pairs(g, g, ref, 2, 1, 1.0, wm) == -1 && wm[0] == 9 && wm[1] == 9);
     CHECK(restir_metrics_gradient_worst_pairs(g, g, ref, 2, 1, 0.5, wm) == 1 && wm[0] == 1 && wm[1] == 0);
-    CHECK(isnan(restir_metrics_gradient_mape(NULL, g, ref, 2, 1)) && isnan(restir_metrics_gradient_mape(g, g, NULL, 2, 1)));
+    CHECK(isnan(restir_metrics_gradient_mape(NULL, g, ref, 2, 1)) &&
+          isnan(restir_metrics_gradient_mape(g, g, NULL, 2, 1)));
     CHECK(isnan(restir_metrics_gradient_mape(g, g, ref, -2, 1)) && isnan(restir_metrics_gradient_mape(g, g, ref, 1, 1)));
     CHECK(isnan(restir_metrics_gradient_mape(g, g, ref, INT_MAX, INT_MAX)));
     CHECK(isfinite(restir_metrics_gradient_mape(g, g, ref, 2, 1)));

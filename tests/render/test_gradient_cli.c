@@ -507,7 +507,8 @@ static void check_compare(void)
     snprintf(sub, sizeof(sub), "%s/pt", dir);
     expect_no_layer(sub, "frame_0002.exr", "dx");
     /* issue 42: the image of the worst 1% of the gradient pairs, for the gradient rows only */
-    EXPECT(cli_count_entries(dir, "grestir-pt_grad_worst1.png") == 1 && cli_count_entries(dir, "gpt_grad_worst1.png") == 1,
+    EXPECT(cli_count_entries(dir, "grestir-pt_grad_worst1.png") == 1 &&
+               cli_count_entries(dir, "gpt_grad_worst1.png") == 1,
            "compare: no worst-pairs image for a gradient row in %s", dir);
     EXPECT(cli_count_entries(dir, "_grad_worst1.png") == 2, "compare: a worst-pairs image for a row without "
            "gradients in %s", dir);
