@@ -49,6 +49,34 @@ int restir_metrics_mape_map(const float *image, const float *reference, size_t n
  * The paper shows the images only; this is our measure of them. NaN for NULL inputs, width or
  * height < 1, an image with no pair (1 x 1) or one too large to address. */
 double restir_metrics_gradient_relmse(const float *dx, const float *dy, const float *reference, int width, int height);
+/* Issue 42: restir_metrics_gradient_relmse as a trimmed mean, because ~1% of the pairs (single-pixel spikes on
+ * dark surfaces, light edges: a small pair mean in the denominator) carry most of it. Each pair inside the image
+ * is ranked by its three channels' terms summed (its whole share of the relMSE); a NaN or infinite sum ranks
+ * above every finite one and equal sums rank the earlier pair first (row-major by a, the x pair (a, a + x)
+ * before the y pair (a, a + y)). The first round(fraction * P) of the P pairs (halves rounded up) are left out
+ * and the mean is over the other pairs' channels; fraction = 0 gives restir_metrics_gradient_relmse's exact
+ * bits. We use fraction = 0.01. Dimensionless (G and R in the same radiance units); the inputs are only read,
+ * on the calling thread, and a scratch buffer is freed before returning. NaN as restir_metrics_gradient_relmse,
+ * and for a NaN, negative or >= 1 fraction, one that leaves no pair, a pair whose sum is NaN or infinite (a
+ * broken image must not be trimmed into looking converged) and when a scratch allocation of 34 bytes per pixel
+ * fails. */
+double restir_metrics_gradient_relmse_trimmed(const float *dx, const float *dy, const float *reference, int width,
+                                              int height, double fraction);
+/* Where the pairs that restir_metrics_gradient_relmse_trimmed leaves out are: mask_out (width * height bytes,
+ * caller-owned) gets, per pixel a, bit 0 set when the pair (a, a + x) is one of them and bit 1 when (a, a + y)
+ * is; here a pair with a NaN or infinite sum is simply among the worst. Returns the number of pairs marked
+ * (round(fraction * P)), or -1 without writing for NULL arguments, sizes or a fraction that
+ * restir_metrics_gradient_relmse_trimmed refuses (a fraction leaving no pair is allowed here), or a failed
+ * scratch allocation. */
+long restir_metrics_gradient_worst_pairs(const float *dx, const float *dy, const float *reference, int width,
+                                         int height, double fraction, unsigned char *mask_out);
+/* Issue 42: gradient MAPE, robust to the pairs that dominate the relMSE: the mean over the pairs inside the
+ * image and channels of |G - D| / (|D| + 0.01 mean|D|), D = R_b - R_a the reference's forward difference and
+ * mean|D| the mean of |D| over those pairs and channels: the offset is 1% of the mean of the denominator's
+ * quantity, as restir_metrics_error's mape (0.01 mean(R)), and a term with G == D counts 0 even where its
+ * denominator is 0. A flat reference (every D = 0) therefore makes any error infinite, as a black reference
+ * does for the image MAPE. NaN as restir_metrics_gradient_relmse. */
+double restir_metrics_gradient_mape(const float *dx, const float *dy, const float *reference, int width, int height);
 
 /* The definitions above as plain text (a static string, one metric per line), for a program's
  * documentation or output. */

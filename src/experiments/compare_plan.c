@@ -12,6 +12,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/compare_run.h"
+#include "experiments/compare_worst.h"
 #include "experiments/plan.h"
 #include "experiments/reference_checkpoint.h"
 #include "io/atomic_file.h"
@@ -325,13 +326,18 @@ int compare_merge(const char *dir)
             struct compare_result one = {.method = st.specs[k].method};
             restir_metrics_compute(image, ref, npix, NULL, &one.err);
             compare_disoccluded_error(image, ref, mask, npix, &one.mape_dis, &one.dis_share);
-            one.grad_relmse = grad ? restir_metrics_gradient_relmse(grad, grad + 3 * npix, ref, st.p.width, st.p.height) : NAN;
+            compare_gradient_errors(grad, grad ? grad + 3 * npix : NULL, ref, st.p.width, st.p.height, &one);
             if (!grad && method_has(st.specs[k].method, METHOD_GRADIENT))
                 fprintf(stderr,
                         "restir: compare --merge: %s, run %d: its job was written without gradients (by a restir "
                         "before gradient errors): no gradient_relmse for the row\n",
                         st.specs[k].label, n);
             compare_runs_add(&acc, &one);
+            if (n == 0 && grad && compare_write_worst_pairs(pl.dir, st.specs[k].dir, grad, grad + 3 * npix, ref,
+                                                            st.p.width, st.p.height, COMPARE_GRAD_TRIM, msg) != 0) {
+                cli_error("%s", msg);
+                rc = EXIT_RUNTIME;
+            }
             free(mask);
             free(grad);
             if (n > 0) {

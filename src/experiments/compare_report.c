@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "experiments/compare_worst.h"
 #include "experiments/report_commit.h"
 #include "io/atomic_file.h"
 #include "io/html_report.h"
@@ -160,39 +161,54 @@ static int crops(struct html_page *pg, const struct compare_report_run *run, int
     return 0;
 }
 
+/* 1 when out_dir/rel exists. */
+static int report_file_exists(const char *out_dir, const char *rel)
+{
+    char path[4400];
+    snprintf(path, sizeof path, "%s/%s", out_dir, rel);
+    FILE *f = fopen(path, "rb");
+    if (f)
+        fclose(f);
+    return f != NULL;
+}
+
 /* 002's layers of every gradient method: the primal image and the x and y gradients (the PNGs
- * cli_write_frame wrote beside the reconstruction; red positive, blue negative). */
+ * cli_write_frame wrote beside the reconstruction; red positive, blue negative), and where the worst 1% of the
+ * gradient relMSE's pairs are (compare_worst.h) when that image was written. */
 static void gradient_layers(struct html_page *pg, const struct compare_report_run *run, int n,
                             const struct compare_report_method *m)
 {
     static const char *const layers[3] = {"primal", "dx", "dy"};
     int any = 0;
     for (int k = 0; k < n; k++) {
-        char rel[3][SPEC_REL_MAX], path[4400];
-        const char *labels[4], *srcs[4];
+        char rel[4][SPEC_REL_MAX];
+        const char *labels[5], *srcs[5];
         labels[0] = "reconstruction";
         srcs[0] = m[k].png;
         int found = 1;
         for (int q = 0; q < 3 && found; q++) {
             snprintf(rel[q], sizeof rel[q], "%s/frame_%04d_%s.png", m[k].dir, run->frame, layers[q]);
-            snprintf(path, sizeof path, "%s/%s", run->out_dir, rel[q]);
-            FILE *f = fopen(path, "rb");
-            found = f != NULL;
-            if (f)
-                fclose(f);
+            found = report_file_exists(run->out_dir, rel[q]);
             labels[q + 1] = layers[q];
             srcs[q + 1] = rel[q];
         }
         if (!found)
             continue;
+        snprintf(rel[3], sizeof rel[3], "%s%s", m[k].dir, COMPARE_WORST_SUFFIX);
+        const int worst = report_file_exists(run->out_dir, rel[3]);
+        labels[4] = "worst 1% pairs";
+        srcs[4] = rel[3];
         if (!any)
             html_raw(pg, "<h2>Gradient layers (002)</h2>\n<p>Per gradient method: the reconstruction, its primal "
-                         "image and the x and y gradients (red positive, blue negative).</p>\n");
+                         "image, the x and y gradients (red positive, blue negative) and where the worst 1%% of the "
+                         "pixel pairs of the gradient relMSE are, which carry most of it (over the dimmed "
+                         "reference: red the pair with the right neighbour, cyan with the one below, white "
+                         "both).</p>\n");
         any = 1;
         html_raw(pg, "<h3>");
         html_text(pg, m[k].label);
         html_raw(pg, "</h3>\n");
-        html_viewer(pg, 4, labels, srcs, run->width, run->height);
+        html_viewer(pg, worst ? 5 : 4, labels, srcs, run->width, run->height);
     }
 }
 

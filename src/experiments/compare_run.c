@@ -13,6 +13,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/compare_report.h"
+#include "experiments/compare_worst.h"
 #include "experiments/options.h"
 #include "experiments/reference_checkpoint.h"
 #include "gradient/grad_frame.h"
@@ -53,6 +54,17 @@ void compare_disoccluded_error(const float *image, const float *ref, const unsig
     struct restir_metrics_error e;
     if (marked > 0 && restir_metrics_compute(image, ref, npix, mask, &e) == 0)
         *mape = e.mape;
+}
+
+void compare_gradient_errors(const float *dx, const float *dy, const float *ref, int width, int height,
+                             struct compare_result *res)
+{
+    res->grad_relmse = res->grad_relmse_trim = res->grad_mape = NAN;
+    if (!dx)
+        return;
+    res->grad_relmse = restir_metrics_gradient_relmse(dx, dy, ref, width, height);
+    res->grad_relmse_trim = restir_metrics_gradient_relmse_trimmed(dx, dy, ref, width, height, COMPARE_GRAD_TRIM);
+    res->grad_mape = restir_metrics_gradient_mape(dx, dy, ref, width, height);
 }
 
 int compare_run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
@@ -145,13 +157,13 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     }
     res->mask = NULL;
     res->grad = NULL;
-    res->grad_relmse = NAN;
+    res->grad_relmse = res->grad_relmse_trim = res->grad_mape = NAN;
     const struct grad_frame *g = grad[0];
     if (ref) { /* a planned job measures nothing: the merge does, from the frame, mask and gradients it writes */
         restir_metrics_compute(r[0].image, ref, npix, NULL, &res->err);
         compare_disoccluded_error(r[0].image, ref, mask, npix, &res->mape_dis, &res->dis_share);
         if (g)
-            res->grad_relmse = restir_metrics_gradient_relmse(g->dx, g->dy, ref, p->width, p->height);
+            compare_gradient_errors(g->dx, g->dy, ref, p->width, p->height, res);
         free(mask);
     } else {
         res->mask = mask;
@@ -176,6 +188,8 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     int rc = io_make_dirs(path, msg);
     if (rc == 0)
         rc = cli_write_frame(path, frames - 1, &r[0], msg);
+    if (rc == 0 && ref && g) /* issue 42: where the worst pairs of the gradient relMSE are */
+        rc = compare_write_worst_pairs(out_dir, c->dir, g->dx, g->dy, ref, p->width, p->height, COMPARE_GRAD_TRIM, msg);
     for (int k = 0; k < instances; k++)
         renderer_fini(&r[k]);
     return rc;
@@ -184,27 +198,32 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
 void compare_runs_add(struct compare_runs *a, const struct compare_result *r)
 {
     const struct restir_metrics_error *e = &r->err;
-    const double x[7] = {e->relmse, e->mape, e->smape, e->luma_rmse, r->mape_dis, r->dis_share, r->grad_relmse};
+    const double x[9] = {e->relmse,   e->mape,        e->smape,         e->luma_rmse, r->mape_dis,
+                         r->dis_share, r->grad_relmse, r->grad_relmse_trim, r->grad_mape};
     a->n++;
-    for (int k = 0; k < 7; k++)
+    for (int k = 0; k < 9; k++)
         running_mean_add(&a->m[k], x[k]);
 }
 
 void compare_runs_finish(const struct compare_runs *a, struct compare_result *res)
 {
     const int runs = a->n;
-    double sem[7];
-    for (int k = 0; k < 7; k++)
+    double sem[9];
+    for (int k = 0; k < 9; k++)
         sem[k] = running_mean_sem(&a->m[k]);
     if (runs > 1) { /* one run keeps its error bit for bit */
         res->err = (struct restir_metrics_error){a->m[0].mean, a->m[1].mean, a->m[2].mean, a->m[3].mean};
         res->mape_dis = a->m[4].mean;
         res->dis_share = a->m[5].mean;
         res->grad_relmse = a->m[6].mean;
+        res->grad_relmse_trim = a->m[7].mean;
+        res->grad_mape = a->m[8].mean;
     }
     res->sem = (struct restir_metrics_error){sem[0], sem[1], sem[2], sem[3]};
     res->mape_dis_sem = sem[4];
     res->grad_relmse_sem = sem[6];
+    res->grad_relmse_trim_sem = sem[7];
+    res->grad_mape_sem = sem[8];
     res->runs = runs;
 }
 

@@ -13,6 +13,7 @@
 
 #define MAX_METHODS 16
 #define MAX_INSTANCES 16 /* independently seeded renderers one row may average */
+#define COMPARE_GRAD_TRIM 0.01 /* issue 42: the share of gradient pairs the trimmed relMSE leaves out */
 #define SPEC_MAX 200 /* characters of one spec; its folder name stays under NAME_MAX */
 
 /* One row of the comparison: a method with the command's parameters and then the spec's own
@@ -42,6 +43,10 @@ struct compare_result {
     /* gradient methods (002 Fig. 7): restir_metrics_gradient_relmse of the last frame's (instance-averaged)
      * gradients, mean over the runs, and its standard error; NaN for the other methods */
     double grad_relmse, grad_relmse_sem;
+    /* issue 42: the same gradients' relMSE without the worst COMPARE_GRAD_TRIM of the pairs
+     * (restir_metrics_gradient_relmse_trimmed) and their MAPE (restir_metrics_gradient_mape), means over
+     * the runs and standard errors; NaN for the other methods */
+    double grad_relmse_trim, grad_relmse_trim_sem, grad_mape, grad_mape_sem;
     unsigned char *mask; /* a planned job's disocclusion mask for the merge (else NULL; caller frees) */
     float *grad; /* a planned job's gradients for the merge: dx then dy, 3 x width x height floats
                     each (else NULL; caller frees) */
@@ -69,6 +74,11 @@ int compare_budget_by_spp(const struct method *m);
 void compare_disoccluded_error(const float *image, const float *ref, const unsigned char *mask, size_t npix,
                                double *mape, double *share);
 
+/* The gradient errors of res (grad_relmse, grad_relmse_trim, grad_mape) from the gradients dx, dy (3 floats per
+ * pixel each) against ref; all NaN when dx is NULL (not a gradient method). */
+void compare_gradient_errors(const float *dx, const float *dy, const float *ref, int width, int height,
+                             struct compare_result *res);
+
 /* compare_run_method's result when a stop signal arrived before the method's last frame. */
 #define RUN_STOPPED 1
 
@@ -92,8 +102,8 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
 /* The errors of a spec's runs as they arrive (run order), and their means and standard errors. */
 struct compare_runs {
     int n;
-    struct running_mean m[7]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share,
-                                 gradient relMSE */
+    struct running_mean m[9]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share,
+                                 gradient relMSE, its 1%-trimmed mean, gradient MAPE */
 };
 void compare_runs_add(struct compare_runs *a, const struct compare_result *r);
 /* Into res: with more than one run the means (one run keeps its own errors bit for bit), the

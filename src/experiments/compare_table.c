@@ -61,7 +61,8 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
     struct csv_writer csv;
     if (csv_open(&csv, csv_path,
                  "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse,runs,temporal_cov,relmse_sem,mape_sem,"
-                 "smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share,gradient_relmse,gradient_relmse_sem",
+                 "smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share,gradient_relmse,"
+                 "gradient_relmse_sem,gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem",
                  msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
@@ -73,25 +74,30 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
     printf("%s, %dx%d, %s camera, error at frame %d%s:\n", o->scene, p->width, p->height,
            p->camera_path ? "moving" : "static", o->frames - 1, o->equal_time ? ", equal time" : "");
     const int runs = o->runs > 1;
-    int any_grad = 0; /* a gradient method's row: the table gets 002 Fig. 7's gradient relMSE */
+    int any_grad = 0; /* a gradient method's row: the table gets 002 Fig. 7's gradient relMSE, trimmed and MAPE */
     for (int k = 0; k < n; k++)
         any_grad |= isfinite(res[k].grad_relmse);
     if (runs)
         printf("(errors: means of %d independently seeded runs, +- their standard error; tcov: 000 Eq. 17 at lag %d "
                "over frames %d-%d)\n",
                o->runs, COMPARE_COV_LAG, o->frames / 2, o->frames - 1);
-    printf("%-*s %10s %6s %5s %12s%s %10s%s %8s%s %12s %10s%s %6s%s%s%s\n", w, "method", "ms/frame", "spp", "inst",
-           "relMSE", runs ? "       +-" : "", "MAPE", runs ? "       +-" : "", "SMAPE", runs ? "     +-" : "",
+    printf("%-*s %10s %6s %5s %12s%s %10s%s %8s%s %12s %10s%s %6s%s%s%s%s%s%s%s\n", w, "method", "ms/frame", "spp",
+           "inst", "relMSE", runs ? "       +-" : "", "MAPE", runs ? "       +-" : "", "SMAPE", runs ? "     +-" : "",
            "relMSE/first", "MAPE dis", runs ? "       +-" : "", "dis", runs ? "         tcov" : "",
-           any_grad ? "  grad relMSE" : "", any_grad && runs ? "       +-" : "");
+           any_grad ? "  grad relMSE" : "", any_grad && runs ? "       +-" : "", any_grad ? "   grad trim1" : "",
+           any_grad && runs ? "       +-" : "", any_grad ? "    grad MAPE" : "", any_grad && runs ? "       +-" : "");
     for (int k = 0; k < n; k++) {
         const struct compare_result *c = &res[k];
         /* a metric that does not apply to the row (no history, no gradients, one run) prints '-' */
-        char tcov[32] = "", se[4][32] = {"", "", "", ""}, grad[2][32] = {"", ""}, dis[2][32];
-        if (any_grad)
-            table_cell(grad[0], sizeof grad[0], " %12.5g", 13, c->grad_relmse);
-        if (any_grad && runs)
-            table_cell(grad[1], sizeof grad[1], " %8.2g", 9, c->grad_relmse_sem);
+        char tcov[32] = "", se[4][32] = {"", "", "", ""}, grad[6][32] = {"", "", "", "", "", ""}, dis[2][32];
+        const double gv[3] = {c->grad_relmse, c->grad_relmse_trim, c->grad_mape};
+        const double gs[3] = {c->grad_relmse_sem, c->grad_relmse_trim_sem, c->grad_mape_sem};
+        for (int j = 0; j < 3; j++) {
+            if (any_grad)
+                table_cell(grad[2 * j], sizeof grad[2 * j], " %12.5g", 13, gv[j]);
+            if (any_grad && runs)
+                table_cell(grad[2 * j + 1], sizeof grad[2 * j + 1], " %8.2g", 9, gs[j]);
+        }
         if (runs) {
             table_cell(tcov, sizeof tcov, " %12.5g", 13, c->temporal_cov);
             table_cell(se[0], sizeof se[0], " %8.2g", 9, c->sem.relmse);
@@ -101,13 +107,13 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
         }
         table_cell(dis[0], sizeof dis[0], " %10.5g", 11, c->mape_dis);
         table_cell(dis[1], sizeof dis[1], " %6.3f", 7, c->dis_share);
-        printf("%-*s %10.2f %6d %5d %12.5g%s %10.5g%s %8.3f%s %12.3f%s%s%s%s%s%s\n", w, specs[k].label,
+        printf("%-*s %10.2f %6d %5d %12.5g%s %10.5g%s %8.3f%s %12.3f%s%s%s%s%s%s%s%s%s%s\n", w, specs[k].label,
                c->ms_per_frame, c->spp, c->instances, c->err.relmse, se[0], c->err.mape, se[1], c->err.smape, se[2],
                res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0, dis[0], se[3], dis[1], tcov, grad[0],
-               grad[1]);
+               grad[1], grad[2], grad[3], grad[4], grad[5]);
         if (rc == 0) {
             char field[2 * SPEC_MAX + 4], cov[32] = "", sem[4][32] = {"", "", "", ""}, dis[2][32] = {"", ""},
-                                          gr[2][32] = {"", ""};
+                                          gr[6][32] = {"", "", "", "", "", ""};
             csv_field(field, sizeof(field), specs[k].label);
             if (isfinite(c->temporal_cov))
                 snprintf(cov, sizeof cov, "%.6g", c->temporal_cov);
@@ -122,13 +128,16 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                 snprintf(dis[0], sizeof dis[0], "%.6g", c->mape_dis);
             if (isfinite(c->dis_share))
                 snprintf(dis[1], sizeof dis[1], "%.6g", c->dis_share);
-            if (isfinite(c->grad_relmse))
-                snprintf(gr[0], sizeof gr[0], "%.6g", c->grad_relmse);
-            if (c->runs > 1 && isfinite(c->grad_relmse_sem))
-                snprintf(gr[1], sizeof gr[1], "%.6g", c->grad_relmse_sem);
-            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s", field, c->ms_per_frame,
-                    c->spp, c->instances, c->err.relmse, c->err.mape, c->err.smape, c->err.luma_rmse,
-                    c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1], gr[0], gr[1]);
+            for (int j = 0; j < 3; j++) { /* gradient relMSE, its 1%-trimmed mean, gradient MAPE; each + sem */
+                if (isfinite(gv[j]))
+                    snprintf(gr[2 * j], sizeof gr[2 * j], "%.6g", gv[j]);
+                if (c->runs > 1 && isfinite(gs[j]))
+                    snprintf(gr[2 * j + 1], sizeof gr[2 * j + 1], "%.6g", gs[j]);
+            }
+            csv_row(&csv, "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s", field,
+                    c->ms_per_frame, c->spp, c->instances, c->err.relmse, c->err.mape, c->err.smape, c->err.luma_rmse,
+                    c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1], gr[0], gr[1],
+                    gr[2], gr[3], gr[4], gr[5]);
         }
     }
     if (rc == 0 && csv_close(&csv, msg) != 0) {

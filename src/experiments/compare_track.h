@@ -33,7 +33,8 @@ struct compare_track {
     float **ref;       /* their references; ref[nref - 1] is the comparison's reference (not owned) */
     int cov_first;     /* the autocovariance window: frames cov_first .. frames - 1 (the second half) */
     struct compare_frame_sums *sums; /* frames entries for the spec being run */
-    float *seq;        /* runs * (frames - cov_first) * w * h luminance, run-major then frame */
+    float *seq;        /* runs * (frames - cov_first) * w * h luminance clamped at 0, run-major then frame */
+    size_t clamped, measured; /* of the spec's luminance values stored in seq: the negative ones, all */
     struct csv_writer csv; /* DIR/frames.csv */
     int csv_open;
 };
@@ -56,8 +57,9 @@ void compare_track_image(struct compare_track *t, int run, int f, const float *i
 /* 1 when frame f of the sequence needs its image measured (a reference frame or in the window). */
 int compare_track_wants_image(const struct compare_track *t, int f);
 /* Ends a spec: writes its rows (means over runs) to frames.csv labelled `label` and returns the
- * relative autocovariance over the runs (NaN with fewer than 2 runs or a window under lag + 1
- * frames). */
+ * relative autocovariance over the runs of the luminance clamped at 0 (the gradient methods' reconstructions
+ * are signed, and 000 Eq. 17's division by each pixel's mean is unbounded where that mean crosses 0; stderr
+ * says how many values were clamped) (NaN with fewer than 2 runs or a window under lag + 1 frames). */
 double compare_track_end(struct compare_track *t, const char *label);
 /* Commits frames.csv. Returns 0, or -1 with msg. */
 int compare_track_close(struct compare_track *t, char *msg);

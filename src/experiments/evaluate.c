@@ -114,8 +114,10 @@ static int canonical_args(const struct eval_options *o, char *text, size_t len, 
     ARG("%s", o->paper);
     ARG("--res");
     ARG("%dx%d", o->width, o->height);
-    ARG("--runs");
-    ARG("%d", eval_runs(o));
+    if (o->runs > 0 || strcmp(o->paper, "all")) { /* all: each paper's own default (eval_runs) */
+        ARG("--runs");
+        ARG("%d", eval_runs(o, o->paper));
+    }
     ARG("--ref-spp");
     ARG("%d", eval_ref_spp(o));
     if (o->frames > 0) {

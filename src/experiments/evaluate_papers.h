@@ -56,7 +56,8 @@ int eval_steps(const struct eval_options *o, struct eval_step *steps, int *n, ch
 /* The parameters a step runs with that its tables state: frames, warm-up, runs, reference paths. */
 int eval_frames(const struct eval_options *o, const char *paper);
 int eval_warmup(const struct eval_options *o);
-int eval_runs(const struct eval_options *o);
+/* Runs per configuration of paper ("000", "004", "002"): --runs, else the paper's default (002: 8, the others 4). */
+int eval_runs(const struct eval_options *o, const char *paper);
 int eval_ref_spp(const struct eval_options *o);
 
 #endif

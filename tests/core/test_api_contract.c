@@ -753,6 +753,30 @@ static void test_metrics(void)
     CHECK(isnan(restir_metrics_gradient_relmse(g, g, ref, 1, 1)));
     CHECK(isnan(restir_metrics_gradient_relmse(g, g, ref, INT_MAX, INT_MAX)));
     CHECK(isfinite(restir_metrics_gradient_relmse(g, g, ref, 2, 1)));
+    /* the trimmed relMSE, the worst-pairs mask and gradient MAPE: the same arguments, and the fraction */
+    unsigned char wm[2] = {9, 9};
+    CHECK(isnan(restir_metrics_gradient_relmse_trimmed(NULL, g, ref, 2, 1, 0.01)) &&
+          isnan(restir_metrics_gradient_relmse_trimmed(g, g, NULL, 2, 1, 0.01)));
+    CHECK(isnan(restir_metrics_gradient_relmse_trimmed(g, g, ref, 1, 1, 0.01)) &&
+          isnan(restir_metrics_gradient_relmse_trimmed(g, g, ref, INT_MAX, INT_MAX, 0.01)));
+    CHECK(isnan(restir_metrics_gradient_relmse_trimmed(g, g, ref, 2, 1, NAN)) &&
+          isnan(restir_metrics_gradient_relmse_trimmed(g, g, ref, 2, 1, -0.5)) &&
+          isnan(restir_metrics_gradient_relmse_trimmed(g, g, ref, 2, 1, 1.0)) &&
+          isnan(restir_metrics_gradient_relmse_trimmed(g, g, ref, 2, 1, INFINITY)));
+    CHECK(isnan(restir_metrics_gradient_relmse_trimmed(g, g, ref, 2, 1, 0.5))); /* 0.5 of 1 pair leaves none */
+    CHECK(restir_metrics_gradient_relmse_trimmed(g, g, ref, 2, 1, 0.01) ==
+          restir_metrics_gradient_relmse(g, g, ref, 2, 1));
+    CHECK(restir_metrics_gradient_worst_pairs(NULL, g, ref, 2, 1, 0.01, wm) == -1 &&
+          restir_metrics_gradient_worst_pairs(g, g, ref, 2, 1, 0.01, NULL) == -1 &&
+          restir_metrics_gradient_worst_pairs(g, g, ref, 0, 1, 0.01, wm) == -1 &&
+          restir_metrics_gradient_worst_pairs(g, g, ref, 2, 1, NAN, wm) == -1 &&
+          restir_metrics_gradient_worst_pairs(g, g, ref, 2, 1, 1.0, wm) == -1 && wm[0] == 9 && wm[1] == 9);
+    CHECK(restir_metrics_gradient_worst_pairs(g, g, ref, 2, 1, 0.5, wm) == 1 && wm[0] == 1 && wm[1] == 0);
+    CHECK(isnan(restir_metrics_gradient_mape(NULL, g, ref, 2, 1)) &&
+          isnan(restir_metrics_gradient_mape(g, g, NULL, 2, 1)));
+    CHECK(isnan(restir_metrics_gradient_mape(g, g, ref, -2, 1)) && isnan(restir_metrics_gradient_mape(g, g, ref, 1, 1)));
+    CHECK(isnan(restir_metrics_gradient_mape(g, g, ref, INT_MAX, INT_MAX)));
+    CHECK(isfinite(restir_metrics_gradient_mape(g, g, ref, 2, 1)));
     CHECK(restir_metrics_definitions() != NULL && restir_metrics_definitions()[0] != '\0');
 
     /* correlation: 2 runs of a 3 x 2 luminance image */

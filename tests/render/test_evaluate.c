@@ -5,7 +5,8 @@
  * for the same command, and the evaluation's tables and claims show its numbers; bad input (an unknown paper or
  * scene, a resolution below the paper's radii, a folder of another evaluation or of another command's plan, a
  * non-empty folder) exits 2 and leaves the folder as it was; an unfinished evaluation merges only with --partial,
- * which names the steps left out; --configs runs a subset of 000's configurations with the same numbers. */
+ * which names the steps left out; --configs runs a subset of 000's configurations with the same numbers; 002 plans
+ * 8 runs by default and 004 4. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -124,6 +125,29 @@ static const struct {
              {"004-cornell-ablation", "compare", 1, 1},
              {"002-cornell", "compare", 1, 1}};
 
+/* issue 42: 002 runs 8 runs per configuration by default, 004 keeps 4 (the default runs are per paper). The plans
+ * count them: a reference job and one job per row and run. */
+static void test_default_runs(char *err)
+{
+    char dir[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX];
+    static const struct {
+        const char *paper;
+        int jobs;
+    } want[2] = {{"002", 1 + 8 * 8}, /* 8 rows x 8 runs */
+                 {"004", 1 + 5 * 4}}; /* 5 reuse rows x 4 runs (the first step's plan) */
+    for (int k = 0; k < 2; k++) {
+        snprintf(dir, sizeof dir, "%s/runs%s", tmp, want[k].paper);
+        snprintf(args, sizeof args, "evaluate %s --res 64x64 --frames 4 --scenes cornell --plan '%s'", want[k].paper,
+                 dir);
+        EXPECT(cli_run(tmp, args, err) == 0, "evaluate %s --plan: %s", want[k].paper, err);
+        char jobs[3 * CLI_PATH_MAX], count[16];
+        snprintf(jobs, sizeof jobs, "%s/%s/jobs.txt", dir, k == 0 ? "002-cornell" : "004-cornell-restir-pt");
+        snprintf(count, sizeof count, "%d", want[k].jobs);
+        EXPECT(sh("test $(wc -l < '%s') -eq %s", jobs, count) == 0, "%s has other than %d jobs (default runs)", jobs,
+               want[k].jobs);
+    }
+}
+
 static void test_plan_equals_unsplit(char *err)
 {
     char unsplit[2 * CLI_PATH_MAX], plan[2 * CLI_PATH_MAX], args[6 * CLI_PATH_MAX];
@@ -159,6 +183,14 @@ static void test_plan_equals_unsplit(char *err)
     EXPECT(g && (!unmeasured || (g_end && unmeasured > g_end)), "claims.csv: 002's gradient claim is missing or "
                                                                  "not measured:\n%s",
            a);
+    /* and issue 42's trimmed gradient relMSE and gradient MAPE reached them too */
+    static const char *const robust[2] = {"gradient relMSE trim 1% vs Gradient after ReSTIR x 2",
+                                          "gradient MAPE vs Gradient after ReSTIR x 1"};
+    for (int k = 0; k < 2; k++) {
+        const char *r = strstr(a, robust[k]), *r_end = r ? strchr(r, '\n') : NULL;
+        const char *r_un = r ? strstr(r, "not measured") : NULL;
+        EXPECT(r && (!r_un || (r_end && r_un > r_end)), "claims.csv: \"%s\" is missing or not measured", robust[k]);
+    }
     snprintf(pa, sizeof pa, "%s/index.html", unsplit);
     EXPECT(!exists(pa), "index.html without --report");
     static char html[1 << 18];
@@ -270,6 +302,7 @@ int main(void)
     EXPECT(system("command -v parallel >/dev/null 2>&1") == 0,
            "GNU parallel is not installed (make test-deps installs it)");
     test_bad_input(err);
+    test_default_runs(err);
     test_plan_equals_unsplit(err);
     test_tables_are_compares(err);
     test_configs_subset(err);

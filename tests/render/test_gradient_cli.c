@@ -449,8 +449,9 @@ static void check_compare(void)
     cli_read_text(path, csv, sizeof(csv));
     const char *header = "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse,runs,temporal_cov,relmse_sem,"
                          "mape_sem,smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share,gradient_relmse,"
-                         "gradient_relmse_sem\n";
-    double grad_relmse[4];
+                         "gradient_relmse_sem,gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,"
+                         "gradient_mape_sem\n";
+    double grad_relmse[4], grad_trim[4], grad_mape[4];
     EXPECT(strncmp(csv, header, strlen(header)) == 0, "%s: wrong header:\n%s", path, csv);
     int rows = 0;
     for (const char *line = next_line(csv); line; line = next_line(line)) {
@@ -467,8 +468,11 @@ static void check_compare(void)
             double e = csv_number(line, c);
             EXPECT(isfinite(e) && e >= 0.0, "%s row %d: error column %d is %g", path, rows + 1, c, e);
         }
-        if (rows < 4)
+        if (rows < 4) {
             grad_relmse[rows] = csv_number(line, 16);
+            grad_trim[rows] = csv_number(line, 18);
+            grad_mape[rows] = csv_number(line, 20);
+        }
         rows++;
     }
     EXPECT(rows == 4, "%s has %d rows, want 4", path, rows);
@@ -484,15 +488,30 @@ static void check_compare(void)
         EXPECT(rows == 4 && isfinite(want) && fabs(grad_relmse[k] - want) <= 1e-5 * want,
                "compare: %s gradient_relmse %.9g, its frame's %.9g", methods[k], rows == 4 ? grad_relmse[k] : NAN,
                want);
+        /* issue 42's trimmed relMSE and gradient MAPE of the same frame */
+        const double trim = dx && dy && ref ? restir_metrics_gradient_relmse_trimmed(dx, dy, ref, W, H, 0.01) : NAN;
+        const double mape = dx && dy && ref ? restir_metrics_gradient_mape(dx, dy, ref, W, H) : NAN;
+        EXPECT(rows == 4 && isfinite(trim) && fabs(grad_trim[k] - trim) <= 1e-5 * trim && trim <= want,
+               "compare: %s gradient_relmse_trim1 %.9g, its frame's %.9g", methods[k], rows == 4 ? grad_trim[k] : NAN,
+               trim);
+        EXPECT(rows == 4 && isfinite(mape) && fabs(grad_mape[k] - mape) <= 1e-5 * mape,
+               "compare: %s gradient_mape %.9g, its frame's %.9g", methods[k], rows == 4 ? grad_mape[k] : NAN, mape);
         free(dx);
         free(dy);
     }
     free(ref);
     for (int k = 2; k < rows && k < 4; k++)
-        EXPECT(isnan(grad_relmse[k]), "compare: %s has a gradient_relmse (%g) but no gradients", methods[k],
-               grad_relmse[k]);
+        EXPECT(isnan(grad_relmse[k]) && isnan(grad_trim[k]) && isnan(grad_mape[k]),
+               "compare: %s has gradient errors (%g, %g, %g) but no gradients", methods[k], grad_relmse[k],
+               grad_trim[k], grad_mape[k]);
     snprintf(sub, sizeof(sub), "%s/pt", dir);
     expect_no_layer(sub, "frame_0002.exr", "dx");
+    /* issue 42: the image of the worst 1% of the gradient pairs, for the gradient rows only */
+    EXPECT(cli_count_entries(dir, "grestir-pt_grad_worst1.png") == 1 &&
+               cli_count_entries(dir, "gpt_grad_worst1.png") == 1,
+           "compare: no worst-pairs image for a gradient row in %s", dir);
+    EXPECT(cli_count_entries(dir, "_grad_worst1.png") == 2, "compare: a worst-pairs image for a row without "
+           "gradients in %s", dir);
 }
 
 /* 6. list names the gradient methods; render --help calls L1 BIASED on the recon line. */

@@ -1,4 +1,5 @@
-/* test_metrics.c: unit tests for restir_metrics_compute and restir_metrics_gradient_relmse on small images with hand-computed values.
+/* test_metrics.c: unit tests for restir_metrics_compute and the gradient metrics (relMSE, trimmed, MAPE) on small
+ * images with hand-computed values.
  * Must never depend on src/ headers, files or the renderer; only on include/restir/metrics.h. */
 #include <math.h>
 #include <string.h>
@@ -83,7 +84,8 @@ static void test_help(void)
 {
     const char *h = restir_metrics_definitions();
     EXPECT(h && strstr(h, "relMSE") && strstr(h, "MAPE") && strstr(h, "SMAPE") &&
-               strstr(h, "RMSE") && strstr(h, "0.7152") && strstr(h, "gradient relMSE"),
+               strstr(h, "RMSE") && strstr(h, "0.7152") && strstr(h, "gradient relMSE") &&
+               strstr(h, "trim 1%") && strstr(h, "gradient MAPE"),
            "help text incomplete");
 }
 
@@ -141,9 +143,116 @@ static void test_gradient_relmse(void)
     EXPECT(isnan(restir_metrics_gradient_relmse(NULL, dy, ref, 2, 2)), "NULL gradients");
 }
 
+/* A grey reference (all 1) of w x h, so every reference difference D is 0 and every pair mean 1: a pair whose
+ * three channels' estimate is e has relMSE terms e^2 / 1.001. */
+static void grey_pairs(float *ref, float *dx, float *dy, int w, int h)
+{
+    for (int i = 0; i < 3 * w * h; i++) {
+        ref[i] = 1.0f;
+        dx[i] = dy[i] = 0.0f;
+    }
+}
+
+static void set_pixel(float *g, int i, float v)
+{
+    g[3 * i] = g[3 * i + 1] = g[3 * i + 2] = v;
+}
+
+/* The trimmed gradient relMSE: how many pairs round(fraction * P) leaves out, that it ignores a spike, ties. */
+static void test_gradient_relmse_trimmed(void)
+{
+    enum { W = 11, H = 3, N = W * H };
+    float ref[3 * N], dx[3 * N], dy[3 * N];
+    unsigned char mask[N];
+    /* 11 x 3: P = 10 * 3 x pairs + 11 * 2 y pairs = 52, so 1% is 0.52 -> 1 pair left out. The y pair of pixel
+     * (4, 1) is a spike of 3, the x pair of pixel (0, 0) is off by 0.5: untrimmed 3 (9 + 0.25) / 1.001 / (3 * 52),
+     * trimmed (the spike out) 3 * 0.25 / 1.001 / (3 * 51). */
+    grey_pairs(ref, dx, dy, W, H);
+    set_pixel(dy, 1 * W + 4, 3.0f);
+    set_pixel(dx, 0, 0.5f);
+    EXPECT_NEAR(restir_metrics_gradient_relmse(dx, dy, ref, W, H), 9.25 / 1.001 / 52.0, 1e-12, "untrimmed");
+    EXPECT_NEAR(restir_metrics_gradient_relmse_trimmed(dx, dy, ref, W, H, 0.01), 0.25 / 1.001 / 51.0, 1e-12,
+                "trimmed 1%% of 52 pairs");
+    EXPECT(restir_metrics_gradient_worst_pairs(dx, dy, ref, W, H, 0.01, mask) == 1, "one pair is the worst 1%%");
+    for (int i = 0; i < N; i++)
+        EXPECT(mask[i] == (i == 1 * W + 4 ? 2 : 0), "mask[%d] = %d: only the y pair of (4, 1)", i, mask[i]);
+    /* the spike ignored: 1000 times larger, the trimmed mean is the same bits; the untrimmed one is not */
+    const double trimmed = restir_metrics_gradient_relmse_trimmed(dx, dy, ref, W, H, 0.01);
+    set_pixel(dy, 1 * W + 4, 3000.0f);
+    const double spiked = restir_metrics_gradient_relmse_trimmed(dx, dy, ref, W, H, 0.01);
+    EXPECT(spiked == trimmed, "a 1000x spike moved the trimmed mean: %.17g vs %.17g", spiked, trimmed);
+    EXPECT(restir_metrics_gradient_relmse(dx, dy, ref, W, H) > 1e5, "the spike dominates the untrimmed mean");
+    /* fraction 0 is the untrimmed relMSE bit for bit */
+    const double all = restir_metrics_gradient_relmse(dx, dy, ref, W, H);
+    const double none = restir_metrics_gradient_relmse_trimmed(dx, dy, ref, W, H, 0.0);
+    EXPECT(memcmp(&all, &none, sizeof all) == 0, "fraction 0: %.17g != %.17g", none, all);
+    /* 10 x 3: P = 9 * 3 + 10 * 2 = 47, 1% is 0.47 -> nothing left out */
+    EXPECT(restir_metrics_gradient_worst_pairs(dx, dy, ref, 10, 3, 0.01, mask) == 0, "0.47 rounds to 0");
+
+    /* 2 x 2 grey, P = 4: fraction 0.125 gives exactly 0.5, rounded up to 1; 0.124 gives 0. All four pairs off by
+     * the same 1: a tie, so the earliest pair, the x pair of pixel 0, is the one left out. */
+    grey_pairs(ref, dx, dy, 2, 2);
+    for (int i = 0; i < 4; i++) {
+        set_pixel(dx, i, 1.0f);
+        set_pixel(dy, i, 1.0f);
+    }
+    EXPECT(restir_metrics_gradient_worst_pairs(dx, dy, ref, 2, 2, 0.125, mask) == 1, "0.5 rounds up");
+    EXPECT(mask[0] == 1 && mask[1] == 0 && mask[2] == 0 && mask[3] == 0, "tie: mask %d %d %d %d, want 1 0 0 0",
+           mask[0], mask[1], mask[2], mask[3]);
+    EXPECT(restir_metrics_gradient_worst_pairs(dx, dy, ref, 2, 2, 0.124, mask) == 0, "0.496 rounds down");
+    EXPECT_NEAR(restir_metrics_gradient_relmse_trimmed(dx, dy, ref, 2, 2, 0.125), 1.0 / 1.001, 1e-12, "ties");
+    /* three of four pairs out (0.75 * 4 = 3): the mean of the one left */
+    set_pixel(dy, 1, 0.0f); /* the y pair of pixel 1 becomes exact, the best, and the only one kept */
+    EXPECT(restir_metrics_gradient_relmse_trimmed(dx, dy, ref, 2, 2, 0.75) == 0.0, "the best pair only");
+    /* a NaN pair is never trimmed away in the mean, and it is among the worst in the mask */
+    set_pixel(dy, 0, NAN);
+    EXPECT(isnan(restir_metrics_gradient_relmse_trimmed(dx, dy, ref, 2, 2, 0.125)), "NaN trimmed away");
+    EXPECT(restir_metrics_gradient_worst_pairs(dx, dy, ref, 2, 2, 0.125, mask) == 1 && mask[0] == 2,
+           "the NaN pair (y of pixel 0) is the worst: mask[0] = %d", mask[0]);
+    /* bad arguments */
+    EXPECT(isnan(restir_metrics_gradient_relmse_trimmed(dx, dy, ref, 2, 2, 1.0)), "fraction 1");
+    EXPECT(isnan(restir_metrics_gradient_relmse_trimmed(dx, dy, ref, 2, 2, -0.1)), "negative fraction");
+    EXPECT(isnan(restir_metrics_gradient_relmse_trimmed(dx, dy, ref, 2, 2, NAN)), "NaN fraction");
+    EXPECT(isnan(restir_metrics_gradient_relmse_trimmed(dx, dy, ref, 2, 2, 0.9)), "0.9 of 4 leaves no pair");
+    EXPECT(restir_metrics_gradient_worst_pairs(dx, dy, ref, 2, 2, 0.9, mask) == 4, "the mask may mark every pair");
+    EXPECT(restir_metrics_gradient_worst_pairs(dx, dy, ref, 2, 2, 0.01, NULL) == -1, "NULL mask");
+    EXPECT(isnan(restir_metrics_gradient_relmse_trimmed(dx, dy, ref, 1, 1, 0.01)), "no pair");
+}
+
+/* Gradient MAPE on test_gradient_relmse's 2 x 2 reference [1 3; 0 1]: |D| = 2, 1, 1, 2, mean 1.5, offset 0.015.
+ * Exact gradients but dx at (0, 0) = 2.5: one pair of 4 off by 0.5 in each channel, 3 * 0.5 / 2.015 / 12. */
+static void test_gradient_mape(void)
+{
+    const float junk = 1e30f;
+    float ref[12], dx[12], dy[12];
+    const float r[4] = {1, 3, 0, 1}, gx[4] = {2.5f, junk, 1, junk}, gy[4] = {-1, -2, junk, junk};
+    for (int i = 0; i < 4; i++)
+        for (int c = 0; c < 3; c++) {
+            ref[3 * i + c] = r[i];
+            dx[3 * i + c] = gx[i];
+            dy[3 * i + c] = gy[i];
+        }
+    EXPECT_NEAR(restir_metrics_gradient_mape(dx, dy, ref, 2, 2), 0.5 / 2.015 / 4.0, 1e-12, "gradient mape");
+    /* dy at (1, 0) = -2 + 0.03 too: the offset still counts in a pair with a large |D| */
+    set_pixel(dy, 1, -1.97f);
+    EXPECT_NEAR(restir_metrics_gradient_mape(dx, dy, ref, 2, 2),
+                (0.5 / 2.015 + (double)(2.0f - 1.97f) / 2.015) / 4.0, 1e-9, "two pairs");
+    /* a flat reference: exact gradients are 0 (not 0 / 0), any error infinite (the offset is 0) */
+    float grey[12], zero[12];
+    for (int i = 0; i < 12; i++)
+        grey[i] = 0.5f, zero[i] = 0.0f;
+    EXPECT(restir_metrics_gradient_mape(zero, zero, grey, 2, 2) == 0.0, "exact on a flat reference");
+    zero[0] = 0.1f;
+    EXPECT(isinf(restir_metrics_gradient_mape(zero, zero, grey, 2, 2)), "an error on a flat reference");
+    EXPECT(isnan(restir_metrics_gradient_mape(dx, dy, ref, 1, 1)), "a single pixel has no pair");
+    EXPECT(isnan(restir_metrics_gradient_mape(dx, NULL, ref, 2, 2)), "NULL gradients");
+}
+
 int main(void)
 {
     test_gradient_relmse();
+    test_gradient_relmse_trimmed();
+    test_gradient_mape();
     test_smape_from_luminance();
     test_two_pixels();
     test_mask();
