@@ -4,6 +4,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "restir/metrics.h"
 
@@ -119,6 +120,29 @@ static int grad_pair_inside(int x, int y, int dir, int width, int height)
     return dir == 0 ? x + 1 < width : y + 1 < height;
 }
 
+/* The pairs inside a width x height image in slot order p = 2 a + dir (row-major a, x pair first):
+ *   for (struct grad_pairs it = {w, h, 0}; grad_pairs_next(&it, &a, &dir);) ... */
+struct grad_pairs {
+    int width, height;
+    size_t next; /* the next slot to look at */
+};
+
+/* The next pair inside the image: 1 with its pixel *a and direction *dir, 0 when there is none left. */
+static int grad_pairs_next(struct grad_pairs *it, size_t *a, int *dir)
+{
+    const size_t slots = 2 * (size_t)it->width * (size_t)it->height;
+    while (it->next < slots) {
+        const size_t p = it->next++, px = p / 2;
+        const int d = (int)(p % 2);
+        if (grad_pair_inside((int)(px % (size_t)it->width), (int)(px / (size_t)it->width), d, it->width, it->height)) {
+            *a = px;
+            *dir = d;
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* Channel c of pair (a, dir): the estimated difference G_c and the reference's R_bc - R_ac, and the pair's mean
  * (R_ac + R_bc) / 2. */
 static void grad_channel(const float *dx, const float *dy, const float *reference, int width, size_t a, int dir, int c,
@@ -146,18 +170,11 @@ double restir_metrics_gradient_relmse(const float *dx, const float *dy, const fl
     if (!grad_args_ok(dx, dy, reference, width, height))
         return NAN;
     double sum = 0.0;
-    size_t terms = 0;
-    for (int y = 0; y < height; y++)
-        for (int x = 0; x < width; x++) {
-            const size_t a = (size_t)y * (size_t)width + (size_t)x;
-            for (int dir = 0; dir < 2; dir++) {
-                if (!grad_pair_inside(x, y, dir, width, height))
-                    continue;
-                for (int c = 0; c < 3; c++)
-                    sum += grad_relmse_term(dx, dy, reference, width, a, dir, c);
-                terms += 3;
-            }
-        }
+    size_t terms = 0, a;
+    int dir;
+    for (struct grad_pairs it = {width, height, 0}; grad_pairs_next(&it, &a, &dir); terms += 3)
+        for (int c = 0; c < 3; c++)
+            sum += grad_relmse_term(dx, dy, reference, width, a, dir, c);
     return sum / (double)terms;
 }
 
@@ -188,22 +205,21 @@ static long grad_rank_worst(const float *dx, const float *dy, const float *refer
         free(sorted);
         return -1;
     }
-    size_t n = 0;
+    size_t n = 0, a;
+    int dir;
     *finite = 1;
-    for (int y = 0; y < height; y++)
-        for (int x = 0; x < width; x++)
-            for (int dir = 0; dir < 2; dir++) {
-                const size_t a = (size_t)y * (size_t)width + (size_t)x, p = 2 * a + (size_t)dir;
-                worst[p] = 0;
-                if (!grad_pair_inside(x, y, dir, width, height))
-                    continue;
-                double e = 0.0;
-                for (int c = 0; c < 3; c++)
-                    e += grad_relmse_term(dx, dy, reference, width, a, dir, c);
-                *finite &= isfinite(e) != 0;
-                key[p] = grad_rank_key(e);
-                sorted[n++] = key[p];
-            }
+    memset(worst, 0, slots);
+    for (size_t p = 0; p < slots; p++)
+        key[p] = -INFINITY; /* below every pair's key: slots outside the image are never marked */
+    for (struct grad_pairs it = {width, height, 0}; grad_pairs_next(&it, &a, &dir);) {
+        const size_t p = 2 * a + (size_t)dir;
+        double e = 0.0;
+        for (int c = 0; c < 3; c++)
+            e += grad_relmse_term(dx, dy, reference, width, a, dir, c);
+        *finite &= isfinite(e) != 0;
+        key[p] = grad_rank_key(e);
+        sorted[n++] = key[p];
+    }
     *pairs = n;
     const size_t k = (size_t)floor(fraction * (double)n + 0.5);
     if (k > 0) {
@@ -214,10 +230,6 @@ static long grad_rank_worst(const float *dx, const float *dy, const float *refer
             above++;
         size_t ties = k - above; /* the keys equal to t to mark, the earliest slots first */
         for (size_t p = 0; p < slots; p++) {
-            const int inside = grad_pair_inside((int)(p / 2 % (size_t)width), (int)(p / 2 / (size_t)width),
-                                                (int)(p % 2), width, height);
-            if (!inside)
-                continue;
             if (key[p] > t)
                 worst[p] = 1;
             else if (key[p] == t && ties > 0) {
@@ -252,14 +264,12 @@ double restir_metrics_gradient_relmse_trimmed(const float *dx, const float *dy, 
     }
     /* the sum in restir_metrics_gradient_relmse's order and bits, the marked pairs left out */
     double sum = 0.0;
-    for (int y = 0; y < height; y++)
-        for (int x = 0; x < width; x++) {
-            const size_t a = (size_t)y * (size_t)width + (size_t)x;
-            for (int dir = 0; dir < 2; dir++)
-                if (grad_pair_inside(x, y, dir, width, height) && !worst[2 * a + (size_t)dir])
-                    for (int c = 0; c < 3; c++)
-                        sum += grad_relmse_term(dx, dy, reference, width, a, dir, c);
-        }
+    size_t a;
+    int dir;
+    for (struct grad_pairs it = {width, height, 0}; grad_pairs_next(&it, &a, &dir);)
+        if (!worst[2 * a + (size_t)dir])
+            for (int c = 0; c < 3; c++)
+                sum += grad_relmse_term(dx, dy, reference, width, a, dir, c);
     free(worst);
     return sum / (3.0 * (double)(pairs - (size_t)k));
 }
@@ -291,22 +301,17 @@ double restir_metrics_gradient_mape(const float *dx, const float *dy, const floa
     for (int pass = 0; pass < 2; pass++) {
         const double offset = pass ? 0.01 * ref_sum / (double)terms : 0.0;
         double sum = 0.0;
-        for (int y = 0; y < height; y++)
-            for (int x = 0; x < width; x++) {
-                const size_t a = (size_t)y * (size_t)width + (size_t)x;
-                for (int dir = 0; dir < 2; dir++) {
-                    if (!grad_pair_inside(x, y, dir, width, height))
-                        continue;
-                    for (int c = 0; c < 3; c++) {
-                        double g, g_ref, m;
-                        grad_channel(dx, dy, reference, width, a, dir, c, &g, &g_ref, &m);
-                        if (pass == 0) {
-                            ref_sum += fabs(g_ref);
-                            terms++;
-                        } else if (g != g_ref) /* as the image MAPE: an exact match is 0 where the offset is 0 */
-                            sum += fabs(g - g_ref) / (fabs(g_ref) + offset);
-                    }
-                }
+        size_t a;
+        int dir;
+        for (struct grad_pairs it = {width, height, 0}; grad_pairs_next(&it, &a, &dir);)
+            for (int c = 0; c < 3; c++) {
+                double g, g_ref, m;
+                grad_channel(dx, dy, reference, width, a, dir, c, &g, &g_ref, &m);
+                if (pass == 0) {
+                    ref_sum += fabs(g_ref);
+                    terms++;
+                } else if (g != g_ref) /* as the image MAPE: an exact match is 0 where the offset is 0 */
+                    sum += fabs(g - g_ref) / (fabs(g_ref) + offset);
             }
         if (pass)
             return sum / (double)terms;

@@ -118,6 +118,19 @@ static void test_smape_from_luminance(void)
     EXPECT(restir_metrics_smape_luminance(lum, ref, N, mask, &smape) == -1, "empty mask accepted");
 }
 
+/* The 2 x 2 grey reference [1 3; 0 1] of the gradient tests and its forward differences, exact but dx at
+ * (0, 0) = 2.5; the entries whose pair leaves the image hold junk. */
+static void grey_2x2(float ref[12], float dx[12], float dy[12], float junk)
+{
+    const float r[4] = {1, 3, 0, 1}, gx[4] = {2.5f, junk, 1, junk}, gy[4] = {-1, -2, junk, junk};
+    for (int i = 0; i < 4; i++)
+        for (int c = 0; c < 3; c++) {
+            ref[3 * i + c] = r[i];
+            dx[3 * i + c] = gx[i];
+            dy[3 * i + c] = gy[i];
+        }
+}
+
 /* A 2x2 grey reference R = [1 3; 0 1]: its forward differences are dx = (2, 1) on the rows, dy = (-1, -2)
  * on the columns, pair means 2, 0.5, 0.5, 2. Estimated gradients exact but dx at (0,0) = 2.5: one
  * pair of 4 is off by 0.5 in each channel, so the mean over 12 terms is 3 * 0.25 / (2^2 + 1e-3) / 12. The
@@ -126,13 +139,7 @@ static void test_gradient_relmse(void)
 {
     const float junk = 1e30f;
     float ref[12], dx[12], dy[12];
-    const float r[4] = {1, 3, 0, 1}, gx[4] = {2.5f, junk, 1, junk}, gy[4] = {-1, -2, junk, junk};
-    for (int i = 0; i < 4; i++)
-        for (int c = 0; c < 3; c++) {
-            ref[3 * i + c] = r[i];
-            dx[3 * i + c] = gx[i];
-            dy[3 * i + c] = gy[i];
-        }
+    grey_2x2(ref, dx, dy, junk);
     EXPECT_NEAR(restir_metrics_gradient_relmse(dx, dy, ref, 2, 2), 0.75 / 4.001 / 12.0, 1e-12, "gradient relmse");
     dx[0] = dx[1] = dx[2] = 2.0f;
     EXPECT(restir_metrics_gradient_relmse(dx, dy, ref, 2, 2) == 0.0, "exact gradients");
@@ -225,13 +232,7 @@ static void test_gradient_mape(void)
 {
     const float junk = 1e30f;
     float ref[12], dx[12], dy[12];
-    const float r[4] = {1, 3, 0, 1}, gx[4] = {2.5f, junk, 1, junk}, gy[4] = {-1, -2, junk, junk};
-    for (int i = 0; i < 4; i++)
-        for (int c = 0; c < 3; c++) {
-            ref[3 * i + c] = r[i];
-            dx[3 * i + c] = gx[i];
-            dy[3 * i + c] = gy[i];
-        }
+    grey_2x2(ref, dx, dy, junk);
     EXPECT_NEAR(restir_metrics_gradient_mape(dx, dy, ref, 2, 2), 0.5 / 2.015 / 4.0, 1e-12, "gradient mape");
     /* dy at (1, 0) = -2 + 0.03 too: the offset still counts in a pair with a large |D| */
     set_pixel(dy, 1, -1.97f);
