@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/csv_table.h"
+#include "experiments/evaluate_findings.h"
 #include "experiments/report_commit.h"
 #include "experiments/stats.h"
 #include "io/atomic_file.h"
@@ -49,16 +50,6 @@ static void put(struct text *t, const char *fmt, ...)
 #define COSTS_AT_MOST(pct) ((struct claim){CLAIM_COST, (pct)})
 #define NO_CLAIM ((struct claim){CLAIM_NONE, 0.0})
 
-static void fmt_change(struct rel_change c, char *out, size_t len)
-{
-    if (!isfinite(c.pct))
-        snprintf(out, len, "-");
-    else if (isfinite(c.sd))
-        snprintf(out, len, "%+.1f%% +- %.1f", c.pct, c.sd);
-    else
-        snprintf(out, len, "%+.1f%%", c.pct);
-}
-
 static void fmt_pm(double v, double sem, char *out, size_t len)
 {
     if (!isfinite(v))
@@ -67,21 +58,6 @@ static void fmt_pm(double v, double sem, char *out, size_t len)
         snprintf(out, len, "%.4g +- %.2g", v, sem);
     else
         snprintf(out, len, "%.4g", v);
-}
-
-/* Appends to out (len bytes, NUL-terminated) what a deciding pair of rows shows: "what: +x% +- sd,
- * reading" with reading[0] when the change is above zero at two standard deviations, reading[1]
- * when below, "no significant difference" otherwise; nothing when either row is missing. */
-static void finding(char *out, size_t len, const char *what, struct rel_change c, const char *const reading[2])
-{
-    if (!isfinite(c.pct))
-        return;
-    char ch[64];
-    fmt_change(c, ch, sizeof ch);
-    const double sd = isfinite(c.sd) ? c.sd : 0.0;
-    const char *r = c.pct - 2.0 * sd > 0.0 ? reading[0] : c.pct + 2.0 * sd < 0.0 ? reading[1] : "no significant difference";
-    const size_t used = strlen(out);
-    snprintf(out + used, len - used, "%s%s: %s, %s", used ? "; " : "", what, ch, r);
 }
 
 /* The claims, as lines of evaluation.md and rows of claims.csv. */
@@ -98,7 +74,7 @@ static void claim(struct claims *cl, const char *paper, const char *what, const 
                   const char *paper_figure, struct claim k, const char *differences)
 {
     char ours[64], why[160], f[4][1100];
-    fmt_change(c, ours, sizeof ours);
+    eval_fmt_change(c, ours, sizeof ours);
     const char *v = claim_verdict(c, k, why, sizeof why);
     const int ok = !strcmp(v, "reproduced") || !strcmp(v, "undefined") || k.kind == CLAIM_NONE;
     char reason[1100];
@@ -226,37 +202,6 @@ static void pareto_000(struct text *md, struct claims *cl, const struct eval_ste
     }
 }
 
-/* What 000's deciding rows (the first scene's; issue 42) show about FAST's claims, before the setup's
- * differences diff, into out: whether spatial reuse itself helps on the scene (Bitterli against no
- * spatial reuse), and FAST against Bitterli when the spatial output is not fed back (both with the
- * temporal history). Just diff when the rows were not run. */
-static void deciding_000(const struct csv_table *t, int bit, int fast, const char *diff, char *out, size_t len)
-{
-    const int off = csv_table_find(t, "spatial-off"), bt = csv_table_find(t, "bitterli-history-temporal"),
-              ft = csv_table_find(t, "fast-history-temporal");
-    static const char *const reuse[2] = {"spatial reuse itself hurts on this scene with our base",
-                                         "spatial reuse helps on this scene"};
-    static const char *const fed[2] = {"FAST loses without the feedback too", "FAST gains without the feedback"};
-    static const char *const feedback[2] = {"feeding the spatial output back costs FAST",
-                                            "feeding the spatial output back helps FAST"};
-    out[0] = '\0';
-#define CHANGE(a, b, col)                                                                                          \
-    rel_change_of(csv_table_num(t, a, col), csv_table_num(t, a, col "_sem"), csv_table_num(t, b, col),              \
-                  csv_table_num(t, b, col "_sem"))
-    if (off >= 0 && bit >= 0)
-        finding(out, len, "Bitterli vs no spatial reuse, SMAPE", CHANGE(bit, off, "smape_all"), reuse);
-    if (bt >= 0 && ft >= 0) {
-        finding(out, len, "FAST vs Bitterli, both with the temporal history, SMAPE", CHANGE(ft, bt, "smape_all"), fed);
-        finding(out, len, "the same, temporal covariance", CHANGE(ft, bt, "temporal_cov"), fed);
-    }
-    if (fast >= 0 && ft >= 0)
-        finding(out, len, "FAST (spatial history) vs FAST (temporal history), SMAPE", CHANGE(fast, ft, "smape_all"),
-                feedback);
-#undef CHANGE
-    const size_t used = strlen(out);
-    snprintf(out + used, len - used, "%s%s", used ? "; " : "", diff);
-}
-
 static void paper_000(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
                       const struct csv_table *t)
 {
@@ -299,15 +244,17 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
     const int emerald = strstr(heading, "EMERALD") != NULL;
     const int fast = csv_table_find(t, "fast");
     char fast_diff[1000];
-    deciding_000(t, bit, fast, diff, fast_diff, sizeof fast_diff);
+    eval_deciding_000(t, bit, fast, diff, fast_diff, sizeof fast_diff);
     claim(cl, "000", "FAST: SMAPE vs Bitterli R = 30", where,
           rel_change_of(csv_table_num(t, fast, "smape_all"), csv_table_num(t, fast, "smape_all_sem"),
                      csv_table_num(t, bit, "smape_all"), csv_table_num(t, bit, "smape_all_sem")),
-          emerald ? "-29% (EMERALD SQUARE)" : "-5.8% to -13.7% (simpler scenes)", REDUCTION(emerald ? 29.0 : 5.8), fast_diff);
+          emerald ? "-29% (EMERALD SQUARE)" : "-5.8% to -13.7% (simpler scenes)", REDUCTION(emerald ? 29.0 : 5.8),
+          fast_diff);
     claim(cl, "000", "FAST: temporal covariance vs Bitterli", where,
           rel_change_of(csv_table_num(t, fast, "temporal_cov"), csv_table_num(t, fast, "temporal_cov_sem"),
                      csv_table_num(t, bit, "temporal_cov"), csv_table_num(t, bit, "temporal_cov_sem")),
-          emerald ? "-49% (EMERALD SQUARE)" : "-22% to -31% (simpler scenes)", REDUCTION(emerald ? 49.0 : 22.0), fast_diff);
+          emerald ? "-49% (EMERALD SQUARE)" : "-22% to -31% (simpler scenes)", REDUCTION(emerald ? 49.0 : 22.0),
+          fast_diff);
     claim(cl, "000", "FAST: hard-pixel SMAPE vs Bitterli", where,
           rel_change_of(csv_table_num(t, fast, "smape_hard"), csv_table_num(t, fast, "smape_hard_sem"),
                      csv_table_num(t, bit, "smape_hard"), csv_table_num(t, bit, "smape_hard_sem")),
@@ -405,25 +352,9 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
     }
     const int pt = !strcmp(s->base, "restir-pt");
     static const char *const col[2][2] = {{"mape", "mape_sem"}, {"mape_disoccluded", "mape_disoccluded_sem"}};
-    /* What decides SPMIS's claims (issue 42): does the cell search cost it (own cell only vs the
-     * 12-tap search), and where does the own cell stand against standard reuse. */
     char spmis_diff[2][1000];
-    static const char *const search_costs[2] = {"the cell search costs SPMIS", "the cell search helps SPMIS"};
-    static const char *const own_vs_std[2] = {"SPMIS loses to standard reuse even without the search",
-                                              "SPMIS with the own cell beats standard reuse"};
-    for (int m = 0; m < 2; m++) {
-        spmis_diff[m][0] = '\0';
-        const struct rel_change search = rel_change_of(
-            csv_table_num(t, row[1], col[m][0]), csv_table_num(t, row[1], col[m][1]),
-            csv_table_num(t, row[3], col[m][0]), csv_table_num(t, row[3], col[m][1]));
-        const struct rel_change own = rel_change_of(
-            csv_table_num(t, row[3], col[m][0]), csv_table_num(t, row[3], col[m][1]),
-            csv_table_num(t, row[0], col[m][0]), csv_table_num(t, row[0], col[m][1]));
-        finding(spmis_diff[m], sizeof spmis_diff[m], "SPMIS (12-tap search) vs own cell only", search, search_costs);
-        finding(spmis_diff[m], sizeof spmis_diff[m], "own cell only vs standard", own, own_vs_std);
-        const size_t used = strlen(spmis_diff[m]);
-        snprintf(spmis_diff[m] + used, sizeof spmis_diff[m] - used, "%s%s", used ? "; " : "", diff);
-    }
+    for (int m = 0; m < 2; m++)
+        eval_deciding_004(t, row[0], row[1], row[3], col[m][0], diff, spmis_diff[m], sizeof spmis_diff[m]);
     static const char *const what[EVAL_004_ROWS - 1][2] = {
         {"SPMIS: MAPE overall vs standard", "SPMIS: MAPE disoccluded vs standard"},
         {"compat search (ours): MAPE overall vs standard", "compat search (ours): MAPE disoccluded vs standard"},
@@ -491,26 +422,6 @@ static void paper_004_ablation(struct text *md, struct claims *cl, const struct 
 #undef MAPE_CHANGE
 }
 
-/* What decides a 002 claim against a rival with gradients (issue 42), before the setup's differences
- * diff, into out: ours' gradients against row r's without the worst 1% of pairs and as MAPE (the
- * gradient relMSE is carried by a few pairs, which an L2 reconstruction spreads). Rows without
- * gradients (-1 or NaN) add nothing. */
-static void gradient_findings(const struct csv_table *t, int me, int r, const char *diff, char *out, size_t len)
-{
-    static const char *const cols[2][3] = {{"gradient relMSE without the worst 1% of pairs", "gradient_relmse_trim1",
-                                            "gradient_relmse_trim1_sem"},
-                                           {"gradient MAPE", "gradient_mape", "gradient_mape_sem"}};
-    static const char *const reading[2] = {"our gradients are worse there too", "our gradients are better there"};
-    out[0] = '\0';
-    for (int m = 0; m < 2; m++)
-        finding(out, len, cols[m][0],
-                rel_change_of(csv_table_num(t, me, cols[m][1]), csv_table_num(t, me, cols[m][2]),
-                              csv_table_num(t, r, cols[m][1]), csv_table_num(t, r, cols[m][2])),
-                reading);
-    const size_t used = strlen(out);
-    snprintf(out + used, len - used, "%s%s", used ? "; " : "", diff);
-}
-
 /* 002: the equal-time table (L2 and L1) and its claims. */
 static void paper_002(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
                       const struct csv_table *t)
@@ -555,7 +466,7 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
              * (their spread over runs is of the order of the mean) that MAPE, robust to them, shows */
             static const char *const metric[2][3] = {{"relMSE", "relmse", "relmse_sem"}, {"MAPE", "mape", "mape_sem"}};
             char why[1000];
-            gradient_findings(t, me, r, diff, why, sizeof why);
+            eval_gradient_findings(t, me, r, diff, why, sizeof why);
             for (int m = 0; m < 2; m++) {
                 char what[128];
                 snprintf(what, sizeof what, "%s: %s vs %s", l ? "L1" : "L2", metric[m][0], names[k]);
@@ -574,7 +485,7 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
         const int r = csv_table_find(t, rivals[0][k]);
         char what[128], why[1000];
         snprintf(what, sizeof what, "Fig. 7: gradient relMSE vs %s", names[k]);
-        gradient_findings(t, me, r, diff, why, sizeof why);
+        eval_gradient_findings(t, me, r, diff, why, sizeof why);
         claim(cl, "002", what, where,
               rel_change_of(csv_table_num(t, me, "gradient_relmse"), csv_table_num(t, me, "gradient_relmse_sem"),
                          csv_table_num(t, r, "gradient_relmse"), csv_table_num(t, r, "gradient_relmse_sem")),
