@@ -33,7 +33,7 @@ static void finding(char *out, size_t len, const char *what, struct rel_change c
     snprintf(out + used, len - used, "%s%s: %s, %s", used ? "; " : "", what, ch, r);
 }
 
-void eval_deciding_000(const struct csv_table *t, int bit, int fast, const char *diff, char *out, size_t len)
+void eval_deciding_000(const struct csv_table *t, int bit, int fast, char *out, size_t len)
 {
     const int off = csv_table_find(t, "spatial-off"), bt = csv_table_find(t, "bitterli-history-temporal"),
               ft = csv_table_find(t, "fast-history-temporal");
@@ -56,12 +56,10 @@ void eval_deciding_000(const struct csv_table *t, int bit, int fast, const char 
         finding(out, len, "FAST (spatial history) vs FAST (temporal history), SMAPE", CHANGE(fast, ft, "smape_all"),
                 feedback);
 #undef CHANGE
-    const size_t used = strlen(out);
-    snprintf(out + used, len - used, "%s%s", used ? "; " : "", diff);
 }
 
-void eval_deciding_004(const struct csv_table *t, int standard, int spmis, int own_cell, const char *col,
-                       const char *diff, char *out, size_t len)
+void eval_deciding_004(const struct csv_table *t, int standard, int spmis, int own_cell, const char *col, char *out,
+                       size_t len)
 {
     static const char *const search_costs[2] = {"the cell search costs SPMIS", "the cell search helps SPMIS"};
     static const char *const own_vs_std[2] = {"SPMIS loses to standard reuse even without the search",
@@ -77,11 +75,9 @@ void eval_deciding_004(const struct csv_table *t, int standard, int spmis, int o
             rel_change_of(csv_table_num(t, own_cell, col), csv_table_num(t, own_cell, sem),
                           csv_table_num(t, standard, col), csv_table_num(t, standard, sem)),
             own_vs_std);
-    const size_t used = strlen(out);
-    snprintf(out + used, len - used, "%s%s", used ? "; " : "", diff);
 }
 
-void eval_gradient_findings(const struct csv_table *t, int me, int r, const char *diff, char *out, size_t len)
+void eval_gradient_findings(const struct csv_table *t, int me, int r, char *out, size_t len)
 {
     static const char *const cols[2][3] = {{"gradient relMSE without the worst 1% of pairs", "gradient_relmse_trim1",
                                             "gradient_relmse_trim1_sem"},
@@ -93,7 +89,5 @@ void eval_gradient_findings(const struct csv_table *t, int me, int r, const char
                 rel_change_of(csv_table_num(t, me, cols[m][1]), csv_table_num(t, me, cols[m][2]),
                               csv_table_num(t, r, cols[m][1]), csv_table_num(t, r, cols[m][2])),
                 reading);
-    const size_t used = strlen(out);
-    snprintf(out + used, len - used, "%s%s", used ? "; " : "", diff);
 }
 

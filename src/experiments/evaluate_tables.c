@@ -70,15 +70,29 @@ struct claims {
 
 /* One claim's line: what (the claim), where (scene, base), our change, the paper's figure, lo as in
  * what the paper claims (claim_verdict()), and the setup's differences from the paper's (said when not reproduced). */
+static void claim_found(struct claims *cl, const char *paper, const char *what, const char *where, struct rel_change c,
+                        const char *paper_figure, struct claim k, const char *findings, const char *differences);
+
 static void claim(struct claims *cl, const char *paper, const char *what, const char *where, struct rel_change c,
                   const char *paper_figure, struct claim k, const char *differences)
+{
+    claim_found(cl, paper, what, where, c, paper_figure, k, "", differences);
+}
+
+/* claim() with what the deciding rows show (evaluate_findings.h), said whatever the verdict. */
+static void claim_found(struct claims *cl, const char *paper, const char *what, const char *where, struct rel_change c,
+                        const char *paper_figure, struct claim k, const char *findings, const char *differences)
 {
     char ours[64], why[160], f[4][1100];
     eval_fmt_change(c, ours, sizeof ours);
     const char *v = claim_verdict(c, k, why, sizeof why);
     const int ok = !strcmp(v, "reproduced") || !strcmp(v, "undefined") || k.kind == CLAIM_NONE;
     char reason[1100];
-    snprintf(reason, sizeof reason, "%s%s%s", why, ok || !why[0] ? "" : "; ", ok ? "" : differences);
+    snprintf(reason, sizeof reason, "%s%s%s", why, why[0] && findings[0] ? "; " : "", findings);
+    if (!ok) {
+        const size_t used = strlen(reason);
+        snprintf(reason + used, sizeof reason - used, "%s%s", used ? "; " : "", differences);
+    }
     put(&cl->md, "| %s | %s | %s | %s | **%s** | %s |\n", what, where, ours, paper_figure, v,
         reason[0] ? reason : "-");
     if (cl->csv_ok) {
@@ -243,26 +257,26 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
      * 1.3-4.4%, BALANCED 2.0-6.4%, CONSERVATIVE 4.3-7.4%. */
     const int emerald = strstr(heading, "EMERALD") != NULL;
     const int fast = csv_table_find(t, "fast");
-    char fast_diff[1000];
-    eval_deciding_000(t, bit, fast, diff, fast_diff, sizeof fast_diff);
-    claim(cl, "000", "FAST: SMAPE vs Bitterli R = 30", where,
+    char found[1000];
+    eval_deciding_000(t, bit, fast, found, sizeof found);
+    claim_found(cl, "000", "FAST: SMAPE vs Bitterli R = 30", where,
           rel_change_of(csv_table_num(t, fast, "smape_all"), csv_table_num(t, fast, "smape_all_sem"),
                      csv_table_num(t, bit, "smape_all"), csv_table_num(t, bit, "smape_all_sem")),
           emerald ? "-29% (EMERALD SQUARE)" : "-5.8% to -13.7% (simpler scenes)", REDUCTION(emerald ? 29.0 : 5.8),
-          fast_diff);
-    claim(cl, "000", "FAST: temporal covariance vs Bitterli", where,
+          found, diff);
+    claim_found(cl, "000", "FAST: temporal covariance vs Bitterli", where,
           rel_change_of(csv_table_num(t, fast, "temporal_cov"), csv_table_num(t, fast, "temporal_cov_sem"),
                      csv_table_num(t, bit, "temporal_cov"), csv_table_num(t, bit, "temporal_cov_sem")),
           emerald ? "-49% (EMERALD SQUARE)" : "-22% to -31% (simpler scenes)", REDUCTION(emerald ? 49.0 : 22.0),
-          fast_diff);
-    claim(cl, "000", "FAST: hard-pixel SMAPE vs Bitterli", where,
+          found, diff);
+    claim_found(cl, "000", "FAST: hard-pixel SMAPE vs Bitterli", where,
           rel_change_of(csv_table_num(t, fast, "smape_hard"), csv_table_num(t, fast, "smape_hard_sem"),
                      csv_table_num(t, bit, "smape_hard"), csv_table_num(t, bit, "smape_hard_sem")),
-          "-26% to -29%", REDUCTION(26.0), fast_diff);
-    claim(cl, "000", "FAST: hard-pixel temporal covariance vs Bitterli", where,
+          "-26% to -29%", REDUCTION(26.0), found, diff);
+    claim_found(cl, "000", "FAST: hard-pixel temporal covariance vs Bitterli", where,
           rel_change_of(csv_table_num(t, fast, "temporal_cov_hard"), csv_table_num(t, fast, "temporal_cov_hard_sem"),
                      csv_table_num(t, bit, "temporal_cov_hard"), csv_table_num(t, bit, "temporal_cov_hard_sem")),
-          "-43% to -57%", REDUCTION(43.0), fast_diff);
+          "-43% to -57%", REDUCTION(43.0), found, diff);
     static const char *const cost_figure[] = {"+1.3% to +4.4%", "+2.0% to +6.4%", "+4.3% to +7.4%"};
     static const double cost_max[] = {4.4, 6.4, 7.4};
     for (int k = 0; k < 3; k++) {
@@ -270,12 +284,12 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
         char what[96], why[1000];
         snprintf(what, sizeof what, "%s: frame time vs Bitterli (cost)", presets[k]);
         /* where the extra time goes: the selection's taps, or the spatial pass merging more pixels */
-        snprintf(why, sizeof why, "of the %+.0f ms: select %+.0f ms, spatial reuse %+.0f ms; %s",
+        snprintf(why, sizeof why, "of the %+.0f ms: select %+.0f ms, spatial reuse %+.0f ms",
                  csv_table_num(t, r, "ms_frame") - base_ms,
                  csv_table_num(t, r, "ms_select") - csv_table_num(t, bit, "ms_select"),
-                 csv_table_num(t, r, "ms_spatial") - csv_table_num(t, bit, "ms_spatial"), diff);
-        claim(cl, "000", what, where, rel_change_of(csv_table_num(t, r, "ms_frame"), NAN, base_ms, NAN),
-              cost_figure[k], COSTS_AT_MOST(cost_max[k]), r >= 0 ? why : diff);
+                 csv_table_num(t, r, "ms_spatial") - csv_table_num(t, bit, "ms_spatial"));
+        claim_found(cl, "000", what, where, rel_change_of(csv_table_num(t, r, "ms_frame"), NAN, base_ms, NAN),
+                    cost_figure[k], COSTS_AT_MOST(cost_max[k]), r >= 0 ? why : "", diff);
     }
     if (!s->table2)
         return;
@@ -352,9 +366,9 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
     }
     const int pt = !strcmp(s->base, "restir-pt");
     static const char *const col[2][2] = {{"mape", "mape_sem"}, {"mape_disoccluded", "mape_disoccluded_sem"}};
-    char spmis_diff[2][1000];
+    char found[2][1000];
     for (int m = 0; m < 2; m++)
-        eval_deciding_004(t, row[0], row[1], row[3], col[m][0], diff, spmis_diff[m], sizeof spmis_diff[m]);
+        eval_deciding_004(t, row[0], row[1], row[3], col[m][0], found[m], sizeof found[m]);
     static const char *const what[EVAL_004_ROWS - 1][2] = {
         {"SPMIS: MAPE overall vs standard", "SPMIS: MAPE disoccluded vs standard"},
         {"compat search (ours): MAPE overall vs standard", "compat search (ours): MAPE disoccluded vs standard"},
@@ -363,14 +377,14 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
          "low-confidence search (ours): MAPE disoccluded vs standard"}};
     for (int v = 0; v < EVAL_004_ROWS - 1; v++)
         for (int m = 0; m < 2; m++)
-            claim(cl, "004", what[v][m], where,
-                  rel_change_of(csv_table_num(t, row[v + 1], col[m][0]), csv_table_num(t, row[v + 1], col[m][1]),
-                             csv_table_num(t, row[0], col[m][0]), csv_table_num(t, row[0], col[m][1])),
-                  v    ? "none (not in the paper)"
-                  : pt ? (m ? "lower, \"especially in disocclusions\"" : "lower overall")
-                       : (m ? "lower in disocclusions (the paper: ReSTIR PT only)"
-                            : "lower (the paper: ReSTIR PT only)"),
-                  v ? NO_CLAIM : REDUCTION(0.0), v ? diff : spmis_diff[m]);
+            claim_found(cl, "004", what[v][m], where,
+                        rel_change_of(csv_table_num(t, row[v + 1], col[m][0]), csv_table_num(t, row[v + 1], col[m][1]),
+                                      csv_table_num(t, row[0], col[m][0]), csv_table_num(t, row[0], col[m][1])),
+                        v    ? "none (not in the paper)"
+                        : pt ? (m ? "lower, \"especially in disocclusions\"" : "lower overall")
+                             : (m ? "lower in disocclusions (the paper: ReSTIR PT only)"
+                                  : "lower (the paper: ReSTIR PT only)"),
+                        v ? NO_CLAIM : REDUCTION(0.0), v ? "" : found[m], diff);
     return table2_004(md, dir, s, label, names, EVAL_004_ROWS) == 0 ? 0 : EXIT_RUNTIME;
 }
 
@@ -465,16 +479,17 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
             /* relMSE as the paper; MAPE too: relMSE's few outlier pixels can hide a difference
              * (their spread over runs is of the order of the mean) that MAPE, robust to them, shows */
             static const char *const metric[2][3] = {{"relMSE", "relmse", "relmse_sem"}, {"MAPE", "mape", "mape_sem"}};
-            char why[1000];
-            eval_gradient_findings(t, me, r, diff, why, sizeof why);
+            char found[1000];
+            eval_gradient_findings(t, me, r, found, sizeof found);
             for (int m = 0; m < 2; m++) {
                 char what[128];
                 snprintf(what, sizeof what, "%s: %s vs %s", l ? "L1" : "L2", metric[m][0], names[k]);
-                claim(cl, "002", what, where,
-                      rel_change_of(csv_table_num(t, me, metric[m][1]), csv_table_num(t, me, metric[m][2]),
-                                 csv_table_num(t, r, metric[m][1]), csv_table_num(t, r, metric[m][2])),
-                      m ? "lower at equal time (the paper reports relMSE)" : "lower at equal time (Fig. 7, 8; no numbers)",
-                      REDUCTION(0.0), why);
+                claim_found(cl, "002", what, where,
+                            rel_change_of(csv_table_num(t, me, metric[m][1]), csv_table_num(t, me, metric[m][2]),
+                                          csv_table_num(t, r, metric[m][1]), csv_table_num(t, r, metric[m][2])),
+                            m ? "lower at equal time (the paper reports relMSE)"
+                              : "lower at equal time (Fig. 7, 8; no numbers)",
+                            REDUCTION(0.0), found, diff);
             }
         }
     }
@@ -483,13 +498,13 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
     const int me = csv_table_find(t, ours[0]);
     for (int k = 0; k < 3; k += 2) {
         const int r = csv_table_find(t, rivals[0][k]);
-        char what[128], why[1000];
+        char what[128], found[1000];
         snprintf(what, sizeof what, "Fig. 7: gradient relMSE vs %s", names[k]);
-        eval_gradient_findings(t, me, r, diff, why, sizeof why);
-        claim(cl, "002", what, where,
-              rel_change_of(csv_table_num(t, me, "gradient_relmse"), csv_table_num(t, me, "gradient_relmse_sem"),
-                         csv_table_num(t, r, "gradient_relmse"), csv_table_num(t, r, "gradient_relmse_sem")),
-              "lower at equal time (images only)", REDUCTION(0.0), why);
+        eval_gradient_findings(t, me, r, found, sizeof found);
+        claim_found(cl, "002", what, where,
+                    rel_change_of(csv_table_num(t, me, "gradient_relmse"), csv_table_num(t, me, "gradient_relmse_sem"),
+                                  csv_table_num(t, r, "gradient_relmse"), csv_table_num(t, r, "gradient_relmse_sem")),
+                    "lower at equal time (images only)", REDUCTION(0.0), found, diff);
     }
     /* Gradient after ReSTIR once: the same samples per frame as ours, not the paper's equal time */
     const int once = csv_table_find(t, "grad-after-restir");

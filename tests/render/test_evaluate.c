@@ -191,6 +191,11 @@ static void test_plan_equals_unsplit(char *err)
         const char *r_un = r ? strstr(r, "not measured") : NULL;
         EXPECT(r && (!r_un || (r_end && r_un > r_end)), "claims.csv: \"%s\" is missing or not measured", robust[k]);
     }
+    /* issue 42: the claims' why column says what the deciding rows show (evaluate_findings.h) */
+    static const char *const findings[3] = {"Bitterli vs no spatial reuse, SMAPE: ", "own cell only vs standard: ",
+                                            "gradient relMSE without the worst 1% of pairs: "};
+    for (int k = 0; k < 3; k++)
+        EXPECT(strstr(a, findings[k]) != NULL, "claims.csv: no finding \"%s\"", findings[k]);
     snprintf(pa, sizeof pa, "%s/index.html", unsplit);
     EXPECT(!exists(pa), "index.html without --report");
     static char html[1 << 18];
