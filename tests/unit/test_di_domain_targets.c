@@ -13,6 +13,7 @@
 #include "render/light_pool.h"
 #include "render/restir_di.h"
 #include "scene/scene_file.h"
+#include "frame_fixture.h"
 #include "test_util.h"
 
 #define WIDTH 48
@@ -24,22 +25,12 @@ static int same_bits(float a, float b) { return memcmp(&a, &b, sizeof(a)) == 0; 
 static void check_scene(const char *name)
 {
     struct scene s;
-    char msg[512];
-    if (scene_load(name, &s, msg) != 0) {
-        EXPECT(0, "%s", msg);
-        return;
-    }
     struct render_params p;
-    render_params_defaults(&p);
-    p.width = WIDTH;
-    p.height = HEIGHT;
-    const int n = WIDTH * HEIGHT;
     struct gbuffer g;
-    gbuffer_init(&g, WIDTH, HEIGHT, 1);
-    struct camera cam = scene_camera_at(&s, 0, 0.0f);
     struct camera_view view;
-    camera_view_init(&view, &cam, WIDTH, HEIGHT);
-    gbuffer_pass(&g, &s, &view, NULL, 1, 5, 0);
+    if (frame_fixture(name, WIDTH, HEIGHT, 1, 5, &s, &p, &g, &view) != 0)
+        return;
+    const int n = WIDTH * HEIGHT;
     struct light_pool lp;
     light_pool_init(&lp, p.light_candidates);
     light_pool_fill(&lp, &s, 5, 0);

@@ -13,6 +13,7 @@
 
 #include "render/restir_gi.h"
 #include "scene/scene_file.h"
+#include "frame_fixture.h"
 #include "test_util.h"
 
 #define WIDTH 32
@@ -28,23 +29,13 @@ static float rel_diff(vec3 a, vec3 b)
 static void check_scene(const char *name, enum gi_radiance_mode mode)
 {
     struct scene s;
-    char msg[512];
-    if (scene_load(name, &s, msg) != 0) {
-        EXPECT(0, "%s", msg);
-        return;
-    }
     struct render_params p;
-    render_params_defaults(&p);
-    p.width = WIDTH;
-    p.height = HEIGHT;
+    struct gbuffer g;
+    struct camera_view view;
+    if (frame_fixture(name, WIDTH, HEIGHT, 0, 11, &s, &p, &g, &view) != 0)
+        return;
     p.gi_radiance = mode;
     const int n = WIDTH * HEIGHT;
-    struct gbuffer g;
-    gbuffer_init(&g, WIDTH, HEIGHT, 0);
-    struct camera cam = scene_camera_at(&s, 0, 0.0f);
-    struct camera_view view;
-    camera_view_init(&view, &cam, WIDTH, HEIGHT);
-    gbuffer_pass(&g, &s, &view, NULL, 1, 11, 0);
     struct path_vertex *x1 = calloc((size_t)n, sizeof(*x1));
     vec3 *base = calloc((size_t)n, sizeof(vec3));
     struct gi_reservoir *res = calloc((size_t)n, sizeof(*res));
