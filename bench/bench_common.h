@@ -30,6 +30,8 @@ int bench_streams(int argc, char **argv);
 int bench_gi_bias(int argc, char **argv);
 /* The `l1-bias` section (bench_l1_bias.c): argv[0] is "l1-bias", then FRAME.exr REF.exr. */
 int bench_l1_bias(int argc, char **argv);
+/* The `denoise` section (bench_denoise.c): argv[0] is "denoise", then its options. */
+int bench_denoise(int argc, char **argv);
 /* The `error` section (bench_error.c): argv[0] is "error", then IMAGE.exr REF.exr. */
 int bench_error(int argc, char **argv);
 

@@ -452,6 +452,8 @@ int main(int argc, char **argv)
         return bench_gi_bias(argc - 1, argv + 1);
     if (argc > 1 && !strcmp(argv[1], "l1-bias")) /* its own arguments; not part of the default run */
         return bench_l1_bias(argc - 1, argv + 1);
+    if (argc > 1 && !strcmp(argv[1], "denoise")) /* its own options; not part of the default run */
+        return bench_denoise(argc - 1, argv + 1);
     if (argc > 1 && !strcmp(argv[1], "error")) /* its own arguments; not part of the default run */
         return bench_error(argc - 1, argv + 1);
     for (int i = 1; i < argc; i++) {

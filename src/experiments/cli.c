@@ -144,6 +144,15 @@ int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *
     snprintf(path, sizeof(path), "%s/frame_%04d.png", dir, frame);
     if (png_write_srgb(path, r->image, w, h, 0.0f, msg) != 0)
         return -1;
+    if (r->denoised) { /* denoise=svgf|atrous: the denoised frame as files of its own (BIASED by nature) */
+        struct exr_layer denoised = {NULL, r->denoised};
+        snprintf(path, sizeof(path), "%s/frame_%04d_denoised.exr", dir, frame);
+        if (exr_write_layers(path, &denoised, 1, w, h, msg) != 0)
+            return -1;
+        snprintf(path, sizeof(path), "%s/frame_%04d_denoised.png", dir, frame);
+        if (png_write_srgb(path, r->denoised, w, h, 0.0f, msg) != 0)
+            return -1;
+    }
     if (!g)
         return 0;
     snprintf(path, sizeof(path), "%s/frame_%04d_primal.png", dir, frame);

@@ -114,6 +114,7 @@ enum opt_kind {
     OPT_CAMERA,   /* static | path, or (render, view) a camera file */
     OPT_NAMES,    /* one of names[]: the int field gets its index */
     OPT_SET,      /* key=value of the settings table (params.c) */
+    OPT_SETTING,  /* the value of the setting named as the option (--denoise X is --set denoise=X) */
     OPT_PARAMS,   /* a summary.json or settings file */
 };
 
@@ -220,6 +221,8 @@ static const struct opt_def option_table[] = {
      NULL},
     {"--params", " render ", OPT_PARAMS, 0, 0, 0, NO_GIVEN, NULL, "FILE",
      "a summary.json (runs it again) or a JSON object of --set keys", NULL},
+    {"--denoise", " render compare study view ", OPT_SETTING, 0, 0, 0, NO_GIVEN, NULL, "off|svgf|atrous",
+     "denoise each frame into a layer of its own, BIASED by nature (--set denoise=...; see denoise.* there)", NULL},
     {"--set", ALL, OPT_SET, 0, 0, 0, NO_GIVEN, NULL, "key=value", "one setting (restir render --help lists them)", NULL},
     {"--equal-time", ALL, OPT_FLAG, O(equal_time), 0, 0, NO_GIVEN, NULL, "",
      "compare: give every method the first stateful method's time per frame", NULL},
@@ -253,6 +256,9 @@ static const struct opt_def *opt_find(const char *command, const char *name, int
 }
 
 /* Applies value val of row d to o. Returns 0, or -1 with msg. */
+/* The JSON key of an option: its name without the leading dashes. */
+static const char *opt_key(const char *name) { return name + (name[1] == '-' ? 2 : 1); }
+
 static int opt_apply(const struct opt_def *d, const char *command, const char *val, struct cli_options *o, char *msg)
 {
     char *base = (char *)o;
@@ -325,6 +331,16 @@ static int opt_apply(const struct opt_def *d, const char *command, const char *v
         }
         *(int *)(base + d->offset) = k;
         break;
+    }
+    case OPT_SETTING: {
+        if (o->n_setting_texts == CLI_MAX_SETTING_TEXTS) {
+            snprintf(msg, RESTIR_MSG_LEN, "%s given more than %d times", d->name, CLI_MAX_SETTING_TEXTS);
+            return -1;
+        }
+        char *text = o->setting_texts[o->n_setting_texts++];
+        snprintf(text, sizeof o->setting_texts[0], "%s=%s", opt_key(d->name), val);
+        return opt_apply(&(struct opt_def){"--set", NULL, OPT_SET, 0, 0, 0, NO_GIVEN, NULL, "", "", NULL}, command,
+                         text, o, msg);
     }
     case OPT_SET:
         if (o->n_sets == CLI_MAX_SETS) {
@@ -409,8 +425,6 @@ void cli_options_help(FILE *out, const char *command)
     }
 }
 
-/* The JSON key of an option: its name without the leading dashes. */
-static const char *opt_key(const char *name) { return name + (name[1] == '-' ? 2 : 1); }
 
 static int opt_is_number(const struct opt_def *d)
 {

@@ -44,6 +44,10 @@ struct cli_options {
 #define CLI_MAX_SETS 128
     const char *sets[CLI_MAX_SETS];
     int n_sets;
+    /* options that stand for a setting (--denoise X): their "key=value" texts, which sets points at */
+#define CLI_MAX_SETTING_TEXTS 8
+    char setting_texts[CLI_MAX_SETTING_TEXTS][80];
+    int n_setting_texts;
     /* --params FILE: the strings it names (scene, method, camera file) live here */
     char params_scene[4096], params_method[128], params_camera[4096], params_env[4096];
 };

@@ -73,6 +73,8 @@ static cJSON *params_json(const struct cli_options *o, const struct method *meth
     char biased[RESTIR_MSG_LEN];
     render_params_biased(&p, biased, sizeof(biased));
     cJSON_AddStringToObject(j, "biased", biased); /* BIASED settings in effect; empty: none */
+    if (p.denoise.method > 0) /* a layer of its own: the frame's estimator is as "biased" says */
+        cJSON_AddStringToObject(j, "denoised", "frame_NNNN_denoised.*: BIASED by nature (a denoiser)");
     return j;
 }
 
@@ -137,7 +139,7 @@ int render_run(const struct cli_options *desc)
     snprintf(header + strlen(header), sizeof(header) - strlen(header), "%s",
              ",rays,mrays_per_s,temporal_accept,bp_received,bp_accepted,splat_received,splat_accepted,"
              "disoccluded,relmse,mape,smape,luma_rmse,mape_disoccluded,ms_write,"
-             "nonfinite");
+             "nonfinite,relmse_denoised,mape_denoised,smape_denoised,denoise_passed,denoise_reset");
     struct csv_writer csv;
     if (csv_open(&csv, csv_path, header, msg) != 0) {
         cli_error("%s", msg);
@@ -152,6 +154,7 @@ int render_run(const struct cli_options *desc)
     double ms_sum = 0.0, rays_sum = 0.0;
     long long nonfinite_sum = 0;
     struct restir_metrics_error err = {0, 0, 0, 0}, err_sum = {0, 0, 0, 0};
+    struct restir_metrics_error err_dn = {0, 0, 0, 0}, err_dn_sum = {0, 0, 0, 0}; /* of r.denoised */
     size_t npix = (size_t)o.params.width * (size_t)o.params.height;
     unsigned char *mask = xcalloc(npix, 1);
     rc = 0;
@@ -169,6 +172,12 @@ int render_run(const struct cli_options *desc)
             err_sum.mape += err.mape;
             err_sum.smape += err.smape;
             err_sum.luma_rmse += err.luma_rmse;
+            if (r.denoised) {
+                restir_metrics_compute(r.denoised, ref, npix, NULL, &err_dn);
+                err_dn_sum.relmse += err_dn.relmse;
+                err_dn_sum.mape += err_dn.mape;
+                err_dn_sum.smape += err_dn.smape;
+            }
         }
         const double vp = (double)st.valid_pixels;
         double accept = st.valid_pixels > 0 ? (double)st.temporal_accepted / vp : 0.0;
@@ -201,11 +210,13 @@ int render_run(const struct cli_options *desc)
             }
             ms_write = 1e3 * (omp_get_wtime() - t0);
         }
-        csv_row(&csv, "%d,%.3f%s,%lld,%.3f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.3f,%lld", f,
-                st.ms_total, passes, st.rays, (double)st.rays / (st.ms_total * 1e3), accept, bp_rx, bp_acc, sp_rx,
+        const int dn = ref && r.denoised;
+        csv_row(&csv, "%d,%.3f%s,%lld,%.3f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.3f,%lld,%.6g,%.6g,%.6g,%lld,%lld",
+                f, st.ms_total, passes, st.rays, (double)st.rays / (st.ms_total * 1e3), accept, bp_rx, bp_acc, sp_rx,
                 sp_acc, disoccluded, ref ? err.relmse : 0.0,
                 ref ? err.mape : 0.0, ref ? err.smape : 0.0, ref ? err.luma_rmse : 0.0, mape_disoccluded, ms_write,
-                st.nonfinite);
+                st.nonfinite, dn ? err_dn.relmse : 0.0, dn ? err_dn.mape : 0.0, dn ? err_dn.smape : 0.0,
+                st.denoise.passed_through, st.denoise.history_reset);
         nonfinite_sum += st.nonfinite;
         progress_update(&pg, f + 1);
         done = f + 1;
@@ -251,6 +262,16 @@ int render_run(const struct cli_options *desc)
             cJSON_AddNumberToObject(mean, "mape", err_sum.mape / o.frames);
             cJSON_AddNumberToObject(mean, "smape", err_sum.smape / o.frames);
             cJSON_AddNumberToObject(mean, "luma_rmse", err_sum.luma_rmse / o.frames);
+            if (r.denoised) { /* after denoising: BIASED by nature */
+                cJSON *dl = cJSON_AddObjectToObject(j, "last_frame_denoised");
+                cJSON_AddNumberToObject(dl, "relmse", err_dn.relmse);
+                cJSON_AddNumberToObject(dl, "mape", err_dn.mape);
+                cJSON_AddNumberToObject(dl, "smape", err_dn.smape);
+                cJSON *dm = cJSON_AddObjectToObject(j, "mean_over_frames_denoised");
+                cJSON_AddNumberToObject(dm, "relmse", err_dn_sum.relmse / o.frames);
+                cJSON_AddNumberToObject(dm, "mape", err_dn_sum.mape / o.frames);
+                cJSON_AddNumberToObject(dm, "smape", err_dn_sum.smape / o.frames);
+            }
         }
         if (json_write_file(json_path, j, msg) != 0) {
             cli_error("%s", msg);
@@ -263,6 +284,9 @@ int render_run(const struct cli_options *desc)
                o.params.height, o.frames, ms_sum / o.frames, rays_sum / (ms_sum * 1e3));
         if (ref)
             printf(", last frame relMSE %.5g MAPE %.5g SMAPE %.4g", err.relmse, err.mape, err.smape);
+        if (ref && r.denoised)
+            printf("; denoised (%s, BIASED) relMSE %.5g MAPE %.5g SMAPE %.4g", denoiser_name(r.denoiser),
+                   err_dn.relmse, err_dn.mape, err_dn.smape);
         printf("\noutput: %s\n", out_dir);
     }
     renderer_fini(&r);

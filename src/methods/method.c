@@ -44,7 +44,7 @@ void method_names_with(unsigned caps, char *out, size_t n)
 /* What every method reads: the scene and ray-tracing settings, the pixel jitter, the camera's lens
  * and shutter (refused by capability where a method does not render them), and temporal.reuse (by
  * capability too). */
-#define METHOD_COMMON_SETTINGS "jitter scene. rays. simd camera. temporal.reuse temporal.splat_steps"
+#define METHOD_COMMON_SETTINGS "jitter scene. rays. simd camera. temporal.reuse temporal.splat_steps denoise denoise."
 
 /* 1 when key matches one pattern of the space-separated list. */
 static int setting_in(const char *list, const char *key)

@@ -14,7 +14,7 @@ const char *const pass_names[PASS_COUNT] = {"gbuffer", "initial",         "tempo
                                             "spatial", "cells",           "cell_search", "spmis_canonical",
                                             "spmis_reuse", "shade", "pt", "gpt", "grad_initial",
                                             "grad_temporal", "grad_select", "grad_spatial", "grad_shade",
-                                            "recon_l2", "recon_l1"};
+                                            "recon_l2", "recon_l1", "denoise"};
 
 void renderer_init(struct renderer *r, const struct scene *s, const struct method *method, const struct render_params *p)
 {
@@ -27,6 +27,11 @@ void renderer_init(struct renderer *r, const struct scene *s, const struct metho
     r->state = method->create(r);
     if (r->p.threads > 0)
         omp_set_num_threads(r->p.threads);
+    if (r->p.denoise.method > 0) {
+        r->denoiser = denoiser_create(&r->p.denoise, r->p.width, r->p.height);
+        RESTIR_CHECK(r->denoiser != NULL);
+        r->denoised = xcalloc(3 * (size_t)r->p.width * (size_t)r->p.height, sizeof(float));
+    }
 }
 
 void renderer_fini(struct renderer *r)
@@ -34,6 +39,12 @@ void renderer_fini(struct renderer *r)
     if (r->method && r->state)
         r->method->destroy(r->state);
     free(r->image);
+    denoiser_destroy(r->denoiser);
+    free(r->denoised);
+    if (r->denoise_gbuffer) {
+        gbuffer_fini(r->denoise_gbuffer);
+        free(r->denoise_gbuffer);
+    }
     memset(r, 0, sizeof(*r));
 }
 
@@ -101,6 +112,34 @@ void renderer_set_shutter_open(struct renderer *r, const struct camera *open)
     r->has_prev_cam = 1;
 }
 
+void renderer_denoise_guide(const struct gbuffer *g, struct denoise_guide *out)
+{
+    *out = (struct denoise_guide){g->width, g->height, g->position, g->normal,  g->depth,
+                                  g->object, g->albedo, g->emission, g->motion, g->valid};
+}
+
+/* The frame in r->image denoised into r->denoised, guided by the method's G-buffer, or by one
+ * traced through the pixel centres (its rays counted) where the method keeps none. */
+static void renderer_denoise(struct renderer *r, const struct camera_view *view, struct frame_stats *st)
+{
+    struct renderer_inspect in;
+    renderer_inspect(r, &in);
+    const struct gbuffer *g = in.gbuffer;
+    if (!g) {
+        if (!r->denoise_gbuffer) {
+            r->denoise_gbuffer = xmalloc(sizeof(struct gbuffer));
+            gbuffer_init(r->denoise_gbuffer, r->p.width, r->p.height, 0);
+        }
+        st->rays += gbuffer_pass(r->denoise_gbuffer, r->scene, view, r->denoise_frames > 0 ? &r->prev_view : NULL, 0,
+                                 r->p.seed, r->frame);
+        g = r->denoise_gbuffer;
+    }
+    struct denoise_guide guide;
+    renderer_denoise_guide(g, &guide);
+    RESTIR_CHECK(denoiser_run(r->denoiser, r->image, &guide, r->denoised, &st->denoise) == 0);
+    r->denoise_frames++;
+}
+
 void renderer_render(struct renderer *r, int frame, const struct camera *cam, struct frame_stats *st)
 {
     memset(st, 0, sizeof(*st));
@@ -115,6 +154,8 @@ void renderer_render(struct renderer *r, int frame, const struct camera *cam, st
     renderer_reconstruct(r, st);
     /* the frame's radiance (every method, reconstructions included) */
     st->nonfinite += nonfinite_discard_rgb(r->image, (size_t)r->p.width * (size_t)r->p.height);
+    if (r->denoiser)
+        RENDERER_TIMED(st, PASS_DENOISE, renderer_denoise(r, &view, st));
     r->prev_view = view;
     st->ms_total = 1e3 * (omp_get_wtime() - t0);
 }

@@ -6,6 +6,7 @@
 
 #include <omp.h>
 
+#include "denoise/denoise.h"
 #include "methods/method.h"
 #include "render/gbuffer.h"
 #include "render/params.h"
@@ -38,6 +39,7 @@ enum pass_id {
     PASS_GRAD_SHADE,
     PASS_RECON_L2,
     PASS_RECON_L1,
+    PASS_DENOISE, /* denoise=svgf|atrous: the denoiser, and the G-buffer traced for it where the method has none */
     PASS_COUNT
 };
 extern const char *const pass_names[PASS_COUNT];
@@ -54,6 +56,7 @@ struct frame_stats {
     double l2_residual, l1_residual; /* gradient methods: relative residuals of the solves */
     long long nonfinite;             /* NaN / infinite reservoirs and radiance values discarded (nonfinite.h) */
     struct temporal_counts temporal; /* path reservoirs: pixels with temporal candidates per technique */
+    struct denoise_stats denoise;    /* denoise=svgf|atrous: pixels left raw, histories reset */
 };
 
 /* The method-independent part of a renderer; everything else is the method's own state. */
@@ -68,6 +71,11 @@ struct renderer {
     int has_prev_cam;
     float *image;                 /* this frame's radiance, RGB (gradient methods: the reconstruction
                                      recon selects, L2 for recon=both) */
+    float *denoised;              /* denoise=svgf|atrous: this frame denoised, RGB (NULL: off); the
+                                     frame in image is never changed by it */
+    struct denoiser *denoiser;    /* its state (history), NULL: off */
+    struct gbuffer *denoise_gbuffer; /* the G-buffer traced for it when the method keeps none */
+    int denoise_frames;           /* frames denoised so far */
 };
 
 /* What a method exposes of its last frame, for debug views and metrics; NULL / 0 where it has
@@ -90,7 +98,9 @@ struct renderer_inspect {
 void renderer_init(struct renderer *r, const struct scene *s, const struct method *method,
                    const struct render_params *p);
 void renderer_fini(struct renderer *r);
-/* Renders frame number `frame` seen by cam into r->image. */
+/* Renders frame number `frame` seen by cam into r->image, and with denoise=svgf|atrous denoises it
+ * into r->denoised (after the method's passes, the reconstruction and the non-finite guard, so
+ * r->image is bit for bit what it is without denoising). */
 /* The shutter opens at the previous frame's camera (camera.shutter > 0), or at cam for the first. */
 void renderer_render(struct renderer *r, int frame, const struct camera *cam, struct frame_stats *st);
 /* The camera the next frame's shutter opens at (instead of the last frame's camera): a single
@@ -105,6 +115,8 @@ void renderer_camera_view(const struct render_params *p, const struct camera *ca
  * it; call it again after changing the inputs (e.g. averaging instances, 002 Sec. 5). Does nothing
  * for the other methods. */
 void renderer_reconstruct(struct renderer *r, struct frame_stats *st);
+/* The denoisers' view of a G-buffer (borrowed pointers into g). */
+void renderer_denoise_guide(const struct gbuffer *g, struct denoise_guide *out);
 /* What the method exposes of its last frame (struct renderer_inspect). */
 void renderer_inspect(const struct renderer *r, struct renderer_inspect *out);
 /* Gradient methods: the primal, gradients and reconstructions; NULL for the others. */

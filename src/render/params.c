@@ -51,6 +51,7 @@ static const char *const sampler_names[] = {"independent", "sobol", NULL}; /* en
 static const char *const light_sampling_names[] = {"area", "solid-angle", NULL}; /* enum light_sampling */
 static const char *const light_selection_names[] = {"power", "bvh", NULL};        /* enum light_selection */
 static const char *const light_env_names[] = {"map", "compensated", NULL};        /* enum light_env_sampling */
+/* denoise: denoise_names (denoise.h) */
 static const char *const preset_names[] = {"fast", "balanced", "conservative", NULL};
 
 /* Index of val among the NULL-terminated names, or -1. */
@@ -298,6 +299,40 @@ static const struct param_def params[] = {
      "L1: preconditioner of the inner CG: multigrid (V-cycle) or jacobi (the public G-PT solver's kind)", precond_names},
     {"recon.l1_cg", P_INT, F(recon_l1_cg), 0, 100000, "0", NULL,
      "L1: conjugate-gradient steps per reweighting; 0: the preconditioner's default (multigrid 4, jacobi 50)", NULL},
+    {"denoise", P_NAMES, F(denoise.method), 0, 0, "off", NULL,
+     "denoise the finished frame into a layer of its own (frame_NNNN_denoised.exr / .png, and errors after "
+     "denoising in compare and study): off, svgf (Schied et al. 2017: temporal accumulation, variance "
+     "estimate, 5 edge-stopping a-trous iterations on albedo-demodulated illumination) or atrous (Dammertz et "
+     "al. 2010, spatial only); the denoised layer is BIASED by nature, the frame itself is unchanged; methods "
+     "without a G-buffer (pt, gpt) trace one for it through pixel centres",
+     denoise_names},
+    {"denoise.svgf.alpha", P_FLOAT, F(denoise.svgf_alpha), 1e-4, 1, "0.2", NULL,
+     "svgf: colour's moving-average weight (Sec. 4.1)", NULL},
+    {"denoise.svgf.moments_alpha", P_FLOAT, F(denoise.svgf_moments_alpha), 1e-4, 1, "0.2", NULL,
+     "svgf: luminance moments' moving-average weight", NULL},
+    {"denoise.svgf.sigma_depth", P_FLOAT, F(denoise.svgf_sigma_depth), 1e-6, 1e6, "1", NULL,
+     "svgf: sigma_z, the depth weight's scale on the depth gradient (Eq. 3)", NULL},
+    {"denoise.svgf.sigma_normal", P_FLOAT, F(denoise.svgf_sigma_normal), 0, 4096, "128", NULL,
+     "svgf: sigma_n, the power of max(0, n_p . n_q) (Eq. 4)", NULL},
+    {"denoise.svgf.sigma_luminance", P_FLOAT, F(denoise.svgf_sigma_lum), 1e-6, 1e6, "4", NULL,
+     "svgf: sigma_l, the luminance weight's scale on the filtered standard deviation (Eq. 5)", NULL},
+    {"denoise.svgf.iterations", P_INT, F(denoise.svgf_iterations), 0, 12, "5", NULL, "svgf: a-trous iterations", NULL},
+    {"denoise.svgf.feedback", P_INT, F(denoise.svgf_feedback), 0, 12, "1", NULL,
+     "svgf: the a-trous iteration whose output is the next frame's colour history (0: the unfiltered "
+     "accumulation)", NULL},
+    {"denoise.svgf.variance_frames", P_INT, F(denoise.svgf_variance_frames), 0, 255, "4", NULL,
+     "svgf: histories shorter than this estimate variance spatially (7x7, Sec. 4.2)", NULL},
+    {"denoise.svgf.normal", P_FLOAT, F(denoise.svgf_normal_min), -1, 1, "0.9", NULL,
+     "svgf: history rejected where n . n_prev is below", NULL},
+    {"denoise.svgf.plane", P_FLOAT, F(denoise.svgf_plane_max), 0, 1e30, "0.01", NULL,
+     "svgf: history rejected where the plane distance exceeds this times the depth", NULL},
+    {"denoise.atrous.iterations", P_INT, F(denoise.atrous_iterations), 0, 12, "5", NULL, "atrous: iterations", NULL},
+    {"denoise.atrous.sigma_color", P_FLOAT, F(denoise.atrous_sigma_color), 1e-6, 1e6, "1", NULL,
+     "atrous: sigma_rt in units of the frame's mean illumination, halved per iteration", NULL},
+    {"denoise.atrous.sigma_normal", P_FLOAT, F(denoise.atrous_sigma_normal), 1e-6, 1e6, "0.3", NULL,
+     "atrous: sigma_n on |n_p - n_q|", NULL},
+    {"denoise.atrous.sigma_position", P_FLOAT, F(denoise.atrous_sigma_position), 1e-6, 1e6, "0.05", NULL,
+     "atrous: sigma_x on |x_p - x_q| as a fraction of the pixel's depth", NULL},
 };
 #undef F
 #define NUM_PARAMS (sizeof(params) / sizeof(params[0]))
@@ -447,6 +482,11 @@ int render_params_validate(const struct render_params *p, char *msg)
     if (p->recon_iterations > 0 && p->recon_solver != RESTIR_POISSON_CG) {
         snprintf(msg, RESTIR_MSG_LEN, "recon.iterations = %d needs recon.solver=cg (dct solves exactly)",
                  p->recon_iterations);
+        return -1;
+    }
+    if (p->denoise.svgf_feedback > p->denoise.svgf_iterations) {
+        snprintf(msg, RESTIR_MSG_LEN, "denoise.svgf.feedback = %d exceeds denoise.svgf.iterations = %d",
+                 p->denoise.svgf_feedback, p->denoise.svgf_iterations);
         return -1;
     }
     if (p->ratio_lo > p->ratio_hi) {

@@ -7,6 +7,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "denoise/denoise.h"
 #include "render/shift_kind.h"
 #include "shading/lights.h" /* enum light_sampling, light_selection */
 #include "restir/cells.h"
@@ -150,6 +151,9 @@ struct render_params {
     int recon_iterations;   /* CG steps of L2 from the primal; 0: to the tolerance */
     int recon_l1_iterations, recon_l1_cg; /* IRLS reweightings and CG steps per reweighting (0: default) */
     int recon_l1_precond;   /* enum restir_poisson_precond of the L1 solve's CG */
+
+    /* denoising of the finished frame (issue 43): a layer of its own, never read by an estimator */
+    struct denoise_settings denoise;
 };
 
 /* Spatial neighbors a method tries: spatial.neighbors, or when 0 the default of 001 for ReSTIR DI

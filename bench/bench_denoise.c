@@ -1,0 +1,106 @@
+/* bench_denoise.c: `restir_bench denoise [--scene S] [--method M] [--res WxH] [--frames N]
+ * [--threads T]`: what denoising costs beside the frame it denoises (issue 43: SVGF at 640x360 in at
+ * most 15% of a restir-di frame on 2 threads). Renders N frames of the method without denoising,
+ * keeps the last frame's image and G-buffer, then runs each denoiser N times on them (SVGF then
+ * accumulates a static history, as under a static camera) and prints the medians of the frames'
+ * and the denoisers' milliseconds and their ratio, measured in the same run.
+ * Must never be run by the tests. */
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench_common.h"
+#include "core/check.h"
+#include "core/simd.h"
+#include "denoise/denoise.h"
+#include "experiments/cli.h"
+#include "scene/scene_file.h"
+
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof(double), cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+int bench_denoise(int argc, char **argv)
+{
+    const char *scene_name = "many-lights", *method_name = "restir-di";
+    int width = 640, height = 360, frames = 12, threads = 2;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--scene") && i + 1 < argc)
+            scene_name = argv[++i];
+        else if (!strcmp(argv[i], "--method") && i + 1 < argc)
+            method_name = argv[++i];
+        else if (!strcmp(argv[i], "--res") && i + 1 < argc && sscanf(argv[i + 1], "%dx%d", &width, &height) == 2)
+            i++;
+        else if (!strcmp(argv[i], "--frames") && i + 1 < argc && (frames = atoi(argv[++i])) >= 3)
+            ;
+        else if (!strcmp(argv[i], "--threads") && i + 1 < argc && (threads = atoi(argv[++i])) >= 1)
+            ;
+        else {
+            fprintf(stderr, "usage: restir_bench denoise [--scene S] [--method M] [--res WxH] [--frames N>=3] "
+                            "[--threads T]\n");
+            return 2;
+        }
+    }
+    struct scene s = bench_load_scene(scene_name);
+    struct render_params p;
+    render_params_defaults(&p);
+    p.width = width;
+    p.height = height;
+    p.threads = threads;
+    struct renderer r;
+    renderer_init(&r, &s, method_named(method_name), &p);
+    double *ms = xmalloc(sizeof(double) * (size_t)frames);
+    for (int f = 0; f < frames; f++) {
+        struct frame_stats st;
+        const struct camera cam = scene_camera_at(&s, 0, (float)f);
+        renderer_render(&r, f, &cam, &st);
+        ms[f] = st.ms_total;
+    }
+    const double frame_ms = median(ms + 2, frames - 2); /* frames 0 and 1 warm up */
+    struct renderer_inspect in;
+    renderer_inspect(&r, &in);
+    struct gbuffer own;
+    const struct gbuffer *g = in.gbuffer;
+    if (!g) {
+        gbuffer_init(&own, width, height, 0);
+        struct camera_view view;
+        const struct camera cam = scene_camera_at(&s, 0, (float)(frames - 1));
+        renderer_camera_view(&r.p, &cam, NULL, &view);
+        gbuffer_pass(&own, &s, &view, NULL, 0, p.seed, 0);
+        g = &own;
+    }
+    struct denoise_guide guide;
+    renderer_denoise_guide(g, &guide);
+    float *out = xmalloc(sizeof(float) * 3 * (size_t)width * (size_t)height);
+    printf("%s on %s, %dx%d, %d threads (%s): frame %.2f ms (median of frames 2..%d)\n", method_name, scene_name,
+           width, height, threads, simd_isa_name(simd_isa_active()), frame_ms, frames - 1);
+    for (int k = 1; denoise_names[k]; k++) {
+        struct denoise_settings ds = p.denoise;
+        ds.method = k;
+        struct denoiser *d = denoiser_create(&ds, width, height);
+        for (int f = 0; f < frames; f++) {
+            const double t0 = omp_get_wtime();
+            RESTIR_CHECK(denoiser_run(d, r.image, &guide, out, NULL) == 0);
+            ms[f] = 1e3 * (omp_get_wtime() - t0);
+        }
+        const double dm = median(ms + 2, frames - 2);
+        printf("  %-7s %8.2f ms  = %5.1f%% of the frame\n", denoise_names[k], dm, 100.0 * dm / frame_ms);
+        denoiser_destroy(d);
+    }
+    if (g == &own)
+        gbuffer_fini(&own);
+    free(out);
+    free(ms);
+    renderer_fini(&r);
+    scene_destroy(&s);
+    return 0;
+}

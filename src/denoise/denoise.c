@@ -1,0 +1,185 @@
+/* denoise.c: the denoisers' table and what every one shares (denoise.h): the guard that keeps
+ * invalid and non-finite pixels out of the filters, demodulation by albedo and remodulation
+ * (Schied et al. 2017 Sec. 4), feature planes and depth gradients. Must never name a denoiser
+ * but in its table. */
+#include "denoise/denoise.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/check.h"
+#include "denoise/denoise_kernel.h"
+#include "denoise/denoise_method.h"
+
+const char *const denoise_names[] = {"off", "svgf", "atrous", NULL};
+static const struct denoise_method *const methods[] = {NULL, &denoise_svgf, &denoise_atrous};
+#define METHOD_COUNT (int)(sizeof(methods) / sizeof(methods[0]))
+
+void denoise_settings_defaults(struct denoise_settings *s)
+{
+    memset(s, 0, sizeof(*s));
+    s->svgf_alpha = 0.2f;
+    s->svgf_moments_alpha = 0.2f;
+    s->svgf_sigma_depth = 1.0f;
+    s->svgf_sigma_normal = 128.0f;
+    s->svgf_sigma_lum = 4.0f;
+    s->svgf_iterations = 5;
+    s->svgf_feedback = 1;
+    s->svgf_variance_frames = 4;
+    s->svgf_normal_min = 0.9f;
+    s->svgf_plane_max = 0.01f;
+    s->atrous_iterations = 5;
+    s->atrous_sigma_color = 1.0f;
+    s->atrous_sigma_normal = 0.3f;
+    s->atrous_sigma_position = 0.05f;
+}
+
+/* Albedo channels below this are not divided by (a black channel has no illumination to recover);
+ * remodulation multiplies by the same factor, so the pair is the identity on every pixel. */
+#define DEMOD_MIN 1e-3f
+
+struct denoiser {
+    const struct denoise_method *method;
+    struct denoise_settings s;
+    void *state;
+    int width, height;
+    float *planes; /* illum[3] normal[3] position[3] depth ddx ddy use, 13 planes */
+};
+
+#define PLANES 13
+
+struct denoiser *denoiser_create(const struct denoise_settings *s, int width, int height)
+{
+    if (!s || s->method <= 0 || s->method >= METHOD_COUNT || width < 1 || height < 1)
+        return NULL;
+    struct denoiser *d = xcalloc(1, sizeof(*d));
+    d->method = methods[s->method];
+    d->s = *s;
+    d->width = width;
+    d->height = height;
+    d->planes = xmalloc(sizeof(float) * PLANES * (size_t)width * (size_t)height);
+    d->state = d->method->create(s, width, height);
+    return d;
+}
+
+void denoiser_destroy(struct denoiser *d)
+{
+    if (!d)
+        return;
+    d->method->destroy(d->state);
+    free(d->planes);
+    free(d);
+}
+
+const char *denoiser_name(const struct denoiser *d) { return d->method->name; }
+
+const float *denoiser_layer(const struct denoiser *d, const char *name)
+{
+    return d->method->layer && name ? d->method->layer(d->state, name) : NULL;
+}
+
+static inline int finite3(vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
+
+static inline float demod_factor(float albedo) { return albedo >= DEMOD_MIN ? albedo : 1.0f; }
+
+/* Depth's derivative along one axis at pixel i: the one-sided difference of smaller magnitude
+ * among the used neighbours (a step across an edge would claim a slope the surface does not have;
+ * Schied et al. use the rasteriser's per-quad derivative). 0 without a used neighbour. */
+static float depth_derivative(const float *z, const float *use, int i, int stride, int has_lo, int has_hi)
+{
+    float best = 0.0f;
+    int found = 0;
+    if (has_hi && use[i + stride] > 0.0f) {
+        best = z[i + stride] - z[i];
+        found = 1;
+    }
+    if (has_lo && use[i - stride] > 0.0f) {
+        const float lo = z[i] - z[i - stride];
+        if (!found || fabsf(lo) < fabsf(best))
+            best = lo;
+    }
+    return best;
+}
+
+int denoiser_run(struct denoiser *d, const float *rgb, const struct denoise_guide *g, float *out,
+                 struct denoise_stats *st)
+{
+    if (g->width != d->width || g->height != d->height)
+        return -1;
+    const int w = d->width, h = d->height;
+    const size_t n = (size_t)w * (size_t)h;
+    float *illum[3], *nrm[3], *pos[3];
+    for (int c = 0; c < 3; c++) {
+        illum[c] = d->planes + (size_t)c * n;
+        nrm[c] = d->planes + (size_t)(3 + c) * n;
+        pos[c] = d->planes + (size_t)(6 + c) * n;
+    }
+    float *depth = d->planes + 9 * n, *ddx = d->planes + 10 * n, *ddy = d->planes + 11 * n;
+    float *use = d->planes + 12 * n;
+    long long passed = 0;
+    double lum_sum = 0.0;
+    long long lum_count = 0;
+#pragma omp parallel for schedule(static) reduction(+ : passed, lum_sum, lum_count)
+    for (long long i = 0; i < (long long)n; i++) {
+        const vec3 e = g->emission ? g->emission[i] : v3s(0.0f);
+        const vec3 c = v3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]);
+        const int ok = g->valid[i] && finite3(c) && finite3(e) && finite3(g->albedo[i]) && finite3(g->normal[i]) &&
+                       finite3(g->position[i]) && isfinite(g->depth[i]) && g->depth[i] > 0.0f;
+        passed += g->valid[i] && !ok;
+        use[i] = ok ? 1.0f : 0.0f;
+        const vec3 a = g->albedo[i];
+        illum[0][i] = ok ? (c.x - e.x) / demod_factor(a.x) : 0.0f;
+        illum[1][i] = ok ? (c.y - e.y) / demod_factor(a.y) : 0.0f;
+        illum[2][i] = ok ? (c.z - e.z) / demod_factor(a.z) : 0.0f;
+        nrm[0][i] = ok ? g->normal[i].x : 0.0f;
+        nrm[1][i] = ok ? g->normal[i].y : 0.0f;
+        nrm[2][i] = ok ? g->normal[i].z : 0.0f;
+        pos[0][i] = ok ? g->position[i].x : 0.0f;
+        pos[1][i] = ok ? g->position[i].y : 0.0f;
+        pos[2][i] = ok ? g->position[i].z : 0.0f;
+        depth[i] = ok ? g->depth[i] : INFINITY; /* a filter's depth weight of an unused tap is 0 */
+        if (ok) {
+            lum_sum += denoise_luminance(illum[0][i], illum[1][i], illum[2][i]);
+            lum_count++;
+        }
+    }
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            const int i = y * w + x;
+            ddx[i] = use[i] > 0.0f ? depth_derivative(depth, use, i, 1, x > 0, x < w - 1) : 0.0f;
+            ddy[i] = use[i] > 0.0f ? depth_derivative(depth, use, i, w, y > 0, y < h - 1) : 0.0f;
+        }
+    struct denoise_frame f = {w,
+                              h,
+                              {illum[0], illum[1], illum[2]},
+                              {nrm[0], nrm[1], nrm[2]},
+                              {pos[0], pos[1], pos[2]},
+                              depth,
+                              ddx,
+                              ddy,
+                              use,
+                              g->object,
+                              g->motion,
+                              lum_count ? lum_sum / (double)lum_count : 0.0};
+    struct denoise_stats local = {passed, 0};
+    d->method->run(d->state, &d->s, &f, &local);
+#pragma omp parallel for schedule(static)
+    for (long long i = 0; i < (long long)n; i++) {
+        if (use[i] == 0.0f) {
+            out[3 * i] = rgb[3 * i];
+            out[3 * i + 1] = rgb[3 * i + 1];
+            out[3 * i + 2] = rgb[3 * i + 2];
+            continue;
+        }
+        const vec3 e = g->emission ? g->emission[i] : v3s(0.0f);
+        const vec3 a = g->albedo[i];
+        out[3 * i] = illum[0][i] * demod_factor(a.x) + e.x;
+        out[3 * i + 1] = illum[1][i] * demod_factor(a.y) + e.y;
+        out[3 * i + 2] = illum[2][i] * demod_factor(a.z) + e.z;
+    }
+    if (st)
+        *st = local;
+    return 0;
+}

@@ -1,0 +1,446 @@
+/* test_denoise.c: the denoisers (issue 43) against values computed here by straightforward scalar
+ * code from the papers' equations: SVGF's à-trous weights and variance propagation (Schied et al.
+ * 2017 Eq. 1-5) and temporal moments, its 7x7 spatial variance, its history rejection on a mesh id,
+ * normal or surface change, the edge-avoiding à-trous weights (Dammertz et al. 2010 Eq. 4-6), the
+ * exp2 / log2 approximations the filters vectorise with, that a constant image and a noise-free one
+ * pass through unchanged, and that invalid and non-finite pixels are passed through raw, counted,
+ * and never spread into their neighbours. Both instruction-set paths run (simd_allow). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/simd.h"
+#include "denoise/denoise.h"
+#include "denoise/denoise_kernel.h"
+#include "render/params.h"
+#include "test_util.h"
+
+#define MAXW 16
+#define MAXH 12
+
+/* A frame's features and colour, as a renderer's G-buffer would hold them. */
+struct scene_buf {
+    int w, h;
+    vec3 pos[MAXW * MAXH], nrm[MAXW * MAXH], alb[MAXW * MAXH];
+    float depth[MAXW * MAXH], motion[2 * MAXW * MAXH], rgb[3 * MAXW * MAXH];
+    int obj[MAXW * MAXH];
+    unsigned char valid[MAXW * MAXH];
+};
+
+static unsigned rng_state = 12345u;
+static float rnd(void)
+{
+    rng_state = rng_state * 1664525u + 1013904223u;
+    return (float)(rng_state >> 8) / 16777216.0f;
+}
+
+/* A plane facing the camera at a slant: depth linear in x and y, positions on the plane
+ * z = depth, with its normal, albedo alb. */
+static void plane_scene(struct scene_buf *b, int w, int h, float alb)
+{
+    memset(b, 0, sizeof(*b));
+    b->w = w;
+    b->h = h;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            const int i = y * w + x;
+            b->depth[i] = 2.0f + 0.05f * (float)x + 0.03f * (float)y;
+            b->pos[i] = v3((float)x * 0.1f, (float)y * 0.1f, b->depth[i]);
+            b->nrm[i] = v3_normalize(v3(-0.5f, -0.3f, 1.0f));
+            b->alb[i] = v3s(alb);
+            b->obj[i] = 1;
+            b->valid[i] = 1;
+        }
+}
+
+static struct denoise_guide guide_of(const struct scene_buf *b)
+{
+    struct denoise_guide g = {b->w, b->h, b->pos, b->nrm, b->depth, b->obj, b->alb, NULL, b->motion, b->valid};
+    return g;
+}
+
+static float lum_of(const float *c) { return denoise_luminance(c[0], c[1], c[2]); }
+
+/* Depth's derivative as denoise.c defines it: the smaller one-sided difference. */
+static float ref_derivative(const struct scene_buf *b, int x, int y, int dx, int dy)
+{
+    const int i = y * b->w + x;
+    float best = 0.0f;
+    int found = 0;
+    if (x + dx < b->w && y + dy < b->h) {
+        best = b->depth[i + dy * b->w + dx] - b->depth[i];
+        found = 1;
+    }
+    if (x - dx >= 0 && y - dy >= 0) {
+        const float lo = b->depth[i] - b->depth[i - dy * b->w - dx];
+        if (!found || fabsf(lo) < fabsf(best))
+            best = lo;
+    }
+    return best;
+}
+
+static const double b3[5] = {1.0 / 16, 4.0 / 16, 6.0 / 16, 4.0 / 16, 1.0 / 16};
+
+/* SVGF with one à-trous iteration, after two frames A then B of a static plane, computed by
+ * Eq. 1-5 directly; feedback 0 and variance from the temporal moments (variance_frames 0). */
+static void svgf_hand(const struct scene_buf *b, const float *A, const float *B, float alb, float *out)
+{
+    const int w = b->w, h = b->h, n = w * h;
+    static float I[3 * MAXW * MAXH], var[MAXW * MAXH], l[MAXW * MAXH];
+    for (int i = 0; i < n; i++) {
+        for (int c = 0; c < 3; c++) /* len 2: alpha = max(0.2, 1/2) */
+            I[3 * i + c] = 0.5f * (A[3 * i + c] / alb) + 0.5f * (B[3 * i + c] / alb);
+        float ia[3] = {A[3 * i] / alb, A[3 * i + 1] / alb, A[3 * i + 2] / alb};
+        float ib[3] = {B[3 * i] / alb, B[3 * i + 1] / alb, B[3 * i + 2] / alb};
+        const double la = lum_of(ia), lb = lum_of(ib);
+        const double m1 = 0.5 * la + 0.5 * lb, m2 = 0.5 * la * la + 0.5 * lb * lb;
+        var[i] = (float)fmax(0.0, m2 - m1 * m1);
+        l[i] = lum_of(&I[3 * i]);
+    }
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            const int p = y * w + x;
+            double gs = 0.0, gw = 0.0; /* the 3x3 Gaussian of the variance */
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++) {
+                    if (x + dx < 0 || y + dy < 0 || x + dx >= w || y + dy >= h)
+                        continue;
+                    const double g = (dx ? 0.25 : 0.5) * (dy ? 0.25 : 0.5);
+                    gw += g;
+                    gs += g * var[p + dy * w + dx];
+                }
+            const double invl = 1.0 / (4.0 * sqrt(gs / gw) + 1e-10);
+            const double gx = ref_derivative(b, x, y, 1, 0), gy = ref_derivative(b, x, y, 0, 1);
+            double sw = 0.0, s[3] = {0, 0, 0};
+            for (int ty = 0; ty < 5; ty++)
+                for (int tx = 0; tx < 5; tx++) {
+                    const int ox = tx - 2, oy = ty - 2;
+                    if (x + ox < 0 || y + oy < 0 || x + ox >= w || y + oy >= h)
+                        continue;
+                    const int q = p + oy * w + ox;
+                    const double den = 1.0 * fabs(gx * ox + gy * oy) + 1e-3 * b->depth[p];
+                    const double a = fabs(b->depth[p] - b->depth[q]) / den + fabs(l[p] - l[q]) * invl;
+                    const double nd = fmax(0.0, v3_dot(b->nrm[p], b->nrm[q]));
+                    const double wt = b3[ty] * b3[tx] * pow(nd, 128.0) * exp(-a);
+                    sw += wt;
+                    for (int c = 0; c < 3; c++)
+                        s[c] += wt * I[3 * q + c];
+                }
+            for (int c = 0; c < 3; c++)
+                out[3 * p + c] = (float)(s[c] / sw * alb);
+        }
+}
+
+static struct denoise_settings settings(int method)
+{
+    struct denoise_settings s;
+    denoise_settings_defaults(&s);
+    s.method = method;
+    return s;
+}
+
+static double max_rel(const float *a, const float *b, int n3)
+{
+    double worst = 0.0;
+    for (int i = 0; i < n3; i++)
+        worst = fmax(worst, fabs((double)a[i] - b[i]) / fmax(1e-6, fabs((double)b[i])));
+    return worst;
+}
+
+static void test_kernels(void)
+{
+    double worst = 0.0;
+    for (double x = -29.99; x <= 0.0; x += 0.0037) {
+        const float xf = (float)x;
+        worst = fmax(worst, fabs(denoise_exp2_neg(xf) / exp2((double)xf) - 1.0));
+    }
+    EXPECT(worst < 3e-7, "exp2 relative error %g", worst);
+    EXPECT(denoise_exp2_neg(-30.5f) == 0.0f && denoise_exp2_neg(-INFINITY) == 0.0f, "below the cut: exactly 0");
+    EXPECT(denoise_exp2_neg(0.0f) == 1.0f, "2^0 = %g", (double)denoise_exp2_neg(0.0f));
+    worst = 0.0;
+    for (double x = 1e-6; x < 100.0; x *= 1.013)
+        worst = fmax(worst, fabs(denoise_log2((float)x) - log2(x)));
+    EXPECT(worst < 1e-4, "log2 absolute error %g", worst);
+}
+
+/* Eq. 1-5 and the temporal moments, by hand, on a slanted plane with a few tilted normals. */
+static void test_svgf_hand(void)
+{
+    static struct scene_buf b;
+    const float alb = 0.5f;
+    plane_scene(&b, 11, 9, alb);
+    for (int i = 0; i < b.w * b.h; i += 7)
+        b.nrm[i] = v3(0.6f, 0.0f, 0.8f);
+    static float A[3 * MAXW * MAXH], B[3 * MAXW * MAXH], out[3 * MAXW * MAXH], want[3 * MAXW * MAXH];
+    for (int i = 0; i < 3 * b.w * b.h; i++) {
+        A[i] = 0.2f + rnd();
+        B[i] = 0.2f + rnd();
+    }
+    struct denoise_settings s = settings(1);
+    s.svgf_iterations = 1;
+    s.svgf_feedback = 0;
+    s.svgf_variance_frames = 0;
+    struct denoiser *d = denoiser_create(&s, b.w, b.h);
+    const struct denoise_guide g = guide_of(&b);
+    struct denoise_stats st;
+    EXPECT(denoiser_run(d, A, &g, out, &st) == 0 && st.history_reset == b.w * b.h, "frame 0: every history new");
+    EXPECT(denoiser_run(d, B, &g, out, &st) == 0 && st.history_reset == 0, "frame 1: %lld reset", st.history_reset);
+    svgf_hand(&b, A, B, alb, want);
+    const double e = max_rel(out, want, 3 * b.w * b.h);
+    EXPECT(e < 2e-4, "SVGF output against Eq. 1-5 by hand: worst relative difference %g", e);
+    const float *len = denoiser_layer(d, "history");
+    EXPECT(len && len[0] == 2.0f && len[b.w * b.h - 1] == 2.0f, "history length 2 after two frames");
+    EXPECT(denoiser_layer(d, "nonsense") == NULL, "an unknown layer is NULL");
+    denoiser_destroy(d);
+}
+
+/* Sec. 4.2: a history shorter than 4 frames takes the variance of the 7x7 neighbourhood; on a
+ * fronto-parallel plane every weight is 1, so at the centre of a 7x7 image it is the plain
+ * variance of all 49 luminances. */
+static void test_spatial_variance(void)
+{
+    static struct scene_buf b;
+    plane_scene(&b, 7, 7, 1.0f);
+    for (int i = 0; i < 49; i++) {
+        b.depth[i] = 3.0f;
+        b.pos[i].z = 3.0f;
+    }
+    static float c[3 * 49], out[3 * 49];
+    double s1 = 0.0, s2 = 0.0;
+    for (int i = 0; i < 49; i++) {
+        c[3 * i] = c[3 * i + 1] = c[3 * i + 2] = 0.1f + rnd();
+        const double l = lum_of(&c[3 * i]);
+        s1 += l;
+        s2 += l * l;
+    }
+    struct denoise_settings s = settings(1);
+    struct denoiser *d = denoiser_create(&s, 7, 7);
+    const struct denoise_guide g = guide_of(&b);
+    EXPECT(denoiser_run(d, c, &g, out, NULL) == 0, "runs");
+    const float *var = denoiser_layer(d, "variance");
+    const double want = s2 / 49.0 - (s1 / 49.0) * (s1 / 49.0);
+    EXPECT(var && fabs(var[24] - want) <= 1e-5 * want, "7x7 spatial variance %.7g vs %.7g", var ? var[24] : -1.0, want);
+    denoiser_destroy(d);
+}
+
+/* Sec. 4.1: history is rejected where the mesh id, the normal or the surface changes. */
+static void test_history_rejection(void)
+{
+    static struct scene_buf b;
+    plane_scene(&b, 5, 4, 1.0f);
+    static float c[3 * 20], out[3 * 20];
+    for (int i = 0; i < 60; i++)
+        c[i] = 0.5f;
+    struct denoise_settings s = settings(1);
+    struct denoiser *d = denoiser_create(&s, 5, 4);
+    struct denoise_guide g = guide_of(&b);
+    struct denoise_stats st;
+    denoiser_run(d, c, &g, out, &st);
+    b.obj[0] = 7;                                                 /* another mesh */
+    b.nrm[2] = v3(0.866f, 0.0f, 0.5f);                            /* n . n_prev = 0.5 < 0.9 */
+    b.pos[4] = v3_madd(b.pos[4], b.nrm[4], 0.05f * b.depth[4]);   /* 5% of the depth off its plane */
+    b.pos[12] = v3_madd(b.pos[12], b.nrm[12], 0.002f * b.depth[12]); /* within the 1% tolerance */
+    g = guide_of(&b);
+    denoiser_run(d, c, &g, out, &st);
+    const float *len = denoiser_layer(d, "history");
+    EXPECT(len[0] == 1.0f && len[2] == 1.0f && len[4] == 1.0f, "rejected: id %g normal %g plane %g", len[0], len[2],
+           len[4]);
+    EXPECT(len[12] == 2.0f && len[6] == 2.0f, "kept: %g %g", len[12], len[6]);
+    EXPECT(st.history_reset == 3, "%lld histories reset", st.history_reset);
+    denoiser_destroy(d);
+    /* a motion vector moves the history with the surface: one mesh per column, shifted right by
+     * one pixel, is found one pixel to the left; the left column's mesh is new */
+    plane_scene(&b, 5, 4, 1.0f);
+    for (int i = 0; i < 20; i++)
+        b.obj[i] = i % 5;
+    d = denoiser_create(&s, 5, 4);
+    g = guide_of(&b);
+    denoiser_run(d, c, &g, out, &st);
+    for (int i = 0; i < 20; i++) {
+        b.obj[i] = i % 5 - 1;
+        b.motion[2 * i] = -1.0f;
+    }
+    g = guide_of(&b);
+    denoiser_run(d, c, &g, out, &st);
+    len = denoiser_layer(d, "history");
+    EXPECT(len[1] == 2.0f && len[4] == 2.0f && len[19] == 2.0f, "moved histories: %g %g %g", len[1], len[4], len[19]);
+    EXPECT(len[0] == 1.0f && len[15] == 1.0f && st.history_reset == 4, "the left column is new: %g %g, %lld reset",
+           len[0], len[15], st.history_reset);
+    denoiser_destroy(d);
+}
+
+/* Dammertz et al. Eq. 4-6 with sigma_rt in units of the mean illumination, one iteration. */
+static void test_atrous_hand(void)
+{
+    static struct scene_buf b;
+    plane_scene(&b, 9, 8, 1.0f);
+    for (int i = 0; i < 72; i += 5)
+        b.nrm[i] = v3(0.0f, 0.6f, 0.8f);
+    static float c[3 * 72], out[3 * 72], want[3 * 72];
+    double mean = 0.0;
+    for (int i = 0; i < 72; i++) {
+        for (int k = 0; k < 3; k++)
+            c[3 * i + k] = 0.2f + rnd();
+        mean += lum_of(&c[3 * i]) / 72.0;
+    }
+    struct denoise_settings s = settings(2);
+    s.atrous_iterations = 1;
+    const double sc = s.atrous_sigma_color * mean, sn = s.atrous_sigma_normal, sx = s.atrous_sigma_position;
+    for (int y = 0; y < 8; y++)
+        for (int x = 0; x < 9; x++) {
+            const int p = y * 9 + x;
+            double sw = 0.0, acc[3] = {0, 0, 0};
+            for (int ty = 0; ty < 5; ty++)
+                for (int tx = 0; tx < 5; tx++) {
+                    const int qx = x + tx - 2, qy = y + ty - 2;
+                    if (qx < 0 || qy < 0 || qx >= 9 || qy >= 8)
+                        continue;
+                    const int q = qy * 9 + qx;
+                    double dc = 0.0;
+                    for (int k = 0; k < 3; k++)
+                        dc += ((double)c[3 * p + k] - c[3 * q + k]) * ((double)c[3 * p + k] - c[3 * q + k]);
+                    const double dn = v3_length2(v3_sub(b.nrm[p], b.nrm[q]));
+                    const double dx = v3_length2(v3_sub(b.pos[p], b.pos[q]));
+                    const double sxp = sx * b.depth[p];
+                    const double wt = b3[ty] * b3[tx] * exp(-dc / (sc * sc) - dn / (sn * sn) - dx / (sxp * sxp));
+                    sw += wt;
+                    for (int k = 0; k < 3; k++)
+                        acc[k] += wt * c[3 * q + k];
+                }
+            for (int k = 0; k < 3; k++)
+                want[3 * p + k] = (float)(acc[k] / sw);
+        }
+    struct denoiser *d = denoiser_create(&s, 9, 8);
+    const struct denoise_guide g = guide_of(&b);
+    EXPECT(denoiser_run(d, c, &g, out, NULL) == 0, "runs");
+    const double e = max_rel(out, want, 216);
+    EXPECT(e < 2e-4, "a-trous against Eq. 4-6 by hand: worst relative difference %g", e);
+    denoiser_destroy(d);
+}
+
+/* A constant image through both filters over moving frames, and a noise-free one (two flat
+ * regions split by a crease) through SVGF once its history holds (variance from the moments). */
+static void test_unchanged(void)
+{
+    static struct scene_buf b;
+    static float c[3 * MAXW * MAXH], out[3 * MAXW * MAXH];
+    for (int m = 1; m <= 2; m++) {
+        plane_scene(&b, 16, 12, 0.7f);
+        struct denoise_settings s = settings(m);
+        struct denoiser *d = denoiser_create(&s, 16, 12);
+        double worst = 0.0;
+        for (int f = 0; f < 5; f++) {
+            for (int i = 0; i < 192; i++) {
+                b.depth[i] = 1.0f + 3.0f * rnd();
+                b.pos[i] = v3(rnd(), rnd(), b.depth[i]);
+                b.nrm[i] = v3_normalize(v3(rnd() - 0.5f, rnd() - 0.5f, 1.0f));
+                b.motion[2 * i] = 2.0f * rnd() - 1.0f;
+                b.motion[2 * i + 1] = 2.0f * rnd() - 1.0f;
+                c[3 * i] = 0.3f, c[3 * i + 1] = 0.6f, c[3 * i + 2] = 0.9f;
+            }
+            const struct denoise_guide g = guide_of(&b);
+            denoiser_run(d, c, &g, out, NULL);
+            worst = fmax(worst, max_rel(out, c, 576));
+        }
+        EXPECT(worst < 1e-6, "%s: a constant image changes by %g", denoise_names[m], worst);
+        denoiser_destroy(d);
+    }
+    plane_scene(&b, 16, 12, 0.5f);
+    for (int y = 0; y < 12; y++)
+        for (int x = 0; x < 16; x++) {
+            const int i = y * 16 + x;
+            const float v = x < 7 ? 0.25f : 0.8f + 0.01f * (float)y;
+            c[3 * i] = v, c[3 * i + 1] = 0.5f * v, c[3 * i + 2] = 0.25f * v;
+        }
+    struct denoise_settings s = settings(1);
+    struct denoiser *d = denoiser_create(&s, 16, 12);
+    const struct denoise_guide g = guide_of(&b);
+    /* the first frames estimate variance spatially and blur the crease; their output is the colour
+     * history (Sec. 4.3), which the moving average forgets at 0.8 per frame */
+    for (int f = 0; f < 80; f++)
+        denoiser_run(d, c, &g, out, NULL);
+    const double e = max_rel(out, c, 576);
+    EXPECT(e < 1e-5, "svgf: a noise-free image changes by %g once its history holds", e);
+    denoiser_destroy(d);
+}
+
+/* A NaN colour, an infinite normal and an invalid pixel are left as they came and counted; no
+ * neighbour reads them. */
+static void test_passthrough(void)
+{
+    static struct scene_buf b;
+    static float c[3 * 80], out[3 * 80];
+    for (int m = 1; m <= 2; m++) {
+        plane_scene(&b, 10, 8, 1.0f);
+        for (int i = 0; i < 240; i++)
+            c[i] = 0.2f + rnd();
+        c[3 * 33 + 1] = NAN;
+        b.nrm[44] = v3(INFINITY, 0.0f, 0.0f);
+        b.valid[55] = 0;
+        c[3 * 55] = 1e30f; /* an invalid pixel's value, however large, stays out of the filter */
+        struct denoise_settings s = settings(m);
+        struct denoiser *d = denoiser_create(&s, 10, 8);
+        const struct denoise_guide g = guide_of(&b);
+        struct denoise_stats st;
+        for (int f = 0; f < 2; f++)
+            denoiser_run(d, c, &g, out, &st);
+        EXPECT(st.passed_through == 2, "%s: %lld passed through (NaN colour, infinite normal)", denoise_names[m],
+               st.passed_through);
+        EXPECT(isnan(out[3 * 33 + 1]) && out[3 * 33] == c[3 * 33], "%s: the NaN pixel is passed through raw",
+               denoise_names[m]);
+        EXPECT(out[3 * 44] == c[3 * 44] && out[3 * 55] == 1e30f, "%s: the others too", denoise_names[m]);
+        int finite = 1;
+        for (int i = 0; i < 80; i++)
+            if (i != 33)
+                for (int k = 0; k < 3; k++)
+                    finite &= isfinite(out[3 * i + k]) && (i == 55 || out[3 * i + k] < 2.0f);
+        EXPECT(finite, "%s: no neighbour took the NaN or the invalid pixel's value", denoise_names[m]);
+        denoiser_destroy(d);
+    }
+}
+
+static void test_bad_arguments(void)
+{
+    struct denoise_settings s = settings(0);
+    EXPECT(denoiser_create(&s, 4, 4) == NULL, "method off: no denoiser");
+    s.method = 3;
+    EXPECT(denoiser_create(&s, 4, 4) == NULL, "unknown method: no denoiser");
+    s.method = 1;
+    EXPECT(denoiser_create(&s, 0, 4) == NULL, "empty image: no denoiser");
+    struct denoiser *d = denoiser_create(&s, 4, 4);
+    static struct scene_buf b;
+    plane_scene(&b, 5, 4, 1.0f);
+    const struct denoise_guide g = guide_of(&b);
+    float out[60] = {0};
+    EXPECT(denoiser_run(d, b.rgb, &g, out, NULL) == -1 && out[0] == 0.0f, "a guide of another size is refused");
+    EXPECT(!strcmp(denoiser_name(d), "svgf"), "name");
+    denoiser_destroy(d);
+    denoiser_destroy(NULL);
+}
+
+/* The library's defaults are the settings table's (denoise.* keys). */
+static void test_defaults_agree(void)
+{
+    struct render_params p;
+    render_params_defaults(&p);
+    struct denoise_settings s;
+    denoise_settings_defaults(&s);
+    EXPECT(memcmp(&p.denoise, &s, sizeof s) == 0, "denoise_settings_defaults equals the denoise.* keys' defaults");
+}
+
+int main(void)
+{
+    test_defaults_agree();
+    for (int isa = 0; isa < 2; isa++) {
+        simd_allow(isa);
+        test_kernels();
+        test_svgf_hand();
+        test_spatial_variance();
+        test_history_rejection();
+        test_atrous_hand();
+        test_unchanged();
+        test_passthrough();
+    }
+    test_bad_arguments();
+    return test_finish();
+}
