@@ -27,16 +27,17 @@
  * the machine that runs the others; so is --ref-every. With --runs the merge has no temporal_cov
  * (000 Eq. 17 needs every run's frame sequence, which jobs do not keep). */
 
-static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '3'};
+static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '4'}; /* 4: denoised frames */
 
 /* What a SPEC's job measured: its frame time, paths per pixel and instances; has_mask: the record
  * goes on with the last frame's disocclusion mask (width x height bytes, compare_run.h); has_grad:
  * then with its gradients (dx, dy: 2 x 3 x width x height floats; 0 in the records of versions
- * before gradient errors, which read as gradient methods without them); a later run's record then
+ * before gradient errors, which read as gradient methods without them); has_denoised: then with its
+ * denoised last frame (denoise=svgf|atrous, 3 x width x height floats); a later run's record then
  * holds its last frame (3 x width x height floats). */
 struct job_timing {
     double ms_per_frame, ms_pass[PASS_COUNT];
-    int32_t spp, instances, has_mask, has_grad;
+    int32_t spp, instances, has_mask, has_grad, has_denoised, reserved;
 };
 
 /* Job k's spec (-1: the reference job) and run: the jobs are the reference, then each spec's runs. */
@@ -85,16 +86,18 @@ int compare_plan(const struct compare_setup *st, int argc, char **argv)
     return plan_finish(&pl);
 }
 
-/* Job k's result: the reference image, or a SPEC's timing, last frame, mask and gradients (each
- * out-pointer may be NULL; *mask and *grad NULL when the record has none). */
+/* Job k's result: the reference image, or a SPEC's timing, last frame, mask, gradients and denoised
+ * frame (each out-pointer may be NULL; *mask, *grad and *denoised NULL when the record has none). */
 static int read_job(const struct plan *pl, const struct compare_setup *st, int k, struct job_timing *timing,
-                    float **image, unsigned char **mask, float **grad, char *why)
+                    float **image, unsigned char **mask, float **grad, float **denoised, char *why)
 {
     const size_t npix = (size_t)st->p.width * (size_t)st->p.height;
     if (mask)
         *mask = NULL;
     if (grad)
         *grad = NULL;
+    if (denoised)
+        *denoised = NULL;
     char path[2 * PLAN_PATH_MAX];
     plan_output_path(pl, k, path, sizeof path);
     int run;
@@ -113,7 +116,8 @@ static int read_job(const struct plan *pl, const struct compare_setup *st, int k
         if (size >= sizeof t)
             memcpy(&t, data, sizeof t);
         const size_t grad_bytes = t.has_grad ? sizeof(float) * 6 * npix : 0;
-        if (size < sizeof t || size != sizeof t + (t.has_mask ? npix : 0) + grad_bytes + image_bytes) {
+        const size_t dn_bytes = t.has_denoised ? sizeof(float) * 3 * npix : 0;
+        if (size < sizeof t || size != sizeof t + (t.has_mask ? npix : 0) + grad_bytes + dn_bytes + image_bytes) {
             snprintf(why, RESTIR_MSG_LEN, "%.300s: not a timing record", path);
             free(data);
             return -1;
@@ -127,6 +131,10 @@ static int read_job(const struct plan *pl, const struct compare_setup *st, int k
         if (grad && t.has_grad) {
             *grad = xmalloc(grad_bytes);
             memcpy(*grad, (const char *)data + sizeof t + (t.has_mask ? npix : 0), grad_bytes);
+        }
+        if (denoised && t.has_denoised) {
+            *denoised = xmalloc(dn_bytes);
+            memcpy(*denoised, (const char *)data + sizeof t + (t.has_mask ? npix : 0) + grad_bytes, dn_bytes);
         }
         if (run > 0) { /* a later run's last frame is in its record */
             if (image) {
@@ -147,6 +155,10 @@ static int read_job(const struct plan *pl, const struct compare_setup *st, int k
                 free(*grad);
                 *grad = NULL;
             }
+            if (denoised) {
+                free(*denoised);
+                *denoised = NULL;
+            }
             return -1;
         }
     }
@@ -159,7 +171,7 @@ static int read_job(const struct plan *pl, const struct compare_setup *st, int k
 
 static int job_valid(const struct plan *pl, int k, char *why, void *ctx)
 {
-    return read_job(pl, ctx, k, NULL, NULL, NULL, NULL, why);
+    return read_job(pl, ctx, k, NULL, NULL, NULL, NULL, NULL, why);
 }
 
 /* compare_setup from the plan's description (its options, read back through the option table).
@@ -188,7 +200,7 @@ int compare_run_job(const struct plan *pl, int k)
     char path[PLAN_PATH_MAX + 200], runs[PLAN_PATH_MAX + 16], msg[RESTIR_MSG_LEN];
     plan_output_path(pl, k, path, sizeof path);
     snprintf(runs, sizeof runs, "%s/runs", pl->dir);
-    if (read_job(pl, &st, k, NULL, NULL, NULL, NULL, msg) == 0) {
+    if (read_job(pl, &st, k, NULL, NULL, NULL, NULL, NULL, msg) == 0) {
         printf("job %d of %d (%s): already done: %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
         scene_destroy(&st.s);
         return 0;
@@ -222,11 +234,12 @@ int compare_run_job(const struct plan *pl, int k)
         } else {
             /* written after the frame: a result file means the frame is there */
             struct job_timing t = {.ms_per_frame = res.ms_per_frame, .spp = res.spp, .instances = res.instances,
-                                   .has_mask = res.mask != NULL, .has_grad = res.grad != NULL};
+                                   .has_mask = res.mask != NULL, .has_grad = res.grad != NULL,
+                                   .has_denoised = res.denoised != NULL};
             memcpy(t.ms_pass, res.ms_pass, sizeof t.ms_pass);
             const size_t npix = (size_t)st.p.width * (size_t)st.p.height;
-            const void *parts[4] = {&t, NULL, NULL, NULL};
-            size_t sizes[4] = {sizeof t, 0, 0, 0};
+            const void *parts[5] = {&t, NULL, NULL, NULL, NULL};
+            size_t sizes[5] = {sizeof t, 0, 0, 0, 0};
             int n_parts = 1;
             if (res.mask) {
                 parts[n_parts] = res.mask;
@@ -235,6 +248,10 @@ int compare_run_job(const struct plan *pl, int k)
             if (res.grad) {
                 parts[n_parts] = res.grad;
                 sizes[n_parts++] = sizeof(float) * 6 * npix;
+            }
+            if (res.denoised) {
+                parts[n_parts] = res.denoised;
+                sizes[n_parts++] = sizeof(float) * 3 * npix;
             }
             if (res.image) {
                 parts[n_parts] = res.image;
@@ -247,6 +264,7 @@ int compare_run_job(const struct plan *pl, int k)
         }
         free(res.mask);
         free(res.grad);
+        free(res.denoised);
         free(res.image);
     }
     if (rc == 0)
@@ -316,9 +334,9 @@ int compare_merge(const char *dir)
         struct compare_runs acc = {0};
         for (int n = 0; n < st.o.runs && rc == 0; n++) { /* in run order, as compare_run_spec */
             struct job_timing t;
-            float *image = NULL, *grad = NULL;
+            float *image = NULL, *grad = NULL, *denoised = NULL;
             unsigned char *mask = NULL;
-            if (read_job(&pl, &st, job_of_spec(&st, k, n), &t, &image, &mask, &grad, msg) != 0) {
+            if (read_job(&pl, &st, job_of_spec(&st, k, n), &t, &image, &mask, &grad, &denoised, msg) != 0) {
                 cli_error("cannot merge: %s", msg);
                 rc = EXIT_RUNTIME;
                 break;
@@ -327,6 +345,8 @@ int compare_merge(const char *dir)
             restir_metrics_compute(image, ref, npix, NULL, &one.err);
             compare_disoccluded_error(image, ref, mask, npix, &one.mape_dis, &one.dis_share);
             compare_gradient_errors(grad, grad ? grad + 3 * npix : NULL, ref, st.p.width, st.p.height, &one);
+            compare_denoised_errors(denoised, ref, npix, &one);
+            free(denoised);
             if (!grad && method_has(st.specs[k].method, METHOD_GRADIENT))
                 fprintf(stderr,
                         "restir: compare --merge: %s, run %d: its job was written without gradients (by a restir "

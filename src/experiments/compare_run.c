@@ -67,6 +67,29 @@ void compare_gradient_errors(const float *dx, const float *dy, const float *ref,
     res->grad_mape = restir_metrics_gradient_mape(dx, dy, ref, width, height);
 }
 
+void compare_denoised_errors(const float *denoised, const float *ref, size_t npix, struct compare_result *res)
+{
+    res->err_dn = (struct restir_metrics_error){NAN, NAN, NAN, NAN};
+    if (denoised)
+        restir_metrics_compute(denoised, ref, npix, NULL, &res->err_dn);
+}
+
+/* The instances' denoised last frames averaged into a new buffer; NULL without denoising. */
+static float *instances_denoised(const struct renderer *r, int instances, size_t n3)
+{
+    if (!r[0].denoised)
+        return NULL;
+    float *out = xmalloc(sizeof(float) * n3);
+    const float inv = 1.0f / (float)instances;
+    for (size_t i = 0; i < n3; i++) {
+        float sum = 0.0f;
+        for (int k = 0; k < instances; k++)
+            sum += r[k].denoised[i];
+        out[i] = instances == 1 ? sum : sum * inv;
+    }
+    return out;
+}
+
 int compare_run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
                        int instances, const float *ref, const char *out_dir, int keep_image, struct compare_track *track,
                        int run, struct compare_result *res, char *msg)
@@ -157,16 +180,22 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     }
     res->mask = NULL;
     res->grad = NULL;
+    res->denoised = NULL;
     res->grad_relmse = res->grad_relmse_trim = res->grad_mape = NAN;
+    res->err_dn = res->sem_dn = (struct restir_metrics_error){NAN, NAN, NAN, NAN};
     const struct grad_frame *g = grad[0];
+    float *denoised = instances_denoised(r, instances, n3);
     if (ref) { /* a planned job measures nothing: the merge does, from the frame, mask and gradients it writes */
         restir_metrics_compute(r[0].image, ref, npix, NULL, &res->err);
+        compare_denoised_errors(denoised, ref, npix, res);
+        free(denoised);
         compare_disoccluded_error(r[0].image, ref, mask, npix, &res->mape_dis, &res->dis_share);
         if (g)
             compare_gradient_errors(g->dx, g->dy, ref, p->width, p->height, res);
         free(mask);
     } else {
         res->mask = mask;
+        res->denoised = denoised;
         if (g) {
             res->grad = xmalloc(2 * sizeof(float) * n3);
             memcpy(res->grad, g->dx, sizeof(float) * n3);
@@ -198,18 +227,19 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
 void compare_runs_add(struct compare_runs *a, const struct compare_result *r)
 {
     const struct restir_metrics_error *e = &r->err;
-    const double x[9] = {e->relmse,   e->mape,        e->smape,         e->luma_rmse, r->mape_dis,
-                         r->dis_share, r->grad_relmse, r->grad_relmse_trim, r->grad_mape};
+    const double x[12] = {e->relmse,   e->mape,        e->smape,         e->luma_rmse, r->mape_dis,
+                          r->dis_share, r->grad_relmse, r->grad_relmse_trim, r->grad_mape,
+                          r->err_dn.relmse, r->err_dn.mape, r->err_dn.smape};
     a->n++;
-    for (int k = 0; k < 9; k++)
+    for (int k = 0; k < 12; k++)
         running_mean_add(&a->m[k], x[k]);
 }
 
 void compare_runs_finish(const struct compare_runs *a, struct compare_result *res)
 {
     const int runs = a->n;
-    double sem[9];
-    for (int k = 0; k < 9; k++)
+    double sem[12];
+    for (int k = 0; k < 12; k++)
         sem[k] = running_mean_sem(&a->m[k]);
     if (runs > 1) { /* one run keeps its error bit for bit */
         res->err = (struct restir_metrics_error){a->m[0].mean, a->m[1].mean, a->m[2].mean, a->m[3].mean};
@@ -218,7 +248,9 @@ void compare_runs_finish(const struct compare_runs *a, struct compare_result *re
         res->grad_relmse = a->m[6].mean;
         res->grad_relmse_trim = a->m[7].mean;
         res->grad_mape = a->m[8].mean;
+        res->err_dn = (struct restir_metrics_error){a->m[9].mean, a->m[10].mean, a->m[11].mean, NAN};
     }
+    res->sem_dn = (struct restir_metrics_error){sem[9], sem[10], sem[11], NAN};
     res->sem = (struct restir_metrics_error){sem[0], sem[1], sem[2], sem[3]};
     res->mape_dis_sem = sem[4];
     res->grad_relmse_sem = sem[6];

@@ -47,6 +47,10 @@ struct compare_result {
      * (restir_metrics_gradient_relmse_trimmed) and their MAPE (restir_metrics_gradient_mape), means over
      * the runs and standard errors; NaN for the other methods */
     double grad_relmse_trim, grad_relmse_trim_sem, grad_mape, grad_mape_sem;
+    /* issue 43, denoise=svgf|atrous: the errors of the last frame denoised (instance-averaged), the mean
+     * over the runs and its standard error; NaN without denoising. BIASED by nature. */
+    struct restir_metrics_error err_dn, sem_dn;
+    float *denoised; /* a planned job's denoised last frame for the merge (else NULL; caller frees) */
     unsigned char *mask; /* a planned job's disocclusion mask for the merge (else NULL; caller frees) */
     float *grad; /* a planned job's gradients for the merge: dx then dy, 3 x width x height floats
                     each (else NULL; caller frees) */
@@ -82,6 +86,9 @@ void compare_gradient_errors(const float *dx, const float *dy, const float *ref,
 /* compare_run_method's result when a stop signal arrived before the method's last frame. */
 #define RUN_STOPPED 1
 
+/* The errors after denoising of res (err_dn) of the denoised frame against ref; all NaN when
+ * denoised is NULL (no denoising). */
+void compare_denoised_errors(const float *denoised, const float *ref, size_t npix, struct compare_result *res);
 /* A comparison from its description (struct cli_options as the option table parsed it, from argv or
  * a plan's JSON): the specs, the common parameters and integrand, the scene loaded (st->s, to
  * destroy), memory checked. Returns 0, or an exit code having said why. */
@@ -91,8 +98,8 @@ int compare_setup(const struct cli_options *desc, struct compare_setup *st);
 float *compare_render_reference(const struct compare_setup *st);
 /* Runs `frames` frames of spec c with parameters p (c->p, or with an equal-time spp) as `instances`
  * (at most MAX_INSTANCES) independently seeded renderers, measures the average of their last frames
- * against ref (none when ref is NULL: then res->mask gets the disocclusion mask and, for gradient
- * methods, res->grad the gradients) and, for run 0,
+ * against ref (none when ref is NULL: then res->mask gets the disocclusion mask, for gradient
+ * methods res->grad the gradients, and with denoising res->denoised the denoised frame) and, for run 0,
  * writes it under out_dir/c->dir; keep_image keeps it in res->image. With a track
  * (may be NULL) every frame's statistics and the frames it asks for go to it as run `run`.
  * Returns 0, -1 with msg (the frame cannot be written), or RUN_STOPPED having written nothing. */
@@ -102,8 +109,9 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
 /* The errors of a spec's runs as they arrive (run order), and their means and standard errors. */
 struct compare_runs {
     int n;
-    struct running_mean m[9]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share,
-                                 gradient relMSE, its 1%-trimmed mean, gradient MAPE */
+    struct running_mean m[12]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share,
+                                  gradient relMSE, its 1%-trimmed mean, gradient MAPE, and denoised
+                                  relMSE, MAPE, SMAPE */
 };
 void compare_runs_add(struct compare_runs *a, const struct compare_result *r);
 /* Into res: with more than one run the means (one run keeps its own errors bit for bit), the

@@ -14,6 +14,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/reference_checkpoint.h"
+#include "experiments/study_denoised.h"
 #include "experiments/study_report.h"
 #include "io/atomic_file.h"
 #include "io/exr.h"
@@ -231,8 +232,8 @@ static float *study_render_reference(const struct study_setup *st, const char *o
 
 /* Writes the study's tables, plots and report into dir and prints its summary. */
 static int study_write_outputs(const struct study_setup *st, const char *dir, const char *command,
-                               const struct study_result *res, const float *ref, const unsigned char *hard,
-                               int nhard, int strip_y, const float *strips)
+                               const struct study_result *res, const struct study_result *res_dn, const float *ref,
+                               const unsigned char *hard, int nhard, int strip_y, const float *strips)
 {
     char msg[RESTIR_MSG_LEN];
     const struct cli_options *o = &st->o;
@@ -244,7 +245,9 @@ static int study_write_outputs(const struct study_setup *st, const char *dir, co
     int rc = 0;
     if (write_tables(dir, st->cfg, res, st->ncfg, neighbors, msg) != 0 ||
         write_pareto(dir, st->cfg, res, st->ncfg, msg) != 0 || write_mask(dir, ref, hard, w, h, msg) != 0 ||
-        write_strip(dir, strips, ref_row, w, o->frames, st->ncfg, msg) != 0) {
+        write_strip(dir, strips, ref_row, w, o->frames, st->ncfg, msg) != 0 ||
+        (res_dn && study_write_denoised(dir, denoise_names[o->params.denoise.method], st->cfg, res, res_dn, st->ncfg,
+                                        neighbors, msg) != 0)) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }
@@ -257,6 +260,10 @@ static int study_write_outputs(const struct study_setup *st, const char *dir, co
                    "select %.2f ms  frame %.2f ms\n",
                    st->cfg[k].name, st->cfg[k].radius, res[k].smape_all, res[k].smape_all_sem, res[k].smape_hard,
                    res[k].smape_hard_sem, res[k].temporal_cov, res[k].spatial_cov, res[k].ms_select, res[k].ms_frame);
+        for (int k = 0; res_dn && k < st->ncfg; k++)
+            printf("  %-16s after %s (BIASED): SMAPE %.3f +- %.2g hard %.3f  temporal cov %.4g  spatial cov %.4g\n",
+                   st->cfg[k].name, denoise_names[o->params.denoise.method], res_dn[k].smape_all,
+                   res_dn[k].smape_all_sem, res_dn[k].smape_hard, res_dn[k].temporal_cov, res_dn[k].spatial_cov);
         printf("output: %s\n", dir);
     }
     if (rc == 0 && o->report) {
@@ -306,16 +313,19 @@ static int study_job_valid(const struct plan *pl, int k, char *why, void *ctx)
 /* Every configuration's row from its runs, one unit at a time: rendered (the unsplit study, pl
  * NULL) or read from the plan's results (the merge). */
 static int study_rows(const struct study_setup *st, const struct plan *pl, const float *ref, const unsigned char *hard,
-                      int strip_y, float *strips, struct study_result *res)
+                      int strip_y, float *strips, struct study_result *res, struct study_result *res_dn)
 {
     const struct cli_options *o = &st->o;
     const int w = o->params.width, h = o->params.height;
     struct progress pg;
     progress_begin(&pg, pl ? "merge" : "study", st->ncfg);
     int rc = 0;
+    const int dn = o->params.denoise.method > 0; /* issue 43: a second row from the denoised frames */
     for (int k = 0; k < st->ncfg && rc == 0; k++) {
-        struct study_row row;
+        struct study_row row, row_dn;
         study_row_begin(&row, o->runs, o->frames, w, h);
+        if (dn)
+            study_row_begin(&row_dn, o->runs, o->frames, w, h);
         for (int n = 0; n < o->runs && rc == 0; n++) {
             struct study_unit u;
             if (pl) {
@@ -331,15 +341,29 @@ static int study_rows(const struct study_setup *st, const struct plan *pl, const
                           st->cfg[k].name, k + 1, st->ncfg);
                 rc = 128 + (int)cli_stop_signal;
             }
+            if (rc == 0 && dn && !u.luminance_dn) {
+                cli_error("configuration %s, run %d: no denoised frames (a unit written without denoising)",
+                          st->cfg[k].name, n);
+                study_unit_free(&u);
+                rc = EXIT_RUNTIME;
+            }
             if (rc != 0)
                 break;
             study_row_add(&row, &u, ref, hard, strip_y, &strips[(size_t)k * w * o->frames]);
+            if (dn) {
+                const struct study_unit ud = study_unit_denoised(&u);
+                study_row_add(&row_dn, &ud, ref, hard, strip_y, NULL);
+            }
             study_unit_free(&u);
         }
         if (rc == 0)
             study_row_end(&row, hard, &res[k]);
         else
             study_row_free(&row);
+        if (dn && rc == 0)
+            study_row_end(&row_dn, hard, &res_dn[k]);
+        else if (dn)
+            study_row_free(&row_dn);
         progress_update(&pg, k + 1);
     }
     progress_end(&pg);
@@ -356,10 +380,11 @@ static int study_finish(const struct study_setup *st, const struct plan *pl, con
     const int nhard = study_hard_pixel_mask(&st->s, &st->o.params, &cam, st->o.hard_neighbors, hard);
     const int strip_y = study_strip_row(hard, w, h);
     float *strips = xmalloc(sizeof(float) * (size_t)w * st->o.frames * st->ncfg);
-    static struct study_result res[STUDY_MAX_CONFIGS];
-    int rc = study_rows(st, pl, ref, hard, strip_y, strips, res);
+    static struct study_result res[STUDY_MAX_CONFIGS], res_dn[STUDY_MAX_CONFIGS];
+    int rc = study_rows(st, pl, ref, hard, strip_y, strips, res, res_dn);
     if (rc == 0)
-        rc = study_write_outputs(st, dir, command, res, ref, hard, nhard, strip_y, strips);
+        rc = study_write_outputs(st, dir, command, res, st->o.params.denoise.method > 0 ? res_dn : NULL, ref, hard,
+                                 nhard, strip_y, strips);
     free(strips);
     free(hard);
     return rc;

@@ -188,6 +188,7 @@ int study_run_unit(const struct scene *s, const struct method *method, const str
     u->npix = (size_t)p.width * (size_t)p.height;
     u->luminance = xmalloc(sizeof(double) * u->npix * (size_t)u->frames);
     u->ms = xmalloc(sizeof(double) * 3 * (size_t)u->frames);
+    u->luminance_dn = p.denoise.method > 0 ? xmalloc(sizeof(double) * u->npix * (size_t)u->frames) : NULL;
     struct renderer r;
     renderer_init(&r, s, method, &p);
     for (int f = 0; f < o->warmup + o->frames; f++) {
@@ -202,6 +203,8 @@ int study_run_unit(const struct scene *s, const struct method *method, const str
         if (t < 0)
             continue;
         restir_metrics_luminance(r.image, u->npix, &u->luminance[(size_t)t * u->npix]);
+        if (u->luminance_dn)
+            restir_metrics_luminance(r.denoised, u->npix, &u->luminance_dn[(size_t)t * u->npix]);
         u->ms[3 * t] = st.ms[PASS_SELECT];
         u->ms[3 * t + 1] = st.ms[PASS_SPATIAL];
         u->ms[3 * t + 2] = st.ms_total;
@@ -214,18 +217,28 @@ void study_unit_free(struct study_unit *u)
 {
     free(u->luminance);
     free(u->ms);
-    u->luminance = u->ms = NULL;
+    free(u->luminance_dn);
+    u->luminance = u->ms = u->luminance_dn = NULL;
 }
 
-static const char unit_magic[8] = {'R', 'S', 'T', 'U', 'D', 'Y', 'U', '1'};
+struct study_unit study_unit_denoised(const struct study_unit *u)
+{
+    struct study_unit d = *u;
+    d.luminance = u->luminance_dn;
+    d.luminance_dn = NULL;
+    return d;
+}
+
+/* 2: the shape says whether the denoised luminance follows the timings */
+static const char unit_magic[8] = {'R', 'S', 'T', 'U', 'D', 'Y', 'U', '2'};
 
 int study_unit_write(const char *path, uint64_t id, const struct study_unit *u, char *msg)
 {
-    const int32_t shape[2] = {u->frames, (int32_t)u->npix};
-    const void *parts[3] = {shape, u->luminance, u->ms};
-    const size_t sizes[3] = {sizeof shape, sizeof(double) * u->npix * (size_t)u->frames,
-                             sizeof(double) * 3 * (size_t)u->frames};
-    return plan_blob_write(path, unit_magic, id, parts, sizes, 3, msg);
+    const int32_t shape[4] = {u->frames, (int32_t)u->npix, u->luminance_dn != NULL, 0};
+    const size_t lum = sizeof(double) * u->npix * (size_t)u->frames;
+    const void *parts[4] = {shape, u->luminance, u->ms, u->luminance_dn};
+    const size_t sizes[4] = {sizeof shape, lum, sizeof(double) * 3 * (size_t)u->frames, lum};
+    return plan_blob_write(path, unit_magic, id, parts, sizes, u->luminance_dn ? 4 : 3, msg);
 }
 
 int study_unit_read(const char *path, uint64_t id, int frames, size_t npix, struct study_unit *u, char *msg)
@@ -235,10 +248,11 @@ int study_unit_read(const char *path, uint64_t id, int frames, size_t npix, stru
     int rc = plan_blob_read(path, unit_magic, id, &data, &size, msg);
     if (rc != 0)
         return rc;
-    const size_t want = 2 * sizeof(int32_t) + sizeof(double) * (npix * (size_t)frames + 3 * (size_t)frames);
-    int32_t shape[2] = {0, 0};
+    int32_t shape[4] = {0, 0, 0, 0};
     if (size >= sizeof shape)
         memcpy(shape, data, sizeof shape);
+    const size_t lum = sizeof(double) * npix * (size_t)frames;
+    const size_t want = sizeof shape + lum + sizeof(double) * 3 * (size_t)frames + (shape[2] ? lum : 0);
     if (size != want || shape[0] != frames || (size_t)shape[1] != npix) {
         snprintf(msg, RESTIR_MSG_LEN, "%.300s: holds %d frames of %d pixels, not the plan's %d of %zu", path,
                  shape[0], shape[1], frames, npix);
@@ -252,6 +266,11 @@ int study_unit_read(const char *path, uint64_t id, int frames, size_t npix, stru
     memcpy(u->luminance, (char *)data + sizeof shape, sizeof(double) * npix * (size_t)frames);
     memcpy(u->ms, (char *)data + sizeof shape + sizeof(double) * npix * (size_t)frames,
            sizeof(double) * 3 * (size_t)frames);
+    u->luminance_dn = NULL;
+    if (shape[2]) {
+        u->luminance_dn = xmalloc(lum);
+        memcpy(u->luminance_dn, (char *)data + sizeof shape + lum + sizeof(double) * 3 * (size_t)frames, lum);
+    }
     free(data);
     return 0;
 }
@@ -292,7 +311,7 @@ void study_row_add(struct study_row *row, const struct study_unit *u, const floa
         float *out = &row->seq[((size_t)n * frames + t) * npix];
         for (size_t i = 0; i < npix; i++)
             out[i] = (float)lum[i];
-        if (n == 0)
+        if (n == 0 && strip)
             memcpy(&strip[(size_t)t * row->w], &out[(size_t)strip_y * row->w], sizeof(float) * (size_t)row->w);
     }
 }

@@ -43,6 +43,7 @@ struct study_unit {
     size_t npix;
     double *luminance; /* frames * npix: L of each measured frame (restir_metrics_luminance) */
     double *ms;        /* frames * 3: the select pass, the spatial pass, the whole frame */
+    double *luminance_dn; /* denoise=svgf|atrous: the same of each denoised frame (issue 43); else NULL */
 };
 
 /* The curve of 000 Figure 3 (error against covariance over radii) configuration c is a point of: 0
@@ -77,7 +78,7 @@ int study_unit_read(const char *path, uint64_t id, int frames, size_t npix, stru
  * unit's double luminance is held at once: SMAPE over all and hard pixels against ref and the mean
  * pass times as units arrive; the temporal and spatial relative covariances at the end, from the
  * float luminance of every run. Run 0's row strip_y of each measured frame goes to strip
- * (frames * w). */
+ * (frames * w; NULL: nowhere). */
 struct study_row {
     int runs, frames, w, h, added;
     float *seq;       /* runs * frames * w * h, run-major then frame */
@@ -87,6 +88,9 @@ struct study_row {
 void study_row_begin(struct study_row *row, int runs, int frames, int w, int h);
 void study_row_add(struct study_row *row, const struct study_unit *u, const float *ref, const unsigned char *hard,
                    int strip_y, float *strip);
+/* u's denoised frames as a unit of their own (sharing u's buffers: never free it), for a second row
+ * that measures the study's statistics after denoising. u must have luminance_dn. */
+struct study_unit study_unit_denoised(const struct study_unit *u);
 /* Completes res (every run added; hard: the mask study_row_add got) and frees the row. */
 void study_row_end(struct study_row *row, const unsigned char *hard, struct study_result *res);
 /* Frees a row given up before its end. */

@@ -62,6 +62,7 @@ struct view {
     int quit;
     int shots;
     enum view_mode mode; /* what the window shows (V cycles); screenshots are always the image */
+    int show_denoised;   /* O: the denoised frame instead of the raw one (denoise=svgf|atrous) */
 };
 
 static struct camera current_camera(const struct view *v)
@@ -75,10 +76,12 @@ static void spec(const struct view *v, char *out, size_t len)
 {
     char select[64];
     render_params_get(&v->p, "spatial.select", select, sizeof select);
-    snprintf(out, len, "%s%s%s%s%s%s", v->method->name, v->p.temporal ? "" : ":temporal=off",
+    snprintf(out, len, "%s%s%s%s%s%s%s%s", v->method->name, v->p.temporal ? "" : ":temporal=off",
              v->p.spatial ? "" : ":spatial=off", v->p.spatial_select == SELECT_BITTERLI ? "" : ":spatial.select=",
              v->p.spatial_select == SELECT_BITTERLI ? "" : select,
-             v->p.spatial_reuse == REUSE_SPMIS ? ":spatial.reuse=spmis" : "");
+             v->p.spatial_reuse == REUSE_SPMIS ? ":spatial.reuse=spmis" : "",
+             v->p.denoise.method > 0 ? ":denoise=" : "",
+             v->p.denoise.method > 0 ? denoise_names[v->p.denoise.method] : "");
 }
 
 static void restart(struct view *v, int first)
@@ -104,6 +107,21 @@ static void press(struct view *v, char key)
         restart(v, 0);
         break;
     case 'v': v->mode = (enum view_mode)((v->mode + 1) % VIEW_MODES); break;
+    case 'o': /* raw / denoised; the first time turns SVGF on */
+        if (v->p.denoise.method == 0) {
+            v->p.denoise.method = 1;
+            restart(v, 0);
+            v->show_denoised = 1;
+        } else {
+            v->show_denoised = !v->show_denoised;
+        }
+        break;
+    case 'i': /* the other denoiser */
+        if (v->p.denoise.method > 0) {
+            v->p.denoise.method = v->p.denoise.method == 1 ? 2 : 1;
+            restart(v, 0);
+        }
+        break;
     case 27: v->quit = 1; break;
     default:
         if (v->held[(unsigned char)key] == 0)
@@ -142,6 +160,14 @@ static void save_outputs(struct view *v, const char *stem, char *msg, int *rc)
         *rc = 1;
     snprintf(path, sizeof path, "%s/%s.png", v->o->out_dir, stem);
     if (*rc == 0 && png_write_srgb(path, v->r.image, w, h, 0.0f, msg) != 0)
+        *rc = 1;
+    if (!v->r.denoised) /* and the denoised frame, whichever is on screen */
+        return;
+    snprintf(path, sizeof path, "%s/%s_denoised.exr", v->o->out_dir, stem);
+    if (*rc == 0 && exr_write_rgb(path, v->r.denoised, w, h, msg) != 0)
+        *rc = 1;
+    snprintf(path, sizeof path, "%s/%s_denoised.png", v->o->out_dir, stem);
+    if (*rc == 0 && png_write_srgb(path, v->r.denoised, w, h, 0.0f, msg) != 0)
         *rc = 1;
 }
 
@@ -211,17 +237,18 @@ static void show(struct view *v, SDL_Window *win, SDL_Renderer *ren, SDL_Texture
 {
     const int w = v->p.width, h = v->p.height;
     int shown = v->mode != VIEW_IMAGE && view_debug_rgb8(&v->r, v->mode, rgb8);
+    const int denoised = v->show_denoised && v->r.denoised;
     if (v->mode == VIEW_IMAGE)
-        encode_srgb8(v->r.image, 3 * (size_t)w * (size_t)h, 0.0f, rgb8);
+        encode_srgb8(denoised ? v->r.denoised : v->r.image, 3 * (size_t)w * (size_t)h, 0.0f, rgb8);
     SDL_UpdateTexture(tex, NULL, rgb8, 3 * w);
     SDL_RenderClear(ren);
     SDL_RenderCopy(ren, tex, NULL, NULL);
     SDL_RenderPresent(ren);
     char title[1024], method[256];
     spec(v, method, sizeof method);
-    int n = snprintf(title, sizeof title, "restir view: %s, %s%s, frame %d, %.1f ms:", method,
+    int n = snprintf(title, sizeof title, "restir view: %s, %s%s%s, frame %d, %.1f ms:", method,
                      view_mode_names[v->mode], v->mode != VIEW_IMAGE && !shown ? " (none for this method)" : "",
-                     v->frame, st->ms_total);
+                     v->mode == VIEW_IMAGE && denoised ? " denoised (BIASED)" : "", v->frame, st->ms_total);
     for (int q = 0; q < PASS_COUNT && n > 0 && n < (int)sizeof title; q++)
         if (st->ms[q] > 0.0)
             n += snprintf(title + n, sizeof title - (size_t)n, " %s %.1f", pass_names[q], st->ms[q]);
@@ -283,6 +310,7 @@ int view_run(const struct view_options *o, char *msg)
     v.o = o;
     v.p = o->params;
     v.method = o->method;
+    v.show_denoised = v.p.denoise.method > 0; /* --denoise: start on the denoised frame */
     const struct camera *c0 = &o->scene->camera;
     vec3 d = v3_normalize(v3_sub(c0->target, c0->position));
     v.position = c0->position;

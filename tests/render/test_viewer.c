@@ -161,6 +161,28 @@ int main(void)
     EXPECT(tc[TC_OTHER] == 0 && tc[TC_BOTH] + tc[TC_SPLAT] > 64 * 36 / 4,
            "%s: the temporal-candidates view of temporal.reuse=both shows no splatted candidates", out);
 
+    /* O turns SVGF on: the screenshot then writes the denoised frame beside the raw one */
+    char dn[2 * CLI_PATH_MAX];
+    snprintf(out, sizeof out, "%s/denoise.txt", tmp);
+    write_text(out, "0 press o\n4 press o\n5 press k\n6 press i\n8 press k\n9 quit\n");
+    snprintf(dn, sizeof dn, "%s/denoise", tmp);
+    snprintf(full, sizeof full,
+             "timeout 300 xvfb-run -a '%s' view --scene cornell --method restir-di --res 64x36 --seed 5 --script '%s' "
+             "--out '%s' > '%s/xvfb-denoise.log' 2>&1",
+             cli_bin(), out, dn, tmp);
+    status = system(full);
+    snprintf(out, sizeof out, "%s/xvfb-denoise.log", tmp);
+    cli_read_text(out, err, sizeof err);
+    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 0, "the denoising viewer exited %d:\n%s", WEXITSTATUS(status),
+           err);
+    for (int k = 0; k < 2; k++) {
+        char raw[4 * CLI_PATH_MAX];
+        snprintf(raw, sizeof raw, "%s/screenshot_%04d.exr", dn, k);
+        snprintf(out, sizeof out, "%s/screenshot_%04d_denoised.exr", dn, k);
+        EXPECT(file_size(raw) > 0 && file_size(out) > 0, "screenshot %d: %s and its denoised frame", k, raw);
+    }
+    snprintf(out, sizeof out, "%s/camera.json", dn);
+
     /* replay the recorded path: restir-pt (one M press from restir-di), same seed and size */
     snprintf(replay, sizeof replay, "%s/replay", tmp);
     snprintf(args, sizeof args,
