@@ -176,4 +176,4 @@ static void atrous_run(void *state, const struct denoise_settings *s, struct den
             memcpy(f->illum[c], src[c], sizeof(float) * a->n);
 }
 
-const struct denoise_method denoise_atrous = {"atrous", atrous_create, atrous_destroy, atrous_run, NULL};
+const struct denoise_method denoise_atrous = {"atrous", atrous_create, atrous_destroy, atrous_run, NULL, NULL};

@@ -29,6 +29,7 @@ void denoise_settings_defaults(struct denoise_settings *s)
     s->svgf_variance_frames = 4;
     s->svgf_normal_min = 0.9f;
     s->svgf_plane_max = 0.01f;
+    s->svgf_taa_alpha = 0.1f;
     s->atrous_iterations = 5;
     s->atrous_sigma_color = 1.0f;
     s->atrous_sigma_normal = 0.3f;
@@ -179,6 +180,8 @@ int denoiser_run(struct denoiser *d, const float *rgb, const struct denoise_guid
         out[3 * i + 1] = illum[1][i] * demod_factor(a.y) + e.y;
         out[3 * i + 2] = illum[2][i] * demod_factor(a.z) + e.z;
     }
+    if (d->method->post)
+        d->method->post(d->state, &d->s, &f, out);
     if (st)
         *st = local;
     return 0;

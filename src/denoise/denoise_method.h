@@ -29,6 +29,9 @@ struct denoise_method {
     void (*destroy)(void *state);
     /* Filters f->illum in place where f->use is 1 (elsewhere f->illum may hold anything after it). */
     void (*run)(void *state, const struct denoise_settings *s, struct denoise_frame *f, struct denoise_stats *st);
+    /* After remodulation: rgb (width * height * 3, the output so far; pixels with use 0 hold their
+     * raw value) may be changed where f->use is 1 (SVGF's temporal antialiasing). NULL: none. */
+    void (*post)(void *state, const struct denoise_settings *s, const struct denoise_frame *f, float *rgb);
     /* The last frame's plane of that name (denoiser_layer), or NULL; NULL: none. */
     const float *(*layer)(const void *state, const char *name);
 };

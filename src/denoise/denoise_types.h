@@ -38,6 +38,7 @@ struct denoise_settings {
     int svgf_variance_frames; /* histories shorter than this estimate variance spatially (4) */
     float svgf_normal_min;    /* reprojection: history rejected where n . n_prev is below (0.9) */
     float svgf_plane_max;     /* reprojection: ... where the plane distance exceeds this * depth (0.01) */
+    float svgf_taa_alpha;     /* temporal antialiasing's weight of the current frame (0.1; 1: off) */
     /* edge-avoiding à-trous (Dammertz et al. 2010, Sec. 3) */
     int atrous_iterations;       /* (5) */
     float atrous_sigma_color;    /* sigma_rt, in units of the frame's mean illumination; halved per iteration */

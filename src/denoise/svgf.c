@@ -10,7 +10,8 @@
  *   3. five à-trous iterations (Sec. 4.3, Eq. 1-5) with step 2^i, the B3 kernel, and edge-stopping
  *      weights on depth (by its screen-space gradient), normals (power sigma_n) and luminance (by
  *      the 3x3-blurred variance); the variance is filtered along (Eq. 2); the first iteration's
- *      output becomes the colour history (Sec. 4.3).
+ *      output becomes the colour history (Sec. 4.3);
+ *   4. after remodulation by albedo (denoise.c), temporal antialiasing (svgf_post).
  * Deviations, by necessity: one image (our methods do not separate direct and indirect light); the
  * reprojection's surface test is the plane distance between world positions (what our temporal
  * reuse tests, 001 Sec. 5), since we keep positions rather than a rasteriser's reprojected depth. */
@@ -30,6 +31,7 @@ enum {
     C_M1, C_M2, C_LEN, C_VAR,                                                     /* this frame */
     T_C0, T_C1, T_C2, T_VAR, T_LUM, T_INVL,                                       /* à-trous scratch */
     V_FIRST,                                                                      /* Sec. 4.2's variance */
+    A_R, A_G, A_B, A_USE, A_OUT_R, A_OUT_G, A_OUT_B, /* antialiasing: history, its use, this frame's output */
     SVGF_PLANES
 };
 
@@ -44,6 +46,7 @@ struct svgf {
     float *plane[SVGF_PLANES];
     int *prev_object;
     int has_history;
+    int has_taa; /* the antialiasing history holds a frame */
     float *acc; /* per thread, 6 rows of the image's width */
     int acc_threads;
 };
@@ -427,6 +430,101 @@ static void svgf_run(void *state, const struct denoise_settings *s, struct denoi
     keep_history(v, f);
 }
 
+/* The 3x3 neighbourhood's per-channel range of this frame's output over used pixels (Karis 2014's
+ * colour clamp). */
+static void neighbourhood_range(const struct denoise_frame *f, const float *rgb, int x, int y, float lo[3],
+                                float hi[3])
+{
+    for (int c = 0; c < 3; c++) {
+        lo[c] = INFINITY;
+        hi[c] = -INFINITY;
+    }
+    for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++) {
+            const int qx = x + dx, qy = y + dy;
+            if (qx < 0 || qy < 0 || qx >= f->width || qy >= f->height)
+                continue;
+            const int q = qy * f->width + qx;
+            if (f->use[q] == 0.0f)
+                continue;
+            for (int c = 0; c < 3; c++) {
+                lo[c] = fminf(lo[c], rgb[3 * q + c]);
+                hi[c] = fmaxf(hi[c], rgb[3 * q + c]);
+            }
+        }
+}
+
+/* The antialiasing history at pixel i's reprojected position: bilinear over the previous frame's
+ * used pixels. Returns 0 where none is there. */
+static int taa_history(const struct svgf *v, const struct denoise_frame *f, int x, int y, float h[3])
+{
+    const int i = y * v->w + x;
+    const float mx = f->motion[2 * i], my = f->motion[2 * i + 1];
+    if (!(mx < DENOISE_NO_MOTION && my < DENOISE_NO_MOTION))
+        return 0;
+    const float px = (float)x + mx, py = (float)y + my;
+    if (!(px > -1.0f && py > -1.0f && px < (float)v->w && py < (float)v->h))
+        return 0;
+    const int x0 = (int)floorf(px), y0 = (int)floorf(py);
+    const float fx = px - (float)x0, fy = py - (float)y0;
+    float wsum = 0.0f;
+    h[0] = h[1] = h[2] = 0.0f;
+    for (int dy = 0; dy <= 1; dy++)
+        for (int dx = 0; dx <= 1; dx++) {
+            const int qx = x0 + dx, qy = y0 + dy;
+            if (qx < 0 || qy < 0 || qx >= v->w || qy >= v->h)
+                continue;
+            const int q = qy * v->w + qx;
+            const float wt = v->plane[A_USE][q] * (dx ? fx : 1.0f - fx) * (dy ? fy : 1.0f - fy);
+            if (wt <= 0.0f)
+                continue;
+            for (int c = 0; c < 3; c++)
+                h[c] += wt * v->plane[A_R + c][q];
+            wsum += wt;
+        }
+    if (wsum <= 1e-4f)
+        return 0;
+    for (int c = 0; c < 3; c++)
+        h[c] /= wsum;
+    return 1;
+}
+
+/* Schied et al.'s last step, temporal antialiasing (Karis 2014): each used pixel's reprojected
+ * output, clamped to its 3x3 neighbourhood's range in this frame, blended with this frame's output
+ * by svgf_taa_alpha. Where a jittered pixel straddles an edge, its sample lands on one surface in one
+ * frame and on the other in the next; the feature-tested history (Sec. 4.1) cannot average the two,
+ * this can, and the neighbourhood holds both, so the clamp lets it. */
+static void svgf_post(void *state, const struct denoise_settings *s, const struct denoise_frame *f, float *rgb)
+{
+    struct svgf *v = state;
+    float **P = v->plane;
+    const float a = s->svgf_taa_alpha;
+    const int has = v->has_taa;
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < v->h; y++)
+        for (int x = 0; x < v->w; x++) {
+            const int i = y * v->w + x;
+            float h[3], lo[3], hi[3];
+            const int found = f->use[i] != 0.0f && a < 1.0f && has && taa_history(v, f, x, y, h);
+            if (found)
+                neighbourhood_range(f, rgb, x, y, lo, hi);
+            for (int c = 0; c < 3; c++) {
+                const float cur = rgb[3 * i + c];
+                const float hc = found ? fminf(fmaxf(h[c], lo[c]), hi[c]) : cur;
+                P[A_OUT_R + c][i] = found ? hc + a * (cur - hc) : cur;
+            }
+        }
+    for (int i = 0; i < (int)v->n; i++) {
+        for (int c = 0; c < 3; c++) {
+            P[A_R + c][i] = P[A_OUT_R + c][i];
+            if (f->use[i] != 0.0f)
+                rgb[3 * i + c] = P[A_OUT_R + c][i];
+        }
+        P[A_USE][i] = f->use[i];
+    }
+    v->has_taa = 1;
+}
+
 static const float *svgf_layer(const void *state, const char *name)
 {
     const struct svgf *v = state;
@@ -437,4 +535,4 @@ static const float *svgf_layer(const void *state, const char *name)
     return NULL;
 }
 
-const struct denoise_method denoise_svgf = {"svgf", svgf_create, svgf_destroy, svgf_run, svgf_layer};
+const struct denoise_method denoise_svgf = {"svgf", svgf_create, svgf_destroy, svgf_run, svgf_post, svgf_layer};

@@ -326,6 +326,12 @@ static const struct param_def params[] = {
      "svgf: history rejected where n . n_prev is below", NULL},
     {"denoise.svgf.plane", P_FLOAT, F(denoise.svgf_plane_max), 0, 1e30, "0.01", NULL,
      "svgf: history rejected where the plane distance exceeds this times the depth", NULL},
+    {"denoise.svgf.taa", P_FLOAT, F(denoise.svgf_taa_alpha), 1e-3, 1, "0.1", NULL,
+     "svgf: temporal antialiasing after remodulation (Schied et al. Sec. 4's last step; Karis 2014: the "
+     "reprojected output clamped to the 3x3 neighbourhood, blended with this weight of the new frame; 1: off); "
+     "it integrates the pixel area the jittered primary rays cover, which the feature-tested history cannot "
+     "where a pixel straddles an edge",
+     NULL},
     {"denoise.atrous.iterations", P_INT, F(denoise.atrous_iterations), 0, 12, "5", NULL, "atrous: iterations", NULL},
     {"denoise.atrous.sigma_color", P_FLOAT, F(denoise.atrous_sigma_color), 1e-6, 1e6, "1", NULL,
      "atrous: sigma_rt in units of the frame's mean illumination, halved per iteration", NULL},

@@ -4,6 +4,7 @@
 #define RESTIR_TEST_CLI_UTIL_H
 
 #include <dirent.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -226,6 +227,50 @@ static inline int cli_write_text(const char *path, const char *text)
         return -1;
     int ok = fputs(text, f) >= 0;
     return fclose(f) == 0 && ok ? 0 : -1;
+}
+
+/* Index of column name in a comma-separated header line (up to the first newline), or -1. */
+static inline int cli_csv_column(const char *header, const char *name)
+{
+    size_t len = strlen(name);
+    int col = 0;
+    const char *p = header;
+    for (;;) {
+        const char *e = p;
+        while (*e && *e != ',' && *e != '\n' && *e != '\r')
+            e++;
+        if ((size_t)(e - p) == len && strncmp(p, name, len) == 0)
+            return col;
+        if (*e != ',')
+            return -1;
+        p = e + 1;
+        col++;
+    }
+}
+
+/* Field col of the line starting at line, as a double (NAN when absent or not a number). */
+static inline double cli_csv_number(const char *line, int col)
+{
+    const char *p = line;
+    for (int k = 0; k < col; k++) {
+        while (*p && *p != ',' && *p != '\n')
+            p++;
+        if (*p != ',')
+            return NAN;
+        p++;
+    }
+    char *end;
+    double v = strtod(p, &end);
+    if (end == p || (*end && *end != ',' && *end != '\n' && *end != '\r'))
+        return NAN;
+    return v;
+}
+
+/* Start of the line after p, or NULL at the end of the text. */
+static inline const char *cli_next_line(const char *p)
+{
+    const char *e = strchr(p, '\n');
+    return e && e[1] ? e + 1 : NULL;
 }
 
 #endif

@@ -150,50 +150,6 @@ static int is_png(const char *dir, const char *file)
     return n == 8 && memcmp(sig, want, 8) == 0;
 }
 
-/* Index of column name in a comma-separated header line (up to the first newline), or -1. */
-static int csv_column(const char *header, const char *name)
-{
-    size_t len = strlen(name);
-    int col = 0;
-    const char *p = header;
-    for (;;) {
-        const char *e = p;
-        while (*e && *e != ',' && *e != '\n' && *e != '\r')
-            e++;
-        if ((size_t)(e - p) == len && strncmp(p, name, len) == 0)
-            return col;
-        if (*e != ',')
-            return -1;
-        p = e + 1;
-        col++;
-    }
-}
-
-/* Field col of the line starting at line, as a double (NAN when absent or not a number). */
-static double csv_number(const char *line, int col)
-{
-    const char *p = line;
-    for (int k = 0; k < col; k++) {
-        while (*p && *p != ',' && *p != '\n')
-            p++;
-        if (*p != ',')
-            return NAN;
-        p++;
-    }
-    char *end;
-    double v = strtod(p, &end);
-    if (end == p || (*end && *end != ',' && *end != '\n' && *end != '\r'))
-        return NAN;
-    return v;
-}
-
-/* Start of the line after p, or NULL at the end of the text. */
-static const char *next_line(const char *p)
-{
-    const char *e = strchr(p, '\n');
-    return e && e[1] ? e + 1 : NULL;
-}
-
 /* metrics.csv of dir: columns ms_recon_l2 and ms_recon_l1 exist and are positive in each of the
  * 3 data rows (both solves ran every frame). */
 static void check_metrics(const char *dir, const char *method)
@@ -203,18 +159,18 @@ static void check_metrics(const char *dir, const char *method)
     snprintf(path, sizeof(path), "%s/metrics.csv", dir);
     cli_read_text(path, csv, sizeof(csv));
     EXPECT(csv[0] != '\0', "%s: %s is missing or empty", method, path);
-    int c2 = csv_column(csv, "ms_recon_l2"), c1 = csv_column(csv, "ms_recon_l1");
+    int c2 = cli_csv_column(csv, "ms_recon_l2"), c1 = cli_csv_column(csv, "ms_recon_l1");
     EXPECT(c2 >= 0, "%s: %s has no column ms_recon_l2", method, path);
     EXPECT(c1 >= 0, "%s: %s has no column ms_recon_l1", method, path);
     int rows = 0;
-    for (const char *line = next_line(csv); line; line = next_line(line)) {
+    for (const char *line = cli_next_line(csv); line; line = cli_next_line(line)) {
         rows++;
         if (c2 >= 0) {
-            double v = csv_number(line, c2);
+            double v = cli_csv_number(line, c2);
             EXPECT(v > 0.0, "%s: ms_recon_l2 of data row %d is %g", method, rows, v);
         }
         if (c1 >= 0) {
-            double v = csv_number(line, c1);
+            double v = cli_csv_number(line, c1);
             EXPECT(v > 0.0, "%s: ms_recon_l1 of data row %d is %g", method, rows, v);
         }
     }
@@ -450,28 +406,29 @@ static void check_compare(void)
     const char *header = "method,ms_per_frame,spp,instances,relmse,mape,smape,luma_rmse,runs,temporal_cov,relmse_sem,"
                          "mape_sem,smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share,gradient_relmse,"
                          "gradient_relmse_sem,gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,"
-                         "gradient_mape_sem\n";
+                         "gradient_mape_sem,relmse_denoised,relmse_denoised_sem,mape_denoised,mape_denoised_sem,"
+                         "smape_denoised,smape_denoised_sem\n";
     double grad_relmse[4], grad_trim[4], grad_mape[4];
     EXPECT(strncmp(csv, header, strlen(header)) == 0, "%s: wrong header:\n%s", path, csv);
     int rows = 0;
-    for (const char *line = next_line(csv); line; line = next_line(line)) {
+    for (const char *line = cli_next_line(csv); line; line = cli_next_line(line)) {
         if (rows < 4) {
             size_t len = strlen(methods[rows]);
             EXPECT(strncmp(line, methods[rows], len) == 0 && line[len] == ',', "%s: row %d is not %s: %.80s", path,
                    rows + 1, methods[rows], line);
         }
-        double ms = csv_number(line, 1), spp = csv_number(line, 2), inst = csv_number(line, 3);
+        double ms = cli_csv_number(line, 1), spp = cli_csv_number(line, 2), inst = cli_csv_number(line, 3);
         EXPECT(ms > 0.0 && isfinite(ms), "%s row %d: ms_per_frame %g", path, rows + 1, ms);
         EXPECT(spp >= 1.0, "%s row %d: spp %g", path, rows + 1, spp);
         EXPECT(inst >= 1.0, "%s row %d: instances %g", path, rows + 1, inst);
         for (int c = 4; c < 8; c++) {
-            double e = csv_number(line, c);
+            double e = cli_csv_number(line, c);
             EXPECT(isfinite(e) && e >= 0.0, "%s row %d: error column %d is %g", path, rows + 1, c, e);
         }
         if (rows < 4) {
-            grad_relmse[rows] = csv_number(line, 16);
-            grad_trim[rows] = csv_number(line, 18);
-            grad_mape[rows] = csv_number(line, 20);
+            grad_relmse[rows] = cli_csv_number(line, 16);
+            grad_trim[rows] = cli_csv_number(line, 18);
+            grad_mape[rows] = cli_csv_number(line, 20);
         }
         rows++;
     }

@@ -180,6 +180,7 @@ static void test_svgf_hand(void)
     s.svgf_iterations = 1;
     s.svgf_feedback = 0;
     s.svgf_variance_frames = 0;
+    s.svgf_taa_alpha = 1.0f; /* no antialiasing: Eq. 1-5 alone */
     struct denoiser *d = denoiser_create(&s, b.w, b.h);
     const struct denoise_guide g = guide_of(&b);
     struct denoise_stats st;
@@ -356,8 +357,9 @@ static void test_unchanged(void)
     struct denoiser *d = denoiser_create(&s, 16, 12);
     const struct denoise_guide g = guide_of(&b);
     /* the first frames estimate variance spatially and blur the crease; their output is the colour
-     * history (Sec. 4.3), which the moving average forgets at 0.8 per frame */
-    for (int f = 0; f < 80; f++)
+     * history (Sec. 4.3), which the moving average forgets at 0.8 per frame, and the antialiasing's
+     * history, forgotten at 0.9 per frame */
+    for (int f = 0; f < 200; f++)
         denoiser_run(d, c, &g, out, NULL);
     const double e = max_rel(out, c, 576);
     EXPECT(e < 1e-5, "svgf: a noise-free image changes by %g once its history holds", e);
@@ -418,6 +420,41 @@ static void test_bad_arguments(void)
     denoiser_destroy(NULL);
 }
 
+/* Temporal antialiasing (svgf.taa): a pixel whose jittered sample lands on one mesh in one frame
+ * and on its neighbour in the next keeps no feature-tested history; the antialiasing averages it:
+ * the same mean over frames, a fraction of the flicker. */
+static void test_taa(void)
+{
+    static struct scene_buf b;
+    static float c[3 * 25], out[3 * 25];
+    double mean[2] = {0, 0}, flicker[2] = {0, 0};
+    for (int on = 0; on < 2; on++) {
+        struct denoise_settings s = settings(1);
+        s.svgf_taa_alpha = on ? 0.1f : 1.0f;
+        struct denoiser *d = denoiser_create(&s, 5, 5);
+        float last = 0.0f;
+        for (int f = 0; f < 120; f++) {
+            plane_scene(&b, 5, 5, 1.0f);
+            for (int i = 0; i < 25; i++) {
+                const int right = i % 5 >= 3 || (i == 12 && f % 2); /* pixel (2, 2) alternates */
+                b.obj[i] = right ? 2 : 1;
+                c[3 * i] = c[3 * i + 1] = c[3 * i + 2] = right ? 1.0f : 0.2f;
+            }
+            const struct denoise_guide g = guide_of(&b);
+            denoiser_run(d, c, &g, out, NULL);
+            if (f >= 80) {
+                mean[on] += out[3 * 12] / 40.0;
+                flicker[on] += fabs(out[3 * 12] - last) / 40.0;
+            }
+            last = out[3 * 12];
+        }
+        denoiser_destroy(d);
+    }
+    EXPECT(fabs(mean[1] - mean[0]) < 0.02, "the antialiased mean %g against %g without", mean[1], mean[0]);
+    EXPECT(flicker[0] > 0.3 && flicker[1] < 0.1 * flicker[0], "flicker %g with antialiasing, %g without", flicker[1],
+           flicker[0]);
+}
+
 /* The library's defaults are the settings table's (denoise.* keys). */
 static void test_defaults_agree(void)
 {
@@ -440,6 +477,7 @@ int main(void)
         test_atrous_hand();
         test_unchanged();
         test_passthrough();
+        test_taa();
     }
     test_bad_arguments();
     return test_finish();
