@@ -39,6 +39,9 @@ enum {
 #define EPS_DEPTH 1e-3f
 #define EPS_LUM 1e-10f
 #define MAX_HISTORY 255.0f
+/* min and max of finite floats, inline (fminf / fmaxf stay library calls without -ffinite-math-only) */
+#define MINF(a, b) ((a) < (b) ? (a) : (b))
+#define MAXF(a, b) ((a) > (b) ? (a) : (b))
 
 struct svgf {
     int w, h;
@@ -157,9 +160,9 @@ static long long accumulate(struct svgf *v, const struct denoise_settings *s, st
             float hist[6];
             const int found = v->has_history && reproject(v, s, f, x, y, hist);
             reset += !found;
-            const float len = found ? fminf(hist[5] + 1.0f, MAX_HISTORY) : 1.0f;
-            const float a = found ? fmaxf(s->svgf_alpha, 1.0f / len) : 1.0f;
-            const float am = found ? fmaxf(s->svgf_moments_alpha, 1.0f / len) : 1.0f;
+            const float len = found ? MINF(hist[5] + 1.0f, MAX_HISTORY) : 1.0f;
+            const float a = found ? MAXF(s->svgf_alpha, 1.0f / len) : 1.0f;
+            const float am = found ? MAXF(s->svgf_moments_alpha, 1.0f / len) : 1.0f;
             for (int k = 0; k < 3; k++)
                 f->illum[k][i] = found ? (1.0f - a) * hist[k] + a * c[k] : c[k];
             P[C_M1][i] = found ? (1.0f - am) * hist[3] + am * l : l;
@@ -212,7 +215,7 @@ static void estimate_variance(struct svgf *v, const struct denoise_settings *s, 
                 m1 = s1 / ws; /* ws >= 1: the pixel itself */
                 m2 = s2 / ws;
             }
-            P[C_VAR][i] = fmaxf(0.0f, m2 - m1 * m1);
+            P[C_VAR][i] = MAXF(0.0f, m2 - m1 * m1);
         }
 }
 
@@ -448,8 +451,8 @@ static void neighbourhood_range(const struct denoise_frame *f, const float *rgb,
             if (f->use[q] == 0.0f)
                 continue;
             for (int c = 0; c < 3; c++) {
-                lo[c] = fminf(lo[c], rgb[3 * q + c]);
-                hi[c] = fmaxf(hi[c], rgb[3 * q + c]);
+                lo[c] = MINF(lo[c], rgb[3 * q + c]);
+                hi[c] = MAXF(hi[c], rgb[3 * q + c]);
             }
         }
 }
@@ -510,7 +513,7 @@ static void svgf_post(void *state, const struct denoise_settings *s, const struc
                 neighbourhood_range(f, rgb, x, y, lo, hi);
             for (int c = 0; c < 3; c++) {
                 const float cur = rgb[3 * i + c];
-                const float hc = found ? fminf(fmaxf(h[c], lo[c]), hi[c]) : cur;
+                const float hc = found ? MINF(MAXF(h[c], lo[c]), hi[c]) : cur;
                 P[A_OUT_R + c][i] = found ? hc + a * (cur - hc) : cur;
             }
         }

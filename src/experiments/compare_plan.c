@@ -345,7 +345,7 @@ int compare_merge(const char *dir)
             restir_metrics_compute(image, ref, npix, NULL, &one.err);
             compare_disoccluded_error(image, ref, mask, npix, &one.mape_dis, &one.dis_share);
             compare_gradient_errors(grad, grad ? grad + 3 * npix : NULL, ref, st.p.width, st.p.height, &one);
-            compare_denoised_errors(denoised, ref, npix, &one);
+            compare_denoised_errors(denoised, ref, mask, npix, &one);
             free(denoised);
             if (!grad && method_has(st.specs[k].method, METHOD_GRADIENT))
                 fprintf(stderr,

@@ -67,11 +67,16 @@ void compare_gradient_errors(const float *dx, const float *dy, const float *ref,
     res->grad_mape = restir_metrics_gradient_mape(dx, dy, ref, width, height);
 }
 
-void compare_denoised_errors(const float *denoised, const float *ref, size_t npix, struct compare_result *res)
+void compare_denoised_errors(const float *denoised, const float *ref, const unsigned char *mask, size_t npix,
+                             struct compare_result *res)
 {
     res->err_dn = (struct restir_metrics_error){NAN, NAN, NAN, NAN};
-    if (denoised)
-        restir_metrics_compute(denoised, ref, npix, NULL, &res->err_dn);
+    res->mape_dis_dn = NAN;
+    if (!denoised)
+        return;
+    restir_metrics_compute(denoised, ref, npix, NULL, &res->err_dn);
+    double share;
+    compare_disoccluded_error(denoised, ref, mask, npix, &res->mape_dis_dn, &share);
 }
 
 /* The instances' denoised last frames averaged into a new buffer; NULL without denoising. */
@@ -183,11 +188,12 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     res->denoised = NULL;
     res->grad_relmse = res->grad_relmse_trim = res->grad_mape = NAN;
     res->err_dn = res->sem_dn = (struct restir_metrics_error){NAN, NAN, NAN, NAN};
+    res->mape_dis_dn = res->mape_dis_dn_sem = NAN;
     const struct grad_frame *g = grad[0];
     float *denoised = instances_denoised(r, instances, n3);
     if (ref) { /* a planned job measures nothing: the merge does, from the frame, mask and gradients it writes */
         restir_metrics_compute(r[0].image, ref, npix, NULL, &res->err);
-        compare_denoised_errors(denoised, ref, npix, res);
+        compare_denoised_errors(denoised, ref, mask, npix, res);
         free(denoised);
         compare_disoccluded_error(r[0].image, ref, mask, npix, &res->mape_dis, &res->dis_share);
         if (g)
@@ -227,19 +233,19 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
 void compare_runs_add(struct compare_runs *a, const struct compare_result *r)
 {
     const struct restir_metrics_error *e = &r->err;
-    const double x[12] = {e->relmse,   e->mape,        e->smape,         e->luma_rmse, r->mape_dis,
+    const double x[13] = {e->relmse,   e->mape,        e->smape,         e->luma_rmse, r->mape_dis,
                           r->dis_share, r->grad_relmse, r->grad_relmse_trim, r->grad_mape,
-                          r->err_dn.relmse, r->err_dn.mape, r->err_dn.smape};
+                          r->err_dn.relmse, r->err_dn.mape, r->err_dn.smape, r->mape_dis_dn};
     a->n++;
-    for (int k = 0; k < 12; k++)
+    for (int k = 0; k < 13; k++)
         running_mean_add(&a->m[k], x[k]);
 }
 
 void compare_runs_finish(const struct compare_runs *a, struct compare_result *res)
 {
     const int runs = a->n;
-    double sem[12];
-    for (int k = 0; k < 12; k++)
+    double sem[13];
+    for (int k = 0; k < 13; k++)
         sem[k] = running_mean_sem(&a->m[k]);
     if (runs > 1) { /* one run keeps its error bit for bit */
         res->err = (struct restir_metrics_error){a->m[0].mean, a->m[1].mean, a->m[2].mean, a->m[3].mean};
@@ -249,7 +255,9 @@ void compare_runs_finish(const struct compare_runs *a, struct compare_result *re
         res->grad_relmse_trim = a->m[7].mean;
         res->grad_mape = a->m[8].mean;
         res->err_dn = (struct restir_metrics_error){a->m[9].mean, a->m[10].mean, a->m[11].mean, NAN};
+        res->mape_dis_dn = a->m[12].mean;
     }
+    res->mape_dis_dn_sem = sem[12];
     res->sem_dn = (struct restir_metrics_error){sem[9], sem[10], sem[11], NAN};
     res->sem = (struct restir_metrics_error){sem[0], sem[1], sem[2], sem[3]};
     res->mape_dis_sem = sem[4];

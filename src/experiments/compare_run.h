@@ -50,6 +50,7 @@ struct compare_result {
     /* issue 43, denoise=svgf|atrous: the errors of the last frame denoised (instance-averaged), the mean
      * over the runs and its standard error; NaN without denoising. BIASED by nature. */
     struct restir_metrics_error err_dn, sem_dn;
+    double mape_dis_dn, mape_dis_dn_sem; /* MAPE of the denoised frame over the disoccluded pixels */
     float *denoised; /* a planned job's denoised last frame for the merge (else NULL; caller frees) */
     unsigned char *mask; /* a planned job's disocclusion mask for the merge (else NULL; caller frees) */
     float *grad; /* a planned job's gradients for the merge: dx then dy, 3 x width x height floats
@@ -86,9 +87,10 @@ void compare_gradient_errors(const float *dx, const float *dy, const float *ref,
 /* compare_run_method's result when a stop signal arrived before the method's last frame. */
 #define RUN_STOPPED 1
 
-/* The errors after denoising of res (err_dn) of the denoised frame against ref; all NaN when
- * denoised is NULL (no denoising). */
-void compare_denoised_errors(const float *denoised, const float *ref, size_t npix, struct compare_result *res);
+/* The errors after denoising of res (err_dn, and mape_dis_dn over the pixels mask marks) of the
+ * denoised frame against ref; all NaN when denoised is NULL (no denoising). */
+void compare_denoised_errors(const float *denoised, const float *ref, const unsigned char *mask, size_t npix,
+                             struct compare_result *res);
 /* A comparison from its description (struct cli_options as the option table parsed it, from argv or
  * a plan's JSON): the specs, the common parameters and integrand, the scene loaded (st->s, to
  * destroy), memory checked. Returns 0, or an exit code having said why. */
@@ -109,9 +111,9 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
 /* The errors of a spec's runs as they arrive (run order), and their means and standard errors. */
 struct compare_runs {
     int n;
-    struct running_mean m[12]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share,
+    struct running_mean m[13]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share,
                                   gradient relMSE, its 1%-trimmed mean, gradient MAPE, and denoised
-                                  relMSE, MAPE, SMAPE */
+                                  relMSE, MAPE, SMAPE, disoccluded MAPE */
 };
 void compare_runs_add(struct compare_runs *a, const struct compare_result *r);
 /* Into res: with more than one run the means (one run keeps its own errors bit for bit), the

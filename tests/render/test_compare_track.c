@@ -162,7 +162,8 @@ int main(void)
     EXPECT(strstr(csv, "temporal_cov,relmse_sem,mape_sem,smape_sem,mape_disoccluded,mape_disoccluded_sem,"
                        "disoccluded_share,gradient_relmse,gradient_relmse_sem,gradient_relmse_trim1,"
                        "gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem,relmse_denoised,relmse_denoised_sem,"
-                       "mape_denoised,mape_denoised_sem,smape_denoised,smape_denoised_sem\n") != NULL,
+                       "mape_denoised,mape_denoised_sem,smape_denoised,smape_denoised_sem,mape_disoccluded_denoised,"
+                       "mape_disoccluded_denoised_sem\n") != NULL,
            "compare.csv header: %.300s", csv);
     c = strstr(csv, "\nrestir-pt,");
     static const int mean_col[4] = {4, 5, 6, 13}, sem_col[4] = {10, 11, 12, 14};
