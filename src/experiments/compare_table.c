@@ -56,9 +56,9 @@ static void print_denoised(const struct compare_spec *specs, const struct compar
         any |= isfinite(res[k].err_dn.relmse);
     if (!any)
         return;
-    printf("after denoising (%s; BIASED by nature):\n%-*s %12s%s %10s%s %8s%s %10s%s\n", denoise_names[method], w,
-           "method", "relMSE", runs ? "       +-" : "", "MAPE", runs ? "       +-" : "", "SMAPE", runs ? "     +-" : "",
-           "MAPE dis", runs ? "       +-" : "");
+    printf("after denoising (denoise=%s unless the row sets another; BIASED by nature):\n", denoise_names[method]);
+    printf("%-*s %12s%s %10s%s %8s%s %10s%s\n", w, "method", "relMSE", runs ? "       +-" : "", "MAPE",
+           runs ? "       +-" : "", "SMAPE", runs ? "     +-" : "", "MAPE dis", runs ? "       +-" : "");
     for (int k = 0; k < n; k++) {
         const struct compare_result *c = &res[k];
         char v[4][32], se[4][32] = {"", "", "", ""};
