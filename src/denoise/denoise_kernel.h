@@ -18,12 +18,12 @@ __attribute__((always_inline)) static inline float denoise_luminance(float r, fl
  * rounding beside the centre tap's, and keeping it would feed denormal products (squared weights
  * times variances) into the sums, which cost x86 cores a microcode assist each. Rounds x to n by
  * adding 1.5 * 2^23 (round to nearest), which vectorises for SSE2 and AVX2 alike where (int)
- * conversions and floorf do not. */
+ * conversions and floorf do not. NaN gives 0. */
 #define DENOISE_EXP2_CUT (-30.0f)
 __attribute__((always_inline)) static inline float denoise_exp2_neg(float x)
 {
     const float keep = x >= DENOISE_EXP2_CUT ? 1.0f : 0.0f;
-    x = x < DENOISE_EXP2_CUT ? DENOISE_EXP2_CUT : x;
+    x = x >= DENOISE_EXP2_CUT ? x : DENOISE_EXP2_CUT; /* NaN too: a weight of 0, never an integer overflow */
     x = x > 0.0f ? 0.0f : x;
     union {
         float f;

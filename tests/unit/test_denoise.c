@@ -156,6 +156,7 @@ static void test_kernels(void)
     }
     EXPECT(worst < 3e-7, "exp2 relative error %g", worst);
     EXPECT(denoise_exp2_neg(-30.5f) == 0.0f && denoise_exp2_neg(-INFINITY) == 0.0f, "below the cut: exactly 0");
+    EXPECT(denoise_exp2_neg(NAN) == 0.0f, "NaN: 0");
     EXPECT(denoise_exp2_neg(0.0f) == 1.0f, "2^0 = %g", (double)denoise_exp2_neg(0.0f));
     worst = 0.0;
     for (double x = 1e-6; x < 100.0; x *= 1.013)
