@@ -26,16 +26,17 @@ int compare_budget_by_spp(const struct method *m) { return method_has(m, METHOD_
 /* The instances average their last frames. For gradient methods the primal and gradient images
  * are averaged and then reconstructed once (002 Sec. 5, Figure 8), and the frame time counts the
  * instances' passes and one reconstruction. */
-/* The instances' average image of a frame before the last (the last frame averages in place). */
-static const float *instances_mean(const struct renderer *r, int instances, size_t n3, float *scratch)
+/* The instances' average image (denoised: of their denoised frames) of a frame before the last (the
+ * last frame averages in place). */
+static const float *instances_mean(const struct renderer *r, int instances, size_t n3, int denoised, float *scratch)
 {
     if (instances == 1)
-        return r[0].image;
+        return denoised ? r[0].denoised : r[0].image;
     const float inv = 1.0f / (float)instances;
     for (size_t i = 0; i < n3; i++) {
         float sum = 0.0f;
         for (int k = 0; k < instances; k++)
-            sum += r[k].image[i];
+            sum += denoised ? r[k].denoised[i] : r[k].image[i];
         scratch[i] = sum * inv;
     }
     return scratch;
@@ -134,8 +135,11 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
         ms += ms_frame;
         if (track) {
             compare_track_stats(track, f, ms_frame, &st0);
-            if (f < frames - 1 && compare_track_wants_image(track, f))
-                compare_track_image(track, run, f, instances_mean(r, instances, n3, scratch));
+            if (f < frames - 1 && compare_track_wants_image(track, f)) {
+                compare_track_image(track, run, f, instances_mean(r, instances, n3, 0, scratch));
+                if (r[0].denoised)
+                    compare_track_denoised(track, run, f, instances_mean(r, instances, n3, 1, scratch));
+            }
         }
         progress_update(&pg, f + 1);
     }
@@ -169,8 +173,12 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
             renderer_reconstruct(&r[0], &st);
         }
     }
-    if (track && compare_track_wants_image(track, frames - 1))
+    float *denoised = instances_denoised(r, instances, n3); /* each instance's denoised frame, averaged */
+    if (track && compare_track_wants_image(track, frames - 1)) {
         compare_track_image(track, run, frames - 1, r[0].image);
+        if (denoised)
+            compare_track_denoised(track, run, frames - 1, denoised);
+    }
     res->method = m;
     res->ms_per_frame = ms / frames;
     for (int q = 0; q < PASS_COUNT; q++)
@@ -190,7 +198,6 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     res->err_dn = res->sem_dn = (struct restir_metrics_error){NAN, NAN, NAN, NAN};
     res->mape_dis_dn = res->mape_dis_dn_sem = NAN;
     const struct grad_frame *g = grad[0];
-    float *denoised = instances_denoised(r, instances, n3);
     if (ref) { /* a planned job measures nothing: the merge does, from the frame, mask and gradients it writes */
         restir_metrics_compute(r[0].image, ref, npix, NULL, &res->err);
         compare_denoised_errors(denoised, ref, mask, npix, res);
@@ -301,5 +308,6 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
     }
     compare_runs_finish(&acc, res);
     res->temporal_cov = track ? compare_track_end(track, c->label) : NAN;
+    res->temporal_cov_dn = track ? compare_track_end_denoised(track) : NAN;
     return 0;
 }

@@ -56,6 +56,7 @@ struct compare_result {
     float *grad; /* a planned job's gradients for the merge: dx then dy, 3 x width x height floats
                     each (else NULL; caller frees) */
     double temporal_cov;     /* 000 Eq. 17 over the runs (compare_track.h); NaN with one run */
+    double temporal_cov_dn;  /* the same of the denoised frames; NaN without denoising */
     float *image;            /* the last frame, kept for --report (else NULL) */
 };
 

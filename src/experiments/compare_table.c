@@ -57,11 +57,12 @@ static void print_denoised(const struct compare_spec *specs, const struct compar
     if (!any)
         return;
     printf("after denoising (denoise=%s unless the row sets another; BIASED by nature):\n", denoise_names[method]);
-    printf("%-*s %12s%s %10s%s %8s%s %10s%s\n", w, "method", "relMSE", runs ? "       +-" : "", "MAPE",
-           runs ? "       +-" : "", "SMAPE", runs ? "     +-" : "", "MAPE dis", runs ? "       +-" : "");
+    printf("%-*s %12s%s %10s%s %8s%s %10s%s%s\n", w, "method", "relMSE", runs ? "       +-" : "", "MAPE",
+           runs ? "       +-" : "", "SMAPE", runs ? "     +-" : "", "MAPE dis", runs ? "       +-" : "",
+           runs ? "         tcov" : "");
     for (int k = 0; k < n; k++) {
         const struct compare_result *c = &res[k];
-        char v[4][32], se[4][32] = {"", "", "", ""};
+        char v[4][32], se[4][32] = {"", "", "", ""}, tcov[32] = "";
         table_cell(v[0], sizeof v[0], "%12.5g", 12, c->err_dn.relmse);
         table_cell(v[1], sizeof v[1], "%10.5g", 10, c->err_dn.mape);
         table_cell(v[2], sizeof v[2], "%8.3f", 8, c->err_dn.smape);
@@ -71,8 +72,10 @@ static void print_denoised(const struct compare_spec *specs, const struct compar
             table_cell(se[1], sizeof se[1], " %8.2g", 9, c->sem_dn.mape);
             table_cell(se[2], sizeof se[2], " %6.2g", 7, c->sem_dn.smape);
             table_cell(se[3], sizeof se[3], " %8.2g", 9, c->mape_dis_dn_sem);
+            table_cell(tcov, sizeof tcov, " %12.5g", 13, c->temporal_cov_dn);
         }
-        printf("%-*s %s%s %s%s %s%s %s%s\n", w, specs[k].label, v[0], se[0], v[1], se[1], v[2], se[2], v[3], se[3]);
+        printf("%-*s %s%s %s%s %s%s %s%s%s\n", w, specs[k].label, v[0], se[0], v[1], se[1], v[2], se[2], v[3], se[3],
+               tcov);
     }
 }
 
@@ -93,7 +96,7 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                  "smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share,gradient_relmse,"
                  "gradient_relmse_sem,gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem,"
                  "relmse_denoised,relmse_denoised_sem,mape_denoised,mape_denoised_sem,smape_denoised,"
-                 "smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem",
+                 "smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem,temporal_cov_denoised",
                  msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
@@ -165,8 +168,10 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                 if (c->runs > 1 && isfinite(gs[j]))
                     snprintf(gr[2 * j + 1], sizeof gr[2 * j + 1], "%.6g", gs[j]);
             }
-            char dn[8][32] = {"", "", "", "", "", "", "", ""}; /* after denoising: relMSE, MAPE, SMAPE, MAPE
-                                                                 disoccluded; each + sem */
+            char dn[9][32] = {"", "", "", "", "", "", "", "", ""}; /* after denoising: relMSE, MAPE, SMAPE, MAPE
+                                                                     disoccluded, each + sem; tcov */
+            if (isfinite(c->temporal_cov_dn))
+                snprintf(dn[8], sizeof dn[8], "%.6g", c->temporal_cov_dn);
             const double dv[4] = {c->err_dn.relmse, c->err_dn.mape, c->err_dn.smape, c->mape_dis_dn};
             const double ds[4] = {c->sem_dn.relmse, c->sem_dn.mape, c->sem_dn.smape, c->mape_dis_dn_sem};
             for (int j = 0; j < 4; j++) {
@@ -176,10 +181,11 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                     snprintf(dn[2 * j + 1], sizeof dn[2 * j + 1], "%.6g", ds[j]);
             }
             csv_row(&csv,
-                    "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s",
+                    "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s",
                     field, c->ms_per_frame, c->spp, c->instances, c->err.relmse, c->err.mape, c->err.smape,
                     c->err.luma_rmse, c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1],
-                    gr[0], gr[1], gr[2], gr[3], gr[4], gr[5], dn[0], dn[1], dn[2], dn[3], dn[4], dn[5], dn[6], dn[7]);
+                    gr[0], gr[1], gr[2], gr[3], gr[4], gr[5], dn[0], dn[1], dn[2], dn[3], dn[4], dn[5], dn[6], dn[7],
+                    dn[8]);
         }
     }
     print_denoised(specs, res, n, w, runs, p->denoise.method);

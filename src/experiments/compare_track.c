@@ -78,6 +78,29 @@ int compare_track_wants_image(const struct compare_track *t, int f)
     return reference_index(t, f) >= 0 || (t->seq && f >= t->cov_first);
 }
 
+/* Frame f's luminance, clamped at 0, into its place in seq (a window frame; see compare_track_image). */
+static void store_luminance(struct compare_track *t, float *seq, int run, int f, const float *image)
+{
+    const size_t npix = (size_t)t->width * (size_t)t->height, window = (size_t)(t->frames - t->cov_first);
+    float *out = &seq[((size_t)run * window + (size_t)(f - t->cov_first)) * npix];
+    for (size_t i = 0; i < npix; i++) {
+        const float l = 0.2126f * image[3 * i] + 0.7152f * image[3 * i + 1] + 0.0722f * image[3 * i + 2];
+        t->clamped += l < 0.0f;
+        out[i] = l < 0.0f ? 0.0f : l;
+    }
+    t->measured += npix;
+}
+
+void compare_track_denoised(struct compare_track *t, int run, int f, const float *denoised)
+{
+    if (!t->seq || f < t->cov_first)
+        return;
+    if (!t->seq_dn)
+        t->seq_dn = xmalloc(sizeof(float) * (size_t)t->runs * (size_t)(t->frames - t->cov_first) * (size_t)t->width *
+                            (size_t)t->height);
+    store_luminance(t, t->seq_dn, run, f, denoised);
+}
+
 void compare_track_image(struct compare_track *t, int run, int f, const float *image)
 {
     const size_t npix = (size_t)t->width * (size_t)t->height;
@@ -92,20 +115,13 @@ void compare_track_image(struct compare_track *t, int run, int f, const float *i
         s->luma_rmse += e.luma_rmse;
     }
     if (t->seq && f >= t->cov_first) {
-        const size_t window = (size_t)(t->frames - t->cov_first);
-        float *out = &t->seq[((size_t)run * window + (size_t)(f - t->cov_first)) * npix];
         /* Rec. 709 luminance, as restir_metrics_luminance, clamped at 0. 000 Eq. 17 divides each pixel's deviation
          * by its mean over the runs (+ 1e-4): for radiance, which is never negative, |z| <= N - 1. The L2 and L1
          * reconstructions of the gradient methods (002 Sec. 5) are signed, and where a pixel's mean over the runs
          * crosses 0 the ratio is unbounded with either sign: on ajar at 96x64 a few dark pixels with means of
          * +-1e-3 and values of +-1 made tcov -27 with 16 runs (0.51 clamped). Clamping is the identity for every
          * other method and measures the image as it is displayed; a NaN stays NaN. */
-        for (size_t i = 0; i < npix; i++) {
-            const float l = 0.2126f * image[3 * i] + 0.7152f * image[3 * i + 1] + 0.0722f * image[3 * i + 2];
-            t->clamped += l < 0.0f;
-            out[i] = l < 0.0f ? 0.0f : l;
-        }
-        t->measured += npix;
+        store_luminance(t, t->seq, run, f, image);
     }
 }
 
@@ -134,6 +150,18 @@ double compare_track_end(struct compare_track *t, const char *label)
                                           NULL);
 }
 
+double compare_track_end_denoised(struct compare_track *t)
+{
+    const int window = t->frames - t->cov_first;
+    if (!t->seq_dn || window < COMPARE_COV_LAG + 1)
+        return NAN;
+    const double cov = restir_metrics_temporal_autocovariance(t->seq_dn, t->runs, window, t->width, t->height,
+                                                              COMPARE_COV_LAG, COV_EPS, NULL);
+    free(t->seq_dn); /* the next spec may not denoise */
+    t->seq_dn = NULL;
+    return cov;
+}
+
 int compare_track_close(struct compare_track *t, char *msg)
 {
     t->csv_open = 0;
@@ -151,5 +179,6 @@ void compare_track_fini(struct compare_track *t)
     free(t->ref_frame);
     free(t->sums);
     free(t->seq);
+    free(t->seq_dn);
     memset(t, 0, sizeof *t);
 }

@@ -34,6 +34,7 @@ struct compare_track {
     int cov_first;     /* the autocovariance window: frames cov_first .. frames - 1 (the second half) */
     struct compare_frame_sums *sums; /* frames entries for the spec being run */
     float *seq;        /* runs * (frames - cov_first) * w * h luminance clamped at 0, run-major then frame */
+    float *seq_dn;     /* the same of the denoised frames (denoise=svgf|atrous; allocated by the first) */
     size_t clamped, measured; /* of the spec's luminance values stored in seq: the negative ones, all */
     struct csv_writer csv; /* DIR/frames.csv */
     int csv_open;
@@ -54,6 +55,8 @@ void compare_track_begin(struct compare_track *t);
  * instances' average). */
 void compare_track_stats(struct compare_track *t, int f, double ms, const struct frame_stats *st);
 void compare_track_image(struct compare_track *t, int run, int f, const float *image);
+/* The same frame denoised (compare_track_image's covariance window only; issue 43). */
+void compare_track_denoised(struct compare_track *t, int run, int f, const float *denoised);
 /* 1 when frame f of the sequence needs its image measured (a reference frame or in the window). */
 int compare_track_wants_image(const struct compare_track *t, int f);
 /* Ends a spec: writes its rows (means over runs) to frames.csv labelled `label` and returns the
@@ -61,6 +64,9 @@ int compare_track_wants_image(const struct compare_track *t, int f);
  * are signed, and 000 Eq. 17's division by each pixel's mean is unbounded where that mean crosses 0; stderr
  * says how many values were clamped) (NaN with fewer than 2 runs or a window under lag + 1 frames). */
 double compare_track_end(struct compare_track *t, const char *label);
+/* After compare_track_end: the relative autocovariance of the denoised frames, as compare_track_end's
+ * (NaN without them). */
+double compare_track_end_denoised(struct compare_track *t);
 /* Commits frames.csv. Returns 0, or -1 with msg. */
 int compare_track_close(struct compare_track *t, char *msg);
 /* Frees what init allocated (the references the caller filled in too, not last_ref); aborts an

@@ -407,7 +407,8 @@ static void check_compare(void)
                          "mape_sem,smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share,gradient_relmse,"
                          "gradient_relmse_sem,gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,"
                          "gradient_mape_sem,relmse_denoised,relmse_denoised_sem,mape_denoised,mape_denoised_sem,"
-                         "smape_denoised,smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem\n";
+                         "smape_denoised,smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem,"
+                         "temporal_cov_denoised\n";
     double grad_relmse[4], grad_trim[4], grad_mape[4];
     EXPECT(strncmp(csv, header, strlen(header)) == 0, "%s: wrong header:\n%s", path, csv);
     int rows = 0;
