@@ -11,7 +11,10 @@
 static const float denoise_b3[5] = {1.0f / 16.0f, 4.0f / 16.0f, 6.0f / 16.0f, 4.0f / 16.0f, 1.0f / 16.0f};
 
 /* Rec. 709 luminance. */
-__attribute__((always_inline)) static inline float denoise_luminance(float r, float g, float b) { return 0.2126f * r + 0.7152f * g + 0.0722f * b; }
+__attribute__((always_inline)) static inline float denoise_luminance(float r, float g, float b)
+{
+    return 0.2126f * r + 0.7152f * g + 0.0722f * b;
+}
 
 /* 2^x for x <= 0, relative error below 3e-7 (2^n by the exponent bits, 2^f for |f| <= 1/2 by its
  * Taylor polynomial to degree 6), and exactly 0 below 2^-30: a weight that small is below float
@@ -30,10 +33,8 @@ __attribute__((always_inline)) static inline float denoise_exp2_neg(float x)
         int32_t i;
     } t = {x + 12582912.0f}; /* the low mantissa bits hold n = round(x) */
     const float f = x - (t.f - 12582912.0f);
-    const float p =
-        1.0f +
-        f * (0.693147182f +
-             f * (0.240226507f + f * (0.0555041087f + f * (0.00961812911f + f * (0.00133335581f + f * 0.000154035304f)))));
+    const float p4 = 0.00961812911f + f * (0.00133335581f + f * 0.000154035304f); /* ln2^k / k!, k = 4 .. 6 */
+    const float p = 1.0f + f * (0.693147182f + f * (0.240226507f + f * (0.0555041087f + f * p4)));
     union {
         int32_t i;
         float f;

@@ -178,7 +178,8 @@ static inline float depth_normal_log2w(const struct denoise_frame *f, const stru
 {
     const float den = s->svgf_sigma_depth * fabsf(f->ddx[i] * ox + f->ddy[i] * oy) + EPS_DEPTH * f->depth[i];
     const float az = fabsf(f->depth[i] - f->depth[q]) / den;
-    float nd = f->normal[0][i] * f->normal[0][q] + f->normal[1][i] * f->normal[1][q] + f->normal[2][i] * f->normal[2][q];
+    float nd =
+        f->normal[0][i] * f->normal[0][q] + f->normal[1][i] * f->normal[1][q] + f->normal[2][i] * f->normal[2][q];
     nd = nd > 1e-20f ? nd : 1e-20f;
     return s->svgf_sigma_normal * denoise_log2(nd) - az * DENOISE_LOG2E;
 }

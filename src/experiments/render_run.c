@@ -211,7 +211,9 @@ int render_run(const struct cli_options *desc)
             ms_write = 1e3 * (omp_get_wtime() - t0);
         }
         const int dn = ref && r.denoised;
-        csv_row(&csv, "%d,%.3f%s,%lld,%.3f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.3f,%lld,%.6g,%.6g,%.6g,%lld,%lld",
+        csv_row(&csv,
+                "%d,%.3f%s,%lld,%.3f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.3f,%lld,"
+                "%.6g,%.6g,%.6g,%lld,%lld",
                 f, st.ms_total, passes, st.rays, (double)st.rays / (st.ms_total * 1e3), accept, bp_rx, bp_acc, sp_rx,
                 sp_acc, disoccluded, ref ? err.relmse : 0.0,
                 ref ? err.mape : 0.0, ref ? err.smape : 0.0, ref ? err.luma_rmse : 0.0, mape_disoccluded, ms_write,
