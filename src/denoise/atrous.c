@@ -19,8 +19,7 @@ struct atrous {
     int w, h;
     size_t n;
     float *tmp[3];
-    float *acc; /* per thread, 4 rows of the image's width */
-    int acc_threads;
+    struct denoise_scratch acc; /* per thread, 4 rows of the image's width */
 };
 
 static void *atrous_create(const struct denoise_settings *s, int width, int height)
@@ -30,9 +29,7 @@ static void *atrous_create(const struct denoise_settings *s, int width, int heig
     a->w = width;
     a->h = height;
     a->n = (size_t)width * (size_t)height;
-    float *block = xmalloc(sizeof(float) * 3 * a->n);
-    for (int k = 0; k < 3; k++)
-        a->tmp[k] = block + (size_t)k * a->n;
+    denoise_planes_alloc(a->tmp, 3, a->n);
     return a;
 }
 
@@ -40,7 +37,7 @@ static void atrous_destroy(void *state)
 {
     struct atrous *a = state;
     free(a->tmp[0]);
-    free(a->acc);
+    denoise_scratch_free(&a->acc);
     free(a);
 }
 
@@ -132,12 +129,7 @@ static void atrous_run(void *state, const struct denoise_settings *s, struct den
     (void)st;
     struct atrous *a = state;
     const int w = a->w, h = a->h;
-    const int threads = omp_get_max_threads();
-    if (threads > a->acc_threads) {
-        free(a->acc);
-        a->acc = xmalloc(sizeof(float) * 4 * (size_t)w * (size_t)threads);
-        a->acc_threads = threads;
-    }
+    denoise_scratch_reserve(&a->acc, 4 * (size_t)w);
 #if RESTIR_SIMD_DISPATCH
     void (*row)(const struct denoise_frame *, const struct atrous_scales *, const float *const[3], int, int, float *) =
         simd_isa_active() == SIMD_ISA_AVX2 ? atrous_row_avx2 : atrous_row_base;
@@ -156,7 +148,7 @@ static void atrous_run(void *state, const struct denoise_settings *s, struct den
         const int step = 1 << it;
 #pragma omp parallel for schedule(dynamic, 4)
         for (int y = 0; y < h; y++) {
-            float *acc = a->acc + (size_t)omp_get_thread_num() * 4 * (size_t)w;
+            float *acc = denoise_scratch_mine(&a->acc);
             row(f, &k, in, y, step, acc);
             for (int x = 0; x < w; x++) {
                 const int i = y * w + x;

@@ -5,6 +5,7 @@
 #include "denoise/denoise.h"
 
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -78,6 +79,35 @@ const char *denoiser_name(const struct denoiser *d) { return d->method->name; }
 const float *denoiser_layer(const struct denoiser *d, const char *name)
 {
     return d->method->layer && name ? d->method->layer(d->state, name) : NULL;
+}
+
+void denoise_planes_alloc(float **plane, int count, size_t n)
+{
+    float *block = xcalloc((size_t)count * n, sizeof(float));
+    for (int k = 0; k < count; k++)
+        plane[k] = block + (size_t)k * n;
+}
+
+void denoise_scratch_reserve(struct denoise_scratch *s, size_t floats)
+{
+    const int threads = omp_get_max_threads();
+    if (threads <= s->threads && floats <= s->per_thread)
+        return;
+    free(s->data);
+    s->data = xmalloc(sizeof(float) * floats * (size_t)threads);
+    s->per_thread = floats;
+    s->threads = threads;
+}
+
+float *denoise_scratch_mine(const struct denoise_scratch *s)
+{
+    return s->data + (size_t)omp_get_thread_num() * s->per_thread;
+}
+
+void denoise_scratch_free(struct denoise_scratch *s)
+{
+    free(s->data);
+    memset(s, 0, sizeof(*s));
 }
 
 static inline int finite3(vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }

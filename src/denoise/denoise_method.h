@@ -36,7 +36,22 @@ struct denoise_method {
     const float *(*layer)(const void *state, const char *name);
 };
 
-/* The rows, in denoise_names order after "off" (denoise_table.c). */
+/* count planes of n floats, zeroed, in one block: plane[k] = plane[0] + k n (free plane[0]). */
+void denoise_planes_alloc(float **plane, int count, size_t n);
+
+/* Rows of scratch for each OpenMP thread, grown on demand. */
+struct denoise_scratch {
+    float *data;
+    size_t per_thread;
+    int threads;
+};
+/* At least `floats` for each of omp_get_max_threads() threads; call outside a parallel region. */
+void denoise_scratch_reserve(struct denoise_scratch *s, size_t floats);
+/* The calling thread's scratch (inside the parallel region that follows the reserve). */
+float *denoise_scratch_mine(const struct denoise_scratch *s);
+void denoise_scratch_free(struct denoise_scratch *s);
+
+/* The rows, in denoise_names order after "off" (denoise.c). */
 extern const struct denoise_method denoise_svgf;
 extern const struct denoise_method denoise_atrous;
 

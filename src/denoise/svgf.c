@@ -50,8 +50,7 @@ struct svgf {
     int *prev_object;
     int has_history;
     int has_taa; /* the antialiasing history holds a frame */
-    float *acc; /* per thread, 6 rows of the image's width */
-    int acc_threads;
+    struct denoise_scratch acc; /* per thread, 6 rows of the image's width */
 };
 
 static void *svgf_create(const struct denoise_settings *s, int width, int height)
@@ -61,9 +60,7 @@ static void *svgf_create(const struct denoise_settings *s, int width, int height
     v->w = width;
     v->h = height;
     v->n = (size_t)width * (size_t)height;
-    float *block = xcalloc(SVGF_PLANES * v->n, sizeof(float));
-    for (int k = 0; k < SVGF_PLANES; k++)
-        v->plane[k] = block + (size_t)k * v->n;
+    denoise_planes_alloc(v->plane, SVGF_PLANES, v->n);
     v->prev_object = xcalloc(v->n, sizeof(int));
     return v;
 }
@@ -73,7 +70,7 @@ static void svgf_destroy(void *state)
     struct svgf *v = state;
     free(v->plane[0]);
     free(v->prev_object);
-    free(v->acc);
+    denoise_scratch_free(&v->acc);
     free(v);
 }
 
@@ -357,12 +354,7 @@ static void filter(struct svgf *v, const struct denoise_settings *s, struct deno
 {
     float **P = v->plane;
     const int w = v->w, h = v->h;
-    const int threads = omp_get_max_threads();
-    if (threads > v->acc_threads) {
-        free(v->acc);
-        v->acc = xmalloc(sizeof(float) * 6 * (size_t)w * (size_t)threads);
-        v->acc_threads = threads;
-    }
+    denoise_scratch_reserve(&v->acc, 6 * (size_t)w);
     float *src[4] = {f->illum[0], f->illum[1], f->illum[2], P[C_VAR]};
     float *dst[4] = {P[T_C0], P[T_C1], P[T_C2], P[T_VAR]};
 #if RESTIR_SIMD_DISPATCH
@@ -382,7 +374,7 @@ static void filter(struct svgf *v, const struct denoise_settings *s, struct deno
         const int step = 1 << it;
 #pragma omp parallel for schedule(dynamic, 4)
         for (int y = 0; y < h; y++) {
-            float *acc = v->acc + (size_t)omp_get_thread_num() * 6 * (size_t)w;
+            float *acc = denoise_scratch_mine(&v->acc);
             row(f, s, in, P[T_LUM], P[T_INVL], y, step, acc);
             for (int x = 0; x < w; x++) {
                 const int i = y * w + x;

@@ -78,6 +78,25 @@ static cJSON *params_json(const struct cli_options *o, const struct method *meth
     return j;
 }
 
+static void errors_add(struct restir_metrics_error *sum, const struct restir_metrics_error *e)
+{
+    sum->relmse += e->relmse;
+    sum->mape += e->mape;
+    sum->smape += e->smape;
+    sum->luma_rmse += e->luma_rmse;
+}
+
+/* j[name] = {relmse, mape, smape[, luma_rmse]} of e divided by n (a sum over n frames). */
+static void add_errors(cJSON *j, const char *name, const struct restir_metrics_error *e, double n, int luma)
+{
+    cJSON *o = cJSON_AddObjectToObject(j, name);
+    cJSON_AddNumberToObject(o, "relmse", e->relmse / n);
+    cJSON_AddNumberToObject(o, "mape", e->mape / n);
+    cJSON_AddNumberToObject(o, "smape", e->smape / n);
+    if (luma)
+        cJSON_AddNumberToObject(o, "luma_rmse", e->luma_rmse / n);
+}
+
 int render_run(const struct cli_options *desc)
 {
     struct cli_options o = *desc;
@@ -168,15 +187,10 @@ int render_run(const struct cli_options *desc)
         rays_sum += (double)st.rays;
         if (ref) {
             restir_metrics_compute(r.image, ref, npix, NULL, &err);
-            err_sum.relmse += err.relmse;
-            err_sum.mape += err.mape;
-            err_sum.smape += err.smape;
-            err_sum.luma_rmse += err.luma_rmse;
+            errors_add(&err_sum, &err);
             if (r.denoised) {
                 restir_metrics_compute(r.denoised, ref, npix, NULL, &err_dn);
-                err_dn_sum.relmse += err_dn.relmse;
-                err_dn_sum.mape += err_dn.mape;
-                err_dn_sum.smape += err_dn.smape;
+                errors_add(&err_dn_sum, &err_dn);
             }
         }
         const double vp = (double)st.valid_pixels;
@@ -254,25 +268,11 @@ int render_run(const struct cli_options *desc)
         if (getrusage(RUSAGE_SELF, &ru) == 0)
             cJSON_AddNumberToObject(j, "peak_memory_mb", (double)ru.ru_maxrss / 1024.0);
         if (ref) {
-            cJSON *last = cJSON_AddObjectToObject(j, "last_frame");
-            cJSON_AddNumberToObject(last, "relmse", err.relmse);
-            cJSON_AddNumberToObject(last, "mape", err.mape);
-            cJSON_AddNumberToObject(last, "smape", err.smape);
-            cJSON_AddNumberToObject(last, "luma_rmse", err.luma_rmse);
-            cJSON *mean = cJSON_AddObjectToObject(j, "mean_over_frames");
-            cJSON_AddNumberToObject(mean, "relmse", err_sum.relmse / o.frames);
-            cJSON_AddNumberToObject(mean, "mape", err_sum.mape / o.frames);
-            cJSON_AddNumberToObject(mean, "smape", err_sum.smape / o.frames);
-            cJSON_AddNumberToObject(mean, "luma_rmse", err_sum.luma_rmse / o.frames);
+            add_errors(j, "last_frame", &err, 1.0, 1);
+            add_errors(j, "mean_over_frames", &err_sum, o.frames, 1);
             if (r.denoised) { /* after denoising: BIASED by nature */
-                cJSON *dl = cJSON_AddObjectToObject(j, "last_frame_denoised");
-                cJSON_AddNumberToObject(dl, "relmse", err_dn.relmse);
-                cJSON_AddNumberToObject(dl, "mape", err_dn.mape);
-                cJSON_AddNumberToObject(dl, "smape", err_dn.smape);
-                cJSON *dm = cJSON_AddObjectToObject(j, "mean_over_frames_denoised");
-                cJSON_AddNumberToObject(dm, "relmse", err_dn_sum.relmse / o.frames);
-                cJSON_AddNumberToObject(dm, "mape", err_dn_sum.mape / o.frames);
-                cJSON_AddNumberToObject(dm, "smape", err_dn_sum.smape / o.frames);
+                add_errors(j, "last_frame_denoised", &err_dn, 1.0, 0);
+                add_errors(j, "mean_over_frames_denoised", &err_dn_sum, o.frames, 0);
             }
         }
         if (json_write_file(json_path, j, msg) != 0) {

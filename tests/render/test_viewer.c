@@ -66,6 +66,24 @@ static int count_temporal_view(const char *path, long counts[TC_COLOURS])
     return ok ? 0 : -1;
 }
 
+/* Runs the viewer on cornell at 64x36 (seed 5) under Xvfb with the script text and extra arguments,
+ * writing into out; expects exit 0 (name labels the failure and the log, tmp/xvfb-NAME.log). */
+static void viewer_session(const char *tmp, const char *name, const char *script, const char *extra, const char *out)
+{
+    char path[2 * CLI_PATH_MAX], full[24 * CLI_PATH_MAX], err[CLI_ERR_MAX];
+    snprintf(path, sizeof path, "%s/%s.txt", tmp, name);
+    write_text(path, script);
+    snprintf(full, sizeof full,
+             "timeout 300 xvfb-run -a '%s' view --scene cornell --res 64x36 --seed 5 %s --script '%s' --out '%s' > "
+             "'%s/xvfb-%s.log' 2>&1",
+             cli_bin(), extra, path, out, tmp, name);
+    const int status = system(full);
+    snprintf(path, sizeof path, "%s/xvfb-%s.log", tmp, name);
+    cli_read_text(path, err, sizeof err);
+    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 0, "the %s viewer exited %d:\n%s", name, WEXITSTATUS(status),
+           err);
+}
+
 int main(void)
 {
     char tmp[CLI_PATH_MAX], script[2 * CLI_PATH_MAX], dir[2 * CLI_PATH_MAX], replay[2 * CLI_PATH_MAX];
@@ -144,18 +162,9 @@ int main(void)
            "%s: the temporal-candidates view of temporal.reuse=backproject is not mostly green", out);
     /* temporal.reuse=both: splatted candidates too, alone (blue) or with backprojection (cyan) */
     char both[2 * CLI_PATH_MAX];
-    snprintf(out, sizeof out, "%s/both.txt", tmp);
-    write_text(out, "0 hold d 4\n0 press v\n0 press v\n0 press v\n0 press v\n0 press v\n5 press k\n6 quit\n");
     snprintf(both, sizeof both, "%s/both", tmp);
-    snprintf(full, sizeof full,
-             "timeout 300 xvfb-run -a '%s' view --scene cornell --method restir-pt --res 64x36 --seed 5 --set "
-             "temporal.reuse=both --script '%s' --out '%s' > '%s/xvfb-both.log' 2>&1",
-             cli_bin(), out, both, tmp);
-    status = system(full);
-    snprintf(out, sizeof out, "%s/xvfb-both.log", tmp);
-    cli_read_text(out, err, sizeof err);
-    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 0, "the temporal.reuse=both viewer exited %d:\n%s",
-           WEXITSTATUS(status), err);
+    viewer_session(tmp, "both", "0 hold d 4\n0 press v\n0 press v\n0 press v\n0 press v\n0 press v\n5 press k\n6 quit\n",
+                   "--method restir-pt --set temporal.reuse=both", both);
     snprintf(out, sizeof out, "%s/screenshot_0000_view.png", both);
     EXPECT(count_temporal_view(out, tc) == 0, "cannot read %s at 64x36", out);
     EXPECT(tc[TC_OTHER] == 0 && tc[TC_BOTH] + tc[TC_SPLAT] > 64 * 36 / 4,
@@ -163,25 +172,15 @@ int main(void)
 
     /* O turns SVGF on: the screenshot then writes the denoised frame beside the raw one */
     char dn[2 * CLI_PATH_MAX];
-    snprintf(out, sizeof out, "%s/denoise.txt", tmp);
-    write_text(out, "0 press o\n4 press o\n5 press k\n6 press i\n8 press k\n9 quit\n");
     snprintf(dn, sizeof dn, "%s/denoise", tmp);
-    snprintf(full, sizeof full,
-             "timeout 300 xvfb-run -a '%s' view --scene cornell --method restir-di --res 64x36 --seed 5 --script '%s' "
-             "--out '%s' > '%s/xvfb-denoise.log' 2>&1",
-             cli_bin(), out, dn, tmp);
-    status = system(full);
-    snprintf(out, sizeof out, "%s/xvfb-denoise.log", tmp);
-    cli_read_text(out, err, sizeof err);
-    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 0, "the denoising viewer exited %d:\n%s", WEXITSTATUS(status),
-           err);
+    viewer_session(tmp, "denoise", "0 press o\n4 press o\n5 press k\n6 press i\n8 press k\n9 quit\n",
+                   "--method restir-di", dn);
     for (int k = 0; k < 2; k++) {
         char raw[4 * CLI_PATH_MAX];
         snprintf(raw, sizeof raw, "%s/screenshot_%04d.exr", dn, k);
         snprintf(out, sizeof out, "%s/screenshot_%04d_denoised.exr", dn, k);
         EXPECT(file_size(raw) > 0 && file_size(out) > 0, "screenshot %d: %s and its denoised frame", k, raw);
     }
-    snprintf(out, sizeof out, "%s/camera.json", dn);
 
     /* replay the recorded path: restir-pt (one M press from restir-di), same seed and size */
     snprintf(replay, sizeof replay, "%s/replay", tmp);
