@@ -234,8 +234,10 @@ int cmd_compare(int argc, char **argv)
     if (rc != 0) {
         if (rc == EXIT_RUNTIME)
             cli_error("%s", msg);
-        for (int k = 0; k < n; k++)
+        for (int k = 0; k < n; k++) {
             free(res[k].image);
+            free(res[k].image_dn);
+        }
         free(ref);
         scene_destroy(&st.s);
         return rc;
@@ -244,8 +246,10 @@ int cmd_compare(int argc, char **argv)
     char command[8192];
     cli_command_line("compare", argc, argv, command, sizeof command);
     rc = compare_write_table(&st, out_dir, command, res, ref);
-    for (int k = 0; k < n; k++)
+    for (int k = 0; k < n; k++) {
         free(res[k].image);
+        free(res[k].image_dn);
+    }
     free(ref);
     scene_destroy(&st.s);
     return rc;

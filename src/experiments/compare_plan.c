@@ -346,7 +346,6 @@ int compare_merge(const char *dir)
             compare_disoccluded_error(image, ref, mask, npix, &one.mape_dis, &one.dis_share);
             compare_gradient_errors(grad, grad ? grad + 3 * npix : NULL, ref, st.p.width, st.p.height, &one);
             compare_denoised_errors(denoised, ref, mask, npix, &one);
-            free(denoised);
             if (!grad && method_has(st.specs[k].method, METHOD_GRADIENT))
                 fprintf(stderr,
                         "restir: compare --merge: %s, run %d: its job was written without gradients (by a restir "
@@ -360,6 +359,8 @@ int compare_merge(const char *dir)
             }
             free(mask);
             free(grad);
+            if (n > 0 || !st.o.report)
+                free(denoised);
             if (n > 0) {
                 one.ms_per_frame = t.ms_per_frame;
                 memcpy(one.ms_pass, t.ms_pass, sizeof one.ms_pass);
@@ -373,10 +374,12 @@ int compare_merge(const char *dir)
             res[k].spp = t.spp;
             res[k].instances = t.instances;
             res[k].temporal_cov = res[k].temporal_cov_dn = NAN; /* not planned: it needs every run's frames */
-            if (st.o.report)
+            if (st.o.report) {
                 res[k].image = image;
-            else
+                res[k].image_dn = denoised;
+            } else {
                 free(image);
+            }
         }
         if (rc != 0)
             break;
@@ -390,8 +393,10 @@ int compare_merge(const char *dir)
     }
     if (rc == 0)
         rc = compare_write_table(&st, pl.dir, pl.command, res, ref);
-    for (int k = 0; k < st.n; k++)
+    for (int k = 0; k < st.n; k++) {
         free(res[k].image);
+        free(res[k].image_dn);
+    }
     free(ref);
     scene_destroy(&st.s);
     plan_free(&pl);

@@ -181,6 +181,8 @@ static void gradient_layers(struct html_page *pg, const struct compare_report_ru
     static const char *const layers[3] = {"primal", "dx", "dy"};
     int any = 0;
     for (int k = 0; k < n; k++) {
+        if (!m[k].dir)
+            continue;
         char rel[4][SPEC_REL_MAX];
         const char *labels[5], *srcs[5];
         labels[0] = "reconstruction";

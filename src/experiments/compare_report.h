@@ -12,7 +12,8 @@
 struct compare_report_method {
     const char *label;  /* the method spec */
     const char *png;    /* its last frame, relative to the output folder */
-    const char *dir;    /* its folder, relative to the output folder (gradient layers live there) */
+    const char *dir;    /* its folder, relative to the output folder (gradient layers live there); NULL for a
+                           row's denoised frame, which has none */
     const float *image; /* its last frame, linear RGB */
     double ms_per_frame;
     int spp, instances;

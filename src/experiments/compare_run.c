@@ -201,7 +201,8 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     if (ref) { /* a planned job measures nothing: the merge does, from the frame, mask and gradients it writes */
         restir_metrics_compute(r[0].image, ref, npix, NULL, &res->err);
         compare_denoised_errors(denoised, ref, mask, npix, res);
-        free(denoised);
+        if (!keep_image)
+            free(denoised);
         compare_disoccluded_error(r[0].image, ref, mask, npix, &res->mape_dis, &res->dis_share);
         if (g)
             compare_gradient_errors(g->dx, g->dy, ref, p->width, p->height, res);
@@ -216,6 +217,7 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
         }
     }
     res->image = NULL;
+    res->image_dn = ref && keep_image ? denoised : NULL; /* --report's */
     if (keep_image) {
         res->image = xmalloc(sizeof(float) * n3);
         memcpy(res->image, r[0].image, sizeof(float) * n3);
@@ -298,7 +300,8 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
         if (rc != 0) {
             if (n > 0) {
                 free(res->image);
-                res->image = NULL;
+                free(res->image_dn);
+                res->image = res->image_dn = NULL;
             }
             return rc;
         }

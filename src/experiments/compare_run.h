@@ -58,6 +58,7 @@ struct compare_result {
     double temporal_cov;     /* 000 Eq. 17 over the runs (compare_track.h); NaN with one run */
     double temporal_cov_dn;  /* the same of the denoised frames; NaN without denoising */
     float *image;            /* the last frame, kept for --report (else NULL) */
+    float *image_dn;         /* and the denoised one (else NULL) */
 };
 
 struct compare_setup {

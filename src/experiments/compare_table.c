@@ -199,16 +199,26 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
         rc = EXIT_RUNTIME;
     }
     if (rc == 0 && o->report) {
-        char pngs[MAX_METHODS][SPEC_MAX + 40];
-        struct compare_report_method rm[MAX_METHODS];
+        char pngs[2 * MAX_METHODS][SPEC_MAX + 40], labels[MAX_METHODS][SPEC_MAX + 40];
+        struct compare_report_method rm[2 * MAX_METHODS];
+        int nr = n;
         for (int k = 0; k < n; k++) {
             snprintf(pngs[k], sizeof pngs[k], "%s/frame_%04d.png", specs[k].dir, o->frames - 1);
             rm[k] = (struct compare_report_method){specs[k].label, pngs[k], specs[k].dir, res[k].image,
                                                    res[k].ms_per_frame, res[k].spp, res[k].instances, res[k].err};
         }
+        for (int k = 0; k < n; k++) /* the denoised frames as rows of their own, after the methods */
+            if (res[k].image_dn) {
+                snprintf(labels[k], sizeof labels[k], "%s, denoised (BIASED)", specs[k].label);
+                snprintf(pngs[nr], sizeof pngs[nr], "%s/frame_%04d_denoised.png", specs[k].dir, o->frames - 1);
+                rm[nr] = (struct compare_report_method){labels[k], pngs[nr], NULL, res[k].image_dn,
+                                                        res[k].ms_per_frame, res[k].spp, res[k].instances,
+                                                        res[k].err_dn};
+                nr++;
+            }
         const struct compare_report_run run = {out_dir, command, st->s.name, p->width, p->height, o->frames - 1,
                                                p->camera_path, o->equal_time, ref};
-        if (compare_write_report(&run, n, rm, msg) != 0) {
+        if (compare_write_report(&run, nr, rm, msg) != 0) {
             cli_error("--report: %s", msg);
             rc = EXIT_RUNTIME;
         }
