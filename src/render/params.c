@@ -302,7 +302,8 @@ static const struct param_def params[] = {
     {"denoise", P_NAMES, F(denoise.method), 0, 0, "off", NULL,
      "denoise the finished frame into a layer of its own (frame_NNNN_denoised.exr / .png, and errors after "
      "denoising in compare and study): off, svgf (Schied et al. 2017: temporal accumulation, variance "
-     "estimate, 5 edge-stopping a-trous iterations on albedo-demodulated illumination) or atrous (Dammertz et "
+     "estimate, 5 edge-stopping a-trous iterations on albedo-demodulated illumination, temporal antialiasing) or "
+     "atrous (Dammertz et "
      "al. 2010, spatial only); the denoised layer is BIASED by nature, the frame itself is unchanged; methods "
      "without a G-buffer (pt, gpt) trace one for it through pixel centres",
      denoise_names},
