@@ -116,9 +116,9 @@ static void press(struct view *v, char key)
             v->show_denoised = !v->show_denoised;
         }
         break;
-    case 'i': /* the other denoiser */
+    case 'i': /* the next denoiser (denoise_names after "off") */
         if (v->p.denoise.method > 0) {
-            v->p.denoise.method = v->p.denoise.method == 1 ? 2 : 1;
+            v->p.denoise.method = denoise_names[v->p.denoise.method + 1] ? v->p.denoise.method + 1 : 1;
             restart(v, 0);
         }
         break;

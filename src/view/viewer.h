@@ -3,7 +3,7 @@
  * motion vectors and temporal reuse. Keys: M next method, T temporal reuse, Y spatial reuse,
  * N neighbor selection, P stochastic pairwise MIS (spmis), V the next debug view (view_debug.h:
  * confidence, temporal acceptance, selected neighbors, reuse cells, temporal candidates per
- * technique), O the denoised frame or the raw one (turning SVGF on the first time), I the other
+ * technique), O the denoised frame or the raw one (turning SVGF on the first time), I the next
  * denoiser (svgf, atrous), K screenshot (EXR and PNG, the denoised frame too), C save the camera path
  * since the last change of method
  * or settings (a camera file `render --camera FILE` replays frame for frame), escape quits. The
