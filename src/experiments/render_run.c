@@ -157,8 +157,8 @@ int render_run(const struct cli_options *desc)
         snprintf(header + strlen(header), sizeof(header) - strlen(header), ",ms_%s", pass_names[q]);
     snprintf(header + strlen(header), sizeof(header) - strlen(header), "%s",
              ",rays,mrays_per_s,temporal_accept,bp_received,bp_accepted,splat_received,splat_accepted,"
-             "disoccluded,relmse,mape,smape,luma_rmse,mape_disoccluded,ms_write,"
-             "nonfinite,relmse_denoised,mape_denoised,smape_denoised,denoise_passed,denoise_reset");
+             "disoccluded,relmse,mape,smape,luma_rmse,mape_disoccluded,relmse_denoised,mape_denoised,"
+             "smape_denoised,denoise_passed,denoise_reset,ms_write,nonfinite");
     struct csv_writer csv;
     if (csv_open(&csv, csv_path, header, msg) != 0) {
         cli_error("%s", msg);
@@ -226,13 +226,13 @@ int render_run(const struct cli_options *desc)
         }
         const int dn = ref && r.denoised;
         csv_row(&csv,
-                "%d,%.3f%s,%lld,%.3f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.3f,%lld,"
-                "%.6g,%.6g,%.6g,%lld,%lld",
+                "%d,%.3f%s,%lld,%.3f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,"
+                "%.6g,%.6g,%.6g,%lld,%lld,%.3f,%lld",
                 f, st.ms_total, passes, st.rays, (double)st.rays / (st.ms_total * 1e3), accept, bp_rx, bp_acc, sp_rx,
-                sp_acc, disoccluded, ref ? err.relmse : 0.0,
-                ref ? err.mape : 0.0, ref ? err.smape : 0.0, ref ? err.luma_rmse : 0.0, mape_disoccluded, ms_write,
-                st.nonfinite, dn ? err_dn.relmse : 0.0, dn ? err_dn.mape : 0.0, dn ? err_dn.smape : 0.0,
-                st.denoise.passed_through, st.denoise.history_reset);
+                sp_acc, disoccluded, ref ? err.relmse : 0.0, ref ? err.mape : 0.0, ref ? err.smape : 0.0,
+                ref ? err.luma_rmse : 0.0, mape_disoccluded, dn ? err_dn.relmse : 0.0, dn ? err_dn.mape : 0.0,
+                dn ? err_dn.smape : 0.0, st.denoise.passed_through, st.denoise.history_reset, ms_write,
+                st.nonfinite);
         nonfinite_sum += st.nonfinite;
         progress_update(&pg, f + 1);
         done = f + 1;
