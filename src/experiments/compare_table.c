@@ -199,7 +199,7 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
         rc = EXIT_RUNTIME;
     }
     if (rc == 0 && o->report) {
-        char pngs[2 * MAX_METHODS][SPEC_MAX + 40], labels[MAX_METHODS][SPEC_MAX + 40];
+        char pngs[2 * MAX_METHODS][SPEC_MAX + 64], labels[MAX_METHODS][SPEC_MAX + 40]; /* dir + "/frame_..." */
         struct compare_report_method rm[2 * MAX_METHODS];
         int nr = n;
         for (int k = 0; k < n; k++) {
