@@ -46,7 +46,7 @@ struct denoiser {
     struct denoise_settings s;
     void *state;
     int width, height;
-    float *planes; /* illum[3] normal[3] position[3] depth ddx ddy use, 13 planes */
+    float *plane[13]; /* illum[3] normal[3] position[3] depth ddx ddy use */
 };
 
 #define PLANES 13
@@ -60,7 +60,7 @@ struct denoiser *denoiser_create(const struct denoise_settings *s, int width, in
     d->s = *s;
     d->width = width;
     d->height = height;
-    d->planes = xmalloc(sizeof(float) * PLANES * (size_t)width * (size_t)height);
+    denoise_planes_alloc(d->plane, PLANES, (size_t)width * (size_t)height);
     d->state = d->method->create(s, width, height);
     return d;
 }
@@ -70,7 +70,7 @@ void denoiser_destroy(struct denoiser *d)
     if (!d)
         return;
     d->method->destroy(d->state);
-    free(d->planes);
+    free(d->plane[0]);
     free(d);
 }
 
@@ -83,9 +83,13 @@ const float *denoiser_layer(const struct denoiser *d, const char *name)
 
 void denoise_planes_alloc(float **plane, int count, size_t n)
 {
-    float *block = xcalloc((size_t)count * n, sizeof(float));
+    /* Planes one cache line apart modulo 4 KiB: a frame's plane is often a multiple of 4 KiB (640 x
+     * 360 floats are), and planes that many bytes apart map pixel i of every plane to the same L1
+     * set, which the filters' loops, reading 9 to 28 planes at once, then thrash. */
+    const size_t stride = ((n + 15) & ~(size_t)15) + 16;
+    float *block = xcalloc((size_t)count * stride, sizeof(float));
     for (int k = 0; k < count; k++)
-        plane[k] = block + (size_t)k * n;
+        plane[k] = block + (size_t)k * stride;
 }
 
 void denoise_scratch_reserve(struct denoise_scratch *s, size_t floats)
@@ -142,12 +146,11 @@ int denoiser_run(struct denoiser *d, const float *rgb, const struct denoise_guid
     const size_t n = (size_t)w * (size_t)h;
     float *illum[3], *nrm[3], *pos[3];
     for (int c = 0; c < 3; c++) {
-        illum[c] = d->planes + (size_t)c * n;
-        nrm[c] = d->planes + (size_t)(3 + c) * n;
-        pos[c] = d->planes + (size_t)(6 + c) * n;
+        illum[c] = d->plane[c];
+        nrm[c] = d->plane[3 + c];
+        pos[c] = d->plane[6 + c];
     }
-    float *depth = d->planes + 9 * n, *ddx = d->planes + 10 * n, *ddy = d->planes + 11 * n;
-    float *use = d->planes + 12 * n;
+    float *depth = d->plane[9], *ddx = d->plane[10], *ddy = d->plane[11], *use = d->plane[12];
     long long passed = 0;
     double lum_sum = 0.0;
     long long lum_count = 0;

@@ -6,6 +6,8 @@
 #ifndef RESTIR_DENOISE_DENOISE_METHOD_H
 #define RESTIR_DENOISE_DENOISE_METHOD_H
 
+#include <stddef.h>
+
 #include "denoise/denoise_types.h"
 
 struct denoise_frame {
@@ -36,7 +38,8 @@ struct denoise_method {
     const float *(*layer)(const void *state, const char *name);
 };
 
-/* count planes of n floats, zeroed, in one block: plane[k] = plane[0] + k n (free plane[0]). */
+/* count planes of n floats, zeroed, in one block (free plane[0]); consecutive planes lie a little
+ * more than n floats apart (see denoise.c). */
 void denoise_planes_alloc(float **plane, int count, size_t n);
 
 /* Rows of scratch for each OpenMP thread, grown on demand. */
