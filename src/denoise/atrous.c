@@ -132,7 +132,7 @@ static void atrous_run(void *state, const struct denoise_settings *s, struct den
     denoise_scratch_reserve(&a->acc, 4 * (size_t)w);
 #if RESTIR_SIMD_DISPATCH
     void (*row)(const struct denoise_frame *, const struct atrous_scales *, const float *const[3], int, int, float *) =
-        simd_isa_active() == SIMD_ISA_AVX2 ? atrous_row_avx2 : atrous_row_base;
+        simd_isa_active() >= SIMD_ISA_AVX2 ? atrous_row_avx2 : atrous_row_base;
 #else
     void (*row)(const struct denoise_frame *, const struct atrous_scales *, const float *const[3], int, int, float *) =
         atrous_row_base;

@@ -127,7 +127,7 @@ SIMD_TARGET_AVX2 static void light_batch_fill_avx2(const struct light_pool *lp, 
 static void light_batch_fill(const struct light_pool *lp, int first, const struct shading_point *sp, int n, int nl,
                              int nb, struct light_batch *lb)
 {
-    if (simd_isa_active() == SIMD_ISA_AVX2)
+    if (simd_isa_active() >= SIMD_ISA_AVX2)
         light_batch_fill_avx2(lp, first, sp, n, nl, nb, lb);
     else
         light_batch_fill_baseline(lp, first, sp, n, nl, nb, lb);
@@ -145,7 +145,7 @@ SIMD_TARGET_AVX2 static int pick_by_weight_avx2(const float *w, int n, float u, 
 
 static int pick_by_weight(const float *w, int n, float u, float *total)
 {
-    return simd_isa_active() == SIMD_ISA_AVX2 ? pick_by_weight_avx2(w, n, u, total)
+    return simd_isa_active() >= SIMD_ISA_AVX2 ? pick_by_weight_avx2(w, n, u, total)
                                               : pick_by_weight_baseline(w, n, u, total);
 }
 

@@ -122,7 +122,7 @@ SIMD_TARGET_AVX2 static void combine_avx2(int n, const struct di_sample *const *
 
 void di_target_many(int n, const struct shading_point *const *sp, const struct di_sample *const *y, float *out)
 {
-    const int avx2 = simd_isa_active() == SIMD_ISA_AVX2;
+    const int avx2 = simd_isa_active() >= SIMD_ISA_AVX2;
     for (int first = 0; first < n; first += DI_LANES) {
         const int m = n - first < DI_LANES ? n - first : DI_LANES;
         float wx[DI_LANES], wy[DI_LANES], wz[DI_LANES], cg[DI_LANES], fr[DI_LANES], fg[DI_LANES], fb[DI_LANES];

@@ -315,7 +315,7 @@ void bsdf_frame_eval_batch(const struct bsdf_frame *bf, int n, const float *rest
                            const float *restrict wy, const float *restrict wz, float *restrict fr,
                            float *restrict fg, float *restrict fb, float *restrict pdf)
 {
-    if (simd_isa_active() == SIMD_ISA_AVX2)
+    if (simd_isa_active() >= SIMD_ISA_AVX2)
         eval_batch_avx2(bf, n, wx, wy, wz, fr, fg, fb, pdf);
     else
         eval_batch_baseline(bf, n, wx, wy, wz, fr, fg, fb, pdf);
@@ -398,7 +398,7 @@ SIMD_TARGET_AVX2 static void eval_lanes_avx2(int n, const struct bsdf_frame *con
 void bsdf_frame_eval_lanes(int n, const struct bsdf_frame *const *bf, const float *wx, const float *wy,
                            const float *wz, float *fr, float *fg, float *fb)
 {
-    if (simd_isa_active() == SIMD_ISA_AVX2)
+    if (simd_isa_active() >= SIMD_ISA_AVX2)
         eval_lanes_avx2(n, bf, wx, wy, wz, fr, fg, fb);
     else
         eval_lanes_baseline(n, bf, wx, wy, wz, fr, fg, fb);
