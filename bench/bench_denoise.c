@@ -1,9 +1,10 @@
 /* bench_denoise.c: `restir_bench denoise [--scene S] [--method M] [--res WxH] [--frames N]
- * [--threads T]`: what denoising costs beside the frame it denoises (issue 43: SVGF at 640x360 in at
- * most 15% of a restir-di frame on 2 threads). Renders N frames of the method without denoising,
- * keeps the last frame's image and G-buffer, then runs each denoiser N times on them (SVGF then
- * accumulates a static history, as under a static camera) and prints the medians of the frames'
- * and the denoisers' milliseconds and their ratio, measured in the same run.
+ * [--threads T] [--isa I]`: what denoising costs beside the frame it denoises (issue 43: SVGF at
+ * 640x360 in at most 15% of a restir-di frame on 2 threads). Renders N frames of the method without
+ * denoising, keeps the last frame's image and G-buffer, then runs each denoiser N times on them
+ * (SVGF then reprojects its history by the last frame's motion vectors each time: a static history
+ * under a static camera) and prints the medians of the frames' and the denoisers' milliseconds and
+ * their ratio, measured in the same run. --isa limits every kernel's instruction set, the frame's too.
  * Must never be run by the tests. */
 #include <omp.h>
 #include <stdio.h>
@@ -29,10 +30,19 @@ static double median(double *v, int n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+/* The instruction set of that name (the best the CPU has up to it runs), or -1. */
+static int isa_named(const char *name)
+{
+    for (int k = SIMD_ISA_BASELINE; k <= SIMD_ISA_AVX512; k++)
+        if (!strcmp(name, simd_isa_name((enum simd_isa)k)))
+            return k;
+    return -1;
+}
+
 int bench_denoise(int argc, char **argv)
 {
     const char *scene_name = "many-lights", *method_name = "restir-di";
-    int width = 640, height = 360, frames = 12, threads = 2;
+    int width = 640, height = 360, frames = 12, threads = 2, isa = SIMD_ISA_AVX512;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--scene") && i + 1 < argc)
             scene_name = argv[++i];
@@ -44,9 +54,11 @@ int bench_denoise(int argc, char **argv)
             ;
         else if (!strcmp(argv[i], "--threads") && i + 1 < argc && (threads = atoi(argv[++i])) >= 1)
             ;
+        else if (!strcmp(argv[i], "--isa") && i + 1 < argc && (isa = isa_named(argv[i + 1])) >= 0)
+            i++;
         else {
             fprintf(stderr, "usage: restir_bench denoise [--scene S] [--method M] [--res WxH] [--frames N>=3] "
-                            "[--threads T]\n");
+                            "[--threads T] [--isa baseline|avx2|avx512]\n");
             return 2;
         }
     }
@@ -57,6 +69,7 @@ int bench_denoise(int argc, char **argv)
     p.height = height;
     p.threads = threads;
     struct renderer r;
+    p.simd = isa != SIMD_ISA_BASELINE;
     renderer_init(&r, &s, method_named(method_name), &p);
     double *ms = xmalloc(sizeof(double) * (size_t)frames);
     for (int f = 0; f < frames; f++) {
@@ -66,6 +79,7 @@ int bench_denoise(int argc, char **argv)
         ms[f] = st.ms_total;
     }
     const double frame_ms = median(ms + 2, frames - 2); /* frames 0 and 1 warm up */
+    simd_limit((enum simd_isa)isa); /* each frame set the process's limit from p.simd */
     struct renderer_inspect in;
     renderer_inspect(&r, &in);
     struct gbuffer own;

@@ -60,4 +60,8 @@ __attribute__((always_inline)) static inline float denoise_log2(float x)
 
 #define DENOISE_LOG2E 1.44269504f
 
+/* min and max of finite floats, inline (fminf / fmaxf stay library calls without -ffinite-math-only) */
+#define MINF(a, b) ((a) < (b) ? (a) : (b))
+#define MAXF(a, b) ((a) > (b) ? (a) : (b))
+
 #endif

@@ -4,7 +4,7 @@
  * normal or surface change, the edge-avoiding à-trous weights (Dammertz et al. 2010 Eq. 4-6), the
  * exp2 / log2 approximations the filters vectorise with, that a constant image and a noise-free one
  * pass through unchanged, and that invalid and non-finite pixels are passed through raw, counted,
- * and never spread into their neighbours. Both instruction-set paths run (simd_allow). */
+ * and never spread into their neighbours. Every instruction-set path runs (simd_limit). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,7 +15,7 @@
 #include "render/params.h"
 #include "test_util.h"
 
-#define MAXW 16
+#define MAXW 64
 #define MAXH 12
 
 /* A frame's features and colour, as a renderer's G-buffer would hold them. */
@@ -81,12 +81,61 @@ static float ref_derivative(const struct scene_buf *b, int x, int y, int dx, int
 
 static const double b3[5] = {1.0 / 16, 4.0 / 16, 6.0 / 16, 4.0 / 16, 1.0 / 16};
 
-/* SVGF with one à-trous iteration, after two frames A then B of a static plane, computed by
- * Eq. 1-5 directly; feedback 0 and variance from the temporal moments (variance_frames 0). */
-static void svgf_hand(const struct scene_buf *b, const float *A, const float *B, float alb, float *out)
+/* SVGF's à-trous iterations (Eq. 1-5) with steps 1, 2, .., 2^(iterations - 1) on colour I and
+ * variance var (filtered by the squared weights, Eq. 2), every pixel used. */
+static void atrous_hand(const struct scene_buf *b, float *I, float *var, int iterations)
 {
-    const int w = b->w, h = b->h, n = w * h;
-    static float I[3 * MAXW * MAXH], var[MAXW * MAXH], l[MAXW * MAXH];
+    const int w = b->w, h = b->h;
+    static float l[MAXW * MAXH], nI[3 * MAXW * MAXH], nvar[MAXW * MAXH];
+    for (int it = 0, step = 1; it < iterations; it++, step *= 2) {
+        for (int i = 0; i < w * h; i++)
+            l[i] = lum_of(&I[3 * i]);
+        for (int y = 0; y < h; y++)
+            for (int x = 0; x < w; x++) {
+                const int p = y * w + x;
+                double gs = 0.0, gw = 0.0; /* the 3x3 Gaussian of the variance */
+                for (int dy = -1; dy <= 1; dy++)
+                    for (int dx = -1; dx <= 1; dx++) {
+                        if (x + dx < 0 || y + dy < 0 || x + dx >= w || y + dy >= h)
+                            continue;
+                        const double g = (dx ? 0.25 : 0.5) * (dy ? 0.25 : 0.5);
+                        gw += g;
+                        gs += g * var[p + dy * w + dx];
+                    }
+                const double invl = 1.0 / (4.0 * sqrt(gs / gw) + 1e-10);
+                const double gx = ref_derivative(b, x, y, 1, 0), gy = ref_derivative(b, x, y, 0, 1);
+                double sw = 0.0, sv = 0.0, sc[3] = {0, 0, 0};
+                for (int ty = 0; ty < 5; ty++)
+                    for (int tx = 0; tx < 5; tx++) {
+                        const int ox = (tx - 2) * step, oy = (ty - 2) * step;
+                        if (x + ox < 0 || y + oy < 0 || x + ox >= w || y + oy >= h)
+                            continue;
+                        const int q = p + oy * w + ox;
+                        const double den = 1.0 * fabs(gx * ox + gy * oy) + 1e-3 * b->depth[p];
+                        const double a = fabs(b->depth[p] - b->depth[q]) / den + fabs(l[p] - l[q]) * invl;
+                        const double nd = fmax(0.0, v3_dot(b->nrm[p], b->nrm[q]));
+                        const double wt = b3[ty] * b3[tx] * pow(nd, 128.0) * exp(-a);
+                        sw += wt;
+                        sv += wt * wt * var[q];
+                        for (int c = 0; c < 3; c++)
+                            sc[c] += wt * I[3 * q + c];
+                    }
+                for (int c = 0; c < 3; c++)
+                    nI[3 * p + c] = (float)(sc[c] / sw);
+                nvar[p] = (float)(sv / (sw * sw));
+            }
+        memcpy(I, nI, sizeof(float) * 3 * (size_t)(w * h));
+        memcpy(var, nvar, sizeof(float) * (size_t)(w * h));
+    }
+}
+
+/* SVGF after two frames A then B of a static plane, computed by Eq. 1-5 directly: the temporal
+ * moments (variance_frames 0), then the à-trous iterations (feedback 0). */
+static void svgf_hand(const struct scene_buf *b, const float *A, const float *B, float alb, int iterations,
+                      float *out)
+{
+    const int n = b->w * b->h;
+    static float I[3 * MAXW * MAXH], var[MAXW * MAXH];
     for (int i = 0; i < n; i++) {
         for (int c = 0; c < 3; c++) /* len 2: alpha = max(0.2, 1/2) */
             I[3 * i + c] = 0.5f * (A[3 * i + c] / alb) + 0.5f * (B[3 * i + c] / alb);
@@ -95,39 +144,37 @@ static void svgf_hand(const struct scene_buf *b, const float *A, const float *B,
         const double la = lum_of(ia), lb = lum_of(ib);
         const double m1 = 0.5 * la + 0.5 * lb, m2 = 0.5 * la * la + 0.5 * lb * lb;
         var[i] = (float)fmax(0.0, m2 - m1 * m1);
-        l[i] = lum_of(&I[3 * i]);
     }
+    atrous_hand(b, I, var, iterations);
+    for (int i = 0; i < 3 * n; i++)
+        out[i] = I[i] * alb;
+}
+
+/* Sec. 4.2's 7x7 moments filter of one frame c (history 1): the variance of each pixel's
+ * luminance under the weights max(0, n_p . n_q)^128 exp(-|z_p - z_q| / (|grad z_p . (p - q)| +
+ * 1e-3 z_p)), every pixel used. */
+static void moments_hand(const struct scene_buf *b, const float *c, float *var)
+{
+    const int w = b->w, h = b->h;
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             const int p = y * w + x;
-            double gs = 0.0, gw = 0.0; /* the 3x3 Gaussian of the variance */
-            for (int dy = -1; dy <= 1; dy++)
-                for (int dx = -1; dx <= 1; dx++) {
-                    if (x + dx < 0 || y + dy < 0 || x + dx >= w || y + dy >= h)
-                        continue;
-                    const double g = (dx ? 0.25 : 0.5) * (dy ? 0.25 : 0.5);
-                    gw += g;
-                    gs += g * var[p + dy * w + dx];
-                }
-            const double invl = 1.0 / (4.0 * sqrt(gs / gw) + 1e-10);
             const double gx = ref_derivative(b, x, y, 1, 0), gy = ref_derivative(b, x, y, 0, 1);
-            double sw = 0.0, s[3] = {0, 0, 0};
-            for (int ty = 0; ty < 5; ty++)
-                for (int tx = 0; tx < 5; tx++) {
-                    const int ox = tx - 2, oy = ty - 2;
+            double sw = 0.0, s1 = 0.0, s2 = 0.0;
+            for (int oy = -3; oy <= 3; oy++)
+                for (int ox = -3; ox <= 3; ox++) {
                     if (x + ox < 0 || y + oy < 0 || x + ox >= w || y + oy >= h)
                         continue;
                     const int q = p + oy * w + ox;
-                    const double den = 1.0 * fabs(gx * ox + gy * oy) + 1e-3 * b->depth[p];
-                    const double a = fabs(b->depth[p] - b->depth[q]) / den + fabs(l[p] - l[q]) * invl;
+                    const double den = fabs(gx * ox + gy * oy) + 1e-3 * b->depth[p];
                     const double nd = fmax(0.0, v3_dot(b->nrm[p], b->nrm[q]));
-                    const double wt = b3[ty] * b3[tx] * pow(nd, 128.0) * exp(-a);
+                    const double wt = pow(nd, 128.0) * exp(-fabs(b->depth[p] - b->depth[q]) / den);
+                    const double l = lum_of(&c[3 * q]);
                     sw += wt;
-                    for (int c = 0; c < 3; c++)
-                        s[c] += wt * I[3 * q + c];
+                    s1 += wt * l;
+                    s2 += wt * l * l;
                 }
-            for (int c = 0; c < 3; c++)
-                out[3 * p + c] = (float)(s[c] / sw * alb);
+            var[p] = (float)fmax(0.0, s2 / sw - (s1 / sw) * (s1 / sw));
         }
 }
 
@@ -164,12 +211,14 @@ static void test_kernels(void)
     EXPECT(worst < 1e-4, "log2 absolute error %g", worst);
 }
 
-/* Eq. 1-5 and the temporal moments, by hand, on a slanted plane with a few tilted normals. */
-static void test_svgf_hand(void)
+/* Eq. 1-5 and the temporal moments, by hand, on a slanted plane with a few tilted normals, at a
+ * size whose rows hold a vector block inside and blocks at the borders, then one narrower than a
+ * block; iterations > 1 take steps past the borders. */
+static void svgf_hand_case(int w, int h, int iterations)
 {
     static struct scene_buf b;
     const float alb = 0.5f;
-    plane_scene(&b, 11, 9, alb);
+    plane_scene(&b, w, h, alb);
     for (int i = 0; i < b.w * b.h; i += 7)
         b.nrm[i] = v3(0.6f, 0.0f, 0.8f);
     static float A[3 * MAXW * MAXH], B[3 * MAXW * MAXH], out[3 * MAXW * MAXH], want[3 * MAXW * MAXH];
@@ -178,7 +227,7 @@ static void test_svgf_hand(void)
         B[i] = 0.2f + rnd();
     }
     struct denoise_settings s = settings(1);
-    s.svgf_iterations = 1;
+    s.svgf_iterations = iterations;
     s.svgf_feedback = 0;
     s.svgf_variance_frames = 0;
     s.svgf_taa_alpha = 1.0f; /* no antialiasing: Eq. 1-5 alone */
@@ -187,18 +236,52 @@ static void test_svgf_hand(void)
     struct denoise_stats st;
     EXPECT(denoiser_run(d, A, &g, out, &st) == 0 && st.history_reset == b.w * b.h, "frame 0: every history new");
     EXPECT(denoiser_run(d, B, &g, out, &st) == 0 && st.history_reset == 0, "frame 1: %lld reset", st.history_reset);
-    svgf_hand(&b, A, B, alb, want);
+    svgf_hand(&b, A, B, alb, iterations, want);
     const double e = max_rel(out, want, 3 * b.w * b.h);
-    EXPECT(e < 2e-4, "SVGF output against Eq. 1-5 by hand: worst relative difference %g", e);
+    EXPECT(e < 2e-4, "SVGF (%dx%d, %d iterations) against Eq. 1-5 by hand: worst relative difference %g", w, h,
+           iterations, e);
     const float *len = denoiser_layer(d, "history");
     EXPECT(len && len[0] == 2.0f && len[b.w * b.h - 1] == 2.0f, "history length 2 after two frames");
     EXPECT(denoiser_layer(d, "nonsense") == NULL, "an unknown layer is NULL");
     denoiser_destroy(d);
 }
 
-/* Sec. 4.2: a history shorter than 4 frames takes the variance of the 7x7 neighbourhood; on a
- * fronto-parallel plane every weight is 1, so at the centre of a 7x7 image it is the plain
- * variance of all 49 luminances. */
+static void test_svgf_hand(void)
+{
+    svgf_hand_case(11, 9, 1);
+    svgf_hand_case(53, 7, 1);
+    svgf_hand_case(61, 12, 3);
+}
+
+/* The 7x7 moments filter by hand on the first frame (every history short), with tilted normals
+ * and a depth step, at a width with inside and border blocks. */
+static void test_moments_hand(void)
+{
+    static struct scene_buf b;
+    plane_scene(&b, 47, 9, 1.0f);
+    for (int i = 0; i < b.w * b.h; i += 5)
+        b.nrm[i] = v3_normalize(v3(-0.45f, -0.3f, 1.0f));
+    for (int y = 0; y < b.h; y++)
+        for (int x = 30; x < b.w; x++) {
+            b.depth[y * b.w + x] += 0.5f; /* a step: the taps across it weigh almost nothing */
+            b.pos[y * b.w + x].z += 0.5f;
+        }
+    static float c[3 * MAXW * MAXH], out[3 * MAXW * MAXH], want[MAXW * MAXH];
+    for (int i = 0; i < 3 * b.w * b.h; i++)
+        c[i] = 0.1f + rnd();
+    struct denoise_settings s = settings(1);
+    struct denoiser *d = denoiser_create(&s, b.w, b.h);
+    const struct denoise_guide g = guide_of(&b);
+    EXPECT(denoiser_run(d, c, &g, out, NULL) == 0, "runs");
+    const float *var = denoiser_layer(d, "variance");
+    moments_hand(&b, c, want);
+    double worst = 0.0;
+    for (int i = 0; var && i < b.w * b.h; i++)
+        worst = fmax(worst, fabs(var[i] - want[i]) / fmax(1e-6, want[i]));
+    EXPECT(var && worst < 2e-4, "7x7 moments' variance against Sec. 4.2 by hand: worst relative difference %g", worst);
+    denoiser_destroy(d);
+}
+
 static void test_spatial_variance(void)
 {
     static struct scene_buf b;
@@ -469,11 +552,13 @@ static void test_defaults_agree(void)
 int main(void)
 {
     test_defaults_agree();
-    for (int isa = 0; isa < 2; isa++) {
-        simd_allow(isa);
+    for (int isa = SIMD_ISA_BASELINE; isa <= SIMD_ISA_AVX512; isa++) {
+        simd_limit((enum simd_isa)isa);
+        printf("denoisers on the %s path\n", simd_isa_name(simd_isa_active()));
         test_kernels();
         test_svgf_hand();
         test_spatial_variance();
+        test_moments_hand();
         test_history_rejection();
         test_atrous_hand();
         test_unchanged();

@@ -1,0 +1,38 @@
+/* svgf_taps.c: SVGF's kernels (svgf_taps.h) on 8 lanes, for the SSE2 baseline and AVX2 with FMA,
+ * and the choice among them and svgf_taps512.c's AVX-512 twins (svgf_kernels.h). */
+#include "denoise/svgf_taps.h"
+
+static void atrous_base(const struct svgf_pass *p, int y) { svgf_row(p, y, SVGF_ATROUS); }
+static void moments_base(const struct svgf_pass *p, int y) { svgf_row(p, y, SVGF_MOMENTS); }
+
+#if RESTIR_SIMD_DISPATCH
+DV_TARGET_AVX2 static void atrous_avx2(const struct svgf_pass *p, int y)
+{
+    svgf_row(p, y, SVGF_ATROUS);
+}
+
+DV_TARGET_AVX2 static void moments_avx2(const struct svgf_pass *p, int y)
+{
+    svgf_row(p, y, SVGF_MOMENTS);
+}
+#endif
+
+svgf_row_fn svgf_atrous_row(void)
+{
+#if RESTIR_SIMD_DISPATCH
+    const enum simd_isa isa = simd_isa_active();
+    return isa == SIMD_ISA_AVX512 ? svgf_atrous_row_avx512 : dv_avx2_fma() ? atrous_avx2 : atrous_base;
+#else
+    return atrous_base;
+#endif
+}
+
+svgf_row_fn svgf_moments_row(void)
+{
+#if RESTIR_SIMD_DISPATCH
+    const enum simd_isa isa = simd_isa_active();
+    return isa == SIMD_ISA_AVX512 ? svgf_moments_row_avx512 : dv_avx2_fma() ? moments_avx2 : moments_base;
+#else
+    return moments_base;
+#endif
+}
