@@ -39,6 +39,7 @@ struct denoise_settings {
     float svgf_normal_min;    /* reprojection: history rejected where n . n_prev is below (0.9) */
     float svgf_plane_max;     /* reprojection: ... where the plane distance exceeds this * depth (0.01) */
     float svgf_taa_alpha;     /* temporal antialiasing's weight of the current frame (0.1; 1: off) */
+    float svgf_taa_motion;    /* ... only where the pixel moved at most this many pixels (0.5; 1e6: all) */
     /* edge-avoiding à-trous (Dammertz et al. 2010, Sec. 3) */
     int atrous_iterations;       /* (5) */
     float atrous_sigma_color;    /* sigma_rt, in units of the frame's mean illumination; halved per iteration */

@@ -317,7 +317,9 @@ static void neighbourhood_range(const struct denoise_frame *f, const float *rgb,
  * output, clamped to its 3x3 neighbourhood's range in this frame, blended with this frame's output
  * by svgf_taa_alpha. Where a jittered pixel straddles an edge, its sample lands on one surface in one
  * frame and on the other in the next; the feature-tested history (Sec. 4.1) cannot average the two,
- * this can, and the neighbourhood holds both, so the clamp lets it. */
+ * this can, and the neighbourhood holds both, so the clamp lets it. Only where the pixel moved at
+ * most svgf_taa_motion pixels: under camera motion the same clamp lets the light behind a moving
+ * silhouette into the surface in front of it for ~1 / alpha frames (measured, docs/DENOISE.md). */
 static void svgf_post(void *state, const struct denoise_settings *s, const struct denoise_frame *f, float *rgb)
 {
     struct svgf *v = state;
@@ -333,7 +335,9 @@ static void svgf_post(void *state, const struct denoise_settings *s, const struc
         for (int x = 0; x < w; x++) {
             const int i = y * w + x;
             float hc[3];
-            if (!(on && f->use[i] != 0.0f && taa_history(v, f, x, y, hc)))
+            const float mx = f->motion[2 * i], my = f->motion[2 * i + 1];
+            const int still = mx * mx + my * my <= s->svgf_taa_motion * s->svgf_taa_motion;
+            if (!(on && still && f->use[i] != 0.0f && taa_history(v, f, x, y, hc)))
                 continue; /* the output stays this frame's */
             for (int c = 0; c < 3; c++) {
                 const float clamped = MINF(MAXF(hc[c], range[c][i]), range[3 + c][i]);

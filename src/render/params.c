@@ -331,8 +331,12 @@ static const struct param_def params[] = {
      "svgf: temporal antialiasing after remodulation (Schied et al. Sec. 4's last step; Karis 2014: the "
      "reprojected output clamped to the 3x3 neighbourhood, blended with this weight of the new frame; 1: off); "
      "it integrates the pixel area the jittered primary rays cover, which the feature-tested history cannot "
-     "where a pixel straddles an edge; under fast camera motion it bleeds light across silhouettes (docs/DENOISE.md): "
-     "set 1 there",
+     "where a pixel straddles an edge",
+     NULL},
+    {"denoise.svgf.taa_motion", P_FLOAT, F(denoise.svgf_taa_motion), 0, 1e6, "0.5", NULL,
+     "svgf: the antialiasing's history only where the pixel moved at most this many pixels since the last "
+     "frame; under camera motion the clamp lets light bleed across silhouettes (docs/DENOISE.md); 1e6: "
+     "everywhere, as Karis 2014",
      NULL},
     {"denoise.atrous.iterations", P_INT, F(denoise.atrous_iterations), 0, 12, "5", NULL, "atrous: iterations", NULL},
     {"denoise.atrous.sigma_color", P_FLOAT, F(denoise.atrous_sigma_color), 1e-6, 1e6, "1", NULL,

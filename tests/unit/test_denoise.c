@@ -539,6 +539,34 @@ static void test_taa(void)
            flicker[0]);
 }
 
+/* The antialiasing skips pixels that moved more than svgf_taa_motion: with every pixel moving one
+ * pixel a frame, its output is the one without antialiasing, bit for bit, and differs once the
+ * limit lets it run. */
+static void test_taa_motion(void)
+{
+    static struct scene_buf b;
+    static float c[3 * 25], out[3][3 * 25];
+    const float alpha[3] = {1.0f, 0.1f, 0.1f}, limit[3] = {0.5f, 0.5f, 2.0f};
+    for (int k = 0; k < 3; k++) {
+        struct denoise_settings s = settings(1);
+        s.svgf_taa_alpha = alpha[k];
+        s.svgf_taa_motion = limit[k];
+        struct denoiser *d = denoiser_create(&s, 5, 5);
+        for (int f = 0; f < 6; f++) {
+            plane_scene(&b, 5, 5, 1.0f);
+            for (int i = 0; i < 25; i++) {
+                b.motion[2 * i] = -1.0f; /* the scene slides one pixel right per frame */
+                c[3 * i] = c[3 * i + 1] = c[3 * i + 2] = (float)((i + f) % 5) * 0.2f + 0.1f;
+            }
+            const struct denoise_guide g = guide_of(&b);
+            denoiser_run(d, c, &g, out[k], NULL);
+        }
+        denoiser_destroy(d);
+    }
+    EXPECT(memcmp(out[0], out[1], sizeof(out[0])) == 0, "moving 1 px > 0.5: antialiasing skipped");
+    EXPECT(memcmp(out[0], out[2], sizeof(out[0])) != 0, "limit 2 px: antialiasing runs");
+}
+
 /* The library's defaults are the settings table's (denoise.* keys). */
 static void test_defaults_agree(void)
 {
@@ -564,6 +592,7 @@ int main(void)
         test_unchanged();
         test_passthrough();
         test_taa();
+        test_taa_motion();
     }
     test_bad_arguments();
     return test_finish();
