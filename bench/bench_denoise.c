@@ -1,5 +1,5 @@
 /* bench_denoise.c: `restir_bench denoise [--scene S] [--method M] [--res WxH] [--frames N]
- * [--threads T] [--isa I]`: what denoising costs beside the frame it denoises (issue 43: SVGF at
+ * [--threads T] [--camera static|path] [--isa I]`: what denoising costs beside the frame it denoises (issue 43: SVGF at
  * 640x360 in at most 15% of a restir-di frame on 2 threads). Renders N frames of the method without
  * denoising, keeps the last frame's image and G-buffer, then runs each denoiser N times on them
  * (SVGF then reprojects its history by the last frame's motion vectors each time: a static history
@@ -42,7 +42,7 @@ static int isa_named(const char *name)
 int bench_denoise(int argc, char **argv)
 {
     const char *scene_name = "many-lights", *method_name = "restir-di";
-    int width = 640, height = 360, frames = 12, threads = 2, isa = SIMD_ISA_AVX512;
+    int width = 640, height = 360, frames = 12, threads = 2, isa = SIMD_ISA_AVX512, path = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--scene") && i + 1 < argc)
             scene_name = argv[++i];
@@ -54,11 +54,14 @@ int bench_denoise(int argc, char **argv)
             ;
         else if (!strcmp(argv[i], "--threads") && i + 1 < argc && (threads = atoi(argv[++i])) >= 1)
             ;
+        else if (!strcmp(argv[i], "--camera") && i + 1 < argc &&
+                 (!strcmp(argv[i + 1], "path") || !strcmp(argv[i + 1], "static")))
+            path = !strcmp(argv[++i], "path");
         else if (!strcmp(argv[i], "--isa") && i + 1 < argc && (isa = isa_named(argv[i + 1])) >= 0)
             i++;
         else {
             fprintf(stderr, "usage: restir_bench denoise [--scene S] [--method M] [--res WxH] [--frames N>=3] "
-                            "[--threads T] [--isa baseline|avx2|avx512]\n");
+                            "[--threads T] [--camera static|path] [--isa baseline|avx2|avx512]\n");
             return 2;
         }
     }
@@ -74,7 +77,7 @@ int bench_denoise(int argc, char **argv)
     double *ms = xmalloc(sizeof(double) * (size_t)frames);
     for (int f = 0; f < frames; f++) {
         struct frame_stats st;
-        const struct camera cam = scene_camera_at(&s, 0, (float)f);
+        const struct camera cam = scene_camera_at(&s, path, (float)f);
         renderer_render(&r, f, &cam, &st);
         ms[f] = st.ms_total;
     }
@@ -87,7 +90,7 @@ int bench_denoise(int argc, char **argv)
     if (!g) {
         gbuffer_init(&own, width, height, 0);
         struct camera_view view;
-        const struct camera cam = scene_camera_at(&s, 0, (float)(frames - 1));
+        const struct camera cam = scene_camera_at(&s, path, (float)(frames - 1));
         renderer_camera_view(&r.p, &cam, NULL, &view);
         gbuffer_pass(&own, &s, &view, NULL, 0, p.seed, 0);
         g = &own;
@@ -95,8 +98,9 @@ int bench_denoise(int argc, char **argv)
     struct denoise_guide guide;
     renderer_denoise_guide(g, &guide);
     float *out = xmalloc(sizeof(float) * 3 * (size_t)width * (size_t)height);
-    printf("%s on %s, %dx%d, %d threads (%s): frame %.2f ms (median of frames 2..%d)\n", method_name, scene_name,
-           width, height, threads, simd_isa_name(simd_isa_active()), frame_ms, frames - 1);
+    printf("%s on %s, %dx%d, %s camera, %d threads (%s): frame %.2f ms (median of frames 2..%d)\n", method_name,
+           scene_name, width, height, path ? "moving" : "static", threads, simd_isa_name(simd_isa_active()), frame_ms,
+           frames - 1);
     for (int k = 1; denoise_names[k]; k++) {
         struct denoise_settings ds = p.denoise;
         ds.method = k;
