@@ -1,5 +1,5 @@
 /* bench_denoise.c: `restir_bench denoise [--scene S] [--method M] [--res WxH] [--frames N]
- * [--threads T] [--camera static|path] [--isa I]`: what denoising costs beside the frame it denoises (issue 43: SVGF at
+ * [--threads T] [--camera static|path] [--isa I] [--set K=V]...`: what denoising costs beside the frame it denoises (issue 43: SVGF at
  * 640x360 in at most 15% of a restir-di frame on 2 threads). Renders N frames of the method without
  * denoising, keeps the last frame's image and G-buffer, then runs each denoiser N times on them
  * (SVGF then reprojects its history by the last frame's motion vectors each time: a static history
@@ -43,6 +43,9 @@ int bench_denoise(int argc, char **argv)
 {
     const char *scene_name = "many-lights", *method_name = "restir-di";
     int width = 640, height = 360, frames = 12, threads = 2, isa = SIMD_ISA_AVX512, path = 0;
+    struct render_params p;
+    render_params_defaults(&p);
+    char msg[RESTIR_MSG_LEN];
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--scene") && i + 1 < argc)
             scene_name = argv[++i];
@@ -57,17 +60,20 @@ int bench_denoise(int argc, char **argv)
         else if (!strcmp(argv[i], "--camera") && i + 1 < argc &&
                  (!strcmp(argv[i + 1], "path") || !strcmp(argv[i + 1], "static")))
             path = !strcmp(argv[++i], "path");
-        else if (!strcmp(argv[i], "--isa") && i + 1 < argc && (isa = isa_named(argv[i + 1])) >= 0)
+        else if (!strcmp(argv[i], "--set") && i + 1 < argc) {
+            if (render_params_set(&p, argv[++i], msg) != 0) {
+                fprintf(stderr, "restir_bench denoise: %s\n", msg);
+                return 2;
+            }
+        } else if (!strcmp(argv[i], "--isa") && i + 1 < argc && (isa = isa_named(argv[i + 1])) >= 0)
             i++;
         else {
             fprintf(stderr, "usage: restir_bench denoise [--scene S] [--method M] [--res WxH] [--frames N>=3] "
-                            "[--threads T] [--camera static|path] [--isa baseline|avx2|avx512]\n");
+                            "[--threads T] [--camera static|path] [--isa baseline|avx2|avx512] [--set key=value]...\n");
             return 2;
         }
     }
     struct scene s = bench_load_scene(scene_name);
-    struct render_params p;
-    render_params_defaults(&p);
     p.width = width;
     p.height = height;
     p.threads = threads;

@@ -26,6 +26,7 @@ void denoise_settings_defaults(struct denoise_settings *s)
     s->svgf_sigma_normal = 128.0f;
     s->svgf_sigma_lum = 4.0f;
     s->svgf_iterations = 5;
+    s->svgf_kernel = 0;
     s->svgf_feedback = 1;
     s->svgf_variance_frames = 4;
     s->svgf_normal_min = 0.9f;

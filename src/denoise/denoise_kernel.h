@@ -60,6 +60,20 @@ __attribute__((always_inline)) static inline float denoise_log2(float x)
 
 #define DENOISE_LOG2E 1.44269504f
 
+/* A reprojected pixel coordinate p moved onto the nearest integer when within 1/1000 pixel of it: a
+ * still camera's motion vectors are 0 up to float rounding, which would leave every bilinear
+ * lookup with a tap of weight 1 - 1e-7 on a random side of the pixel (and the branch that skips the
+ * zero-weight taps unpredictable); snapped, the lookup reads one tap. p outside (-2, 1e7), NaN
+ * included, is returned as it is. */
+__attribute__((always_inline)) static inline float denoise_snap(float p)
+{
+    if (!(p > -2.0f && p < 1e7f))
+        return p;
+    const float nearest = (float)((int)(p + 2.5f) - 2);
+    const float d = p - nearest;
+    return d < 1e-3f && d > -1e-3f ? nearest : p;
+}
+
 /* min and max of finite floats, inline (fminf / fmaxf stay library calls without -ffinite-math-only) */
 #define MINF(a, b) ((a) < (b) ? (a) : (b))
 #define MAXF(a, b) ((a) > (b) ? (a) : (b))

@@ -34,6 +34,7 @@ struct denoise_settings {
     float svgf_sigma_normal;  /* sigma_n of Eq. 4 (128) */
     float svgf_sigma_lum;     /* sigma_l of Eq. 5 (4) */
     int svgf_iterations;      /* à-trous iterations (5) */
+    int svgf_kernel;          /* à-trous kernel: 0, the paper's 5x5 B3 spline; 1, 3x3 (1 2 1) / 4, faster */
     int svgf_feedback;        /* the iteration whose output becomes the colour history (1; 0: unfiltered) */
     int svgf_variance_frames; /* histories shorter than this estimate variance spatially (4) */
     float svgf_normal_min;    /* reprojection: history rejected where n . n_prev is below (0.9) */

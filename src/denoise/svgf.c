@@ -199,6 +199,7 @@ static void filter(struct svgf *v, const struct denoise_settings *s, struct deno
         pass.lum = P[T_LUM];
         pass.invl = P[T_INVL];
         pass.step = 1 << it;
+        pass.radius = s->svgf_kernel == 1 ? 1 : 2;
 #pragma omp parallel for schedule(dynamic, 4)
         for (int y = 0; y < h; y++)
             row(&pass, y);
@@ -250,7 +251,7 @@ static int taa_history(const struct svgf *v, const struct denoise_frame *f, int 
     const float mx = f->motion[2 * i], my = f->motion[2 * i + 1];
     if (!(mx < DENOISE_NO_MOTION && my < DENOISE_NO_MOTION))
         return 0;
-    const float px = (float)x + mx, py = (float)y + my;
+    const float px = denoise_snap((float)x + mx), py = denoise_snap((float)y + my);
     if (!(px > -1.0f && py > -1.0f && px < (float)v->w && py < (float)v->h))
         return 0;
     const int x0 = (int)(px + 1.0f) - 1, y0 = (int)(py + 1.0f) - 1; /* floor: px, py > -1 */
@@ -259,10 +260,11 @@ static int taa_history(const struct svgf *v, const struct denoise_frame *f, int 
     float wsum = 0.0f;
     h[0] = h[1] = h[2] = 0.0f;
     for (int t = 0; t < 4; t++) {
-        const int qx = x0 + (t & 1), qy = y0 + (t >> 1);
-        const int inside = qx >= 0 && qy >= 0 && qx < v->w && qy < v->h;
-        const int q = inside ? qy * v->w + qx : i; /* any pixel to read; the weight is 0 */
-        const float wt = inside ? hu[q] * ((t & 1) ? fx : 1.0f - fx) * ((t >> 1) ? fy : 1.0f - fy) : 0.0f;
+        const int qx = x0 + (t & 1), qy = y0 + (t >> 1), q = qy * v->w + qx;
+        const float bw = ((t & 1) ? fx : 1.0f - fx) * ((t >> 1) ? fy : 1.0f - fy);
+        if (bw == 0.0f || qx < 0 || qy < 0 || qx >= v->w || qy >= v->h) /* (snapped: three taps) */
+            continue;
+        const float wt = hu[q] * bw;
         for (int c = 0; c < 3; c++)
             h[c] += wt * v->taa_rgb[3 * q + c];
         wsum += wt;

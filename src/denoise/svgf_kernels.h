@@ -17,6 +17,7 @@ struct svgf_pass {
     float short_history;
     float *out[4];       /* à-trous: filtered colour and variance (Eq. 1-2); moments: out[0] = variance */
     int step;            /* à-trous: 2^iteration */
+    int radius;          /* à-trous: 2, the paper's 5x5 kernel, or 1, the 3x3 of denoise.svgf.kernel=3 */
     float sz_ln2, eps_ln2; /* sigma_z and Eq. 3's eps (relative to depth) times ln 2 */
     float nd_min, sn;      /* sigma_n and the normal product below which n.n'^sigma_n counts as 0 */
 };

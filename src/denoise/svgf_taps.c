@@ -2,13 +2,16 @@
  * and the choice among them and svgf_taps512.c's AVX-512 twins (svgf_kernels.h). */
 #include "denoise/svgf_taps.h"
 
-static void atrous_base(const struct svgf_pass *p, int y) { svgf_row(p, y, SVGF_ATROUS); }
+static void atrous_base(const struct svgf_pass *p, int y)
+{
+    p->radius == 1 ? svgf_row(p, y, SVGF_ATROUS3) : svgf_row(p, y, SVGF_ATROUS);
+}
 static void moments_base(const struct svgf_pass *p, int y) { svgf_row(p, y, SVGF_MOMENTS); }
 
 #if RESTIR_SIMD_DISPATCH
 DV_TARGET_AVX2 static void atrous_avx2(const struct svgf_pass *p, int y)
 {
-    svgf_row(p, y, SVGF_ATROUS);
+    p->radius == 1 ? svgf_row(p, y, SVGF_ATROUS3) : svgf_row(p, y, SVGF_ATROUS);
 }
 
 DV_TARGET_AVX2 static void moments_avx2(const struct svgf_pass *p, int y)

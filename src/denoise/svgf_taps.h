@@ -17,7 +17,18 @@
 #include "denoise/denoise_vec.h"
 #include "denoise/svgf_kernels.h"
 
-enum { SVGF_ATROUS, SVGF_MOMENTS };
+/* The kernels: the paper's 5x5 à-trous (h the B3 spline), the 3x3 one of denoise.svgf.kernel=3
+ * (h = (1, 2, 1) / 4, a deviation for speed), the 7x7 moments filter. */
+enum { SVGF_ATROUS, SVGF_ATROUS3, SVGF_MOMENTS };
+
+static const float svgf_h3[3] = {0.25f, 0.5f, 0.25f};
+
+/* The kernel's radius and its 1D tap weight at offset t (-r .. r). */
+SIMD_INLINE int svgf_radius(int kind) { return kind == SVGF_ATROUS ? 2 : kind == SVGF_ATROUS3 ? 1 : 3; }
+SIMD_INLINE float svgf_h(int kind, int t)
+{
+    return kind == SVGF_ATROUS ? denoise_b3[t + 2] : kind == SVGF_ATROUS3 ? svgf_h3[t + 1] : 1.0f;
+}
 
 /* The centre's planes and the taps' (NULL: not read by that kernel). Index 0 is depth in both; the
  * moments kernel reads the first Q_MOMENTS tap planes, the à-trous all. */
@@ -27,7 +38,7 @@ enum { Q_Z, Q_N0, Q_N1, Q_N2, Q_V0, Q_V1, Q_MOMENTS, Q_L = Q_MOMENTS, Q_V2, Q_V3
 static inline void svgf_bases(const struct svgf_pass *p, int kind, const float *c[C_PLANES], const float *t[Q_PLANES])
 {
     const struct denoise_frame *f = p->f;
-    const int at = kind == SVGF_ATROUS;
+    const int at = kind != SVGF_MOMENTS;
     const float *cb[C_PLANES] = {f->depth,
                                  f->normal[0],
                                  f->normal[1],
@@ -74,7 +85,7 @@ SIMD_INLINE void svgf_block(const struct svgf_pass *p, const float *const cb[C_P
                             const float *const tb[Q_PLANES], int y, int x, int inside, int squarings, int kind)
 {
     const int w = p->f->width, h = p->f->height, i = y * w + x;
-    const int at = kind == SVGF_ATROUS, r = at ? 2 : 3, step = at ? p->step : 1;
+    const int at = kind != SVGF_MOMENTS, r = svgf_radius(kind), step = at ? p->step : 1;
     const int lanes = w - x < DV_LANES ? w - x : DV_LANES;
     float cpad[C_PLANES][DV_LANES], tpad[Q_PLANES][DV_LANES];
     const float *c[C_PLANES], *t[Q_PLANES];
@@ -94,7 +105,7 @@ SIMD_INLINE void svgf_block(const struct svgf_pass *p, const float *const cb[C_P
         for (int tx = -r; tx <= r; tx++) {
             const int ox = tx * step, q = yq * w + x + ox;
             if (tx == 0 && ty == 0) { /* the centre: every edge-stopping factor is exactly 1 */
-                const dv_f wt = dv_splat(at ? denoise_b3[2] * denoise_b3[2] : 1.0f);
+                const dv_f wt = dv_splat(svgf_h(kind, 0) * svgf_h(kind, 0));
                 sw += wt;
                 s0 += wt * dv_load(c[C_V0]);
                 s1 += wt * dv_load(c[C_V1]);
@@ -125,7 +136,7 @@ SIMD_INLINE void svgf_block(const struct svgf_pass *p, const float *const cb[C_P
                 wt = dv_exp2_neg(a - p->sn * l2);
             }
             if (at)
-                wt *= denoise_b3[ty + 2] * denoise_b3[tx + 2];
+                wt *= svgf_h(kind, ty) * svgf_h(kind, tx);
             sw += wt;
             s0 += wt * dv_load(t[Q_V0]);
             s1 += wt * dv_load(t[Q_V1]);
@@ -161,7 +172,7 @@ SIMD_INLINE void svgf_block(const struct svgf_pass *p, const float *const cb[C_P
 /* One row: blocks of DV_LANES pixels; those with taps outside the image through copies. */
 SIMD_INLINE void svgf_row(const struct svgf_pass *p, int y, int kind)
 {
-    const int w = p->f->width, at = kind == SVGF_ATROUS, reach = (at ? 2 : 3) * (at ? p->step : 1);
+    const int w = p->f->width, at = kind != SVGF_MOMENTS, reach = svgf_radius(kind) * (at ? p->step : 1);
     const float *cb[C_PLANES], *tb[Q_PLANES];
     svgf_bases(p, kind, cb, tb);
     const size_t row = (size_t)y * w;

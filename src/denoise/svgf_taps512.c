@@ -5,7 +5,10 @@
 #include "denoise/svgf_taps.h"
 
 #if RESTIR_SIMD_DISPATCH
-SIMD_TARGET_AVX512 void svgf_atrous_row_avx512(const struct svgf_pass *p, int y) { svgf_row(p, y, SVGF_ATROUS); }
+SIMD_TARGET_AVX512 void svgf_atrous_row_avx512(const struct svgf_pass *p, int y)
+{
+    p->radius == 1 ? svgf_row(p, y, SVGF_ATROUS3) : svgf_row(p, y, SVGF_ATROUS);
+}
 
 SIMD_TARGET_AVX512 void svgf_moments_row_avx512(const struct svgf_pass *p, int y) { svgf_row(p, y, SVGF_MOMENTS); }
 #endif

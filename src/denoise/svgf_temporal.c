@@ -30,8 +30,8 @@ static inline int tap_ok(const struct svgf_accumulation *a, int i, int q)
 }
 
 /* The bilinear sums at the previous position (px, py) of pixel (x, y), px, py > -1: the six values
- * into acc[0..5], their weight into acc[6]. Every tap is read (a static camera gives three of them
- * weight 0 in every pixel alike, which costs less than the branches would). */
+ * into acc[0..5], their weight into acc[6]. Taps of weight 0 are skipped (a snapped position,
+ * denoise_snap, has three). */
 static inline void bilinear(const struct svgf_accumulation *a, int x, int y, float px, float py, float acc[7])
 {
     const int w = a->f->width, h = a->f->height, i = y * w + x;
@@ -40,10 +40,10 @@ static inline void bilinear(const struct svgf_accumulation *a, int x, int y, flo
     for (int c = 0; c < 7; c++)
         acc[c] = 0.0f;
     for (int k = 0; k < 4; k++) {
-        const int qx = x0 + (k & 1), qy = y0 + (k >> 1);
-        const int inside = (qx >= 0) & (qy >= 0) & (qx < w) & (qy < h);
-        const int q = inside ? qy * w + qx : i; /* any pixel to read: its weight is 0 */
-        const float wt = inside && tap_ok(a, i, q) ? ((k & 1) ? fx : 1.0f - fx) * ((k >> 1) ? fy : 1.0f - fy) : 0.0f;
+        const int qx = x0 + (k & 1), qy = y0 + (k >> 1), q = qy * w + qx;
+        const float wt = ((k & 1) ? fx : 1.0f - fx) * ((k >> 1) ? fy : 1.0f - fy);
+        if (wt == 0.0f || qx < 0 || qy < 0 || qx >= w || qy >= h || !tap_ok(a, i, q))
+            continue;
         for (int c = 0; c < 6; c++)
             acc[c] += wt * a->prev->value[c][q];
         acc[6] += wt;
@@ -76,7 +76,8 @@ static int reproject(const struct svgf_accumulation *a, int x, int y, float hist
     const float mx = f->motion[2 * i], my = f->motion[2 * i + 1];
     if (!(mx < DENOISE_NO_MOTION && my < DENOISE_NO_MOTION))
         return 0;
-    const float px = (float)x + mx, py = (float)y + my; /* the previous pixel centres' coordinates */
+    /* the previous pixel centres' coordinates */
+    const float px = denoise_snap((float)x + mx), py = denoise_snap((float)y + my);
     if (!(px > -2.0f && py > -2.0f && px < (float)w + 1.0f && py < (float)h + 1.0f))
         return 0;
     float acc[7] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};

@@ -33,6 +33,7 @@ static const char *const select_names[] = {"bitterli", "compat", "compat-binary"
 static const char *const reuse_names[] = {"standard", "spmis", NULL};
 static const char *const search_names[] = {"always", "sparse", "low-confidence", NULL};
 static const char *const pick_names[] = {"uniform", "confidence", NULL};
+static const char *const svgf_kernel_names[] = {"5x5", "3x3", NULL}; /* denoise_types.h */
 static const char *const distance_mode_names[] = {"scene", "absolute", "relative", NULL}; /* shift_kind.h */
 static const char *const confidence_update_names[] = {"cell", "drawn", NULL}; /* enum spmis_confidence_update */
 static const char *const search_score_names[] = {"confidence", "compat", NULL}; /* enum restir_cells_score */
@@ -318,6 +319,11 @@ static const struct param_def params[] = {
     {"denoise.svgf.sigma_luminance", P_FLOAT, F(denoise.svgf_sigma_lum), 1e-6, 1e6, "4", NULL,
      "svgf: sigma_l, the luminance weight's scale on the filtered standard deviation (Eq. 5)", NULL},
     {"denoise.svgf.iterations", P_INT, F(denoise.svgf_iterations), 0, 12, "5", NULL, "svgf: a-trous iterations", NULL},
+    {"denoise.svgf.kernel", P_NAMES, F(denoise.svgf_kernel), 0, 0, "5x5", NULL,
+     "svgf: the a-trous kernel: 5x5, the paper's B3 spline (Sec. 4.3), or 3x3, (1 2 1) / 4 per axis, which "
+     "takes 9 taps instead of 25 and reaches half as far: a deviation for speed, its error after denoising "
+     "measured in docs/DENOISE.md",
+     svgf_kernel_names},
     {"denoise.svgf.feedback", P_INT, F(denoise.svgf_feedback), 0, 12, "1", NULL,
      "svgf: the a-trous iteration whose output is the next frame's colour history (0: the unfiltered "
      "accumulation)", NULL},

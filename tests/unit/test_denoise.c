@@ -81,10 +81,14 @@ static float ref_derivative(const struct scene_buf *b, int x, int y, int dx, int
 
 static const double b3[5] = {1.0 / 16, 4.0 / 16, 6.0 / 16, 4.0 / 16, 1.0 / 16};
 
+static const double h3[3] = {0.25, 0.5, 0.25};
+
 /* SVGF's à-trous iterations (Eq. 1-5) with steps 1, 2, .., 2^(iterations - 1) on colour I and
- * variance var (filtered by the squared weights, Eq. 2), every pixel used. */
-static void atrous_hand(const struct scene_buf *b, float *I, float *var, int iterations)
+ * variance var (filtered by the squared weights, Eq. 2), every pixel used; the kernel is the
+ * paper's 5x5 B3 spline (r = 2) or the 3x3 (1 2 1) / 4 of denoise.svgf.kernel=3x3 (r = 1). */
+static void atrous_hand(const struct scene_buf *b, float *I, float *var, int iterations, int r)
 {
+    const double *hk = r == 2 ? b3 : h3;
     const int w = b->w, h = b->h;
     static float l[MAXW * MAXH], nI[3 * MAXW * MAXH], nvar[MAXW * MAXH];
     for (int it = 0, step = 1; it < iterations; it++, step *= 2) {
@@ -105,16 +109,16 @@ static void atrous_hand(const struct scene_buf *b, float *I, float *var, int ite
                 const double invl = 1.0 / (4.0 * sqrt(gs / gw) + 1e-10);
                 const double gx = ref_derivative(b, x, y, 1, 0), gy = ref_derivative(b, x, y, 0, 1);
                 double sw = 0.0, sv = 0.0, sc[3] = {0, 0, 0};
-                for (int ty = 0; ty < 5; ty++)
-                    for (int tx = 0; tx < 5; tx++) {
-                        const int ox = (tx - 2) * step, oy = (ty - 2) * step;
+                for (int ty = 0; ty <= 2 * r; ty++)
+                    for (int tx = 0; tx <= 2 * r; tx++) {
+                        const int ox = (tx - r) * step, oy = (ty - r) * step;
                         if (x + ox < 0 || y + oy < 0 || x + ox >= w || y + oy >= h)
                             continue;
                         const int q = p + oy * w + ox;
                         const double den = 1.0 * fabs(gx * ox + gy * oy) + 1e-3 * b->depth[p];
                         const double a = fabs(b->depth[p] - b->depth[q]) / den + fabs(l[p] - l[q]) * invl;
                         const double nd = fmax(0.0, v3_dot(b->nrm[p], b->nrm[q]));
-                        const double wt = b3[ty] * b3[tx] * pow(nd, 128.0) * exp(-a);
+                        const double wt = hk[ty] * hk[tx] * pow(nd, 128.0) * exp(-a);
                         sw += wt;
                         sv += wt * wt * var[q];
                         for (int c = 0; c < 3; c++)
@@ -131,7 +135,7 @@ static void atrous_hand(const struct scene_buf *b, float *I, float *var, int ite
 
 /* SVGF after two frames A then B of a static plane, computed by Eq. 1-5 directly: the temporal
  * moments (variance_frames 0), then the à-trous iterations (feedback 0). */
-static void svgf_hand(const struct scene_buf *b, const float *A, const float *B, float alb, int iterations,
+static void svgf_hand(const struct scene_buf *b, const float *A, const float *B, float alb, int iterations, int r,
                       float *out)
 {
     const int n = b->w * b->h;
@@ -145,7 +149,7 @@ static void svgf_hand(const struct scene_buf *b, const float *A, const float *B,
         const double m1 = 0.5 * la + 0.5 * lb, m2 = 0.5 * la * la + 0.5 * lb * lb;
         var[i] = (float)fmax(0.0, m2 - m1 * m1);
     }
-    atrous_hand(b, I, var, iterations);
+    atrous_hand(b, I, var, iterations, r);
     for (int i = 0; i < 3 * n; i++)
         out[i] = I[i] * alb;
 }
@@ -214,7 +218,7 @@ static void test_kernels(void)
 /* Eq. 1-5 and the temporal moments, by hand, on a slanted plane with a few tilted normals, at a
  * size whose rows hold a vector block inside and blocks at the borders, then one narrower than a
  * block; iterations > 1 take steps past the borders. */
-static void svgf_hand_case(int w, int h, int iterations)
+static void svgf_hand_case(int w, int h, int iterations, int kernel3)
 {
     static struct scene_buf b;
     const float alb = 0.5f;
@@ -228,6 +232,7 @@ static void svgf_hand_case(int w, int h, int iterations)
     }
     struct denoise_settings s = settings(1);
     s.svgf_iterations = iterations;
+    s.svgf_kernel = kernel3;
     s.svgf_feedback = 0;
     s.svgf_variance_frames = 0;
     s.svgf_taa_alpha = 1.0f; /* no antialiasing: Eq. 1-5 alone */
@@ -236,10 +241,10 @@ static void svgf_hand_case(int w, int h, int iterations)
     struct denoise_stats st;
     EXPECT(denoiser_run(d, A, &g, out, &st) == 0 && st.history_reset == b.w * b.h, "frame 0: every history new");
     EXPECT(denoiser_run(d, B, &g, out, &st) == 0 && st.history_reset == 0, "frame 1: %lld reset", st.history_reset);
-    svgf_hand(&b, A, B, alb, iterations, want);
+    svgf_hand(&b, A, B, alb, iterations, kernel3 ? 1 : 2, want);
     const double e = max_rel(out, want, 3 * b.w * b.h);
-    EXPECT(e < 2e-4, "SVGF (%dx%d, %d iterations) against Eq. 1-5 by hand: worst relative difference %g", w, h,
-           iterations, e);
+    EXPECT(e < 2e-4, "SVGF (%dx%d, %d iterations, %s) against Eq. 1-5 by hand: worst relative difference %g", w, h,
+           iterations, kernel3 ? "3x3" : "5x5", e);
     const float *len = denoiser_layer(d, "history");
     EXPECT(len && len[0] == 2.0f && len[b.w * b.h - 1] == 2.0f, "history length 2 after two frames");
     EXPECT(denoiser_layer(d, "nonsense") == NULL, "an unknown layer is NULL");
@@ -248,9 +253,10 @@ static void svgf_hand_case(int w, int h, int iterations)
 
 static void test_svgf_hand(void)
 {
-    svgf_hand_case(11, 9, 1);
-    svgf_hand_case(53, 7, 1);
-    svgf_hand_case(61, 12, 3);
+    svgf_hand_case(11, 9, 1, 0);
+    svgf_hand_case(53, 7, 1, 0);
+    svgf_hand_case(61, 12, 3, 0);
+    svgf_hand_case(61, 12, 3, 1); /* denoise.svgf.kernel=3x3 */
 }
 
 /* The 7x7 moments filter by hand on the first frame (every history short), with tilted normals
