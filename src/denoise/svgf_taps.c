@@ -20,22 +20,14 @@ DV_TARGET_AVX2 static void moments_avx2(const struct svgf_pass *p, int y)
 }
 #endif
 
-svgf_row_fn svgf_atrous_row(void)
-{
+/* The twin of the instruction set simd_isa_active() names (AVX2 only with FMA). */
 #if RESTIR_SIMD_DISPATCH
-    const enum simd_isa isa = simd_isa_active();
-    return isa == SIMD_ISA_AVX512 ? svgf_atrous_row_avx512 : dv_avx2_fma() ? atrous_avx2 : atrous_base;
+#define SVGF_PICK(avx512, avx2, base)                                                                             \
+    (simd_isa_active() == SIMD_ISA_AVX512 ? (avx512) : dv_avx2_fma() ? (avx2) : (base))
 #else
-    return atrous_base;
+#define SVGF_PICK(avx512, avx2, base) (base)
 #endif
-}
 
-svgf_row_fn svgf_moments_row(void)
-{
-#if RESTIR_SIMD_DISPATCH
-    const enum simd_isa isa = simd_isa_active();
-    return isa == SIMD_ISA_AVX512 ? svgf_moments_row_avx512 : dv_avx2_fma() ? moments_avx2 : moments_base;
-#else
-    return moments_base;
-#endif
-}
+svgf_row_fn svgf_atrous_row(void) { return SVGF_PICK(svgf_atrous_row_avx512, atrous_avx2, atrous_base); }
+
+svgf_row_fn svgf_moments_row(void) { return SVGF_PICK(svgf_moments_row_avx512, moments_avx2, moments_base); }

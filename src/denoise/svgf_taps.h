@@ -77,6 +77,19 @@ SIMD_INLINE void svgf_point(const float *const base[], int count, int q, int ins
     }
 }
 
+/* One tap's weight wt into the sums: sum[0] the weights, sum[1..2] the weighted values v[0..1], and
+ * for the à-trous (at) sum[3] the weighted v2 and sum[4] the variance v3 weighted by wt^2 (Eq. 2). */
+SIMD_INLINE void svgf_add(dv_f sum[5], dv_f wt, const float *const v[2], const float *v2, const float *v3, int at)
+{
+    sum[0] += wt;
+    sum[1] += wt * dv_load(v[0]);
+    sum[2] += wt * dv_load(v[1]);
+    if (at) {
+        sum[3] += wt * dv_load(v2);
+        sum[4] += wt * wt * dv_load(v3);
+    }
+}
+
 /* The pixels x .. x + DV_LANES - 1 of row y (those inside the image). inside: every tap of every
  * lane lies in the row. squarings >= 0: sigma_n = 2^squarings, the power taken by squaring (the
  * default 128 = 2^7), 0 where n . n' < nd_min (below 2^DENOISE_EXP2_CUT, never a denormal); -1:
@@ -95,7 +108,7 @@ SIMD_INLINE void svgf_block(const struct svgf_pass *p, const float *const cb[C_P
     const dv_f zp = dv_load(c[C_Z]), gx = dv_load(c[C_GX]), gy = dv_load(c[C_GY]), ez = p->eps_ln2 * zp;
     const dv_f n0 = dv_load(c[C_N0]), n1 = dv_load(c[C_N1]), n2 = dv_load(c[C_N2]);
     const dv_f lp = at ? dv_load(c[C_L]) : zp, ip = at ? dv_load(c[C_IL]) : zp;
-    dv_f sw = dv_splat(0.0f), s0 = sw, s1 = sw, s2 = sw, s3 = sw;
+    dv_f sum[5] = {dv_splat(0.0f), dv_splat(0.0f), dv_splat(0.0f), dv_splat(0.0f), dv_splat(0.0f)};
     for (int ty = -r; ty <= r; ty++) {
         const int oy = ty * step, yq = y + oy;
         if (yq < 0 || yq >= h)
@@ -105,14 +118,7 @@ SIMD_INLINE void svgf_block(const struct svgf_pass *p, const float *const cb[C_P
         for (int tx = -r; tx <= r; tx++) {
             const int ox = tx * step, q = yq * w + x + ox;
             if (tx == 0 && ty == 0) { /* the centre: every edge-stopping factor is exactly 1 */
-                const dv_f wt = dv_splat(svgf_h(kind, 0) * svgf_h(kind, 0));
-                sw += wt;
-                s0 += wt * dv_load(c[C_V0]);
-                s1 += wt * dv_load(c[C_V1]);
-                if (at) {
-                    s2 += wt * dv_load(c[C_V2]);
-                    s3 += wt * wt * dv_load(c[C_V3]);
-                }
+                svgf_add(sum, dv_splat(svgf_h(kind, 0) * svgf_h(kind, 0)), c + C_V0, c[C_V2], c[C_V3], at);
                 continue;
             }
             const int lo = x + ox < 0 ? -(x + ox) : 0, hi = w - (x + ox) < lanes ? w - (x + ox) : lanes;
@@ -137,26 +143,21 @@ SIMD_INLINE void svgf_block(const struct svgf_pass *p, const float *const cb[C_P
             }
             if (at)
                 wt *= svgf_h(kind, ty) * svgf_h(kind, tx);
-            sw += wt;
-            s0 += wt * dv_load(t[Q_V0]);
-            s1 += wt * dv_load(t[Q_V1]);
-            if (at) {
-                s2 += wt * dv_load(t[Q_V2]);
-                s3 += wt * wt * dv_load(t[Q_V3]);
-            }
+            svgf_add(sum, wt, t + Q_V0, t[Q_V2], t[Q_V3], at);
         }
     }
     const dv_i used = dv_load(c[C_USE]) != 0.0f;
     const dv_f zero = dv_splat(0.0f);
     dv_f out[4];
     int outs = 4;
+    const dv_f sw = sum[0];
     if (at) {
-        out[0] = dv_select(used, s0 / sw, zero);
-        out[1] = dv_select(used, s1 / sw, zero);
-        out[2] = dv_select(used, s2 / sw, zero);
-        out[3] = dv_select(used, s3 / (sw * sw), zero);
+        out[0] = dv_select(used, sum[1] / sw, zero);
+        out[1] = dv_select(used, sum[2] / sw, zero);
+        out[2] = dv_select(used, sum[3] / sw, zero);
+        out[3] = dv_select(used, sum[4] / (sw * sw), zero);
     } else { /* the filtered moments' variance where the history is short; the row holds the others' */
-        const dv_f m1 = s0 / sw, var = s1 / sw - m1 * m1;
+        const dv_f m1 = sum[1] / sw, var = sum[2] / sw - m1 * m1;
         const dv_i filtered = used & (dv_load(c[C_LEN]) < p->short_history);
         out[0] = dv_select(filtered, dv_select(var > 0.0f, var, zero), dv_load(p->out[0] + i));
         outs = 1;
