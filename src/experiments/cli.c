@@ -255,6 +255,7 @@ void cli_catch_stop_signals(void)
 int cli_scene_load(const struct render_params *p, const char *env, const char *name, struct scene *s, char *msg)
 {
     const struct scene_load_desc desc = {.missing_textures_warn = p->missing_textures_warn != 0,
+                                         .strict = p->scene_strict != 0,
                                          .no_alpha_masks = !p->alpha_masks,
                                          .flat_shading = !p->shading_normals,
                                          .ray_streams_off = !p->ray_streams};

@@ -183,6 +183,11 @@ static const struct param_def params[] = {
      "a texture a scene file names that cannot be read: error (refuse the scene, naming the file) or warn "
      "(say so on stderr and use the material's factor instead of the map)",
      missing_texture_names},
+    {"scene.strict", P_BOOL, F(scene_strict), 0, 1, "off", NULL,
+     "a mesh file that loads only in part (faces assimp dropped, a material it made up, degenerate triangles, "
+     "points or lines we skipped): off says what on stderr and in scene info and renders the rest; on refuses "
+     "the file with that message",
+     NULL},
     {"temporal.splat_steps", P_INT, F(temporal_splat_steps), 1, 16, "2", NULL,
      "splat with camera.shutter > 0: each previous reservoir is splatted into this many shutter-time strata "
      "(1: it keeps its shutter time)", NULL},

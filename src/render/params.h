@@ -100,6 +100,7 @@ struct render_params {
     int ray_streams;           /* rays.streams: batched passes trace through Embree streams (1) or ray by ray */
     int simd;                  /* simd: AVX2 kernels where the CPU has them (1) or the baseline ones (0) */
     int missing_textures_warn; /* scene files: a texture that cannot be read is an error (0) or a warning (1) */
+    int scene_strict;          /* mesh files that load only in part: a warning (0) or refused (1) */
     int temporal_splat_steps; /* splat with motion blur: shutter-time strata per history reservoir */
 
     /* camera (pt, restir-pt, area-restir: the methods whose samples carry the primary ray) */

@@ -97,6 +97,21 @@ int scene_texture_unreadable(const struct scene_builder *b, const char *why)
     return 0;
 }
 
+int scene_load_partial(struct scene_builder *b, const char *path, const char *notes, int lossy, char *msg)
+{
+    if (b->desc.strict && lossy) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.150s loads only in part (scene.strict=on refuses it): %.300s", path, notes);
+        return -1;
+    }
+    fprintf(stderr, "restir: warning: %s loads only in part: %s%s\n", path, notes,
+            lossy ? " (scene.strict=on refuses such a file)" : "");
+    struct scene *s = b->s;
+    const size_t old = s->load_notes ? strlen(s->load_notes) : 0, add = strlen(path) + strlen(notes) + 4;
+    s->load_notes = grow_to(s->load_notes, (int)(old + add), 1);
+    snprintf(s->load_notes + old, add, "%s: %s\n", path, notes);
+    return 0;
+}
+
 void scene_set_uv_set(struct scene_builder *b, int tri, int set, const float uv[6])
 {
     struct scene *s = b->s;
@@ -393,6 +408,7 @@ void scene_destroy(struct scene *s)
     }
     free(s->textures);
     free(s->texture_keys);
+    free(s->load_notes);
     if (s->num_emitters > 0)
         alias_table_fini(&s->emitter_table);
     scene_light_bvh_free(&s->light_bvh);

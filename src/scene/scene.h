@@ -35,6 +35,11 @@ struct scene_load_desc {
      * naming the file and key; 1 says why on stderr and goes on without the map (the material's
      * factor alone; scene.missing_textures=warn). */
     int missing_textures_warn;
+    /* A mesh file that loads only in part (assimp dropped faces or made up a material; we skipped
+     * points, lines, zero-area triangles): 0 says what on stderr and keeps it with the scene
+     * (scene.load_notes); 1 refuses the file with that message (scene.strict=on) unless all it
+     * skipped was triangles of zero area. */
+    int strict;
     /* 1: scene_builder_end makes every alpha-masked material opaque (scene.alpha=off: what the
      * masks cost, measured on the same geometry). 0: masks are honoured. Changes the scene. */
     int no_alpha_masks;
@@ -76,6 +81,11 @@ int scene_texture_find(const struct scene *s, const char *key, int srgb);
  * desc.missing_textures_warn says: returns -1 to refuse the scene, or 0 after saying why on stderr
  * (the loader then goes on without the map). */
 int scene_texture_unreadable(const struct scene_builder *b, const char *why);
+/* What the import of file path left out or replaced (notes: "; "-separated items; lossy: some of
+ * them lost or replaced something of the file's, not only zero-area triangles). With desc.strict
+ * and lossy: returns -1 with msg naming the file and the notes; else 0 after saying them on stderr
+ * and appending them to the scene's load notes. */
+int scene_load_partial(struct scene_builder *b, const char *path, const char *notes, int lossy, char *msg);
 /* The UVs (u0 v0 u1 v1 u2 v2) of triangle tri, already added: set 0 (scene_set_uvs) or 1. */
 void scene_set_uvs(struct scene_builder *b, int tri, const float uv[6]);
 void scene_set_uv_set(struct scene_builder *b, int tri, int set, const float uv[6]);

@@ -18,6 +18,7 @@
 #include "core/check.h"
 #include "scene/environment.h"
 #include "scene/file_name.h"
+#include "scene/import_notes.h"
 #include "scene/mat4d.h"
 #include "scene/scene_env.h"
 #include "scene/scene_import_ai.h"
@@ -46,6 +47,10 @@ struct importer {
     float *tangents;          /* ... and tangents (xyz, handedness), when it has them (scratch) */
     unsigned cap_verts;
     int added;                /* triangles added */
+    long degenerate;          /* triangles skipped: zero area or too thin for a normal */
+    long not_triangles;       /* point and line primitives skipped */
+    long bad_uvs;             /* texture coordinates that were not finite (set to 0) */
+    struct import_notes notes; /* assimp's warnings and errors (import_notes.h) */
     char *msg;
 };
 
@@ -309,8 +314,10 @@ static int add_mesh(struct importer *im, unsigned mesh_index, const mat4d *t, in
     const int flip = mat4d_det3(t) < 0.0; /* a mirror: swap two corners so fronts stay fronts */
     for (unsigned f = 0; f < mesh->mNumFaces; f++) {
         const struct aiFace *face = &mesh->mFaces[f];
-        if (face->mNumIndices != 3 || !face->mIndices)
-            continue; /* points and lines (SortByPType keeps them apart; Triangulate left no polygons) */
+        if (face->mNumIndices != 3 || !face->mIndices) {
+            im->not_triangles++; /* points and lines (SortByPType keeps them apart; Triangulate left no polygons) */
+            continue;
+        }
         vec3 p[3];
         for (int k = 0; k < 3; k++) {
             unsigned i = face->mIndices[k];
@@ -338,8 +345,10 @@ static int add_mesh(struct importer *im, unsigned mesh_index, const mat4d *t, in
                      im->path, mesh_index, mname, f);
             return -1;
         }
-        if (dg > 0)
+        if (dg > 0) {
+            im->degenerate++;
             continue;
+        }
         if (im->b->s->num_tris >= IMPORT_MAX_TRIS) {
             snprintf(im->msg, RESTIR_MSG_LEN, "%s: more than %d triangles in the scene", im->path, IMPORT_MAX_TRIS);
             return -1;
@@ -356,6 +365,7 @@ static int add_mesh(struct importer *im, unsigned mesh_index, const mat4d *t, in
                 /* the corner that went to slot k (slots 1 and 2 swap under a mirror) */
                 unsigned i = face->mIndices[flip && k ? 3 - k : k];
                 const struct aiVector3D *c = &mesh->mTextureCoords[0][i];
+                im->bad_uvs += !isfinite(c->x) || !isfinite(c->y);
                 uv[2 * k] = isfinite(c->x) ? (float)c->x : 0.0f;
                 uv[2 * k + 1] = isfinite(c->y) ? (float)c->y : 0.0f;
             }
@@ -365,6 +375,7 @@ static int add_mesh(struct importer *im, unsigned mesh_index, const mat4d *t, in
             float uv[6];
             for (int k = 0; k < 3; k++) {
                 const struct aiVector3D *c = &mesh->mTextureCoords[1][face->mIndices[flip && k ? 3 - k : k]];
+                im->bad_uvs += !isfinite(c->x) || !isfinite(c->y);
                 uv[2 * k] = isfinite(c->x) ? (float)c->x : 0.0f;
                 uv[2 * k + 1] = isfinite(c->y) ? (float)c->y : 0.0f;
             }
@@ -450,6 +461,25 @@ static int resolve_overrides(struct importer *im, const struct scene_material_ov
     return 0;
 }
 
+/* What the import left out or replaced, in one line: assimp's warnings and our own counts, handed
+ * to scene_load_partial (said on stderr and kept with the scene, or the file refused). */
+static int report_partial(struct importer *im)
+{
+    struct import_notes *n = &im->notes;
+    const long declared = is_gltf_path(im->path) && gltf_json(im) ? import_gltf_declared_triangles(im->gltf) : -1;
+    const long reached = im->added + im->degenerate; /* the triangles assimp handed over */
+    if (declared > reached)
+        import_notes_add(n, 1, "%ld of %ld triangles dropped by assimp", declared - reached, declared);
+    if (im->degenerate)
+        import_notes_add(n, 0, "%ld of %ld triangles skipped (zero area or too thin for a normal)", im->degenerate,
+                         im->degenerate + im->added);
+    if (im->not_triangles)
+        import_notes_add(n, 1, "%ld point and line primitives skipped", im->not_triangles);
+    if (im->bad_uvs)
+        import_notes_add(n, 1, "%ld texture coordinates not finite, set to 0", im->bad_uvs);
+    return n->count ? scene_load_partial(im->b, im->path, n->text, n->lossy > 0, im->msg) : 0;
+}
+
 /* scene_import_mesh, and for scene_import_file also the aiScene itself (*keep, on success only;
  * the caller releases it) for its camera. */
 static int import_mesh(struct scene_builder *b, const char *path, const float *xform, int material,
@@ -466,14 +496,17 @@ static int import_mesh(struct scene_builder *b, const char *path, const float *x
      * meshes of their own. ValidateDataStructure: assimp's own consistency checks (indices in
      * range, node tree well formed) before we read anything. Nothing that merges or reorders
      * vertices (JoinIdenticalVertices, the optimizers): we keep the file's order. */
+    struct importer im = {.b = b, .path = path, .material = material, .object = object, .msg = msg};
+    import_notes_listen(&im.notes);
     const struct aiScene *ai =
         aiImportFile(path, aiProcess_Triangulate | aiProcess_ValidateDataStructure | aiProcess_SortByPType);
+    import_notes_stop();
+    im.ai = ai;
     if (!ai) {
         const char *e = aiGetErrorString();
         snprintf(msg, RESTIR_MSG_LEN, "%s: %s", path, e && *e ? e : "assimp could not read the file");
         return -1;
     }
-    struct importer im = {.b = b, .path = path, .ai = ai, .material = material, .object = object, .msg = msg};
     unsigned nm = ai->mNumMaterials;
     im.builder_material = xmalloc(sizeof(int) * (nm ? nm : 1));
     im.override_material = xmalloc(sizeof(int) * (nm ? nm : 1));
@@ -494,6 +527,8 @@ static int import_mesh(struct scene_builder *b, const char *path, const float *x
         snprintf(msg, RESTIR_MSG_LEN, "%s: no triangles", path);
         rc = -1;
     }
+    if (rc == 0)
+        rc = report_partial(&im);
     free(im.builder_material);
     free(im.override_material);
     free(im.verts);

@@ -186,3 +186,70 @@ int import_gltf_lookups(const cJSON *gltf, const char *name, struct material *m,
                ? -1
                : 0;
 }
+
+/* The count of accessor index a in gltf's accessors, or -1. */
+static long accessor_count(const cJSON *gltf, const cJSON *a)
+{
+    const cJSON *acc = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(gltf, "accessors"),
+                                          cJSON_IsNumber(a) ? a->valueint : -1);
+    const cJSON *c = cJSON_GetObjectItemCaseSensitive(acc, "count");
+    return cJSON_IsNumber(c) && c->valuedouble >= 0 && c->valuedouble < 1e12 ? (long)c->valuedouble : -1;
+}
+
+/* The triangles of mesh m, or -1. */
+static long mesh_triangles(const cJSON *gltf, int m)
+{
+    const cJSON *mesh = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(gltf, "meshes"), m);
+    const cJSON *prims = cJSON_GetObjectItemCaseSensitive(mesh, "primitives"), *p;
+    if (!cJSON_IsArray(prims))
+        return -1;
+    long total = 0;
+    cJSON_ArrayForEach(p, prims)
+    {
+        const cJSON *mode = cJSON_GetObjectItemCaseSensitive(p, "mode");
+        const int md = cJSON_IsNumber(mode) ? mode->valueint : 4;
+        const cJSON *ix = cJSON_GetObjectItemCaseSensitive(p, "indices");
+        const long n = ix ? accessor_count(gltf, ix)
+                          : accessor_count(gltf, cJSON_GetObjectItemCaseSensitive(
+                                                     cJSON_GetObjectItemCaseSensitive(p, "attributes"), "POSITION"));
+        if (md < 4 || md > 6) /* points and lines */
+            continue;
+        if (n < 0)
+            return -1;
+        total += md == 4 ? n / 3 : n >= 2 ? n - 2 : 0;
+    }
+    return total;
+}
+
+/* The triangles node n and its descendants place, or -1. */
+static long node_triangles(const cJSON *gltf, int n, int depth)
+{
+    const cJSON *node = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(gltf, "nodes"), n), *c;
+    if (!node || depth > 64)
+        return -1;
+    const cJSON *mesh = cJSON_GetObjectItemCaseSensitive(node, "mesh");
+    long total = cJSON_IsNumber(mesh) ? mesh_triangles(gltf, mesh->valueint) : 0;
+    cJSON_ArrayForEach(c, cJSON_GetObjectItemCaseSensitive(node, "children"))
+    {
+        const long k = cJSON_IsNumber(c) && total >= 0 ? node_triangles(gltf, c->valueint, depth + 1) : -1;
+        total = k < 0 ? -1 : total + k;
+    }
+    return total;
+}
+
+long import_gltf_declared_triangles(const cJSON *gltf)
+{
+    const cJSON *which = cJSON_GetObjectItemCaseSensitive(gltf, "scene"), *n;
+    const cJSON *scene = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(gltf, "scenes"),
+                                            cJSON_IsNumber(which) ? which->valueint : 0);
+    const cJSON *roots = cJSON_GetObjectItemCaseSensitive(scene, "nodes");
+    if (!cJSON_IsArray(roots))
+        return -1;
+    long total = 0;
+    cJSON_ArrayForEach(n, roots)
+    {
+        const long k = cJSON_IsNumber(n) && total >= 0 ? node_triangles(gltf, n->valueint, 0) : -1;
+        total = k < 0 ? -1 : total + k;
+    }
+    return total;
+}

@@ -22,5 +22,10 @@ double import_gltf_strength(const cJSON *gltf, const char *name);
  * (v up). Leaves m's lookups zero (set 0, identity, repeat) where the file says nothing. Returns
  * 0, or -1 with msg naming the material and key for a non-finite or out-of-range value. */
 int import_gltf_lookups(const cJSON *gltf, const char *name, struct material *m, char *msg);
+/* The triangles the file's default scene declares (TRIANGLES: count / 3 of the indices, else of
+ * POSITION; strips and fans: count - 2), each mesh counted once per node that places it, so that
+ * the import can say how many assimp dropped; -1 when the JSON does not say (gltf NULL, a missing
+ * or malformed accessor, a node tree deeper than 64). */
+long import_gltf_declared_triangles(const cJSON *gltf);
 
 #endif

@@ -128,6 +128,8 @@ struct scene {
     int num_textures;
     struct texture *textures;
     struct scene_texture_key *texture_keys; /* where each texture came from (scene_texture_find) */
+    char *load_notes; /* what the mesh imports left out or replaced, a line per file, or NULL
+                         (scene_load_partial) */
 
     /* Emitters: emissive triangles, chosen proportionally to power (alias table). */
     int num_emitters;

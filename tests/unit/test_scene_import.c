@@ -186,7 +186,7 @@ static const char *assimp_repairs(const char *path)
     static const char *const repaired[][2] = {
         {"invalid/malformed2.obj", "assimp gives the faces of the unknown material its default material"},
         {"glTF2/IndexOutOfRange/IndexOutOfRange.gltf",
-         "assimp drops the faces with out-of-range indices (11 of 12 remain), with a log warning only"},
+         "assimp drops the faces with out-of-range indices (11 of 12 remain); the import says so"},
     };
     for (size_t i = 0; i < sizeof repaired / sizeof repaired[0]; i++)
         if (strcmp(rel(path), repaired[i][0]) == 0)
@@ -262,6 +262,48 @@ static void test_broken_files(void)
     }
     if (file_exists(badn))
         EXPECT(load_one(badn, msg, &end_ok, &finite) == 12 && finite && end_ok, "%s must load: %s", badn, msg);
+}
+
+/* Files that load only in part say so (issue 44): the scene keeps a line naming the file and what
+ * was lost, and scene.strict refuses the file with the same words; zero-area triangles are said but
+ * never refused; a clean file has no note. */
+static void test_partial_loads(const char *dir)
+{
+    struct {
+        const char *path, *want[2];
+    } cases[] = {
+        {MODELS "/glTF2/IndexOutOfRange/IndexOutOfRange.gltf", {"1 of 12 triangles dropped", "out-of-range"}},
+        {MODELS "/invalid/malformed2.obj", {"failed to locate material", "Ignoring empty face"}},
+    };
+    char msg[RESTIR_MSG_LEN];
+    struct scene s;
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        if (!file_exists(cases[k].path))
+            continue;
+        EXPECT(scene_import_file(cases[k].path, &s, msg) == 0, "%s loads: %s", cases[k].path, msg);
+        const char *notes = s.load_notes ? s.load_notes : "";
+        EXPECT(strstr(notes, cases[k].path) && strstr(notes, cases[k].want[0]) && strstr(notes, cases[k].want[1]),
+               "%s: the load notes say what was lost: '%s'", rel(cases[k].path), notes);
+        scene_destroy(&s);
+        const struct scene_load_desc strict = {.strict = 1};
+        EXPECT(scene_import_file_with(cases[k].path, &strict, &s, msg) == -1 && strstr(msg, cases[k].path) &&
+                   strstr(msg, cases[k].want[0]),
+               "%s: scene.strict refuses it with the same words: '%s'", rel(cases[k].path), msg);
+    }
+    char path[512];
+    snprintf(path, sizeof path, "%s/flatpart.obj", dir); /* one triangle of zero area beside a good one */
+    write_file(path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n");
+    const struct scene_load_desc strict = {.strict = 1};
+    EXPECT(scene_import_file_with(path, &strict, &s, msg) == 0, "zero-area triangles are never refused: %s", msg);
+    EXPECT(s.load_notes && strstr(s.load_notes, "1 of 2 triangles skipped"), "and said: '%s'",
+           s.load_notes ? s.load_notes : "");
+    scene_destroy(&s);
+    const char *clean = MODELS "/glTF2/BoxTextured-glTF/BoxTextured.gltf";
+    if (file_exists(clean)) {
+        EXPECT(scene_import_file_with(clean, &strict, &s, msg) == 0 && !s.load_notes, "%s: no notes (%s)", clean,
+               s.load_notes ? s.load_notes : msg);
+        scene_destroy(&s);
+    }
 }
 
 /* ---- 3. small OBJ (and PLY) files written here ----------------------------------------------- */
@@ -666,12 +708,13 @@ int main(void)
     test_gltf2_samples();
     test_broken_files();
     test_obj(dir);
+    test_partial_loads(dir);
     test_texture_transform();
     test_whole_scene(dir);
 
     /* Remove what we wrote (the folder holds only our files). */
     static const char *const ours[] = {"nan.obj",  "tri.obj",  "two.obj",   "two.mtl",         "bad.obj",
-                                       "flat.obj", "huge.ply", "lamp.gltf", "lamp-nocam.gltf", NULL};
+                                       "flat.obj", "huge.ply", "lamp.gltf", "lamp-nocam.gltf", "flatpart.obj", NULL};
     for (int i = 0; ours[i]; i++) {
         char p[512];
         snprintf(p, sizeof p, "%s/%s", dir, ours[i]);
