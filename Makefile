@@ -9,7 +9,7 @@ DEB_PACKAGES = build-essential cmake pkg-config libembree-dev libopenexr-dev lib
 TEST_PACKAGES = assimp-testmodels chromium xvfb xauth parallel slurm-wlm munge python3
 # make fuzz: clang, its libFuzzer and OpenMP runtimes.
 FUZZ_PACKAGES = clang libclang-rt-14-dev libomp-dev
-FUZZ_SECONDS ?= 60
+FUZZ_SECONDS ?= 20
 SUDO = $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 .PHONY: all deps test-deps build demo test bench asan sanitize fuzz clean
@@ -61,15 +61,14 @@ sanitize: deps test-deps
 	cmake --build build-asan -j $(JOBS)
 	cd build-asan && ctest --output-on-failure -j $(JOBS) -R '$(SANITIZE_TESTS)'
 
-# The JSON scene reader under libFuzzer with ASan and UBSan for FUZZ_SECONDS (seeds in fuzz/seeds;
-# the corpus it grows stays in build-fuzz/corpus).
+# Every libFuzzer harness of fuzz/ (one per reader: fuzz/fuzz_NAME.c) under ASan and UBSan for
+# FUZZ_SECONDS each (scripts/fuzz.sh: seeds in fuzz/seeds/NAME, the corpora they grow in
+# build-fuzz/corpus). FUZZ_HARNESSES=NAME... runs only those.
 fuzz: deps
 	$(call apt_install,$(FUZZ_PACKAGES))
 	CC=clang cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRESTIR_FUZZ=ON -DRESTIR_WERROR=OFF
-	cmake --build build-fuzz -j $(JOBS) --target fuzz_scene_json
-	mkdir -p build-fuzz/corpus
-	ASAN_OPTIONS=detect_leaks=1 ./build-fuzz/fuzz_scene_json -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=4096 \
-	  -max_len=65536 -print_final_stats=1 build-fuzz/corpus fuzz/seeds
+	cmake --build build-fuzz -j $(JOBS) --target $(patsubst fuzz/%.c,%,$(wildcard fuzz/fuzz_*.c))
+	./scripts/fuzz.sh build-fuzz $(FUZZ_SECONDS) $(FUZZ_HARNESSES)
 
 clean:
 	rm -rf $(BUILD) build-asan build-fuzz

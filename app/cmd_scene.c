@@ -19,7 +19,7 @@
 
 static void scene_usage(FILE *out)
 {
-    fprintf(out, "usage: restir scene info NAME|FILE [--set scene.missing_textures=warn]\n"
+    fprintf(out, "usage: restir scene info NAME|FILE [--set scene.missing_textures=warn] [--set scene.strict=on]\n"
                  "       restir scene export NAME --out DIR\n"
                  "       restir scene export NAME|FILE --mesh --out DIR [--set scene.shading_normals=off] [--env FILE|none]\n"
                  "info: triangles, emitters, materials, textures, bounds, load and BVH build time of a\n"
@@ -74,6 +74,12 @@ static int scene_info(int argc, char **argv)
            s.camera.position.y, s.camera.position.z, s.camera.target.x, s.camera.target.y, s.camera.target.z,
            s.camera.vfov_deg);
     printf("camera_path keys %d\n", s.camera_path.num_keys);
+    if (s.load_notes) /* what a mesh file's import left out (also said on stderr while loading) */
+        for (const char *line = s.load_notes; *line;) {
+            const size_t len = strcspn(line, "\n");
+            printf("loaded in part: %.*s\n", (int)len, line);
+            line += len + (line[len] == '\n');
+        }
     printf("load_ms %.1f\nbvh_ms %.1f\n", total_ms - s.bvh_ms, s.bvh_ms);
     scene_destroy(&s);
     return 0;

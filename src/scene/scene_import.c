@@ -24,6 +24,7 @@
 #include "scene/scene_import_ai.h"
 #include "scene/scene_import_camera.h"
 #include "scene/scene_import_gltf.h"
+#include "scene/scene_import_guard.h"
 #include "scene/scene_import_precheck.h"
 #include "scene/scene_import_texture.h"
 
@@ -496,10 +497,12 @@ static int import_mesh(struct scene_builder *b, const char *path, const float *x
      * meshes of their own. ValidateDataStructure: assimp's own consistency checks (indices in
      * range, node tree well formed) before we read anything. Nothing that merges or reorders
      * vertices (JoinIdenticalVertices, the optimizers): we keep the file's order. */
+    const unsigned flags = aiProcess_Triangulate | aiProcess_ValidateDataStructure | aiProcess_SortByPType;
+    if (import_guard_probe(path, flags, msg) != 0)
+        return -1;
     struct importer im = {.b = b, .path = path, .material = material, .object = object, .msg = msg};
     import_notes_listen(&im.notes);
-    const struct aiScene *ai =
-        aiImportFile(path, aiProcess_Triangulate | aiProcess_ValidateDataStructure | aiProcess_SortByPType);
+    const struct aiScene *ai = aiImportFile(path, flags);
     import_notes_stop();
     im.ai = ai;
     if (!ai) {
