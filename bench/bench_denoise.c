@@ -1,10 +1,11 @@
 /* bench_denoise.c: `restir_bench denoise [--scene S] [--method M] [--res WxH] [--frames N]
- * [--threads T] [--camera static|path] [--isa I] [--set K=V]...`: what denoising costs beside the frame it denoises (issue 43: SVGF at
- * 640x360 in at most 15% of a restir-di frame on 2 threads). Renders N frames of the method without
- * denoising, keeps the last frame's image and G-buffer, then runs each denoiser N times on them
- * (SVGF then reprojects its history by the last frame's motion vectors each time: a static history
- * under a static camera) and prints the medians of the frames' and the denoisers' milliseconds and
- * their ratio, measured in the same run. --isa limits every kernel's instruction set, the frame's too.
+ * [--threads T] [--camera static|path] [--isa I] [--set K=V]...`: what denoising costs beside the
+ * frame it denoises (issue 43: SVGF at 640x360 in at most 15% of a restir-di frame on 2 threads).
+ * Renders N frames of the method without denoising, keeps the last frame's image and G-buffer, then
+ * runs each denoiser N times on them (SVGF then reprojects its history by the last frame's motion
+ * vectors each time: a static history under a static camera) and prints the medians of the
+ * frames' and the denoisers' milliseconds and their ratio, measured in the same run. --isa limits
+ * every kernel's instruction set, the frame's too; --set changes any setting (denoise.* ones).
  * Must never be run by the tests. */
 #include <omp.h>
 #include <stdio.h>

@@ -19,7 +19,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const int w = (int)(int8_t)data[0] % 48, h = (int)(int8_t)data[1] % 48; /* negatives and 0 too */
     float alpha;
     memcpy(&alpha, data + 2, 4);
-    const int solver = data[6] % 3, iters = (int)data[7] - 8, precond = data[8] % 3, steps = (int)data[9] - 4;
+    /* iteration counts stay small (each input a few milliseconds), negatives and 0 included */
+    const int solver = data[6] % 3, iters = (int)(data[7] % 24) - 2, precond = data[8] % 3;
+    const int steps = (int)(data[9] % 64) - 2;
     double tol = data[10] ? 1e-6 : 0.0;
     const int which = data[11] % 3;
     const uint8_t *img = data + 16;
@@ -30,7 +32,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     for (size_t k = 0; k < 3 * n; k++) { /* primal, dx, dy: two bytes each, in [-128, 128), or NaN / +-inf */
         const uint8_t lo = img[(2 * k) % nimg], hi = img[(2 * k + 1) % nimg];
-        buf[k] = lo == 0xff ? NAN : lo == 0xfe ? INFINITY : lo == 0xfd ? -INFINITY : (float)(int16_t)(hi << 8 | lo) / 256.0f;
+        const float v = (float)(int16_t)(hi << 8 | lo) / 256.0f;
+        buf[k] = lo == 0xff ? NAN : lo == 0xfe ? INFINITY : lo == 0xfd ? -INFINITY : v;
     }
     float *primal = buf, *dx = buf + n, *dy = buf + 2 * n, *out = buf + 3 * n;
     struct restir_poisson_stats st;
