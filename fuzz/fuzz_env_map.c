@@ -9,8 +9,6 @@
 #include "fuzz_file.h"
 #include "scene/environment.h"
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (size < 1 || size > (4u << 20))

@@ -8,8 +8,6 @@
 #include "fuzz_file.h"
 #include "io/exr.h"
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (size > (4u << 20))

@@ -10,6 +10,9 @@
 #include <string.h>
 #include <unistd.h>
 
+/* libFuzzer's entry point, which every harness defines. */
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
 static char fuzz_dir_path[256];
 
 static void fuzz_dir_remove(void)

@@ -11,8 +11,6 @@
 #include "fuzz_file.h"
 #include "scene/scene_import.h"
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static const char *const names[] = {"in.gltf", "in.obj", "in.ply", "in.off", "in.glb"};
