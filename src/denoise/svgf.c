@@ -16,12 +16,10 @@
  * reprojection's surface test is the plane distance between world positions (what our temporal
  * reuse tests, 001 Sec. 5), since we keep positions rather than a rasteriser's reprojected depth. */
 #include <math.h>
-#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/check.h"
-#include "core/simd.h"
 #include "denoise/denoise_kernel.h"
 #include "denoise/denoise_method.h"
 #include "denoise/svgf_kernels.h"

@@ -8,7 +8,6 @@
 #include "denoise/svgf_temporal.h"
 
 #include <math.h>
-#include <omp.h>
 
 #include "denoise/denoise_kernel.h"
 
