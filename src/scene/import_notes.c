@@ -16,6 +16,16 @@ static const char *const benign[] = {"There are unreferenced vertices", "UVs are
 
 static _Thread_local struct import_notes *listening;
 
+/* Whether text, items separated by "; ", holds item whole (not as the start of a longer one). */
+static int has_item(const char *text, const char *item)
+{
+    const size_t len = strlen(item);
+    for (const char *at = strstr(text, item); at; at = strstr(at + 1, item))
+        if ((at == text || (at >= text + 2 && at[-2] == ';' && at[-1] == ' ')) && (at[len] == '\0' || at[len] == ';'))
+            return 1;
+    return 0;
+}
+
 void import_notes_add(struct import_notes *n, int lossy, const char *fmt, ...)
 {
     char item[512];
@@ -23,7 +33,7 @@ void import_notes_add(struct import_notes *n, int lossy, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(item, sizeof item, fmt, ap);
     va_end(ap);
-    if (strstr(n->text, item)) /* said already (assimp repeats a message per mesh) */
+    if (has_item(n->text, item)) /* said already (assimp repeats a message per mesh) */
         return;
     const size_t used = strlen(n->text), room = sizeof(n->text) - used;
     const int w = snprintf(n->text + used, room, "%s%s", used ? "; " : "", item);
