@@ -5,7 +5,9 @@
 #define RESTIR_TEST_UNBIASED_RUNS_H
 
 #include <string.h>
+#include <time.h>
 
+#include "reference_cache.h"
 #include "reference_pt.h"
 #include "methods/renderer.h"
 #include "scene/scene_file.h"
@@ -32,7 +34,8 @@ static inline void unbiased_run_method(const struct scene *s, const struct metho
 }
 
 /* The reference of method m (pt over the same integrand) with spp paths per run, seen from
- * camera-path frame camera_frame with the shutter opening at frame open_frame. */
+ * camera-path frame camera_frame with the shutter opening at frame open_frame: runs 0 .. runs-1 of
+ * the process's reference cache (rendered once however many cases share them). */
 static inline void unbiased_run_reference(const struct scene *s, const struct method *m, const struct render_params *base,
                                           int runs, int spp, float camera_frame, float open_frame,
                                           struct pixel_stats *st)
@@ -41,18 +44,11 @@ static inline void unbiased_run_reference(const struct scene *s, const struct me
     method_reference_params(m, &rp);
     reference_pt_pin(&rp);
     rp.spp = spp;
-    for (int k = 0; k < runs; k++) {
-        struct render_params q = rp;
-        q.seed = 900000 + (uint64_t)k;
-        struct renderer r;
-        renderer_init(&r, s, method_named("pt"), &q);
-        struct frame_stats fs;
-        struct camera cam = scene_camera_at(s, 1, camera_frame), open = scene_camera_at(s, 1, open_frame);
-        renderer_set_shutter_open(&r, &open);
-        renderer_render(&r, 0, &cam, &fs);
-        pixel_stats_add(st, r.image);
-        renderer_fini(&r);
-    }
+    struct camera cam = scene_camera_at(s, 1, camera_frame), open = scene_camera_at(s, 1, open_frame);
+    const float *images = reference_cache_runs(s, &rp, &cam, &open, runs);
+    const size_t floats = 3 * (size_t)rp.width * (size_t)rp.height;
+    for (int k = 0; k < runs; k++)
+        pixel_stats_add(st, images + (size_t)k * floats);
 }
 
 /* One unbiasedness case: `runs` seeded sequences of `frames` camera-path frames (frame_step apart)
@@ -84,11 +80,12 @@ static inline int unbiased_check(const struct unbiased_case *c, const char *cons
     pixel_stats_init(&ref, c->width * c->height);
     pixel_stats_init(&m, c->width * c->height);
     const int last = (c->frames - 1) * c->frame_step;
+    const clock_t start = clock();
     unbiased_run_reference(&s, c->method, &p, c->runs, c->ref_spp, (float)last,
                            (float)(c->frames > 1 ? last - c->frame_step : last), &ref);
     unbiased_run_method(&s, c->method, &p, 1000, c->runs, c->frames, c->frame_step, &m);
-    printf("%s %dx%d %s, %d runs of %d frames:", c->scene, c->width, c->height, c->method->name,
-           c->runs, c->frames);
+    printf("%s %dx%d %s, %d runs of %d frames (%.1f CPU-s):", c->scene, c->width, c->height, c->method->name,
+           c->runs, c->frames, (double)(clock() - start) / CLOCKS_PER_SEC);
     for (int k = 0; k < nsets; k++)
         printf(" %s", sets[k]);
     printf("\n");
