@@ -11,4 +11,8 @@
  * plastic number) mapped through the concentric disk map to xy[2i], xy[2i+1]. */
 void r2_disk_offsets(int n, float *xy);
 
+/* The first R2_DISK_OFFSETS of those points (xy pairs), computed on the first call and shared by
+ * every caller for the life of the process (never freed). Safe to call from any thread. */
+const float *r2_disk_table(void);
+
 #endif

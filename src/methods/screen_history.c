@@ -16,8 +16,7 @@ void screen_history_init(struct screen_history *h, const struct render_params *p
     gbuffer_init(&h->gb[1], p->width, p->height, with_shading);
     h->neighbors = xcalloc(n * SPATIAL_MAX_NEIGHBORS, sizeof(int));
     h->neighbors_per_pixel = render_params_spatial_neighbors(p, path_reuse);
-    h->disk_offsets = xmalloc(sizeof(float) * 2 * R2_DISK_OFFSETS);
-    r2_disk_offsets(R2_DISK_OFFSETS, h->disk_offsets);
+    h->disk_offsets = r2_disk_table();
     h->age[0] = xcalloc(n, 1);
     h->age[1] = xcalloc(n, 1);
     if (p->spatial && p->spatial_reuse == REUSE_SPMIS) {
@@ -31,7 +30,6 @@ void screen_history_fini(struct screen_history *h)
     gbuffer_fini(&h->gb[0]);
     gbuffer_fini(&h->gb[1]);
     free(h->neighbors);
-    free(h->disk_offsets);
     if (h->spmis) {
         spmis_frame_fini(h->spmis);
         free(h->spmis);

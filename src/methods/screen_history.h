@@ -15,7 +15,7 @@ struct screen_history {
     int has_history;
     int *neighbors;            /* selection pass output: spatial neighbors per pixel */
     int neighbors_per_pixel;   /* render_params_spatial_neighbors(p, path_reuse) */
-    float *disk_offsets;       /* R2 disk offsets of compat selection (R2_DISK_OFFSETS x 2) */
+    const float *disk_offsets; /* R2 disk offsets of compat selection (R2_DISK_OFFSETS x 2; r2_disk_table) */
     struct spmis_frame *spmis; /* spatial.reuse=spmis: cells and per-pixel scratch */
     unsigned char *age[2];     /* per pixel: frames its surface has been in view (history chain
                                   length by G-buffer validation, capped at 255); ping-pong */
