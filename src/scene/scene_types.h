@@ -151,6 +151,7 @@ struct scene {
 
     struct scene_rt *rt;
     double bvh_ms; /* time scene_builder_end spent building the Embree scenes */
+    float diagonal; /* of the bounding box of the vertices, set by scene_builder_end (scene_diagonal) */
 };
 
 #endif
