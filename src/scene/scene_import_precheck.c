@@ -56,26 +56,45 @@ static int token_count(const char *tok, size_t len, unsigned long long *out)
     return 1;
 }
 
-/* The largest element count of a PLY header ("element <name> <count>" lines up to end_header;
- * read line by line so that comment lines never count), 0 when none. */
-static unsigned long long ply_max_count(const char *p, const char *end)
+/* What a PLY header declares ("element <name> <count>" lines up to end_header; read line by line
+ * so that comment lines never count): the largest count (0 when none), and the first element
+ * name declared twice, copied into repeated (empty when none). */
+struct ply_header_scan {
+    unsigned long long most;
+    char repeated[32];
+};
+
+#define PLY_MAX_ELEMENTS 64 /* names remembered; a header with more is not looked at further */
+
+static void ply_scan_header(const char *p, const char *end, struct ply_header_scan *out)
 {
-    unsigned long long most = 0;
+    const char *names[PLY_MAX_ELEMENTS];
+    size_t lens[PLY_MAX_ELEMENTS];
+    int n_names = 0;
+    memset(out, 0, sizeof *out);
     while (p < end) {
         const char *eol = memchr(p, '\n', (size_t)(end - p));
-        const char *line_end = eol ? eol : end, *q = p, *tok;
-        size_t len;
+        const char *line_end = eol ? eol : end, *q = p, *tok, *name;
+        size_t len, name_len;
         if (next_token(&q, line_end, &tok, &len)) {
             unsigned long long n;
             if (len == 10 && memcmp(tok, "end_header", 10) == 0)
                 break;
-            if (len == 7 && memcmp(tok, "element", 7) == 0 && next_token(&q, line_end, &tok, &len) &&
-                next_token(&q, line_end, &tok, &len) && token_count(tok, len, &n) && n > most)
-                most = n;
+            if (len == 7 && memcmp(tok, "element", 7) == 0 && next_token(&q, line_end, &name, &name_len)) {
+                for (int k = 0; k < n_names && !out->repeated[0]; k++)
+                    if (lens[k] == name_len && memcmp(names[k], name, name_len) == 0)
+                        snprintf(out->repeated, sizeof out->repeated, "%.*s", (int)(name_len < 31 ? name_len : 31),
+                                 name);
+                if (n_names < PLY_MAX_ELEMENTS) {
+                    names[n_names] = name;
+                    lens[n_names++] = name_len;
+                }
+                if (next_token(&q, line_end, &tok, &len) && token_count(tok, len, &n) && n > out->most)
+                    out->most = n;
+            }
         }
         p = eol ? eol + 1 : end;
     }
-    return most;
 }
 
 /* The larger of an OFF header's vertex and face counts ([ST][C][N][4][n]OFF [dim] nv nf ne), 0
@@ -114,14 +133,26 @@ int import_precheck_counts(const char *path, char *msg)
     fclose(f);
     unsigned long long most = 0;
     const char *kind = NULL;
+    struct ply_header_scan ply = {0, ""};
     if (n >= 4 && memcmp(head, "ply", 3) == 0 && (head[3] == '\n' || head[3] == '\r')) {
-        most = ply_max_count(head + 3, head + n);
+        ply_scan_header(head + 3, head + n, &ply);
+        most = ply.most;
         kind = "PLY";
     } else if (n > 0) {
         most = off_max_count(head, head + n);
         kind = "OFF";
     }
     free(head);
+    if (ply.repeated[0]) {
+        /* assimp 5.2 sizes the mesh by the first declaration and then writes the elements of every
+         * one into it, past its end (PlyLoader.cpp LoadVertex; a heap overflow that need not crash,
+         * found by fuzz/fuzz_mesh_import.c with an ASan build of assimp; fixed upstream in 2024). */
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "%s: the PLY header declares element '%s' twice (a broken or repeated header), which the mesh "
+                 "importer cannot read safely",
+                 path, ply.repeated);
+        return -1;
+    }
     if (most > (unsigned long long)size) {
         snprintf(msg, RESTIR_MSG_LEN, "%s: the %s header claims %llu elements, more than the file's %ld bytes can hold",
                  path, kind, most, size);

@@ -3,8 +3,9 @@
 #ifndef RESTIR_SCENE_SCENE_IMPORT_PRECHECK_H
 #define RESTIR_SCENE_SCENE_IMPORT_PRECHECK_H
 
-/* 0, or -1 with msg when a PLY or OFF header claims more elements than the file has bytes. Files
- * that cannot be opened are left to assimp, which says why. */
+/* 0, or -1 with msg when a PLY or OFF header claims more elements than the file has bytes, or a
+ * PLY header declares one element twice (assimp 5.2 writes past its buffer on those). Files that
+ * cannot be opened are left to assimp, which says why. */
 int import_precheck_counts(const char *path, char *msg);
 
 #endif
