@@ -12,7 +12,7 @@ FUZZ_PACKAGES = clang libclang-rt-14-dev libomp-dev
 FUZZ_SECONDS ?= 20
 SUDO = $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps test-deps build demo test bench asan sanitize fuzz clean
+.PHONY: all deps test-deps build demo test bench asan sanitize fuzz tsan clean
 
 all: build
 
@@ -70,5 +70,16 @@ fuzz: deps
 	cmake --build build-fuzz -j $(JOBS) --target $(patsubst fuzz/%.c,%,$(wildcard fuzz/fuzz_*.c))
 	./scripts/fuzz.sh build-fuzz $(FUZZ_SECONDS) $(FUZZ_HARNESSES)
 
+# ThreadSanitizer with Archer, LLVM's OpenMP race detection (CMake option RESTIR_TSAN): the render
+# tests that run at tiny sizes, each on 2 OpenMP threads, then every method and reuse variant
+# through the restir command (scripts/tsan.sh). Not in CI: the statistical tests would take hours.
+TSAN_TESTS = ^render\.(determinism|kernel_paths|temporal_reject|denoise|env_pt|nonfinite|interrupt|compare_track|gradient_cli|reference_target|reference_resume|params_replay|scene_export)$$
+tsan: deps test-deps
+	$(call apt_install,$(FUZZ_PACKAGES))
+	CC=clang cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRESTIR_TSAN=ON -DRESTIR_WERROR=OFF
+	cmake --build build-tsan -j $(JOBS)
+	cd build-tsan && ctest --output-on-failure -j $(JOBS) -R '$(TSAN_TESTS)'
+	./scripts/tsan.sh build-tsan
+
 clean:
-	rm -rf $(BUILD) build-asan build-fuzz
+	rm -rf $(BUILD) build-asan build-fuzz build-tsan
