@@ -123,6 +123,16 @@ static int write_file(const char *path, const char *text)
     return fclose(f);
 }
 
+/* Writes text to path and imports it into a new scene s (the caller destroys s): the triangles
+ * added, or -1 with msg. */
+static int import_text(const char *path, const char *text, struct scene *s, char *msg)
+{
+    struct scene_builder b;
+    write_file(path, text);
+    scene_builder_begin(&b, s, "t");
+    return scene_import_mesh(&b, path, NULL, -1, NULL, 0, -1, msg);
+}
+
 static const char *rel(const char *path)
 {
     return strncmp(path, MODELS "/", strlen(MODELS) + 1) == 0 ? path + strlen(MODELS) + 1 : path;
@@ -457,20 +467,20 @@ static void test_obj(const char *dir)
      * its end, a heap overflow that need not crash (issue 44's fuzzing), so it is refused first.
      * A comment naming an element twice is no declaration. */
     snprintf(path, sizeof path, "%s/twice.ply", dir);
-    write_file(path, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                     "property float z\nenl_header\n0 0 0\nply\nelement vertex 8\nproperty float x\n"
-                     "end_header\n0 0 0\n1 0 0\n0 1 0\n");
-    scene_builder_begin(&b, &s, "t");
-    n = scene_import_mesh(&b, path, NULL, -1, NULL, 0, -1, msg);
+    n = import_text(path,
+                    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nenl_header\n0 0 0\nply\nelement vertex 8\nproperty float x\n"
+                    "end_header\n0 0 0\n1 0 0\n0 1 0\n",
+                    &s, msg);
     EXPECT(n == -1 && strstr(msg, path) && strstr(msg, "declares element 'vertex' twice"), "PLY vertex twice: %d '%s'",
            n, msg);
     scene_destroy(&s);
     snprintf(path, sizeof path, "%s/comment.ply", dir);
-    write_file(path, "ply\nformat ascii 1.0\ncomment element vertex 3\nelement vertex 3\nproperty float x\n"
-                     "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n"
-                     "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
-    scene_builder_begin(&b, &s, "t");
-    n = scene_import_mesh(&b, path, NULL, -1, NULL, 0, -1, msg);
+    n = import_text(path,
+                    "ply\nformat ascii 1.0\ncomment element vertex 3\nelement vertex 3\nproperty float x\n"
+                    "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                    "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                    &s, msg);
     EXPECT(n == 1, "a PLY whose comment names an element: %d '%s'", n, msg);
     scene_destroy(&s);
 
