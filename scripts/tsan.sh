@@ -11,7 +11,7 @@ bin=$build/restir
 archer=$(sed -n 's/^RESTIR_ARCHER:FILEPATH=//p' "$build/CMakeCache.txt")
 [ -f "$archer" ] || { echo "tsan.sh: $build was not configured with RESTIR_TSAN=ON" >&2; exit 2; }
 export OMP_NUM_THREADS=2 OMP_TOOL_LIBRARIES="$archer"
-export TSAN_OPTIONS="halt_on_error=1 exitcode=66 suppressions=$(pwd)/scripts/tsan.supp"
+export TSAN_OPTIONS="halt_on_error=1 exitcode=66 ignore_noninstrumented_modules=1 suppressions=$(pwd)/scripts/tsan.supp"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
