@@ -16,6 +16,23 @@
 #define SPMIS_ALPHA 0.01
 #define SPMIS_POOLED_Z_MAX 4.5
 
+/* The settings the restir-pt and restir-di cases share (after spatial.reuse=spmis). */
+static const char *const spmis_none[] = {"spmis.candidates=3"};
+static const char *const spmis_no_adjust[] = {"spmis.confidence_adjust=off"};
+static const char *const spmis_one[] = {"spmis.candidates=1"};
+static const char *const spmis_hist_temporal[] = {"history=temporal"};
+/* the stored confidence from the drawn pixels, with taps that move pixels to other cells */
+static const char *const spmis_drawn[] = {"spmis.confidence_update=drawn", "spmis.search_radius=4",
+                                          "spmis.search_growth=1.5"};
+/* A 4 px start growing by 1.5 per tap keeps most taps inside 24 x 16, so pixels really move to
+ * other cells (with the paper's 30 px most taps fall outside and the own cell is the fallback). */
+static const char *const spmis_far_cells[] = {"spmis.search_radius=4", "spmis.search_growth=1.5"};
+static const char *const spmis_compat[] = {"spmis.search_radius=4", "spmis.search_growth=1.5",
+                                           "spmis.search_score=compat"};
+
+/* A settings array and its length, as spmis_check takes them. */
+#define SPMIS_SETS(a) (a), (int)(sizeof(a) / sizeof((a)[0]))
+
 /* Returns the number of pixels that fail (unbiased_check); expect: assert unbiasedness. */
 static inline int spmis_check(const struct method *m, const char *scene, int runs, const char *const *sets,
                               int nsets, int expect)

@@ -21,29 +21,20 @@ int main(int argc, char **argv)
         spmis_check(m, argv[2], atoi(argv[3]), (const char *const *)argv + 4, argc - 4, 1);
         return test_finish();
     }
-    const char *none[] = {"spmis.candidates=3"};
-    const char *no_adjust[] = {"spmis.confidence_adjust=off"};
-    const char *one[] = {"spmis.candidates=1"};
-    const char *low_conf[] = {"spmis.search=low-confidence", "spmis.search_confidence=3"};
-    const char *hist_temporal[] = {"history=temporal"};
-    /* the stored confidence from the drawn pixels, with taps that move pixels to other cells */
-    const char *drawn[] = {"spmis.confidence_update=drawn", "spmis.search_radius=4", "spmis.search_growth=1.5"};
-    /* A 4 px start growing by 1.5 per tap keeps most taps inside 24 x 16, so pixels really move to
-     * other cells (with the paper's 30 px most taps fall outside and the own cell is the fallback). */
-    const char *far_cells[] = {"spmis.search_radius=4", "spmis.search_growth=1.5"};
-    const char *compat[] = {"spmis.search_radius=4", "spmis.search_growth=1.5", "spmis.search_score=compat"};
+    const char *const low_conf[] = {"spmis.search=low-confidence", "spmis.search_confidence=3"};
 
-    spmis_check(method_named("restir-pt"), "pillars", 4096, none, 1, 1); /* worst |t| 4.17 at 2048 runs: heavy tails */
-    spmis_check(method_named("restir-pt"), "cornell", 1024, none, 1, 1);
-    spmis_check(method_named("restir-pt"), "pillars", 1024, far_cells, 2, 1);
+    /* worst |t| 4.17 at 2048 runs: heavy tails */
+    spmis_check(method_named("restir-pt"), "pillars", 4096, SPMIS_SETS(spmis_none), 1);
+    spmis_check(method_named("restir-pt"), "cornell", 1024, SPMIS_SETS(spmis_none), 1);
+    spmis_check(method_named("restir-pt"), "pillars", 1024, SPMIS_SETS(spmis_far_cells), 1);
     /* Heavy tails: worst |t| 5.6 at 1024 runs, 4.0 at 4096 (power-chosen emitters in the walk);
      * with the light BVH 4.60 at 4096, 3.20 at 8192, 4.02 at 16384 (pooled z -0.19): not a bias. */
-    spmis_check(method_named("restir-pt"), "pillars", 8192, no_adjust, 1, 1);
-    spmis_check(method_named("restir-pt"), "cornell", 1024, no_adjust, 1, 1);
-    spmis_check(method_named("restir-pt"), "pillars", 1024, one, 1, 1);
-    spmis_check(method_named("restir-pt"), "pillars", 1024, hist_temporal, 1, 1);
-    spmis_check(method_named("restir-pt"), "pillars", 1024, low_conf, 2, 1);
-    spmis_check(method_named("restir-pt"), "pillars", 1024, compat, 3, 1);
-    spmis_check(method_named("restir-pt"), "pillars", 1024, drawn, 3, 1);
+    spmis_check(method_named("restir-pt"), "pillars", 8192, SPMIS_SETS(spmis_no_adjust), 1);
+    spmis_check(method_named("restir-pt"), "cornell", 1024, SPMIS_SETS(spmis_no_adjust), 1);
+    spmis_check(method_named("restir-pt"), "pillars", 1024, SPMIS_SETS(spmis_one), 1);
+    spmis_check(method_named("restir-pt"), "pillars", 1024, SPMIS_SETS(spmis_hist_temporal), 1);
+    spmis_check(method_named("restir-pt"), "pillars", 1024, SPMIS_SETS(low_conf), 1);
+    spmis_check(method_named("restir-pt"), "pillars", 1024, SPMIS_SETS(spmis_compat), 1);
+    spmis_check(method_named("restir-pt"), "pillars", 1024, SPMIS_SETS(spmis_drawn), 1);
     return test_finish();
 }
