@@ -29,7 +29,9 @@ static uint8_t take_u8(struct bytes *b) { return b->at < b->n ? b->p[b->at++] : 
 
 static float take_float(struct bytes *b)
 {
-    uint8_t raw[4] = {take_u8(b), take_u8(b), take_u8(b), take_u8(b)};
+    uint8_t raw[4];
+    for (int k = 0; k < 4; k++)
+        raw[k] = take_u8(b);
     float f;
     memcpy(&f, raw, 4);
     return f;
@@ -53,7 +55,8 @@ static void fuzz_reservoirs(struct bytes *b)
     for (int i = 0; i < n; i++) {
         struct restir_reservoir *x = &r[i & 1];
         const int before = x->offered;
-        const int won = restir_reservoir_offer(x, take_float(b), take_float(b));
+        const float w = take_float(b), u = take_float(b);
+        const int won = restir_reservoir_offer(x, w, u);
         CHECK(won == 0 || won == 1);
         CHECK(x->offered == before + 1 && (!won || x->selected == before));
         CHECK(x->selected >= -1 && x->selected < x->offered && !isnan(x->w_sum) && x->w_sum >= 0.0f);
@@ -72,7 +75,8 @@ static void fuzz_select(struct bytes *b)
     CHECK(s.m >= 1 && s.m <= RESTIR_SELECT_MAX);
     const int n = take_int(b, 0, 40);
     for (int i = 0; i < n; i++) {
-        restir_select_offer(&s, i, take_float(b), take_float(b));
+        const float w = take_float(b), u = take_float(b);
+        restir_select_offer(&s, i, w, u);
         CHECK(s.count >= 0 && s.count <= s.m);
     }
     for (int k = 0; k < s.count; k++)
@@ -153,20 +157,27 @@ static void fuzz_cells(struct bytes *b)
         CHECK(others >= 0 && (cell >= 0 || others == 0));
         const float cs = restir_cells_confidence_others(&c, cell, pixel, conf);
         CHECK(!isnan(cs) && cs >= 0.0f);
-        double prob = -1.0;
-        int picked[3] = {restir_cells_pick_uniform(&c, cell, pixel, take_float(b)),
-                         restir_cells_pick_confidence(&c, cell, pixel, take_float(b), &prob), -1};
-        CHECK(prob >= 0.0 && prob <= 1.0 + 1e-9);
-        picked[2] = restir_cells_pick_weighted(&c, cell, pixel, take_float(b), &prob);
-        CHECK(prob >= 0.0 && prob <= 1.0 + 1e-9);
+        double prob[2] = {-1.0, -1.0};
+        float pick_u[3];
+        for (int k = 0; k < 3; k++)
+            pick_u[k] = take_float(b);
+        const int picked[3] = {restir_cells_pick_uniform(&c, cell, pixel, pick_u[0]),
+                               restir_cells_pick_confidence(&c, cell, pixel, pick_u[1], &prob[0]),
+                               restir_cells_pick_weighted(&c, cell, pixel, pick_u[2], &prob[1])};
+        for (int k = 0; k < 2; k++)
+            CHECK(prob[k] >= 0.0 && prob[k] <= 1.0 + 1e-9);
         for (int k = 0; k < 3; k++)
             CHECK(picked[k] == -1 ||
                   (picked[k] >= 0 && (size_t)picked[k] < n && c.cell_of[picked[k]] == cell && picked[k] != pixel));
-        struct restir_cells_search s = {take_int(b, -1, 14), take_float(b),        take_float(b),
-                                        take_float(b),      RESTIR_CELLS_SCORE_CONFIDENCE, position,
-                                        depth,              take_float(b),         take_float(b)};
-        if (take_u8(b) & 1)
-            s.score = RESTIR_CELLS_SCORE_COMPAT;
+        /* (one read per statement: the order of a call's or an initializer's operands is unspecified) */
+        struct restir_cells_search s = {.position = position, .depth = depth};
+        s.steps = take_int(b, -1, 14);
+        s.radius = take_float(b);
+        s.growth = take_float(b);
+        s.normal_min = take_float(b);
+        s.omega = take_float(b);
+        s.beta = take_float(b);
+        s.score = take_u8(b) & 1 ? RESTIR_CELLS_SCORE_COMPAT : RESTIR_CELLS_SCORE_CONFIDENCE;
         float u[3 * 14];
         for (int k = 0; k < 3 * 14; k++)
             u[k] = take_float(b);
