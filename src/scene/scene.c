@@ -432,4 +432,3 @@ void scene_destroy(struct scene *s)
 }
 
 float scene_diagonal(const struct scene *s) { return s->diagonal; }
-

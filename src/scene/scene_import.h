@@ -29,9 +29,8 @@ struct scene_material_override {
  * Returns the number of triangles added (> 0), or -1 with msg naming the file and the problem
  * (unreadable or invalid file, a header count the file cannot hold or a PLY element declared
  * twice, no triangles, a NaN or infinite vertex, an index out of range, a NaN or negative
- * emission); after -1 the builder may
- * hold part of the file, so the scene is to be discarded. Not thread-safe: assimp's C API keeps
- * its last error in a global. */
+ * emission); after -1 the builder may hold part of the file, so the scene is to be discarded.
+ * Not thread-safe: assimp's C API keeps its last error in a global. */
 int scene_import_mesh(struct scene_builder *b, const char *path, const float *xform, int material,
                       const struct scene_material_override *overrides, int num_overrides, int object, char *msg);
 

@@ -25,8 +25,7 @@
 struct reference_cache_entry {
     char key[1024];
     int runs;      /* images held */
-    size_t floats; /* per image: w*h*3 */
-    float *images; /* run k at images + k * floats */
+    float *images; /* run k at images + k * w*h*3 */
 };
 
 static struct reference_cache_entry reference_cache[REFERENCE_CACHE_MAX];
@@ -88,7 +87,6 @@ static inline const float *reference_cache_runs(const struct scene *s, const str
         e = &reference_cache[reference_cache_used++];
         memset(e, 0, sizeof *e);
         snprintf(e->key, sizeof e->key, "%s", key);
-        e->floats = floats;
     }
     if (e->runs < runs) {
         float *grown = realloc(e->images, sizeof(float) * floats * (size_t)runs);
