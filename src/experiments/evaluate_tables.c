@@ -13,6 +13,7 @@
 #include "experiments/csv_table.h"
 #include "experiments/evaluate_findings.h"
 #include "experiments/report_commit.h"
+#include "experiments/evaluate_change.h"
 #include "experiments/stats.h"
 #include "io/atomic_file.h"
 #include "io/html_report.h"
@@ -100,7 +101,9 @@ static void claim_found(struct claims *cl, const char *paper, const char *what, 
         csv_field(f[1], sizeof f[1], where);
         csv_field(f[2], sizeof f[2], paper_figure);
         csv_field(f[3], sizeof f[3], reason);
-        csv_row(&cl->csv, "%s,%s,%s,%.4g,%.4g,%s,%s,%s", paper, f[0], f[1], c.pct, c.sd, f[2], v, f[3]);
+        static const char *const how[] = {"none", "t", "bootstrap", "jackknife", "unpaired"};
+        csv_row(&cl->csv, "%s,%s,%s,%.4g,%.4g,%.4g,%s,%d,%s,%s,%s", paper, f[0], f[1], c.pct, c.lo, c.hi,
+                how[c.interval], c.n, f[2], v, f[3]);
     }
 }
 
@@ -113,8 +116,11 @@ static void flush_claims(struct text *md, struct claims *cl, const char *paper)
         cl->render_ms / 3.6e6);
     cl->render_ms = 0.0;
     put(md,
-        "\n#### Claims of %s\n\nOurs: the relative change with its standard deviation (from the standard "
-        "errors); verdicts at two standard deviations.\n\n"
+        "\n#### Claims of %s\n\nOurs: the change of the configuration against its baseline, paired by seed "
+        "(run r of both rendered with the same seed), as the geometric mean of the per-seed ratios with its 95%% "
+        "interval (Student t over the seeds; for relMSE also a bootstrap over the seeds, the wider reported; for "
+        "the covariances a paired jackknife). Verdicts (docs/EVALUATION.md): reproduced, partly, not reproduced, "
+        "opposite, undecided (the interval holds both zero and the paper's effect).\n\n"
         "| claim | where | ours (change) | paper | verdict | why / differences |\n|---|---|---|---|---|---|\n%s",
         paper, cl->md.s ? cl->md.s : "");
     cl->md.len = 0;
@@ -179,13 +185,23 @@ static int read_step_csv(const char *dir, const struct eval_step *s, const char 
     return 0;
 }
 
+/* DIR/STEP/runs.csv (each configuration's metrics per run) into t: 1 when it is there, 0 when the
+ * step was merged without it (its claims then fall back to unpaired means). */
+static int read_step_runs(const char *dir, const struct eval_step *s, struct csv_table *t)
+{
+    char path[PATH_LEN], msg[RESTIR_MSG_LEN];
+    snprintf(path, sizeof path, "%s/%s/runs.csv", dir, s->name);
+    return csv_table_read(path, t, msg) == 0;
+}
+
 /* 000: Table 1 (pass times), the quality metrics of Table 2's layout, the claims. */
 /* 000 Figure 3 on the Table 2 scene: Bitterli's selection and ours (K 32) at each radius, as points
  * of the error-covariance plane (the step's pareto.svg draws them), and the claim that ours moves
  * the frontier: lower SMAPE and lower spatial covariance at the same radius (R 30 is FAST's claims'). */
-static void pareto_000(struct text *md, struct claims *cl, const struct eval_step *s, const struct csv_table *t,
+static void pareto_000(struct text *md, struct claims *cl, const struct eval_step *s, const struct step_tables *d,
                        const char *where, const char *diff)
 {
+    const struct csv_table *t = d->t;
     static const double radius[4] = {10, 30, 50, 100};
     static const char *const bitterli[4] = {"bitterli-r10", "bitterli", "bitterli-r50", "bitterli-r100"};
     static const char *const ours[4] = {"compat-r10-k32", "fast", "balanced", "conservative"};
@@ -209,18 +225,18 @@ static void pareto_000(struct text *md, struct claims *cl, const struct eval_ste
             snprintf(what, sizeof what, "Fig. 3: %s, ours vs Bitterli at R %g", m ? "spatial covariance" : "SMAPE",
                      radius[k]);
             claim(cl, "000", what, where,
-                  rel_change_of(csv_table_num(t, c, col[m][0]), csv_table_num(t, c, col[m][1]),
-                             csv_table_num(t, b, col[m][0]), csv_table_num(t, b, col[m][1])),
+                  eval_change(d, c, b, col[m][0]),
                   "lower (a better frontier; plot only)", REDUCTION(0.0), diff);
         }
     }
 }
 
 static void paper_000(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
-                      const struct csv_table *t)
+                      const struct step_tables *d)
 {
+    const struct csv_table *t = d->t;
     static const char *const presets[] = {"fast", "balanced", "conservative"};
-    char a[64], b[64], c[64], d[64], e[64];
+    char a[64], b[64], c[64], sp[64], e[64];
     struct step_text x;
     step_text(o, s, &x);
     const char *heading = x.heading, *where = x.where, *diff = x.diff;
@@ -247,9 +263,9 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
         fmt_pm(csv_table_num(t, r, "smape_hard"), csv_table_num(t, r, "smape_hard_sem"), b, sizeof b);
         fmt_pm(csv_table_num(t, r, "temporal_cov"), csv_table_num(t, r, "temporal_cov_sem"), c, sizeof c);
         fmt_pm(csv_table_num(t, r, "temporal_cov_hard"), csv_table_num(t, r, "temporal_cov_hard_sem"), e, sizeof e);
-        fmt_pm(csv_table_num(t, r, "spatial_cov"), csv_table_num(t, r, "spatial_cov_sem"), d, sizeof d);
+        fmt_pm(csv_table_num(t, r, "spatial_cov"), csv_table_num(t, r, "spatial_cov_sem"), sp, sizeof sp);
         put(md, "| %s | %g | %g | %s | %s | %s | %s | %s | %.1f |\n", t->cell[(size_t)(r + 1) * t->ncol],
-            csv_table_num(t, r, "radius"), csv_table_num(t, r, "K"), a, b, c, e, d, csv_table_num(t, r, "ms_frame"));
+            csv_table_num(t, r, "radius"), csv_table_num(t, r, "K"), a, b, c, e, sp, csv_table_num(t, r, "ms_frame"));
     }
     /* 000 Sec. 7.1 (FAST against Bitterli R = 30): EMERALD SQUARE -29% SMAPE, -49% temporal
      * covariance; the simpler scenes (VEACH AJAR among them) -5.8..-13.7% and -22..-31%; hard pixels
@@ -258,24 +274,20 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
     const int emerald = strstr(heading, "EMERALD") != NULL;
     const int fast = csv_table_find(t, "fast");
     char found[1000];
-    eval_deciding_000(t, bit, fast, found, sizeof found);
+    eval_deciding_000(d, bit, fast, found, sizeof found);
     claim_found(cl, "000", "FAST: SMAPE vs Bitterli R = 30", where,
-          rel_change_of(csv_table_num(t, fast, "smape_all"), csv_table_num(t, fast, "smape_all_sem"),
-                     csv_table_num(t, bit, "smape_all"), csv_table_num(t, bit, "smape_all_sem")),
+          eval_change(d, fast, bit, "smape_all"),
           emerald ? "-29% (EMERALD SQUARE)" : "-5.8% to -13.7% (simpler scenes)", REDUCTION(emerald ? 29.0 : 5.8),
           found, diff);
     claim_found(cl, "000", "FAST: temporal covariance vs Bitterli", where,
-          rel_change_of(csv_table_num(t, fast, "temporal_cov"), csv_table_num(t, fast, "temporal_cov_sem"),
-                     csv_table_num(t, bit, "temporal_cov"), csv_table_num(t, bit, "temporal_cov_sem")),
+          eval_change(d, fast, bit, "temporal_cov"),
           emerald ? "-49% (EMERALD SQUARE)" : "-22% to -31% (simpler scenes)", REDUCTION(emerald ? 49.0 : 22.0),
           found, diff);
     claim_found(cl, "000", "FAST: hard-pixel SMAPE vs Bitterli", where,
-          rel_change_of(csv_table_num(t, fast, "smape_hard"), csv_table_num(t, fast, "smape_hard_sem"),
-                     csv_table_num(t, bit, "smape_hard"), csv_table_num(t, bit, "smape_hard_sem")),
+          eval_change(d, fast, bit, "smape_hard"),
           "-26% to -29%", REDUCTION(26.0), found, diff);
     claim_found(cl, "000", "FAST: hard-pixel temporal covariance vs Bitterli", where,
-          rel_change_of(csv_table_num(t, fast, "temporal_cov_hard"), csv_table_num(t, fast, "temporal_cov_hard_sem"),
-                     csv_table_num(t, bit, "temporal_cov_hard"), csv_table_num(t, bit, "temporal_cov_hard_sem")),
+          eval_change(d, fast, bit, "temporal_cov_hard"),
           "-43% to -57%", REDUCTION(43.0), found, diff);
     static const char *const cost_figure[] = {"+1.3% to +4.4%", "+2.0% to +6.4%", "+4.3% to +7.4%"};
     static const double cost_max[] = {4.4, 6.4, 7.4};
@@ -288,7 +300,7 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
                  csv_table_num(t, r, "ms_frame") - base_ms,
                  csv_table_num(t, r, "ms_select") - csv_table_num(t, bit, "ms_select"),
                  csv_table_num(t, r, "ms_spatial") - csv_table_num(t, bit, "ms_spatial"));
-        claim_found(cl, "000", what, where, rel_change_of(csv_table_num(t, r, "ms_frame"), NAN, base_ms, NAN),
+        claim_found(cl, "000", what, where, eval_change(d, r, bit, "ms_frame"),
                     cost_figure[k], COSTS_AT_MOST(cost_max[k]), r >= 0 ? why : "", diff);
     }
     if (!s->table2)
@@ -299,18 +311,15 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
     const int r100 = csv_table_find(t, "conservative"), k8 = csv_table_find(t, "compat-r30-k8"),
               k128 = csv_table_find(t, "compat-r30-k128");
     claim(cl, "000", "Table 2: spatial covariance, R 100 vs R 30 (K 32)", where,
-          rel_change_of(csv_table_num(t, r100, "spatial_cov"), csv_table_num(t, r100, "spatial_cov_sem"),
-                     csv_table_num(t, fast, "spatial_cov"), csv_table_num(t, fast, "spatial_cov_sem")),
+          eval_change(d, r100, fast, "spatial_cov"),
           "-75% (6.0 -> 1.5)", REDUCTION(0.0), diff);
     claim(cl, "000", "Table 2: spatial covariance, K 8 vs K 128 (R 30)", where,
-          rel_change_of(csv_table_num(t, k8, "spatial_cov"), csv_table_num(t, k8, "spatial_cov_sem"),
-                     csv_table_num(t, k128, "spatial_cov"), csv_table_num(t, k128, "spatial_cov_sem")),
+          eval_change(d, k8, k128, "spatial_cov"),
           "-30% (6.6 -> 4.6)", REDUCTION(0.0), diff);
     claim(cl, "000", "Table 2: SMAPE, K 128 vs K 8 (R 30)", where,
-          rel_change_of(csv_table_num(t, k128, "smape_all"), csv_table_num(t, k128, "smape_all_sem"),
-                     csv_table_num(t, k8, "smape_all"), csv_table_num(t, k8, "smape_all_sem")),
+          eval_change(d, k128, k8, "smape_all"),
           "-2% (29.9 -> 29.3)", REDUCTION(0.0), diff);
-    pareto_000(md, cl, s, t, where, diff);
+    pareto_000(md, cl, s, d, where, diff);
 }
 
 /* 004: the main table (MAPE overall and over disoccluded pixels) and its claims. */
@@ -339,8 +348,9 @@ static int table2_004(struct text *md, const char *dir, const struct eval_step *
 }
 
 static int paper_004(struct text *md, struct claims *cl, const struct eval_options *o, const char *dir,
-                     const struct eval_step *s, const struct csv_table *t)
+                     const struct eval_step *s, const struct step_tables *d)
 {
+    const struct csv_table *t = d->t;
     char a[64], b[64], c[64], label[EVAL_004_ROWS][160];
     struct step_text x;
     step_text(o, s, &x);
@@ -368,7 +378,7 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
     static const char *const col[2][2] = {{"mape", "mape_sem"}, {"mape_disoccluded", "mape_disoccluded_sem"}};
     char found[2][1000];
     for (int m = 0; m < 2; m++)
-        eval_deciding_004(t, row[0], row[1], row[3], col[m][0], found[m], sizeof found[m]);
+        eval_deciding_004(d, row[0], row[1], row[3], col[m][0], found[m], sizeof found[m]);
     static const char *const what[EVAL_004_ROWS - 1][2] = {
         {"SPMIS: MAPE overall vs standard", "SPMIS: MAPE disoccluded vs standard"},
         {"compat search (ours): MAPE overall vs standard", "compat search (ours): MAPE disoccluded vs standard"},
@@ -378,8 +388,7 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
     for (int v = 0; v < EVAL_004_ROWS - 1; v++)
         for (int m = 0; m < 2; m++)
             claim_found(cl, "004", what[v][m], where,
-                        rel_change_of(csv_table_num(t, row[v + 1], col[m][0]), csv_table_num(t, row[v + 1], col[m][1]),
-                                      csv_table_num(t, row[0], col[m][0]), csv_table_num(t, row[0], col[m][1])),
+                        eval_change(d, row[v + 1], row[0], col[m][0]),
                         v    ? "none (not in the paper)"
                         : pt ? (m ? "lower, \"especially in disocclusions\"" : "lower overall")
                              : (m ? "lower in disocclusions (the paper: ReSTIR PT only)"
@@ -390,8 +399,9 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
 
 /* 004 Figures 2, 6 and 7: SPMIS's own variants on one scene, and the claims the figures make. */
 static void paper_004_ablation(struct text *md, struct claims *cl, const struct eval_options *o,
-                               const struct eval_step *s, const struct csv_table *t)
+                               const struct eval_step *s, const struct step_tables *d)
 {
+    const struct csv_table *t = d->t;
     char a[64], b[64], label[6][200];
     struct step_text x;
     step_text(o, s, &x);
@@ -421,15 +431,13 @@ static void paper_004_ablation(struct text *md, struct claims *cl, const struct 
         cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "004") * eval_runs(o, "004");
         put(md, "| %s | %.1f | %s | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b);
     }
-#define MAPE_CHANGE(x, y)                                                                                          \
-    rel_change_of(csv_table_num(t, row[x], "mape"), csv_table_num(t, row[x], "mape_sem"),                             \
-               csv_table_num(t, row[y], "mape"), csv_table_num(t, row[y], "mape_sem"))
+#define MAPE_CHANGE(x, y) eval_change(d, row[x], row[y], "mape")
     claim(cl, "004", "Fig. 2: the N / M scaling vs none: MAPE", where, MAPE_CHANGE(0, 1), "lower (images only)",
           REDUCTION(0.0), diff);
     claim(cl, "004", "Fig. 7: N = N_c = M vs N = 3: MAPE", where, MAPE_CHANGE(3, 0), "lower (\"some loss of quality\")",
           REDUCTION(0.0), diff);
     claim(cl, "004", "Fig. 7: N = 3 vs N = N_c = M: frame time", where,
-          rel_change_of(csv_table_num(t, row[0], "ms_per_frame"), NAN, csv_table_num(t, row[3], "ms_per_frame"), NAN),
+          eval_change(d, row[0], row[3], "ms_per_frame"),
           "lower (\"significant cost reduction\")", REDUCTION(0.0), diff);
     claim(cl, "004", "Fig. 6: N_c = M vs N_c = 1: MAPE", where, MAPE_CHANGE(5, 0), "\"only slightly\" different",
           SMALL_CHANGE(5.0), diff);
@@ -438,8 +446,9 @@ static void paper_004_ablation(struct text *md, struct claims *cl, const struct 
 
 /* 002: the equal-time table (L2 and L1) and its claims. */
 static void paper_002(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
-                      const struct csv_table *t)
+                      const struct step_tables *d)
 {
+    const struct csv_table *t = d->t;
     char a[64], b[64], g[3][64];
     struct step_text x;
     step_text(o, s, &x);
@@ -480,13 +489,12 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
              * (their spread over runs is of the order of the mean) that MAPE, robust to them, shows */
             static const char *const metric[2][3] = {{"relMSE", "relmse", "relmse_sem"}, {"MAPE", "mape", "mape_sem"}};
             char found[1000];
-            eval_gradient_findings(t, me, r, found, sizeof found);
+            eval_gradient_findings(d, me, r, found, sizeof found);
             for (int m = 0; m < 2; m++) {
                 char what[128];
                 snprintf(what, sizeof what, "%s: %s vs %s", l ? "L1" : "L2", metric[m][0], names[k]);
                 claim_found(cl, "002", what, where,
-                            rel_change_of(csv_table_num(t, me, metric[m][1]), csv_table_num(t, me, metric[m][2]),
-                                          csv_table_num(t, r, metric[m][1]), csv_table_num(t, r, metric[m][2])),
+                            eval_change(d, me, r, metric[m][1]),
                             m ? "lower at equal time (the paper reports relMSE)"
                               : "lower at equal time (Fig. 7, 8; no numbers)",
                             REDUCTION(0.0), found, diff);
@@ -500,17 +508,15 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
         const int r = csv_table_find(t, rivals[0][k]);
         char what[128], found[1000];
         snprintf(what, sizeof what, "Fig. 7: gradient relMSE vs %s", names[k]);
-        eval_gradient_findings(t, me, r, found, sizeof found);
+        eval_gradient_findings(d, me, r, found, sizeof found);
         claim_found(cl, "002", what, where,
-                    rel_change_of(csv_table_num(t, me, "gradient_relmse"), csv_table_num(t, me, "gradient_relmse_sem"),
-                                  csv_table_num(t, r, "gradient_relmse"), csv_table_num(t, r, "gradient_relmse_sem")),
+                    eval_change(d, me, r, "gradient_relmse"),
                     "lower at equal time (images only)", REDUCTION(0.0), found, diff);
     }
     /* Gradient after ReSTIR once: the same samples per frame as ours, not the paper's equal time */
     const int once = csv_table_find(t, "grad-after-restir");
     claim(cl, "002", "gradient relMSE vs Gradient after ReSTIR x 1 (equal samples)", where,
-          rel_change_of(csv_table_num(t, me, "gradient_relmse"), csv_table_num(t, me, "gradient_relmse_sem"),
-                     csv_table_num(t, once, "gradient_relmse"), csv_table_num(t, once, "gradient_relmse_sem")),
+          eval_change(d, me, once, "gradient_relmse"),
           "none (not in the paper)", NO_CLAIM, diff);
     /* issue 42: the gradient claim again without the worst 1% of pairs and as MAPE, informational: the paper
      * shows images only, and these say whether a few pairs decide the relMSE verdict */
@@ -522,8 +528,7 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
             char what[128];
             snprintf(what, sizeof what, "%s vs %s", robust[m], vs_name[k]);
             claim(cl, "002", what, where,
-                  rel_change_of(csv_table_num(t, me, grad_col[m + 1][0]), csv_table_num(t, me, grad_col[m + 1][1]),
-                             csv_table_num(t, vs[k], grad_col[m + 1][0]), csv_table_num(t, vs[k], grad_col[m + 1][1])),
+                  eval_change(d, me, vs[k], grad_col[m + 1][0]),
                   "none (issue 42: the relMSE claim without its worst pairs)", NO_CLAIM, diff);
         }
 }
@@ -564,7 +569,7 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
     struct claims cl;
     memset(&cl, 0, sizeof cl);
     snprintf(path, sizeof path, "%s/claims.csv", dir);
-    if (csv_open(&cl.csv, path, "paper,claim,where,ours_change_pct,ours_change_sd,paper_figure,verdict,why", msg) !=
+    if (csv_open(&cl.csv, path, "paper,claim,where,ours_change_pct,ours_lo_pct,ours_hi_pct,interval,seeds,paper_figure,verdict,why", msg) !=
         0) {
         cli_error("%s", msg);
         return EXIT_RUNTIME;
@@ -611,20 +616,24 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
                 s->name);
             continue;
         }
-        struct csv_table t;
+        struct csv_table t, runs;
         if (read_step_csv(dir, s, s->kind, &t) != 0) {
             rc = EXIT_RUNTIME;
             break;
         }
+        const int has_runs = read_step_runs(dir, s, &runs);
+        const struct step_tables d = {&t, has_runs ? &runs : NULL, eval_runs(o, s->paper)};
         if (!strcmp(s->paper, "000"))
-            paper_000(&md, &cl, o, s, &t);
+            paper_000(&md, &cl, o, s, &d);
         else if (!strcmp(s->paper, "004") && s->ablation)
-            paper_004_ablation(&md, &cl, o, s, &t);
+            paper_004_ablation(&md, &cl, o, s, &d);
         else if (!strcmp(s->paper, "004"))
-            rc = paper_004(&md, &cl, o, dir, s, &t);
+            rc = paper_004(&md, &cl, o, dir, s, &d);
         else
-            paper_002(&md, &cl, o, s, &t);
+            paper_002(&md, &cl, o, s, &d);
         csv_table_free(&t);
+        if (has_runs)
+            csv_table_free(&runs);
     }
     if (rc == 0 && current[0])
         flush_claims(&md, &cl, current);
