@@ -36,6 +36,28 @@ static void relative_change(double value, double base, char *out, size_t len)
         snprintf(out, len, "-");
 }
 
+/* DIR/runs.csv: each configuration's values per run (study_run_columns), so that `restir evaluate`
+ * pairs configurations by seed: run r of every configuration renders with the same seed. */
+_Static_assert(STUDY_RUN_COLS == 8, "write_runs prints eight columns");
+static int write_runs(const char *dir, const struct study_config *cfg, const struct study_result *res, int n,
+                      char *msg)
+{
+    char path[4200], header[512] = "config,run";
+    for (int c = 0; c < STUDY_RUN_COLS; c++)
+        snprintf(header + strlen(header), sizeof header - strlen(header), ",%s", study_run_columns[c]);
+    snprintf(path, sizeof(path), "%s/runs.csv", dir);
+    struct csv_writer csv;
+    if (csv_open(&csv, path, header, msg) != 0)
+        return -1;
+    for (int k = 0; k < n; k++)
+        for (int r = 0; r < res[k].runs; r++) {
+            const double *v = &res[k].per_run[(size_t)r * STUDY_RUN_COLS];
+            csv_row(&csv, "%s,%d,%.9g,%.9g,%.6g,%.6g,%.6g,%.9g,%.9g,%.9g", cfg[k].name, r, v[0], v[1], v[2], v[3],
+                    v[4], v[5], v[6], v[7]);
+        }
+    return csv_close(&csv, msg);
+}
+
 static int write_tables(const char *dir, const struct study_config *cfg, const struct study_result *res, int n,
                         int m, char *msg)
 {
@@ -53,7 +75,7 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
                 res[k].spatial_cov, res[k].ms_select, res[k].ms_spatial, res[k].ms_frame, res[k].smape_all_sem,
                 res[k].smape_hard_sem, res[k].temporal_cov_sem, res[k].spatial_cov_sem, res[k].temporal_cov_hard,
                 res[k].temporal_cov_hard_sem);
-    if (csv_close(&csv, msg) != 0)
+    if (csv_close(&csv, msg) != 0 || write_runs(dir, cfg, res, n, msg) != 0)
         return -1;
     snprintf(path, sizeof(path), "%s/study.md", dir);
     char tmp[4300];
@@ -385,6 +407,10 @@ static int study_finish(const struct study_setup *st, const struct plan *pl, con
     if (rc == 0)
         rc = study_write_outputs(st, dir, command, res, st->o.params.denoise.method > 0 ? res_dn : NULL, ref, hard,
                                  nhard, strip_y, strips);
+    for (int k = 0; k < st->ncfg; k++) {
+        study_result_free(&res[k]);
+        study_result_free(&res_dn[k]);
+    }
     free(strips);
     free(hard);
     return rc;

@@ -284,6 +284,18 @@ void study_row_begin(struct study_row *row, int runs, int frames, int w, int h)
     row->h = h;
     row->seq = xmalloc(sizeof(float) * (size_t)w * h * (size_t)runs * (size_t)frames);
     row->run_smape = xcalloc(2 * (size_t)runs, sizeof(double));
+    row->run_ms = xcalloc(3 * (size_t)runs, sizeof(double));
+}
+
+const char *const study_run_columns[STUDY_RUN_COLS] = {
+    "smape_all", "smape_hard",      "ms_select",      "ms_spatial", "ms_frame", "temporal_cov_loo",
+    "spatial_cov_loo", "temporal_cov_hard_loo"};
+
+void study_result_free(struct study_result *res)
+{
+    free(res->per_run);
+    res->per_run = NULL;
+    res->runs = 0;
 }
 
 void study_row_add(struct study_row *row, const struct study_unit *u, const float *ref, const unsigned char *hard,
@@ -307,6 +319,8 @@ void study_row_add(struct study_row *row, const struct study_unit *u, const floa
         res->ms_select += u->ms[3 * t] * k;
         res->ms_spatial += u->ms[3 * t + 1] * k;
         res->ms_frame += u->ms[3 * t + 2] * k;
+        for (int q = 0; q < 3; q++)
+            row->run_ms[3 * n + q] += u->ms[3 * t + q] / frames;
         /* covariances work on float luminance, run-major then frame */
         float *out = &row->seq[((size_t)n * frames + t) * npix];
         for (size_t i = 0; i < npix; i++)
@@ -374,6 +388,16 @@ void study_row_end(struct study_row *row, const unsigned char *hard, struct stud
         }
     }
     free(at_t);
+    res->runs = runs;
+    res->per_run = xmalloc(sizeof(double) * STUDY_RUN_COLS * (size_t)runs);
+    for (int n = 0; n < runs; n++) {
+        double *v = &res->per_run[(size_t)n * STUDY_RUN_COLS];
+        const double per_run[STUDY_RUN_COLS] = {row->run_smape[2 * n], row->run_smape[2 * n + 1], row->run_ms[3 * n],
+                                                row->run_ms[3 * n + 1], row->run_ms[3 * n + 2],
+                                                jack ? theta_t[n] : NAN, jack ? theta_s[n] : NAN,
+                                                jack ? theta_h[n] : NAN};
+        memcpy(v, per_run, sizeof per_run);
+    }
     res->temporal_cov_sem = jack ? jackknife_se(theta_t, runs) : NAN;
     res->spatial_cov_sem = jack ? jackknife_se(theta_s, runs) : NAN;
     res->temporal_cov_hard_sem = jack ? jackknife_se(theta_h, runs) : NAN;
@@ -387,6 +411,8 @@ void study_row_free(struct study_row *row)
 {
     free(row->seq);
     free(row->run_smape);
+    free(row->run_ms);
     row->seq = NULL;
     row->run_smape = NULL;
+    row->run_ms = NULL;
 }

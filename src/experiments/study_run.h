@@ -35,7 +35,18 @@ struct study_result {
     /* jackknife standard errors of temporal_cov, spatial_cov and temporal_cov_hard over the runs (NaN
      * under 3 runs) */
     double temporal_cov_sem, spatial_cov_sem, temporal_cov_hard_sem;
+    /* Each run's own values, for pairing configurations by seed (runs.csv): runs * STUDY_RUN_COLS
+     * doubles, run-major, in the order of study_run_columns (SMAPE all and hard, means over the run's
+     * frames; the mean select, spatial and frame times; the three covariances without that run, NaN
+     * under 3 runs). Allocated by study_row_end; study_result_free frees it. */
+    int runs;
+    double *per_run;
 };
+
+#define STUDY_RUN_COLS 8
+/* The names of per_run's columns, as runs.csv heads them ("_loo": the covariance without the run). */
+extern const char *const study_run_columns[STUDY_RUN_COLS];
+void study_result_free(struct study_result *res);
 
 /* One run of one configuration: what its measured frames leave for the study's statistics. */
 struct study_unit {
@@ -83,6 +94,7 @@ struct study_row {
     int runs, frames, w, h, added;
     float *seq;       /* runs * frames * w * h, run-major then frame */
     double *run_smape; /* runs * 2: each run's SMAPE all and hard, means over its frames */
+    double *run_ms;    /* runs * 3: each run's mean select, spatial and frame times */
     struct study_result res;
 };
 void study_row_begin(struct study_row *row, int runs, int frames, int w, int h);
