@@ -14,6 +14,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/reference_checkpoint.h"
+#include "experiments/reference_halves.h"
 #include "experiments/study_denoised.h"
 #include "experiments/study_report.h"
 #include "io/atomic_file.h"
@@ -66,15 +67,16 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
     struct csv_writer csv;
     if (csv_open(&csv, path,
                  "config,radius,K,M,smape_all,smape_hard,temporal_cov,spatial_cov,ms_select,ms_spatial,ms_frame,"
-                 "smape_all_sem,smape_hard_sem,temporal_cov_sem,spatial_cov_sem,temporal_cov_hard,temporal_cov_hard_sem",
+                 "smape_all_sem,smape_hard_sem,temporal_cov_sem,spatial_cov_sem,temporal_cov_hard,temporal_cov_hard_sem,"
+                 "ref_smape_all,ref_smape_hard",
                  msg) != 0)
         return -1;
     for (int k = 0; k < n; k++)
-        csv_row(&csv, "%s,%g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g", cfg[k].name,
+        csv_row(&csv, "%s,%g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g", cfg[k].name,
                 cfg[k].radius, cfg[k].candidates, m, res[k].smape_all, res[k].smape_hard, res[k].temporal_cov,
                 res[k].spatial_cov, res[k].ms_select, res[k].ms_spatial, res[k].ms_frame, res[k].smape_all_sem,
                 res[k].smape_hard_sem, res[k].temporal_cov_sem, res[k].spatial_cov_sem, res[k].temporal_cov_hard,
-                res[k].temporal_cov_hard_sem);
+                res[k].temporal_cov_hard_sem, res[k].ref_smape[0], res[k].ref_smape[1]);
     if (csv_close(&csv, msg) != 0 || write_runs(dir, cfg, res, n, msg) != 0)
         return -1;
     snprintf(path, sizeof(path), "%s/study.md", dir);
@@ -242,14 +244,28 @@ int study_setup(const struct cli_options *desc, int need_out, struct study_setup
 /* The study's own reference: pt over the method's integrand from a still camera, independently
  * seeded. out: a plan job's output, which makes it resumable from out's checkpoint
  * (reference_render_resumable), else NULL. NULL after a stop signal or, with out, an error (msg). */
-static float *study_render_reference(const struct study_setup *st, const char *out, char *msg)
+/* The study's reference as two independent halves (reference_halves.h): in memory (out NULL) or
+ * resumably as a plan's job. Returns 0, or -1 with msg. */
+static int study_render_reference(const struct study_setup *st, const char *out, struct reference_pair *r, char *msg)
 {
     struct render_params rp = st->o.params;
     rp.seed = reference_seed(rp.seed);
     const struct camera cam = study_camera(&st->s);
-    if (out)
-        return reference_render_resumable(&st->s, st->method, &rp, &cam, NULL, st->o.ref_spp, out, msg);
-    return cli_render_reference(&st->s, st->method, &rp, &cam, NULL, st->o.ref_spp);
+    return reference_render_pair(&st->s, st->method, &rp, &cam, NULL, st->o.ref_spp, out, r, msg);
+}
+
+/* The reference's own SMAPE over the pixels mask marks (NULL: all): SMAPE(a, b) / 2, since |a - b| / 2
+ * is distributed as |r - R| for r = (a + b) / 2 (reference_halves.h). NaN without halves. */
+static double reference_own_smape(const float *a, const float *b, size_t npix, const unsigned char *mask)
+{
+    if (!a || !b)
+        return NAN;
+    double *lum = xmalloc(sizeof(double) * npix), smape = NAN;
+    restir_metrics_luminance(a, npix, lum);
+    if (restir_metrics_smape_luminance(lum, b, npix, mask, &smape) != 0)
+        smape = NAN;
+    free(lum);
+    return 0.5 * smape;
 }
 
 /* Writes the study's tables, plots and report into dir and prints its summary. */
@@ -394,7 +410,7 @@ static int study_rows(const struct study_setup *st, const struct plan *pl, const
 
 /* Rows, then outputs, once the reference is known: shared by the unsplit study and the merge. */
 static int study_finish(const struct study_setup *st, const struct plan *pl, const char *dir, const char *command,
-                        const float *ref)
+                        const float *ref, const float *half_a, const float *half_b)
 {
     const int w = st->o.params.width, h = st->o.params.height;
     const struct camera cam = study_camera(&st->s);
@@ -404,6 +420,11 @@ static int study_finish(const struct study_setup *st, const struct plan *pl, con
     float *strips = xmalloc(sizeof(float) * (size_t)w * st->o.frames * st->ncfg);
     static struct study_result res[STUDY_MAX_CONFIGS], res_dn[STUDY_MAX_CONFIGS];
     int rc = study_rows(st, pl, ref, hard, strip_y, strips, res, res_dn);
+    const double ref_own[2] = {reference_own_smape(half_a, half_b, (size_t)w * h, NULL),
+                               reference_own_smape(half_a, half_b, (size_t)w * h, hard)};
+    for (int k = 0; k < st->ncfg; k++)
+        for (int q = 0; q < 2; q++)
+            res[k].ref_smape[q] = res_dn[k].ref_smape[q] = ref_own[q];
     if (rc == 0)
         rc = study_write_outputs(st, dir, command, res, st->o.params.denoise.method > 0 ? res_dn : NULL, ref, hard,
                                  nhard, strip_y, strips);
@@ -465,8 +486,9 @@ int study_run_job(const struct plan *pl, int k)
     if (done_before) {
         printf("job %d of %d (%s): already done: %s\n", k + 1, pl->n_jobs, pl->jobs[k].name, path);
     } else if (has_ref && k == 0) {
-        rc = reference_job_finish(study_render_reference(&st, path, msg), path, st.o.params.width,
-                                  st.o.params.height, msg);
+        struct reference_pair pair;
+        rc = reference_pair_finish(study_render_reference(&st, path, &pair, msg), &pair, path, st.o.params.width,
+                                   st.o.params.height, msg);
     } else {
         const int unit = k - has_ref, cfg = unit / st.o.runs, run = unit % st.o.runs;
         struct study_unit u;
@@ -506,17 +528,21 @@ int study_merge(const char *dir)
         cli_error("cannot merge: %s", msg);
         rc = EXIT_RUNTIME;
     }
-    float *ref = NULL;
+    float *ref = NULL, *half_a = NULL, *half_b = NULL;
     char path[PLAN_PATH_MAX + 64];
     snprintf(path, sizeof path, "%s/runs/reference.exr", pl.dir);
-    if (rc == 0 && cli_load_reference(st.o.ref ? st.o.ref : path, st.o.params.width, st.o.params.height, &ref,
-                                      msg) != 0) {
+    const char *ref_path = st.o.ref ? st.o.ref : path;
+    if (rc == 0 && (cli_load_reference(ref_path, st.o.params.width, st.o.params.height, &ref, msg) != 0 ||
+                    reference_pair_load_halves(ref_path, st.o.params.width, st.o.params.height, &half_a, &half_b,
+                                               msg) < 0)) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }
     if (rc == 0)
-        rc = study_finish(&st, &pl, pl.dir, pl.command, ref);
+        rc = study_finish(&st, &pl, pl.dir, pl.command, ref, half_a, half_b);
     free(ref);
+    free(half_a);
+    free(half_b);
     scene_destroy(&st.s);
     plan_free(&pl);
     return rc;
@@ -527,14 +553,17 @@ int study_run(struct study_setup *st, const char *command)
     char msg[RESTIR_MSG_LEN];
     int rc = 0;
     cli_catch_stop_signals();
-    float *ref = NULL;
+    struct reference_pair ref = {0};
     if (st->o.ref) {
-        if (cli_load_reference(st->o.ref, st->o.params.width, st->o.params.height, &ref, msg) != 0) {
+        if (cli_load_reference(st->o.ref, st->o.params.width, st->o.params.height, &ref.mean, msg) != 0 ||
+            reference_pair_load_halves(st->o.ref, st->o.params.width, st->o.params.height, &ref.a, &ref.b, msg) <
+                0) {
             cli_error("%s", msg);
+            reference_pair_free(&ref);
             scene_destroy(&st->s);
             return EXIT_RUNTIME;
         }
-    } else if (!(ref = study_render_reference(st, NULL, NULL))) {
+    } else if (study_render_reference(st, NULL, &ref, msg) != 0) {
         cli_error("interrupted by %s while rendering the reference; nothing written", cli_stop_signal_name());
         scene_destroy(&st->s);
         return 128 + (int)cli_stop_signal;
@@ -544,8 +573,8 @@ int study_run(struct study_setup *st, const char *command)
         rc = EXIT_RUNTIME;
     }
     if (rc == 0)
-        rc = study_finish(st, NULL, st->o.out, command, ref);
-    free(ref);
+        rc = study_finish(st, NULL, st->o.out, command, ref.mean, ref.a, ref.b);
+    reference_pair_free(&ref);
     scene_destroy(&st->s);
     return rc;
 }

@@ -41,6 +41,9 @@ struct study_result {
      * under 3 runs). Allocated by study_row_end; study_result_free frees it. */
     int runs;
     double *per_run;
+    /* the reference's own SMAPE over all and the hard pixels, from its halves (NaN without): the
+     * share of smape_all and smape_hard that is the reference's noise, the same for every row */
+    double ref_smape[2];
 };
 
 #define STUDY_RUN_COLS 8
