@@ -37,7 +37,25 @@ static int has_column(const struct csv_table *runs, const char *col)
 
 #define MAX_SEEDS 1024
 
+/* The reference's own error in col (t's column ref_COL, the same in every row) over |ours - base|;
+ * 0 when the table has none. */
+static double reference_ratio(const struct csv_table *t, int ours, int base, const char *col)
+{
+    char ref[96];
+    snprintf(ref, sizeof ref, "ref_%s", col);
+    const double own = csv_table_num(t, ours, ref), diff = fabs(csv_table_num(t, ours, col) - csv_table_num(t, base, col));
+    return isfinite(own) && isfinite(diff) ? (diff > 0.0 ? own / diff : INFINITY) : 0.0;
+}
+
 struct rel_change eval_change(const struct step_tables *d, int ours, int base, const char *col)
+{
+    struct rel_change c = eval_change_unchecked(d, ours, base, col);
+    if (ours >= 0 && base >= 0)
+        c.ref_ratio = reference_ratio(d->t, ours, base, col);
+    return c;
+}
+
+struct rel_change eval_change_unchecked(const struct step_tables *d, int ours, int base, const char *col)
 {
     const struct csv_table *t = d->t;
     if (ours < 0 || base < 0)

@@ -22,8 +22,12 @@ struct step_tables {
 };
 
 /* The change of t's row ours against row base in column col (row -1: not measured). Metrics whose
- * name holds "relmse" count as heavy-tailed (paired_change). */
+ * name holds "relmse" count as heavy-tailed (paired_change). When t has a column ref_COL (the
+ * reference's own error in that metric, from its halves), ref_ratio is it over |ours - base|, and the
+ * verdict refuses a claim the reference cannot judge. */
 struct rel_change eval_change(const struct step_tables *d, int ours, int base, const char *col);
+/* eval_change without the reference's check (ref_ratio 0). */
+struct rel_change eval_change_unchecked(const struct step_tables *d, int ours, int base, const char *col);
 
 /* A change as "-13.8% [-57.9, +30.3]" (its estimate and 95% interval), "-13.8%" without an
  * interval, "-" when not measured. */

@@ -109,7 +109,7 @@ static double pct_of_log(double x) { return 100.0 * expm1(x); }
  * with df degrees of freedom (none when se is not finite or positive). */
 static struct rel_change change_from_log(double m, double se, int n, int df, enum change_interval how)
 {
-    struct rel_change c = {pct_of_log(m), NAN, NAN, m, NAN, n, INTERVAL_NONE, 0};
+    struct rel_change c = {pct_of_log(m), NAN, NAN, m, NAN, n, INTERVAL_NONE, 0, 0.0};
     if (df >= 1 && isfinite(se) && se > 0.0) {
         const double h = student_t_quantile(STATS_LEVEL, df) * se;
         c.lo = pct_of_log(m - h);
@@ -126,7 +126,7 @@ static struct rel_change change_from_log(double m, double se, int n, int df, enu
 
 static struct rel_change not_measured(int n, int no_base)
 {
-    return (struct rel_change){NAN, NAN, NAN, NAN, NAN, n, INTERVAL_NONE, no_base};
+    return (struct rel_change){NAN, NAN, NAN, NAN, NAN, n, INTERVAL_NONE, no_base, 0.0};
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -240,6 +240,10 @@ const char *claim_verdict(struct rel_change c, struct claim k, char *why, size_t
     if (!isfinite(c.pct)) {
         snprintf(why, len, "not measured");
         return "not measured";
+    }
+    if (c.ref_ratio >= 1.0) {
+        snprintf(why, len, "the reference's own error is %.1fx the difference judged: render it longer", c.ref_ratio);
+        return "refused";
     }
     const int spread = c.interval != INTERVAL_NONE;
     const double lo = spread ? c.lo : c.pct, hi = spread ? c.hi : c.pct;

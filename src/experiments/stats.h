@@ -53,6 +53,10 @@ struct rel_change {
     int n;                   /* the seeds behind it */
     enum change_interval interval;
     int no_base; /* a value is not positive (a covariance can be): a relative change means nothing */
+    /* the reference's own error in the metric (its halves: reference_halves.h) over the difference
+     * of the two values judged; at least 1 (the reference's noise is as large as the difference)
+     * refuses the claim for that reference. 0 or NaN: not known, or negligible */
+    double ref_ratio;
 };
 
 /* The change of ours[i] against base[i], i < n, values of the same seed i (common random numbers),
@@ -99,6 +103,8 @@ struct claim {
  * wholly outside, undecided when it straddles a bound. A cost: reproduced when hi <= limit, not
  * reproduced when lo > limit, undecided otherwise. No claim: "lower", "higher" or "no difference".
  * A change without an interval is judged on its estimate alone and why says "no spread".
+ * "refused" when c.ref_ratio >= 1: the difference judged is no larger than the reference's own error
+ * in that metric, so the reference cannot judge it (why says so: render the reference longer).
  * "undefined" without a positive baseline and "not measured" without a value. why (len bytes) gets
  * the reason, "" when none. Returns a static string. */
 const char *claim_verdict(struct rel_change c, struct claim k, char *why, size_t len);
