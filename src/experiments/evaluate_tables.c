@@ -495,7 +495,7 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
                 snprintf(what, sizeof what, "%s: %s vs %s", l ? "L1" : "L2", metric[m][0], names[k]);
                 claim_found(cl, "002", what, where,
                             eval_change(d, me, r, metric[m][1]),
-                            m ? "lower at equal time (the paper reports relMSE)"
+                            m ? "lower at equal time (Fig. 7, 8 show images; the paper names no metric)"
                               : "lower at equal time (Fig. 7, 8; no numbers)",
                             REDUCTION(0.0), found, diff);
             }
