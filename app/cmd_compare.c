@@ -129,11 +129,12 @@ int cmd_compare(int argc, char **argv)
     snprintf(out_dir, sizeof(out_dir), "%s", o.out ? o.out : "");
     if (!o.out)
         snprintf(out_dir, sizeof(out_dir), "out/compare-%s", st.s.name);
-    float *ref = NULL;
+    struct reference_pair pair = {0};
     if (o.ref) {
-        if (cli_load_reference(o.ref, p.width, p.height, &ref, msg) != 0)
+        if (cli_load_reference(o.ref, p.width, p.height, &pair.mean, msg) != 0 ||
+            reference_pair_load_halves(o.ref, p.width, p.height, &pair.a, &pair.b, msg) < 0)
             rc = EXIT_RUNTIME;
-    } else if (!(ref = compare_render_reference(&st))) {
+    } else if (compare_render_reference_pair(&st, NULL, &pair, msg) != 0) {
         cli_error("interrupted by %s while rendering the reference; nothing written", cli_stop_signal_name());
         scene_destroy(&st.s);
         return 128 + (int)cli_stop_signal;
@@ -142,13 +143,14 @@ int cmd_compare(int argc, char **argv)
         rc = EXIT_RUNTIME;
     if (rc != 0) {
         cli_error("%s", msg);
-        free(ref);
+        reference_pair_free(&pair);
         scene_destroy(&st.s);
         return rc;
     }
+    float *ref = pair.mean;
     char ref_path[4200];
     snprintf(ref_path, sizeof(ref_path), "%s/reference.exr", out_dir);
-    if (!o.ref && exr_write_rgb(ref_path, ref, p.width, p.height, msg) != 0)
+    if (!o.ref && reference_pair_write(&pair, ref_path, p.width, p.height, msg) != 0)
         cli_error("warning: %s", msg);
     /* --ref-every: the earlier frames' references, written as reference_NNNN.exr */
     struct compare_track track;
@@ -159,7 +161,7 @@ int cmd_compare(int argc, char **argv)
                       "finished before it",
                       cli_stop_signal_name(), track.ref_frame[k], out_dir);
             compare_track_fini(&track);
-            free(ref);
+            reference_pair_free(&pair);
             scene_destroy(&st.s);
             return 128 + (int)cli_stop_signal;
         }
@@ -170,7 +172,7 @@ int cmd_compare(int argc, char **argv)
     if (compare_track_open(&track, out_dir, msg) != 0) {
         cli_error("%s", msg);
         compare_track_fini(&track);
-        free(ref);
+        reference_pair_free(&pair);
         scene_destroy(&st.s);
         return EXIT_RUNTIME;
     }
@@ -234,23 +236,20 @@ int cmd_compare(int argc, char **argv)
     if (rc != 0) {
         if (rc == EXIT_RUNTIME)
             cli_error("%s", msg);
-        for (int k = 0; k < n; k++) {
-            free(res[k].image);
-            free(res[k].image_dn);
-        }
-        free(ref);
+        for (int k = 0; k < n; k++)
+            compare_result_free(&res[k]);
+        reference_pair_free(&pair);
         scene_destroy(&st.s);
         return rc;
     }
 
     char command[8192];
     cli_command_line("compare", argc, argv, command, sizeof command);
+    compare_reference_noise(res, n, pair.a, pair.b, ref, (size_t)p.width * p.height);
     rc = compare_write_table(&st, out_dir, command, res, ref);
-    for (int k = 0; k < n; k++) {
-        free(res[k].image);
-        free(res[k].image_dn);
-    }
-    free(ref);
+    for (int k = 0; k < n; k++)
+        compare_result_free(&res[k]);
+    reference_pair_free(&pair);
     scene_destroy(&st.s);
     return rc;
 }

@@ -209,8 +209,9 @@ int compare_run_job(const struct plan *pl, int k)
     int run;
     const int spec = spec_of_job(&st, k, &run);
     if (spec < 0) {
-        rc = reference_job_finish(compare_render_reference_resumable(&st, path, msg), path, st.p.width, st.p.height,
-                                  msg);
+        struct reference_pair pair;
+        rc = reference_pair_finish(compare_render_reference_pair(&st, path, &pair, msg), &pair, path, st.p.width,
+                                   st.p.height, msg);
     } else {
         struct compare_result res;
         memset(&res, 0, sizeof res);
@@ -315,13 +316,16 @@ int compare_merge(const char *dir)
         cli_error("cannot merge: %s", msg);
         rc = EXIT_RUNTIME;
     }
-    float *ref = NULL;
+    struct reference_pair pair = {0};
     char path[PLAN_PATH_MAX + 300], to[PLAN_PATH_MAX + 300];
     snprintf(path, sizeof path, "%s/runs/reference.exr", pl.dir);
-    if (rc == 0 && cli_load_reference(st.o.ref ? st.o.ref : path, st.p.width, st.p.height, &ref, msg) != 0) {
+    const char *ref_path = st.o.ref ? st.o.ref : path;
+    if (rc == 0 && (cli_load_reference(ref_path, st.p.width, st.p.height, &pair.mean, msg) != 0 ||
+                    reference_pair_load_halves(ref_path, st.p.width, st.p.height, &pair.a, &pair.b, msg) < 0)) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }
+    const float *ref = pair.mean;
     snprintf(to, sizeof to, "%s/reference.exr", pl.dir);
     if (rc == 0 && !st.o.ref && plan_copy_file(path, to, msg) != 0) { /* where the unsplit compare puts it */
         cli_error("%s", msg);
@@ -351,6 +355,7 @@ int compare_merge(const char *dir)
                         "restir: compare --merge: %s, run %d: its job was written without gradients (by a restir "
                         "before gradient errors): no gradient_relmse for the row\n",
                         st.specs[k].label, n);
+            one.ms_per_frame = t.ms_per_frame;
             compare_runs_add(&acc, &one);
             if (n == 0 && grad && compare_write_worst_pairs(pl.dir, st.specs[k].dir, grad, grad + 3 * npix, ref,
                                                             st.p.width, st.p.height, COMPARE_GRAD_TRIM, msg) != 0) {
@@ -391,13 +396,13 @@ int compare_merge(const char *dir)
             rc = EXIT_RUNTIME;
         }
     }
-    if (rc == 0)
+    if (rc == 0) {
+        compare_reference_noise(res, st.n, pair.a, pair.b, ref, npix);
         rc = compare_write_table(&st, pl.dir, pl.command, res, ref);
-    for (int k = 0; k < st.n; k++) {
-        free(res[k].image);
-        free(res[k].image_dn);
     }
-    free(ref);
+    for (int k = 0; k < st.n; k++)
+        compare_result_free(&res[k]);
+    reference_pair_free(&pair);
     scene_destroy(&st.s);
     plan_free(&pl);
     return rc;

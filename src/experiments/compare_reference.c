@@ -3,15 +3,11 @@
  * plan's job (compare_run.h). */
 #include "experiments/compare_run.h"
 
+#include <math.h>
 #include <stdint.h>
 
 #include "experiments/cli.h"
 #include "experiments/reference_checkpoint.h"
-
-float *compare_render_reference(const struct compare_setup *st)
-{
-    return compare_render_reference_at(st, st->o.frames - 1);
-}
 
 /* What the reference at frame `frame` renders: its params and cameras. */
 static const struct method *reference_inputs(const struct compare_setup *st, int frame, struct render_params *rp,
@@ -34,10 +30,29 @@ float *compare_render_reference_at(const struct compare_setup *st, int frame)
     return cli_render_reference(&st->s, m, &rp, &cam, &open, st->o.ref_spp);
 }
 
-float *compare_render_reference_resumable(const struct compare_setup *st, const char *out, char *msg)
+int compare_render_reference_pair(const struct compare_setup *st, const char *out, struct reference_pair *r,
+                                  char *msg)
 {
     struct render_params rp;
     struct camera cam, open;
     const struct method *m = reference_inputs(st, st->o.frames - 1, &rp, &cam, &open);
-    return reference_render_resumable(&st->s, m, &rp, &cam, &open, st->o.ref_spp, out, msg);
+    return reference_render_pair(&st->s, m, &rp, &cam, &open, st->o.ref_spp, out, r, msg);
+}
+
+void compare_reference_noise(struct compare_result *res, int n, const float *a, const float *b, const float *ref,
+                             size_t npix)
+{
+    struct restir_metrics_error own = {NAN, NAN, NAN, NAN};
+    if (a && b)
+        restir_metrics_compute(a, ref, npix, NULL, &own); /* |a - r| = |a - b| / 2 */
+    for (int k = 0; k < n; k++) {
+        res[k].ref_own[0] = own.relmse;
+        res[k].ref_own[1] = own.mape;
+        res[k].ref_own[2] = own.smape;
+        if (!(a && b))
+            continue;
+        res[k].err.relmse -= own.relmse;
+        for (int r = 0; res[k].per_run && r < res[k].runs; r++)
+            res[k].per_run[(size_t)r * COMPARE_RUN_COLS] -= own.relmse;
+    }
 }

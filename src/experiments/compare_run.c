@@ -239,8 +239,29 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     return rc;
 }
 
+const char *const compare_run_columns[COMPARE_RUN_COLS] = {
+    "relmse",          "mape",           "smape", "mape_disoccluded", "gradient_relmse", "gradient_relmse_trim1",
+    "gradient_mape",   "ms_per_frame"};
+
+void compare_result_free(struct compare_result *res)
+{
+    free(res->image);
+    free(res->image_dn);
+    free(res->per_run);
+    res->image = res->image_dn = NULL;
+    res->per_run = NULL;
+}
+
 void compare_runs_add(struct compare_runs *a, const struct compare_result *r)
 {
+    if (a->n == a->cap) {
+        a->cap = a->cap ? 2 * a->cap : 8;
+        a->per_run = realloc(a->per_run, sizeof(double) * COMPARE_RUN_COLS * (size_t)a->cap);
+        RESTIR_CHECK(a->per_run != NULL);
+    }
+    const double v[COMPARE_RUN_COLS] = {r->err.relmse,   r->err.mape,     r->err.smape,        r->mape_dis,
+                                        r->grad_relmse, r->grad_relmse_trim, r->grad_mape, r->ms_per_frame};
+    memcpy(&a->per_run[(size_t)a->n * COMPARE_RUN_COLS], v, sizeof v);
     const struct restir_metrics_error *e = &r->err;
     const double x[13] = {e->relmse,   e->mape,        e->smape,         e->luma_rmse, r->mape_dis,
                           r->dis_share, r->grad_relmse, r->grad_relmse_trim, r->grad_mape,
@@ -250,7 +271,7 @@ void compare_runs_add(struct compare_runs *a, const struct compare_result *r)
         running_mean_add(&a->m[k], x[k]);
 }
 
-void compare_runs_finish(const struct compare_runs *a, struct compare_result *res)
+void compare_runs_finish(struct compare_runs *a, struct compare_result *res)
 {
     const int runs = a->n;
     double sem[13];
@@ -274,6 +295,10 @@ void compare_runs_finish(const struct compare_runs *a, struct compare_result *re
     res->grad_relmse_trim_sem = sem[7];
     res->grad_mape_sem = sem[8];
     res->runs = runs;
+    free(res->per_run);
+    res->per_run = a->per_run;
+    a->per_run = NULL;
+    a->cap = 0;
 }
 
 void compare_keep_fastest(struct compare_result *res, const struct compare_result *run)
@@ -303,6 +328,7 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
                 free(res->image_dn);
                 res->image = res->image_dn = NULL;
             }
+            free(acc.per_run);
             return rc;
         }
         compare_runs_add(&acc, n == 0 ? res : &one);

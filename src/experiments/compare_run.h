@@ -5,6 +5,7 @@
 #define RESTIR_EXPERIMENTS_COMPARE_RUN_H
 
 #include "experiments/compare_track.h"
+#include "experiments/reference_halves.h"
 #include "experiments/options.h"
 #include "experiments/stats.h"
 #include "methods/renderer.h"
@@ -59,7 +60,20 @@ struct compare_result {
     double temporal_cov_dn;  /* the same of the denoised frames; NaN without denoising */
     float *image;            /* the last frame, kept for --report (else NULL) */
     float *image_dn;         /* and the denoised one (else NULL) */
+    /* Each run's own values, for pairing rows by seed (runs.csv): runs * COMPARE_RUN_COLS doubles,
+     * run-major, in the order of compare_run_columns; owned (compare_result_free). NULL when none. */
+    double *per_run;
+    /* The reference's own error in relMSE, MAPE and SMAPE (half a of its two independent halves
+     * against their mean: |a - r| = |a - b| / 2, distributed as |r - R|), NaN without halves. relMSE's
+     * is also subtracted from err.relmse and every run's (compare_reference_noise). */
+    double ref_own[3];
 };
+
+#define COMPARE_RUN_COLS 8
+/* The names of per_run's columns, as runs.csv heads them. */
+extern const char *const compare_run_columns[COMPARE_RUN_COLS];
+/* Frees res's images and per-run values. */
+void compare_result_free(struct compare_result *res);
 
 struct compare_setup {
     struct cli_options o;
@@ -97,9 +111,17 @@ void compare_denoised_errors(const float *denoised, const float *ref, const unsi
  * a plan's JSON): the specs, the common parameters and integrand, the scene loaded (st->s, to
  * destroy), memory checked. Returns 0, or an exit code having said why. */
 int compare_setup(const struct cli_options *desc, struct compare_setup *st);
-/* The comparison's own reference (independently seeded, from the last frame's camera), or NULL
- * when a stop signal arrived. */
-float *compare_render_reference(const struct compare_setup *st);
+/* The comparison's own reference (independently seeded, from the last frame's camera) as two
+ * independent halves and their mean (reference_halves.h): in memory when out is NULL, else resumably
+ * as a plan's job writing out's halves. Returns 0, or -1 with msg (a stop signal; a failed save). */
+int compare_render_reference_pair(const struct compare_setup *st, const char *out, struct reference_pair *r,
+                                  char *msg);
+/* The reference's own noise out of the rows' errors: with halves a and b of the reference ref
+ * (npix pixels; a NULL: none, every ref_own NaN), each res[k].ref_own gets the reference's own
+ * relMSE, MAPE and SMAPE, and the relMSE's share, E[(x - r)^2] - Var(r) per pixel with Var(r)
+ * estimated as (a - b)^2 / 4, is subtracted from res[k].err.relmse and from each run's relMSE. */
+void compare_reference_noise(struct compare_result *res, int n, const float *a, const float *b, const float *ref,
+                             size_t npix);
 /* Runs `frames` frames of spec c with parameters p (c->p, or with an equal-time spp) as `instances`
  * (at most MAX_INSTANCES) independently seeded renderers, measures the average of their last frames
  * against ref (none when ref is NULL: then res->mask gets the disocclusion mask, for gradient
@@ -112,15 +134,17 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
                        int run, struct compare_result *res, char *msg);
 /* The errors of a spec's runs as they arrive (run order), and their means and standard errors. */
 struct compare_runs {
-    int n;
+    int n, cap;
+    double *per_run; /* n * COMPARE_RUN_COLS: each run's values, handed to the result by compare_runs_finish */
     struct running_mean m[13]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share,
                                   gradient relMSE, its 1%-trimmed mean, gradient MAPE, and denoised
                                   relMSE, MAPE, SMAPE, disoccluded MAPE */
 };
 void compare_runs_add(struct compare_runs *a, const struct compare_result *r);
 /* Into res: with more than one run the means (one run keeps its own errors bit for bit), the
- * standard errors (NaN with one run) and the number of runs. */
-void compare_runs_finish(const struct compare_runs *a, struct compare_result *res);
+ * standard errors (NaN with one run), the number of runs and each run's values (res->per_run, taken
+ * from a). */
+void compare_runs_finish(struct compare_runs *a, struct compare_result *res);
 /* The times of res become run's (frame and passes) when run's frame time is shorter: a row reports
  * its fastest run, since other load on a machine only ever slows a run down. */
 void compare_keep_fastest(struct compare_result *res, const struct compare_result *run);
@@ -138,9 +162,6 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
 /* The comparison's reference at frame `frame` (the last frame's: compare_render_reference), or NULL
  * when a stop signal arrived. */
 float *compare_render_reference_at(const struct compare_setup *st, int frame);
-/* The last frame's reference for a plan's job, resumable from out's checkpoint
- * (reference_render_resumable); NULL with msg after a stop or an unusable checkpoint. */
-float *compare_render_reference_resumable(const struct compare_setup *st, const char *out, char *msg);
 /* Prints the table, writes out_dir/compare.csv and, with --report, index.html. Returns an exit
  * code. */
 int compare_write_table(const struct compare_setup *st, const char *out_dir, const char *command,

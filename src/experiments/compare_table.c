@@ -79,6 +79,35 @@ static void print_denoised(const struct compare_spec *specs, const struct compar
     }
 }
 
+/* DIR/runs.csv: each row's values per run (compare_run_columns), so that `restir evaluate` pairs rows
+ * by seed: run r of every row renders with compare_run_seed(seed, r). Returns 0, or -1 with msg. */
+static int write_runs(const char *out_dir, const struct compare_spec *specs, const struct compare_result *res, int n,
+                      char *msg)
+{
+    char path[4200], header[512] = "method,run";
+    for (int q = 0; q < COMPARE_RUN_COLS; q++)
+        snprintf(header + strlen(header), sizeof header - strlen(header), ",%s", compare_run_columns[q]);
+    snprintf(path, sizeof path, "%s/runs.csv", out_dir);
+    struct csv_writer csv;
+    if (csv_open(&csv, path, header, msg) != 0)
+        return -1;
+    for (int k = 0; k < n; k++)
+        for (int r = 0; res[k].per_run && r < res[k].runs; r++) {
+            char row[2048];
+            csv_field(row, sizeof row, specs[k].label);
+            snprintf(row + strlen(row), sizeof row - strlen(row), ",%d", r);
+            for (int q = 0; q < COMPARE_RUN_COLS; q++) {
+                const double v = res[k].per_run[(size_t)r * COMPARE_RUN_COLS + q];
+                if (isfinite(v))
+                    snprintf(row + strlen(row), sizeof row - strlen(row), ",%.9g", v);
+                else
+                    snprintf(row + strlen(row), sizeof row - strlen(row), ",");
+            }
+            csv_row(&csv, "%s", row);
+        }
+    return csv_close(&csv, msg);
+}
+
 int compare_write_table(const struct compare_setup *st, const char *out_dir, const char *command,
                         const struct compare_result *res, const float *ref)
 {
@@ -96,7 +125,8 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                  "smape_sem,mape_disoccluded,mape_disoccluded_sem,disoccluded_share,gradient_relmse,"
                  "gradient_relmse_sem,gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem,"
                  "relmse_denoised,relmse_denoised_sem,mape_denoised,mape_denoised_sem,smape_denoised,"
-                 "smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem,temporal_cov_denoised",
+                 "smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem,temporal_cov_denoised,"
+                 "ref_relmse,ref_mape,ref_smape",
                  msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
@@ -180,13 +210,17 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                 if (c->runs > 1 && isfinite(ds[j]))
                     snprintf(dn[2 * j + 1], sizeof dn[2 * j + 1], "%.6g", ds[j]);
             }
+            char own[3][32] = {"", "", ""}; /* the reference's own errors (its halves); empty without */
+            for (int j = 0; j < 3; j++)
+                if (isfinite(c->ref_own[j]))
+                    snprintf(own[j], sizeof own[j], "%.6g", c->ref_own[j]);
             csv_row(&csv,
                     "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,"
-                    "%s,%s,%s,%s,%s,%s,%s,%s,%s",
+                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s",
                     field, c->ms_per_frame, c->spp, c->instances, c->err.relmse, c->err.mape, c->err.smape,
                     c->err.luma_rmse, c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1],
                     gr[0], gr[1], gr[2], gr[3], gr[4], gr[5], dn[0], dn[1], dn[2], dn[3], dn[4], dn[5], dn[6], dn[7],
-                    dn[8]);
+                    dn[8], own[0], own[1], own[2]);
         }
     }
     print_denoised(specs, res, n, w, runs, p->denoise.method);
@@ -194,7 +228,11 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }
-    if (rc == 0 && write_passes(out_dir, specs, res, n, msg) != 0) {
+    if (isfinite(res[0].ref_own[0]))
+        printf("(relMSE without the reference's own share %.4g, from its two independent halves; its own MAPE %.4g, "
+               "SMAPE %.4g)\n",
+               res[0].ref_own[0], res[0].ref_own[1], res[0].ref_own[2]);
+    if (rc == 0 && (write_passes(out_dir, specs, res, n, msg) != 0 || write_runs(out_dir, specs, res, n, msg) != 0)) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }

@@ -106,6 +106,17 @@ int reference_pair_finish(int rc_render, struct reference_pair *r, const char *o
     return rc;
 }
 
+int reference_pair_write(const struct reference_pair *r, const char *out, int w, int h, char *msg)
+{
+    char pa[4200], pbp[4200];
+    half_path(out, 'a', pa, sizeof pa);
+    half_path(out, 'b', pbp, sizeof pbp);
+    return exr_write_rgb(out, r->mean, w, h, msg) != 0 || exr_write_rgb(pa, r->a, w, h, msg) != 0 ||
+                   exr_write_rgb(pbp, r->b, w, h, msg) != 0
+               ? -1
+               : 0;
+}
+
 int reference_pair_load_halves(const char *out, int w, int h, float **a, float **b, char *msg)
 {
     char pa[4200], pbp[4200];

@@ -39,6 +39,10 @@ int reference_render_pair(const struct scene *s, const struct method *method, co
  * what failed. */
 int reference_pair_finish(int rc_render, struct reference_pair *r, const char *out, int w, int h, char *msg);
 
+/* Writes r->mean to out and the halves beside it (OUT.half_a.exr, OUT.half_b.exr) as plain RGB EXRs,
+ * for a reference rendered in memory. Returns 0, or -1 with msg. */
+int reference_pair_write(const struct reference_pair *r, const char *out, int w, int h, char *msg);
+
 /* The halves beside the reference out (OUT.half_a.exr, OUT.half_b.exr) of size w x h into *a and *b.
  * Returns 0; 1 when there are none (a reference given with --ref, or written before halves existed:
  * *a and *b NULL); -1 with msg when one is missing, of another size or holds a non-finite value. */
