@@ -78,6 +78,56 @@ long restir_metrics_gradient_worst_pairs(const float *dx, const float *dy, const
  * does for the image MAPE. NaN as restir_metrics_gradient_relmse. */
 double restir_metrics_gradient_mape(const float *dx, const float *dy, const float *reference, int width, int height);
 
+/* FLIP (Andersson et al., "FLIP: A Difference Evaluator for Alternating Images", 2020) and HDR-FLIP (Andersson et
+ * al., "Visualizing Errors in Rendered High Dynamic Range Images", 2021): a per-pixel perceptual error in [0, 1]
+ * (0: no visible difference) of a test image against a reference seen at ppd pixels per degree of visual angle,
+ * and its mean. Written from the papers' definitions, in float32 as NVIDIA's FLIP is (with separable filters
+ * and sums in its own order): per pixel within 1e-5 of a direct double-precision evaluation, not bit for bit
+ * any other implementation.
+ *
+ * Images: interleaved linear RGB floats (sRGB / Rec. 709 primaries, D65), row-major, width x height; only read.
+ * map_out (may be NULL; caller-owned, width x height floats) receives the per-pixel error; *mean_out (required)
+ * its arithmetic mean, summed in double in pixel order. Scratch of about 60 bytes per pixel is allocated and freed
+ * before returning. The image is split over rows between restir_threads_get() threads (restir/threads.h; one
+ * below 16384 pixels); the result does not depend on the thread count. Both functions return 0, or -1 without
+ * writing map_out or *mean_out for a NULL test, reference or mean_out, width or height < 1, a size whose scratch
+ * overflows the address range, a ppd that is NaN, infinite, <= 0 or above RESTIR_METRICS_FLIP_PPD_MAX, or no
+ * memory.
+ *
+ * Bad pixels: a NaN or infinite input value is read as NaN (never clamped into range), which the filters spread
+ * over their support (up to ceil(0.135 ppd) pixels around it), so the map is NaN there and the mean is NaN: a
+ * broken image does not look perfect. */
+
+/* The default viewing condition of FLIP's tool: a 0.7 m wide 3840-pixel monitor seen from 0.7 m,
+ * 3840 pi / 180 = 67.02 pixels per degree (restir_metrics_flip_ppd(0.7, 0.7, 3840)). */
+#define RESTIR_METRICS_FLIP_PPD 67.02064327658226
+/* The largest ppd the FLIP functions take (a 4K monitor seen from about 10 m): the filters grow with it. */
+#define RESTIR_METRICS_FLIP_PPD_MAX 1000.0
+
+/* Pixels per degree of a monitor monitor_width wide with resolution_x pixels across, seen from distance (any
+ * length unit, the same for both): distance (resolution_x / monitor_width) pi / 180. NaN for a distance or width
+ * that is not finite and > 0, or resolution_x < 1. */
+double restir_metrics_flip_ppd(double distance, double monitor_width, int resolution_x);
+
+/* LDR-FLIP (2020) of images whose values are taken as linear RGB in [0, 1] (each value clamped to it): colour
+ * pipeline (YCxCz, contrast sensitivity filters, CIELAB with the Hunt adjustment, HyAB^0.7 remapped by c_max) and
+ * feature pipeline (edges and points of the luminance), combined per pixel as dE_c^(1 - dE_f); see
+ * restir_metrics_definitions(). Symmetric: swapping test and reference gives the same map. */
+int restir_metrics_flip_ldr(const float *test, const float *reference, int width, int height, double ppd,
+                            float *map_out, double *mean_out);
+
+/* HDR-FLIP (2021) of linear radiance images: exposures e from start = log2(x_max / Y_max) to
+ * stop = log2(x_max / Y_median), max(2, ceil(stop - start)) of them evenly spaced with both ends, taken from the
+ * REFERENCE's luminance (x_max = 2.119..., where ACES reaches 0.85; Y_median element N / 2 of the sorted
+ * luminances, zeros included); for each, both images are scaled by 2^e, tone-mapped by ACES and clamped to
+ * [0, 1], and LDR-FLIP runs on the result; the map is the per-pixel maximum over the exposures. Not symmetric:
+ * the exposures follow the reference. Our rules where the papers leave it undefined: negative values count as 0
+ * (ACES would show large negative ones bright); exposures use the finite luminances only; a median <= 0 is
+ * replaced by the median of the positive luminances; a reference with no positive luminance gets exposure 0
+ * twice. Cost: one LDR-FLIP per exposure (often 5 to 15). */
+int restir_metrics_flip(const float *test, const float *reference, int width, int height, double ppd, float *map_out,
+                        double *mean_out);
+
 /* The definitions above as plain text (a static string, one metric per line), for a program's
  * documentation or output. */
 const char *restir_metrics_definitions(void);

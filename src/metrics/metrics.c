@@ -340,6 +340,14 @@ const char *restir_metrics_definitions(void)
            "  gradient MAPE = mean over the same pairs and channels of |G_c - D_c| / (|D_c| + 0.01 * mean|D|),\n"
            "              D_c = R_bc - R_ac, mean|D| = mean of |D_c| over all pairs and channels (the image\n"
            "              MAPE's 1% of the mean of the denominator's quantity); a term with G_c == D_c is 0\n"
+           "  FLIP      = mean over pixels of HDR-FLIP (Andersson et al. 2020, 2021) at 67.02 pixels per degree\n"
+           "              (a 0.7 m wide 3840-pixel monitor seen from 0.7 m): per exposure e, both images times 2^e,\n"
+           "              ACES-tone-mapped (negative values as 0) and clamped to [0, 1], then LDR-FLIP per pixel:\n"
+           "              dE_c^(1 - dE_f), dE_c the HyAB^0.7 distance (remapped to [0, 1] by c_max = 41.28) of the\n"
+           "              Hunt-adjusted CIELAB of both images filtered by the contrast sensitivity functions in YCxCz,\n"
+           "              dE_f = sqrt(max(|edges(I) - edges(R)|, |points(I) - points(R)|) / sqrt 2) from Gaussian\n"
+           "              derivative filters (sigma 0.041 degrees) of the luminance; the maximum over exposures\n"
+           "              log2(2.119 / Y_max) to log2(2.119 / Y_median) of R, max(2, ceil(span)) of them; in [0, 1]\n"
            "  L(x)      = 0.2126 x_r + 0.7152 x_g + 0.0722 x_b (Rec. 709 luminance)\n";
 }
 

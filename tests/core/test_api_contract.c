@@ -779,6 +779,32 @@ static void test_metrics(void)
     CHECK(isfinite(restir_metrics_gradient_mape(g, g, ref, 2, 1)));
     CHECK(restir_metrics_definitions() != NULL && restir_metrics_definitions()[0] != '\0');
 
+    /* FLIP on the 2 x 1 image: -1 and nothing written for NULL, sizes, a bad ppd; NaN pixels make the mean NaN */
+    for (int hdr = 0; hdr < 2; hdr++) {
+        int (*flip)(const float *, const float *, int, int, double, float *, double *) =
+            hdr ? restir_metrics_flip : restir_metrics_flip_ldr;
+        float fmap[2] = {7.0f, 7.0f};
+        double fmean = 7.0;
+        CHECK(flip(NULL, ref, 2, 1, RESTIR_METRICS_FLIP_PPD, fmap, &fmean) == -1);
+        CHECK(flip(img, NULL, 2, 1, RESTIR_METRICS_FLIP_PPD, fmap, &fmean) == -1);
+        CHECK(flip(img, ref, 2, 1, RESTIR_METRICS_FLIP_PPD, fmap, NULL) == -1);
+        CHECK(flip(img, ref, 0, 1, RESTIR_METRICS_FLIP_PPD, fmap, &fmean) == -1);
+        CHECK(flip(img, ref, 2, -1, RESTIR_METRICS_FLIP_PPD, fmap, &fmean) == -1);
+        CHECK(flip(img, ref, INT_MAX, INT_MAX, RESTIR_METRICS_FLIP_PPD, fmap, &fmean) == -1);
+        CHECK(flip(img, ref, 2, 1, NaN, fmap, &fmean) == -1 && flip(img, ref, 2, 1, INF, fmap, &fmean) == -1);
+        CHECK(flip(img, ref, 2, 1, 0.0, fmap, &fmean) == -1 && flip(img, ref, 2, 1, -1.0, fmap, &fmean) == -1);
+        CHECK(flip(img, ref, 2, 1, 2.0 * RESTIR_METRICS_FLIP_PPD_MAX, fmap, &fmean) == -1);
+        CHECK(all_equal(fmap, 2, 7.0f) && fmean == 7.0);
+        CHECK(flip(img, ref, 2, 1, RESTIR_METRICS_FLIP_PPD, NULL, &fmean) == 0 && isfinite(fmean) && fmean > 0.0);
+        CHECK(flip(img, img, 2, 1, RESTIR_METRICS_FLIP_PPD, fmap, &fmean) == 0 && fmean == 0.0 &&
+              all_equal(fmap, 2, 0.0f));
+        CHECK(flip(img_nan, ref, 2, 1, RESTIR_METRICS_FLIP_PPD, fmap, &fmean) == 0 && isnan(fmean));
+        CHECK(flip(img_inf, ref, 2, 1, RESTIR_METRICS_FLIP_PPD, fmap, &fmean) == 0 && isnan(fmean));
+    }
+    CHECK(fabs(restir_metrics_flip_ppd(0.7, 0.7, 3840) - RESTIR_METRICS_FLIP_PPD) < 1e-12);
+    CHECK(isnan(restir_metrics_flip_ppd(0.0, 0.7, 3840)) && isnan(restir_metrics_flip_ppd(0.7, NaN, 3840)) &&
+          isnan(restir_metrics_flip_ppd(0.7, 0.7, 0)) && isnan(restir_metrics_flip_ppd(INF, 0.7, 3840)));
+
     /* correlation: 2 runs of a 3 x 2 luminance image */
     float runs[12];
     for (int k = 0; k < 12; k++)
