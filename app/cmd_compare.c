@@ -61,7 +61,8 @@ static void compare_usage(void)
                "methods: the relMSE of the last frame's estimated forward differences against the reference's,\n"
                "our measure of 002 Fig. 7's gradient images, defined in restir render --help; and issue 42's\n"
                "gradient_relmse_trim1 (the same without the worst 1%% of pairs) and gradient_mape, each with\n"
-               "its _sem)\n"
+               "its _sem; and flip, flip_sem: the mean HDR-FLIP of the last frame, Andersson et al. 2021, at 67\n"
+               "pixels per degree, defined in restir render --help)\n"
                "and each row's last frame to DIR/FOLDER/, where FOLDER is the SPEC with every character other\n"
                "than A-Z a-z 0-9 . _ - replaced by _ (and _2, _3, ... appended when two SPECs give the same\n"
                "name). Default DIR: out/compare-SCENE. For gradient rows DIR/FOLDER_grad_worst1.png shows where\n"
@@ -85,8 +86,8 @@ static void compare_usage(void)
                "planned.\n"
                "--report also writes DIR/index.html: one self-contained page (no network) with the command,\n"
                "commit and machine, the table, a relMSE plot, every image beside the reference in a viewer\n"
-               "(synchronized zoom and pan, A/B flip), relative-error heat maps and the crops where the first\n"
-               "two methods differ most.\n");
+               "(synchronized zoom and pan, A/B flip), relative-error and FLIP heat maps and the crops where\n"
+               "the first two methods differ most.\n");
     cli_options_help(stdout, "compare");
 }
 

@@ -347,6 +347,7 @@ int compare_merge(const char *dir)
             }
             struct compare_result one = {.method = st.specs[k].method};
             restir_metrics_compute(image, ref, npix, NULL, &one.err);
+            one.flip = compare_flip(image, ref, st.p.width, st.p.height);
             compare_disoccluded_error(image, ref, mask, npix, &one.mape_dis, &one.dis_share);
             compare_gradient_errors(grad, grad ? grad + 3 * npix : NULL, ref, st.p.width, st.p.height, &one);
             compare_denoised_errors(denoised, ref, mask, npix, &one);

@@ -85,8 +85,8 @@ static void meta(struct html_page *pg, const struct compare_report_run *run)
 static void table(struct html_page *pg, int n, const struct compare_report_method *m)
 {
     static const char *const header[] = {"method", "ms/frame", "spp", "instances", "relMSE", "MAPE", "SMAPE",
-                                         "relMSE / first"};
-    enum { COLS = 8 };
+                                         "FLIP", "relMSE / first"};
+    enum { COLS = 9 };
     char *text = xcalloc((size_t)n * COLS, 64);
     const char **cells = xcalloc((size_t)n * COLS, sizeof(char *));
     for (int k = 0; k < n; k++) {
@@ -97,7 +97,11 @@ static void table(struct html_page *pg, int n, const struct compare_report_metho
         snprintf(row + 256, 64, "%.5g", m[k].err.relmse);
         snprintf(row + 320, 64, "%.5g", m[k].err.mape);
         snprintf(row + 384, 64, "%.3f", m[k].err.smape);
-        snprintf(row + 448, 64, "%.3f", m[0].err.relmse > 0 ? m[k].err.relmse / m[0].err.relmse : 0.0);
+        if (isfinite(m[k].flip))
+            snprintf(row + 448, 64, "%.4f", m[k].flip);
+        else
+            snprintf(row + 448, 64, "-");
+        snprintf(row + 512, 64, "%.3f", m[0].err.relmse > 0 ? m[k].err.relmse / m[0].err.relmse : 0.0);
         cells[k * COLS] = m[k].label;
         for (int c = 1; c < COLS; c++)
             cells[k * COLS + c] = row + 64 * c;
@@ -127,6 +131,42 @@ static int heat_maps(struct html_page *pg, const struct compare_report_run *run,
     html_raw(pg, "<h2>Relative error</h2>\n<p>Per pixel |I - R| / (R + 0.01 mean(R)), averaged over the channels: "
                  "the image mean of each map is its MAPE.</p>\n");
     html_colorbar(pg, HEAT_MAX, "relative error");
+    html_viewer(pg, n, labels, src_ptr, run->width, run->height);
+    return 0;
+}
+
+/* HDR-FLIP maps of every method (restir_metrics_flip at FLIP's default viewing condition), on FLIP's own scale
+ * [0, 1]. */
+static int flip_maps(struct html_page *pg, const struct compare_report_run *run, int n,
+                     const struct compare_report_method *m, char *msg)
+{
+    const size_t npix = (size_t)run->width * run->height;
+    const char *labels[MAX_REPORT_METHODS];
+    char srcs[MAX_REPORT_METHODS][64], path[4300];
+    const char *src_ptr[MAX_REPORT_METHODS];
+    float *map = xmalloc(sizeof(float) * npix);
+    for (int k = 0; k < n; k++) {
+        double mean;
+        if (restir_metrics_flip(m[k].image, run->reference, run->width, run->height, RESTIR_METRICS_FLIP_PPD, map,
+                                &mean) != 0) {
+            snprintf(msg, RESTIR_MSG_LEN, "FLIP of %.200s: out of memory", m[k].label);
+            free(map);
+            return -1;
+        }
+        snprintf(srcs[k], sizeof srcs[k], "report/flip_%d.png", k);
+        snprintf(path, sizeof path, "%s/%s", run->out_dir, srcs[k]);
+        if (png_write_heatmap(path, map, run->width, run->height, 1.0f, msg) != 0) {
+            free(map);
+            return -1;
+        }
+        labels[k] = m[k].label;
+        src_ptr[k] = srcs[k];
+    }
+    free(map);
+    html_raw(pg, "<h2>FLIP</h2>\n<p>Per pixel HDR-FLIP (Andersson et al. 2021) at 67 pixels per degree: the perceived "
+                 "difference from the reference, 0 none, 1 the largest (green against blue); the image mean of each map "
+                 "is its FLIP.</p>\n");
+    html_colorbar(pg, 1.0f, "FLIP");
     html_viewer(pg, n, labels, src_ptr, run->width, run->height);
     return 0;
 }
@@ -250,6 +290,8 @@ int compare_write_report(const struct compare_report_run *run, int n, const stru
     gradient_layers(&pg, run, n, m);
     float *maps = xmalloc(sizeof(float) * (size_t)n * (size_t)run->width * (size_t)run->height);
     int rc = heat_maps(&pg, run, n, m, maps, msg);
+    if (rc == 0)
+        rc = flip_maps(&pg, run, n, m, msg);
     if (rc == 0 && n >= 2)
         rc = crops(&pg, run, n, m, maps, msg);
     free(maps);

@@ -6,8 +6,8 @@
 #include "restir/metrics.h"
 
 /* The page: the run's command, commit and machine, its table and a bar plot, every method's image
- * and the reference in a synchronized viewer with an A/B flip, per-pixel relative-error heat maps
- * with a colour bar, and crops of the regions where the first two methods' errors differ most. */
+ * and the reference in a synchronized viewer with an A/B flip, per-pixel relative-error and HDR-FLIP
+ * heat maps with colour bars, and crops of the regions where the first two methods' errors differ most. */
 
 struct compare_report_method {
     const char *label;  /* the method spec */
@@ -18,6 +18,7 @@ struct compare_report_method {
     double ms_per_frame;
     int spp, instances;
     struct restir_metrics_error err;
+    double flip; /* mean HDR-FLIP (the table's; NaN: not measured, shown as '-') */
 };
 
 struct compare_report_run {
@@ -26,7 +27,7 @@ struct compare_report_run {
     const float *reference;
 };
 
-/* Writes out_dir/index.html and the images it shows (reference.png, report/heat_K.png,
+/* Writes out_dir/index.html and the images it shows (reference.png, report/heat_K.png, report/flip_K.png,
  * report/crop_R_K.png). Returns 0, or -1 with msg. */
 int compare_write_report(const struct compare_report_run *run, int n, const struct compare_report_method *m,
                          char *msg);

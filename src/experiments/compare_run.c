@@ -68,6 +68,14 @@ void compare_gradient_errors(const float *dx, const float *dy, const float *ref,
     res->grad_mape = restir_metrics_gradient_mape(dx, dy, ref, width, height);
 }
 
+double compare_flip(const float *image, const float *ref, int width, int height)
+{
+    double mean = NAN;
+    if (restir_metrics_flip(image, ref, width, height, RESTIR_METRICS_FLIP_PPD, NULL, &mean) != 0)
+        return NAN;
+    return mean;
+}
+
 void compare_denoised_errors(const float *denoised, const float *ref, const unsigned char *mask, size_t npix,
                              struct compare_result *res)
 {
@@ -195,11 +203,13 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     res->grad = NULL;
     res->denoised = NULL;
     res->grad_relmse = res->grad_relmse_trim = res->grad_mape = NAN;
+    res->flip = NAN;
     res->err_dn = res->sem_dn = (struct restir_metrics_error){NAN, NAN, NAN, NAN};
     res->mape_dis_dn = res->mape_dis_dn_sem = NAN;
     const struct grad_frame *g = grad[0];
     if (ref) { /* a planned job measures nothing: the merge does, from the frame, mask and gradients it writes */
         restir_metrics_compute(r[0].image, ref, npix, NULL, &res->err);
+        res->flip = compare_flip(r[0].image, ref, p->width, p->height);
         compare_denoised_errors(denoised, ref, mask, npix, res);
         if (!keep_image)
             free(denoised);
@@ -263,19 +273,19 @@ void compare_runs_add(struct compare_runs *a, const struct compare_result *r)
                                         r->grad_relmse, r->grad_relmse_trim, r->grad_mape, r->ms_per_frame};
     memcpy(&a->per_run[(size_t)a->n * COMPARE_RUN_COLS], v, sizeof v);
     const struct restir_metrics_error *e = &r->err;
-    const double x[13] = {e->relmse,   e->mape,        e->smape,         e->luma_rmse, r->mape_dis,
+    const double x[14] = {e->relmse,   e->mape,        e->smape,         e->luma_rmse, r->mape_dis,
                           r->dis_share, r->grad_relmse, r->grad_relmse_trim, r->grad_mape,
-                          r->err_dn.relmse, r->err_dn.mape, r->err_dn.smape, r->mape_dis_dn};
+                          r->err_dn.relmse, r->err_dn.mape, r->err_dn.smape, r->mape_dis_dn, r->flip};
     a->n++;
-    for (int k = 0; k < 13; k++)
+    for (int k = 0; k < 14; k++)
         running_mean_add(&a->m[k], x[k]);
 }
 
 void compare_runs_finish(struct compare_runs *a, struct compare_result *res)
 {
     const int runs = a->n;
-    double sem[13];
-    for (int k = 0; k < 13; k++)
+    double sem[14];
+    for (int k = 0; k < 14; k++)
         sem[k] = running_mean_sem(&a->m[k]);
     if (runs > 1) { /* one run keeps its error bit for bit */
         res->err = (struct restir_metrics_error){a->m[0].mean, a->m[1].mean, a->m[2].mean, a->m[3].mean};
@@ -286,6 +296,7 @@ void compare_runs_finish(struct compare_runs *a, struct compare_result *res)
         res->grad_mape = a->m[8].mean;
         res->err_dn = (struct restir_metrics_error){a->m[9].mean, a->m[10].mean, a->m[11].mean, NAN};
         res->mape_dis_dn = a->m[12].mean;
+        res->flip = a->m[13].mean;
     }
     res->mape_dis_dn_sem = sem[12];
     res->sem_dn = (struct restir_metrics_error){sem[9], sem[10], sem[11], NAN};
@@ -294,6 +305,7 @@ void compare_runs_finish(struct compare_runs *a, struct compare_result *res)
     res->grad_relmse_sem = sem[6];
     res->grad_relmse_trim_sem = sem[7];
     res->grad_mape_sem = sem[8];
+    res->flip_sem = sem[13];
     res->runs = runs;
     free(res->per_run);
     res->per_run = a->per_run;

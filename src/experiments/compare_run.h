@@ -48,6 +48,9 @@ struct compare_result {
      * (restir_metrics_gradient_relmse_trimmed) and their MAPE (restir_metrics_gradient_mape), means over
      * the runs and standard errors; NaN for the other methods */
     double grad_relmse_trim, grad_relmse_trim_sem, grad_mape, grad_mape_sem;
+    /* HDR-FLIP (Andersson et al. 2021; compare_flip) of the last frame against the reference, the mean over the
+     * runs, and its standard error (NaN with one run) */
+    double flip, flip_sem;
     /* issue 43, denoise=svgf|atrous: the errors of the last frame denoised (instance-averaged), the mean
      * over the runs and its standard error; NaN without denoising. BIASED by nature. */
     struct restir_metrics_error err_dn, sem_dn;
@@ -100,6 +103,10 @@ void compare_disoccluded_error(const float *image, const float *ref, const unsig
 void compare_gradient_errors(const float *dx, const float *dy, const float *ref, int width, int height,
                              struct compare_result *res);
 
+/* The mean HDR-FLIP of image against ref (restir_metrics_flip at RESTIR_METRICS_FLIP_PPD: FLIP's default monitor
+ * and distance), NaN when it cannot be computed (no memory). */
+double compare_flip(const float *image, const float *ref, int width, int height);
+
 /* compare_run_method's result when a stop signal arrived before the method's last frame. */
 #define RUN_STOPPED 1
 
@@ -136,9 +143,9 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
 struct compare_runs {
     int n, cap;
     double *per_run; /* n * COMPARE_RUN_COLS: each run's values, handed to the result by compare_runs_finish */
-    struct running_mean m[13]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share,
-                                  gradient relMSE, its 1%-trimmed mean, gradient MAPE, and denoised
-                                  relMSE, MAPE, SMAPE, disoccluded MAPE */
+    struct running_mean m[14]; /* relMSE, MAPE, SMAPE, luma RMSE, disoccluded MAPE, disoccluded share,
+                                  gradient relMSE, its 1%-trimmed mean, gradient MAPE, denoised
+                                  relMSE, MAPE, SMAPE, disoccluded MAPE, and FLIP */
 };
 void compare_runs_add(struct compare_runs *a, const struct compare_result *r);
 /* Into res: with more than one run the means (one run keeps its own errors bit for bit), the

@@ -126,7 +126,7 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                  "gradient_relmse_sem,gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem,"
                  "relmse_denoised,relmse_denoised_sem,mape_denoised,mape_denoised_sem,smape_denoised,"
                  "smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem,temporal_cov_denoised,"
-                 "ref_relmse,ref_mape,ref_smape",
+                 "ref_relmse,ref_mape,ref_smape,flip,flip_sem",
                  msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
@@ -145,15 +145,17 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
         printf("(errors: means of %d independently seeded runs, +- their standard error; tcov: 000 Eq. 17 at lag %d "
                "over frames %d-%d)\n",
                o->runs, COMPARE_COV_LAG, o->frames / 2, o->frames - 1);
-    printf("%-*s %10s %6s %5s %12s%s %10s%s %8s%s %12s %10s%s %6s%s%s%s%s%s%s%s\n", w, "method", "ms/frame", "spp",
-           "inst", "relMSE", runs ? "       +-" : "", "MAPE", runs ? "       +-" : "", "SMAPE", runs ? "     +-" : "",
-           "relMSE/first", "MAPE dis", runs ? "       +-" : "", "dis", runs ? "         tcov" : "",
+    printf("%-*s %10s %6s %5s %12s%s %10s%s %8s%s %8s%s %12s %10s%s %6s%s%s%s%s%s%s%s\n", w, "method", "ms/frame",
+           "spp", "inst", "relMSE", runs ? "       +-" : "", "MAPE", runs ? "       +-" : "", "SMAPE",
+           runs ? "     +-" : "", "FLIP", runs ? "     +-" : "", "relMSE/first", "MAPE dis", runs ? "       +-" : "",
+           "dis", runs ? "         tcov" : "",
            any_grad ? "  grad relMSE" : "", any_grad && runs ? "       +-" : "", any_grad ? "   grad trim1" : "",
            any_grad && runs ? "       +-" : "", any_grad ? "    grad MAPE" : "", any_grad && runs ? "       +-" : "");
     for (int k = 0; k < n; k++) {
         const struct compare_result *c = &res[k];
         /* a metric that does not apply to the row (no history, no gradients, one run) prints '-' */
-        char tcov[32] = "", se[4][32] = {"", "", "", ""}, grad[6][32] = {"", "", "", "", "", ""}, dis[2][32];
+        char tcov[32] = "", se[4][32] = {"", "", "", ""}, grad[6][32] = {"", "", "", "", "", ""}, dis[2][32],
+             flip[2][32] = {"", ""};
         const double gv[3] = {c->grad_relmse, c->grad_relmse_trim, c->grad_mape};
         const double gs[3] = {c->grad_relmse_sem, c->grad_relmse_trim_sem, c->grad_mape_sem};
         for (int j = 0; j < 3; j++) {
@@ -168,13 +170,15 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
             table_cell(se[1], sizeof se[1], " %8.2g", 9, c->sem.mape);
             table_cell(se[2], sizeof se[2], " %6.2g", 7, c->sem.smape);
             table_cell(se[3], sizeof se[3], " %8.2g", 9, c->mape_dis_sem);
+            table_cell(flip[1], sizeof flip[1], " %6.2g", 7, c->flip_sem);
         }
+        table_cell(flip[0], sizeof flip[0], "%8.4f", 8, c->flip);
         table_cell(dis[0], sizeof dis[0], " %10.5g", 11, c->mape_dis);
         table_cell(dis[1], sizeof dis[1], " %6.3f", 7, c->dis_share);
-        printf("%-*s %10.2f %6d %5d %12.5g%s %10.5g%s %8.3f%s %12.3f%s%s%s%s%s%s%s%s%s%s\n", w, specs[k].label,
+        printf("%-*s %10.2f %6d %5d %12.5g%s %10.5g%s %8.3f%s %s%s %12.3f%s%s%s%s%s%s%s%s%s%s\n", w, specs[k].label,
                c->ms_per_frame, c->spp, c->instances, c->err.relmse, se[0], c->err.mape, se[1], c->err.smape, se[2],
-               res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0, dis[0], se[3], dis[1], tcov, grad[0],
-               grad[1], grad[2], grad[3], grad[4], grad[5]);
+               flip[0], flip[1], res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0, dis[0], se[3],
+               dis[1], tcov, grad[0], grad[1], grad[2], grad[3], grad[4], grad[5]);
         if (rc == 0) {
             char field[2 * SPEC_MAX + 4], cov[32] = "", sem[4][32] = {"", "", "", ""}, dis[2][32] = {"", ""},
                                           gr[6][32] = {"", "", "", "", "", ""};
@@ -214,13 +218,18 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
             for (int j = 0; j < 3; j++)
                 if (isfinite(c->ref_own[j]))
                     snprintf(own[j], sizeof own[j], "%.6g", c->ref_own[j]);
+            char fl[2][32] = {"", ""}; /* HDR-FLIP and its standard error */
+            if (isfinite(c->flip))
+                snprintf(fl[0], sizeof fl[0], "%.6g", c->flip);
+            if (c->runs > 1 && isfinite(c->flip_sem))
+                snprintf(fl[1], sizeof fl[1], "%.6g", c->flip_sem);
             csv_row(&csv,
                     "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,"
-                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s",
+                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s",
                     field, c->ms_per_frame, c->spp, c->instances, c->err.relmse, c->err.mape, c->err.smape,
                     c->err.luma_rmse, c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1],
                     gr[0], gr[1], gr[2], gr[3], gr[4], gr[5], dn[0], dn[1], dn[2], dn[3], dn[4], dn[5], dn[6], dn[7],
-                    dn[8], own[0], own[1], own[2]);
+                    dn[8], own[0], own[1], own[2], fl[0], fl[1]);
         }
     }
     print_denoised(specs, res, n, w, runs, p->denoise.method);
@@ -243,7 +252,8 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
         for (int k = 0; k < n; k++) {
             snprintf(pngs[k], sizeof pngs[k], "%s/frame_%04d.png", specs[k].dir, o->frames - 1);
             rm[k] = (struct compare_report_method){specs[k].label, pngs[k], specs[k].dir, res[k].image,
-                                                   res[k].ms_per_frame, res[k].spp, res[k].instances, res[k].err};
+                                                   res[k].ms_per_frame, res[k].spp, res[k].instances, res[k].err,
+                                                   res[k].flip};
         }
         for (int k = 0; k < n; k++) /* the denoised frames as rows of their own, after the methods */
             if (res[k].image_dn) {
@@ -251,7 +261,7 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                 snprintf(pngs[nr], sizeof pngs[nr], "%s/frame_%04d_denoised.png", specs[k].dir, o->frames - 1);
                 rm[nr] = (struct compare_report_method){labels[k], pngs[nr], NULL, res[k].image_dn,
                                                         res[k].ms_per_frame, res[k].spp, res[k].instances,
-                                                        res[k].err_dn};
+                                                        res[k].err_dn, NAN};
                 nr++;
             }
         const struct compare_report_run run = {out_dir, command, st->s.name, p->width, p->height, o->frames - 1,

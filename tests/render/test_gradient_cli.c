@@ -408,8 +408,8 @@ static void check_compare(void)
                          "gradient_relmse_sem,gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,"
                          "gradient_mape_sem,relmse_denoised,relmse_denoised_sem,mape_denoised,mape_denoised_sem,"
                          "smape_denoised,smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem,"
-                         "temporal_cov_denoised\n";
-    double grad_relmse[4], grad_trim[4], grad_mape[4];
+                         "temporal_cov_denoised,ref_relmse,ref_mape,ref_smape,flip,flip_sem\n";
+    double grad_relmse[4], grad_trim[4], grad_mape[4], flip[4];
     EXPECT(strncmp(csv, header, strlen(header)) == 0, "%s: wrong header:\n%s", path, csv);
     int rows = 0;
     for (const char *line = cli_next_line(csv); line; line = cli_next_line(line)) {
@@ -430,6 +430,8 @@ static void check_compare(void)
             grad_relmse[rows] = cli_csv_number(line, 16);
             grad_trim[rows] = cli_csv_number(line, 18);
             grad_mape[rows] = cli_csv_number(line, 20);
+            flip[rows] = cli_csv_number(line, 34);
+            EXPECT(flip[rows] > 0.0 && flip[rows] < 1.0, "%s row %d: flip %g", path, rows + 1, flip[rows]);
         }
         rows++;
     }
@@ -454,6 +456,14 @@ static void check_compare(void)
                trim);
         EXPECT(rows == 4 && isfinite(mape) && fabs(grad_mape[k] - mape) <= 1e-5 * mape,
                "compare: %s gradient_mape %.9g, its frame's %.9g", methods[k], rows == 4 ? grad_mape[k] : NAN, mape);
+        /* the flip column is restir_metrics_flip of the same frame at FLIP's default viewing condition */
+        float *img = read_layer(sub, "frame_0002.exr", NULL);
+        double fl = NAN;
+        if (!img || !ref || restir_metrics_flip(img, ref, W, H, RESTIR_METRICS_FLIP_PPD, NULL, &fl) != 0)
+            fl = NAN;
+        EXPECT(rows == 4 && isfinite(fl) && fabs(flip[k] - fl) <= 1e-5 * fl, "compare: %s flip %.9g, its frame's %.9g",
+               methods[k], rows == 4 ? flip[k] : NAN, fl);
+        free(img);
         free(dx);
         free(dy);
     }

@@ -141,12 +141,13 @@ int main(void)
                             "compare --scene cornell --methods restir-di,ris-di,pt --res 64x36 --frames 3 --ref-spp 16",
                             dir, sizeof dir);
     printf("index.html: %zu bytes, %d images\n", strlen(page), images);
-    /* reference + 3 methods, their A/B view, 3 heat maps and theirs, 2 regions x 4 crops */
-    EXPECT(images == 4 + 1 + 3 + 1 + 8, "%d images on the page", images);
+    /* reference + 3 methods, their A/B view, 3 heat maps and theirs, 3 FLIP maps and theirs, 2 regions x 4 crops */
+    EXPECT(images == 4 + 1 + 3 + 1 + 3 + 1 + 8, "%d images on the page", images);
     EXPECT(!strstr(page, "<script src") && !strstr(page, "<link") && !strstr(page, "href=\"http"),
            "the page loads something from outside itself");
-    const char *must[] = {"restir-di", "ris-di", "<svg", "heat_2.png", "crop_1_ref0.png", "restir compare --scene cornell",
-                          "Commit:", "Machine:", "relMSE"};
+    const char *must[] = {"restir-di", "ris-di", "<svg", "heat_2.png", "flip_2.png",
+                          "crop_1_ref0.png", "restir compare --scene cornell", "Commit:", "Machine:", "relMSE",
+                          "<h2>FLIP</h2>"};
     for (size_t k = 0; k < sizeof must / sizeof must[0]; k++)
         EXPECT(strstr(page, must[k]) != NULL, "the page lacks '%s'", must[k]);
 
