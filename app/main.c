@@ -6,6 +6,8 @@
 
 #include "commands.h"
 #include "experiments/cli.h"
+#include "experiments/provenance.h"
+#include <restir/version.h>
 #include "scene/scenes_builtin.h"
 
 static void usage(FILE *out)
@@ -21,7 +23,8 @@ static void usage(FILE *out)
             "  evaluate    a paper's evaluation at its own scale, with a verdict per claim (000, 004, 002)\n"
             "  scene       scene info NAME|FILE; scene export NAME --out DIR (restir scene --help)\n"
             "  view        an interactive window rendering frame after frame (restir view --help)\n"
-            "  job         job K of a plan folder (study, reference, compare, evaluate --plan DIR): restir job DIR K\n");
+            "  job         job K of a plan folder (study, reference, compare, evaluate --plan DIR): restir job DIR K\n"
+            "restir --version: the version, the commit it was built from and the build type\n");
 }
 
 static int cmd_list(void)
@@ -58,6 +61,13 @@ int main(int argc, char **argv)
         return cmd_view(argc - 2, argv + 2);
     if (!strcmp(cmd, "job"))
         return cmd_job(argc - 2, argv + 2);
+    if (!strcmp(cmd, "--version")) {
+        struct provenance p;
+        provenance_now(&p, 0);
+        printf("restir %s (commit %s%s, %s)\n", RESTIR_VERSION_STRING, p.commit, p.dirty ? "-dirty" : "",
+               p.build_type);
+        return 0;
+    }
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         usage(stdout);
         return 0;
