@@ -25,7 +25,9 @@ int cmd_job(int argc, char **argv)
             "A reference job saves its running mean to runs/reference.checkpoint.exr every %.0f minutes (the\n"
             "environment's RESTIR_REFERENCE_CHECKPOINT_SECONDS sets another interval) and when SIGINT or SIGTERM\n"
             "stops it; run again, it continues from there (after a kill too) to the bytes of an uninterrupted "
-            "job.\n",
+            "job.\n"
+            "A campaign runs on one commit: a plan made by another build (plan.json's \"provenance\") is refused\n"
+            "(exit 2). A finished job records the machine that ran it in DIR/runs/logs/job_K.json.\n",
             PLAN_REFERENCE_CHECKPOINT_SECONDS / 60.0);
         return 0;
     }
@@ -37,6 +39,10 @@ int cmd_job(int argc, char **argv)
     struct plan pl;
     if (plan_load(argv[0], &pl, msg) != 0) {
         cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
+    if (plan_check_build(&pl) != 0) { /* a campaign runs on one commit */
+        plan_free(&pl);
         return EXIT_USAGE;
     }
     long long k = 0;
@@ -58,6 +64,8 @@ int cmd_job(int argc, char **argv)
         cli_error("%s/plan.json: unknown kind '%s'", pl.dir, pl.kind);
         rc = EXIT_USAGE;
     }
+    if (rc == 0)
+        plan_note_job_machine(&pl, (int)k - 1, pl.threads);
     plan_free(&pl);
     return rc;
 }

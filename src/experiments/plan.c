@@ -20,12 +20,16 @@
 #include "io/report.h"
 #include "io/text_file.h"
 
-static uint64_t plan_hash(const char *kind, int argc, char **argv)
+/* The plan's id: its kind, arguments and the build that made it, so results of another build's plan
+ * of the same command (planned again into the same folder) are never taken as done. */
+static uint64_t plan_hash(const char *kind, int argc, char **argv, const struct provenance *made_by)
 {
     uint64_t h = fnv1a64(FNV1A64_BASIS, kind, strlen(kind) + 1);
     for (int i = 0; i < argc; i++)
         h = fnv1a64(h, argv[i], strlen(argv[i]) + 1);
-    return h;
+    char build[PROVENANCE_COMMIT_LEN + 8];
+    provenance_build_id(made_by, build, sizeof build);
+    return fnv1a64(h, build, strlen(build) + 1);
 }
 
 static char *xstrdup(const char *s)
@@ -46,8 +50,8 @@ static int plain_path(const char *s)
     return 1;
 }
 
-/* p->argv, p->argc, p->threads and p->id from the command's JSON description (options.h). Returns 0,
- * or -1 with msg. */
+/* p->argv, p->argc, p->threads and p->id from the command's JSON description (options.h) and
+ * p->made_by. Returns 0, or -1 with msg. */
 static int plan_set_arguments(struct plan *p, const cJSON *desc, char *msg)
 {
     if (cli_options_argv(p->kind, desc, &p->argc, &p->argv, msg) != 0)
@@ -55,7 +59,7 @@ static int plan_set_arguments(struct plan *p, const cJSON *desc, char *msg)
     for (int i = 0; i + 1 < p->argc; i++)
         if (!strcmp(p->argv[i], "--threads"))
             p->threads = atoi(p->argv[i + 1]);
-    p->id = plan_hash(p->kind, p->argc, p->argv);
+    p->id = plan_hash(p->kind, p->argc, p->argv, &p->made_by);
     return 0;
 }
 
@@ -99,8 +103,10 @@ static int plan_init(struct plan *p, const char *dir, const char *kind, int argc
     p->argv = NULL;
     if (!desc)
         return -1;
+    provenance_now(&p->made_by, 0);
     const int rc = plan_set_arguments(p, desc, msg);
     cJSON_Delete(desc);
+    p->made_by.threads = p->threads > 0 ? p->threads : p->made_by.threads;
     return rc;
 }
 
@@ -182,6 +188,7 @@ int plan_write(const struct plan *p, char *msg)
     snprintf(hex, sizeof hex, "%016llx", (unsigned long long)p->scene_hash);
     cJSON_AddStringToObject(j, "scene_hash", hex);
     cJSON_AddStringToObject(j, "binary", exe);
+    cJSON_AddItemToObject(j, "provenance", provenance_to_json(&p->made_by));
     cJSON *jobs = cJSON_AddArrayToObject(j, "jobs");
     for (int k = 0; k < p->n_jobs; k++) {
         cJSON *o = cJSON_CreateObject();
@@ -276,6 +283,7 @@ int plan_load(const char *dir, struct plan *p, char *msg)
     const cJSON *jobs = cJSON_GetObjectItemCaseSensitive(j, "jobs");
     const cJSON *hash = cJSON_GetObjectItemCaseSensitive(j, "scene_hash");
     const cJSON *command = cJSON_GetObjectItemCaseSensitive(j, "command");
+    const cJSON *made_by = cJSON_GetObjectItemCaseSensitive(j, "provenance");
     if (j && !options && cJSON_GetObjectItemCaseSensitive(j, "args")) {
         snprintf(msg, RESTIR_MSG_LEN,
                  "%.300s: planned by an older restir, which stored the command's arguments instead of its JSON "
@@ -288,6 +296,18 @@ int plan_load(const char *dir, struct plan *p, char *msg)
         cJSON_GetArraySize(jobs) > PLAN_MAX_JOBS) {
         snprintf(msg, RESTIR_MSG_LEN,
                  "%.300s: not a plan (kind, options, jobs, scene_hash and command are required)", path);
+        cJSON_Delete(j);
+        return -1;
+    }
+    if (!made_by) { /* the commit its jobs must run on is unknown: accepting it would let builds mix */
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "%.300s: planned by a restir without build provenance (before the one-commit rule), so the "
+                 "commit its jobs must run on is unknown; plan the command again", path);
+        cJSON_Delete(j);
+        return -1;
+    }
+    if (provenance_from_json(made_by, &p->made_by, why) != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "%.300s: %.180s", path, why);
         cJSON_Delete(j);
         return -1;
     }
@@ -334,7 +354,41 @@ int plan_load_kind(const char *dir, const char *kind, const char *what, struct p
         plan_free(p);
         return EXIT_USAGE;
     }
-    return 0;
+    const int rc = plan_check_build(p);
+    if (rc != 0)
+        plan_free(p);
+    return rc;
+}
+
+int plan_check_build(const struct plan *p)
+{
+    struct provenance self;
+    provenance_now(&self, 0);
+    if (provenance_same_build(&p->made_by, &self))
+        return 0;
+    char planned[PROVENANCE_COMMIT_LEN + 8], binary[PROVENANCE_COMMIT_LEN + 8];
+    provenance_build_id(&p->made_by, planned, sizeof planned);
+    provenance_build_id(&self, binary, sizeof binary);
+    cli_error("%s/plan.json: a campaign runs on one commit: this plan was made by %s, this binary is %s; re-plan "
+              "or build %s", p->dir, planned, binary, p->made_by.commit);
+    return EXIT_USAGE;
+}
+
+void plan_note_job_machine(const struct plan *p, int k, int threads)
+{
+    char path[PLAN_PATH_MAX + 64], logs[PLAN_PATH_MAX + 32], msg[RESTIR_MSG_LEN];
+    snprintf(path, sizeof path, "%s/runs/logs/job_%d.json", p->dir, k + 1);
+    struct stat st;
+    if (stat(path, &st) == 0)
+        return;
+    snprintf(logs, sizeof logs, "%s/runs/logs", p->dir);
+    if (io_make_dirs(logs, msg) != 0)
+        return;
+    struct provenance m;
+    provenance_now(&m, threads);
+    cJSON *j = provenance_to_json(&m);
+    (void)json_write_file(path, j, msg);
+    cJSON_Delete(j);
 }
 
 void plan_free(struct plan *p)

@@ -6,12 +6,16 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "experiments/provenance.h"
+
 /* A plan folder holds plan.json (the command's kind, its JSON description (options.h) and its jobs), jobs.txt (one
  * shell command per job: `restir job DIR K`, for GNU parallel), slurm.sh (an `sbatch --array`
  * script that runs line $SLURM_ARRAY_TASK_ID of jobs.txt) and runs/, the only place jobs write,
  * each its own output, atomically. */
 
-#define PLAN_FORMAT 2 /* plan.json's "restir_plan": 2 stores the command's JSON description ("options") */
+/* plan.json's "restir_plan": 2 stores the command's JSON description ("options"); 3 adds "provenance",
+ * the build that made the plan: a campaign runs on one commit, and plans without it are refused */
+#define PLAN_FORMAT 3
 #define PLAN_MAX_JOBS 100000
 #define PLAN_PATH_MAX 4096
 #define PLAN_NAME_MAX 256 /* a job's name: an evaluate step, a spec of up to SPEC_MAX characters, a run */
@@ -27,9 +31,10 @@ struct plan {
     char command[8192];      /* the command as it was given, for reports */
     int argc;
     char **argv;             /* the command's arguments without --plan DIR, file paths made absolute */
-    uint64_t id;             /* hash of kind and arguments: every result file carries it */
+    uint64_t id;             /* hash of kind, arguments and build: every result file carries it */
     uint64_t scene_hash;     /* scene_content_hash when planned: jobs refuse a changed scene */
     int threads;             /* --threads of the command (0: not given): Slurm's CPUs per task */
+    struct provenance made_by; /* the build (and machine, date) that made the plan */
     int n_jobs, cap_jobs;
     struct plan_job *jobs;
 };
@@ -44,12 +49,22 @@ void plan_add_job(struct plan *p, const char *name, const char *output);
 int plan_write(const struct plan *p, char *msg);
 /* plan_write, then says how to run the jobs and merge them, and frees p. Returns an exit code. */
 int plan_finish(struct plan *p);
-/* Reads dir/plan.json. Returns 0, or -1 with msg naming the folder and the problem. */
+/* Reads dir/plan.json. Returns 0, or -1 with msg naming the folder and the problem (a plan.json
+ * without "provenance", written before the one-commit rule, is refused: plan again). */
 int plan_load(const char *dir, struct plan *p, char *msg);
 void plan_free(struct plan *p);
-/* plan_load for a merge, which needs a plan of kind (what: "a study" ...). Returns 0, or an exit
- * code having said why (p is then freed). */
+/* plan_load for a merge, which needs a plan of kind (what: "a study" ...) made by this binary's
+ * build (plan_check_build). Returns 0, or an exit code having said why (p is then freed). */
 int plan_load_kind(const char *dir, const char *kind, const char *what, struct plan *p);
+/* The one-commit rule: a campaign's jobs and merges run on the build that made its plan. 0 when
+ * p->made_by is this binary's build (commit and dirty flag); else it says so, naming the plan and
+ * both builds, and returns EXIT_USAGE. */
+int plan_check_build(const struct plan *p);
+/* After job k (0-based) succeeded: records the machine that ran it (provenance.h: CPU, threads,
+ * date; threads: the job's --threads, 0: OpenMP's) as dir/runs/logs/job_K.json (K 1-based), unless
+ * a record is there already (the machine that first computed it). Best effort: a record that
+ * cannot be written is left out silently. */
+void plan_note_job_machine(const struct plan *p, int k, int threads);
 /* Absolute path of job k's (0-based) output. */
 void plan_output_path(const struct plan *p, int k, char *out, size_t len);
 /* Checks that every job finished: valid(p, k, why, ctx) says whether job k's output is there and
