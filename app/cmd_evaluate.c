@@ -7,6 +7,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/evaluate.h"
+#include "experiments/evaluate_check.h"
 #include "experiments/options.h"
 
 static void evaluate_usage(void)
@@ -15,6 +16,7 @@ static void evaluate_usage(void)
         "usage: restir evaluate 000|004|002|all (--out DIR | --plan DIR) [--res WxH] [--runs N] [--scenes LIST]\n"
         "                       [--configs LIST] [--frames N] [--warmup N] [--ref-spp N] [--threads N] [--report]\n"
         "       restir evaluate --merge DIR [--partial]\n"
+        "       restir evaluate --tables DIR [--partial]     restir evaluate --check DIR [--threads N]\n"
         "A paper's evaluation at its own scale (1920x1080 unless --res) with its own parameters, as `restir\n"
         "study` (000) and `restir compare` (004, 002) commands, one folder each under DIR:\n"
         "  000  compatibility-guided neighbor selection: study of restir-pt, M = 1, static camera, 40\n"
@@ -50,6 +52,15 @@ static void evaluate_usage(void)
         "figure, the paper's, the differences), DIR/claims.csv, each\n"
         "step's study.csv / compare.csv and with --report DIR/index.html (and each step's page).\n"
         "docs/EVALUATION.md is made from evaluation.md files (scripts/evaluation_doc.sh).\n");
+    printf( /* two strings: ISO C bounds a string literal's length */
+        "Provenance: a campaign runs on one commit (jobs and merges of a plan made by another build are\n"
+        "refused); each merged step records STEP/provenance.json (build, machines, date, resolution, runs,\n"
+        "seeds, reference paths, scene) and STEP/settings.json (per row: the method, every setting in\n"
+        "effect, the hash of a 48x32 render of 2 frames with them). scripts/evaluation_export.sh copies\n"
+        "these small files; --tables DIR writes DIR/evaluation.md and claims.csv again from them alone\n"
+        "(exit 2, nothing written: a step without its table unless --partial, steps of different commits or\n"
+        "another resolution); --check DIR renders every row under DIR again and exits 1 naming the tables\n"
+        "today's code renders differently (2: a step without settings.json).\n");
     cli_options_help(stdout, "evaluate");
 }
 
@@ -74,5 +85,9 @@ int cmd_evaluate(int argc, char **argv)
         evaluate_usage();
         return 0;
     }
+    if (mode == 'c')
+        return evaluate_check(dir, o.threads);
+    if (mode == 't')
+        return evaluate_tables(dir, o.partial);
     return evaluate_run(&o, dir, mode);
 }

@@ -15,6 +15,7 @@
 #include "experiments/cli.h"
 #include "experiments/compare_plan.h"
 #include "experiments/compare_run.h"
+#include "experiments/evaluate_record.h"
 #include "experiments/evaluate_tables.h"
 #include "experiments/options.h"
 #include "experiments/plan.h"
@@ -59,6 +60,34 @@ int evaluate_parse(int argc, char **argv, struct eval_options *o, const char **d
         *help = c.help;
     if (c.help)
         return 0;
+    o->threads = c.params.threads;
+    o->partial = c.partial;
+    if (c.check || c.tables) { /* the data of an evaluation already merged: no paper, no new plan */
+        if (!(dir && mode)) {
+            cli_error("evaluate: a plan's stored options name no folder");
+            return EXIT_USAGE;
+        }
+        if (c.check && c.tables) {
+            cli_error("evaluate: give one of --check DIR and --tables DIR");
+            return EXIT_USAGE;
+        }
+        if (o->paper[0] || c.out || c.plan) {
+            cli_error("evaluate: --%s DIR takes no paper, --out or --plan (it reads what DIR holds)",
+                      c.check ? "check" : "tables");
+            return EXIT_USAGE;
+        }
+        if (c.check && c.partial) {
+            cli_error("evaluate: --partial goes with --tables DIR (or --merge DIR), not --check");
+            return EXIT_USAGE;
+        }
+        *dir = c.check ? c.check : c.tables;
+        *mode = c.check ? 'c' : 't';
+        return 0;
+    }
+    if (c.partial) {
+        cli_error("evaluate: --partial goes with --tables DIR or --merge DIR");
+        return EXIT_USAGE;
+    }
     if ((c.out || c.plan) && !(dir && mode)) {
         cli_error("evaluate: a plan's stored options name no folder");
         return EXIT_USAGE;
@@ -86,7 +115,6 @@ int evaluate_parse(int argc, char **argv, struct eval_options *o, const char **d
     o->frames = c.frames;
     o->warmup = c.warmup;
     o->ref_spp = c.ref_spp;
-    o->threads = c.params.threads;
     o->report = c.report;
     if (!o->paper[0]) {
         cli_error("evaluate: which paper? (000, 004, 002 or all; restir evaluate --help)");
@@ -218,6 +246,8 @@ static int check_folder(const char *dir, uint64_t id, const char *command)
         if (strcmp(old.kind, "evaluate") != 0) {
             cli_error("evaluate: %s is the plan of `%s`, not an evaluation; give another folder", dir, old.command);
             rc = EXIT_USAGE;
+        } else if (plan_check_build(&old) != 0) { /* planned again, its done jobs would mix two builds */
+            rc = EXIT_USAGE;
         } else if (old.id != id) {
             cli_error("evaluate: %s holds another evaluation (`%s`), not `%s`; give another folder", dir,
                       old.command, command);
@@ -290,8 +320,7 @@ static int plan_evaluation(const char *dir, const struct eval_options *o, struct
     return rc;
 }
 
-/* The options and steps of a loaded evaluation plan. Returns 0 or an exit code. */
-static int plan_steps(const struct plan *pl, struct eval_options *o, struct eval_step *steps, int *n)
+int evaluate_plan_steps(const struct plan *pl, struct eval_options *o, struct eval_step *steps, int *n)
 {
     char msg[RESTIR_MSG_LEN];
     int rc = evaluate_parse(pl->argc, pl->argv, o, NULL, NULL, NULL);
@@ -309,7 +338,7 @@ int evaluate_run_job(const struct plan *pl, int k)
     static struct eval_step steps[EVAL_MAX_STEPS];
     struct eval_options o;
     int n = 0;
-    int rc = plan_steps(pl, &o, steps, &n);
+    int rc = evaluate_plan_steps(pl, &o, steps, &n);
     if (rc != 0)
         return rc;
     char msg[RESTIR_MSG_LEN], sub[PLAN_PATH_MAX + 80];
@@ -321,7 +350,9 @@ int evaluate_run_job(const struct plan *pl, int k)
             return EXIT_RUNTIME;
         }
         if (k < sp.n_jobs) {
-            rc = !strcmp(sp.kind, "study") ? study_run_job(&sp, k) : compare_run_job(&sp, k);
+            rc = plan_check_build(&sp); /* a step planned again by another build */
+            if (rc == 0)
+                rc = !strcmp(sp.kind, "study") ? study_run_job(&sp, k) : compare_run_job(&sp, k);
             plan_free(&sp);
             return rc;
         }
@@ -343,13 +374,26 @@ int evaluate_merge(const char *dir, int partial)
     static struct eval_step steps[EVAL_MAX_STEPS];
     struct eval_options o;
     int n = 0;
-    rc = plan_steps(&pl, &o, steps, &n);
-    char sub[PLAN_PATH_MAX + 80];
+    rc = evaluate_plan_steps(&pl, &o, steps, &n);
+    char sub[PLAN_PATH_MAX + 80], msg[RESTIR_MSG_LEN];
     int merged[EVAL_MAX_STEPS], any = 0;
+    for (int k = 0; k < n && rc == 0; k++) { /* one commit: a step of another build fails even --partial */
+        step_dir(pl.dir, &steps[k], sub, sizeof sub);
+        struct plan sp;
+        if (plan_load(sub, &sp, msg) != 0) {
+            cli_error("%s", msg);
+            rc = EXIT_RUNTIME;
+        } else {
+            rc = plan_check_build(&sp);
+            plan_free(&sp);
+        }
+    }
     for (int k = 0; k < n && rc == 0; k++) {
         step_dir(pl.dir, &steps[k], sub, sizeof sub);
         printf("evaluate: merging %s\n", steps[k].name);
-        const int step_rc = merge_step(&steps[k], sub);
+        int step_rc = merge_step(&steps[k], sub);
+        if (step_rc == 0) /* what its table was computed with: provenance.json, settings.json */
+            step_rc = evaluate_record_step(&pl, &steps[k], sub);
         merged[k] = step_rc == 0;
         any |= merged[k];
         if (step_rc != 0 && partial)
@@ -392,8 +436,11 @@ int evaluate_run(const struct eval_options *o_in, const char *dir, int mode)
         plan_free(&pl);
         return EXIT_RUNTIME;
     }
-    for (int k = 0; k < pl.n_jobs && rc == 0; k++) /* finished jobs say so and return at once */
+    for (int k = 0; k < pl.n_jobs && rc == 0; k++) { /* finished jobs say so and return at once */
         rc = evaluate_run_job(&pl, k);
+        if (rc == 0)
+            plan_note_job_machine(&pl, k, o.threads);
+    }
     char abs[PLAN_PATH_MAX];
     snprintf(abs, sizeof abs, "%s", pl.dir);
     plan_free(&pl);

@@ -16,6 +16,7 @@ struct eval_options {
     char scenes[256]; /* comma-separated scenes instead of each paper's defaults */
     char configs[256]; /* 000: comma-separated configurations to run, a subset of eval_000_configs ("": all) */
     int report;       /* --report: the steps' pages and the evaluation's index.html */
+    int partial;      /* --tables --partial: steps without their tables are named, not refused */
 };
 
 /* One command of an evaluation: `restir KIND ARGS...` planned into DIR/NAME. */

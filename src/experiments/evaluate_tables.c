@@ -12,6 +12,7 @@
 #include "experiments/cli.h"
 #include "experiments/csv_table.h"
 #include "experiments/evaluate_findings.h"
+#include "experiments/evaluate_record.h"
 #include "experiments/report_commit.h"
 #include "experiments/evaluate_change.h"
 #include "experiments/stats.h"
@@ -594,9 +595,9 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
             else
                 put(&md, "camera path, error of frame %d.\n", eval_frames(o, current) - 1);
             put(&md, "Pixel radii as in the paper (not scaled with the resolution).\n");
-            char machine[400];
-            html_machine_name(machine, sizeof machine);
-            put(&md, "Merged on %s (the frame times are those of the machines that ran the jobs).\n", machine);
+            char provenance[2048]; /* the steps' provenance.json, so --tables writes the merge's very line */
+            evaluate_provenance_text(dir, steps, n, merged, current, provenance, sizeof provenance);
+            put(&md, "%s\n", provenance);
             if (!strcmp(current, "000") && o->configs[0])
                 put(&md,
                     "Configurations: only %s (--configs; the whole evaluation runs Table 1's four on every "

@@ -162,6 +162,13 @@ static const struct opt_def option_table[] = {
     {"--plan", EVAL, OPT_TEXT, O(plan), 0, 0, NO_GIVEN, NULL, "DIR", "write the plan only", NULL},
     {"--report", EVAL, OPT_FLAG, O(report), 0, 0, NO_GIVEN, NULL, "", "also write the steps' pages and index.html",
      NULL},
+    {"--check", EVAL, OPT_TEXT, O(check), 0, 0, NO_GIVEN, NULL, "DIR",
+     "render every row of the steps under DIR tiny with its recorded settings: exit 1 when one renders differently",
+     NULL},
+    {"--tables", EVAL, OPT_TEXT, O(tables), 0, 0, NO_GIVEN, NULL, "DIR",
+     "write DIR/evaluation.md and claims.csv again from the steps' CSV and provenance files alone", NULL},
+    {"--partial", EVAL, OPT_FLAG, O(partial), 0, 0, NO_GIVEN, NULL, "", "--tables: name the steps without tables",
+     NULL},
     {"--help", EVAL, OPT_FLAG, O(help), 0, 0, NO_GIVEN, NULL, "", "print this help", NULL},
     {"-h", EVAL, OPT_FLAG, O(help), 0, 0, NO_GIVEN, NULL, "", "the same", NULL},
     /* every other command's */

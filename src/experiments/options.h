@@ -38,6 +38,9 @@ struct cli_options {
     double target_relmse;    /* reference: stop at this estimated relMSE (0: render --spp samples) */
     const char *plan;        /* study, reference, compare: write jobs into this folder instead of running */
     const char *merge;       /* study, reference, compare: merge the finished jobs of this plan folder */
+    const char *check;       /* evaluate: check the recorded settings of the steps under this folder */
+    const char *tables;      /* evaluate: write the tables of this evaluation from its steps' small files */
+    int partial;             /* evaluate --tables: leave out the steps without tables */
     int shards;              /* reference --plan: jobs the samples are split into (0: not given) */
     struct render_params params;
     /* the --set assignments as given, in order (checked against the method that reads them) */

@@ -170,18 +170,23 @@ struct camera study_camera(const struct scene *s)
     return scene_camera_at(s, 0, 0.0f);
 }
 
+void study_config_apply(const struct study_config *c, struct render_params *p)
+{
+    p->spatial_select = c->select;
+    p->spatial_radius = c->radius;
+    if (c->candidates > 0)
+        p->spatial_candidates = c->candidates;
+    if (c->spatial_off)
+        p->spatial = 0;
+    if (c->history_temporal)
+        p->history_temporal = 1;
+}
+
 int study_run_unit(const struct scene *s, const struct method *method, const struct render_params *base,
                    const struct study_config *c, const struct cli_options *o, int run, struct study_unit *u)
 {
     struct render_params p = *base;
-    p.spatial_select = c->select;
-    p.spatial_radius = c->radius;
-    if (c->candidates > 0)
-        p.spatial_candidates = c->candidates;
-    if (c->spatial_off)
-        p.spatial = 0;
-    if (c->history_temporal)
-        p.history_temporal = 1;
+    study_config_apply(c, &p);
     p.seed = base->seed + STUDY_RUN_SEED_STRIDE * (uint64_t)run;
     const struct camera cam = study_camera(s);
     u->frames = o->frames;

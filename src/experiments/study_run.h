@@ -75,6 +75,9 @@ int study_strip_row(const unsigned char *hard, int w, int h);
 /* The static camera every study run uses. */
 struct camera study_camera(const struct scene *s);
 
+/* Configuration c's settings (selection, radius, candidates, spatial reuse, history) over p: what
+ * every run of c renders with, but the seed. */
+void study_config_apply(const struct study_config *c, struct render_params *p);
 /* Run r of a study configuration renders with seed base->seed + r * STUDY_RUN_SEED_STRIDE. */
 #define STUDY_RUN_SEED_STRIDE 1000003ull
 /* Renders run `run` (seed base->seed + STUDY_RUN_SEED_STRIDE run) of configuration c: o->warmup frames, then
