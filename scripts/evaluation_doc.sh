@@ -82,3 +82,19 @@ for d in "$@"; do
     echo "<!-- from $(name_of "$d") -->"
     cat "$(md_of "$d")"
 done
+cat <<'PROVENANCE'
+
+## Provenance and --check
+
+A campaign runs on one commit: `restir job` and every merge refuse a plan made by another build, and
+each merged step keeps `provenance.json` (the commit and whether the tree was dirty, build type, the
+CPUs and threads of its jobs and of the merge, date, resolution, runs, seeds, reference paths, scene
+and its content hash) and `settings.json` (per row of its table, the method and every setting in
+effect, with the hash of a 48x32 render of 2 frames). Each section's "Provenance:" line states them;
+sections without it were merged before this was recorded. `scripts/evaluation_export.sh DIR
+docs/evaluation/data/NAME` keeps those files with the CSVs and plans (no images), `restir evaluate
+--tables docs/evaluation/data/NAME` writes its `evaluation.md` again from them alone, and `restir
+evaluate --check docs/evaluation/data` (ctest `lint.evaluation_check`, in CI) fails, naming the
+table, when today's code renders a recorded row differently: such a table's verdicts are stale and
+its evaluation must run again. docs/CLUSTER.md ("One commit per campaign") has the details.
+PROVENANCE
