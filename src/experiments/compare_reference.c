@@ -49,10 +49,10 @@ void compare_reference_noise(struct compare_result *res, int n, const float *a, 
         res[k].ref_own[0] = own.relmse;
         res[k].ref_own[1] = own.mape;
         res[k].ref_own[2] = own.smape;
-        if (!(a && b))
-            continue;
-        res[k].err.relmse -= own.relmse;
-        for (int r = 0; res[k].per_run && r < res[k].runs; r++)
-            res[k].per_run[(size_t)r * COMPARE_RUN_COLS] -= own.relmse;
+        res[k].relmse_net = res[k].err.relmse - own.relmse; /* NaN without halves */
+        for (int r = 0; res[k].per_run && r < res[k].runs; r++) {
+            double *v = &res[k].per_run[(size_t)r * COMPARE_RUN_COLS];
+            v[COMPARE_RUN_COLS - 1] = v[0] - own.relmse;
+        }
     }
 }

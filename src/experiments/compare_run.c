@@ -250,8 +250,8 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
 }
 
 const char *const compare_run_columns[COMPARE_RUN_COLS] = {
-    "relmse",          "mape",           "smape", "mape_disoccluded", "gradient_relmse", "gradient_relmse_trim1",
-    "gradient_mape",   "ms_per_frame"};
+    "relmse",        "mape",         "smape", "mape_disoccluded", "gradient_relmse", "gradient_relmse_trim1",
+    "gradient_mape", "ms_per_frame", "flip",  "relmse_net"};
 
 void compare_result_free(struct compare_result *res)
 {
@@ -269,8 +269,9 @@ void compare_runs_add(struct compare_runs *a, const struct compare_result *r)
         a->per_run = realloc(a->per_run, sizeof(double) * COMPARE_RUN_COLS * (size_t)a->cap);
         RESTIR_CHECK(a->per_run != NULL);
     }
-    const double v[COMPARE_RUN_COLS] = {r->err.relmse,   r->err.mape,     r->err.smape,        r->mape_dis,
-                                        r->grad_relmse, r->grad_relmse_trim, r->grad_mape, r->ms_per_frame};
+    const double v[COMPARE_RUN_COLS] = {r->err.relmse,   r->err.mape,        r->err.smape, r->mape_dis,
+                                        r->grad_relmse, r->grad_relmse_trim, r->grad_mape, r->ms_per_frame,
+                                        r->flip,        NAN}; /* relmse_net: compare_reference_noise */
     memcpy(&a->per_run[(size_t)a->n * COMPARE_RUN_COLS], v, sizeof v);
     const struct restir_metrics_error *e = &r->err;
     const double x[14] = {e->relmse,   e->mape,        e->smape,         e->luma_rmse, r->mape_dis,

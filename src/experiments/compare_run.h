@@ -67,12 +67,13 @@ struct compare_result {
      * run-major, in the order of compare_run_columns; owned (compare_result_free). NULL when none. */
     double *per_run;
     /* The reference's own error in relMSE, MAPE and SMAPE (half a of its two independent halves
-     * against their mean: |a - r| = |a - b| / 2, distributed as |r - R|), NaN without halves. relMSE's
-     * is also subtracted from err.relmse and every run's (compare_reference_noise). */
+     * against their mean: |a - r| = |a - b| / 2, distributed as |r - R|), NaN without halves; and
+     * relmse_net, err.relmse without the reference's share (compare_reference_noise), NaN without. */
     double ref_own[3];
+    double relmse_net;
 };
 
-#define COMPARE_RUN_COLS 8
+#define COMPARE_RUN_COLS 10
 /* The names of per_run's columns, as runs.csv heads them. */
 extern const char *const compare_run_columns[COMPARE_RUN_COLS];
 /* Frees res's images and per-run values. */
@@ -124,9 +125,10 @@ int compare_setup(const struct cli_options *desc, struct compare_setup *st);
 int compare_render_reference_pair(const struct compare_setup *st, const char *out, struct reference_pair *r,
                                   char *msg);
 /* The reference's own noise out of the rows' errors: with halves a and b of the reference ref
- * (npix pixels; a NULL: none, every ref_own NaN), each res[k].ref_own gets the reference's own
- * relMSE, MAPE and SMAPE, and the relMSE's share, E[(x - r)^2] - Var(r) per pixel with Var(r)
- * estimated as (a - b)^2 / 4, is subtracted from res[k].err.relmse and from each run's relMSE. */
+ * (npix pixels; a NULL: none, every ref_own and relmse_net NaN), each res[k].ref_own gets the
+ * reference's own relMSE, MAPE and SMAPE, and res[k].relmse_net and each run's relmse_net the relMSE
+ * without the reference's share, E[(x - r)^2] - Var(r) per pixel with Var(r) estimated as
+ * (a - b)^2 / 4. err.relmse stays the relMSE against r (DESIGN.md's definition; frames.csv's). */
 void compare_reference_noise(struct compare_result *res, int n, const float *a, const float *b, const float *ref,
                              size_t npix);
 /* Runs `frames` frames of spec c with parameters p (c->p, or with an equal-time spp) as `instances`

@@ -47,9 +47,16 @@ static double reference_ratio(const struct csv_table *t, int ours, int base, con
     return isfinite(own) && isfinite(diff) ? (diff > 0.0 ? own / diff : INFINITY) : 0.0;
 }
 
+/* 1 when t has column col with a number in row r. */
+static int has_value(const struct csv_table *t, int r, const char *col) { return isfinite(csv_table_num(t, r, col)); }
+
 struct rel_change eval_change(const struct step_tables *d, int ours, int base, const char *col)
 {
-    struct rel_change c = eval_change_unchecked(d, ours, base, col);
+    /* relMSE is judged without the reference's own share where the table has it (compare.csv's
+     * relmse_net); the reference check compares the difference with that share (ref_relmse) */
+    const int net = !strcmp(col, "relmse") && ours >= 0 && base >= 0 && has_value(d->t, ours, "relmse_net") &&
+                    has_value(d->t, base, "relmse_net");
+    struct rel_change c = eval_change_unchecked(d, ours, base, net ? "relmse_net" : col);
     if (ours >= 0 && base >= 0)
         c.ref_ratio = reference_ratio(d->t, ours, base, col);
     return c;

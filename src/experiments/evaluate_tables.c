@@ -186,6 +186,36 @@ static int read_step_csv(const char *dir, const struct eval_step *s, const char 
     return 0;
 }
 
+/* Row r's relMSE as the tables show it: without the reference's own share (relmse_net) where the
+ * step has the reference's halves, else as measured. */
+static double relmse_shown(const struct csv_table *t, int r)
+{
+    const double net = csv_table_num(t, r, "relmse_net");
+    return isfinite(net) ? net : csv_table_num(t, r, "relmse");
+}
+
+/* The reference's own error in the metrics cols (t's columns ref_COL, the same on every row, from its
+ * two independent halves) and its share of row base's error, as a sentence; nothing when t has none
+ * (a reference given with --ref, or a step merged before halves existed: then it says so). */
+static void reference_share(struct text *md, const struct csv_table *t, int base, const char *const *cols,
+                            const char *const *names, int n)
+{
+    char ref[64];
+    int any = 0;
+    for (int k = 0; k < n && base >= 0; k++) {
+        snprintf(ref, sizeof ref, "ref_%s", cols[k]);
+        const double own = csv_table_num(t, base, ref), v = csv_table_num(t, base, cols[k]);
+        if (!isfinite(own))
+            continue;
+        put(md, "%s %s %.4g (%.1f%% of %s's)",
+            any ? ";" : "\nThe reference's own error, from its two independent halves:", names[k], own,
+            100.0 * own / v, t->cell[(size_t)(base + 1) * t->ncol]);
+        any = 1;
+    }
+    put(md, any ? ". A claim whose difference is smaller than it is refused; relMSE is shown with it subtracted.\n"
+                : "\nThe reference has no halves here: its own share of the error is not known.\n");
+}
+
 /* DIR/STEP/runs.csv (each configuration's metrics per run) into t: 1 when it is there, 0 when the
  * step was merged without it (its claims then fall back to unpaired means). */
 static int read_step_runs(const char *dir, const struct eval_step *s, struct csv_table *t)
@@ -268,6 +298,8 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
         put(md, "| %s | %g | %g | %s | %s | %s | %s | %s | %.1f |\n", t->cell[(size_t)(r + 1) * t->ncol],
             csv_table_num(t, r, "radius"), csv_table_num(t, r, "K"), a, b, c, e, sp, csv_table_num(t, r, "ms_frame"));
     }
+    static const char *const share_cols[2] = {"smape_all", "smape_hard"}, *const share_names[2] = {"SMAPE", "hard SMAPE"};
+    reference_share(md, t, bit, share_cols, share_names, 2);
     /* 000 Sec. 7.1 (FAST against Bitterli R = 30): EMERALD SQUARE -29% SMAPE, -49% temporal
      * covariance; the simpler scenes (VEACH AJAR among them) -5.8..-13.7% and -22..-31%; hard pixels
      * -26..-29% SMAPE and -43..-57% temporal covariance in every scene. Sec. 7.2: overheads FAST
@@ -370,11 +402,13 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
         const int r = row[k] = csv_table_find(t, label[k]);
         fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), a, sizeof a);
         fmt_pm(csv_table_num(t, r, "mape_disoccluded"), csv_table_num(t, r, "mape_disoccluded_sem"), b, sizeof b);
-        fmt_pm(csv_table_num(t, r, "relmse"), csv_table_num(t, r, "relmse_sem"), c, sizeof c);
+        fmt_pm(relmse_shown(t, r), csv_table_num(t, r, "relmse_sem"), c, sizeof c);
         cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "004") * eval_runs(o, "004");
         put(md, "| %s | %.1f | %s | %s | %.3f | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b,
             csv_table_num(t, r, "disoccluded_share"), c);
     }
+    static const char *const share_cols[2] = {"mape", "relmse"}, *const share_names[2] = {"MAPE", "relMSE"};
+    reference_share(md, t, row[0], share_cols, share_names, 2);
     const int pt = !strcmp(s->base, "restir-pt");
     static const char *const col[2][2] = {{"mape", "mape_sem"}, {"mape_disoccluded", "mape_disoccluded_sem"}};
     char found[2][1000];
@@ -466,7 +500,7 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
                                                {"gradient_relmse_trim1", "gradient_relmse_trim1_sem"},
                                                {"gradient_mape", "gradient_mape_sem"}};
     for (int r = 0; r < t->nrow; r++) {
-        fmt_pm(csv_table_num(t, r, "relmse"), csv_table_num(t, r, "relmse_sem"), a, sizeof a);
+        fmt_pm(relmse_shown(t, r), csv_table_num(t, r, "relmse_sem"), a, sizeof a);
         fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), b, sizeof b);
         for (int k = 0; k < 3; k++)
             fmt_pm(csv_table_num(t, r, grad_col[k][0]), csv_table_num(t, r, grad_col[k][1]), g[k], sizeof g[k]);
@@ -475,6 +509,8 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
             csv_table_num(t, r, "instances"), csv_table_num(t, r, "spp"), csv_table_num(t, r, "ms_per_frame"), a,
             b, g[0], g[1], g[2]);
     }
+    static const char *const share_cols[2] = {"mape", "relmse"}, *const share_names[2] = {"MAPE", "relMSE"};
+    reference_share(md, t, csv_table_find(t, "grestir-pt"), share_cols, share_names, 2);
     static const char *const ours[2] = {"grestir-pt", "grestir-pt:recon=l1"};
     static const char *const rivals[2][3] = {
         {"grad-after-restir:instances=2", "area-restir:instances=4", "gpt:spp=3"},

@@ -266,9 +266,10 @@ static void check_compare_specs(void)
         int frames = cli_count_entries(path, "frame_0001.exr");
         EXPECT(frames == 1, "no last frame in %s (%d)", path, frames);
     }
-    EXPECT(cli_count_entries(dir, "") == 7,
-           "%s holds %d entries, want compare.csv, frames.csv, passes.csv, reference.exr and 3 folders", dir,
-           cli_count_entries(dir, ""));
+    EXPECT(cli_count_entries(dir, "") == 10,
+           "%s holds %d entries, want compare.csv, frames.csv, passes.csv, runs.csv, reference.exr, its two halves "
+           "and 3 folders",
+           dir, cli_count_entries(dir, ""));
 }
 
 static void check_study(void)

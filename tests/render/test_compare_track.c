@@ -63,8 +63,9 @@ int main(void)
     int rc = cli_run(tmp, args, err);
     EXPECT(rc == 0, "compare --runs 4 --ref-every 4 exited %d: %s", rc, err);
 
-    /* references: frames 3 and 7 on their own, frame 11 is the comparison's reference.exr */
-    EXPECT(cli_count_entries(dir, "reference") == 3, "want reference.exr, reference_0003.exr, reference_0007.exr");
+    /* references: frames 3 and 7 on their own, frame 11 is the comparison's reference.exr with its two halves */
+    EXPECT(cli_count_entries(dir, "reference") == 5,
+           "want reference.exr, reference.half_a.exr, reference.half_b.exr, reference_0003.exr, reference_0007.exr");
     snprintf(path, sizeof path, "%s/reference_0003.exr", dir);
     EXPECT(cli_count_entries(dir, "reference_0003.exr") == 1 && cli_count_entries(dir, "reference_0007.exr") == 1,
            "no %s or its frame-7 sibling", path);
@@ -163,7 +164,7 @@ int main(void)
                        "disoccluded_share,gradient_relmse,gradient_relmse_sem,gradient_relmse_trim1,"
                        "gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem,relmse_denoised,relmse_denoised_sem,"
                        "mape_denoised,mape_denoised_sem,smape_denoised,smape_denoised_sem,mape_disoccluded_denoised,"
-                       "mape_disoccluded_denoised_sem,temporal_cov_denoised,ref_relmse,ref_mape,ref_smape,flip,"
+                       "mape_disoccluded_denoised_sem,temporal_cov_denoised,ref_relmse,ref_mape,ref_smape,relmse_net,flip,"
                        "flip_sem\n") != NULL,
            "compare.csv header: %.300s", csv);
     c = strstr(csv, "\nrestir-pt,");
