@@ -408,7 +408,7 @@ static void check_compare(void)
                          "gradient_relmse_sem,gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,"
                          "gradient_mape_sem,relmse_denoised,relmse_denoised_sem,mape_denoised,mape_denoised_sem,"
                          "smape_denoised,smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem,"
-                         "temporal_cov_denoised,ref_relmse,ref_mape,ref_smape,flip,flip_sem\n";
+                         "temporal_cov_denoised,ref_relmse,ref_mape,ref_smape,relmse_net,flip,flip_sem\n";
     double grad_relmse[4], grad_trim[4], grad_mape[4], flip[4];
     EXPECT(strncmp(csv, header, strlen(header)) == 0, "%s: wrong header:\n%s", path, csv);
     int rows = 0;
@@ -430,7 +430,12 @@ static void check_compare(void)
             grad_relmse[rows] = cli_csv_number(line, 16);
             grad_trim[rows] = cli_csv_number(line, 18);
             grad_mape[rows] = cli_csv_number(line, 20);
-            flip[rows] = cli_csv_number(line, 34);
+            flip[rows] = cli_csv_number(line, cli_csv_column(csv, "flip"));
+            /* relmse_net is relmse less the reference's own relMSE (its two halves' relMSE / 2) */
+            const double rel = cli_csv_number(line, 4), own = cli_csv_number(line, cli_csv_column(csv, "ref_relmse")),
+                         net = cli_csv_number(line, cli_csv_column(csv, "relmse_net"));
+            EXPECT(own > 0.0 && fabs(net - (rel - own)) <= 1e-4 * rel, "%s row %d: relmse_net %g, relmse %g, ref %g",
+                   path, rows + 1, net, rel, own);
             EXPECT(flip[rows] > 0.0 && flip[rows] < 1.0, "%s row %d: flip %g", path, rows + 1, flip[rows]);
         }
         rows++;

@@ -78,24 +78,32 @@ int main(void)
     if (csv) {
         const char *header = "config,radius,K,M,smape_all,smape_hard,temporal_cov,spatial_cov,ms_select,ms_spatial,"
                              "ms_frame,smape_all_sem,smape_hard_sem,temporal_cov_sem,spatial_cov_sem,temporal_cov_hard,"
-                             "temporal_cov_hard_sem\n";
+                             "temporal_cov_hard_sem,ref_smape_all,ref_smape_hard\n";
         EXPECT(strncmp(csv, header, strlen(header)) == 0, "study.csv header: %.120s", csv);
         const char *names[] = {"bitterli,",    "fast,",     "compat-binary,", "bitterli-r6,6,",
                                "bitterli@4,", "compat@4,", "bitterli@8,",    "compat@8,"};
         int rows = 0;
+        double ref_all = NAN;
         for (char *line = strchr(csv, '\n'); line && line[1]; line = strchr(line + 1, '\n')) {
             const char *row = line + 1;
             EXPECT(rows < 8 && strncmp(row, names[rows], strlen(names[rows])) == 0, "row %d: %.60s", rows, row);
             /* radius, K, M, then 7 metrics, 4 standard errors, the hard pixels' temporal covariance and
              * its standard error: all finite and not negative except the covariances */
             const char *p = strchr(row, ',');
-            double v[16];
+            double v[18];
             int nv = 0;
-            while (p && nv < 16) {
+            while (p && nv < 18) {
                 v[nv++] = strtod(p + 1, NULL);
                 p = strchr(p + 1, ',');
             }
-            EXPECT(nv == 16, "row %d has %d numbers", rows, nv);
+            EXPECT(nv == 18, "row %d has %d numbers", rows, nv);
+            /* the reference's own SMAPE (two independent halves, SMAPE(a, b) / 2): positive, and the same
+             * for every row since all rows share the reference */
+            EXPECT(v[16] > 0.0 && v[16] < 100.0 && v[17] > 0.0 && v[17] < 100.0,
+                   "row %d: reference's own SMAPE %g / %g", rows, v[16], v[17]);
+            if (rows == 0)
+                ref_all = v[16];
+            EXPECT(v[16] == ref_all, "row %d: reference's own SMAPE %g, row 0's %g", rows, v[16], ref_all);
             EXPECT(v[12] > 0.0 && v[13] > 0.0 && v[15] > 0.0,
                    "row %d: covariance standard errors %g / %g / %g (3 runs)", rows, v[12], v[13], v[15]);
             EXPECT(v[14] != v[5], "row %d: the hard pixels' temporal covariance is the whole image's (%g)", rows,
