@@ -41,16 +41,17 @@ struct job_timing {
 };
 
 /* Job k's spec (-1: the reference job) and run: the jobs are the reference, then each spec's runs. */
+/* Jobs are run-major (compare_plan): after the reference, run 0 of every spec, then run 1, ... */
 static int spec_of_job(const struct compare_setup *st, int k, int *run)
 {
     const int j = k - (st->o.ref ? 0 : 1);
-    *run = j < 0 ? 0 : j % st->o.runs;
-    return j < 0 ? -1 : j / st->o.runs;
+    *run = j < 0 ? 0 : j / st->n;
+    return j < 0 ? -1 : j % st->n;
 }
 
 static int job_of_spec(const struct compare_setup *st, int spec, int run)
 {
-    return (st->o.ref ? 0 : 1) + spec * st->o.runs + run;
+    return (st->o.ref ? 0 : 1) + run * st->n + spec;
 }
 
 int compare_plan(const struct compare_setup *st, int argc, char **argv)
@@ -71,8 +72,9 @@ int compare_plan(const struct compare_setup *st, int argc, char **argv)
         return rc;
     if (!st->o.ref)
         plan_add_job(&pl, "the comparison's reference", "runs/reference.exr");
-    for (int k = 0; k < st->n; k++)
-        for (int n = 0; n < st->o.runs; n++) {
+    /* run-major, as study_plan: one job at a time in this order times the specs interleaved */
+    for (int n = 0; n < st->o.runs; n++)
+        for (int k = 0; k < st->n; k++) {
             if (st->o.runs > 1)
                 snprintf(name, sizeof name, "%.200s, run %d", st->specs[k].label, n);
             else

@@ -446,8 +446,11 @@ int study_plan(const struct study_setup *st, int argc, char **argv)
         return rc;
     if (!st->o.ref)
         plan_add_job(&pl, "the study's reference", "runs/reference.exr");
-    for (int k = 0; k < st->ncfg; k++)
-        for (int n = 0; n < st->o.runs; n++) {
+    /* run-major (run 0 of every configuration, then run 1, ...): jobs run one at a time in this
+     * order time the configurations interleaved, A B A B, so slow drift of the machine's speed
+     * falls on both sides of each run's pair of frame times alike */
+    for (int n = 0; n < st->o.runs; n++)
+        for (int k = 0; k < st->ncfg; k++) {
             snprintf(name, sizeof name, "config %s, run %d", st->cfg[k].name, n);
             unit_output(k, n, rel, sizeof rel);
             plan_add_job(&pl, name, rel);
@@ -490,7 +493,7 @@ int study_run_job(const struct plan *pl, int k)
         rc = reference_pair_finish(study_render_reference(&st, path, &pair, msg), &pair, path, st.o.params.width,
                                    st.o.params.height, msg);
     } else {
-        const int unit = k - has_ref, cfg = unit / st.o.runs, run = unit % st.o.runs;
+        const int unit = k - has_ref, cfg = unit % st.ncfg, run = unit / st.ncfg; /* run-major: study_plan */
         struct study_unit u;
         if (study_run_unit(&st.s, st.method, &st.o.params, &st.cfg[cfg], &st.o, run, &u) != 0) {
             cli_error("interrupted by %s; nothing written", cli_stop_signal_name());

@@ -80,6 +80,22 @@ static inline int cli_run(const char *tmp_dir, const char *args, char *err)
 
 /* Number of entries of dir whose name contains `part` ("" counts every entry); -1 when dir does
  * not exist or is not a folder. */
+/* Runs the shell command fmt with a and b put in (two %s); returns its exit code, -1 when it did not exit. */
+static inline int cli_sh(const char *fmt, const char *a, const char *b)
+{
+    char cmd[6 * CLI_PATH_MAX];
+    snprintf(cmd, sizeof cmd, fmt, a, b);
+    const int st = system(cmd);
+    return st == -1 || !WIFEXITED(st) ? -1 : WEXITSTATUS(st);
+}
+
+/* 1 when path exists. */
+static inline int cli_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
 static inline int cli_count_entries(const char *dir, const char *part)
 {
     DIR *d = opendir(dir);

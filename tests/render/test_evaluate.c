@@ -23,20 +23,6 @@ static char tmp[CLI_PATH_MAX];
 
 #define EVAL_ARGS "--res 208x208 --runs 2 --frames 4 --warmup 2 --ref-spp 8 --scenes cornell"
 
-static int sh(const char *fmt, const char *a, const char *b)
-{
-    char cmd[6 * CLI_PATH_MAX];
-    snprintf(cmd, sizeof cmd, fmt, a, b);
-    int st = system(cmd);
-    return st == -1 || !WIFEXITED(st) ? -1 : WEXITSTATUS(st);
-}
-
-static int exists(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0;
-}
-
 /* The lines of a text file that do not contain `skip`, concatenated. */
 static void lines_without(const char *path, const char *skip, char *out, size_t n)
 {
@@ -72,7 +58,7 @@ static void test_bad_input(char *err)
     EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "000's configurations"), "--configs with 004: %s", err);
     snprintf(args, sizeof args, "evaluate 004 --scenes nowhere --out '%s'", dir);
     EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "'nowhere'"), "unknown scene: %s", err);
-    EXPECT(!exists(dir), "a refused evaluation made its folder");
+    EXPECT(!cli_exists(dir), "a refused evaluation made its folder");
 
     /* a folder of another evaluation: refused, untouched */
     snprintf(args, sizeof args, "evaluate 004 --res 64x64 --runs 2 --frames 4 --scenes cornell --plan '%s'", dir);
@@ -89,7 +75,7 @@ static void test_bad_input(char *err)
 
     /* only the first step's jobs done: a merge is refused, a --partial merge names the others */
     /* the reference and 5 reuse rows x 2 runs */
-    EXPECT(sh("head -n 11 '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel -j 2 > '%s/parallel.log' 2>&1", dir, dir) == 0,
+    EXPECT(cli_sh("head -n 11 '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel -j 2 > '%s/parallel.log' 2>&1", dir, dir) == 0,
            "the first step's jobs failed");
     snprintf(args, sizeof args, "evaluate --merge '%s'", dir);
     EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "004-cornell-restir-di are missing"),
@@ -109,11 +95,11 @@ static void test_bad_input(char *err)
     snprintf(args, sizeof args, "evaluate 004 --res 64x64 --scenes cornell --out '%s'", path);
     EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "is the plan of `restir compare"), "a compare plan: %s",
            err);
-    EXPECT(sh("mkdir -p '%s/full' && touch '%s/full/notes.txt'", tmp, tmp) == 0, "cannot make a folder");
+    EXPECT(cli_sh("mkdir -p '%s/full' && touch '%s/full/notes.txt'", tmp, tmp) == 0, "cannot make a folder");
     snprintf(args, sizeof args, "evaluate 004 --res 64x64 --scenes cornell --out '%s/full'", tmp);
     EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "not empty"), "a non-empty folder: %s", err);
     snprintf(path, sizeof path, "%s/full/plan.json", tmp);
-    EXPECT(!exists(path), "a refused evaluation wrote into a non-empty folder");
+    EXPECT(!cli_exists(path), "a refused evaluation wrote into a non-empty folder");
     snprintf(args, sizeof args, "evaluate --merge '%s/full'", tmp);
     EXPECT(cli_run(tmp, args, err) != 0, "merge of a folder without an evaluation succeeded");
 }
@@ -146,7 +132,7 @@ static void test_default_runs(char *err)
         char jobs[3 * CLI_PATH_MAX], count[16];
         snprintf(jobs, sizeof jobs, "%s/%s/jobs.txt", dir, k == 0 ? "002-cornell" : "004-cornell-restir-pt");
         snprintf(count, sizeof count, "%d", want[k].jobs);
-        EXPECT(sh("test $(wc -l < '%s') -eq %s", jobs, count) == 0, "%s has other than %d jobs (default runs)", jobs,
+        EXPECT(cli_sh("test $(wc -l < '%s') -eq %s", jobs, count) == 0, "%s has other than %d jobs (default runs)", jobs,
                want[k].jobs);
     }
 }
@@ -160,7 +146,7 @@ static void test_plan_equals_unsplit(char *err)
     EXPECT(cli_run(tmp, args, err) == 0, "evaluate all --out: %s", err);
     snprintf(args, sizeof args, "evaluate all " EVAL_ARGS " --report --plan '%s'", plan);
     EXPECT(cli_run(tmp, args, err) == 0, "evaluate all --plan: %s", err);
-    EXPECT(sh("shuf '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel -j 2 > '%s/parallel.log' 2>&1", plan, plan) == 0,
+    EXPECT(cli_sh("shuf '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel -j 2 > '%s/parallel.log' 2>&1", plan, plan) == 0,
            "GNU parallel: an evaluation job failed");
     snprintf(args, sizeof args, "evaluate --merge '%s'", plan);
     EXPECT(cli_run(tmp, args, err) == 0, "evaluate --merge: %s", err);
@@ -200,7 +186,7 @@ static void test_plan_equals_unsplit(char *err)
     for (int k = 0; k < 3; k++)
         EXPECT(strstr(a, findings[k]) != NULL, "claims.csv: no finding \"%s\"", findings[k]);
     snprintf(pa, sizeof pa, "%s/index.html", unsplit);
-    EXPECT(!exists(pa), "index.html without --report");
+    EXPECT(!cli_exists(pa), "index.html without --report");
     static char html[1 << 18];
     snprintf(pb, sizeof pb, "%s/index.html", plan);
     cli_read_text(pb, html, sizeof html);
@@ -208,7 +194,7 @@ static void test_plan_equals_unsplit(char *err)
            "--report: index.html does not link the steps' pages or lacks the claims");
     for (size_t k = 0; k < sizeof steps / sizeof steps[0]; k++) {
         snprintf(pb, sizeof pb, "%s/%s/index.html", plan, steps[k].name);
-        EXPECT(exists(pb), "--report: %s has no index.html", steps[k].name);
+        EXPECT(cli_exists(pb), "--report: %s has no index.html", steps[k].name);
     }
     printf(
         "evaluate all (000, 004, 002 on cornell at 208x208, 2 runs): planned, the jobs run in shuffled order "

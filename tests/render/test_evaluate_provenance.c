@@ -26,20 +26,6 @@ static char err[CLI_ERR_MAX], out[CLI_ERR_MAX];
 #define STEP_PT "004-cornell-restir-pt"
 #define STEP_DI "004-cornell-restir-di"
 
-static int sh(const char *fmt, const char *a, const char *b)
-{
-    char cmd[6 * CLI_PATH_MAX];
-    snprintf(cmd, sizeof cmd, fmt, a, b);
-    int st = system(cmd);
-    return st == -1 || !WIFEXITED(st) ? -1 : WEXITSTATUS(st);
-}
-
-static int exists(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0;
-}
-
 /* Replaces the first occurrence of `from` in the file at path by `to` (every one with all). Returns
  * how many it replaced. */
 static int replace_in_file(const char *path, const char *from, const char *to, int all)
@@ -91,7 +77,7 @@ static void test_check(const char *data)
     }
     printf("--check on the export (1 and 2 threads):\n%s", out);
     snprintf(copy, sizeof copy, "%s/tampered", tmp);
-    EXPECT(sh("cp -r '%s' '%s'", data, copy) == 0, "cannot copy the export");
+    EXPECT(cli_sh("cp -r '%s' '%s'", data, copy) == 0, "cannot copy the export");
     snprintf(path, sizeof path, "%s/e004/" STEP_PT "/settings.json", copy);
     EXPECT(replace_in_file(path, "\"pt.max_bounces\":\t8,", "\"pt.max_bounces\":\t7,", 0) == 1,
            "settings.json has no pt.max_bounces of 8");
@@ -117,7 +103,7 @@ static void test_check(const char *data)
     EXPECT(cli_run_capture(tmp, args, out, err) == 2 && strstr(err, STEP_PT) && strstr(err, "no settings.json"),
            "--check of a step without settings.json: %s%s", out, err);
     snprintf(path, sizeof path, "%s/empty", tmp);
-    EXPECT(sh("mkdir -p '%s'%s", path, "") == 0, "cannot make a folder");
+    EXPECT(cli_sh("mkdir -p '%s'%s", path, "") == 0, "cannot make a folder");
     snprintf(args, sizeof args, "evaluate --check '%s'", path);
     EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "no step under"), "--check of a folder without steps: %s",
            err);
@@ -129,7 +115,7 @@ static void expect_tables_refused(const char *data, const char *broken, const ch
 {
     char copy[DIR_LEN], cmd[ARGS_LEN], args[ARGS_LEN], md[FILE_LEN], claims[FILE_LEN], text[256];
     snprintf(copy, sizeof copy, "%s/refused", tmp);
-    EXPECT(sh("cp -r '%s/e004' '%s'", data, copy) == 0, "cannot copy the export");
+    EXPECT(cli_sh("cp -r '%s/e004' '%s'", data, copy) == 0, "cannot copy the export");
     snprintf(cmd, sizeof cmd, broken, copy);
     EXPECT(system(cmd) == 0, "%s: cannot break the copy (%s)", what, cmd);
     snprintf(md, sizeof md, "%s/evaluation.md", copy);
@@ -142,7 +128,7 @@ static void expect_tables_refused(const char *data, const char *broken, const ch
     EXPECT(!strcmp(text, "untouched\n"), "--tables, %s: evaluation.md was written", what);
     cli_read_text(claims, text, sizeof text);
     EXPECT(!strcmp(text, "untouched\n"), "--tables, %s: claims.csv was written", what);
-    EXPECT(sh("rm -rf '%s'%s", copy, "") == 0, "cannot remove the copy");
+    EXPECT(cli_sh("rm -rf '%s'%s", copy, "") == 0, "cannot remove the copy");
 }
 
 static void test_tables(const char *eval, const char *data)
@@ -172,8 +158,8 @@ static void test_tables(const char *eval, const char *data)
     /* --partial names the step without its table */
     char partial[DIR_LEN];
     snprintf(partial, sizeof partial, "%s/partial", tmp);
-    EXPECT(sh("cp -r '%s/e004' '%s'", data, partial) == 0, "cannot copy the export");
-    EXPECT(sh("rm '%s/" STEP_DI "/compare.csv'%s", partial, "") == 0, "cannot remove a CSV");
+    EXPECT(cli_sh("cp -r '%s/e004' '%s'", data, partial) == 0, "cannot copy the export");
+    EXPECT(cli_sh("rm '%s/" STEP_DI "/compare.csv'%s", partial, "") == 0, "cannot remove a CSV");
     snprintf(args, sizeof args, "evaluate --tables '%s' --partial", partial);
     EXPECT(cli_run(tmp, args, err) == 0, "--tables --partial: %s", err);
     static char md[1 << 16];
@@ -244,7 +230,7 @@ int main(void)
     for (int k = 0; k < 3; k++)
         for (int f = 0; f < 2; f++) {
             snprintf(path, sizeof path, "%s/%s/%s", eval, steps[k], recorded[f]);
-            EXPECT(exists(path), "the merge wrote no %s", path);
+            EXPECT(cli_exists(path), "the merge wrote no %s", path);
         }
     static char md[1 << 16];
     snprintf(path, sizeof path, "%s/evaluation.md", eval);
@@ -256,15 +242,15 @@ int main(void)
     char script[FILE_LEN];
     snprintf(script, sizeof script, "%s/../../scripts/evaluation_export.sh", data_dir);
     snprintf(path, sizeof path, "%s/e004", data);
-    EXPECT(sh("sh '%s' '%s' ", script, eval) == 2, "the export without a destination did not exit 2");
+    EXPECT(cli_sh("sh '%s' '%s' ", script, eval) == 2, "the export without a destination did not exit 2");
     char cmd[ARGS_LEN + FILE_LEN];
     snprintf(cmd, sizeof cmd, "sh '%s' '%s' '%s' > '%s/export.log' 2>&1", script, eval, path, tmp);
     EXPECT(system(cmd) == 0, "evaluation_export.sh failed");
-    EXPECT(sh("test -z \"$(find '%s' -name '*.exr' -o -name runs -o -name jobs.txt -o -name '*.bin'%s)\"", data, "") ==
+    EXPECT(cli_sh("test -z \"$(find '%s' -name '*.exr' -o -name runs -o -name jobs.txt -o -name '*.bin'%s)\"", data, "") ==
                0,
            "the export holds images, jobs or runs");
     snprintf(path, sizeof path, "%s/e004/" STEP_PT "/compare.csv", data);
-    EXPECT(exists(path), "the export has no %s", path);
+    EXPECT(cli_exists(path), "the export has no %s", path);
     test_tables(eval, data);
     test_check(data);
     test_one_commit(eval);

@@ -32,14 +32,6 @@ static int have(const char *tool)
     return system(cmd) == 0;
 }
 
-static int sh(const char *fmt, const char *a, const char *b)
-{
-    char cmd[6 * CLI_PATH_MAX];
-    snprintf(cmd, sizeof cmd, fmt, a, b);
-    int st = system(cmd);
-    return st == -1 || !WIFEXITED(st) ? -1 : WEXITSTATUS(st);
-}
-
 
 static void test_study(char *err)
 {
@@ -58,8 +50,8 @@ static void test_study(char *err)
         EXPECT(stat(path, &st) == 0, "the plan has no %s", files[i]);
     }
     /* 1 reference + 4 configurations x 3 runs, in shuffled order, two at a time */
-    EXPECT(sh("test $(wc -l < '%s/jobs.txt') -eq 13", plan, "") == 0, "jobs.txt does not hold 13 jobs");
-    EXPECT(sh("shuf '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel --halt now,fail=1 -j 2 > '%s/parallel.log' 2>&1", plan,
+    EXPECT(cli_sh("test $(wc -l < '%s/jobs.txt') -eq 13", plan, "") == 0, "jobs.txt does not hold 13 jobs");
+    EXPECT(cli_sh("shuf '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel --halt now,fail=1 -j 2 > '%s/parallel.log' 2>&1", plan,
               plan) == 0, "GNU parallel: a job failed (%s/parallel.log)", plan);
     snprintf(args, sizeof args, "study --merge '%s'", plan);
     EXPECT(cli_run(tmp, args, err) == 0, "study --merge: %s", err);
@@ -80,23 +72,24 @@ static void test_study(char *err)
     printf("study: 13 jobs shuffled under GNU parallel, merged: study.csv (all but the times), pareto.svg, "
            "hard_pixels.png and strip.png equal the unsplit study's\n%s", b);
 
-    /* a job run again: already done; a missing or corrupt result: refused, named by its line */
+    /* a job run again: already done; a missing or corrupt result: refused, named by its line (jobs
+     * are run-major: line 1 the reference, then run 0 of the 4 configurations, run 1, ...) */
     static char out[CLI_ERR_MAX];
     snprintf(args, sizeof args, "job '%s' 7", plan);
     EXPECT(cli_run_capture(tmp, args, out, err) == 0 && strstr(out, "already done"), "job 7 again: %s%s", out, err);
-    EXPECT(sh("mv '%s/runs/study_c01_r00002.bin' '%s/moved.bin'", plan, plan) == 0, "cannot move a result");
+    EXPECT(cli_sh("mv '%s/runs/study_c01_r00002.bin' '%s/moved.bin'", plan, plan) == 0, "cannot move a result");
     snprintf(args, sizeof args, "study --merge '%s'", plan);
-    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 7 (config compat, run 2)"),
+    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 11 (config compat, run 2)"),
            "merge with a missing job: %s", err);
-    EXPECT(sh("mv '%s/moved.bin' '%s/runs/study_c01_r00002.bin'", plan, plan) == 0, "cannot move it back");
-    EXPECT(sh("printf 'X' | dd of='%s/runs/study_c02_r00001.bin' bs=1 seek=200 conv=notrunc 2>/dev/null%s", plan,
+    EXPECT(cli_sh("mv '%s/moved.bin' '%s/runs/study_c01_r00002.bin'", plan, plan) == 0, "cannot move it back");
+    EXPECT(cli_sh("printf 'X' | dd of='%s/runs/study_c02_r00001.bin' bs=1 seek=200 conv=notrunc 2>/dev/null%s", plan,
               "") == 0, "cannot corrupt");
-    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 9 (config bitterli@12, run 1)") &&
+    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 8 (config bitterli@12, run 1)") &&
                strstr(err, "corrupt"),
            "merge with a corrupt job: %s", err);
     printf("refused: %s", err);
-    snprintf(args, sizeof args, "job '%s' 9", plan); /* run again, it replaces the corrupt result */
-    EXPECT(cli_run(tmp, args, err) == 0, "job 9 again: %s", err);
+    snprintf(args, sizeof args, "job '%s' 8", plan); /* run again, it replaces the corrupt result */
+    EXPECT(cli_run(tmp, args, err) == 0, "job 8 again: %s", err);
     snprintf(args, sizeof args, "study --merge '%s'", plan);
     EXPECT(cli_run(tmp, args, err) == 0, "merge after the rerun: %s", err);
     snprintf(pb, sizeof pb, "%s/study.csv", plan);
@@ -118,7 +111,7 @@ static void test_reference(char *err)
     snprintf(args, sizeof args, REF " --shards 5 --plan '%s'", plan);
     EXPECT(cli_run(tmp, args, err) == 0, "reference --plan: %s", err);
     /* the documented alternative to GNU parallel: xargs, one line per shell */
-    EXPECT(sh("tac '%s/jobs.txt' | OMP_NUM_THREADS=1 xargs -d '\\n' -n 1 -P 2 sh -c > '%s/xargs.log' 2>&1", plan,
+    EXPECT(cli_sh("tac '%s/jobs.txt' | OMP_NUM_THREADS=1 xargs -d '\\n' -n 1 -P 2 sh -c > '%s/xargs.log' 2>&1", plan,
               plan) == 0, "xargs: a shard failed");
     snprintf(args, sizeof args, "reference --merge '%s' --out '%s'", plan, merged);
     EXPECT(cli_run(tmp, args, err) == 0, "reference --merge: %s", err);
@@ -146,7 +139,7 @@ static void test_reference(char *err)
     }
     free(a);
     free(b);
-    EXPECT(sh("rm '%s/runs/shard_0003.exr'%s", plan, "") == 0, "cannot remove a shard");
+    EXPECT(cli_sh("rm '%s/runs/shard_0003.exr'%s", plan, "") == 0, "cannot remove a shard");
     snprintf(args, sizeof args, "reference --merge '%s' --out '%s/never.exr'", plan, tmp);
     EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 4 (shard 3"), "merge with a shard missing: %s", err);
     char never[3 * CLI_PATH_MAX];
@@ -190,7 +183,7 @@ static void test_plan_descriptions(const char *plan, char *err)
         snprintf(text, sizeof text, "%.*s%s%s", (int)(at - original), original, broken[k].to,
                  at + strlen(broken[k].from));
         EXPECT(cli_write_text(path, text) == 0, "cannot write %s", path);
-        EXPECT(sh("rm -f '%s/runs/reference.exr'%s", plan, "") == 0, "cannot remove a result");
+        EXPECT(cli_sh("rm -f '%s/runs/reference.exr'%s", plan, "") == 0, "cannot remove a result");
         snprintf(args, sizeof args, "job '%s' 1", plan);
         EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, broken[k].says), "plan.json with %s: job says %s",
                broken[k].to, err);
@@ -211,7 +204,7 @@ static void test_compare(char *err)
     EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "--equal-time"), "an equal-time plan accepted: %s", err);
     snprintf(args, sizeof args, COMPARE " --plan '%s'", plan);
     EXPECT(cli_run(tmp, args, err) == 0, "compare --plan: %s", err);
-    EXPECT(sh("tac '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel -j 2 > '%s/parallel.log' 2>&1", plan, plan) == 0,
+    EXPECT(cli_sh("tac '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel -j 2 > '%s/parallel.log' 2>&1", plan, plan) == 0,
            "GNU parallel: a compare job failed");
     snprintf(args, sizeof args, "compare --merge '%s'", plan);
     EXPECT(cli_run(tmp, args, err) == 0, "compare --merge: %s", err);
@@ -233,8 +226,8 @@ static void test_compare(char *err)
     printf("compare: 7 jobs (3 specs x 2 runs, the reference) under GNU parallel, merged: compare.csv (all but "
            "ms_per_frame: means and standard errors over the runs), the reference and the frames equal the unsplit "
            "compare's\n%s", b);
-    EXPECT(sh("rm '%s/runs/pt/run_1.bin'%s", plan, "") == 0, "cannot remove a result");
-    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 5 (pt, run 1)"), "merge with a missing job: %s", err);
+    EXPECT(cli_sh("rm '%s/runs/pt/run_1.bin'%s", plan, "") == 0, "cannot remove a result");
+    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 6 (pt, run 1)"), "merge with a missing job: %s", err);
     test_plan_descriptions(plan, err);
 }
 
@@ -320,7 +313,7 @@ static void test_changed_scene(char *err)
     snprintf(args, sizeof args, "reference --scene '%s/cornell.json' --method pt --res 16x9 --spp 32 --shards 2 "
              "--plan '%s'", dir, plan);
     EXPECT(cli_run(tmp, args, err) == 0, "plan on a scene file: %s", err);
-    EXPECT(sh("sed -i 's/0.65, 0.05, 0.05/0.6, 0.05, 0.05/' '%s/cornell.json'%s", dir, "") == 0, "cannot edit");
+    EXPECT(cli_sh("sed -i 's/0.65, 0.05, 0.05/0.6, 0.05, 0.05/' '%s/cornell.json'%s", dir, "") == 0, "cannot edit");
     snprintf(args, sizeof args, "job '%s' 1", plan);
     EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "changed since the plan was made"),
            "a job on a changed scene ran: %s", err);

@@ -26,12 +26,6 @@ static void path_of(char *out, const char *name)
     snprintf(out, 2 * CLI_PATH_MAX, "%s/%s", tmp, name);
 }
 
-static int exists(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0;
-}
-
 /* restir.samples of a checkpoint, or -1. */
 static int checkpoint_samples(const char *path)
 {
@@ -82,7 +76,7 @@ static void test_kill_and_resume(char *out, char *err)
     EXPECT(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL, "the reference finished before the kill");
     int n = checkpoint_samples(ckpt);
     EXPECT(n > 0 && n < 960 && n % 16 == 0, "checkpoint after the kill holds %d samples", n);
-    EXPECT(!exists(final), "a killed reference left its final image");
+    EXPECT(!cli_exists(final), "a killed reference left its final image");
     /* a temporary of a writer that no longer exists (what a kill during a write leaves) */
     char stale[2 * CLI_PATH_MAX + 32];
     snprintf(stale, sizeof stale, "%s.tmp-2147483000", ckpt);
@@ -93,7 +87,7 @@ static void test_kill_and_resume(char *out, char *err)
     EXPECT(strstr(out, "resuming") != NULL, "the second run did not resume: %s", out);
     printf("killed at %d of 960 samples; %s", n, out);
     expect_same("full.exr", "part.exr", "SIGKILL + resume");
-    EXPECT(!exists(ckpt), "checkpoint kept after the reference finished");
+    EXPECT(!cli_exists(ckpt), "checkpoint kept after the reference finished");
     EXPECT(cli_count_entries(tmp, ".tmp-") == 0, "temporary files left");
 }
 
@@ -115,7 +109,7 @@ static void test_interrupt_refusals_and_extension(char *out, char *err)
            WIFEXITED(status) ? WEXITSTATUS(status) : -1, 128 + SIGINT);
     int n = checkpoint_samples(ckpt);
     EXPECT(n >= 48 && n < 960, "the SIGINT checkpoint holds %d samples", n);
-    EXPECT(!exists(final), "an interrupted reference wrote its final image");
+    EXPECT(!cli_exists(final), "an interrupted reference wrote its final image");
     char args[5 * CLI_PATH_MAX];
     path_of(copy, "int.copy");
     snprintf(args, sizeof args, "cp '%s' '%s'", ckpt, copy);
@@ -130,14 +124,14 @@ static void test_interrupt_refusals_and_extension(char *out, char *err)
            "a checkpoint above --spp accepted: %s", err);
     long size = 0;
     EXPECT(cli_files_equal(ckpt, copy, &size) == 1, "a refused resume changed the checkpoint");
-    EXPECT(!exists(final), "a refused resume wrote the image");
+    EXPECT(!cli_exists(final), "a refused resume wrote the image");
 
     /* continued to more samples than it was started with: the bytes of a run of that many */
     EXPECT(reference("--spp 1280 --threads 2", "ext.exr", out, err) == 0, "uninterrupted 1280: %s", err);
     EXPECT(reference("--spp 1280 --threads 2 --checkpoint-every 0", "int.exr", out, err) == 0,
            "extending resume: %s", err);
     expect_same("ext.exr", "int.exr", "SIGINT + resume with a larger --spp");
-    EXPECT(!exists(ckpt), "checkpoint kept after the reference finished");
+    EXPECT(!cli_exists(ckpt), "checkpoint kept after the reference finished");
 }
 
 /* Broken checkpoints are refused with the problem named. */
@@ -185,7 +179,7 @@ static void test_interrupt_without_checkpoints(void)
     int status = cli_signal_and_wait(pid, SIGTERM);
     EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM, "SIGTERM: exit status %d",
            WIFEXITED(status) ? WEXITSTATUS(status) : -1);
-    EXPECT(!exists(final) && !exists(ckpt), "an interrupted reference without checkpoints wrote a file");
+    EXPECT(!cli_exists(final) && !cli_exists(ckpt), "an interrupted reference without checkpoints wrote a file");
     EXPECT(cli_count_entries(tmp, ".tmp-") == 0, "temporary files left");
 }
 

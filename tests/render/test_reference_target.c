@@ -19,12 +19,6 @@ static char tmp[CLI_PATH_MAX];
 
 static void path_of(char *out, const char *name) { snprintf(out, 2 * CLI_PATH_MAX, "%s/%s", tmp, name); }
 
-static int exists(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0;
-}
-
 /* A text attribute of tmp/name as a number, or -1. */
 static double attribute(const char *name, const char *attr)
 {
@@ -105,7 +99,7 @@ static void test_resume(char *out, char *err)
     EXPECT(reference("--target-relmse 0.003 --threads 2 --checkpoint-every 0", "part.exr", out, err) == 0,
            "resume with a target: %s", err);
     expect_same("t003.exr", "part.exr", "kill + resume with --target-relmse");
-    EXPECT(!exists(part), "checkpoint kept after the reference finished");
+    EXPECT(!cli_exists(part), "checkpoint kept after the reference finished");
     /* killed without a target, resumed with one: the variance is tracked from the resume on */
     kill_at("--spp 4096 --threads 1", "plain", 48);
     EXPECT(reference("--spp 4096 --target-relmse 0.003 --threads 2 --checkpoint-every 0", "plain.exr", out, err) == 0,
