@@ -1,5 +1,6 @@
-/* evaluate_tables.c: the papers' tables and a verdict per claim from an evaluation's merged steps
- * (evaluate_tables.h). Must never run a command or render: it reads study.csv and compare.csv. */
+/* evaluate_tables.c: the papers' tables and a verdict per claim from an
+ * evaluation's merged steps (evaluate_tables.h). Must never run a command or
+ * render: it reads study.csv and compare.csv. */
 #include "experiments/evaluate_tables.h"
 
 #include <math.h>
@@ -11,46 +12,17 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/csv_table.h"
+#include "experiments/evaluate_change.h"
+#include "experiments/evaluate_claims.h"
 #include "experiments/evaluate_findings.h"
 #include "experiments/evaluate_record.h"
 #include "experiments/report_commit.h"
-#include "experiments/evaluate_change.h"
 #include "experiments/stats.h"
 #include "io/atomic_file.h"
 #include "io/html_report.h"
 #include "io/report.h"
 
 #define PATH_LEN 4400
-
-/* A growing text. */
-struct text {
-    char *s;
-    size_t len, cap;
-};
-
-static void put(struct text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void put(struct text *t, const char *fmt, ...)
-{
-    for (;;) {
-        va_list ap;
-        va_start(ap, fmt);
-        const int n = vsnprintf(t->s ? t->s + t->len : NULL, t->s ? t->cap - t->len : 0, fmt, ap);
-        va_end(ap);
-        RESTIR_CHECK(n >= 0);
-        if (t->s && t->len + (size_t)n < t->cap) {
-            t->len += (size_t)n;
-            return;
-        }
-        t->cap = 2 * (t->cap + (size_t)n + 256);
-        t->s = realloc(t->s, t->cap);
-        RESTIR_CHECK(t->s != NULL);
-    }
-}
-
-#define REDUCTION(pct) ((struct claim){CLAIM_REDUCTION, (pct)})
-#define SMALL_CHANGE(pct) ((struct claim){CLAIM_SMALL, (pct)})
-#define COSTS_AT_MOST(pct) ((struct claim){CLAIM_COST, (pct)})
-#define NO_CLAIM ((struct claim){CLAIM_NONE, 0.0})
 
 static void fmt_pm(double v, double sem, char *out, size_t len)
 {
@@ -62,74 +34,8 @@ static void fmt_pm(double v, double sem, char *out, size_t len)
         snprintf(out, len, "%.4g", v);
 }
 
-/* The claims, as lines of evaluation.md and rows of claims.csv. */
-struct claims {
-    struct text md;
-    struct csv_writer csv;
-    int csv_ok;
-    double render_ms; /* the paper's frames: measured frame times x frames x runs, summed over its steps */
-};
-
-/* One claim's line: what (the claim), where (scene, base), our change, the paper's figure, lo as in
- * what the paper claims (claim_verdict()), and the setup's differences from the paper's (said when not reproduced). */
-static void claim_found(struct claims *cl, const char *paper, const char *what, const char *where, struct rel_change c,
-                        const char *paper_figure, struct claim k, const char *findings, const char *differences);
-
-static void claim(struct claims *cl, const char *paper, const char *what, const char *where, struct rel_change c,
-                  const char *paper_figure, struct claim k, const char *differences)
-{
-    claim_found(cl, paper, what, where, c, paper_figure, k, "", differences);
-}
-
-/* claim() with what the deciding rows show (evaluate_findings.h), said whatever the verdict. */
-static void claim_found(struct claims *cl, const char *paper, const char *what, const char *where, struct rel_change c,
-                        const char *paper_figure, struct claim k, const char *findings, const char *differences)
-{
-    char ours[64], why[160], f[4][1100];
-    eval_fmt_change(c, ours, sizeof ours);
-    const char *v = claim_verdict(c, k, why, sizeof why);
-    const int ok = !strcmp(v, "reproduced") || !strcmp(v, "undefined") || k.kind == CLAIM_NONE;
-    char reason[1100];
-    snprintf(reason, sizeof reason, "%s%s%s", why, why[0] && findings[0] ? "; " : "", findings);
-    if (!ok) {
-        const size_t used = strlen(reason);
-        snprintf(reason + used, sizeof reason - used, "%s%s", used ? "; " : "", differences);
-    }
-    put(&cl->md, "| %s | %s | %s | %s | **%s** | %s |\n", what, where, ours, paper_figure, v,
-        reason[0] ? reason : "-");
-    if (cl->csv_ok) {
-        csv_field(f[0], sizeof f[0], what);
-        csv_field(f[1], sizeof f[1], where);
-        csv_field(f[2], sizeof f[2], paper_figure);
-        csv_field(f[3], sizeof f[3], reason);
-        static const char *const how[] = {"none", "t", "bootstrap", "jackknife", "unpaired"};
-        csv_row(&cl->csv, "%s,%s,%s,%.4g,%.4g,%.4g,%s,%d,%s,%s,%s", paper, f[0], f[1], c.pct, c.lo, c.hi,
-                how[c.interval], c.n, f[2], v, f[3]);
-    }
-}
-
-/* Ends a paper's section: its claims' table, then empties the claims' lines. */
-static void flush_claims(struct text *md, struct claims *cl, const char *paper)
-{
-    put(md,
-        "\nRendering time of the measured configurations: %.3g hours of wall time (frame times as measured by "
-        "the jobs, times frames and runs; references not counted).\n",
-        cl->render_ms / 3.6e6);
-    cl->render_ms = 0.0;
-    put(md,
-        "\n#### Claims of %s\n\nOurs: the change of the configuration against its baseline, paired by seed "
-        "(run r of both rendered with the same seed), as the geometric mean of the per-seed ratios with its 95%% "
-        "interval (Student t over the seeds; for relMSE also a bootstrap over the seeds, the wider reported; for "
-        "the covariances a paired jackknife). Verdicts (docs/EVALUATION.md): reproduced, partly, not reproduced, "
-        "opposite, undecided (the interval holds both zero and the paper's effect).\n\n"
-        "| claim | where | ours (change) | paper | verdict | why / differences |\n|---|---|---|---|---|---|\n%s",
-        paper, cl->md.s ? cl->md.s : "");
-    cl->md.len = 0;
-    if (cl->md.s)
-        cl->md.s[0] = '\0';
-}
-
-/* The scene of ours that stands in for one of the paper's, as "ours (for PAPER'S)". */
+/* The scene of ours that stands in for one of the paper's, as "ours (for
+ * PAPER'S)". */
 static void scene_label(const char *paper, const char *scene, char *out, size_t len)
 {
     for (const struct eval_scene_note *n = eval_scene_notes; n->paper; n++)
@@ -140,7 +46,8 @@ static void scene_label(const char *paper, const char *scene, char *out, size_t 
     snprintf(out, len, "%s", scene);
 }
 
-/* What every line of a paper's claims shares: the setup's departures from the paper's. */
+/* What every line of a paper's claims shares: the setup's departures from the
+ * paper's. */
 static void differences(const struct eval_options *o, const char *paper, const char *scene, char *out, size_t len)
 {
     char res[64] = "";
@@ -150,16 +57,17 @@ static void differences(const struct eval_options *o, const char *paper, const c
     for (const struct eval_scene_note *n = eval_scene_notes; n->paper; n++)
         if (!strcmp(n->paper, paper) && !strcmp(n->scene, scene))
             scene_note = "scene: ours, not the paper's";
-    const char *method = !strcmp(paper, "000")
-                             ? "base: our ReSTIR PT (hybrid shift, sub-pixel reservoirs, splatting)"
-                         : !strcmp(paper, "004")
-                             ? "disocclusion: history rejected in the last 4 frames (the paper does not define it)"
-                             : "equal time by the paper's GPU ratios; our times are in the table";
+    const char *method = !strcmp(paper, "000")   ? "base: our ReSTIR PT (hybrid shift, sub-pixel "
+                                                   "reservoirs, splatting)"
+                         : !strcmp(paper, "004") ? "disocclusion: history rejected in the last 4 frames (the paper "
+                                                   "does not define it)"
+                                                 : "equal time by the paper's GPU ratios; our times are in the table";
     snprintf(out, len, "%s%s; %s", res, scene_note, method);
 }
 
-/* What a step's table and claims say about it: the heading (the scene and what it stands for), the
- * claims' "where" (the scene, and the base method for 004) and the setup's departures. */
+/* What a step's table and claims say about it: the heading (the scene and what
+ * it stands for), the claims' "where" (the scene, and the base method for 004)
+ * and the setup's departures. */
 struct step_text {
     char heading[96], where[96], diff[300];
 };
@@ -186,18 +94,19 @@ static int read_step_csv(const char *dir, const struct eval_step *s, const char 
     return 0;
 }
 
-/* Row r's relMSE as the tables show it: without the reference's own share (relmse_net) where the
- * step has the reference's halves, else as measured. */
+/* Row r's relMSE as the tables show it: without the reference's own share
+ * (relmse_net) where the step has the reference's halves, else as measured. */
 static double relmse_shown(const struct csv_table *t, int r)
 {
     const double net = csv_table_num(t, r, "relmse_net");
     return isfinite(net) ? net : csv_table_num(t, r, "relmse");
 }
 
-/* The reference's own error in the metrics cols (t's columns ref_COL, the same on every row, from its
- * two independent halves) and its share of row base's error, as a sentence; nothing when t has none
- * (a reference given with --ref, or a step merged before halves existed: then it says so). */
-static void reference_share(struct text *md, const struct csv_table *t, int base, const char *const *cols,
+/* The reference's own error in the metrics cols (t's columns ref_COL, the same
+ * on every row, from its two independent halves) and its share of row base's
+ * error, as a sentence; nothing when t has none (a reference given with --ref,
+ * or a step merged before halves existed: then it says so). */
+static void reference_share(struct md_text *md, const struct csv_table *t, int base, const char *const *cols,
                             const char *const *names, int n)
 {
     char ref[64];
@@ -207,17 +116,20 @@ static void reference_share(struct text *md, const struct csv_table *t, int base
         const double own = csv_table_num(t, base, ref), v = csv_table_num(t, base, cols[k]);
         if (!isfinite(own))
             continue;
-        put(md, "%s %s %.4g (%.1f%% of %s's)",
-            any ? ";" : "\nThe reference's own error, from its two independent halves:", names[k], own,
-            100.0 * own / v, t->cell[(size_t)(base + 1) * t->ncol]);
+        md_put(md, "%s %s %.4g (%.1f%% of %s's)",
+               any ? ";" : "\nThe reference's own error, from its two independent halves:", names[k], own,
+               100.0 * own / v, t->cell[(size_t)(base + 1) * t->ncol]);
         any = 1;
     }
-    put(md, any ? ". A claim whose difference is smaller than it is refused; relMSE is shown with it subtracted.\n"
-                : "\nThe reference has no halves here: its own share of the error is not known.\n");
+    md_put(md, any ? ". A claim whose difference is smaller than it is refused; "
+                     "relMSE is shown with it subtracted.\n"
+                   : "\nThe reference has no halves here: its own share of the "
+                     "error is not known.\n");
 }
 
-/* DIR/STEP/runs.csv (each configuration's metrics per run) into t: 1 when it is there, 0 when the
- * step was merged without it (its claims then fall back to unpaired means). */
+/* DIR/STEP/runs.csv (each configuration's metrics per run) into t: 1 when it is
+ * there, 0 when the step was merged without it (its claims then fall back to
+ * unpaired means). */
 static int read_step_runs(const char *dir, const struct eval_step *s, struct csv_table *t)
 {
     char path[PATH_LEN], msg[RESTIR_MSG_LEN];
@@ -225,11 +137,13 @@ static int read_step_runs(const char *dir, const struct eval_step *s, struct csv
     return csv_table_read(path, t, msg) == 0;
 }
 
-/* 000: Table 1 (pass times), the quality metrics of Table 2's layout, the claims. */
-/* 000 Figure 3 on the Table 2 scene: Bitterli's selection and ours (K 32) at each radius, as points
- * of the error-covariance plane (the step's pareto.svg draws them), and the claim that ours moves
- * the frontier: lower SMAPE and lower spatial covariance at the same radius (R 30 is FAST's claims'). */
-static void pareto_000(struct text *md, struct claims *cl, const struct eval_step *s, const struct step_tables *d,
+/* 000: Table 1 (pass times), the quality metrics of Table 2's layout, the
+ * claims. */
+/* 000 Figure 3 on the Table 2 scene: Bitterli's selection and ours (K 32) at
+ * each radius, as points of the error-covariance plane (the step's pareto.svg
+ * draws them), and the claim that ours moves the frontier: lower SMAPE and
+ * lower spatial covariance at the same radius (R 30 is FAST's claims'). */
+static void pareto_000(struct md_text *md, struct claims *cl, const struct eval_step *s, const struct step_tables *d,
                        const char *where, const char *diff)
 {
     const struct csv_table *t = d->t;
@@ -238,31 +152,32 @@ static void pareto_000(struct text *md, struct claims *cl, const struct eval_ste
     static const char *const ours[4] = {"compat-r10-k32", "fast", "balanced", "conservative"};
     static const char *const col[2][2] = {{"smape_all", "smape_all_sem"}, {"spatial_cov", "spatial_cov_sem"}};
     char a[4][64];
-    put(md,
-        "\nFigure 3 layout (error against spatial covariance over radii; the plot: %s/pareto.svg):\n\n"
-        "| R | Bitterli SMAPE | Bitterli spatial cov | ours (K 32) SMAPE | ours spatial cov |\n|---|---|---|---|---|\n",
-        s->name);
+    md_put(md,
+           "\nFigure 3 layout (error against spatial covariance over radii; the "
+           "plot: %s/pareto.svg):\n\n"
+           "| R | Bitterli SMAPE | Bitterli spatial cov | ours (K 32) SMAPE | "
+           "ours spatial cov |\n|---|---|---|---|---|\n",
+           s->name);
     for (int k = 0; k < 4; k++) {
         const int b = csv_table_find(t, bitterli[k]), c = csv_table_find(t, ours[k]);
         for (int m = 0; m < 2; m++) {
             fmt_pm(csv_table_num(t, b, col[m][0]), csv_table_num(t, b, col[m][1]), a[m], sizeof a[m]);
             fmt_pm(csv_table_num(t, c, col[m][0]), csv_table_num(t, c, col[m][1]), a[2 + m], sizeof a[2 + m]);
         }
-        put(md, "| %g | %s | %s | %s | %s |\n", radius[k], a[0], a[1], a[2], a[3]);
+        md_put(md, "| %g | %s | %s | %s | %s |\n", radius[k], a[0], a[1], a[2], a[3]);
         if (radius[k] == 30.0)
             continue;
         for (int m = 0; m < 2; m++) {
             char what[96];
             snprintf(what, sizeof what, "Fig. 3: %s, ours vs Bitterli at R %g", m ? "spatial covariance" : "SMAPE",
                      radius[k]);
-            claim(cl, "000", what, where,
-                  eval_change(d, c, b, col[m][0]),
-                  "lower (a better frontier; plot only)", REDUCTION(0.0), diff);
+            claim(cl, "000", what, where, eval_change(d, c, b, col[m][0]), "lower (a better frontier; plot only)",
+                  REDUCTION(0.0), diff);
         }
     }
 }
 
-static void paper_000(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
+static void paper_000(struct md_text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
                       const struct step_tables *d)
 {
     const struct csv_table *t = d->t;
@@ -271,93 +186,98 @@ static void paper_000(struct text *md, struct claims *cl, const struct eval_opti
     struct step_text x;
     step_text(o, s, &x);
     const char *heading = x.heading, *where = x.where, *diff = x.diff;
-    put(md,
-        "\n### %s\n\nTable 1 layout (pass times, ms, means over the measured frames and runs):\n\n"
-        "| config | R | K | select | spatial | frame | frame vs Bitterli |\n|---|---|---|---|---|---|---|\n",
-        heading);
+    md_put(md,
+           "\n### %s\n\nTable 1 layout (pass times, ms, means over the measured "
+           "frames and runs):\n\n"
+           "| config | R | K | select | spatial | frame | frame vs Bitterli "
+           "|\n|---|---|---|---|---|---|---|\n",
+           heading);
     const int bit = csv_table_find(t, "bitterli");
     const double base_ms = csv_table_num(t, bit, "ms_frame");
     for (int r = 0; r < t->nrow; r++) {
         const double ms = csv_table_num(t, r, "ms_frame");
         cl->render_ms += ms * (eval_warmup(o) + eval_frames(o, "000")) * eval_runs(o, "000");
-        put(md, "| %s | %g | %g | %.1f | %.1f | %.1f | %+.1f%% |\n", t->cell[(size_t)(r + 1) * t->ncol],
-            csv_table_num(t, r, "radius"), csv_table_num(t, r, "K"), csv_table_num(t, r, "ms_select"),
-            csv_table_num(t, r, "ms_spatial"), ms, 100.0 * (ms / base_ms - 1.0));
+        md_put(md, "| %s | %g | %g | %.1f | %.1f | %.1f | %+.1f%% |\n", t->cell[(size_t)(r + 1) * t->ncol],
+               csv_table_num(t, r, "radius"), csv_table_num(t, r, "K"), csv_table_num(t, r, "ms_select"),
+               csv_table_num(t, r, "ms_spatial"), ms, 100.0 * (ms / base_ms - 1.0));
     }
-    put(md, "\nTable 2 layout (SMAPE in %% with standard errors over the runs; relative temporal covariance at lag "
-            "3 and spatial covariance within 8 px, 000 Appendix A, with jackknife standard errors over the runs; "
-            "hard pixels: 000 Sec. 7, every neighbor within 30 px counted):\n\n"
-            "| config | R | K | SMAPE | hard SMAPE | temporal cov | hard temporal cov | spatial cov | frame ms |\n"
-            "|---|---|---|---|---|---|---|---|---|\n");
+    md_put(md, "\nTable 2 layout (SMAPE in %% with standard errors over the runs; "
+               "relative temporal covariance at lag "
+               "3 and spatial covariance within 8 px, 000 Appendix A, with jackknife "
+               "standard errors over the runs; "
+               "hard pixels: 000 Sec. 7, every neighbor within 30 px counted):\n\n"
+               "| config | R | K | SMAPE | hard SMAPE | temporal cov | hard temporal "
+               "cov | spatial cov | frame ms |\n"
+               "|---|---|---|---|---|---|---|---|---|\n");
     for (int r = 0; r < t->nrow; r++) {
         fmt_pm(csv_table_num(t, r, "smape_all"), csv_table_num(t, r, "smape_all_sem"), a, sizeof a);
         fmt_pm(csv_table_num(t, r, "smape_hard"), csv_table_num(t, r, "smape_hard_sem"), b, sizeof b);
         fmt_pm(csv_table_num(t, r, "temporal_cov"), csv_table_num(t, r, "temporal_cov_sem"), c, sizeof c);
         fmt_pm(csv_table_num(t, r, "temporal_cov_hard"), csv_table_num(t, r, "temporal_cov_hard_sem"), e, sizeof e);
         fmt_pm(csv_table_num(t, r, "spatial_cov"), csv_table_num(t, r, "spatial_cov_sem"), sp, sizeof sp);
-        put(md, "| %s | %g | %g | %s | %s | %s | %s | %s | %.1f |\n", t->cell[(size_t)(r + 1) * t->ncol],
-            csv_table_num(t, r, "radius"), csv_table_num(t, r, "K"), a, b, c, e, sp, csv_table_num(t, r, "ms_frame"));
+        md_put(md, "| %s | %g | %g | %s | %s | %s | %s | %s | %.1f |\n", t->cell[(size_t)(r + 1) * t->ncol],
+               csv_table_num(t, r, "radius"), csv_table_num(t, r, "K"), a, b, c, e, sp,
+               csv_table_num(t, r, "ms_frame"));
     }
-    static const char *const share_cols[2] = {"smape_all", "smape_hard"}, *const share_names[2] = {"SMAPE", "hard SMAPE"};
+    static const char *const share_cols[2] = {"smape_all", "smape_hard"}, *const share_names[2] = {"SMAPE",
+                                                                                                   "hard SMAPE"};
     reference_share(md, t, bit, share_cols, share_names, 2);
-    /* 000 Sec. 7.1 (FAST against Bitterli R = 30): EMERALD SQUARE -29% SMAPE, -49% temporal
-     * covariance; the simpler scenes (VEACH AJAR among them) -5.8..-13.7% and -22..-31%; hard pixels
-     * -26..-29% SMAPE and -43..-57% temporal covariance in every scene. Sec. 7.2: overheads FAST
-     * 1.3-4.4%, BALANCED 2.0-6.4%, CONSERVATIVE 4.3-7.4%. */
+    /* 000 Sec. 7.1 (FAST against Bitterli R = 30): EMERALD SQUARE -29% SMAPE,
+     * -49% temporal covariance; the simpler scenes (VEACH AJAR among them)
+     * -5.8..-13.7% and -22..-31%; hard pixels -26..-29% SMAPE and -43..-57%
+     * temporal covariance in every scene. Sec. 7.2: overheads FAST 1.3-4.4%,
+     * BALANCED 2.0-6.4%, CONSERVATIVE 4.3-7.4%. */
     const int emerald = strstr(heading, "EMERALD") != NULL;
     const int fast = csv_table_find(t, "fast");
     char found[1000];
     eval_deciding_000(d, bit, fast, found, sizeof found);
-    claim_found(cl, "000", "FAST: SMAPE vs Bitterli R = 30", where,
-          eval_change(d, fast, bit, "smape_all"),
-          emerald ? "-29% (EMERALD SQUARE)" : "-5.8% to -13.7% (simpler scenes)", REDUCTION(emerald ? 29.0 : 5.8),
-          found, diff);
-    claim_found(cl, "000", "FAST: temporal covariance vs Bitterli", where,
-          eval_change(d, fast, bit, "temporal_cov"),
-          emerald ? "-49% (EMERALD SQUARE)" : "-22% to -31% (simpler scenes)", REDUCTION(emerald ? 49.0 : 22.0),
-          found, diff);
-    claim_found(cl, "000", "FAST: hard-pixel SMAPE vs Bitterli", where,
-          eval_change(d, fast, bit, "smape_hard"),
-          "-26% to -29%", REDUCTION(26.0), found, diff);
+    claim_found(cl, "000", "FAST: SMAPE vs Bitterli R = 30", where, eval_change(d, fast, bit, "smape_all"),
+                emerald ? "-29% (EMERALD SQUARE)" : "-5.8% to -13.7% (simpler scenes)", REDUCTION(emerald ? 29.0 : 5.8),
+                found, diff);
+    claim_found(cl, "000", "FAST: temporal covariance vs Bitterli", where, eval_change(d, fast, bit, "temporal_cov"),
+                emerald ? "-49% (EMERALD SQUARE)" : "-22% to -31% (simpler scenes)", REDUCTION(emerald ? 49.0 : 22.0),
+                found, diff);
+    claim_found(cl, "000", "FAST: hard-pixel SMAPE vs Bitterli", where, eval_change(d, fast, bit, "smape_hard"),
+                "-26% to -29%", REDUCTION(26.0), found, diff);
     claim_found(cl, "000", "FAST: hard-pixel temporal covariance vs Bitterli", where,
-          eval_change(d, fast, bit, "temporal_cov_hard"),
-          "-43% to -57%", REDUCTION(43.0), found, diff);
+                eval_change(d, fast, bit, "temporal_cov_hard"), "-43% to -57%", REDUCTION(43.0), found, diff);
     static const char *const cost_figure[] = {"+1.3% to +4.4%", "+2.0% to +6.4%", "+4.3% to +7.4%"};
     static const double cost_max[] = {4.4, 6.4, 7.4};
     for (int k = 0; k < 3; k++) {
         const int r = csv_table_find(t, presets[k]);
         char what[96], why[1000];
         snprintf(what, sizeof what, "%s: frame time vs Bitterli (cost)", presets[k]);
-        /* where the extra time goes: the selection's taps, or the spatial pass merging more pixels */
+        /* where the extra time goes: the selection's taps, or the spatial pass
+         * merging more pixels */
         snprintf(why, sizeof why, "of the %+.0f ms: select %+.0f ms, spatial reuse %+.0f ms",
                  csv_table_num(t, r, "ms_frame") - base_ms,
                  csv_table_num(t, r, "ms_select") - csv_table_num(t, bit, "ms_select"),
                  csv_table_num(t, r, "ms_spatial") - csv_table_num(t, bit, "ms_spatial"));
-        claim_found(cl, "000", what, where, eval_change(d, r, bit, "ms_frame"),
-                    cost_figure[k], COSTS_AT_MOST(cost_max[k]), r >= 0 ? why : "", diff);
+        claim_found(cl, "000", what, where, eval_change(d, r, bit, "ms_frame"), cost_figure[k],
+                    COSTS_AT_MOST(cost_max[k]), r >= 0 ? why : "", diff);
     }
     if (!s->table2)
         return;
-    /* 000 Sec. 7.3 and Table 2 (EMERALD SQUARE): a larger R lowers spatial covariance (K 32: 6.0 at
-     * R 30, 1.5 at R 100, x 1e-3); a larger K raises it (R 30: 4.6 at K 8, 6.6 at K 128) and lowers
-     * SMAPE (29.9 at K 8, 29.3 at K 128). */
+    /* 000 Sec. 7.3 and Table 2 (EMERALD SQUARE): a larger R lowers spatial
+     * covariance (K 32: 6.0 at R 30, 1.5 at R 100, x 1e-3); a larger K raises it
+     * (R 30: 4.6 at K 8, 6.6 at K 128) and lowers SMAPE (29.9 at K 8, 29.3 at K
+     * 128). */
     const int r100 = csv_table_find(t, "conservative"), k8 = csv_table_find(t, "compat-r30-k8"),
               k128 = csv_table_find(t, "compat-r30-k128");
     claim(cl, "000", "Table 2: spatial covariance, R 100 vs R 30 (K 32)", where,
-          eval_change(d, r100, fast, "spatial_cov"),
-          "-75% (6.0 -> 1.5)", REDUCTION(0.0), diff);
-    claim(cl, "000", "Table 2: spatial covariance, K 8 vs K 128 (R 30)", where,
-          eval_change(d, k8, k128, "spatial_cov"),
+          eval_change(d, r100, fast, "spatial_cov"), "-75% (6.0 -> 1.5)", REDUCTION(0.0), diff);
+    claim(cl, "000", "Table 2: spatial covariance, K 8 vs K 128 (R 30)", where, eval_change(d, k8, k128, "spatial_cov"),
           "-30% (6.6 -> 4.6)", REDUCTION(0.0), diff);
-    claim(cl, "000", "Table 2: SMAPE, K 128 vs K 8 (R 30)", where,
-          eval_change(d, k128, k8, "smape_all"),
+    claim(cl, "000", "Table 2: SMAPE, K 128 vs K 8 (R 30)", where, eval_change(d, k128, k8, "smape_all"),
           "-2% (29.9 -> 29.3)", REDUCTION(0.0), diff);
     pareto_000(md, cl, s, d, where, diff);
 }
 
-/* 004: the main table (MAPE overall and over disoccluded pixels) and its claims. */
-/* 004 Table 2's layout: each reuse's pass times per frame (run 0's means over the frames). */
-static int table2_004(struct text *md, const char *dir, const struct eval_step *s, char (*label)[160],
+/* 004: the main table (MAPE overall and over disoccluded pixels) and its
+ * claims. */
+/* 004 Table 2's layout: each reuse's pass times per frame (run 0's means over
+ * the frames). */
+static int table2_004(struct md_text *md, const char *dir, const struct eval_step *s, char (*label)[160],
                       const char *const *names, int rows)
 {
     struct csv_table p;
@@ -365,38 +285,42 @@ static int table2_004(struct text *md, const char *dir, const struct eval_step *
         return -1;
     static const char *const pass[] = {"initial",     "temporal",        "select",      "spatial", "cells",
                                        "cell_search", "spmis_canonical", "spmis_reuse", "shade"};
-    put(md, "\nTable 2 layout (ms per frame of each pass, the fastest run, mean over its frames; spmis: create cells, cell "
-            "search, canonical weight m_c, stochastic neighbor reuse):\n\n| reuse | initial | temporal | select | "
-            "spatial | cells | cell search | m_c | neighbor reuse | shade "
-            "|\n|---|---|---|---|---|---|---|---|---|---|\n");
+    md_put(md, "\nTable 2 layout (ms per frame of each pass, the fastest run, "
+               "mean over its frames; spmis: create cells, cell "
+               "search, canonical weight m_c, stochastic neighbor reuse):\n\n| "
+               "reuse | initial | temporal | select | "
+               "spatial | cells | cell search | m_c | neighbor reuse | shade "
+               "|\n|---|---|---|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < rows; k++) {
         const int r = csv_table_find(&p, label[k]);
-        put(md, "| %s |", names[k]);
+        md_put(md, "| %s |", names[k]);
         for (size_t q = 0; q < sizeof pass / sizeof pass[0]; q++)
-            put(md, " %.1f |", csv_table_num(&p, r, pass[q]));
-        put(md, "\n");
+            md_put(md, " %.1f |", csv_table_num(&p, r, pass[q]));
+        md_put(md, "\n");
     }
     csv_table_free(&p);
     return 0;
 }
 
-static int paper_004(struct text *md, struct claims *cl, const struct eval_options *o, const char *dir,
+static int paper_004(struct md_text *md, struct claims *cl, const struct eval_options *o, const char *dir,
                      const struct eval_step *s, const struct step_tables *d)
 {
     const struct csv_table *t = d->t;
-    char a[64], b[64], c[64], label[EVAL_004_ROWS][160];
+    char a[64], b[64], c[64], fl[64], label[EVAL_004_ROWS][160];
     struct step_text x;
     step_text(o, s, &x);
     const char *scene = x.heading, *where = x.where, *diff = x.diff;
     for (int k = 0; k < EVAL_004_ROWS; k++)
         snprintf(label[k], sizeof label[k], "%s%s", s->base, eval_004_suffixes[k]);
     static const char *const names[EVAL_004_ROWS] = {"standard (3 neighbors, 30 px)", "SPMIS (004)",
-                                                "SPMIS, compat search (ours)", "SPMIS, own cell only",
-                                                "SPMIS, low-confidence search (ours)"};
-    put(md,
-        "\n### %s, %s\n\nLast frame (%d) of the camera path, means over %d runs +- standard errors:\n\n"
-        "| reuse | ms/frame | MAPE | MAPE disoccluded | disoccluded share | relMSE |\n|---|---|---|---|---|---|\n",
-        scene, s->base, eval_frames(o, "004") - 1, eval_runs(o, "004"));
+                                                     "SPMIS, compat search (ours)", "SPMIS, own cell only",
+                                                     "SPMIS, low-confidence search (ours)"};
+    md_put(md,
+           "\n### %s, %s\n\nLast frame (%d) of the camera path, means over %d "
+           "runs +- standard errors:\n\n"
+           "| reuse | ms/frame | MAPE | MAPE disoccluded | disoccluded share | "
+           "relMSE | FLIP |\n|---|---|---|---|---|---|---|\n",
+           scene, s->base, eval_frames(o, "004") - 1, eval_runs(o, "004"));
     int row[EVAL_004_ROWS];
     for (int k = 0; k < EVAL_004_ROWS; k++) {
         const int r = row[k] = csv_table_find(t, label[k]);
@@ -404,8 +328,9 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
         fmt_pm(csv_table_num(t, r, "mape_disoccluded"), csv_table_num(t, r, "mape_disoccluded_sem"), b, sizeof b);
         fmt_pm(relmse_shown(t, r), csv_table_num(t, r, "relmse_sem"), c, sizeof c);
         cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "004") * eval_runs(o, "004");
-        put(md, "| %s | %.1f | %s | %s | %.3f | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b,
-            csv_table_num(t, r, "disoccluded_share"), c);
+        fmt_pm(csv_table_num(t, r, "flip"), csv_table_num(t, r, "flip_sem"), fl, sizeof fl);
+        md_put(md, "| %s | %.1f | %s | %s | %.3f | %s | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b,
+               csv_table_num(t, r, "disoccluded_share"), c, fl);
     }
     static const char *const share_cols[2] = {"mape", "relmse"}, *const share_names[2] = {"MAPE", "relMSE"};
     reference_share(md, t, row[0], share_cols, share_names, 2);
@@ -422,18 +347,18 @@ static int paper_004(struct text *md, struct claims *cl, const struct eval_optio
          "low-confidence search (ours): MAPE disoccluded vs standard"}};
     for (int v = 0; v < EVAL_004_ROWS - 1; v++)
         for (int m = 0; m < 2; m++)
-            claim_found(cl, "004", what[v][m], where,
-                        eval_change(d, row[v + 1], row[0], col[m][0]),
-                        v    ? "none (not in the paper)"
-                        : pt ? (m ? "lower, \"especially in disocclusions\"" : "lower overall")
-                             : (m ? "lower in disocclusions (the paper: ReSTIR PT only)"
-                                  : "lower (the paper: ReSTIR PT only)"),
-                        v ? NO_CLAIM : REDUCTION(0.0), v ? "" : found[m], diff);
+            claim_found(
+                cl, "004", what[v][m], where, eval_change(d, row[v + 1], row[0], col[m][0]),
+                v    ? "none (not in the paper)"
+                : pt ? (m ? "lower, \"especially in disocclusions\"" : "lower overall")
+                     : (m ? "lower in disocclusions (the paper: ReSTIR PT only)" : "lower (the paper: ReSTIR PT only)"),
+                v ? NO_CLAIM : REDUCTION(0.0), v ? "" : found[m], diff);
     return table2_004(md, dir, s, label, names, EVAL_004_ROWS) == 0 ? 0 : EXIT_RUNTIME;
 }
 
-/* 004 Figures 2, 6 and 7: SPMIS's own variants on one scene, and the claims the figures make. */
-static void paper_004_ablation(struct text *md, struct claims *cl, const struct eval_options *o,
+/* 004 Figures 2, 6 and 7: SPMIS's own variants on one scene, and the claims the
+ * figures make. */
+static void paper_004_ablation(struct md_text *md, struct claims *cl, const struct eval_options *o,
                                const struct eval_step *s, const struct step_tables *d)
 {
     const struct csv_table *t = d->t;
@@ -454,25 +379,26 @@ static void paper_004_ablation(struct text *md, struct claims *cl, const struct 
                                          "Fig. 6: N_c = 4",
                                          "Fig. 6: N_c = M (exact Eq. 11b)"};
     int row[6];
-    put(md,
-        "\n### %s, SPMIS variants (004 Figures 2, 6, 7), %s\n\nLast frame (%d) of the camera path, means over %d "
-        "runs +- standard errors:\n\n| variant | ms/frame | MAPE | MAPE disoccluded |\n|---|---|---|---|\n",
-        scene, s->base, eval_frames(o, "004") - 1, eval_runs(o, "004"));
+    md_put(md,
+           "\n### %s, SPMIS variants (004 Figures 2, 6, 7), %s\n\nLast frame "
+           "(%d) of the camera path, means over %d "
+           "runs +- standard errors:\n\n| variant | ms/frame | MAPE | MAPE "
+           "disoccluded |\n|---|---|---|---|\n",
+           scene, s->base, eval_frames(o, "004") - 1, eval_runs(o, "004"));
     for (int k = 0; k < 6; k++) {
         snprintf(label[k], sizeof label[k], "%s:spatial.reuse=spmis%s", s->base, suffix[k]);
         const int r = row[k] = csv_table_find(t, label[k]);
         fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), a, sizeof a);
         fmt_pm(csv_table_num(t, r, "mape_disoccluded"), csv_table_num(t, r, "mape_disoccluded_sem"), b, sizeof b);
         cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "004") * eval_runs(o, "004");
-        put(md, "| %s | %.1f | %s | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b);
+        md_put(md, "| %s | %.1f | %s | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b);
     }
 #define MAPE_CHANGE(x, y) eval_change(d, row[x], row[y], "mape")
     claim(cl, "004", "Fig. 2: the N / M scaling vs none: MAPE", where, MAPE_CHANGE(0, 1), "lower (images only)",
           REDUCTION(0.0), diff);
     claim(cl, "004", "Fig. 7: N = N_c = M vs N = 3: MAPE", where, MAPE_CHANGE(3, 0), "lower (\"some loss of quality\")",
           REDUCTION(0.0), diff);
-    claim(cl, "004", "Fig. 7: N = 3 vs N = N_c = M: frame time", where,
-          eval_change(d, row[0], row[3], "ms_per_frame"),
+    claim(cl, "004", "Fig. 7: N = 3 vs N = N_c = M: frame time", where, eval_change(d, row[0], row[3], "ms_per_frame"),
           "lower (\"significant cost reduction\")", REDUCTION(0.0), diff);
     claim(cl, "004", "Fig. 6: N_c = M vs N_c = 1: MAPE", where, MAPE_CHANGE(5, 0), "\"only slightly\" different",
           SMALL_CHANGE(5.0), diff);
@@ -480,34 +406,52 @@ static void paper_004_ablation(struct text *md, struct claims *cl, const struct 
 }
 
 /* 002: the equal-time table (L2 and L1) and its claims. */
-static void paper_002(struct text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
+static void paper_002(struct md_text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
                       const struct step_tables *d)
 {
     const struct csv_table *t = d->t;
-    char a[64], b[64], g[3][64];
+    char a[64], b[64], fl[64], g[3][64];
     struct step_text x;
     step_text(o, s, &x);
     const char *heading = x.heading, *where = x.where, *diff = x.diff;
-    put(md,
-        "\n### %s\n\nLast frame (%d) of the camera path, the paper's equal-time ratios; means over %d runs +- "
-        "standard errors (gradient relMSE: of the estimated forward differences against the reference's, "
-        "our measure of Fig. 7's gradient images; trim 1%%: the same without the worst 1%% of pixel pairs, "
-        "which carry most of it; gradient MAPE: robust to them, both issue 42's):\n\n| method | instances | spp | "
-        "ms/frame | relMSE | MAPE | gradient relMSE | gradient relMSE trim 1%% | gradient MAPE |\n"
-        "|---|---|---|---|---|---|---|---|---|\n",
-        heading, eval_frames(o, "002") - 1, eval_runs(o, "002"));
+    md_put(md,
+           "\n### %s\n\nLast frame (%d) of the camera path, the paper's "
+           "equal-time ratios (on its GPU every row "
+           "takes ours' time; time / ours' is the ratio measured on this "
+           "machine, and the next column the instances, "
+           "or G-PT's paths, that fit ours' time here); means over %d runs +- "
+           "standard errors (FLIP: mean HDR-FLIP, Andersson et al. 2021, at 67 "
+           "pixels per degree; gradient relMSE: of the estimated forward "
+           "differences against the reference's, "
+           "our measure of Fig. 7's gradient images; trim 1%%: the same without "
+           "the worst 1%% of pixel pairs, "
+           "which carry most of it; gradient MAPE: robust to them, both issue "
+           "42's):\n\n| method | instances | spp | "
+           "ms/frame | time / ours' | instances or spp at ours' time here | "
+           "relMSE | MAPE | FLIP | gradient relMSE | "
+           "gradient relMSE trim 1%% | gradient MAPE |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+           heading, eval_frames(o, "002") - 1, eval_runs(o, "002"));
     static const char *const grad_col[3][2] = {{"gradient_relmse", "gradient_relmse_sem"},
                                                {"gradient_relmse_trim1", "gradient_relmse_trim1_sem"},
                                                {"gradient_mape", "gradient_mape_sem"}};
+    const int ours_row = csv_table_find(t, "grestir-pt");
     for (int r = 0; r < t->nrow; r++) {
         fmt_pm(relmse_shown(t, r), csv_table_num(t, r, "relmse_sem"), a, sizeof a);
         fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), b, sizeof b);
         for (int k = 0; k < 3; k++)
             fmt_pm(csv_table_num(t, r, grad_col[k][0]), csv_table_num(t, r, grad_col[k][1]), g[k], sizeof g[k]);
         cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "002") * eval_runs(o, "002");
-        put(md, "| %s | %g | %g | %.1f | %s | %s | %s | %s | %s |\n", t->cell[(size_t)(r + 1) * t->ncol],
-            csv_table_num(t, r, "instances"), csv_table_num(t, r, "spp"), csv_table_num(t, r, "ms_per_frame"), a,
-            b, g[0], g[1], g[2]);
+        fmt_pm(csv_table_num(t, r, "flip"), csv_table_num(t, r, "flip_sem"), fl, sizeof fl);
+        /* the paper's ratios give every row ours' time on its GPU (time / ours' = 1
+         * there); here the ratio is measured, and the instances (or G-PT's paths)
+         * that would fit ours' time follow */
+        const double ms = csv_table_num(t, r, "ms_per_frame"), ours_ms = csv_table_num(t, ours_row, "ms_per_frame"),
+                     inst = csv_table_num(t, r, "instances"), spp = csv_table_num(t, r, "spp");
+        const double per = strstr(t->cell[(size_t)(r + 1) * t->ncol], "gpt") ? ms / spp : ms / inst;
+        md_put(md, "| %s | %g | %g | %.1f | %.2f | %.2f | %s | %s | %s | %s | %s | %s |\n",
+               t->cell[(size_t)(r + 1) * t->ncol], inst, spp, ms, ms / ours_ms, ours_ms / per, a, b, fl, g[0], g[1],
+               g[2]);
     }
     static const char *const share_cols[2] = {"mape", "relmse"}, *const share_names[2] = {"MAPE", "relMSE"};
     reference_share(md, t, csv_table_find(t, "grestir-pt"), share_cols, share_names, 2);
@@ -519,44 +463,47 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
     for (int l = 0; l < 2; l++) {
         const int me = csv_table_find(t, ours[l]);
         for (int k = 0; k < 3; k++) {
-            if (l == 1 && k == 1) /* Area ReSTIR has no gradients: Figure 8 shows it in the L2 row only */
+            if (l == 1 && k == 1) /* Area ReSTIR has no gradients: Figure 8 shows it
+                                     in the L2 row only */
                 continue;
             const int r = csv_table_find(t, rivals[l][k]);
-            /* relMSE as the paper; MAPE too: relMSE's few outlier pixels can hide a difference
-             * (their spread over runs is of the order of the mean) that MAPE, robust to them, shows */
+            /* relMSE as the paper; MAPE too: relMSE's few outlier pixels can hide a
+             * difference (their spread over runs is of the order of the mean) that
+             * MAPE, robust to them, shows */
             static const char *const metric[2][3] = {{"relMSE", "relmse", "relmse_sem"}, {"MAPE", "mape", "mape_sem"}};
             char found[1000];
             eval_gradient_findings(d, me, r, found, sizeof found);
             for (int m = 0; m < 2; m++) {
                 char what[128];
                 snprintf(what, sizeof what, "%s: %s vs %s", l ? "L1" : "L2", metric[m][0], names[k]);
-                claim_found(cl, "002", what, where,
-                            eval_change(d, me, r, metric[m][1]),
-                            m ? "lower at equal time (Fig. 7, 8 show images; the paper names no metric)"
+                claim_found(cl, "002", what, where, eval_change(d, me, r, metric[m][1]),
+                            m ? "lower at equal time (Fig. 7, 8 show images; the paper "
+                                "names no metric)"
                               : "lower at equal time (Fig. 7, 8; no numbers)",
                             REDUCTION(0.0), found, diff);
             }
         }
     }
-    /* Fig. 7 and Sec. 6: "our method tends to produce highest-quality gradients" at equal time. The
-     * gradients do not depend on the reconstruction: the L2 rows judge it. */
+    /* Fig. 7 and Sec. 6: "our method tends to produce highest-quality gradients"
+     * at equal time. The gradients do not depend on the reconstruction: the L2
+     * rows judge it. */
     const int me = csv_table_find(t, ours[0]);
     for (int k = 0; k < 3; k += 2) {
         const int r = csv_table_find(t, rivals[0][k]);
         char what[128], found[1000];
         snprintf(what, sizeof what, "Fig. 7: gradient relMSE vs %s", names[k]);
         eval_gradient_findings(d, me, r, found, sizeof found);
-        claim_found(cl, "002", what, where,
-                    eval_change(d, me, r, "gradient_relmse"),
+        claim_found(cl, "002", what, where, eval_change(d, me, r, "gradient_relmse"),
                     "lower at equal time (images only)", REDUCTION(0.0), found, diff);
     }
-    /* Gradient after ReSTIR once: the same samples per frame as ours, not the paper's equal time */
+    /* Gradient after ReSTIR once: the same samples per frame as ours, not the
+     * paper's equal time */
     const int once = csv_table_find(t, "grad-after-restir");
     claim(cl, "002", "gradient relMSE vs Gradient after ReSTIR x 1 (equal samples)", where,
-          eval_change(d, me, once, "gradient_relmse"),
-          "none (not in the paper)", NO_CLAIM, diff);
-    /* issue 42: the gradient claim again without the worst 1% of pairs and as MAPE, informational: the paper
-     * shows images only, and these say whether a few pairs decide the relMSE verdict */
+          eval_change(d, me, once, "gradient_relmse"), "none (not in the paper)", NO_CLAIM, diff);
+    /* issue 42: the gradient claim again without the worst 1% of pairs and as
+     * MAPE, informational: the paper shows images only, and these say whether a
+     * few pairs decide the relMSE verdict */
     static const char *const robust[2] = {"gradient relMSE trim 1%", "gradient MAPE"};
     const int vs[2] = {csv_table_find(t, rivals[0][0]), once};
     static const char *const vs_name[2] = {"Gradient after ReSTIR x 2", "Gradient after ReSTIR x 1"};
@@ -564,8 +511,7 @@ static void paper_002(struct text *md, struct claims *cl, const struct eval_opti
         for (int k = 0; k < 2; k++) {
             char what[128];
             snprintf(what, sizeof what, "%s vs %s", robust[m], vs_name[k]);
-            claim(cl, "002", what, where,
-                  eval_change(d, me, vs[k], grad_col[m + 1][0]),
+            claim(cl, "002", what, where, eval_change(d, me, vs[k], grad_col[m + 1][0]),
                   "none (issue 42: the relMSE claim without its worst pairs)", NO_CLAIM, diff);
         }
 }
@@ -576,7 +522,6 @@ static const char *paper_title(const char *paper)
            : !strcmp(paper, "004") ? "004: stochastic pairwise MIS with reuse cells"
                                    : "002: gradient-domain ReSTIR PT";
 }
-
 
 /* index.html: the evaluation's text and a link to each step's own page. */
 static int write_index(const char *dir, const char *command, const struct eval_step *steps, int n, const char *md,
@@ -602,12 +547,14 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
                           const struct eval_step *steps, int n, const int *merged)
 {
     char msg[RESTIR_MSG_LEN], path[PATH_LEN];
-    struct text md = {0};
+    struct md_text md = {0};
     struct claims cl;
     memset(&cl, 0, sizeof cl);
     snprintf(path, sizeof path, "%s/claims.csv", dir);
-    if (csv_open(&cl.csv, path, "paper,claim,where,ours_change_pct,ours_lo_pct,ours_hi_pct,interval,seeds,paper_figure,verdict,why", msg) !=
-        0) {
+    if (csv_open(&cl.csv, path,
+                 "paper,claim,where,ours_change_pct,ours_lo_pct,ours_hi_pct,"
+                 "interval,seeds,paper_figure,verdict,why",
+                 msg) != 0) {
         cli_error("%s", msg);
         return EXIT_RUNTIME;
     }
@@ -620,37 +567,42 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
             if (current[0])
                 flush_claims(&md, &cl, current);
             current = s->paper;
-            put(&md,
-                "\n## %s\n\n`%s`\n\n%dx%d (the paper: %dx%d), %d independently seeded runs per configuration, "
-                "references of %d paths per pixel, ",
-                paper_title(current), command, o->width, o->height, EVAL_PAPER_WIDTH, EVAL_PAPER_HEIGHT,
-                eval_runs(o, current), eval_ref_spp(o));
+            md_put(&md,
+                   "\n## %s\n\n`%s`\n\n%dx%d (the paper: %dx%d), %d independently "
+                   "seeded runs per configuration, "
+                   "references of %d paths per pixel, ",
+                   paper_title(current), command, o->width, o->height, EVAL_PAPER_WIDTH, EVAL_PAPER_HEIGHT,
+                   eval_runs(o, current), eval_ref_spp(o));
             if (!strcmp(current, "000"))
-                put(&md, "static camera, %d warm-up frames, %d measured frames.\n", eval_warmup(o),
-                    eval_frames(o, current));
+                md_put(&md, "static camera, %d warm-up frames, %d measured frames.\n", eval_warmup(o),
+                       eval_frames(o, current));
             else
-                put(&md, "camera path, error of frame %d.\n", eval_frames(o, current) - 1);
-            put(&md, "Pixel radii as in the paper (not scaled with the resolution).\n");
-            char provenance[2048]; /* the steps' provenance.json, so --tables writes the merge's very line */
+                md_put(&md, "camera path, error of frame %d.\n", eval_frames(o, current) - 1);
+            md_put(&md, "Pixel radii as in the paper (not scaled with the resolution).\n");
+            char provenance[2048]; /* the steps' provenance.json, so --tables writes
+                                      the merge's very line */
             evaluate_provenance_text(dir, steps, n, merged, current, provenance, sizeof provenance);
-            put(&md, "%s\n", provenance);
+            md_put(&md, "%s\n", provenance);
             if (!strcmp(current, "000") && o->configs[0])
-                put(&md,
-                    "Configurations: only %s (--configs; the whole evaluation runs Table 1's four on every "
-                    "scene and Table 2's grid and Figure 3's radii on the first): claims on the others read "
-                    "\"not measured\".\n",
-                    o->configs);
+                md_put(&md,
+                       "Configurations: only %s (--configs; the whole evaluation runs "
+                       "Table 1's four on every "
+                       "scene and Table 2's grid and Figure 3's radii on the first): "
+                       "claims on the others read "
+                       "\"not measured\".\n",
+                       o->configs);
             for (int j = k; j < n && !strcmp(steps[j].paper, current); j++)
                 for (const struct eval_scene_note *sn = eval_scene_notes; sn->paper; sn++)
                     if (!strcmp(sn->paper, current) && !strcmp(sn->scene, steps[j].scene) &&
                         (j == k || strcmp(steps[j - 1].scene, steps[j].scene)))
-                        put(&md, "- scene `%s` for %s: %s.\n", sn->scene, sn->stands_for, sn->why);
+                        md_put(&md, "- scene `%s` for %s: %s.\n", sn->scene, sn->stands_for, sn->why);
         }
         if (!merged[k]) {
-            put(&md,
-                "\n### %s: not finished\n\nIts jobs are not all done yet: this evaluation was merged with "
-                "`--partial`; run the remaining jobs and merge again.\n",
-                s->name);
+            md_put(&md,
+                   "\n### %s: not finished\n\nIts jobs are not all done yet: this "
+                   "evaluation was merged with "
+                   "`--partial`; run the remaining jobs and merge again.\n",
+                   s->name);
             continue;
         }
         struct csv_table t, runs;
@@ -690,8 +642,7 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
         rc = EXIT_RUNTIME;
     }
     if (rc == 0)
-        printf("%s\nevaluation: %s/evaluation.md, %s/claims.csv%s\n", md.s, dir, dir,
-               o->report ? ", index.html" : "");
+        printf("%s\nevaluation: %s/evaluation.md, %s/claims.csv%s\n", md.s, dir, dir, o->report ? ", index.html" : "");
     free(md.s);
     return rc;
 }
