@@ -236,8 +236,11 @@ int compare_run_job(const struct plan *pl, int k)
             rc = EXIT_RUNTIME;
         } else {
             /* written after the frame: a result file means the frame is there */
-            struct job_timing t = {.ms_per_frame = res.ms_per_frame, .spp = res.spp, .instances = res.instances,
-                                   .has_mask = res.mask != NULL, .has_grad = res.grad != NULL,
+            struct job_timing t = {.ms_per_frame = res.ms_per_frame,
+                                   .spp = res.spp,
+                                   .instances = res.instances,
+                                   .has_mask = res.mask != NULL,
+                                   .has_grad = res.grad != NULL,
                                    .has_denoised = res.denoised != NULL};
             memcpy(t.ms_pass, res.ms_pass, sizeof t.ms_pass);
             const size_t npix = (size_t)st.p.width * (size_t)st.p.height;
@@ -322,10 +325,12 @@ int compare_merge(const char *dir)
     char path[PLAN_PATH_MAX + 300], to[PLAN_PATH_MAX + 300];
     snprintf(path, sizeof path, "%s/runs/reference.exr", pl.dir);
     const char *ref_path = st.o.ref ? st.o.ref : path;
-    if (rc == 0 && (cli_load_reference(ref_path, st.p.width, st.p.height, &pair.mean, msg) != 0 ||
-                    reference_pair_load_halves(ref_path, st.p.width, st.p.height, &pair.a, &pair.b, msg) < 0)) {
-        cli_error("%s", msg);
-        rc = EXIT_RUNTIME;
+    if (rc == 0) {
+        const int got = reference_pair_load(ref_path, st.p.width, st.p.height, !st.o.ref, &pair, msg);
+        if (got != 0) {
+            cli_error("cannot merge %s: %s", pl.dir, msg);
+            rc = got == -2 ? EXIT_USAGE : EXIT_RUNTIME;
+        }
     }
     const float *ref = pair.mean;
     snprintf(to, sizeof to, "%s/reference.exr", pl.dir);
@@ -360,8 +365,9 @@ int compare_merge(const char *dir)
                         st.specs[k].label, n);
             one.ms_per_frame = t.ms_per_frame;
             compare_runs_add(&acc, &one);
-            if (n == 0 && grad && compare_write_worst_pairs(pl.dir, st.specs[k].dir, grad, grad + 3 * npix, ref,
-                                                            st.p.width, st.p.height, COMPARE_GRAD_TRIM, msg) != 0) {
+            if (n == 0 && grad &&
+                compare_write_worst_pairs(pl.dir, st.specs[k].dir, grad, grad + 3 * npix, ref, st.p.width, st.p.height,
+                                          COMPARE_GRAD_TRIM, msg) != 0) {
                 cli_error("%s", msg);
                 rc = EXIT_RUNTIME;
             }

@@ -13,7 +13,10 @@
 #include "io/exr.h"
 #include "methods/reference.h"
 
-int reference_half_spp(int spp) { return spp > 1 ? (spp + 1) / 2 : 1; }
+int reference_half_spp(int spp)
+{
+    return spp > 1 ? (spp + 1) / 2 : 1;
+}
 
 /* OUT.exr -> OUT.half_X.exr (any other name: OUT.half_X.exr appended). */
 static void half_path(const char *out, char which, char *path, size_t len)
@@ -138,6 +141,27 @@ int reference_pair_load_halves(const char *out, int w, int h, float **a, float *
         free(*a);
         *a = NULL;
         return -1;
+    }
+    return 0;
+}
+
+int reference_pair_load(const char *path, int w, int h, int need_halves, struct reference_pair *r, char *msg)
+{
+    *r = (struct reference_pair){0};
+    if (cli_load_reference(path, w, h, &r->mean, msg) != 0)
+        return -1;
+    const int got = reference_pair_load_halves(path, w, h, &r->a, &r->b, msg);
+    if (got == 1 && need_halves) {
+        char pa[4200];
+        half_path(path, 'a', pa, sizeof pa);
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "the reference has no halves (%.200s is missing): its own error cannot be subtracted; render it "
+                 "again with its job (it was rendered before halves existed or copied without them)",
+                 pa);
+    }
+    if (got < 0 || (got == 1 && need_halves)) {
+        reference_pair_free(r);
+        return got < 0 ? -1 : -2;
     }
     return 0;
 }

@@ -13,7 +13,10 @@
 #include "scene/scene.h"
 
 /* The seed of half b of a reference of seed `seed`: independent of half a's and of every run's. */
-static inline uint64_t reference_half_b_seed(uint64_t seed) { return seed ^ 0x68616c662d622121ull; }
+static inline uint64_t reference_half_b_seed(uint64_t seed)
+{
+    return seed ^ 0x68616c662d622121ull;
+}
 
 /* A reference and its halves, each w * h * 3 floats (to free with reference_pair_free). */
 struct reference_pair {
@@ -47,6 +50,13 @@ int reference_pair_write(const struct reference_pair *r, const char *out, int w,
  * Returns 0; 1 when there are none (a reference given with --ref, or written before halves existed:
  * *a and *b NULL); -1 with msg when one is missing, of another size or holds a non-finite value. */
 int reference_pair_load_halves(const char *out, int w, int h, float **a, float **b, char *msg);
+
+/* The reference at path (r->mean) and its halves (r->a, r->b; NULL when it has none) of size w x h,
+ * for a merge. need_halves: the reference is the plan's own, whose job renders halves, so the
+ * subtraction of its own error is asked for and a reference without them (one rendered before halves
+ * existed, or copied without them) is refused. Returns 0; -1 with msg for a missing or bad file; -2
+ * with msg, naming the file, when halves are needed and absent. r is left empty on failure. */
+int reference_pair_load(const char *path, int w, int h, int need_halves, struct reference_pair *r, char *msg);
 
 void reference_pair_free(struct reference_pair *r);
 

@@ -26,7 +26,10 @@
 
 #define STRIP_SCALE 4 /* strip plot: rows per frame */
 
-static float luminance_at(const float *rgb, size_t i) { return v3_luminance(v3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2])); }
+static float luminance_at(const float *rgb, size_t i)
+{
+    return v3_luminance(v3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]));
+}
 
 /* "+x.x%" for value against a positive base, "-" otherwise. */
 static void relative_change(double value, double base, char *out, size_t len)
@@ -40,8 +43,7 @@ static void relative_change(double value, double base, char *out, size_t len)
 /* DIR/runs.csv: each configuration's values per run (study_run_columns), so that `restir evaluate`
  * pairs configurations by seed: run r of every configuration renders with the same seed. */
 _Static_assert(STUDY_RUN_COLS == 8, "write_runs prints eight columns");
-static int write_runs(const char *dir, const struct study_config *cfg, const struct study_result *res, int n,
-                      char *msg)
+static int write_runs(const char *dir, const struct study_config *cfg, const struct study_result *res, int n, char *msg)
 {
     char path[4200], header[512] = "config,run";
     for (int c = 0; c < STUDY_RUN_COLS; c++)
@@ -53,30 +55,31 @@ static int write_runs(const char *dir, const struct study_config *cfg, const str
     for (int k = 0; k < n; k++)
         for (int r = 0; r < res[k].runs; r++) {
             const double *v = &res[k].per_run[(size_t)r * STUDY_RUN_COLS];
-            csv_row(&csv, "%s,%d,%.9g,%.9g,%.6g,%.6g,%.6g,%.9g,%.9g,%.9g", cfg[k].name, r, v[0], v[1], v[2], v[3],
-                    v[4], v[5], v[6], v[7]);
+            csv_row(&csv, "%s,%d,%.9g,%.9g,%.6g,%.6g,%.6g,%.9g,%.9g,%.9g", cfg[k].name, r, v[0], v[1], v[2], v[3], v[4],
+                    v[5], v[6], v[7]);
         }
     return csv_close(&csv, msg);
 }
 
-static int write_tables(const char *dir, const struct study_config *cfg, const struct study_result *res, int n,
-                        int m, char *msg)
+static int write_tables(const char *dir, const struct study_config *cfg, const struct study_result *res, int n, int m,
+                        char *msg)
 {
     char path[4200];
     snprintf(path, sizeof(path), "%s/study.csv", dir);
     struct csv_writer csv;
-    if (csv_open(&csv, path,
-                 "config,radius,K,M,smape_all,smape_hard,temporal_cov,spatial_cov,ms_select,ms_spatial,ms_frame,"
-                 "smape_all_sem,smape_hard_sem,temporal_cov_sem,spatial_cov_sem,temporal_cov_hard,temporal_cov_hard_sem,"
-                 "ref_smape_all,ref_smape_hard",
-                 msg) != 0)
+    if (csv_open(
+            &csv, path,
+            "config,radius,K,M,smape_all,smape_hard,temporal_cov,spatial_cov,ms_select,ms_spatial,ms_frame,"
+            "smape_all_sem,smape_hard_sem,temporal_cov_sem,spatial_cov_sem,temporal_cov_hard,temporal_cov_hard_sem,"
+            "ref_smape_all,ref_smape_hard",
+            msg) != 0)
         return -1;
     for (int k = 0; k < n; k++)
-        csv_row(&csv, "%s,%g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g", cfg[k].name,
-                cfg[k].radius, cfg[k].candidates, m, res[k].smape_all, res[k].smape_hard, res[k].temporal_cov,
-                res[k].spatial_cov, res[k].ms_select, res[k].ms_spatial, res[k].ms_frame, res[k].smape_all_sem,
-                res[k].smape_hard_sem, res[k].temporal_cov_sem, res[k].spatial_cov_sem, res[k].temporal_cov_hard,
-                res[k].temporal_cov_hard_sem, res[k].ref_smape[0], res[k].ref_smape[1]);
+        csv_row(&csv, "%s,%g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g",
+                cfg[k].name, cfg[k].radius, cfg[k].candidates, m, res[k].smape_all, res[k].smape_hard,
+                res[k].temporal_cov, res[k].spatial_cov, res[k].ms_select, res[k].ms_spatial, res[k].ms_frame,
+                res[k].smape_all_sem, res[k].smape_hard_sem, res[k].temporal_cov_sem, res[k].spatial_cov_sem,
+                res[k].temporal_cov_hard, res[k].temporal_cov_hard_sem, res[k].ref_smape[0], res[k].ref_smape[1]);
     if (csv_close(&csv, msg) != 0 || write_runs(dir, cfg, res, n, msg) != 0)
         return -1;
     snprintf(path, sizeof(path), "%s/study.md", dir);
@@ -105,9 +108,10 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
                "covariances +- their jackknife standard errors over the runs (nan under 3 runs).\n");
     if (base >= 0) {
         const struct study_result *b = &res[base];
-        fprintf(f, "\nChange against %s: SMAPE all, SMAPE hard, temporal covariance (all, hard), frame time; "
-                   "selection pass as a share of the frame.\n\n| config | SMAPE all | SMAPE hard | temporal cov | "
-                   "temporal cov hard | frame | select / frame |\n|---|---|---|---|---|---|---|\n",
+        fprintf(f,
+                "\nChange against %s: SMAPE all, SMAPE hard, temporal covariance (all, hard), frame time; "
+                "selection pass as a share of the frame.\n\n| config | SMAPE all | SMAPE hard | temporal cov | "
+                "temporal cov hard | frame | select / frame |\n|---|---|---|---|---|---|---|\n",
                 cfg[base].name);
         for (int k = 0; k < n; k++) {
             char cov[2][32]; /* a covariance can be <= 0: then a relative change means nothing */
@@ -170,8 +174,7 @@ static int write_mask(const char *dir, const float *ref, const unsigned char *ha
 
 /* 000 Figure 5: (x, t) plot of one row over the measured frames of run 0, one panel per listed
  * configuration (up to 4), each pixel as luminance over the reference (0.5 gray = exact). */
-static int write_strip(const char *dir, const float *strips, const float *ref_row, int w, int frames, int n,
-                       char *msg)
+static int write_strip(const char *dir, const float *strips, const float *ref_row, int w, int frames, int n, char *msg)
 {
     int panels = n < 4 ? n : 4, gap = 4, width = panels * w + (panels - 1) * gap, height = frames * STRIP_SCALE;
     float *rgb = xcalloc((size_t)3 * width * height, sizeof(float));
@@ -191,7 +194,6 @@ static int write_strip(const char *dir, const float *strips, const float *ref_ro
     free(rgb);
     return rc;
 }
-
 
 int study_setup(const struct cli_options *desc, int need_out, struct study_setup *st)
 {
@@ -305,8 +307,8 @@ static int study_write_outputs(const struct study_setup *st, const char *dir, co
         printf("output: %s\n", dir);
     }
     if (rc == 0 && o->report) {
-        const struct study_report_run run = {dir, command, st->s.name, o->method, w, h, o->runs, o->warmup,
-                                             o->frames, nhard, strip_y, ref};
+        const struct study_report_run run = {dir,     command,   st->s.name, o->method, w,       h,
+                                             o->runs, o->warmup, o->frames,  nhard,     strip_y, ref};
         if (study_write_report(&run, msg) != 0) {
             cli_error("--report: %s", msg);
             rc = EXIT_RUNTIME;
@@ -531,21 +533,20 @@ int study_merge(const char *dir)
         cli_error("cannot merge: %s", msg);
         rc = EXIT_RUNTIME;
     }
-    float *ref = NULL, *half_a = NULL, *half_b = NULL;
+    struct reference_pair ref = {0};
     char path[PLAN_PATH_MAX + 64];
     snprintf(path, sizeof path, "%s/runs/reference.exr", pl.dir);
     const char *ref_path = st.o.ref ? st.o.ref : path;
-    if (rc == 0 && (cli_load_reference(ref_path, st.o.params.width, st.o.params.height, &ref, msg) != 0 ||
-                    reference_pair_load_halves(ref_path, st.o.params.width, st.o.params.height, &half_a, &half_b,
-                                               msg) < 0)) {
-        cli_error("%s", msg);
-        rc = EXIT_RUNTIME;
+    if (rc == 0) {
+        const int got = reference_pair_load(ref_path, st.o.params.width, st.o.params.height, !st.o.ref, &ref, msg);
+        if (got != 0) {
+            cli_error("cannot merge %s: %s", pl.dir, msg);
+            rc = got == -2 ? EXIT_USAGE : EXIT_RUNTIME;
+        }
     }
     if (rc == 0)
-        rc = study_finish(&st, &pl, pl.dir, pl.command, ref, half_a, half_b);
-    free(ref);
-    free(half_a);
-    free(half_b);
+        rc = study_finish(&st, &pl, pl.dir, pl.command, ref.mean, ref.a, ref.b);
+    reference_pair_free(&ref);
     scene_destroy(&st.s);
     plan_free(&pl);
     return rc;
@@ -558,11 +559,8 @@ int study_run(struct study_setup *st, const char *command)
     cli_catch_stop_signals();
     struct reference_pair ref = {0};
     if (st->o.ref) {
-        if (cli_load_reference(st->o.ref, st->o.params.width, st->o.params.height, &ref.mean, msg) != 0 ||
-            reference_pair_load_halves(st->o.ref, st->o.params.width, st->o.params.height, &ref.a, &ref.b, msg) <
-                0) {
+        if (reference_pair_load(st->o.ref, st->o.params.width, st->o.params.height, 0, &ref, msg) != 0) {
             cli_error("%s", msg);
-            reference_pair_free(&ref);
             scene_destroy(&st->s);
             return EXIT_RUNTIME;
         }

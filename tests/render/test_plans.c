@@ -5,7 +5,8 @@
  * bound (2 C + 1) 2^-24 of reference_shards.c; merges with a job missing or corrupt are refused
  * naming its line; a finished job run again says so; a comparison planned per method and run
  * (--runs 2) and merged equals the unsplit one (compare.csv except ms_per_frame, reference and
- * frames byte for byte); a plan's reference job stopped by SIGTERM or killed keeps a checkpoint, and run
+ * frames byte for byte) and its merge refuses a plan reference whose halves are gone; a plan's
+ * reference job stopped by SIGTERM or killed keeps a checkpoint, and run
  * again continues from it to the bytes of an uninterrupted job (a 1080p reference outlives a session). */
 #include <math.h>
 #include <signal.h>
@@ -21,8 +22,9 @@
 
 static char tmp[CLI_PATH_MAX];
 
-#define STUDY "study --scene cornell --method restir-di --configs bitterli,compat --radii 12 --res 48x27 " \
-              "--frames 5 --warmup 3 --runs 3 --ref-spp 32 --seed 11"
+#define STUDY                                                                                                          \
+    "study --scene cornell --method restir-di --configs bitterli,compat --radii 12 --res 48x27 "                       \
+    "--frames 5 --warmup 3 --runs 3 --ref-spp 32 --seed 11"
 #define REF "reference --scene cornell --method restir-di --res 64x36 --spp 1000 --seed 4"
 
 static int have(const char *tool)
@@ -31,7 +33,6 @@ static int have(const char *tool)
     snprintf(cmd, sizeof cmd, "command -v %s >/dev/null 2>&1", tool);
     return system(cmd) == 0;
 }
-
 
 static void test_study(char *err)
 {
@@ -51,8 +52,9 @@ static void test_study(char *err)
     }
     /* 1 reference + 4 configurations x 3 runs, in shuffled order, two at a time */
     EXPECT(cli_sh("test $(wc -l < '%s/jobs.txt') -eq 13", plan, "") == 0, "jobs.txt does not hold 13 jobs");
-    EXPECT(cli_sh("shuf '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel --halt now,fail=1 -j 2 > '%s/parallel.log' 2>&1", plan,
-              plan) == 0, "GNU parallel: a job failed (%s/parallel.log)", plan);
+    EXPECT(cli_sh("shuf '%s/jobs.txt' | OMP_NUM_THREADS=1 parallel --halt now,fail=1 -j 2 > '%s/parallel.log' 2>&1",
+                  plan, plan) == 0,
+           "GNU parallel: a job failed (%s/parallel.log)", plan);
     snprintf(args, sizeof args, "study --merge '%s'", plan);
     EXPECT(cli_run(tmp, args, err) == 0, "study --merge: %s", err);
     static char a[1 << 16], b[1 << 16];
@@ -70,7 +72,8 @@ static void test_study(char *err)
         EXPECT(cli_files_equal(pa, pb, &size) == 1, "merged %s differs from the unsplit one", same[i]);
     }
     printf("study: 13 jobs shuffled under GNU parallel, merged: study.csv (all but the times), pareto.svg, "
-           "hard_pixels.png and strip.png equal the unsplit study's\n%s", b);
+           "hard_pixels.png and strip.png equal the unsplit study's\n%s",
+           b);
 
     /* a job run again: already done; a missing or corrupt result: refused, named by its line (jobs
      * are run-major: line 1 the reference, then run 0 of the 4 configurations, run 1, ...) */
@@ -83,9 +86,9 @@ static void test_study(char *err)
            "merge with a missing job: %s", err);
     EXPECT(cli_sh("mv '%s/moved.bin' '%s/runs/study_c01_r00002.bin'", plan, plan) == 0, "cannot move it back");
     EXPECT(cli_sh("printf 'X' | dd of='%s/runs/study_c02_r00001.bin' bs=1 seek=200 conv=notrunc 2>/dev/null%s", plan,
-              "") == 0, "cannot corrupt");
-    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 8 (config bitterli@12, run 1)") &&
-               strstr(err, "corrupt"),
+                  "") == 0,
+           "cannot corrupt");
+    EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 8 (config bitterli@12, run 1)") && strstr(err, "corrupt"),
            "merge with a corrupt job: %s", err);
     printf("refused: %s", err);
     snprintf(args, sizeof args, "job '%s' 8", plan); /* run again, it replaces the corrupt result */
@@ -112,7 +115,8 @@ static void test_reference(char *err)
     EXPECT(cli_run(tmp, args, err) == 0, "reference --plan: %s", err);
     /* the documented alternative to GNU parallel: xargs, one line per shell */
     EXPECT(cli_sh("tac '%s/jobs.txt' | OMP_NUM_THREADS=1 xargs -d '\\n' -n 1 -P 2 sh -c > '%s/xargs.log' 2>&1", plan,
-              plan) == 0, "xargs: a shard failed");
+                  plan) == 0,
+           "xargs: a shard failed");
     snprintf(args, sizeof args, "reference --merge '%s' --out '%s'", plan, merged);
     EXPECT(cli_run(tmp, args, err) == 0, "reference --merge: %s", err);
     float *a = NULL, *b = NULL;
@@ -147,13 +151,12 @@ static void test_reference(char *err)
     struct stat st;
     EXPECT(stat(never, &st) != 0, "a refused merge wrote its output");
     snprintf(args, sizeof args, "study --merge '%s'", plan);
-    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "not of a study"), "study --merge of a reference plan: %s",
-           err);
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "not of a study"), "study --merge of a reference plan: %s", err);
 }
 
-#define COMPARE "compare --scene cornell --methods restir-di,pt,restir-di:mis=balance --res 48x27 --frames 3 " \
-                "--ref-spp 32 --seed 9 --runs 2"
-
+#define COMPARE                                                                                                        \
+    "compare --scene cornell --methods restir-di,pt,restir-di:mis=balance --res 48x27 --frames 3 "                     \
+    "--ref-spp 32 --seed 9 --runs 2"
 
 /* plan.json holds the command's JSON description, not its arguments: a job reads it back through the
  * option table; a plan written with an argument list (an older restir), a description with an
@@ -165,7 +168,8 @@ static void test_plan_descriptions(const char *plan, char *err)
     static char original[1 << 16], text[1 << 16];
     snprintf(path, sizeof path, "%s/plan.json", plan);
     cli_read_text(path, original, sizeof original);
-    EXPECT(strstr(original, "\"options\"") && strstr(original, "\"methods\":\t\"restir-di,pt,restir-di:mis=balance\"") &&
+    EXPECT(strstr(original, "\"options\"") &&
+               strstr(original, "\"methods\":\t\"restir-di,pt,restir-di:mis=balance\"") &&
                !strstr(original, "\"args\""),
            "plan.json holds no JSON description of the compare:\n%s", original);
     static const struct {
@@ -225,7 +229,18 @@ static void test_compare(char *err)
     }
     printf("compare: 7 jobs (3 specs x 2 runs, the reference) under GNU parallel, merged: compare.csv (all but "
            "ms_per_frame: means and standard errors over the runs), the reference and the frames equal the unsplit "
-           "compare's\n%s", b);
+           "compare's\n%s",
+           b);
+    /* A plan reference without its halves (copied without them, or from before halves existed): the merge
+     * cannot subtract the reference's own error and refuses, naming the file, writing nothing. */
+    snprintf(pb, sizeof pb, "%s/compare.csv", plan);
+    EXPECT(cli_sh("mkdir '%s/moved'%s", plan, "") == 0 &&
+               cli_sh("mv '%s'/runs/reference.half_?.exr '%s/moved/'", plan, plan) == 0 && remove(pb) == 0,
+           "cannot move the reference halves");
+    EXPECT(cli_run(tmp, args, err) == 2 && strstr(err, "reference.half_a.exr is missing"),
+           "merge without the halves: %s", err);
+    EXPECT(!cli_exists(pb), "a merge refused for missing halves wrote compare.csv");
+    EXPECT(cli_sh("mv '%s'/moved/* '%s/runs/'", plan, plan) == 0, "cannot restore the halves");
     EXPECT(cli_sh("rm '%s/runs/pt/run_1.bin'%s", plan, "") == 0, "cannot remove a result");
     EXPECT(cli_run(tmp, args, err) == 1 && strstr(err, "line 6 (pt, run 1)"), "merge with a missing job: %s", err);
     test_plan_descriptions(plan, err);
@@ -234,8 +249,8 @@ static void test_compare(char *err)
 /* A study plan's reference job saving after every chunk (RESTIR_REFERENCE_CHECKPOINT_SECONDS=0):
  * stopped by SIGTERM once its first half's first checkpoint exists, then killed with SIGKILL once a later one
  * exists, then run again, it writes the bytes of the same job uninterrupted (in another plan). */
-#define SLOW_REF_STUDY                                                                                             \
-    "study --scene cornell --method restir-di --configs bitterli --res 96x54 --frames 4 "                          \
+#define SLOW_REF_STUDY                                                                                                 \
+    "study --scene cornell --method restir-di --configs bitterli --res 96x54 --frames 4 "                              \
     "--warmup 1 --runs 2 --ref-spp 960 --seed 3 --threads 1"
 
 /* restir.samples of a checkpoint, or -1. */
@@ -275,8 +290,8 @@ static void test_reference_job_resumes(char *err)
     setenv("RESTIR_REFERENCE_CHECKPOINT_SECONDS", "0", 1);
     int at_term = 0, at_kill = 0;
     int status = stop_reference_job(plan, ckpt, 0, SIGTERM, &at_term);
-    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM, "SIGTERM at %d samples: exit status %d",
-           at_term, WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+    EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM, "SIGTERM at %d samples: exit status %d", at_term,
+           WIFEXITED(status) ? WEXITSTATUS(status) : -1);
     const int saved = checkpoint_samples(ckpt);
     EXPECT(saved >= at_term && saved < 480, "after SIGTERM the checkpoint holds %d samples", saved);
     status = stop_reference_job(plan, ckpt, saved, SIGKILL, &at_kill);
@@ -286,8 +301,7 @@ static void test_reference_job_resumes(char *err)
     EXPECT(stat(ckpt, &st) == 0 && stat(ref, &st) != 0, "a killed reference job left no checkpoint, or its image");
     static char out[CLI_ERR_MAX];
     snprintf(args, sizeof args, "job '%s' 1", plan);
-    EXPECT(cli_run_capture(tmp, args, out, err) == 0 && strstr(out, "resuming"), "the job run again: %s%s", out,
-           err);
+    EXPECT(cli_run_capture(tmp, args, out, err) == 0 && strstr(out, "resuming"), "the job run again: %s%s", out, err);
     EXPECT(stat(ckpt, &st) != 0, "the checkpoint outlived the finished job");
     snprintf(args, sizeof args, "job '%s' 1", whole);
     EXPECT(cli_run(tmp, args, err) == 0, "the uninterrupted job: %s", err);
@@ -310,8 +324,10 @@ static void test_changed_scene(char *err)
     snprintf(plan, sizeof plan, "%s/changed_plan", tmp);
     snprintf(args, sizeof args, "scene export cornell --out '%s'", dir);
     EXPECT(cli_run(tmp, args, err) == 0, "scene export: %s", err);
-    snprintf(args, sizeof args, "reference --scene '%s/cornell.json' --method pt --res 16x9 --spp 32 --shards 2 "
-             "--plan '%s'", dir, plan);
+    snprintf(args, sizeof args,
+             "reference --scene '%s/cornell.json' --method pt --res 16x9 --spp 32 --shards 2 "
+             "--plan '%s'",
+             dir, plan);
     EXPECT(cli_run(tmp, args, err) == 0, "plan on a scene file: %s", err);
     EXPECT(cli_sh("sed -i 's/0.65, 0.05, 0.05/0.6, 0.05, 0.05/' '%s/cornell.json'%s", dir, "") == 0, "cannot edit");
     snprintf(args, sizeof args, "job '%s' 1", plan);
