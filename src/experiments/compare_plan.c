@@ -371,7 +371,9 @@ int compare_merge(const char *dir)
                 cli_error("%s", msg);
                 rc = EXIT_RUNTIME;
             }
-            free(mask);
+            one.dis_mask = n == 0 ? mask : NULL; /* run 0's: the reference's own error there */
+            if (n > 0)
+                free(mask);
             free(grad);
             if (n > 0 || !st.o.report)
                 free(denoised);

@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <stdlib.h>
 
 #include "experiments/cli.h"
 #include "experiments/reference_checkpoint.h"
@@ -46,6 +47,12 @@ void compare_reference_noise(struct compare_result *res, int n, const float *a, 
     if (a && b)
         restir_metrics_compute(a, ref, npix, NULL, &own); /* |a - r| = |a - b| / 2 */
     for (int k = 0; k < n; k++) {
+        double share = NAN;
+        res[k].ref_own_dis = NAN;
+        if (a && b) /* half a over run 0's disoccluded pixels: MAPE there, as ref_own[1] overall */
+            compare_disoccluded_error(a, ref, res[k].dis_mask, npix, &res[k].ref_own_dis, &share);
+        free(res[k].dis_mask);
+        res[k].dis_mask = NULL;
         res[k].ref_own[0] = own.relmse;
         res[k].ref_own[1] = own.mape;
         res[k].ref_own[2] = own.smape;

@@ -200,6 +200,7 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
         renderer_disoccluded(&r[0], DISOCCLUSION_FRAMES, mask);
     }
     res->mask = NULL;
+    res->dis_mask = NULL;
     res->grad = NULL;
     res->denoised = NULL;
     res->grad_relmse = res->grad_relmse_trim = res->grad_mape = NAN;
@@ -216,7 +217,10 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
         compare_disoccluded_error(r[0].image, ref, mask, npix, &res->mape_dis, &res->dis_share);
         if (g)
             compare_gradient_errors(g->dx, g->dy, ref, p->width, p->height, res);
-        free(mask);
+        if (run == 0) /* for the reference's own error over these pixels (compare_reference_noise) */
+            res->dis_mask = mask;
+        else
+            free(mask);
     } else {
         res->mask = mask;
         res->denoised = denoised;
@@ -258,8 +262,10 @@ void compare_result_free(struct compare_result *res)
     free(res->image);
     free(res->image_dn);
     free(res->per_run);
+    free(res->dis_mask);
     res->image = res->image_dn = NULL;
     res->per_run = NULL;
+    res->dis_mask = NULL;
 }
 
 void compare_runs_add(struct compare_runs *a, const struct compare_result *r)

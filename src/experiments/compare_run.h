@@ -71,6 +71,12 @@ struct compare_result {
      * relmse_net, err.relmse without the reference's share (compare_reference_noise), NaN without. */
     double ref_own[3];
     double relmse_net;
+    /* The reference's own MAPE over run 0's disoccluded pixels (half a against the mean, as ref_own),
+     * NaN without halves or without a disocclusion mask: compare.csv's ref_mape_disoccluded, against
+     * which a claim on mape_dis is checked. dis_mask: run 0's mask until compare_reference_noise has
+     * used and freed it (NULL without). */
+    double ref_own_dis;
+    unsigned char *dis_mask;
 };
 
 #define COMPARE_RUN_COLS 10

@@ -126,7 +126,7 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                  "gradient_relmse_sem,gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem,"
                  "relmse_denoised,relmse_denoised_sem,mape_denoised,mape_denoised_sem,smape_denoised,"
                  "smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem,temporal_cov_denoised,"
-                 "ref_relmse,ref_mape,ref_smape,relmse_net,flip,flip_sem",
+                 "ref_relmse,ref_mape,ref_smape,relmse_net,flip,flip_sem,ref_mape_disoccluded",
                  msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
@@ -214,10 +214,11 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                 if (c->runs > 1 && isfinite(ds[j]))
                     snprintf(dn[2 * j + 1], sizeof dn[2 * j + 1], "%.6g", ds[j]);
             }
-            char own[3][32] = {"", "", ""}; /* the reference's own errors (its halves); empty without */
-            for (int j = 0; j < 3; j++)
-                if (isfinite(c->ref_own[j]))
-                    snprintf(own[j], sizeof own[j], "%.6g", c->ref_own[j]);
+            char own[4][32] = {"", "", "", ""}; /* the reference's own errors (its halves); empty without */
+            const double own_v[4] = {c->ref_own[0], c->ref_own[1], c->ref_own[2], c->ref_own_dis};
+            for (int j = 0; j < 4; j++)
+                if (isfinite(own_v[j]))
+                    snprintf(own[j], sizeof own[j], "%.6g", own_v[j]);
             char net[32] = ""; /* relMSE without the reference's own share */
             if (isfinite(c->relmse_net))
                 snprintf(net, sizeof net, "%.6g", c->relmse_net);
@@ -228,11 +229,11 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                 snprintf(fl[1], sizeof fl[1], "%.6g", c->flip_sem);
             csv_row(&csv,
                     "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,"
-                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s",
+                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s",
                     field, c->ms_per_frame, c->spp, c->instances, c->err.relmse, c->err.mape, c->err.smape,
                     c->err.luma_rmse, c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1],
                     gr[0], gr[1], gr[2], gr[3], gr[4], gr[5], dn[0], dn[1], dn[2], dn[3], dn[4], dn[5], dn[6], dn[7],
-                    dn[8], own[0], own[1], own[2], net, fl[0], fl[1]);
+                    dn[8], own[0], own[1], own[2], net, fl[0], fl[1], own[3]);
         }
     }
     print_denoised(specs, res, n, w, runs, p->denoise.method);

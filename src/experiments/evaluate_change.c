@@ -26,7 +26,7 @@ static int run_values(const struct csv_table *runs, const char *label, const cha
     return n;
 }
 
-/* 1 when runs.csv has column col. */
+/* 1 when the table (compare.csv, study.csv, runs.csv) has column col. */
 static int has_column(const struct csv_table *runs, const char *col)
 {
     for (int c = 0; c < runs->ncol; c++)
@@ -37,13 +37,15 @@ static int has_column(const struct csv_table *runs, const char *col)
 
 #define MAX_SEEDS 1024
 
-/* The reference's own error in col (t's column ref_COL, the same in every row) over |ours - base|;
- * 0 when the table has none. */
-static double reference_ratio(const struct csv_table *t, int ours, int base, const char *col)
+/* The reference's own error in col (t's column ref_COL of row ours) over |ours - base|; 0 when the
+ * table has none. *unchecked: 1 when it has none for col but has the reference's own MAPE (its
+ * reference had halves, but the step's commit did not record col's: a claim on it goes unchecked). */
+static double reference_ratio(const struct csv_table *t, int ours, int base, const char *col, int *unchecked)
 {
     char ref[96];
     snprintf(ref, sizeof ref, "ref_%s", col);
     const double own = csv_table_num(t, ours, ref), diff = fabs(csv_table_num(t, ours, col) - csv_table_num(t, base, col));
+    *unchecked = !isfinite(own) && isfinite(csv_table_num(t, ours, "ref_mape")) && !has_column(t, ref);
     return isfinite(own) && isfinite(diff) ? (diff > 0.0 ? own / diff : INFINITY) : 0.0;
 }
 
@@ -58,7 +60,7 @@ struct rel_change eval_change(const struct step_tables *d, int ours, int base, c
                     has_value(d->t, base, "relmse_net");
     struct rel_change c = eval_change_unchecked(d, ours, base, net ? "relmse_net" : col);
     if (ours >= 0 && base >= 0)
-        c.ref_ratio = reference_ratio(d->t, ours, base, col);
+        c.ref_ratio = reference_ratio(d->t, ours, base, col, &c.ref_unchecked);
     return c;
 }
 

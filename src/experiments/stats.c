@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/rng.h"
 
@@ -109,7 +110,7 @@ static double pct_of_log(double x) { return 100.0 * expm1(x); }
  * with df degrees of freedom (none when se is not finite or positive). */
 static struct rel_change change_from_log(double m, double se, int n, int df, enum change_interval how)
 {
-    struct rel_change c = {pct_of_log(m), NAN, NAN, m, NAN, n, INTERVAL_NONE, 0, 0.0};
+    struct rel_change c = {pct_of_log(m), NAN, NAN, m, NAN, n, INTERVAL_NONE, 0, 0.0, 0};
     if (df >= 1 && isfinite(se) && se > 0.0) {
         const double h = student_t_quantile(STATS_LEVEL, df) * se;
         c.lo = pct_of_log(m - h);
@@ -126,7 +127,7 @@ static struct rel_change change_from_log(double m, double se, int n, int df, enu
 
 static struct rel_change not_measured(int n, int no_base)
 {
-    return (struct rel_change){NAN, NAN, NAN, NAN, NAN, n, INTERVAL_NONE, no_base, 0.0};
+    return (struct rel_change){NAN, NAN, NAN, NAN, NAN, n, INTERVAL_NONE, no_base, 0.0, 0};
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -259,8 +260,8 @@ const char *claim_verdict(struct rel_change c, struct claim k, char *why, size_t
         verdict = hi <= k.limit ? "reproduced" : lo > k.limit ? "not reproduced" : "undecided";
         break;
     case CLAIM_NONE:
-        snprintf(why, len, "%s", point);
-        return hi < 0.0 ? "lower" : lo > 0.0 ? "higher" : "no difference";
+        verdict = hi < 0.0 ? "lower" : lo > 0.0 ? "higher" : "no difference";
+        break;
     case CLAIM_REDUCTION:
     default: {
         const double e = -k.limit; /* the paper's effect; with limit 0 any reduction */
@@ -281,6 +282,11 @@ const char *claim_verdict(struct rel_change c, struct claim k, char *why, size_t
             snprintf(why, len, "about %d seeds would decide it at the measured spread", seeds);
         else
             snprintf(why, len, "more than %d seeds would be needed at the measured spread", STATS_MAX_SEEDS);
+    }
+    if (c.ref_unchecked) {
+        const size_t used = strlen(why);
+        snprintf(why + used, len - used, "%snot checked against the reference's own error in this metric (its step "
+                 "did not record it)", used ? "; " : "");
     }
     return verdict;
 }

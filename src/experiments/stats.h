@@ -57,6 +57,10 @@ struct rel_change {
      * of the two values judged; at least 1 (the reference's noise is as large as the difference)
      * refuses the claim for that reference. 0 or NaN: not known, or negligible */
     double ref_ratio;
+    /* 1: the step measured the reference's own error in other metrics but not in this one (a table
+     * merged before that metric's column existed): the claim could not be checked against it, and
+     * claim_verdict's why says so */
+    int ref_unchecked;
 };
 
 /* The change of ours[i] against base[i], i < n, values of the same seed i (common random numbers),

@@ -150,6 +150,13 @@ int main(void)
     field(pt_row ? pt_row + 1 : "", 13, a, sizeof a);
     field(pt_row ? pt_row + 1 : "", 15, b, sizeof b);
     EXPECT(pt_row && a[0] == '\0' && b[0] == '\0', "pt has no disocclusion columns ('%s', '%s')", a, b);
+    /* the reference's own MAPE over those pixels (its halves), against which a disocclusion claim is
+     * checked: positive for restir-pt, nothing for pt */
+    const double own_dis = c ? number(c + 1, 37) : NAN;
+    printf("the reference's own MAPE over restir-pt's disoccluded pixels: %.4f\n", own_dis);
+    EXPECT(own_dis > 0.0 && isfinite(own_dis), "restir-pt: ref_mape_disoccluded %g", own_dis);
+    field(pt_row ? pt_row + 1 : "", 37, a, sizeof a);
+    EXPECT(pt_row && a[0] == '\0', "pt has no ref_mape_disoccluded ('%s')", a);
 
     /* --runs 2: run 0 is the single run (x0), so the mean m and the standard error of two runs,
      * |x1 - x0| / 2, must satisfy sem = |m - x0| for relMSE, MAPE and SMAPE. */
@@ -165,7 +172,7 @@ int main(void)
                        "gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem,relmse_denoised,relmse_denoised_sem,"
                        "mape_denoised,mape_denoised_sem,smape_denoised,smape_denoised_sem,mape_disoccluded_denoised,"
                        "mape_disoccluded_denoised_sem,temporal_cov_denoised,ref_relmse,ref_mape,ref_smape,relmse_net,flip,"
-                       "flip_sem\n") != NULL,
+                       "flip_sem,ref_mape_disoccluded\n") != NULL,
            "compare.csv header: %.300s", csv);
     c = strstr(csv, "\nrestir-pt,");
     static const int mean_col[4] = {4, 5, 6, 13}, sem_col[4] = {10, 11, 12, 14};

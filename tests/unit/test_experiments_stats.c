@@ -62,7 +62,7 @@ static void test_jackknife(void)
 static struct rel_change interval(double pct, double lo, double hi)
 {
     return (struct rel_change){pct, lo, hi, log1p(pct / 100.0), (log1p(hi / 100.0) - log1p(lo / 100.0)) / 4.0, 4,
-                               INTERVAL_T, 0, 0.0};
+                               INTERVAL_T, 0, 0.0, 0};
 }
 
 static void expect_verdict(struct rel_change c, struct claim k, const char *want, const char *what)
@@ -107,6 +107,16 @@ static void test_verdicts(void)
     expect_verdict(noisy_ref, r29, "refused", "the reference's noise exceeds the difference");
     noisy_ref.ref_ratio = 0.1;
     expect_verdict(noisy_ref, r29, "reproduced", "a reference a tenth of the difference judges it");
+    /* a metric whose reference error the step did not record: judged, and the row says it went unchecked */
+    struct rel_change unchecked = interval(8.0, 3.0, 13.0);
+    unchecked.ref_unchecked = 1;
+    expect_verdict(unchecked, r29, "opposite", "unchecked against the reference");
+    claim_verdict(unchecked, r29, why, sizeof why);
+    EXPECT(strstr(why, "not checked against the reference's own error") != NULL, "an unchecked row says so: %s", why);
+    unchecked = interval(-13.8, -57.9, 30.3);
+    unchecked.ref_unchecked = 1;
+    claim_verdict(unchecked, r29, why, sizeof why);
+    EXPECT(strstr(why, "seeds would decide it at the measured spread; not checked") != NULL, "both reasons: %s", why);
     /* without an interval the estimate alone decides, and says so */
     struct rel_change point = interval(-30.0, NAN, NAN);
     point.interval = INTERVAL_NONE;
@@ -216,7 +226,7 @@ static void test_jackknife_change(void)
 static void test_seeds_to_decide(void)
 {
     const struct claim r29 = {CLAIM_REDUCTION, 29.0};
-    struct rel_change c = {-13.8, -57.9, 30.3, log(0.862), 0.2, 4, INTERVAL_T, 0, 0.0};
+    struct rel_change c = {-13.8, -57.9, 30.3, log(0.862), 0.2, 4, INTERVAL_T, 0, 0.0, 0};
     const int n = stats_seeds_to_decide(c, r29);
     const double s = 0.2 * 2.0, d = fmax(fabs(log(0.862)), fabs(log(0.862) - log(0.71)));
     EXPECT(n > 4, "more seeds than measured: %d", n);
@@ -224,7 +234,7 @@ static void test_seeds_to_decide(void)
     EXPECT(student_t_quantile(0.95, n - 2) * s / sqrt(n - 1.0) >= d, "n - 1 = %d does not", n - 1);
     c.log_se = 0.0;
     EXPECT(stats_seeds_to_decide(c, r29) == -1, "no spread: nothing to say");
-    struct rel_change zero = {0.0, -5.0, 5.0, 0.0, 0.02, 8, INTERVAL_T, 0, 0.0};
+    struct rel_change zero = {0.0, -5.0, 5.0, 0.0, 0.02, 8, INTERVAL_T, 0, 0.0, 0};
     EXPECT(stats_seeds_to_decide(zero, (struct claim){CLAIM_REDUCTION, 0.0}) == -1,
            "an estimate of exactly zero never decides \"lower\"");
 }
