@@ -1,7 +1,10 @@
 /* bench_error.c: `restir_bench error IMAGE.exr REF.exr`: the error metrics of one image against a
- * reference (DESIGN.md's relMSE, MAPE and SMAPE, restir/metrics.h) and the ratio of their image
- * means, one line, for scripts that compare images rendered elsewhere (references with a relMSE
- * target, Blender Cycles' renders in bench/cycles). */
+ * reference (DESIGN.md's relMSE, MAPE and SMAPE, restir/metrics.h), the ratio of their image
+ * means, and HDR-FLIP at the default viewing condition with its wall time and OpenMP threads, one
+ * line of name-value pairs, for scripts that compare images rendered elsewhere (references with a
+ * relMSE target, Blender Cycles' renders in bench/cycles) and for FLIP's cost (BENCHMARKS.md). */
+#include <omp.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -35,7 +38,13 @@ int bench_error(int argc, char **argv)
         double si = 0.0, sr = 0.0;
         for (size_t i = 0; i < 3 * (size_t)w * (size_t)h; i++)
             si += img[i], sr += ref[i];
-        printf("relMSE %.6g MAPE %.6g SMAPE %.6g mean_ratio %.6f\n", e.relmse, e.mape, e.smape, sr > 0.0 ? si / sr : 0.0);
+        double flip = NAN;
+        const double t0 = omp_get_wtime();
+        if (restir_metrics_flip(img, ref, w, h, RESTIR_METRICS_FLIP_PPD, NULL, &flip) != 0)
+            flip = NAN;
+        const double flip_s = omp_get_wtime() - t0;
+        printf("relMSE %.6g MAPE %.6g SMAPE %.6g mean_ratio %.6f FLIP %.6g flip_s %.3f threads %d\n", e.relmse, e.mape,
+               e.smape, sr > 0.0 ? si / sr : 0.0, flip, flip_s, omp_get_max_threads());
     }
     free(img);
     free(ref);
