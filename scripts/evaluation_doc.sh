@@ -71,8 +71,15 @@ where the paper gives no figure):
 A claim of a small change ("only slightly different", within +-L%): reproduced when the interval lies
 within +-L, not reproduced when wholly outside, undecided when it straddles a bound. A cost claim
 ("at most +L% time"): reproduced when hi <= L, not reproduced when lo > L, undecided otherwise.
-"undefined": a value <= 0 (a covariance can be), where a ratio means nothing. The rule is
-`claim_verdict` in src/experiments/stats.c, tested class by class in unit.experiments_stats.
+"undefined": a value <= 0 (a covariance can be), where a ratio means nothing. A claim on a metric
+whose reference error its step did not record (gradient relMSE: the reference's gradients have no
+halves) keeps its verdict and says "not checked against the reference's own error"; the
+covariances and frame times do not read the reference. The rule is `claim_verdict` in
+src/experiments/stats.c, tested class by class in unit.experiments_stats.
+
+The reference's own error is large on some scenes: the path-traced reference of a scene lit
+mostly indirectly is grainy at 1024 paths per pixel, and a refused row says so rather than judge
+a change by an image noisier than the change.
 
 The tables of docs/evaluation/*.md were written before this rule, on different commits, without
 provenance (their claims say "at two standard deviations" and "+- sd": the old rule called an
