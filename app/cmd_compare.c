@@ -213,8 +213,8 @@ int cmd_compare(int argc, char **argv)
                     stopped_at = rc == RUN_STOPPED ? k : -1;
                     break;
                 }
-                free(probe.dis_mask); /* run 0's disocclusion mask: the probe measures time only */
                 instances = (int)(budget / probe.ms_per_frame + 0.5);
+                compare_result_free(&probe); /* the probe measures time only */
                 instances = instances < 1 ? 1 : instances > MAX_INSTANCES ? MAX_INSTANCES : instances;
             }
         }

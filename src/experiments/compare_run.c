@@ -201,6 +201,7 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     }
     res->mask = NULL;
     res->dis_mask = NULL;
+    res->per_run = NULL; /* compare_runs_finish's, so that compare_result_free is safe on any result */
     res->grad = NULL;
     res->denoised = NULL;
     res->grad_relmse = res->grad_relmse_trim = res->grad_mape = NAN;
