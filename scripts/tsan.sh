@@ -21,7 +21,9 @@ run() {
 }
 
 common="--res 24x16 --frames 3 --camera path"
-for m in pt ris-di restir-di restir-pt restir-gi area-restir gpt grad-after-restir grestir-pt; do
+methods=$("$bin" list | awk -F'\t' '$1 ~ /^method / {sub(/^method /, "", $1); print $1}')
+[ -n "$methods" ] || { echo "tsan.sh: restir list gave no methods" >&2; exit 1; }
+for m in $methods; do # every registered method (restir list), none kept by hand
     run render --scene cornell --method $m $common --out "$out/$m"
 done
 run render --scene many-lights --method restir-di --res 32x18 --frames 3 --set denoise=svgf --out "$out/svgf"

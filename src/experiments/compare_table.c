@@ -47,7 +47,7 @@ static int write_passes(const char *out_dir, const struct compare_spec *specs, c
     return csv_close(&csv, msg);
 }
 
-/* issue 43: the errors after denoising, a block of their own under the table (BIASED by nature). */
+/* The errors after denoising (denoise=svgf|atrous), a block of their own under the table (BIASED by nature). */
 static void print_denoised(const struct compare_spec *specs, const struct compare_result *res, int n, int w, int runs,
                            int method)
 {

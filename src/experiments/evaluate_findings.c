@@ -1,4 +1,4 @@
-/* evaluate_findings.c: what the deciding rows of an evaluation show about a claim (issue 42), as the
+/* evaluate_findings.c: what the deciding rows of an evaluation show about a claim (the ablation rows beside it), as the
  * text of its "why" column (evaluate_findings.h). */
 #include "experiments/evaluate_findings.h"
 

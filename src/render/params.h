@@ -153,7 +153,7 @@ struct render_params {
     int recon_l1_iterations, recon_l1_cg; /* IRLS reweightings and CG steps per reweighting (0: default) */
     int recon_l1_precond;   /* enum restir_poisson_precond of the L1 solve's CG */
 
-    /* denoising of the finished frame (issue 43): a layer of its own, never read by an estimator */
+    /* denoising of the finished frame (SVGF or a-trous, DENOISE.md): a layer of its own, never read by an estimator */
     struct denoise_settings denoise;
 };
 
