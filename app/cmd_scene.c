@@ -110,7 +110,7 @@ static int scene_export_mesh(int argc, char **argv)
     int parsed = cli_parse_options("scene export", n, rest, &o, msg);
     free(rest);
     if (parsed != 0) {
-        cli_error("scene export --mesh: %s", msg);
+        cli_error("%s%s", strncmp(msg, "scene export: ", 14) ? "scene export --mesh: " : "", msg);
         return EXIT_USAGE;
     }
     if (!name || !o.out) {
@@ -189,10 +189,15 @@ static int scene_export(int argc, char **argv)
 
 int cmd_scene(int argc, char **argv)
 {
-    if (argc < 1 || !strcmp(argv[0], "--help") || !strcmp(argv[0], "-h")) {
-        scene_usage(argc < 1 ? stderr : stdout);
-        return argc < 1 ? EXIT_USAGE : 0;
+    if (argc < 1) {
+        scene_usage(stderr);
+        return EXIT_USAGE;
     }
+    for (int i = 0; i < argc; i++) /* scene --help, scene info --help, scene export NAME --mesh -h, ... */
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            scene_usage(stdout);
+            return 0;
+        }
     if (!strcmp(argv[0], "info") && argc >= 2 && argv[1][0] != '-')
         return scene_info(argc - 1, argv + 1);
     if (!strcmp(argv[0], "export"))

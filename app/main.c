@@ -24,11 +24,24 @@ static void usage(FILE *out)
             "  scene       scene info NAME|FILE; scene export NAME --out DIR (restir scene --help)\n"
             "  view        an interactive window rendering frame after frame (restir view --help)\n"
             "  job         job K of a plan folder (study, reference, compare, evaluate --plan DIR): restir job DIR K\n"
-            "restir --version: the version, the commit it was built from and the build type\n");
+            "restir help COMMAND: what restir COMMAND --help prints\n"
+            "restir --version: the version, the commit it was built from and the build type\n"
+            "Progress goes to stderr: a bar on a terminal, else a line at most every %.0f s (the environment's\n"
+            "RESTIR_PROGRESS_SECONDS sets the interval; off: none).\n",
+            PROGRESS_LINE_SECONDS);
 }
 
-static int cmd_list(void)
+static int cmd_list(int argc, char **argv)
 {
+    if (argc == 1 && (!strcmp(argv[0], "--help") || !strcmp(argv[0], "-h"))) {
+        printf("usage: restir list\nPrints the built-in scenes and the registered methods, one per line:\n"
+               "scene NAME<tab>description, then method NAME<tab>description.\n");
+        return 0;
+    }
+    if (argc > 0) {
+        cli_error("list takes no arguments, got '%s'", argv[0]);
+        return EXIT_USAGE;
+    }
     for (int i = 0; scene_builtin_names[i]; i++)
         printf("scene %s\t%s\n", scene_builtin_names[i], scene_builtin_descriptions[i]);
     for (int k = 0; k < method_count(); k++)
@@ -42,9 +55,19 @@ int main(int argc, char **argv)
         usage(stderr);
         return EXIT_USAGE;
     }
+    static char help_flag[] = "--help";
+    char *help_argv[] = {argv[0], NULL, help_flag, NULL};
+    if (argc == 3 && !strcmp(argv[1], "help")) { /* restir help CMD: restir CMD --help */
+        help_argv[1] = argv[2];
+        argc = 3;
+        argv = help_argv;
+    } else if (argc > 3 && !strcmp(argv[1], "help")) {
+        cli_error("usage: restir help COMMAND");
+        return EXIT_USAGE;
+    }
     const char *cmd = argv[1];
     if (!strcmp(cmd, "list"))
-        return cmd_list();
+        return cmd_list(argc - 2, argv + 2);
     if (!strcmp(cmd, "render"))
         return cmd_render(argc - 2, argv + 2);
     if (!strcmp(cmd, "reference"))

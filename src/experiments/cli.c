@@ -46,6 +46,25 @@ int cli_parse_int(const char *opt, const char *s, long long lo, long long hi, lo
     return 0;
 }
 
+int cli_edit_distance(const char *a, const char *b)
+{
+    int row[65];
+    const int na = (int)strnlen(a, 64), nb = (int)strnlen(b, 64);
+    for (int j = 0; j <= nb; j++)
+        row[j] = j;
+    for (int i = 1; i <= na; i++) {
+        int diag = row[0]; /* row[j - 1] of the line above */
+        row[0] = i;
+        for (int j = 1; j <= nb; j++) {
+            const int up = row[j], sub = diag + (a[i - 1] != b[j - 1]);
+            const int del = up + 1, ins = row[j - 1] + 1;
+            row[j] = sub < del ? (sub < ins ? sub : ins) : (del < ins ? del : ins);
+            diag = up;
+        }
+    }
+    return row[nb];
+}
+
 int cli_parse_res(const char *s, int *w, int *h, char *msg)
 {
     long long a, b;
@@ -89,12 +108,42 @@ int cli_load_reference(const char *path, int width, int height, float **ref, cha
     return 0;
 }
 
+/* RESTIR_PROGRESS_SECONDS: seconds between progress lines when stderr is no terminal; "off" or a
+ * negative number: none. Default PROGRESS_LINE_SECONDS. */
+static double progress_interval(void)
+{
+    const char *e = getenv("RESTIR_PROGRESS_SECONDS");
+    if (!e || !*e)
+        return PROGRESS_LINE_SECONDS;
+    if (!strcmp(e, "off"))
+        return -1.0;
+    char *end = NULL;
+    const double s = strtod(e, &end);
+    return end != e && *end == '\0' && s == s ? s : PROGRESS_LINE_SECONDS;
+}
+
+/* One line of progress for a log: "restir: LABEL: DONE/TOTAL (P%), Es elapsed, ETA Ts". */
+static void progress_line(struct progress *pg, int done, double elapsed)
+{
+    const double eta = done > 0 ? elapsed * (pg->total - done) / done : 0.0;
+    fprintf(stderr, "restir: %s: %d/%d (%.0f%%), %.1fs elapsed, ETA %.1fs\n", pg->label, done, pg->total,
+            pg->total > 0 ? 100.0 * done / pg->total : 100.0, elapsed, eta);
+    fflush(stderr);
+    pg->printed = done;
+    pg->t_printed = elapsed;
+}
+
 void progress_begin(struct progress *pg, const char *label, int total)
 {
-    pg->enabled = isatty(STDERR_FILENO);
+    pg->tty = isatty(STDERR_FILENO);
+    pg->interval = pg->tty ? 0.0 : progress_interval();
+    pg->enabled = pg->tty || pg->interval >= 0.0;
     pg->total = total;
     pg->t0 = omp_get_wtime();
     pg->label = label;
+    pg->done = 0;
+    pg->printed = 0;
+    pg->t_printed = 0.0;
     progress_update(pg, 0);
 }
 
@@ -102,6 +151,13 @@ void progress_update(struct progress *pg, int done)
 {
     if (!pg->enabled)
         return;
+    pg->done = done;
+    if (!pg->tty) { /* a log: a line at most every interval seconds, none before the first step */
+        const double elapsed = omp_get_wtime() - pg->t0;
+        if (done > pg->printed && elapsed - pg->t_printed >= pg->interval)
+            progress_line(pg, done, elapsed);
+        return;
+    }
     const int width = 30;
     int filled = pg->total > 0 ? width * done / pg->total : width;
     double elapsed = omp_get_wtime() - pg->t0;
@@ -117,8 +173,10 @@ void progress_update(struct progress *pg, int done)
 
 void progress_end(struct progress *pg)
 {
-    if (pg->enabled)
+    if (pg->enabled && pg->tty)
         fputc('\n', stderr);
+    else if (pg->enabled && pg->printed > 0 && pg->done > pg->printed) /* a log that has lines: the last */
+        progress_line(pg, pg->done, omp_get_wtime() - pg->t0);
 }
 
 int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *msg)

@@ -22,6 +22,9 @@ void cli_error(const char *fmt, ...)
 #endif
     ;
 
+/* The Levenshtein distance of a and b (insertions, deletions, substitutions), over at most 64
+ * characters of each: how far a misspelt option is from a known one. */
+int cli_edit_distance(const char *a, const char *b);
 /* Parses "WxH" into width/height. Returns 0, or -1 with msg. */
 int cli_parse_res(const char *s, int *w, int *h, char *msg);
 /* Parses a whole number in [lo, hi] for option `opt`. Returns 0, or -1 with msg. */
@@ -55,11 +58,21 @@ int cli_scene_load(const struct render_params *p, const char *env, const char *n
 /* Loads a reference EXR and checks it has the render size. Returns 0, or -1 with msg. */
 int cli_load_reference(const char *path, int width, int height, float **ref, char *msg);
 
-/* Progress bar with ETA on stderr when it is a terminal; silent otherwise. */
+/* Progress on stderr: a bar with ETA, redrawn in place, when stderr is a terminal; otherwise (a log
+ * file, a pipe, a cluster job's output) a line "restir: LABEL: DONE/TOTAL (P%), Es elapsed, ETA Ts"
+ * at most every PROGRESS_LINE_SECONDS seconds, none before the first step is done, and one for the
+ * last step at progress_end when an earlier one was printed (a short run stays silent). The
+ * environment's RESTIR_PROGRESS_SECONDS sets that interval (0: a line per step; off or negative:
+ * no lines). */
+#define PROGRESS_LINE_SECONDS 10.0
 struct progress {
     int enabled;
-    int total;
-    double t0;
+    int tty;          /* the bar (1) or lines (0) */
+    int total, done;  /* steps in all, steps done at the last update */
+    int printed;      /* lines: the steps the last line counted */
+    double t0;        /* omp_get_wtime() at progress_begin */
+    double interval;  /* lines: the least seconds between two */
+    double t_printed; /* lines: seconds after t0 of the last line */
     const char *label;
 };
 void progress_begin(struct progress *pg, const char *label, int total);

@@ -53,7 +53,7 @@ int evaluate_parse(int argc, char **argv, struct eval_options *o, const char **d
     }
     struct cli_options c;
     if (cli_parse_options("evaluate", n, options, &c, msg) != 0) {
-        cli_error("evaluate: %s (restir evaluate --help)", msg);
+        cli_error("%s%s (restir evaluate --help)", strncmp(msg, "evaluate: ", 10) ? "evaluate: " : "", msg);
         return EXIT_USAGE;
     }
     if (help)

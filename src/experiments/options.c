@@ -111,17 +111,19 @@ enum opt_kind {
     OPT_SECONDS,  /* a double in [lo, hi] */
     OPT_POSITIVE, /* a double in (0, hi] */
     OPT_RES,      /* WxH into params.width, params.height */
-    OPT_CAMERA,   /* static | path, or (render, view) a camera file */
+    OPT_CAMERA,   /* static | path, or (render) a camera file */
     OPT_NAMES,    /* one of names[]: the int field gets its index */
     OPT_SET,      /* key=value of the settings table (params.c) */
     OPT_SETTING,  /* the value of the setting named as the option (--denoise X is --set denoise=X) */
     OPT_PARAMS,   /* a summary.json or settings file */
 };
 
-/* One row per option: everything about it is said here, once. commands lists the subcommands
- * that take it (" render compare "), NULL: every one; a subcommand may have rows of its own with
- * other ranges or defaults, and the first row that matches wins. def is the default as the option
- * would spell it (NULL: the field's zero, or what cli_parse_options sets before the table). */
+/* One row per option and command: everything about it is said here, once. commands lists the
+ * subcommands that read it (" render compare "; "scene info" and "scene export" are the two forms
+ * of `restir scene` that take options), ALL: every one but evaluate. Each command accepts only the
+ * options it reads; rows of one option differ in range, default or help. The first row that matches
+ * wins. def is the default as the option would spell it (NULL: the field's zero, or what
+ * cli_parse_options sets before the table). */
 struct opt_def {
     const char *name;
     const char *commands;
@@ -137,9 +139,14 @@ struct opt_def {
 
 #define O(field) offsetof(struct cli_options, field)
 #define NO_GIVEN ((size_t)-1)
-#define ALL NULL /* every command but evaluate */
+#define ALL NULL /* every command but evaluate: --help, -h, --env and --set only */
 #define EVAL " evaluate "
-#define NOT_RENDER_VIEW " study reference compare scene info "
+#define RENDERING " render reference compare study view " /* the commands that render a scene */
+#define PLANNED " reference compare study "              /* the commands that --plan splits into jobs */
+
+/* The commands that read options through the table, in the order messages name them. */
+static const char *const table_commands[] = {"render",     "reference",    "compare",  "study", "view",
+                                             "scene info", "scene export", "evaluate", NULL};
 
 static const char *const save_names[] = {"last", "all", NULL};
 static const char *const hard_neighbor_names[] = {"valid", "all", NULL}; /* enum restir_hard_neighbors */
@@ -151,8 +158,8 @@ static const struct opt_def option_table[] = {
     {"--frames", EVAL, OPT_INT, O(frames), 4, 100000, O(frames_given), NULL, "N",
      "measured frames instead of the paper's (000: 16 after the warm-up; 004: 50; 002: 16)", NULL},
     {"--warmup", EVAL, OPT_INT, O(warmup), 1, 100000, NO_GIVEN, NULL, "N", "000: warm-up frames instead of 40", NULL},
-    {"--ref-spp", EVAL, OPT_INT, O(ref_spp), 1, 1 << 24, NO_GIVEN, NULL, "N", "reference paths per pixel instead of 1024",
-     NULL},
+    {"--ref-spp", EVAL, OPT_INT, O(ref_spp), 1, 1 << 24, NO_GIVEN, NULL, "N",
+     "reference paths per pixel instead of 1024", NULL},
     {"--threads", EVAL, OPT_INT, O(params.threads), 1, 4096, NO_GIVEN, NULL, "N", "threads per job [every core]", NULL},
     {"--scenes", EVAL, OPT_TEXT, O(scenes), 0, 0, NO_GIVEN, NULL, "LIST", "scenes instead of each paper's", NULL},
     {"--configs", EVAL, OPT_TEXT, O(configs), 0, 0, NO_GIVEN, NULL, "LIST", "000: a subset of its configurations",
@@ -174,66 +181,86 @@ static const struct opt_def option_table[] = {
     /* every other command's */
     {"--help", ALL, OPT_FLAG, O(help), 0, 0, NO_GIVEN, NULL, "", "print this help", NULL},
     {"-h", ALL, OPT_FLAG, O(help), 0, 0, NO_GIVEN, NULL, "", "the same", NULL},
-    {"--scene", ALL, OPT_TEXT, O(scene), 0, 0, NO_GIVEN, "many-lights", "NAME|FILE",
+    {"--scene", RENDERING, OPT_TEXT, O(scene), 0, 0, NO_GIVEN, "many-lights", "NAME|FILE",
      "a built-in scene (restir list) or a scene file (JSON, glTF, OBJ, ...)", NULL},
-    {"--method", ALL, OPT_TEXT, O(method), 0, 0, NO_GIVEN, NULL, "NAME", "a registered method (restir list)", NULL},
-    {"--methods", ALL, OPT_TEXT, O(methods), 0, 0, NO_GIVEN, NULL, "SPEC,SPEC,...",
+    {"--method", " render view ", OPT_TEXT, O(method), 0, 0, NO_GIVEN, NULL, "NAME",
+     "a registered method (restir list)", NULL},
+    {"--method", " reference ", OPT_TEXT, O(method), 0, 0, NO_GIVEN, NULL, "NAME",
+     "the method whose integrand the reference converges to (restir list)", NULL},
+    {"--method", " study ", OPT_TEXT, O(method), 0, 0, NO_GIVEN, NULL, "NAME",
+     "a method with spatial reuse from the selection pass (restir list)", NULL},
+    {"--methods", " compare ", OPT_TEXT, O(methods), 0, 0, NO_GIVEN, NULL, "SPEC,SPEC,...",
      "methods with their settings: name[:key=value]...", NULL},
-    {"--ref", ALL, OPT_TEXT, O(ref), 0, 0, NO_GIVEN, NULL, "FILE.exr", "the reference image to measure against", NULL},
-    {"--out", ALL, OPT_TEXT, O(out), 0, 0, NO_GIVEN, NULL, "DIR", "output folder (reference: FILE.exr)", NULL},
+    {"--ref", " render compare study ", OPT_TEXT, O(ref), 0, 0, NO_GIVEN, NULL, "FILE.exr",
+     "the reference image to measure against", NULL},
+    {"--out", " render ", OPT_TEXT, O(out), 0, 0, NO_GIVEN, NULL, "DIR", "output folder [out/SCENE-METHOD]", NULL},
+    {"--out", " reference ", OPT_TEXT, O(out), 0, 0, NO_GIVEN, NULL, "FILE.exr", "the reference image written", NULL},
+    {"--out", " compare ", OPT_TEXT, O(out), 0, 0, NO_GIVEN, NULL, "DIR", "output folder [out/compare-SCENE]", NULL},
+    {"--out", " study ", OPT_TEXT, O(out), 0, 0, NO_GIVEN, NULL, "DIR", "output folder", NULL},
+    {"--out", " view ", OPT_TEXT, O(out), 0, 0, NO_GIVEN, NULL, "DIR", "folder of screenshots and camera.json "
+     "[out/view-SCENE]", NULL},
+    {"--out", " scene export ", OPT_TEXT, O(out), 0, 0, NO_GIVEN, NULL, "DIR", "folder of the exported file", NULL},
     {"--env", ALL, OPT_TEXT, O(env), 0, 0, NO_GIVEN, NULL, "FILE|none",
      "an environment light replacing the scene's own (none: remove it)", NULL},
     {"--script", " view ", OPT_TEXT, O(script), 0, 0, NO_GIVEN, NULL, "FILE", "timed input events", NULL},
-    {"--res", ALL, OPT_RES, 0, 0, 0, O(res_given), "640x360", "WxH", "image size in pixels", NULL},
+    {"--res", " study ", OPT_RES, 0, 0, 0, O(res_given), "320x180", "WxH", "image size in pixels", NULL},
+    {"--res", RENDERING, OPT_RES, 0, 0, 0, O(res_given), "640x360", "WxH", "image size in pixels", NULL},
     {"--frames", " study ", OPT_INT, O(frames), 1, 100000, O(frames_given), "16", "N",
      "frames per run (measured after the warm-up)", NULL},
-    {"--frames", ALL, OPT_INT, O(frames), 1, 100000, O(frames_given), "1", "N", "frames to render", NULL},
-    {"--frame", ALL, OPT_INT, O(frame), 0, 100000, NO_GIVEN, NULL, "F", "reference: the camera of frame F", NULL},
-    {"--spp", ALL, OPT_INT, O(params.spp), 1, 1 << 20, O(spp_given), NULL, "N", "paths per pixel (pt, gpt, reference)",
-     NULL},
-    {"--ref-spp", ALL, OPT_INT, O(ref_spp), 1, 1 << 20, NO_GIVEN, "1024", "N",
+    {"--frames", " compare ", OPT_INT, O(frames), 1, 100000, O(frames_given), "1", "N",
+     "frames per run (the last is measured)", NULL},
+    {"--frames", " render ", OPT_INT, O(frames), 1, 100000, O(frames_given), "1", "N", "frames to render", NULL},
+    {"--frame", " reference ", OPT_INT, O(frame), 0, 100000, NO_GIVEN, NULL, "F", "the camera of frame F", NULL},
+    {"--spp", " reference ", OPT_INT, O(params.spp), 1, 1 << 20, O(spp_given), NULL, "N",
+     "paths per pixel (with --target-relmse: the most) [1024]", NULL},
+    {"--spp", " render compare view ", OPT_INT, O(params.spp), 1, 1 << 20, O(spp_given), NULL, "N",
+     "paths per pixel of pt and gpt (ReSTIR methods render 1 per frame) [1]", NULL},
+    {"--ref-spp", " compare study ", OPT_INT, O(ref_spp), 1, 1 << 20, NO_GIVEN, "1024", "N",
      "paths per pixel of a reference rendered when --ref is absent", NULL},
-    {"--seed", ALL, OPT_U64, O(params.seed), 0, 1ll << 62, NO_GIVEN, NULL, "N", "the seed of every random stream",
+    {"--seed", RENDERING, OPT_U64, O(params.seed), 0, 1ll << 62, NO_GIVEN, NULL, "N", "the seed of every random stream",
      NULL},
-    {"--max-memory", ALL, OPT_LLONG, O(max_memory_mb), 1, 1ll << 40, NO_GIVEN, NULL, "MB",
+    {"--max-memory", RENDERING, OPT_LLONG, O(max_memory_mb), 1, 1ll << 40, NO_GIVEN, NULL, "MB",
      "refuse a renderer estimated above this (default: the memory the system has)", NULL},
-    {"--threads", ALL, OPT_INT, O(params.threads), 0, 1024, NO_GIVEN, "0", "N", "threads (0: every core)", NULL},
-    {"--camera", ALL, OPT_CAMERA, 0, 0, 0, NO_GIVEN, "static", "static|path|FILE",
-     "a still camera, the scene's camera path, or (render, view) a camera file of one camera per frame", NULL},
-    {"--save", ALL, OPT_NAMES, O(save_all), 0, 0, NO_GIVEN, "all", "all|last", "render: write every frame or the last",
+    {"--threads", RENDERING, OPT_INT, O(params.threads), 0, 1024, NO_GIVEN, "0", "N", "threads (0: every core)", NULL},
+    {"--camera", " render ", OPT_CAMERA, 0, 0, 0, NO_GIVEN, "static", "static|path|FILE",
+     "a still camera, the scene's camera path, or a camera file of one camera per frame (restir view records them)",
+     NULL},
+    {"--camera", " reference compare ", OPT_CAMERA, 0, 0, 0, NO_GIVEN, "static", "static|path",
+     "a still camera or the scene's camera path", NULL},
+    {"--save", " render ", OPT_NAMES, O(save_all), 0, 0, NO_GIVEN, "all", "all|last", "write every frame or the last",
      save_names},
-    {"--configs", ALL, OPT_TEXT, O(configs), 0, 0, NO_GIVEN, NULL, "LIST", "study: configurations to run", NULL},
-    {"--radii", ALL, OPT_TEXT, O(radii), 0, 0, NO_GIVEN, NULL, "LIST", "study: radii of the radius sweep", NULL},
+    {"--configs", " study ", OPT_TEXT, O(configs), 0, 0, NO_GIVEN, NULL, "LIST", "configurations to run", NULL},
+    {"--radii", " study ", OPT_TEXT, O(radii), 0, 0, NO_GIVEN, NULL, "LIST", "radii of the radius sweep", NULL},
     {"--runs", " compare ", OPT_INT, O(runs), 1, 100000, NO_GIVEN, "1", "N", "independently seeded runs per spec",
      NULL},
-    {"--runs", ALL, OPT_INT, O(runs), 2, 100000, NO_GIVEN, "8", "N", "independently seeded runs per configuration",
-     NULL},
+    {"--runs", " study ", OPT_INT, O(runs), 2, 100000, NO_GIVEN, "8", "N",
+     "independently seeded runs per configuration", NULL},
     {"--ref-every", " compare ", OPT_INT, O(ref_every), 1, 100000, NO_GIVEN, NULL, "K",
      "also measure frames K-1, 2K-1, ... against references of their own", NULL},
-    {"--warmup", ALL, OPT_INT, O(warmup), 0, 100000, NO_GIVEN, "40", "N", "study: frames before measuring (000 Sec. 7)",
+    {"--warmup", " study ", OPT_INT, O(warmup), 0, 100000, NO_GIVEN, "40", "N", "frames before measuring (000 Sec. 7)",
      NULL},
-    {"--hard-neighbors", ALL, OPT_NAMES, O(hard_neighbors), 0, 0, NO_GIVEN, "valid", "valid|all",
-     "study: the neighbors 000's hard-pixel ratio counts within 30 px: valid (pixels with a surface) or all "
+    {"--hard-neighbors", " study ", OPT_NAMES, O(hard_neighbors), 0, 0, NO_GIVEN, "valid", "valid|all",
+     "the neighbors 000's hard-pixel ratio counts within 30 px: valid (pixels with a surface) or all "
      "(000 Sec. 7's wording: the sky counts as failing Eq. 7, so leaves against it are hard)",
      hard_neighbor_names},
     {"--checkpoint-every", " reference ", OPT_SECONDS, O(checkpoint_every), 0, 10000000, NO_GIVEN, NULL, "SECONDS",
      "save the running mean this often (0: after every chunk; default: never)", NULL},
     {"--target-relmse", " reference ", OPT_POSITIVE, O(target_relmse), 0, 1, NO_GIVEN, NULL, "X",
      "stop once the image's estimated relMSE is at most X (--spp: the most samples; default 65536)", NULL},
-    {"--plan", NOT_RENDER_VIEW, OPT_TEXT, O(plan), 0, 0, NO_GIVEN, NULL, "DIR",
+    {"--plan", PLANNED, OPT_TEXT, O(plan), 0, 0, NO_GIVEN, NULL, "DIR",
      "write the work as independent jobs into DIR instead of running it", NULL},
-    {"--merge", NOT_RENDER_VIEW, OPT_TEXT, O(merge), 0, 0, NO_GIVEN, NULL, "DIR", "merge the finished jobs of plan DIR",
-     NULL},
-    {"--shards", " reference ", OPT_INT, O(shards), 1, 4096, NO_GIVEN, NULL, "N", "with --plan: jobs the samples are split into",
-     NULL},
+    {"--merge", PLANNED, OPT_TEXT, O(merge), 0, 0, NO_GIVEN, NULL, "DIR", "merge the finished jobs of plan DIR", NULL},
+    {"--shards", " reference ", OPT_INT, O(shards), 1, 4096, NO_GIVEN, NULL, "N",
+     "with --plan: jobs the samples are split into", NULL},
     {"--params", " render ", OPT_PARAMS, 0, 0, 0, NO_GIVEN, NULL, "FILE",
      "a summary.json (runs it again) or a JSON object of --set keys", NULL},
     {"--denoise", " render compare study view ", OPT_SETTING, 0, 0, 0, NO_GIVEN, NULL, "off|svgf|atrous",
      "denoise each frame into a layer of its own, BIASED by nature (--set denoise=...; see denoise.* there)", NULL},
-    {"--set", ALL, OPT_SET, 0, 0, 0, NO_GIVEN, NULL, "key=value", "one setting (restir render --help lists them)", NULL},
-    {"--equal-time", ALL, OPT_FLAG, O(equal_time), 0, 0, NO_GIVEN, NULL, "",
-     "compare: give every method the first stateful method's time per frame", NULL},
-    {"--report", ALL, OPT_FLAG, O(report), 0, 0, NO_GIVEN, NULL, "", "also write DIR/index.html", NULL},
+    {"--set", ALL, OPT_SET, 0, 0, 0, NO_GIVEN, NULL, "key=value", "one setting (restir render --help lists them)",
+     NULL},
+    {"--equal-time", " compare ", OPT_FLAG, O(equal_time), 0, 0, NO_GIVEN, NULL, "",
+     "give every method the first stateful method's time per frame", NULL},
+    {"--report", " compare study ", OPT_FLAG, O(report), 0, 0, NO_GIVEN, NULL, "", "also write DIR/index.html", NULL},
 };
 
 /* Whether row d applies to `command`. */
@@ -262,10 +289,51 @@ static const struct opt_def *opt_find(const char *command, const char *name, int
     return NULL;
 }
 
-/* Applies value val of row d to o. Returns 0, or -1 with msg. */
 /* The JSON key of an option: its name without the leading dashes. */
 static const char *opt_key(const char *name) { return name + (name[1] == '-' ? 2 : 1); }
 
+/* The option of `command` nearest to `name` by edit distance when it is close (one edit, two for
+ * names of 6 characters or more; a wrong name, not a short different one), else NULL. */
+static const char *opt_nearest(const char *command, const char *name)
+{
+    const char *key = opt_key(name), *best = NULL;
+    const int len = (int)strlen(key), most = len >= 6 ? 2 : 1;
+    int best_d = most + 1, known;
+    for (size_t k = 0; k < sizeof option_table / sizeof option_table[0]; k++) {
+        const struct opt_def *d = &option_table[k];
+        if (d->name[1] != '-' || opt_find(command, d->name, &known) != d)
+            continue;
+        const int dist = cli_edit_distance(key, opt_key(d->name));
+        if (dist < best_d && dist < len) {
+            best_d = dist;
+            best = d->name;
+        }
+    }
+    return best;
+}
+
+/* msg for `name`, which `command` does not read: the commands that do (an option of another
+ * command is refused, not ignored), and the nearest option of this one. */
+static void opt_refusal(const char *command, const char *name, char *msg)
+{
+    char owners[256] = "", hint[96] = "";
+    size_t used = 0;
+    int known;
+    for (int c = 0; table_commands[c]; c++)
+        if (opt_find(table_commands[c], name, &known) && used < sizeof owners)
+            used += (size_t)snprintf(owners + used, sizeof owners - used, "%s%s", used ? ", " : "",
+                                     table_commands[c]);
+    const char *near = opt_nearest(command, name);
+    if (near)
+        snprintf(hint, sizeof hint, "; did you mean %s?", near);
+    if (owners[0])
+        snprintf(msg, RESTIR_MSG_LEN, "%s: option '%.60s' is not read by %s (it is an option of: %s)%s", command,
+                 name, command, owners, hint);
+    else
+        snprintf(msg, RESTIR_MSG_LEN, "%s: unknown option '%.100s'%s", command, name, hint);
+}
+
+/* Applies value val of row d to o. Returns 0, or -1 with msg. */
 static int opt_apply(const struct opt_def *d, const char *command, const char *val, struct cli_options *o, char *msg)
 {
     char *base = (char *)o;
@@ -321,7 +389,7 @@ static int opt_apply(const struct opt_def *d, const char *command, const char *v
             o->params.camera_path = 0;
         else if (!strcmp(val, "path"))
             o->params.camera_path = 1;
-        else if (!strcmp(command, "render") || !strcmp(command, "view"))
+        else if (!strcmp(command, "render"))
             o->camera_file = val; /* a camera file: one camera per frame */
         else {
             snprintf(msg, RESTIR_MSG_LEN, "--camera expects static or path, got '%s'", val);
@@ -393,14 +461,12 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
         }
         int known;
         const struct opt_def *d = opt_find(command, a, &known);
-        if (!d || d->kind != OPT_FLAG) { /* an option without its value is named before an unknown one */
-            if (need_value(i, argc, argv, msg) != 0)
-                return -1;
-        }
         if (!d) {
-            snprintf(msg, RESTIR_MSG_LEN, "%s: unknown option '%s'", command, a);
+            opt_refusal(command, a, msg);
             return -1;
         }
+        if (d->kind != OPT_FLAG && need_value(i, argc, argv, msg) != 0)
+            return -1;
         const char *val = d->kind == OPT_FLAG ? NULL : argv[++i];
         if (opt_apply(d, command, val, o, msg) != 0)
             return -1;
@@ -412,6 +478,9 @@ int cli_option_takes_value(const char *command, const char *name)
 {
     int known;
     const struct opt_def *d = opt_find(command, name, &known);
+    for (size_t k = 0; !d && known && k < sizeof option_table / sizeof option_table[0]; k++)
+        if (!strcmp(option_table[k].name, name)) /* another command's: its value goes with it to the refusal */
+            d = &option_table[k];
     return d && d->kind != OPT_FLAG;
 }
 
@@ -450,7 +519,10 @@ cJSON *cli_options_describe(const char *command, int argc, char **argv, char *ms
             continue;
         }
         if (!d || (d->kind != OPT_FLAG && i + 1 >= argc)) {
-            snprintf(msg, RESTIR_MSG_LEN, "%s: %s '%s'", command, d ? "no value for" : "unknown option", a);
+            if (d)
+                snprintf(msg, RESTIR_MSG_LEN, "%s: no value for '%s'", command, a);
+            else
+                opt_refusal(command, a, msg);
             cJSON_Delete(j);
             cJSON_Delete(set);
             cJSON_Delete(pos);

@@ -62,7 +62,11 @@ void cli_options_defaults(const char *command, struct cli_options *o);
  * bad option or value. */
 int cli_parse_options(const char *command, int argc, char **argv, struct cli_options *o, char *msg);
 /* 1 when `name` is an option of `command` that takes a value (the next argument is not a
- * positional one). */
+ * positional one), or, when `command` does not read it, an option of another command that takes a
+ * value there (so that the option with its value reaches cli_parse_options, which refuses it). Each
+ * command accepts only the options that it reads: cli_parse_options refuses another command's
+ * option by name, naming the commands that read it, and suggests the nearest option of `command`
+ * for a misspelt one. */
 int cli_option_takes_value(const char *command, const char *name);
 /* A command's arguments as a JSON description, through the option table: an object whose keys are
  * option names without "--" with typed values (numbers for counts and seconds, true for flags,

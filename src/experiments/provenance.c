@@ -8,6 +8,8 @@
 #include <string.h>
 #include <time.h>
 
+#include <restir/version.h>
+
 #include "core/check.h"
 #include "experiments/report_commit.h"
 
@@ -60,6 +62,7 @@ int provenance_same_build(const struct provenance *a, const struct provenance *b
 cJSON *provenance_to_json(const struct provenance *p)
 {
     cJSON *j = cJSON_CreateObject();
+    cJSON_AddStringToObject(j, "version", RESTIR_VERSION_STRING); /* restir --version's; not read back */
     cJSON_AddStringToObject(j, "commit", p->commit);
     cJSON_AddBoolToObject(j, "dirty", p->dirty);
     cJSON_AddStringToObject(j, "build_type", p->build_type);

@@ -31,8 +31,8 @@ void provenance_build_id(const struct provenance *p, char *out, size_t len);
 /* 1 when a and b are the same build (commit and dirty flag), else 0. */
 int provenance_same_build(const struct provenance *a, const struct provenance *b);
 
-/* A new JSON object {"commit", "dirty", "build_type", "cpu", "threads", "date"} (the caller owns
- * it; cJSON_Delete). */
+/* A new JSON object {"version" (this binary's, restir --version), "commit", "dirty", "build_type",
+ * "cpu", "threads", "date"} (the caller owns it; cJSON_Delete). */
 struct cJSON *provenance_to_json(const struct provenance *p);
 /* Reads such an object: commit is required, the other keys default to unknown / 0 when absent.
  * Returns 0, or -1 with msg (RESTIR_MSG_LEN) when j is not an object, commit is missing or a

@@ -392,6 +392,87 @@ static void check_list_and_help(void)
     EXPECT(strstr(line, "BIASED") != NULL, "render --help does not call 1/M BIASED: '%s'", line);
 }
 
+/* Each command accepts only the options it reads: another command's option is refused (exit 2,
+ * nothing written) naming the option, the command and the commands that read it; a misspelt one
+ * gets the nearest option of the command; `restir help CMD` prints what `restir CMD --help` prints,
+ * and no --help lists an option its command refuses. */
+static void check_option_scope(void)
+{
+    static const char *const refused[][3] = {
+        {"render", "--report", "render --scene cornell --method pt --res 16x16 --report --out '%1$s'"},
+        {"render", "--configs", "render --scene cornell --method pt --res 16x16 --configs bitterli --out '%1$s'"},
+        {"render", "--equal-time", "render --scene cornell --method pt --res 16x16 --equal-time --out '%1$s'"},
+        {"render", "--methods", "render --scene cornell --method pt --res 16x16 --methods pt,restir-di --out '%1$s'"},
+        {"reference", "--frames", "reference --scene cornell --method pt --res 16x16 --frames 4 --out '%1$s/r.exr'"},
+        {"compare", "--method", "compare --scene cornell --methods pt --method pt --res 16x16 --out '%1$s'"},
+        {"study", "--camera", "study --scene cornell --method restir-di --configs fast --camera path --out '%1$s'"},
+        {"view", "--frames", "view --scene cornell --res 16x16 --frames 3 --out '%1$s'"},
+        {"scene info", "--res", "scene info cornell --res 16x16"},
+        {"evaluate", "--scene", "evaluate 004 --res 64x64 --scene cornell --out '%1$s'"},
+    };
+    char what[128], need[128], out[CLI_ERR_MAX], err[CLI_ERR_MAX], args[256];
+    for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
+        snprintf(what, sizeof what, "%s %s refused", refused[k][0], refused[k][1]);
+        snprintf(need, sizeof need, "option '%s' is not read by %s (it is an option of: ", refused[k][1],
+                 refused[k][0]);
+        expect_failure(what, refused[k][2], 2, need, NULL);
+    }
+    expect_failure("misspelt option", "render --scen cornell --method pt --res 16x16 --out '%1$s'", 2,
+                   "unknown option '--scen'", "did you mean --scene?");
+    expect_failure("another command's option, near one of this", "render --scene cornell --methods pt --out '%1$s'",
+                   2, "is not read by render", "did you mean --method?");
+    static const char *const commands[] = {"render", "reference", "compare", "study", "view", "evaluate", "scene",
+                                           "job", "list"};
+    for (size_t k = 0; k < sizeof commands / sizeof commands[0]; k++) {
+        static char help[CLI_ERR_MAX];
+        snprintf(args, sizeof args, "%s --help", commands[k]);
+        const int rc = cli_run_capture(tmp, args, help, err);
+        snprintf(args, sizeof args, "help %s", commands[k]);
+        const int rc_help = cli_run_capture(tmp, args, out, err);
+        EXPECT(rc == 0 && rc_help == 0 && help[0] && !strcmp(help, out),
+               "restir help %s (exit %d) does not print what restir %s --help (exit %d) prints", commands[k], rc_help,
+               commands[k], rc);
+    }
+    for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
+        snprintf(args, sizeof args, "help %s", refused[k][0]);
+        cli_run_capture(tmp, args, out, err);
+        const char *opts = strstr(out, "Options of restir");
+        snprintf(need, sizeof need, "\n  %s ", refused[k][1]);
+        EXPECT(!opts || !strstr(opts, need), "restir %s --help lists %s, which it refuses", refused[k][0],
+               refused[k][1]);
+    }
+    EXPECT(cli_run(tmp, "help no-such-command", err) == 2, "restir help of an unknown command must exit 2");
+}
+
+/* Progress when stderr is no terminal (a log file): a line per step with RESTIR_PROGRESS_SECONDS=0,
+ * "restir: LABEL: DONE/TOTAL (P%), Es elapsed, ETA Ts"; none for a run shorter than the default 10 s
+ * and none with off. */
+static void check_progress_lines(void)
+{
+    char args[2 * CLI_PATH_MAX], err[CLI_ERR_MAX];
+    const char *const values[] = {"0", NULL, "off"};
+    for (int k = 0; k < 3; k++) {
+        if (values[k])
+            setenv("RESTIR_PROGRESS_SECONDS", values[k], 1);
+        else
+            unsetenv("RESTIR_PROGRESS_SECONDS");
+        snprintf(args, sizeof args, "render --scene cornell --method pt --res 16x16 --frames 3 --out '%s/progress-%d'",
+                 tmp, k);
+        const int rc = cli_run(tmp, args, err);
+        const int lines = strstr(err, "restir: pt: 1/3 (33%), ") && strstr(err, "restir: pt: 3/3 (100%), ") &&
+                          strstr(err, "s elapsed, ETA ");
+        printf("[progress, RESTIR_PROGRESS_SECONDS=%s] exit %d, stderr: %s", values[k] ? values[k] : "(unset)", rc,
+               err[0] ? err : "(nothing)\n");
+        EXPECT(rc == 0, "render with stderr to a file exited %d: %s", rc, err);
+        if (k == 0)
+            EXPECT(lines, "RESTIR_PROGRESS_SECONDS=0: no progress line per frame on stderr: %s", err);
+        else
+            EXPECT(!strstr(err, "elapsed"), "a short render printed progress (RESTIR_PROGRESS_SECONDS=%s): %s",
+                   values[k] ? values[k] : "unset", err);
+    }
+    unsetenv("RESTIR_PROGRESS_SECONDS");
+}
+
 /* Scene files: every command that takes --scene refuses a bad one before writing anything. */
 static void write_text(const char *path, const char *text)
 {
@@ -582,6 +663,8 @@ int main(void)
     check_partial_load();
     check_fuzz_regressions();
     check_list_and_help();
+    check_option_scope();
+    check_progress_lines();
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
     return test_finish();
 }
