@@ -9,9 +9,9 @@
 #    bad-input contract) passes.
 #  - The static and shared libraries define only restir_-prefixed global symbols (nm, nm -D).
 #  - The public headers compile as C++ (g++ -std=c++11 -Wall -Wextra -Wpedantic -Werror).
-#  - `cmake --install` of the full and clean builds gives packages that the examples (ris_1d,
-#    restir_di, poisson) build and run against through find_package(restir) and through
-#    pkg-config; examples/cuda is compiled with nvcc and run (its CPU half without a GPU) when nvcc
+#  - `cmake --install --prefix` of the full and clean builds, into a prefix other than the configured one, gives
+#    packages that the examples (ris_1d, restir_di, poisson) build and run against through find_package(restir)
+#    and through pkg-config; examples/cuda is compiled with nvcc and run (its CPU half without a GPU) when nvcc
 #    is on the PATH or in /usr/local/cuda/bin, and skipped with a message when not.
 set -euo pipefail
 src=${1:?usage: check_core.sh SRC}
@@ -24,13 +24,16 @@ fail() {
 }
 
 # build NAME ALLOWED_NEEDED CMAKE_ARGS...: configure, build and test one core-only build in
-# $work/NAME (prefix $work/NAME.prefix). ALLOWED_NEEDED: a regex of the shared libraries
-# librestir.so may need. PKG_CONFIG_LIBDIR in the environment is passed on to the configure step.
+# $work/NAME, configured for the prefix $work/NAME.configured but installed with `cmake --install --prefix` into
+# $work/NAME.prefix (as docs/API.md does), so that nothing installed may depend on the configured prefix
+# (restir.pc and restirConfig.cmake find theirs from where they lie). ALLOWED_NEEDED: a regex of the shared
+# libraries librestir.so may need. PKG_CONFIG_LIBDIR in the environment is passed on to the configure step.
 build() {
   local name=$1 allowed=$2 dir="$work/$1"
   shift 2
   cmake -S "$src" -B "$dir" -DRESTIR_BUILD_RENDERER=OFF -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXPORT_COMPILE_COMMANDS=ON \
-    -DCMAKE_INSTALL_PREFIX="$dir.prefix" "$@" > "$dir.log" 2>&1 || fail "the $name build does not configure:" "$dir.log"
+    -DCMAKE_INSTALL_PREFIX="$dir.configured" "$@" > "$dir.log" 2>&1 ||
+    fail "the $name build does not configure:" "$dir.log"
   cmake --build "$dir" -j 2 >> "$dir.log" 2>&1 || fail "the $name build does not build:" "$dir.log"
   local outside
   outside=$(grep -oE -- '-(I|isystem) ?[^ "]+' "$dir/compile_commands.json" | sed -E 's/^-(I|isystem) ?//' | sort -u |
@@ -42,7 +45,8 @@ build() {
   needed=$(readelf -d "$so" | sed -nE 's/.*NEEDED.*\[(.*)\]/\1/p' | grep -vE "^($allowed)" || true)
   [ -z "$needed" ] || fail "the $name build's $(basename "$so") needs $needed"
   (cd "$dir" && ctest --output-on-failure > "$dir.ctest.log" 2>&1) || fail "the $name build's tests fail:" "$dir.ctest.log"
-  cmake --install "$dir" > "$dir.install.log" 2>&1 || fail "cmake --install of the $name build failed:" "$dir.install.log"
+  cmake --install "$dir" --prefix "$dir.prefix" > "$dir.install.log" 2>&1 ||
+    fail "cmake --install of the $name build failed:" "$dir.install.log"
 }
 base='libc\.so|libm\.so|ld-linux'
 build full "$base|libgomp\.so|libfftw3\.so|libpthread\.so"
