@@ -247,7 +247,7 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     int rc = io_make_dirs(path, msg);
     if (rc == 0)
         rc = cli_write_frame(path, frames - 1, &r[0], msg);
-    if (rc == 0 && ref && g) /* issue 42: where the worst pairs of the gradient relMSE are */
+    if (rc == 0 && ref && g) /* where the gradient relMSE's worst 1% of pixel pairs are */
         rc = compare_write_worst_pairs(out_dir, c->dir, g->dx, g->dy, ref, p->width, p->height, COMPARE_GRAD_TRIM, msg);
     for (int k = 0; k < instances; k++)
         renderer_fini(&r[k]);

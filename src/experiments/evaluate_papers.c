@@ -12,7 +12,7 @@
 
 /* The papers' settings (read from the papers; docs/EVALUATION.md lists them with their sources). */
 #define EVAL_RUNS 4         /* independent runs per configuration: the issue's minimum for a spread */
-#define EVAL_002_RUNS 8     /* issue 42: 002's gradient errors had standard errors of 15-40% with 4 runs */
+#define EVAL_002_RUNS 8     /* measured: 002's gradient errors had standard errors of 15-40% with 4 runs */
 #define EVAL_REF_SPP 1024   /* paths per pixel of each comparison's reference */
 #define EVAL_000_WARMUP 40  /* 000 Sec. 7: 40 frames before measuring, static camera */
 #define EVAL_000_FRAMES 16  /* measured frames (000 does not say how many) */
@@ -134,12 +134,12 @@ const char *const eval_000_configs[] = {"bitterli",
                                         "compat-r10-k32", /* Figure 3's radii */
                                         "spatial-off",
                                         "bitterli-history-temporal",
-                                        "fast-history-temporal", /* issue 42: does spatial reuse itself help? */
+                                        "fast-history-temporal", /* does spatial reuse itself help? */
                                         NULL};
 
 const char *const eval_004_suffixes[EVAL_004_ROWS] = {
     "", ":spatial.reuse=spmis", ":spatial.reuse=spmis:spmis.search_score=compat",
-    /* issue 42's deciding rows: the own cell only (does the search cost SPMIS its overall loss?),
+    /* the rows that decide 004's claims here: the own cell only (does the search cost SPMIS its overall loss?),
      * and the search only where the own cell's confidence is low */
     ":spatial.reuse=spmis:spmis.search_steps=0", ":spatial.reuse=spmis:spmis.search=low-confidence"};
 
@@ -263,7 +263,7 @@ static void steps_002(const struct eval_options *o, const char *scene, struct ev
     add(s, "--methods");
     /* the L2 rows first: the report's crops are where the first two (ours and B.1) differ most; B.1
      * once (equal samples, not the paper's equal time) last, so that the paper's rows stay in place
-     * (issue 42: per sample ours is 1.1-2x better, at equal time against two averaged B.1 instances) */
+     * (measured: per sample ours is 1.1-2x better, at equal time against two averaged B.1 instances) */
     add(s, "grestir-pt,grad-after-restir:instances=2,area-restir:instances=4,gpt:spp=3,grestir-pt:recon=l1,"
            "grad-after-restir:instances=2:recon=l1,gpt:spp=3:recon=l1,grad-after-restir");
 }

@@ -518,7 +518,7 @@ static void paper_002(struct md_text *md, struct claims *cl, const struct eval_o
     const int once = csv_table_find(t, "grad-after-restir");
     claim(cl, "002", "gradient relMSE vs Gradient after ReSTIR x 1 (equal samples)", where,
           eval_change(d, me, once, "gradient_relmse"), "none (not in the paper)", NO_CLAIM, diff);
-    /* issue 42: the gradient claim again without the worst 1% of pairs and as
+    /* the gradient claim again without the worst 1% of pairs and as
      * MAPE, informational: the paper shows images only, and these say whether a
      * few pairs decide the relMSE verdict */
     static const char *const robust[2] = {"gradient relMSE trim 1%", "gradient MAPE"};
@@ -529,7 +529,7 @@ static void paper_002(struct md_text *md, struct claims *cl, const struct eval_o
             char what[128];
             snprintf(what, sizeof what, "%s vs %s", robust[m], vs_name[k]);
             claim(cl, "002", what, where, eval_change(d, me, vs[k], grad_col[m + 1][0]),
-                  "none (issue 42: the relMSE claim without its worst pairs)", NO_CLAIM, diff);
+                  "none (the relMSE claim without its worst pairs)", NO_CLAIM, diff);
         }
 }
 
