@@ -5,7 +5,9 @@
  *   w = exp(-|c_p - c_q|^2 / sigma_rt,i^2) exp(-|n_p - n_q|^2 / sigma_n^2) exp(-|x_p - x_q|^2 / sigma_x^2)
  * (Sec. 3, Eq. 4-6), with sigma_rt halved after each iteration (Sec. 3.1). No history: each frame
  * on its own. Scales, as our frames are HDR and our scenes of any size: sigma_rt is in units of the
- * frame's mean illumination luminance, sigma_x a fraction of the pixel's distance to the camera. */
+ * frame's mean illumination luminance, sigma_x a fraction of the pixel's distance to the camera.
+ * A tap counts only where its group (struct denoise_frame: used, and the same albedo channels
+ * demodulated) is the centre's. */
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
@@ -49,14 +51,14 @@ struct atrous_scales {
 /* One tap (weight hk) over pixels [lo, hi) of a row: p* the centre pixels' planes, q* the taps'
  * (restrict: they never alias the sums, so the pixel loop vectorises). */
 struct atrous_segment {
-    const float *restrict pz, *restrict pc[3], *restrict pn[3], *restrict px[3];
-    const float *restrict qu, *restrict qc[3], *restrict qn[3], *restrict qx[3];
+    const float *restrict pz, *restrict pg, *restrict pc[3], *restrict pn[3], *restrict px[3];
+    const float *restrict qg, *restrict qc[3], *restrict qn[3], *restrict qx[3];
 };
 
 SIMD_INLINE void atrous_tap(const struct atrous_segment *t, const struct atrous_scales *k, int lo, int hi, float hk,
                             float *restrict sw, float *restrict sr, float *restrict sg, float *restrict sb)
 {
-    const float *restrict pz = t->pz, *restrict qu = t->qu;
+    const float *restrict pz = t->pz, *restrict pgr = t->pg, *restrict qgr = t->qg;
     const float *restrict pr = t->pc[0], *restrict pg = t->pc[1], *restrict pb = t->pc[2];
     const float *restrict cr = t->qc[0], *restrict cg = t->qc[1], *restrict cb = t->qc[2];
     const float *restrict n0 = t->pn[0], *restrict n1 = t->pn[1], *restrict n2 = t->pn[2];
@@ -71,7 +73,7 @@ SIMD_INLINE void atrous_tap(const struct atrous_segment *t, const struct atrous_
         const float rz = 1.0f / pz[x];
         const float e = kc * (dr * dr + dg * dg + db * db) + kn * (dn0 * dn0 + dn1 * dn1 + dn2 * dn2) +
                         kx * (dx0 * dx0 + dx1 * dx1 + dx2 * dx2) * rz * rz;
-        const float wt = hk * qu[x] * denoise_exp2_neg(-e);
+        const float wt = qgr[x] == pgr[x] ? hk * denoise_exp2_neg(-e) : 0.0f;
         sw[x] += wt;
         sr[x] += wt * cr[x];
         sg[x] += wt * cg[x];
@@ -96,7 +98,7 @@ SIMD_INLINE void atrous_row_body(const struct denoise_frame *f, const struct atr
             const int ox = (tx - 2) * step;
             const int xlo = ox < 0 ? -ox : 0, xhi = ox > 0 ? w - ox : w;
             const int q = yq * w + ox; /* tap of pixel x: q + x */
-            struct atrous_segment t = {f->depth + row, {0}, {0}, {0}, f->use + q, {0}, {0}, {0}};
+            struct atrous_segment t = {f->depth + row, f->group + row, {0}, {0}, {0}, f->group + q, {0}, {0}, {0}};
             for (int c = 0; c < 3; c++) {
                 t.pc[c] = in[c] + row;
                 t.qc[c] = in[c] + q;

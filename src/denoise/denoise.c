@@ -40,7 +40,11 @@ void denoise_settings_defaults(struct denoise_settings *s)
 }
 
 /* Albedo channels below this are not divided by (a black channel has no illumination to recover);
- * remodulation multiplies by the same factor, so the pair is the identity on every pixel. */
+ * remodulation multiplies by the same factor, so the pair is the identity on every pixel. Such a
+ * channel holds radiance, not illumination, so a pixel's filters read only the taps whose albedo
+ * leaves the same channels undivided (the frame's group plane): otherwise the red of a cyan
+ * surface (red albedo 0) would average the white floor's red illumination and, multiplied by 1,
+ * turn red, and the floor beside it would average the surface's red radiance of 0 and turn cyan. */
 #define DEMOD_MIN 1e-3f
 
 struct denoiser {
@@ -48,10 +52,10 @@ struct denoiser {
     struct denoise_settings s;
     void *state;
     int width, height;
-    float *plane[13]; /* illum[3] normal[3] position[3] depth ddx ddy use */
+    float *plane[14]; /* illum[3] normal[3] position[3] depth ddx ddy use group */
 };
 
-#define PLANES 13
+#define PLANES 14
 
 struct denoiser *denoiser_create(const struct denoise_settings *s, int width, int height)
 {
@@ -120,6 +124,12 @@ static inline int finite3(vec3 v) { return isfinite(v.x) && isfinite(v.y) && isf
 
 static inline float demod_factor(float albedo) { return albedo >= DEMOD_MIN ? albedo : 1.0f; }
 
+/* The frame's group of a used pixel of albedo a (struct denoise_frame): 1 + which channels are divided. */
+static inline float demod_group(vec3 a)
+{
+    return (float)(1 + (a.x >= DEMOD_MIN) + 2 * (a.y >= DEMOD_MIN) + 4 * (a.z >= DEMOD_MIN));
+}
+
 /* Depth's derivative along one axis at pixel i: the one-sided difference of smaller magnitude
  * among the used neighbours (a step across an edge would claim a slope the surface does not have;
  * Schied et al. use the rasteriser's per-quad derivative). 0 without a used neighbour. */
@@ -152,7 +162,7 @@ int denoiser_run(struct denoiser *d, const float *rgb, const struct denoise_guid
         nrm[c] = d->plane[3 + c];
         pos[c] = d->plane[6 + c];
     }
-    float *depth = d->plane[9], *ddx = d->plane[10], *ddy = d->plane[11], *use = d->plane[12];
+    float *depth = d->plane[9], *ddx = d->plane[10], *ddy = d->plane[11], *use = d->plane[12], *group = d->plane[13];
     long long passed = 0;
     double lum_sum = 0.0;
     long long lum_count = 0;
@@ -165,6 +175,7 @@ int denoiser_run(struct denoiser *d, const float *rgb, const struct denoise_guid
         passed += g->valid[i] && !ok;
         use[i] = ok ? 1.0f : 0.0f;
         const vec3 a = g->albedo[i];
+        group[i] = ok ? demod_group(a) : 0.0f;
         illum[0][i] = ok ? (c.x - e.x) / demod_factor(a.x) : 0.0f;
         illum[1][i] = ok ? (c.y - e.y) / demod_factor(a.y) : 0.0f;
         illum[2][i] = ok ? (c.z - e.z) / demod_factor(a.z) : 0.0f;
@@ -196,6 +207,7 @@ int denoiser_run(struct denoiser *d, const float *rgb, const struct denoise_guid
                               ddx,
                               ddy,
                               use,
+                              group,
                               g->object,
                               g->motion,
                               lum_count ? lum_sum / (double)lum_count : 0.0};

@@ -19,6 +19,9 @@ struct denoise_frame {
                                   depth-weighted tap of an unused pixel weighs 0 */
     const float *ddx, *ddy;    /* depth's screen-space derivatives, per pixel (denoise_depth_gradients) */
     const float *use;          /* 1 where the pixel is filtered and may be read, 0 elsewhere */
+    const float *group;        /* 0 where use is 0, else 1 + the bits of the albedo channels the
+                                  illumination was divided by (bit c: channel c); a filter's tap
+                                  counts only where its group is the centre's (denoise.c) */
     const int *object;         /* the guide's mesh ids */
     const float *motion;       /* the guide's motion vectors (2 per pixel) */
     double mean_lum;           /* mean luminance of the used pixels' illumination (0 when none) */

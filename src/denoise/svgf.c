@@ -27,11 +27,12 @@
 
 /* A few per-pixel planes of one frame. */
 enum {
-    H_C0, H_C1, H_C2, H_M1, H_M2, H_LEN, H_USE, H_P0, H_P1, H_P2, H_N0, H_N1, H_N2, /* history */
+    H_C0, H_C1, H_C2, H_M1, H_M2, H_LEN, H_GROUP, H_P0, H_P1, H_P2, H_N0, H_N1, H_N2, /* history */
     C_M1, C_M2, C_LEN, C_VAR,                                                     /* this frame */
     T_C0, T_C1, T_C2, T_VAR, T_LUM, T_INVL, T_WS, T_TMP,                          /* à-trous scratch */
     V_FIRST,                                                                      /* Sec. 4.2's variance */
     A_USE, /* antialiasing: which pixels of its history (taa_rgb) were used */
+    A_LEN, /* antialiasing: frames its history holds at each pixel */
     R_LO0, R_LO1, R_LO2, R_HI0, R_HI1, R_HI2, /* antialiasing: this frame's 3x3 range */
     SVGF_PLANES
 };
@@ -77,7 +78,7 @@ static void svgf_destroy(void *state)
 static long long accumulate(struct svgf *v, const struct denoise_settings *s, struct denoise_frame *f)
 {
     float **P = v->plane;
-    const struct svgf_history prev = {P[H_USE],
+    const struct svgf_history prev = {P[H_GROUP],
                                       {P[H_N0], P[H_N1], P[H_N2]},
                                       {P[H_P0], P[H_P1], P[H_P2]},
                                       v->prev_object,
@@ -196,6 +197,7 @@ static void filter(struct svgf *v, const struct denoise_settings *s, struct deno
         }
         pass.lum = P[T_LUM];
         pass.invl = P[T_INVL];
+        pass.lum_symmetric = s->svgf_lum_weight == 0;
         pass.step = 1 << it;
         pass.radius = s->svgf_kernel == 1 ? 1 : 2;
 #pragma omp parallel for schedule(dynamic, 4)
@@ -222,7 +224,7 @@ static void keep_history(struct svgf *v, const struct denoise_frame *f)
     memcpy(P[H_M1], P[C_M1], sizeof(float) * v->n);
     memcpy(P[H_M2], P[C_M2], sizeof(float) * v->n);
     memcpy(P[H_LEN], P[C_LEN], sizeof(float) * v->n);
-    memcpy(P[H_USE], f->use, sizeof(float) * v->n);
+    memcpy(P[H_GROUP], f->group, sizeof(float) * v->n);
     for (int k = 0; k < 3; k++) {
         memcpy(P[H_P0 + k], f->position[k], sizeof(float) * v->n);
         memcpy(P[H_N0 + k], f->normal[k], sizeof(float) * v->n);
@@ -242,8 +244,9 @@ static void svgf_run(void *state, const struct denoise_settings *s, struct denoi
 }
 
 /* The antialiasing history at pixel i's reprojected position: bilinear over the previous frame's
- * used pixels. Returns 0 where none is there. */
-static int taa_history(const struct svgf *v, const struct denoise_frame *f, int x, int y, float h[3])
+ * used pixels, and into *len the frames it holds (the least of the taps'). Returns 0 where none is
+ * there. */
+static int taa_history(const struct svgf *v, const struct denoise_frame *f, int x, int y, float h[3], float *len)
 {
     const int i = y * v->w + x;
     const float mx = f->motion[2 * i], my = f->motion[2 * i + 1];
@@ -254,9 +257,10 @@ static int taa_history(const struct svgf *v, const struct denoise_frame *f, int 
         return 0;
     const int x0 = (int)(px + 1.0f) - 1, y0 = (int)(py + 1.0f) - 1; /* floor: px, py > -1 */
     const float fx = px - (float)x0, fy = py - (float)y0;
-    const float *restrict hu = v->plane[A_USE];
+    const float *restrict hu = v->plane[A_USE], *restrict hl = v->plane[A_LEN];
     float wsum = 0.0f;
     h[0] = h[1] = h[2] = 0.0f;
+    *len = INFINITY;
     for (int t = 0; t < 4; t++) {
         const int qx = x0 + (t & 1), qy = y0 + (t >> 1), q = qy * v->w + qx;
         const float bw = ((t & 1) ? fx : 1.0f - fx) * ((t >> 1) ? fy : 1.0f - fy);
@@ -266,6 +270,8 @@ static int taa_history(const struct svgf *v, const struct denoise_frame *f, int 
         for (int c = 0; c < 3; c++)
             h[c] += wt * v->taa_rgb[3 * q + c];
         wsum += wt;
+        if (wt > 0.0f)
+            *len = MINF(*len, hl[q]);
     }
     if (wsum <= 1e-4f)
         return 0;
@@ -314,38 +320,46 @@ static void neighbourhood_range(const struct denoise_frame *f, const float *rgb,
 }
 
 /* Schied et al.'s last step, temporal antialiasing (Karis 2014): each used pixel's reprojected
- * output, clamped to its 3x3 neighbourhood's range in this frame, blended with this frame's output
- * by svgf_taa_alpha. Where a jittered pixel straddles an edge, its sample lands on one surface in one
- * frame and on the other in the next; the feature-tested history (Sec. 4.1) cannot average the two,
- * this can, and the neighbourhood holds both, so the clamp lets it. Only where the pixel moved at
- * most svgf_taa_motion pixels: under camera motion the same clamp lets the light behind a moving
- * silhouette into the surface in front of it for ~1 / alpha frames (measured, docs/DENOISE.md). */
+ * output blended with this frame's output by max(svgf_taa_alpha, 1 / frames), so that a short
+ * history is the plain mean of its frames (as Sec. 4.1's moving average). Where a jittered pixel
+ * straddles an edge, its sample lands on one surface in one frame and on the other in the next; the
+ * feature-tested history (Sec. 4.1) cannot average the two, this can. Only where the pixel moved at
+ * most svgf_taa_motion pixels: under camera motion the history lets the light behind a moving
+ * silhouette into the surface in front of it for ~1 / alpha frames (measured, docs/DENOISE.md).
+ * Karis's clamp of the history to the 3x3 neighbourhood's range in this frame (svgf_taa_clamp) is
+ * optional: under a still pixel of a static scene nothing changes for it to guard against, and
+ * where no sample of the 3x3 block hits a sub-pixel emitter it clamps the emitter's light away. */
 static void svgf_post(void *state, const struct denoise_settings *s, const struct denoise_frame *f, float *rgb)
 {
     struct svgf *v = state;
     float **P = v->plane;
     const float a = s->svgf_taa_alpha;
-    const int on = a < 1.0f && v->has_taa, w = v->w, h = v->h;
+    const int on = a < 1.0f && v->has_taa, clamp = s->svgf_taa_clamp, w = v->w, h = v->h;
     float *const tmp[6] = {P[T_C0], P[T_C1], P[T_C2], P[T_VAR], P[T_LUM], P[T_INVL]}; /* free after run */
     float *const range[6] = {P[R_LO0], P[R_LO1], P[R_LO2], P[R_HI0], P[R_HI1], P[R_HI2]};
-    if (on)
+    float *restrict len = P[T_TMP]; /* this frame's history lengths (free after run, too) */
+    if (on && clamp)
         neighbourhood_range(f, rgb, tmp, range);
 #pragma omp parallel for schedule(static)
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             const int i = y * w + x;
-            float hc[3];
+            float hc[3], frames;
             const float mx = f->motion[2 * i], my = f->motion[2 * i + 1];
             const int still = mx * mx + my * my <= s->svgf_taa_motion * s->svgf_taa_motion;
-            if (!(on && still && f->use[i] != 0.0f && taa_history(v, f, x, y, hc)))
+            len[i] = 1.0f;
+            if (!(on && still && f->use[i] != 0.0f && taa_history(v, f, x, y, hc, &frames)))
                 continue; /* the output stays this frame's */
+            len[i] = MINF(frames + 1.0f, 1e6f);
+            const float weight = MAXF(a, 1.0f / len[i]);
             for (int c = 0; c < 3; c++) {
-                const float clamped = MINF(MAXF(hc[c], range[c][i]), range[3 + c][i]);
-                rgb[3 * i + c] = clamped + a * (rgb[3 * i + c] - clamped);
+                const float old = clamp ? MINF(MAXF(hc[c], range[c][i]), range[3 + c][i]) : hc[c];
+                rgb[3 * i + c] = old + weight * (rgb[3 * i + c] - old);
             }
         }
     memcpy(v->taa_rgb, rgb, sizeof(float) * 3 * v->n); /* this frame's output is the next one's history */
     memcpy(P[A_USE], f->use, sizeof(float) * v->n);
+    memcpy(P[A_LEN], len, sizeof(float) * v->n);
     v->has_taa = 1;
 }
 

@@ -13,6 +13,7 @@ struct svgf_pass {
     const float *val[4]; /* à-trous: colour planes and variance; moments: the temporal moments m1, m2 */
     const float *lum;    /* à-trous: luminance of val[0..2] */
     const float *invl;   /* à-trous: log2(e) / (sigma_l sqrt(g_3x3(Var)) + eps), Eq. 5 */
+    int lum_symmetric;   /* à-trous: Eq. 5's term by the mean of the centre's and the tap's deviations */
     const float *len;    /* moments: history length; pixels with len < short_history are filtered */
     float short_history;
     float *out[4];       /* à-trous: filtered colour and variance (Eq. 1-2); moments: out[0] = variance */

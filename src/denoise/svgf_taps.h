@@ -5,9 +5,13 @@
  * |grad z_p . (p - q)| + eps z_p):
  *   à-trous (Sec. 4.3, Eq. 3-5): h(q) max(0, n_p . n_q)^sigma_n exp(-a - |l_p - l_q| / (sigma_l
  *   sqrt(g_3x3(Var_p)) + eps)) over the 5x5 taps at step 2^i; colour by w, variance by w^2 (Eq. 2);
+ *   with denoise.svgf.luminance_weight=symmetric the luminance term's denominator is the mean of the
+ *   centre's and the tap's, sigma_l (sqrt(g_3x3(Var_p)) + sqrt(g_3x3(Var_q))) / 2 + eps, so that
+ *   w(p, q) = w(q, p) up to the depth term;
  *   moments (Sec. 4.2): max(0, n_p . n_q)^sigma_n exp(-a) over the 7x7 taps, for the pixels whose
  *   history is shorter than svgf_variance_frames.
- * Taps of unused pixels have depth +inf (denoise.c), hence weight 0. */
+ * Taps of unused pixels have depth +inf (denoise.c), hence weight 0; so does a tap of another group
+ * (a pixel whose albedo leaves other channels undivided, struct denoise_frame). */
 #ifndef RESTIR_DENOISE_SVGF_TAPS_H
 #define RESTIR_DENOISE_SVGF_TAPS_H
 
@@ -32,8 +36,8 @@ SIMD_INLINE float svgf_h(int kind, int t)
 
 /* The centre's planes and the taps' (NULL: not read by that kernel). Index 0 is depth in both; the
  * moments kernel reads the first Q_MOMENTS tap planes, the à-trous all. */
-enum { C_Z, C_N0, C_N1, C_N2, C_GX, C_GY, C_USE, C_V0, C_V1, C_L, C_IL, C_V2, C_V3, C_LEN, C_PLANES };
-enum { Q_Z, Q_N0, Q_N1, Q_N2, Q_V0, Q_V1, Q_MOMENTS, Q_L = Q_MOMENTS, Q_V2, Q_V3, Q_PLANES };
+enum { C_Z, C_N0, C_N1, C_N2, C_GX, C_GY, C_GROUP, C_V0, C_V1, C_L, C_IL, C_V2, C_V3, C_LEN, C_PLANES };
+enum { Q_Z, Q_N0, Q_N1, Q_N2, Q_GROUP, Q_V0, Q_V1, Q_MOMENTS, Q_L = Q_MOMENTS, Q_V2, Q_V3, Q_IL, Q_PLANES };
 
 static inline void svgf_bases(const struct svgf_pass *p, int kind, const float *c[C_PLANES], const float *t[Q_PLANES])
 {
@@ -45,7 +49,7 @@ static inline void svgf_bases(const struct svgf_pass *p, int kind, const float *
                                  f->normal[2],
                                  f->ddx,
                                  f->ddy,
-                                 f->use,
+                                 f->group,
                                  p->val[0],
                                  p->val[1],
                                  at ? p->lum : NULL,
@@ -53,9 +57,9 @@ static inline void svgf_bases(const struct svgf_pass *p, int kind, const float *
                                  at ? p->val[2] : NULL,
                                  at ? p->val[3] : NULL,
                                  at ? NULL : p->len};
-    const float *tb[Q_PLANES] = {f->depth, f->normal[0],       f->normal[1],          f->normal[2],
-                                 p->val[0], p->val[1],         at ? p->lum : NULL,    at ? p->val[2] : NULL,
-                                 at ? p->val[3] : NULL};
+    const float *tb[Q_PLANES] = {f->depth,          f->normal[0],          f->normal[1],          f->normal[2],
+                                 f->group,          p->val[0],             p->val[1],             at ? p->lum : NULL,
+                                 at ? p->val[2] : NULL, at ? p->val[3] : NULL, at ? p->invl : NULL};
     memcpy(c, cb, sizeof(cb));
     memcpy(t, tb, sizeof(tb));
 }
@@ -93,9 +97,11 @@ SIMD_INLINE void svgf_add(dv_f sum[5], dv_f wt, const float *const v[2], const f
 /* The pixels x .. x + DV_LANES - 1 of row y (those inside the image). inside: every tap of every
  * lane lies in the row. squarings >= 0: sigma_n = 2^squarings, the power taken by squaring (the
  * default 128 = 2^7), 0 where n . n' < nd_min (below 2^DENOISE_EXP2_CUT, never a denormal); -1:
- * any sigma_n, by exp2(sigma_n log2(n . n')). Called with constants: each case compiles apart. */
+ * any sigma_n, by exp2(sigma_n log2(n . n')). sym: the symmetric luminance term. Called with
+ * constants: each case compiles apart. */
 SIMD_INLINE void svgf_block(const struct svgf_pass *p, const float *const cb[C_PLANES],
-                            const float *const tb[Q_PLANES], int y, int x, int inside, int squarings, int kind)
+                            const float *const tb[Q_PLANES], int y, int x, int inside, int squarings, int sym,
+                            int kind)
 {
     const int w = p->f->width, h = p->f->height, i = y * w + x;
     const int at = kind != SVGF_MOMENTS, r = svgf_radius(kind), step = at ? p->step : 1;
@@ -107,7 +113,7 @@ SIMD_INLINE void svgf_block(const struct svgf_pass *p, const float *const cb[C_P
         svgf_point(cb + C_LEN, 1, i, inside, 0, lanes, cpad + C_LEN, c + C_LEN);
     const dv_f zp = dv_load(c[C_Z]), gx = dv_load(c[C_GX]), gy = dv_load(c[C_GY]), ez = p->eps_ln2 * zp;
     const dv_f n0 = dv_load(c[C_N0]), n1 = dv_load(c[C_N1]), n2 = dv_load(c[C_N2]);
-    const dv_f lp = at ? dv_load(c[C_L]) : zp, ip = at ? dv_load(c[C_IL]) : zp;
+    const dv_f lp = at ? dv_load(c[C_L]) : zp, ip = at ? dv_load(c[C_IL]) : zp, gp = dv_load(c[C_GROUP]);
     dv_f sum[5] = {dv_splat(0.0f), dv_splat(0.0f), dv_splat(0.0f), dv_splat(0.0f), dv_splat(0.0f)};
     for (int ty = -r; ty <= r; ty++) {
         const int oy = ty * step, yq = y + oy;
@@ -126,8 +132,12 @@ SIMD_INLINE void svgf_block(const struct svgf_pass *p, const float *const cb[C_P
             /* 1 / Eq. 3's denominator depends on the centre alone: off the taps' dependency chain */
             const dv_f rden = 1.0f / (p->sz_ln2 * dv_abs(gx * (float)ox + goy) + ez);
             dv_f a = dv_abs(zp - dv_load(t[Q_Z])) * rden;
-            if (at)
+            if (at && sym) { /* log2(e) / (sigma_l (sd_p + sd_q) / 2 + eps): the harmonic mean of ip and iq */
+                const dv_f iq = dv_load(t[Q_IL]);
+                a += dv_abs(lp - dv_load(t[Q_L])) * (2.0f * ip * iq / (ip + iq));
+            } else if (at) {
                 a += dv_abs(lp - dv_load(t[Q_L])) * ip;
+            }
             dv_f nd = n0 * dv_load(t[Q_N0]) + n1 * dv_load(t[Q_N1]) + n2 * dv_load(t[Q_N2]);
             dv_f wt;
             if (squarings >= 0) {
@@ -143,10 +153,11 @@ SIMD_INLINE void svgf_block(const struct svgf_pass *p, const float *const cb[C_P
             }
             if (at)
                 wt *= svgf_h(kind, ty) * svgf_h(kind, tx);
+            wt = (dv_f)((dv_i)wt & (dv_load(t[Q_GROUP]) == gp));
             svgf_add(sum, wt, t + Q_V0, t[Q_V2], t[Q_V3], at);
         }
     }
-    const dv_i used = dv_load(c[C_USE]) != 0.0f;
+    const dv_i used = gp != 0.0f;
     const dv_f zero = dv_splat(0.0f);
     dv_f out[4];
     int outs = 4;
@@ -190,11 +201,13 @@ SIMD_INLINE void svgf_row(const struct svgf_pass *p, int y, int kind)
             if (!any)
                 continue;
         }
-        const int inside = x >= reach && x + DV_LANES + reach <= w;
-        if (p->sn == 128.0f)
-            inside ? svgf_block(p, cb, tb, y, x, 1, 7, kind) : svgf_block(p, cb, tb, y, x, 0, 7, kind);
+        const int inside = x >= reach && x + DV_LANES + reach <= w, sym = at && p->lum_symmetric;
+        if (p->sn == 128.0f && sym)
+            inside ? svgf_block(p, cb, tb, y, x, 1, 7, 1, kind) : svgf_block(p, cb, tb, y, x, 0, 7, 1, kind);
+        else if (p->sn == 128.0f)
+            inside ? svgf_block(p, cb, tb, y, x, 1, 7, 0, kind) : svgf_block(p, cb, tb, y, x, 0, 7, 0, kind);
         else
-            inside ? svgf_block(p, cb, tb, y, x, 1, -1, kind) : svgf_block(p, cb, tb, y, x, 0, -1, kind);
+            inside ? svgf_block(p, cb, tb, y, x, 1, -1, sym, kind) : svgf_block(p, cb, tb, y, x, 0, -1, sym, kind);
     }
 }
 

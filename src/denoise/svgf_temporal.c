@@ -1,7 +1,8 @@
 /* svgf_temporal.c: SVGF's temporal accumulation (Schied et al. 2017 Sec. 4.1; svgf_temporal.h).
  * Each used pixel's previous position (its motion vector) is read bilinearly from the previous
- * frame's pixels that pass the consistency tests (the same mesh, normals within svgf_normal_min,
- * and its surface: the plane distance between world positions within svgf_plane_max of the depth);
+ * frame's pixels that pass the consistency tests (the same mesh and group of demodulated albedo
+ * channels, normals within svgf_normal_min, and its surface: the plane distance between world
+ * positions within svgf_plane_max of the depth);
  * where none of the four passes, the passing pixels of the 3x3 block around the nearest one, each
  * alike. Colour and moments are blended by exponential moving averages with weight max(alpha,
  * 1 / history length). */
@@ -24,7 +25,7 @@ static inline int tap_ok(const struct svgf_accumulation *a, int i, int q)
     const float pl = f->normal[0][i] * (h->position[0][q] - f->position[0][i]) +
                      f->normal[1][i] * (h->position[1][q] - f->position[1][i]) +
                      f->normal[2][i] * (h->position[2][q] - f->position[2][i]);
-    return (h->use[q] != 0.0f) & (h->object[q] == f->object[i]) & (nd >= a->normal_min) &
+    return (h->group[q] == f->group[i]) & (h->object[q] == f->object[i]) & (nd >= a->normal_min) &
            (fabsf(pl) <= a->plane_max * f->depth[i]);
 }
 

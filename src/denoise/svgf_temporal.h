@@ -8,7 +8,7 @@
 
 /* The previous frame's planes (width x height each, as this frame's). */
 struct svgf_history {
-    const float *use, *normal[3], *position[3];
+    const float *group, *normal[3], *position[3]; /* group: as struct denoise_frame's */
     const int *object;
     const float *value[6]; /* demodulated colour RGB, moments m1 and m2, history length */
 };

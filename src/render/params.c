@@ -34,6 +34,8 @@ static const char *const reuse_names[] = {"standard", "spmis", NULL};
 static const char *const search_names[] = {"always", "sparse", "low-confidence", NULL};
 static const char *const pick_names[] = {"uniform", "confidence", NULL};
 static const char *const svgf_kernel_names[] = {"5x5", "3x3", NULL}; /* denoise_types.h */
+static const char *const svgf_lum_weight_names[] = {"symmetric", "paper", NULL};
+static const char *const svgf_taa_clamp_names[] = {"off", "range", NULL};
 static const char *const distance_mode_names[] = {"scene", "absolute", "relative", NULL}; /* shift_kind.h */
 static const char *const confidence_update_names[] = {"cell", "drawn", NULL}; /* enum spmis_confidence_update */
 static const char *const search_score_names[] = {"confidence", "compat", NULL}; /* enum restir_cells_score */
@@ -323,6 +325,12 @@ static const struct param_def params[] = {
      "svgf: sigma_n, the power of max(0, n_p . n_q) (Eq. 4)", NULL},
     {"denoise.svgf.sigma_luminance", P_FLOAT, F(denoise.svgf_sigma_lum), 1e-6, 1e6, "4", NULL,
      "svgf: sigma_l, the luminance weight's scale on the filtered standard deviation (Eq. 5)", NULL},
+    {"denoise.svgf.luminance_weight", P_NAMES, F(denoise.svgf_lum_weight), 0, 0, "symmetric", NULL,
+     "svgf: whose standard deviation scales Eq. 5's luminance difference: symmetric, the mean of the centre's and "
+     "the tap's, so that a bright outlier gives its energy to the neighbours that take it in; paper, the "
+     "centre's alone, which drops outliers' energy (many-lights, restir-di: denoised image 2% darker; "
+     "docs/DENOISE.md)",
+     svgf_lum_weight_names},
     {"denoise.svgf.iterations", P_INT, F(denoise.svgf_iterations), 0, 12, "5", NULL, "svgf: a-trous iterations", NULL},
     {"denoise.svgf.kernel", P_NAMES, F(denoise.svgf_kernel), 0, 0, "5x5", NULL,
      "svgf: the a-trous kernel: 5x5, the paper's B3 spline (Sec. 4.3), or 3x3, (1 2 1) / 4 per axis, which "
@@ -340,15 +348,21 @@ static const struct param_def params[] = {
      "svgf: history rejected where the plane distance exceeds this times the depth", NULL},
     {"denoise.svgf.taa", P_FLOAT, F(denoise.svgf_taa_alpha), 1e-3, 1, "0.1", NULL,
      "svgf: temporal antialiasing after remodulation (Schied et al. Sec. 4's last step; Karis 2014: the "
-     "reprojected output clamped to the 3x3 neighbourhood, blended with this weight of the new frame; 1: off); "
-     "it integrates the pixel area the jittered primary rays cover, which the feature-tested history cannot "
-     "where a pixel straddles an edge",
+     "reprojected output blended with this weight of the new frame, or 1 / frames while the pixel's history "
+     "is shorter; 1: off); it integrates the pixel area the jittered primary rays cover, which the "
+     "feature-tested history cannot where a pixel straddles an edge",
      NULL},
     {"denoise.svgf.taa_motion", P_FLOAT, F(denoise.svgf_taa_motion), 0, 1e6, "0.5", NULL,
      "svgf: the antialiasing's history only where the pixel moved at most this many pixels since the last "
-     "frame; under camera motion the clamp lets light bleed across silhouettes (docs/DENOISE.md); 1e6: "
+     "frame; under camera motion the history lets light bleed across silhouettes (docs/DENOISE.md); 1e6: "
      "everywhere, as Karis 2014",
      NULL},
+    {"denoise.svgf.taa_clamp", P_NAMES, F(denoise.svgf_taa_clamp), 0, 0, "off", NULL,
+     "svgf: range clamps the antialiasing's history to this frame's 3x3 neighbourhood (Karis 2014), against "
+     "change; it also drops sub-pixel emitters' energy whenever no sample of the 3x3 block hits them "
+     "(many-lights: 5% darker, docs/DENOISE.md); off: none, as nothing changes under a still pixel of a "
+     "static scene",
+     svgf_taa_clamp_names},
     {"denoise.atrous.iterations", P_INT, F(denoise.atrous_iterations), 0, 12, "5", NULL, "atrous: iterations", NULL},
     {"denoise.atrous.sigma_color", P_FLOAT, F(denoise.atrous_sigma_color), 1e-6, 1e6, "1", NULL,
      "atrous: sigma_rt in units of the frame's mean illumination, halved per iteration", NULL},

@@ -1,10 +1,12 @@
-/* test_denoise.c: the denoisers (issue 43) against values computed here by straightforward scalar
+/* test_denoise.c: the denoisers against values computed here by straightforward scalar
  * code from the papers' equations: SVGF's à-trous weights and variance propagation (Schied et al.
  * 2017 Eq. 1-5) and temporal moments, its 7x7 spatial variance, its history rejection on a mesh id,
  * normal or surface change, the edge-avoiding à-trous weights (Dammertz et al. 2010 Eq. 4-6), the
  * exp2 / log2 approximations the filters vectorise with, that a constant image and a noise-free one
- * pass through unchanged, and that invalid and non-finite pixels are passed through raw, counted,
- * and never spread into their neighbours. Every instruction-set path runs (simd_limit). */
+ * pass through unchanged, that no channel of a material takes another material's illumination (a
+ * cyan, a black and a white material side by side), and that invalid and non-finite pixels are
+ * passed through raw, counted, and never spread into their neighbours. Every instruction-set path
+ * runs (simd_limit). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -85,12 +87,14 @@ static const double h3[3] = {0.25, 0.5, 0.25};
 
 /* SVGF's à-trous iterations (Eq. 1-5) with steps 1, 2, .., 2^(iterations - 1) on colour I and
  * variance var (filtered by the squared weights, Eq. 2), every pixel used; the kernel is the
- * paper's 5x5 B3 spline (r = 2) or the 3x3 (1 2 1) / 4 of denoise.svgf.kernel=3x3 (r = 1). */
-static void atrous_hand(const struct scene_buf *b, float *I, float *var, int iterations, int r)
+ * paper's 5x5 B3 spline (r = 2) or the 3x3 (1 2 1) / 4 of denoise.svgf.kernel=3x3 (r = 1); Eq. 5's
+ * deviation the centre's (sym 0, the paper) or the mean of the centre's and the tap's (sym 1). */
+static void atrous_hand(const struct scene_buf *b, float *I, float *var, int iterations, int r, int sym)
 {
     const double *hk = r == 2 ? b3 : h3;
     const int w = b->w, h = b->h;
     static float l[MAXW * MAXH], nI[3 * MAXW * MAXH], nvar[MAXW * MAXH];
+    static double sd[MAXW * MAXH];
     for (int it = 0, step = 1; it < iterations; it++, step *= 2) {
         for (int i = 0; i < w * h; i++)
             l[i] = lum_of(&I[3 * i]);
@@ -106,7 +110,11 @@ static void atrous_hand(const struct scene_buf *b, float *I, float *var, int ite
                         gw += g;
                         gs += g * var[p + dy * w + dx];
                     }
-                const double invl = 1.0 / (4.0 * sqrt(gs / gw) + 1e-10);
+                sd[p] = sqrt(gs / gw);
+            }
+        for (int y = 0; y < h; y++)
+            for (int x = 0; x < w; x++) {
+                const int p = y * w + x;
                 const double gx = ref_derivative(b, x, y, 1, 0), gy = ref_derivative(b, x, y, 0, 1);
                 double sw = 0.0, sv = 0.0, sc[3] = {0, 0, 0};
                 for (int ty = 0; ty <= 2 * r; ty++)
@@ -116,7 +124,8 @@ static void atrous_hand(const struct scene_buf *b, float *I, float *var, int ite
                             continue;
                         const int q = p + oy * w + ox;
                         const double den = 1.0 * fabs(gx * ox + gy * oy) + 1e-3 * b->depth[p];
-                        const double a = fabs(b->depth[p] - b->depth[q]) / den + fabs(l[p] - l[q]) * invl;
+                        const double dev = sym ? 0.5 * (sd[p] + sd[q]) : sd[p];
+                        const double a = fabs(b->depth[p] - b->depth[q]) / den + fabs(l[p] - l[q]) / (4.0 * dev + 1e-10);
                         const double nd = fmax(0.0, v3_dot(b->nrm[p], b->nrm[q]));
                         const double wt = hk[ty] * hk[tx] * pow(nd, 128.0) * exp(-a);
                         sw += wt;
@@ -136,7 +145,7 @@ static void atrous_hand(const struct scene_buf *b, float *I, float *var, int ite
 /* SVGF after two frames A then B of a static plane, computed by Eq. 1-5 directly: the temporal
  * moments (variance_frames 0), then the à-trous iterations (feedback 0). */
 static void svgf_hand(const struct scene_buf *b, const float *A, const float *B, float alb, int iterations, int r,
-                      float *out)
+                      int sym, float *out)
 {
     const int n = b->w * b->h;
     static float I[3 * MAXW * MAXH], var[MAXW * MAXH];
@@ -149,7 +158,7 @@ static void svgf_hand(const struct scene_buf *b, const float *A, const float *B,
         const double m1 = 0.5 * la + 0.5 * lb, m2 = 0.5 * la * la + 0.5 * lb * lb;
         var[i] = (float)fmax(0.0, m2 - m1 * m1);
     }
-    atrous_hand(b, I, var, iterations, r);
+    atrous_hand(b, I, var, iterations, r, sym);
     for (int i = 0; i < 3 * n; i++)
         out[i] = I[i] * alb;
 }
@@ -218,7 +227,7 @@ static void test_kernels(void)
 /* Eq. 1-5 and the temporal moments, by hand, on a slanted plane with a few tilted normals, at a
  * size whose rows hold a vector block inside and blocks at the borders, then one narrower than a
  * block; iterations > 1 take steps past the borders. */
-static void svgf_hand_case(int w, int h, int iterations, int kernel3)
+static void svgf_hand_case(int w, int h, int iterations, int kernel3, int paper)
 {
     static struct scene_buf b;
     const float alb = 0.5f;
@@ -233,6 +242,7 @@ static void svgf_hand_case(int w, int h, int iterations, int kernel3)
     struct denoise_settings s = settings(1);
     s.svgf_iterations = iterations;
     s.svgf_kernel = kernel3;
+    s.svgf_lum_weight = paper;
     s.svgf_feedback = 0;
     s.svgf_variance_frames = 0;
     s.svgf_taa_alpha = 1.0f; /* no antialiasing: Eq. 1-5 alone */
@@ -241,10 +251,10 @@ static void svgf_hand_case(int w, int h, int iterations, int kernel3)
     struct denoise_stats st;
     EXPECT(denoiser_run(d, A, &g, out, &st) == 0 && st.history_reset == b.w * b.h, "frame 0: every history new");
     EXPECT(denoiser_run(d, B, &g, out, &st) == 0 && st.history_reset == 0, "frame 1: %lld reset", st.history_reset);
-    svgf_hand(&b, A, B, alb, iterations, kernel3 ? 1 : 2, want);
+    svgf_hand(&b, A, B, alb, iterations, kernel3 ? 1 : 2, !paper, want);
     const double e = max_rel(out, want, 3 * b.w * b.h);
-    EXPECT(e < 2e-4, "SVGF (%dx%d, %d iterations, %s) against Eq. 1-5 by hand: worst relative difference %g", w, h,
-           iterations, kernel3 ? "3x3" : "5x5", e);
+    EXPECT(e < 2e-4, "SVGF (%dx%d, %d iterations, %s, %s) against Eq. 1-5 by hand: worst relative difference %g", w,
+           h, iterations, kernel3 ? "3x3" : "5x5", paper ? "paper" : "symmetric", e);
     const float *len = denoiser_layer(d, "history");
     EXPECT(len && len[0] == 2.0f && len[b.w * b.h - 1] == 2.0f, "history length 2 after two frames");
     EXPECT(denoiser_layer(d, "nonsense") == NULL, "an unknown layer is NULL");
@@ -253,10 +263,12 @@ static void svgf_hand_case(int w, int h, int iterations, int kernel3)
 
 static void test_svgf_hand(void)
 {
-    svgf_hand_case(11, 9, 1, 0);
-    svgf_hand_case(53, 7, 1, 0);
-    svgf_hand_case(61, 12, 3, 0);
-    svgf_hand_case(61, 12, 3, 1); /* denoise.svgf.kernel=3x3 */
+    for (int paper = 0; paper <= 1; paper++) { /* denoise.svgf.luminance_weight=symmetric, paper */
+        svgf_hand_case(11, 9, 1, 0, paper);
+        svgf_hand_case(53, 7, 1, 0, paper);
+        svgf_hand_case(61, 12, 3, 0, paper);
+        svgf_hand_case(61, 12, 3, 1, paper); /* denoise.svgf.kernel=3x3 */
+    }
 }
 
 /* The 7x7 moments filter by hand on the first frame (every history short), with tilted normals
@@ -456,6 +468,48 @@ static void test_unchanged(void)
     denoiser_destroy(d);
 }
 
+/* Cyan (red albedo 0), black and white materials side by side on one plane, lit by the same noisy
+ * illumination: the channels an albedo does not divide by hold radiance, not illumination, so no
+ * filter may average them with another material's: cyan keeps red 0, black stays black, and white
+ * keeps R = G = B (with them averaged, cyan turned red and white cyan beside it). */
+static void test_material_groups(void)
+{
+    static struct scene_buf b;
+    static float c[3 * MAXW * MAXH], out[3 * MAXW * MAXH];
+    const int w = 24, h = 12;
+    for (int m = 1; m <= 2; m++) {
+        plane_scene(&b, w, h, 0.8f);
+        for (int y = 0; y < h; y++)
+            for (int x = 0; x < 14; x++)
+                b.alb[y * w + x] = x < 10 ? v3(0.0f, 0.6f, 0.6f) : v3s(0.0f);
+        struct denoise_settings s = settings(m);
+        struct denoiser *d = denoiser_create(&s, w, h);
+        double cyan_red = 0.0, black = 0.0, white_tint = 0.0;
+        for (int f = 0; f < 4; f++) {
+            for (int i = 0; i < w * h; i++) {
+                const float illum = 0.5f + rnd();
+                c[3 * i] = b.alb[i].x * illum, c[3 * i + 1] = b.alb[i].y * illum, c[3 * i + 2] = b.alb[i].z * illum;
+            }
+            const struct denoise_guide g = guide_of(&b);
+            denoiser_run(d, c, &g, out, NULL);
+            for (int i = 0; i < w * h; i++) {
+                const int x = i % w;
+                const float *o = &out[3 * i];
+                if (x < 10)
+                    cyan_red = fmax(cyan_red, fabs(o[0]));
+                else if (x < 14)
+                    black = fmax(black, fabs(o[0]) + fabs(o[1]) + fabs(o[2]));
+                else
+                    white_tint = fmax(white_tint, fmax(fabs(o[0] - o[1]), fabs(o[2] - o[1])) / o[1]);
+            }
+        }
+        EXPECT(cyan_red == 0.0, "%s: the cyan material's red is %g, not 0", denoise_names[m], cyan_red);
+        EXPECT(black == 0.0, "%s: the black material shows %g", denoise_names[m], black);
+        EXPECT(white_tint < 1e-5, "%s: the white material is tinted by %g beside cyan", denoise_names[m], white_tint);
+        denoiser_destroy(d);
+    }
+}
+
 /* A NaN colour, an infinite normal and an invalid pixel are left as they came and counted; no
  * neighbour reads them. */
 static void test_passthrough(void)
@@ -596,6 +650,7 @@ int main(void)
         test_history_rejection();
         test_atrous_hand();
         test_unchanged();
+        test_material_groups();
         test_passthrough();
         test_taa();
         test_taa_motion();
