@@ -65,13 +65,14 @@ __attribute__((always_inline)) static inline float denoise_log2(float x)
  * lookup with a tap of weight 1 - 1e-7 on a random side of the pixel (and the branch that skips the
  * zero-weight taps unpredictable); snapped, the lookup reads one tap. p outside (-2, 1e7), NaN
  * included, is returned as it is. */
+#define DENOISE_SNAP 1e-3f
 __attribute__((always_inline)) static inline float denoise_snap(float p)
 {
     if (!(p > -2.0f && p < 1e7f))
         return p;
     const float nearest = (float)((int)(p + 2.5f) - 2);
     const float d = p - nearest;
-    return d < 1e-3f && d > -1e-3f ? nearest : p;
+    return d < DENOISE_SNAP && d > -DENOISE_SNAP ? nearest : p;
 }
 
 /* min and max of finite floats, inline (fminf / fmaxf stay library calls without -ffinite-math-only) */

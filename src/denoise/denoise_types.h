@@ -43,7 +43,8 @@ struct denoise_settings {
     float svgf_plane_max;     /* reprojection: ... where the plane distance exceeds this * depth (0.01) */
     float svgf_taa_alpha;     /* temporal antialiasing's weight of the current frame (0.1; 1: off) */
     float svgf_taa_motion;    /* ... only where the pixel moved at most this many pixels (0.5; 1e6: all) */
-    int svgf_taa_clamp;       /* ... its history clamped to the 3x3 neighbourhood's range: 0 no, 1 yes (Karis) */
+    int svgf_taa_clamp;       /* ... its history clamped to the 3x3 neighbourhood's range: 0 where the pixel
+                                 moved, 1 everywhere (Karis), 2 nowhere */
     /* edge-avoiding à-trous (Dammertz et al. 2010, Sec. 3) */
     int atrous_iterations;       /* (5) */
     float atrous_sigma_color;    /* sigma_rt, in units of the frame's mean illumination; halved per iteration */

@@ -326,19 +326,21 @@ static void neighbourhood_range(const struct denoise_frame *f, const float *rgb,
  * feature-tested history (Sec. 4.1) cannot average the two, this can. Only where the pixel moved at
  * most svgf_taa_motion pixels: under camera motion the history lets the light behind a moving
  * silhouette into the surface in front of it for ~1 / alpha frames (measured, docs/DENOISE.md).
- * Karis's clamp of the history to the 3x3 neighbourhood's range in this frame (svgf_taa_clamp) is
- * optional: under a still pixel of a static scene nothing changes for it to guard against, and
- * where no sample of the 3x3 block hits a sub-pixel emitter it clamps the emitter's light away. */
+ * Karis's clamp of the history to the 3x3 neighbourhood's range in this frame runs by default only
+ * where the pixel moved (svgf_taa_clamp): under a still pixel of a static scene nothing changes for
+ * it to guard against, and where no sample of the 3x3 block hits a sub-pixel emitter it clamps the
+ * emitter's light away. */
 static void svgf_post(void *state, const struct denoise_settings *s, const struct denoise_frame *f, float *rgb)
 {
     struct svgf *v = state;
     float **P = v->plane;
     const float a = s->svgf_taa_alpha;
     const int on = a < 1.0f && v->has_taa, clamp = s->svgf_taa_clamp, w = v->w, h = v->h;
+    const float moved2 = DENOISE_SNAP * DENOISE_SNAP; /* a still camera's motion, snapped (denoise_snap) */
     float *const tmp[6] = {P[T_C0], P[T_C1], P[T_C2], P[T_VAR], P[T_LUM], P[T_INVL]}; /* free after run */
     float *const range[6] = {P[R_LO0], P[R_LO1], P[R_LO2], P[R_HI0], P[R_HI1], P[R_HI2]};
     float *restrict len = P[T_TMP]; /* this frame's history lengths (free after run, too) */
-    if (on && clamp)
+    if (on && clamp != 2)
         neighbourhood_range(f, rgb, tmp, range);
 #pragma omp parallel for schedule(static)
     for (int y = 0; y < h; y++)
@@ -346,14 +348,16 @@ static void svgf_post(void *state, const struct denoise_settings *s, const struc
             const int i = y * w + x;
             float hc[3], frames;
             const float mx = f->motion[2 * i], my = f->motion[2 * i + 1];
-            const int still = mx * mx + my * my <= s->svgf_taa_motion * s->svgf_taa_motion;
+            const float m2 = mx * mx + my * my;
+            const int still = m2 <= s->svgf_taa_motion * s->svgf_taa_motion;
             len[i] = 1.0f;
             if (!(on && still && f->use[i] != 0.0f && taa_history(v, f, x, y, hc, &frames)))
                 continue; /* the output stays this frame's */
             len[i] = MINF(frames + 1.0f, 1e6f);
             const float weight = MAXF(a, 1.0f / len[i]);
             for (int c = 0; c < 3; c++) {
-                const float old = clamp ? MINF(MAXF(hc[c], range[c][i]), range[3 + c][i]) : hc[c];
+                const int clamped = clamp == 1 || (clamp == 0 && m2 > moved2);
+                const float old = clamped ? MINF(MAXF(hc[c], range[c][i]), range[3 + c][i]) : hc[c];
                 rgb[3 * i + c] = old + weight * (rgb[3 * i + c] - old);
             }
         }

@@ -35,7 +35,7 @@ static const char *const search_names[] = {"always", "sparse", "low-confidence",
 static const char *const pick_names[] = {"uniform", "confidence", NULL};
 static const char *const svgf_kernel_names[] = {"5x5", "3x3", NULL}; /* denoise_types.h */
 static const char *const svgf_lum_weight_names[] = {"symmetric", "paper", NULL};
-static const char *const svgf_taa_clamp_names[] = {"off", "range", NULL};
+static const char *const svgf_taa_clamp_names[] = {"moving", "always", "off", NULL};
 static const char *const distance_mode_names[] = {"scene", "absolute", "relative", NULL}; /* shift_kind.h */
 static const char *const confidence_update_names[] = {"cell", "drawn", NULL}; /* enum spmis_confidence_update */
 static const char *const search_score_names[] = {"confidence", "compat", NULL}; /* enum restir_cells_score */
@@ -357,11 +357,11 @@ static const struct param_def params[] = {
      "frame; under camera motion the history lets light bleed across silhouettes (docs/DENOISE.md); 1e6: "
      "everywhere, as Karis 2014",
      NULL},
-    {"denoise.svgf.taa_clamp", P_NAMES, F(denoise.svgf_taa_clamp), 0, 0, "off", NULL,
-     "svgf: range clamps the antialiasing's history to this frame's 3x3 neighbourhood (Karis 2014), against "
-     "change; it also drops sub-pixel emitters' energy whenever no sample of the 3x3 block hits them "
-     "(many-lights: 5% darker, docs/DENOISE.md); off: none, as nothing changes under a still pixel of a "
-     "static scene",
+    {"denoise.svgf.taa_clamp", P_NAMES, F(denoise.svgf_taa_clamp), 0, 0, "moving", NULL,
+     "svgf: where the antialiasing's history is clamped to this frame's 3x3 neighbourhood (Karis 2014), "
+     "against change: moving, on the pixels that moved since the last frame (nothing changes under a "
+     "still pixel of a static scene); always, as Karis, which also drops sub-pixel emitters' energy "
+     "whenever no sample of the 3x3 block hits them (many-lights: 4% darker, docs/DENOISE.md); off",
      svgf_taa_clamp_names},
     {"denoise.atrous.iterations", P_INT, F(denoise.atrous_iterations), 0, 12, "5", NULL, "atrous: iterations", NULL},
     {"denoise.atrous.sigma_color", P_FLOAT, F(denoise.atrous_sigma_color), 1e-6, 1e6, "1", NULL,

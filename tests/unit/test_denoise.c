@@ -599,6 +599,41 @@ static void test_taa(void)
            flicker[0]);
 }
 
+/* Where the antialiasing clamps its history (svgf_taa_clamp): a uniform image that drops from 1 to
+ * 0.2 at frame 10, every pixel still or moving 0.3 pixels a frame (under taa_motion). Where it
+ * clamps, the frame after the drop is the frame without antialiasing (the 3x3 range is one value);
+ * where it does not, it lags above it. */
+static void test_taa_clamp(void)
+{
+    static struct scene_buf b;
+    static float c[3 * 25], out[3 * 25];
+    for (int moving = 0; moving < 2; moving++) {
+        float after[4]; /* clamp moving, always, off; then no antialiasing */
+        for (int mode = 0; mode < 4; mode++) {
+            struct denoise_settings s = settings(1);
+            s.svgf_taa_clamp = mode < 3 ? mode : 0;
+            s.svgf_taa_alpha = mode < 3 ? 0.1f : 1.0f;
+            struct denoiser *d = denoiser_create(&s, 5, 5);
+            for (int f = 0; f <= 10; f++) {
+                plane_scene(&b, 5, 5, 1.0f);
+                for (int i = 0; i < 25; i++) {
+                    b.motion[2 * i] = moving ? 0.3f : 0.0f;
+                    c[3 * i] = c[3 * i + 1] = c[3 * i + 2] = f < 10 ? 1.0f : 0.2f;
+                }
+                const struct denoise_guide g = guide_of(&b);
+                denoiser_run(d, c, &g, out, NULL);
+            }
+            after[mode] = out[3 * 12];
+            denoiser_destroy(d);
+        }
+        const int clamps[3] = {moving, 1, 0};
+        for (int mode = 0; mode < 3; mode++)
+            EXPECT(clamps[mode] ? fabsf(after[mode] - after[3]) < 1e-5f : after[mode] > after[3] + 0.05f,
+                   "taa_clamp %d, %s pixels: %g after the drop, %g without antialiasing", mode,
+                   moving ? "moving" : "still", after[mode], after[3]);
+    }
+}
+
 /* The antialiasing skips pixels that moved more than svgf_taa_motion: with every pixel moving one
  * pixel a frame, its output is the one without antialiasing, bit for bit, and differs once the
  * limit lets it run. */
@@ -653,6 +688,7 @@ int main(void)
         test_material_groups();
         test_passthrough();
         test_taa();
+        test_taa_clamp();
         test_taa_motion();
     }
     test_bad_arguments();
