@@ -1,6 +1,6 @@
 /* bench_denoise.c: `restir_bench denoise [--scene S] [--method M] [--res WxH] [--frames N]
  * [--threads T] [--camera static|path] [--isa I] [--set K=V]...`: what denoising costs beside the
- * frame it denoises (issue 43: SVGF at 640x360 in at most 15% of a restir-di frame on 2 threads).
+ * frame it denoises (the budget it is held to: SVGF at 640x360 in at most 15% of a restir-di frame on 2 threads).
  * Renders N frames of the method without denoising, keeps the last frame's image and G-buffer, then
  * runs each denoiser N times on them (SVGF then reprojects its history by the last frame's motion
  * vectors each time: a static history under a static camera) and prints the medians of the

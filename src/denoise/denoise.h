@@ -1,5 +1,5 @@
 /* denoise.h: denoisers that read a rendered frame and the G-buffer features of its primary hits and
- * write a new image (issue 43): SVGF (Schied et al., HPG 2017, svgf.c) and the edge-avoiding à-trous
+ * write a new image: SVGF (Schied et al., HPG 2017, svgf.c) and the edge-avoiding à-trous
  * wavelet filter (Dammertz et al., HPG 2010, atrous.c). A denoiser sits after the estimator and
  * never feeds back into it: its output is BIASED by nature, and the frame it reads stays as it was.
  * Each denoiser is one file with one table row (struct denoise_method); denoise.c lists them.

@@ -14,7 +14,7 @@
 
 #define MAX_METHODS 16
 #define MAX_INSTANCES 16 /* independently seeded renderers one row may average */
-#define COMPARE_GRAD_TRIM 0.01 /* issue 42: the share of gradient pairs the trimmed relMSE leaves out */
+#define COMPARE_GRAD_TRIM 0.01 /* the share of gradient pairs the trimmed relMSE leaves out */
 #define SPEC_MAX 200 /* characters of one spec; its folder name stays under NAME_MAX */
 
 /* One row of the comparison: a method with the command's parameters and then the spec's own
@@ -44,14 +44,14 @@ struct compare_result {
     /* gradient methods (002 Fig. 7): restir_metrics_gradient_relmse of the last frame's (instance-averaged)
      * gradients, mean over the runs, and its standard error; NaN for the other methods */
     double grad_relmse, grad_relmse_sem;
-    /* issue 42: the same gradients' relMSE without the worst COMPARE_GRAD_TRIM of the pairs
+    /* the same gradients' relMSE without the worst COMPARE_GRAD_TRIM of the pairs
      * (restir_metrics_gradient_relmse_trimmed) and their MAPE (restir_metrics_gradient_mape), means over
      * the runs and standard errors; NaN for the other methods */
     double grad_relmse_trim, grad_relmse_trim_sem, grad_mape, grad_mape_sem;
     /* HDR-FLIP (Andersson et al. 2021; compare_flip) of the last frame against the reference, the mean over the
      * runs, and its standard error (NaN with one run) */
     double flip, flip_sem;
-    /* issue 43, denoise=svgf|atrous: the errors of the last frame denoised (instance-averaged), the mean
+    /* denoise=svgf|atrous: the errors of the last frame denoised (instance-averaged), the mean
      * over the runs and its standard error; NaN without denoising. BIASED by nature. */
     struct restir_metrics_error err_dn, sem_dn;
     double mape_dis_dn, mape_dis_dn_sem; /* MAPE of the denoised frame over the disoccluded pixels */

@@ -55,7 +55,7 @@ void compare_track_begin(struct compare_track *t);
  * instances' average). */
 void compare_track_stats(struct compare_track *t, int f, double ms, const struct frame_stats *st);
 void compare_track_image(struct compare_track *t, int run, int f, const float *image);
-/* The same frame denoised (compare_track_image's covariance window only; issue 43). */
+/* The same frame denoised (compare_track_image's covariance window only). */
 void compare_track_denoised(struct compare_track *t, int run, int f, const float *denoised);
 /* 1 when frame f of the sequence needs its image measured (a reference frame or in the window). */
 int compare_track_wants_image(const struct compare_track *t, int f);

@@ -1,5 +1,5 @@
 /* compare_worst.h: where a gradient method's worst pairs are, as an image beside compare's outputs
- * (compare_worst.c; issue 42). Must never render or measure anything but the pairs it is given. */
+ * (compare_worst.c). Must never render or measure anything but the pairs it is given. */
 #ifndef RESTIR_EXPERIMENTS_COMPARE_WORST_H
 #define RESTIR_EXPERIMENTS_COMPARE_WORST_H
 

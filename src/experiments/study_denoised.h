@@ -1,4 +1,4 @@
-/* study_denoised.h: a study's outputs after denoising (issue 43): study_denoised.csv and .md (every
+/* study_denoised.h: a study's outputs after denoising: study_denoised.csv and .md (every
  * configuration's SMAPE and 000's covariances before and after denoising, and how well the
  * covariances before denoising rank the error after it) and pareto_denoised.svg (the SMAPE after
  * denoising against the spatial covariance before it, 000 Sec. 1's motivation). Must never render. */

@@ -22,7 +22,7 @@ struct study_config {
     enum spatial_select_mode select;
     float radius;
     int candidates;
-    int spatial_off;      /* no spatial reuse at all (issue 42: does spatial reuse itself help?) */
+    int spatial_off;      /* no spatial reuse at all (does spatial reuse itself help?) */
     int history_temporal; /* the next frame's history is the temporal output (history=temporal) */
 };
 
@@ -57,7 +57,7 @@ struct study_unit {
     size_t npix;
     double *luminance; /* frames * npix: L of each measured frame (restir_metrics_luminance) */
     double *ms;        /* frames * 3: the select pass, the spatial pass, the whole frame */
-    double *luminance_dn; /* denoise=svgf|atrous: the same of each denoised frame (issue 43); else NULL */
+    double *luminance_dn; /* denoise=svgf|atrous: the same of each denoised frame; else NULL */
 };
 
 /* The curve of 000 Figure 3 (error against covariance over radii) configuration c is a point of: 0

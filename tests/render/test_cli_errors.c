@@ -629,7 +629,7 @@ static void check_fuzz_regressions(void)
     EXPECT(files >= 1, "no regression inputs in %s", dir);
 }
 
-/* A file assimp reads only in part (issue 44): `scene info` says what was lost on stderr and on its
+/* A file assimp reads only in part: `scene info` says what was lost on stderr and on its
  * own line, and scene.strict=on refuses the file with exit 1 or 2, naming it. */
 static void check_partial_load(void)
 {

@@ -1,4 +1,4 @@
-/* test_denoise.c: the denoisers through the command line (issue 43): SVGF lowers restir-di's relMSE
+/* test_denoise.c: the denoisers through the command line: SVGF lowers restir-di's relMSE
  * on many-lights at least 3x against the same reference (compare, 320x180, 16 frames, two seeds);
  * the raw frame of a denoised render is byte for byte the frame rendered without --denoise; a method
  * without a G-buffer of its own (pt) is denoised through one traced for it; a study measures its

@@ -114,7 +114,7 @@ static const struct {
              {"004-cornell-ablation", "compare", 1, 1},
              {"002-cornell", "compare", 1, 1}};
 
-/* issue 42: 002 runs 8 runs per configuration by default, 004 keeps 4 (the default runs are per paper). The plans
+/* 002 runs 8 runs per configuration by default, 004 keeps 4 (the default runs are per paper). The plans
  * count them: a reference job and one job per row and run. */
 static void test_default_runs(char *err)
 {
@@ -172,7 +172,7 @@ static void test_plan_equals_unsplit(char *err)
     EXPECT(g && (!unmeasured || (g_end && unmeasured > g_end)), "claims.csv: 002's gradient claim is missing or "
                                                                  "not measured:\n%s",
            a);
-    /* and issue 42's trimmed gradient relMSE and gradient MAPE reached them too */
+    /* and the trimmed gradient relMSE and gradient MAPE reached them too */
     static const char *const robust[2] = {"gradient relMSE trim 1% vs Gradient after ReSTIR x 2",
                                           "gradient MAPE vs Gradient after ReSTIR x 1"};
     for (int k = 0; k < 2; k++) {
@@ -180,7 +180,7 @@ static void test_plan_equals_unsplit(char *err)
         const char *r_un = r ? strstr(r, "not measured") : NULL;
         EXPECT(r && (!r_un || (r_end && r_un > r_end)), "claims.csv: \"%s\" is missing or not measured", robust[k]);
     }
-    /* issue 42: the claims' why column says what the deciding rows show (evaluate_findings.h) */
+    /* the claims' why column says what the deciding rows show (evaluate_findings.h) */
     static const char *const findings[3] = {"Bitterli vs no spatial reuse, SMAPE: ", "own cell only vs standard: ",
                                             "gradient relMSE without the worst 1% of pairs: "};
     for (int k = 0; k < 3; k++)

@@ -454,7 +454,7 @@ static void check_compare(void)
         EXPECT(rows == 4 && isfinite(want) && fabs(grad_relmse[k] - want) <= 1e-5 * want,
                "compare: %s gradient_relmse %.9g, its frame's %.9g", methods[k], rows == 4 ? grad_relmse[k] : NAN,
                want);
-        /* issue 42's trimmed relMSE and gradient MAPE of the same frame */
+        /* the trimmed relMSE and gradient MAPE of the same frame */
         const double trim = dx && dy && ref ? restir_metrics_gradient_relmse_trimmed(dx, dy, ref, W, H, 0.01) : NAN;
         const double mape = dx && dy && ref ? restir_metrics_gradient_mape(dx, dy, ref, W, H) : NAN;
         EXPECT(rows == 4 && isfinite(trim) && fabs(grad_trim[k] - trim) <= 1e-5 * trim && trim <= want,
@@ -480,7 +480,7 @@ static void check_compare(void)
                grad_trim[k], grad_mape[k]);
     snprintf(sub, sizeof(sub), "%s/pt", dir);
     expect_no_layer(sub, "frame_0002.exr", "dx");
-    /* issue 42: the image of the worst 1% of the gradient pairs, for the gradient rows only */
+    /* the image of the worst 1% of the gradient pairs, for the gradient rows only */
     EXPECT(cli_count_entries(dir, "grestir-pt_grad_worst1.png") == 1 &&
                cli_count_entries(dir, "gpt_grad_worst1.png") == 1,
            "compare: no worst-pairs image for a gradient row in %s", dir);

@@ -3,7 +3,7 @@
  *    luminance, bit for bit.
  *  - Signed frames, as the gradient methods' L2 / L1 reconstructions (002 Sec. 5) are: a pixel whose mean over
  *    the runs is +-1e-3 with values of +-1 makes Eq. 17's ratio unbounded (|a_i| in the 10^5 here), the bug
- *    issue 42 found (tcov -61.5 against 2.0 for near-identical images). The track measures the luminance
+ *    an evaluation found (tcov -61.5 against 2.0 for near-identical images). The track measures the luminance
  *    clamped at 0, so its tcov stays within the non-negative bound N - 1 and equals the metric of the clamped
  *    frames. */
 #include <math.h>

@@ -274,7 +274,7 @@ static void test_broken_files(void)
         EXPECT(load_one(badn, msg, &end_ok, &finite) == 12 && finite && end_ok, "%s must load: %s", badn, msg);
 }
 
-/* Files that load only in part say so (issue 44): the scene keeps a line naming the file and what
+/* Files that load only in part say so: the scene keeps a line naming the file and what
  * was lost, and scene.strict refuses the file with the same words; zero-area triangles are said but
  * never refused; a clean file has no note. */
 static void test_partial_loads(const char *dir)
@@ -464,7 +464,7 @@ static void test_obj(const char *dir)
 
     /* A header that declares the vertices twice (a misspelled end_header lets the next copy of
      * the header in): assimp 5.2 sizes the mesh by the first count and writes the second past
-     * its end, a heap overflow that need not crash (issue 44's fuzzing), so it is refused first.
+     * its end, a heap overflow that need not crash (found by fuzzing), so it is refused first.
      * A comment naming an element twice is no declaration. */
     snprintf(path, sizeof path, "%s/twice.ply", dir);
     n = import_text(path,
