@@ -10,6 +10,7 @@
 #include "experiments/compare_plan.h"
 #include "experiments/compare_run.h"
 #include "experiments/options.h"
+#include "experiments/out_dir.h"
 #include "experiments/stats.h"
 #include "io/atomic_file.h"
 #include "io/exr.h"
@@ -41,6 +42,7 @@ static void compare_usage(void)
     printf("usage: restir compare --scene NAME --methods SPEC,SPEC,... [--equal-time] [--frames N] [--res WxH]\n"
                "                      [--ref FILE.exr | --ref-spp N] [--camera static|path] [--out DIR] [--report]\n"
                "                      [--seed N] [--threads N] [--runs N] [--ref-every K] [--set key=value]...\n"
+               "                      [--force]\n"
                "Each SPEC is NAME[:key=value]...: method NAME (see restir list) with the command's parameters,\n"
                "then each key=value applied as by --set (see restir render --help) for that row only, e.g.\n"
                "  --methods 'restir-pt,restir-pt:mis=balance:spatial.neighbors=5,pt'\n"
@@ -68,7 +70,10 @@ static void compare_usage(void)
                "pixels)\n"
                "and each row's last frame to DIR/FOLDER/, where FOLDER is the SPEC with every character other\n"
                "than A-Z a-z 0-9 . _ - replaced by _ (and _2, _3, ... appended when two SPECs give the same\n"
-               "name). Default DIR: out/compare-SCENE. For gradient rows DIR/FOLDER_grad_worst1.png shows where\n"
+               "name). Default DIR: a new folder out/compare-SCENE (-2, -3, ... appended when taken); a given\n"
+               "--out DIR must be new or empty, or --force empties it first (only a folder restir wrote, never /,\n"
+               "$HOME or the current folder; links inside are removed, not followed). --ref without --res: the\n"
+               "reference's size. For gradient rows DIR/FOLDER_grad_worst1.png shows where\n"
                "the worst 1%% of gradient_relmse's pixel pairs are (issue 42), over the dimmed reference: red the\n"
                "pair with the right neighbour, cyan with the one below, white both.\n");
     printf("DIR/frames.csv has a row per SPEC and frame: frame time, temporal pass time, the shares of\n"
@@ -114,6 +119,10 @@ int cmd_compare(int argc, char **argv)
         compare_usage();
         return 0;
     }
+    if (!desc.plan && desc.out && out_dir_check("--out", desc.out, desc.force, parse_msg) != 0) {
+        cli_error("%s", parse_msg); /* a folder of its own: nothing is touched */
+        return EXIT_USAGE;
+    }
     static struct compare_setup st;
     int rc = compare_setup(&desc, &st);
     if (rc != 0)
@@ -129,10 +138,8 @@ int cmd_compare(int argc, char **argv)
     struct compare_spec *specs = st.specs;
     const int n = st.n;
     cli_catch_stop_signals();
-    char out_dir[4096];
-    snprintf(out_dir, sizeof(out_dir), "%s", o.out ? o.out : "");
-    if (!o.out)
-        snprintf(out_dir, sizeof(out_dir), "out/compare-%s", st.s.name);
+    char out_dir[4096], base[4096];
+    snprintf(base, sizeof(base), "out/compare-%s", st.s.name); /* without --out: a new folder each run */
     struct reference_pair pair = {0};
     if (o.ref) {
         if (cli_load_reference(o.ref, p.width, p.height, &pair.mean, msg) != 0 ||
@@ -143,7 +150,7 @@ int cmd_compare(int argc, char **argv)
         scene_destroy(&st.s);
         return 128 + (int)cli_stop_signal;
     }
-    if (rc == 0 && io_make_dirs(out_dir, msg) != 0)
+    if (rc == 0 && out_dir_open(o.out, base, o.force, out_dir, sizeof(out_dir), msg) != 0)
         rc = EXIT_RUNTIME;
     if (rc != 0) {
         cli_error("%s", msg);

@@ -7,6 +7,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/options.h"
+#include "experiments/out_dir.h"
 #include "experiments/reference_checkpoint.h"
 #include "experiments/reference_run.h"
 #include "experiments/reference_shards.h"
@@ -18,8 +19,8 @@ static void reference_usage(FILE *out)
             "usage: restir reference --scene NAME --method NAME [--res WxH] [--spp N] [--target-relmse X]\n"
             "                        [--camera static|path]\n"
             "                        [--frame F] [--seed N] [--threads N] [--checkpoint-every SECONDS]\n"
-            "                        [--max-memory MB] --out FILE.exr | --shards N --plan DIR\n"
-            "       restir reference --merge DIR --out FILE.exr\n"
+            "                        [--max-memory MB] [--force | --resume] --out FILE.exr | --shards N --plan DIR\n"
+            "       restir reference --merge DIR --out FILE.exr [--force]\n"
             "Renders the converged image of what METHOD estimates (pt over the same integrand: direct\n"
             "lighting only for DI methods) from the camera of frame F. Default --spp 1024. The samples come\n"
             "in chunks of %d, chunk c always from the same random numbers, so the image does not depend on\n"
@@ -30,7 +31,11 @@ static void reference_usage(FILE *out)
             "continues from the checkpoint, after a kill too, and writes byte for byte the image an\n"
             "uninterrupted run gives; a larger --spp extends it. A checkpoint of another run (scene content,\n"
             "camera, resolution, seed or pt parameters) is refused, not overwritten. The finished reference\n"
-            "carries the same attributes, and the checkpoint is removed.\n"
+            "carries the same attributes, and the checkpoint is removed. --resume insists on continuing (exit 2\n"
+            "when there is no checkpoint). An existing FILE.exr is refused (exit 2, nothing touched) unless\n"
+            "--force, which replaces it once the new one is written and starts over from a checkpoint that\n"
+            "cannot be continued. A --plan DIR must be new, empty or hold this very plan (planned again, its\n"
+            "finished jobs kept); --force empties one that holds anything else (restir's outputs only).\n"
             "SIGINT / SIGTERM stop after the current chunk (a second one stops at once); without\n"
             "--checkpoint-every nothing is written. Exit status 128 + the signal.\n"
             "--shards N --plan DIR splits the chunks into N jobs (DIR/jobs.txt, plan.json, slurm.sh; see\n"
@@ -76,6 +81,15 @@ int cmd_reference(int argc, char **argv)
         reference_usage(stdout);
         return 0;
     }
+    if (desc.force && desc.resume) {
+        cli_error("give one of --force (start over) and --resume (continue the checkpoint)");
+        return EXIT_USAGE;
+    }
+    /* an earlier run's image is never replaced without --force; its checkpoint is continued */
+    if (!desc.plan && !desc.shards && desc.out && out_file_check("--out", desc.out, desc.force, parse_msg) != 0) {
+        cli_error("%s", parse_msg);
+        return EXIT_USAGE;
+    }
     struct reference_setup st;
     int rc = reference_setup(&desc, 1, &st);
     if (rc != 0)
@@ -97,11 +111,22 @@ int cmd_reference(int argc, char **argv)
     reference_checkpoint_init(&c, &a, o.out, o.checkpoint_every, o.method, o.scene);
     c.target = o.target_relmse;
     int resumed = 0;
-    if (reference_checkpoint_resume(&c, &a, &resumed, msg) != 0) {
+    rc = reference_checkpoint_resume(&c, &a, &resumed, msg);
+    if (rc != 0 && o.force) { /* a checkpoint that cannot be continued: --force starts over */
+        printf("--force: removing %s (%s)\n", c.path, msg);
+        reference_checkpoint_remove(&c);
+        rc = reference_checkpoint_resume(&c, &a, &resumed, msg);
+    }
+    if (rc == 0 && o.resume && !resumed) {
+        snprintf(msg, RESTIR_MSG_LEN, "--resume: there is no checkpoint %.300s to continue (drop --resume to start)",
+                 c.path);
+        rc = EXIT_USAGE;
+    }
+    if (rc != 0) {
         cli_error("%s", msg);
         reference_accum_fini(&a);
         scene_destroy(&s);
-        return EXIT_RUNTIME;
+        return rc == EXIT_USAGE ? EXIT_USAGE : EXIT_RUNTIME;
     }
     if (resumed)
         printf("resuming %s from %d of %d samples\n", c.path, a.done, spp);

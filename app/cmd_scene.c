@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/options.h"
+#include "experiments/out_dir.h"
 #include "io/atomic_file.h"
 #include "io/scene_export.h"
 #include "io/scene_export_mesh.h"
@@ -20,8 +21,9 @@
 static void scene_usage(FILE *out)
 {
     fprintf(out, "usage: restir scene info NAME|FILE [--set scene.missing_textures=warn] [--set scene.strict=on]\n"
-                 "       restir scene export NAME --out DIR\n"
-                 "       restir scene export NAME|FILE --mesh --out DIR [--set scene.shading_normals=off] [--env FILE|none]\n"
+                 "       restir scene export NAME --out DIR [--force]\n"
+                 "       restir scene export NAME|FILE --mesh --out DIR [--force] [--set scene.shading_normals=off]\n"
+                 "                           [--env FILE|none]\n"
                  "info: triangles, emitters, materials, textures, bounds, load and BVH build time of a\n"
                  "      built-in scene or a scene file (.json, .gltf, .glb, .obj, .ply; docs/SCENES.md).\n"
                  "export: writes the built-in scene NAME as DIR/NAME.json; rendering that file gives the\n"
@@ -31,7 +33,9 @@ static void scene_usage(FILE *out)
                  "      diffuse albedo and front-side emission, the pinhole camera and a constant environment.\n"
                  "      Refuses (exit 2, naming the material) what a Lambert-only renderer cannot match: a used\n"
                  "      material without \"lambert\": true, a textured or alpha-masked one, shading normals, a thin\n"
-                 "      lens, an environment image.\n");
+                 "      lens, an environment image.\n"
+                 "export writes one file, so DIR may hold other scenes; a NAME.json (NAME.mesh.json) already\n"
+                 "      there is refused (exit 2, nothing written) unless --force, which replaces it.\n");
 }
 
 static int scene_info(int argc, char **argv)
@@ -130,6 +134,9 @@ static int scene_export_mesh(int argc, char **argv)
     } else if (snprintf(path, sizeof path, "%s/%s.mesh.json", o.out, s.name) >= (int)sizeof path) {
         cli_error("scene export --mesh: the output path is too long");
         rc = EXIT_USAGE;
+    } else if (out_file_check("scene export --mesh:", path, o.force, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_USAGE;
     } else if (io_make_dirs(o.out, msg) != 0 || scene_export_mesh_json(&s, name, path, msg) != 0) {
         cli_error("scene export --mesh: %s", msg);
         rc = EXIT_RUNTIME;
@@ -146,9 +153,12 @@ static int scene_export(int argc, char **argv)
         if (!strcmp(argv[i], "--mesh"))
             return scene_export_mesh(argc, argv);
     const char *name = NULL, *out = NULL;
+    int force = 0;
     for (int i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--out") && i + 1 < argc)
             out = argv[++i];
+        else if (!strcmp(argv[i], "--force"))
+            force = 1;
         else if (argv[i][0] != '-' && !name)
             name = argv[i];
         else {
@@ -176,7 +186,10 @@ static int scene_export(int argc, char **argv)
     char path[4200];
     snprintf(path, sizeof path, "%s/%s.json", out, name);
     int rc = 0;
-    if (io_make_dirs(out, msg) != 0 || scene_export_json(&s, records, n, path, msg) != 0) {
+    if (out_file_check("scene export:", path, force, msg) != 0) {
+        cli_error("%s", msg);
+        rc = EXIT_USAGE;
+    } else if (io_make_dirs(out, msg) != 0 || scene_export_json(&s, records, n, path, msg) != 0) {
         cli_error("scene export: %s", msg);
         rc = EXIT_RUNTIME;
     } else {

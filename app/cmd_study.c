@@ -7,6 +7,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/options.h"
+#include "experiments/out_dir.h"
 #include "experiments/study.h"
 
 static void study_usage(FILE *out)
@@ -14,7 +15,7 @@ static void study_usage(FILE *out)
     fprintf(out,
             "usage: restir study --scene NAME --method restir-di|restir-pt --configs LIST [--radii LIST]\n"
             "                    [--runs N] [--warmup N] [--frames F] [--res WxH] [--ref FILE.exr | --ref-spp N]\n"
-            "                    [--set key=value]... [--report] --out DIR\n"
+            "                    [--set key=value]... [--report] --out DIR [--force]\n"
             "The error-correlation study of 000 (Sec. 6-7, Appendix A): N independently seeded sequences per\n"
             "configuration (static camera, confidence cap 20, --warmup frames before measuring, default 40),\n"
             "then --frames measured frames (default 16). LIST: bitterli, bitterli-rR (at radius R),\n"
@@ -35,7 +36,12 @@ static void study_usage(FILE *out)
             "one for the reference without --ref), DIR/plan.json and DIR/slurm.sh (sbatch --array) instead\n"
             "of running; run the jobs in any order and anywhere (`parallel -j N < DIR/jobs.txt`, `sbatch\n"
             "DIR/slurm.sh`), then `restir study --merge DIR` writes into DIR what the study writes, with the\n"
-            "same numbers (the pass times are those the jobs measured). docs/CLUSTER.md.\n");
+            "same numbers (the pass times are those the jobs measured). docs/CLUSTER.md.\n"
+            "--out DIR must be new or empty (one run per folder): --force empties it first. A --plan DIR\n"
+            "may also hold the same plan, planned again with its finished jobs kept; --force empties one\n"
+            "that holds another. --force empties only a folder restir wrote (summary.json, plan.json,\n"
+            "study.csv, frame_NNNN.*, ...), never /, $HOME or the current folder, and follows no link.\n"
+            "--ref FILE.exr without --res: the study runs at the reference's size.\n");
     cli_options_help(out, "study");
 }
 
@@ -58,6 +64,10 @@ int cmd_study(int argc, char **argv)
     if (desc.help) {
         study_usage(stdout);
         return 0;
+    }
+    if (!desc.plan && desc.out && out_dir_check("--out", desc.out, desc.force, msg) != 0) {
+        cli_error("%s", msg); /* a folder of its own: nothing is touched */
+        return EXIT_USAGE;
     }
     static struct study_setup st;
     int rc = study_setup(&desc, 1, &st);

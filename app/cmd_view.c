@@ -3,11 +3,13 @@
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "commands.h"
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/options.h"
+#include "experiments/out_dir.h"
 #include "scene/scene_file.h"
 #include "view/viewer.h"
 
@@ -17,7 +19,7 @@ static void view_usage(FILE *out)
     view_method_cycle_names(cycle, sizeof cycle);
     fprintf(out,
             "usage: restir view --scene NAME|FILE [--method NAME] [--res WxH] [--seed N] [--threads N]\n"
-            "                   [--script FILE] [--out DIR] [--set key=value]...\n"
+            "                   [--script FILE] [--out DIR [--force]] [--set key=value]...\n"
             "A window that renders frame after frame (default method: the first of the M cycle, 640x360).\n"
             "Mouse drag turns the camera, W A S D move, Q E down and up; M next method (%s),\n"
             "T temporal reuse, Y spatial reuse, N neighbor selection, P spmis; V debug views (confidence,\n"
@@ -31,8 +33,9 @@ static void view_usage(FILE *out)
             "replays exactly; escape quits and writes DIR/last_frame.exr and .png. The title shows the\n"
             "per-pass times.\n"
             "--script FILE: timed input, one event per line ('F press KEY', 'F hold KEY N', 'F drag DX DY',\n"
-            "'F quit'; F counts frames from the start). Default DIR: out/view-SCENE. Without a display it\n"
-            "says so and exits 1.\n",
+            "'F quit'; F counts frames from the start). Default DIR: a new folder out/view-SCENE (-2, -3, ...\n"
+            "appended when taken), made at the first save; a given --out DIR must be new or empty, or --force\n"
+            "empties it first. Without a display it says so and exits 1.\n",
             cycle);
     cli_options_help(out, "view");
 }
@@ -48,6 +51,10 @@ int cmd_view(int argc, char **argv)
     if (o.help) {
         view_usage(stdout);
         return 0;
+    }
+    if (o.out && out_dir_check("--out", o.out, o.force, msg) != 0) {
+        cli_error("%s", msg); /* a folder of its own: nothing is touched */
+        return EXIT_USAGE;
     }
     const struct method *m = o.method ? method_find(o.method) : view_method_after(NULL);
     if (!m) {
@@ -71,8 +78,17 @@ int cmd_view(int argc, char **argv)
     }
     if (o.params.threads > 0)
         omp_set_num_threads(o.params.threads);
-    char out_dir[4096];
-    snprintf(out_dir, sizeof out_dir, o.out ? "%s" : "out/view-%s", o.out ? o.out : s.name);
+    char out_dir[4096], base[4096];
+    snprintf(base, sizeof base, "out/view-%s", s.name); /* without --out: a new folder each session */
+    if (o.out)
+        snprintf(out_dir, sizeof out_dir, "%s", o.out);
+    struct stat st; /* the viewer makes its folder once a window is open; --force empties it now */
+    if (o.out ? o.force && stat(o.out, &st) == 0 && out_dir_prepare(o.out, 1, msg) != 0
+              : out_dir_fresh_name(base, out_dir, sizeof out_dir, msg) != 0) {
+        cli_error("%s", msg);
+        scene_destroy(&s);
+        return EXIT_RUNTIME;
+    }
     const struct view_options vo = {&s, m, o.params, o.script, out_dir};
     int rc = view_run(&vo, msg);
     if (rc != 0)

@@ -37,7 +37,7 @@ for rep in 1 2; do
     for a in on off; do
       d="$out/cost-$m-alpha-$a-$rep"
       "$bin" render --scene forest --method "$m" --res "$res" --frames "$frames" --threads "$threads" \
-        --set scene.alpha=$a --out "$d" > /dev/null
+        --set scene.alpha=$a --out "$d" --force > /dev/null
       printf '%-10s %-5s %-4s %s\n' "$m" "$a" "$rep" "$(mean_cols "$d/metrics.csv")"
     done
   done
@@ -45,7 +45,8 @@ done
 # 2. equal time, static camera, the last frame against the reference
 for m in restir-di restir-pt; do
   "$bin" compare --scene forest --methods "$m,pt" --equal-time --frames "$frames" --res "$res" \
-    --ref "$out/ref-$m-$res-$ref_spp.exr" --threads "$threads" --out "$out/equal-time-$m" > "$out/equal-time-$m.log"
+    --ref "$out/ref-$m-$res-$ref_spp.exr" --threads "$threads" --out "$out/equal-time-$m" --force \
+    > "$out/equal-time-$m.log"
   awk -F, -v m="$m" 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
     { rel[$1] = $col["relmse"]; printf "%-10s ms/frame %8.1f spp %3s instances %3s relMSE %.5f MAPE %.4f\n", $1,
         $col["ms_per_frame"], $col["spp"], $col["instances"], $col["relmse"], $col["mape"] }

@@ -43,7 +43,7 @@ for scene in $scenes; do
         spp_set=""
         [ "$method" = pt ] && spp_set="spp=$spp"
         line=$("$bin" render --scene "$scene" --method "$method" --res "$res" --frames "$frames" --seed "$seed" \
-          --threads "$threads" $(sets_args "$spp_set $sets") --ref "$ref" --save last --out "$out/render" |
+          --threads "$threads" $(sets_args "$spp_set $sets") --ref "$ref" --save last --out "$out/render" --force |
           grep "ms/frame")
         ms=$(sed -n 's/.*: \([0-9.]*\) ms\/frame.*/\1/p' <<< "$line")
         relmse=$(sed -n 's/.*relMSE \([0-9.e+-]*\).*/\1/p' <<< "$line")

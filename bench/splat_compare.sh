@@ -17,7 +17,7 @@ mkdir -p "$out"
 specs="restir-pt:temporal.reuse=backproject,restir-pt:temporal.reuse=splat,restir-pt:temporal.reuse=both"
 for s in foliage pillars ajar cornell; do
   "$bin" compare --scene "$s" --camera path --res "$res" --frames "$frames" --ref-spp "$ref_spp" \
-    --runs "$runs" --ref-every 8 --methods "$specs" --threads "$threads" --out "$out/$s" > "$out/$s.log"
+    --runs "$runs" --ref-every 8 --methods "$specs" --threads "$threads" --out "$out/$s" --force > "$out/$s.log"
 done
 # Columns: frame time and temporal pass (means over frames 1..), last-frame relMSE / MAPE, MAPE of
 # frames 7, 15, 23, ... (every 8th, before the last), mean shares over frames 1.. (accept: history

@@ -36,6 +36,7 @@ for rep in 1 2 3; do
   for c in "${configs[@]}"; do
     IFS='|' read -r name b sets <<< "$c"
     d="$out/$scene-$method-$name-$rep"
+    rm -rf "$d" # a run's own folder (BASE may be a restir from before --force)
     # shellcheck disable=SC2086
     "$b" render --scene "$scene" --method "$method" --res "$res" --frames "$frames" --camera path \
       --threads "$threads" $sets --out "$d" --save last > /dev/null

@@ -7,6 +7,6 @@ out=out/demo
 echo "Rendering many-lights at 640x360: a 512-spp direct-lighting reference, then 17 frames of"
 echo "restir-di and path tracing given the same time per frame (error measured at frame 16)."
 "$restir" compare --scene many-lights --methods restir-di,pt --equal-time --frames 17 --res 640x360 \
-    --ref-spp 512 --out "$out"
+    --ref-spp 512 --out "$out" --force # each demo replaces the last one's images
 echo
 echo "Images: $out/restir-di/frame_0016.png, $out/pt/frame_0016.png, reference $out/reference.exr"

@@ -130,7 +130,7 @@ for scene in $scenes; do
     box) src=$here/scenes/box.json ;;
     cornell | many-lights)
       # the built-in scene with every material made Lambertian (lambertize.py says what changes)
-      "$bin" scene export "$scene" --out "$out/scenes/builtin" > /dev/null
+      "$bin" scene export "$scene" --out "$out/scenes/builtin" --force > /dev/null
       python3 "$here/lambertize.py" "$out/scenes/builtin/$scene.json" "$out/scenes/$scene.json" > /dev/null
       src=$out/scenes/$scene.json ;;
     engine-sky)
@@ -139,7 +139,8 @@ for scene in $scenes; do
       sets=(--set scene.shading_normals=off) ;;
     *) src=$scene ;; # any scene file whose materials are all Lambertian
   esac
-  mesh=$("$bin" scene export "$src" --mesh --out "$out/mesh" "${sets[@]}" 2> "$out/logs/${scene}_export.log") || {
+  mesh=$("$bin" scene export "$src" --mesh --force --out "$out/mesh" "${sets[@]}" \
+    2> "$out/logs/${scene}_export.log") || {
     cat "$out/logs/${scene}_export.log" >&2
     exit 1
   }

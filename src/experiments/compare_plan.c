@@ -67,7 +67,10 @@ int compare_plan(const struct compare_setup *st, int argc, char **argv)
     }
     char name[PLAN_NAME_MAX], rel[PLAN_PATH_MAX];
     struct plan pl;
-    const int rc = plan_start(&pl, st->o.plan, "compare", argc, argv, scene_content_hash(&st->s));
+    /* a new or empty folder, or this very plan's (finished jobs kept); --force empties another */
+    int rc = plan_folder_claim(st->o.plan, "compare", argc, argv, st->o.force);
+    if (rc == 0)
+        rc = plan_start(&pl, st->o.plan, "compare", argc, argv, scene_content_hash(&st->s));
     if (rc != 0)
         return rc;
     if (!st->o.ref)

@@ -10,6 +10,7 @@
 
 #include "core/check.h"
 #include "experiments/cli.h"
+#include "experiments/reference_size.h"
 #include "scene/scene_file.h"
 
 /* msg of render_params_set without its "--set" prefix, which
@@ -138,6 +139,11 @@ int compare_setup(const struct cli_options *desc, struct compare_setup *st)
     if (strlen(o->methods) >= sizeof(list)) {
         cli_error("--methods is longer than %zu characters", sizeof(list) - 1);
         return EXIT_USAGE;
+    }
+    /* --ref without --res: the reference's size, which every spec copies */
+    if (o->ref && reference_size_adopt(o->ref, o->res_given, &o->params, msg) != 0) {
+        cli_error("%s", msg);
+        return EXIT_RUNTIME;
     }
     snprintf(list, sizeof(list), "%s", o->methods);
     st->n = 0;

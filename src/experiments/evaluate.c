@@ -18,6 +18,7 @@
 #include "experiments/evaluate_record.h"
 #include "experiments/evaluate_tables.h"
 #include "experiments/options.h"
+#include "experiments/out_dir.h"
 #include "experiments/plan.h"
 #include "experiments/study.h"
 #include "io/atomic_file.h"
@@ -62,6 +63,8 @@ int evaluate_parse(int argc, char **argv, struct eval_options *o, const char **d
         return 0;
     o->threads = c.params.threads;
     o->partial = c.partial;
+    o->force = c.force;
+    o->resume = c.resume;
     if (c.check || c.tables) { /* the data of an evaluation already merged: no paper, no new plan */
         if (!(dir && mode)) {
             cli_error("evaluate: a plan's stored options name no folder");
@@ -86,6 +89,14 @@ int evaluate_parse(int argc, char **argv, struct eval_options *o, const char **d
     }
     if (c.partial) {
         cli_error("evaluate: --partial goes with --tables DIR or --merge DIR");
+        return EXIT_USAGE;
+    }
+    if ((c.force || c.resume) && !c.out && !c.plan) {
+        cli_error("evaluate: --%s goes with --out DIR or --plan DIR", c.force ? "force" : "resume");
+        return EXIT_USAGE;
+    }
+    if (c.force && c.resume) {
+        cli_error("evaluate: give one of --force (start over) and --resume (continue)");
         return EXIT_USAGE;
     }
     if ((c.out || c.plan) && !(dir && mode)) {
@@ -230,34 +241,47 @@ static int has_entries(const char *dir)
     return any;
 }
 
-/* The folder may hold nothing, or this very evaluation. Returns 0, or EXIT_USAGE having said why. */
-static int check_folder(const char *dir, uint64_t id, const char *command)
+/* The folder may hold nothing, or this very evaluation, continued; with resume only the latter. With
+ * force it is emptied first, whatever it holds (out_dir.h says which folders --force may empty).
+ * Returns 0, or EXIT_USAGE having said why (nothing touched). */
+static int check_folder(const char *dir, uint64_t id, const char *command, int force, int resume)
 {
     char path[PLAN_PATH_MAX + 32], msg[RESTIR_MSG_LEN];
+    static const char *const hint = "; pass --force to empty it first, or give another folder";
+    if (force) {
+        if (has_entries(dir) && (out_dir_may_empty(dir, msg) != 0 || out_dir_empty(dir, msg) != 0)) {
+            cli_error("evaluate: %s", msg);
+            return EXIT_USAGE;
+        }
+        return 0;
+    }
     snprintf(path, sizeof path, "%s/plan.json", dir);
     struct stat st;
     if (stat(path, &st) == 0) {
         struct plan old;
         if (plan_load(dir, &old, msg) != 0) {
-            cli_error("evaluate: %s: %s; give another folder", dir, msg);
+            cli_error("evaluate: %s: %s%s", dir, msg, hint);
             return EXIT_USAGE;
         }
         int rc = 0;
         if (strcmp(old.kind, "evaluate") != 0) {
-            cli_error("evaluate: %s is the plan of `%s`, not an evaluation; give another folder", dir, old.command);
+            cli_error("evaluate: %s is the plan of `%s`, not an evaluation%s", dir, old.command, hint);
             rc = EXIT_USAGE;
         } else if (plan_check_build(&old) != 0) { /* planned again, its done jobs would mix two builds */
             rc = EXIT_USAGE;
         } else if (old.id != id) {
-            cli_error("evaluate: %s holds another evaluation (`%s`), not `%s`; give another folder", dir,
-                      old.command, command);
+            cli_error("evaluate: %s holds another evaluation (`%s`), not `%s`%s", dir, old.command, command, hint);
             rc = EXIT_USAGE;
         }
         plan_free(&old);
-        return rc;
+        return rc; /* 0: this evaluation; its jobs not yet done run, the others stay done */
+    }
+    if (resume) {
+        cli_error("evaluate: --resume: %s holds no evaluation to continue (drop --resume to start one)", dir);
+        return EXIT_USAGE;
     }
     if (has_entries(dir)) {
-        cli_error("evaluate: %s is not empty and holds no evaluation; give an empty or new folder", dir);
+        cli_error("evaluate: %s is not empty and holds no evaluation%s", dir, hint);
         return EXIT_USAGE;
     }
     return 0;
@@ -272,6 +296,11 @@ static int plan_evaluation(const char *dir, const struct eval_options *o, struct
     char *argv[32], msg[RESTIR_MSG_LEN], command[8192];
     const int argc = canonical_args(o, text, sizeof text, argv);
     cli_command_line("evaluate", argc, argv, command, sizeof command);
+    struct stat st;
+    if (o->resume && stat(dir, &st) != 0) {
+        cli_error("evaluate: --resume: %s does not exist, so there is no evaluation to continue", dir);
+        return EXIT_USAGE;
+    }
     int rc = io_make_dirs(dir, msg) == 0 ? 0 : EXIT_RUNTIME;
     if (rc != 0) {
         cli_error("%s", msg);
@@ -285,7 +314,7 @@ static int plan_evaluation(const char *dir, const struct eval_options *o, struct
     struct plan probe;
     if ((rc = plan_start(&probe, abs, "evaluate", argc, argv, 0)) != 0)
         return rc;
-    rc = check_folder(abs, probe.id, command);
+    rc = check_folder(abs, probe.id, command, o->force, o->resume);
     plan_free(&probe);
     if (rc != 0)
         return rc;

@@ -17,6 +17,8 @@ struct eval_options {
     char configs[256]; /* 000: comma-separated configurations to run, a subset of eval_000_configs ("": all) */
     int report;       /* --report: the steps' pages and the evaluation's index.html */
     int partial;      /* --tables --partial: steps without their tables are named, not refused */
+    int force;        /* --force: empty a folder that holds anything but this evaluation first */
+    int resume;       /* --resume: the folder must hold this evaluation, to continue it */
 };
 
 /* One command of an evaluation: `restir KIND ARGS...` planned into DIR/NAME. */

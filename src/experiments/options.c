@@ -261,6 +261,17 @@ static const struct opt_def option_table[] = {
     {"--equal-time", " compare ", OPT_FLAG, O(equal_time), 0, 0, NO_GIVEN, NULL, "",
      "give every method the first stateful method's time per frame", NULL},
     {"--report", " compare study ", OPT_FLAG, O(report), 0, 0, NO_GIVEN, NULL, "", "also write DIR/index.html", NULL},
+    /* one run per folder (out_dir.h): what to do when --out (--plan) already holds something */
+    {"--force", " render compare study view scene export ", OPT_FLAG, O(force), 0, 0, NO_GIVEN, NULL, "",
+     "empty a non-empty --out DIR (or --plan DIR) first: only a folder restir wrote, never / $HOME or .", NULL},
+    {"--force", " reference ", OPT_FLAG, O(force), 0, 0, NO_GIVEN, NULL, "",
+     "replace an existing --out FILE.exr; start over from a checkpoint that cannot be continued", NULL},
+    {"--force", EVAL, OPT_FLAG, O(force), 0, 0, NO_GIVEN, NULL, "",
+     "empty a non-empty DIR first and start over (only a folder restir wrote)", NULL},
+    {"--resume", " reference ", OPT_FLAG, O(resume), 0, 0, NO_GIVEN, NULL, "",
+     "continue FILE.checkpoint.exr (as the same command does anyway); exit 2 when there is none", NULL},
+    {"--resume", EVAL, OPT_FLAG, O(resume), 0, 0, NO_GIVEN, NULL, "",
+     "continue this evaluation in DIR (as the same command does anyway); exit 2 when DIR holds none", NULL},
 };
 
 /* Whether row d applies to `command`. */

@@ -42,6 +42,8 @@ struct cli_options {
     const char *tables;      /* evaluate: write the tables of this evaluation from its steps' small files */
     int partial;             /* evaluate --tables: leave out the steps without tables */
     int shards;              /* reference --plan: jobs the samples are split into (0: not given) */
+    int force;               /* --force: empty a non-empty --out (or --plan) folder first, replace an --out file */
+    int resume;              /* --resume: continue the run --out holds (reference, evaluate), never start anew */
     struct render_params params;
     /* the --set assignments as given, in order (checked against the method that reads them) */
 #define CLI_MAX_SETS 128

@@ -16,6 +16,7 @@
 #include "core/hash.h"
 #include "experiments/cli.h"
 #include "experiments/options.h"
+#include "experiments/out_dir.h"
 #include "io/atomic_file.h"
 #include "io/report.h"
 #include "io/text_file.h"
@@ -63,33 +64,20 @@ static int plan_set_arguments(struct plan *p, const cJSON *desc, char *msg)
     return 0;
 }
 
-/* Starts a plan of kind in dir (made, if missing) from the command's arguments, copying them
- * without --plan DIR and with --scene FILE and --ref FILE made absolute. Returns 0, or -1 with msg. */
-static int plan_init(struct plan *p, const char *dir, const char *kind, int argc, char **argv, const char *command,
-                     uint64_t scene_hash, char *msg)
+/* The plan's arguments and id from the command's: p->argv without --plan DIR, --force and --resume
+ * (what to do with the folder is no part of the work), with --scene FILE and --ref FILE made
+ * absolute. Returns 0, or -1 with msg. */
+static int plan_identify(struct plan *p, const char *kind, int argc, char **argv, char *msg)
 {
-    memset(p, 0, sizeof *p);
-    if (io_make_dirs(dir, msg) != 0)
-        return -1;
-    if (!realpath(dir, p->dir)) {
-        snprintf(msg, RESTIR_MSG_LEN, "--plan %.300s: %s", dir, strerror(errno));
-        return -1;
-    }
-    if (!plain_path(p->dir)) {
-        snprintf(msg, RESTIR_MSG_LEN,
-                 "--plan %.300s: the folder's path must not hold spaces, quotes, '$', '%%' or '\\' (Slurm's "
-                 "#SBATCH lines cannot quote them)", p->dir);
-        return -1;
-    }
     snprintf(p->kind, sizeof p->kind, "%s", kind);
-    snprintf(p->command, sizeof p->command, "%s", command);
-    p->scene_hash = scene_hash;
     p->argv = xcalloc((size_t)argc + 1, sizeof(char *));
     for (int i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--plan")) { /* the jobs run the command itself */
             i++;
             continue;
         }
+        if (!strcmp(argv[i], "--force") || !strcmp(argv[i], "--resume"))
+            continue;
         const int path_value = i > 0 && (!strcmp(argv[i - 1], "--scene") || !strcmp(argv[i - 1], "--ref"));
         char abs[PATH_MAX];
         struct stat st;
@@ -108,6 +96,71 @@ static int plan_init(struct plan *p, const char *dir, const char *kind, int argc
     cJSON_Delete(desc);
     p->made_by.threads = p->threads > 0 ? p->threads : p->made_by.threads;
     return rc;
+}
+
+/* Starts a plan of kind in dir (made, if missing) from the command's arguments (plan_identify).
+ * Returns 0, or -1 with msg. */
+static int plan_init(struct plan *p, const char *dir, const char *kind, int argc, char **argv, const char *command,
+                     uint64_t scene_hash, char *msg)
+{
+    memset(p, 0, sizeof *p);
+    if (io_make_dirs(dir, msg) != 0)
+        return -1;
+    if (!realpath(dir, p->dir)) {
+        snprintf(msg, RESTIR_MSG_LEN, "--plan %.300s: %s", dir, strerror(errno));
+        return -1;
+    }
+    if (!plain_path(p->dir)) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "--plan %.300s: the folder's path must not hold spaces, quotes, '$', '%%' or '\\' (Slurm's "
+                 "#SBATCH lines cannot quote them)", p->dir);
+        return -1;
+    }
+    snprintf(p->command, sizeof p->command, "%s", command);
+    p->scene_hash = scene_hash;
+    return plan_identify(p, kind, argc, argv, msg);
+}
+
+int plan_folder_claim(const char *dir, const char *kind, int argc, char **argv, int force)
+{
+    char msg[RESTIR_MSG_LEN], path[PLAN_PATH_MAX + 32];
+    struct stat st;
+    snprintf(path, sizeof path, "%s/plan.json", dir);
+    int same = 0;
+    char held[200] = "";
+    if (stat(path, &st) == 0) {
+        struct plan now, old;
+        memset(&now, 0, sizeof now);
+        if (plan_identify(&now, kind, argc, argv, msg) != 0) {
+            cli_error("%s", msg);
+            plan_free(&now);
+            return EXIT_USAGE;
+        }
+        snprintf(held, sizeof held, "a plan.json restir cannot read");
+        if (plan_load(dir, &old, msg) == 0) {
+            same = !strcmp(old.kind, now.kind) && old.id == now.id;
+            snprintf(held, sizeof held, "the plan of `%.150s`", old.command);
+            plan_free(&old);
+        }
+        plan_free(&now);
+    }
+    if (same && !force) /* planned again: the jobs already done stay done */
+        return 0;
+    if (!held[0] || force) { /* no plan (the folder must be new or empty), or --force */
+        if (out_dir_check("--plan", dir, force, msg) != 0) {
+            cli_error("%s", msg);
+            return EXIT_USAGE;
+        }
+        if (force && out_dir_prepare(dir, 1, msg) != 0) {
+            cli_error("%s", msg);
+            return EXIT_RUNTIME;
+        }
+        return 0;
+    }
+    cli_error("--plan %.200s holds %s, not this one (other options, or another build): pass --force to empty it "
+              "first, or give a new folder",
+              dir, held);
+    return EXIT_USAGE;
 }
 
 int plan_start(struct plan *p, const char *dir, const char *kind, int argc, char **argv, uint64_t scene_hash)

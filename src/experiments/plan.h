@@ -43,6 +43,12 @@ struct plan {
  * them without --plan DIR and with --scene FILE and --ref FILE made absolute; the command line is
  * kept for reports. Returns 0, or an exit code having said why. */
 int plan_start(struct plan *p, const char *dir, const char *kind, int argc, char **argv, uint64_t scene_hash);
+/* Before `restir KIND ... --plan dir`: dir may be new, empty, or hold this very plan (the same
+ * arguments, --force and --resume aside, and build), which is planned again with its finished jobs
+ * kept. Any other folder is refused (EXIT_USAGE, said why, nothing touched). With force any folder
+ * is emptied first, so the plan starts over (out_dir.h: only a folder restir wrote, never / or
+ * $HOME or the current folder). Returns 0 or an exit code. */
+int plan_folder_claim(const char *dir, const char *kind, int argc, char **argv, int force);
 void plan_add_job(struct plan *p, const char *name, const char *output);
 /* Writes dir/plan.json, dir/jobs.txt, dir/slurm.sh and makes dir/runs/logs. Returns 0, or -1 with
  * msg. */

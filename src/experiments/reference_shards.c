@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "experiments/cli.h"
+#include "experiments/out_dir.h"
 #include "experiments/plan.h"
 #include "experiments/reference_run.h"
 #include "io/exr.h"
@@ -65,7 +66,10 @@ int reference_plan(const struct reference_setup *st, int argc, char **argv)
     }
     char name[PLAN_NAME_MAX], rel[64];
     struct plan pl;
-    const int rc = plan_start(&pl, st->o.plan, "reference", argc, argv, scene_content_hash(&st->s));
+    /* a new or empty folder, or this very plan's (finished jobs kept); --force empties another */
+    int rc = plan_folder_claim(st->o.plan, "reference", argc, argv, st->o.force);
+    if (rc == 0)
+        rc = plan_start(&pl, st->o.plan, "reference", argc, argv, scene_content_hash(&st->s));
     if (rc != 0)
         return rc;
     for (int s = 0; s < st->o.shards; s++) {
@@ -180,19 +184,26 @@ int reference_run_job(const struct plan *pl, int k)
 int reference_merge(int argc, char **argv)
 {
     const char *dir = NULL, *out = NULL;
-    for (int i = 0; i + 1 < argc; i += 2) {
-        if (!strcmp(argv[i], "--merge"))
-            dir = argv[i + 1];
-        else if (!strcmp(argv[i], "--out"))
-            out = argv[i + 1];
+    int force = 0, bad = 0;
+    for (int i = 0; i < argc && !bad; i++) {
+        if (!strcmp(argv[i], "--force"))
+            force = 1;
+        else if (i + 1 < argc && !strcmp(argv[i], "--merge"))
+            dir = argv[++i];
+        else if (i + 1 < argc && !strcmp(argv[i], "--out"))
+            out = argv[++i];
         else
-            dir = out = NULL, i = argc;
+            bad = 1;
     }
-    if (!dir || !out || argc != 4) {
-        cli_error("usage: restir reference --merge DIR --out FILE.exr (the plan holds every other option)");
+    if (bad || !dir || !out) {
+        cli_error("usage: restir reference --merge DIR --out FILE.exr [--force] (the plan holds every other option)");
         return EXIT_USAGE;
     }
     char msg[RESTIR_MSG_LEN];
+    if (out_file_check("--out", out, force, msg) != 0) { /* an earlier merge's image stays unless --force */
+        cli_error("%s", msg);
+        return EXIT_USAGE;
+    }
     struct plan pl;
     int rc = plan_load_kind(dir, "reference", "a reference", &pl);
     if (rc != 0)

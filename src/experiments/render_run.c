@@ -13,6 +13,8 @@
 #include "experiments/cli.h"
 #include "experiments/options.h"
 #include "experiments/settings_file.h"
+#include "experiments/out_dir.h"
+#include "experiments/reference_size.h"
 #include "io/atomic_file.h"
 #include "io/report.h"
 #include "scene/scene_file.h"
@@ -78,6 +80,18 @@ static cJSON *params_json(const struct cli_options *o, const struct method *meth
     return j;
 }
 
+/* Appends n fields ",v" of metrics.csv to out (len bytes): the values when have, else empty ones. */
+static void error_fields(char *out, size_t len, const double *v, int n, int have)
+{
+    for (int k = 0; k < n; k++) {
+        const size_t used = strlen(out);
+        if (have)
+            snprintf(out + used, len - used, ",%.6g", v[k]);
+        else
+            snprintf(out + used, len - used, ",");
+    }
+}
+
 static void errors_add(struct restir_metrics_error *sum, const struct restir_metrics_error *e)
 {
     sum->relmse += e->relmse;
@@ -103,7 +117,15 @@ int render_run(const struct cli_options *desc)
     char msg[RESTIR_MSG_LEN];
     struct scene s;
     const struct method *method;
-    int rc = open_scene_and_method(&o, &s, &method);
+    int rc = o.out ? out_dir_check("--out", o.out, o.force, msg) : 0;
+    /* --ref without --res (or --params): the reference's size */
+    if (rc == 0 && o.ref && reference_size_adopt(o.ref, o.res_given || o.params_scene[0], &o.params, msg) != 0)
+        rc = EXIT_RUNTIME;
+    if (rc != 0) {
+        cli_error("%s", msg);
+        return rc;
+    }
+    rc = open_scene_and_method(&o, &s, &method);
     if (rc != 0)
         return rc;
     if (method_check_assignments(method, o.sets, o.n_sets, msg) != 0 ||
@@ -131,19 +153,17 @@ int render_run(const struct cli_options *desc)
         if (!o.frames_given)
             o.frames = ncams;
     }
-    char out_dir[4096];
-    if (o.out)
-        snprintf(out_dir, sizeof(out_dir), "%s", o.out);
-    else
-        snprintf(out_dir, sizeof(out_dir), "out/%s-%s", s.name, o.method);
+    char out_dir[4096], base[4096];
+    snprintf(base, sizeof(base), "out/%s-%s", s.name, o.method); /* without --out: a new folder each run */
     float *ref = NULL;
     if (o.ref && cli_load_reference(o.ref, o.params.width, o.params.height, &ref, msg) != 0) {
         cli_error("%s", msg);
         scene_destroy(&s);
         return EXIT_RUNTIME;
     }
-    if (io_make_dirs(out_dir, msg) != 0) {
+    if (out_dir_open(o.out, base, o.force, out_dir, sizeof(out_dir), msg) != 0) {
         cli_error("%s", msg);
+        free(cams);
         free(ref);
         scene_destroy(&s);
         return EXIT_RUNTIME;
@@ -203,12 +223,15 @@ int render_run(const struct cli_options *desc)
         double sp_acc = st.valid_pixels > 0 ? (double)tc->splat_accepted / vp : 0.0;
         /* 004 Sec. 6.2: pixels whose history was rejected in any of the last DISOCCLUSION_FRAMES frames */
         double disoccluded = 0.0, mape_disoccluded = 0.0;
+        int has_disoccluded = 0; /* a MAPE over disoccluded pixels: a reference and such pixels */
         if (method_has(method, METHOD_HISTORY)) {
             long long marked = renderer_disoccluded(&r, DISOCCLUSION_FRAMES, mask);
             disoccluded = st.valid_pixels > 0 ? (double)marked / (double)st.valid_pixels : 0.0;
             struct restir_metrics_error e;
-            if (ref && marked > 0 && restir_metrics_compute(r.image, ref, npix, mask, &e) == 0)
+            if (ref && marked > 0 && restir_metrics_compute(r.image, ref, npix, mask, &e) == 0) {
                 mape_disoccluded = e.mape;
+                has_disoccluded = 1;
+            }
         }
         char passes[512] = "";
         for (int q = 0; q < PASS_COUNT; q++)
@@ -224,15 +247,16 @@ int render_run(const struct cli_options *desc)
             }
             ms_write = 1e3 * (omp_get_wtime() - t0);
         }
-        const int dn = ref && r.denoised;
-        csv_row(&csv,
-                "%d,%.3f%s,%lld,%.3f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,"
-                "%.6g,%.6g,%.6g,%lld,%lld,%.3f,%lld",
-                f, st.ms_total, passes, st.rays, (double)st.rays / (st.ms_total * 1e3), accept, bp_rx, bp_acc, sp_rx,
-                sp_acc, disoccluded, ref ? err.relmse : 0.0, ref ? err.mape : 0.0, ref ? err.smape : 0.0,
-                ref ? err.luma_rmse : 0.0, mape_disoccluded, dn ? err_dn.relmse : 0.0, dn ? err_dn.mape : 0.0,
-                dn ? err_dn.smape : 0.0, st.denoise.passed_through, st.denoise.history_reset, ms_write,
-                st.nonfinite);
+        /* errors only against a reference: empty fields without one, never a 0 that reads as exact */
+        char errors[256] = "";
+        const double e_all[] = {err.relmse, err.mape, err.smape, err.luma_rmse}, e_dis[] = {mape_disoccluded},
+                     e_dn[] = {err_dn.relmse, err_dn.mape, err_dn.smape};
+        error_fields(errors, sizeof errors, e_all, 4, ref != NULL);
+        error_fields(errors, sizeof errors, e_dis, 1, has_disoccluded);
+        error_fields(errors, sizeof errors, e_dn, 3, ref && r.denoised);
+        csv_row(&csv, "%d,%.3f%s,%lld,%.3f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f%s,%lld,%lld,%.3f,%lld", f, st.ms_total,
+                passes, st.rays, (double)st.rays / (st.ms_total * 1e3), accept, bp_rx, bp_acc, sp_rx, sp_acc,
+                disoccluded, errors, st.denoise.passed_through, st.denoise.history_reset, ms_write, st.nonfinite);
         nonfinite_sum += st.nonfinite;
         progress_update(&pg, f + 1);
         done = f + 1;

@@ -6,9 +6,11 @@
 
 #include "experiments/options.h"
 
-/* Renders desc->frames frames of desc->method on desc->scene into desc->out (default
- * out/SCENE-METHOD): every frame's EXR and PNG (or the last), metrics.csv with per-pass times and
- * errors against --ref, summary.json that `restir render --params` runs again. Returns an exit
+/* Renders desc->frames frames of desc->method on desc->scene into desc->out, which must be new or
+ * empty unless desc->force empties it (default: a new folder out/SCENE-METHOD, -2, -3, ...; out_dir.h)
+ * at the --ref's size when no --res is given: every frame's EXR and PNG (or the last), metrics.csv
+ * with per-pass times and errors against --ref (empty fields without), summary.json that `restir
+ * render --params` runs again. Returns an exit
  * code, having said what went wrong (0; 2 for bad input, nothing written; 1 for a failure while
  * rendering; 128 + the signal after SIGINT / SIGTERM, the last frame written). */
 int render_run(const struct cli_options *desc);

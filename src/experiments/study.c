@@ -13,8 +13,10 @@
 
 #include "core/check.h"
 #include "experiments/cli.h"
+#include "experiments/out_dir.h"
 #include "experiments/reference_checkpoint.h"
 #include "experiments/reference_halves.h"
+#include "experiments/reference_size.h"
 #include "experiments/study_denoised.h"
 #include "experiments/study_report.h"
 #include "io/atomic_file.h"
@@ -203,6 +205,10 @@ int study_setup(const struct cli_options *desc, int need_out, struct study_setup
     if (!o->res_given) {
         o->params.width = 320;
         o->params.height = 180;
+    }
+    if (o->ref && reference_size_adopt(o->ref, o->res_given, &o->params, msg) != 0) { /* --ref: its size */
+        cli_error("%s", msg);
+        return EXIT_RUNTIME;
     }
     if (need_out && !o->out && !o->plan && !o->merge) {
         cli_error("study: --out DIR (or --plan DIR, or --merge DIR) is required");
@@ -443,7 +449,10 @@ int study_plan(const struct study_setup *st, int argc, char **argv)
 {
     char name[PLAN_NAME_MAX], rel[64];
     struct plan pl;
-    const int rc = plan_start(&pl, st->o.plan, "study", argc, argv, scene_content_hash(&st->s));
+    /* a new or empty folder, or this very plan's (finished jobs kept); --force empties another */
+    int rc = plan_folder_claim(st->o.plan, "study", argc, argv, st->o.force);
+    if (rc == 0)
+        rc = plan_start(&pl, st->o.plan, "study", argc, argv, scene_content_hash(&st->s));
     if (rc != 0)
         return rc;
     if (!st->o.ref)
@@ -569,7 +578,7 @@ int study_run(struct study_setup *st, const char *command)
         scene_destroy(&st->s);
         return 128 + (int)cli_stop_signal;
     }
-    if (io_make_dirs(st->o.out, msg) != 0) {
+    if (out_dir_prepare(st->o.out, st->o.force, msg) != 0) { /* out_dir_check accepted it */
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }
