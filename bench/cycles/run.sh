@@ -3,8 +3,8 @@
 #                     [--threads N] [--scenes "box cornell many-lights engine-sky"] [--max-bounces N] [--seed N]
 #                     [--config NAME="--set key=value ..."]...
 #
-# restir's `pt` against Blender Cycles on the same scenes, computing the same integral (issue 41;
-# docs/BENCHMARKS.md). Installs Debian's blender with apt-get when it is missing (only here; never
+# restir's `pt` against Blender Cycles on the same scenes, computing the same integral
+# (docs/BENCHMARKS.md). Installs Debian's blender with apt-get when it is missing (only here; never
 # `make test`). Per scene: the scene's triangles, Lambert materials, camera and constant
 # environment go to Blender through `restir scene export --mesh` and build_scene.py; then, all at
 # --threads threads, our pt (configuration "default": the binary's defaults; "sobol-sa": sampler=sobol

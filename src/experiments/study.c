@@ -366,7 +366,7 @@ static int study_rows(const struct study_setup *st, const struct plan *pl, const
     struct progress pg;
     progress_begin(&pg, pl ? "merge" : "study", st->ncfg);
     int rc = 0;
-    const int dn = o->params.denoise.method > 0; /* issue 43: a second row from the denoised frames */
+    const int dn = o->params.denoise.method > 0; /* --denoise: a second row from the denoised frames */
     for (int k = 0; k < st->ncfg && rc == 0; k++) {
         struct study_row row, row_dn;
         study_row_begin(&row, o->runs, o->frames, w, h);
