@@ -14,6 +14,7 @@
 #include "experiments/options.h"
 #include "experiments/settings_file.h"
 #include "experiments/out_dir.h"
+#include "experiments/provenance.h"
 #include "experiments/reference_size.h"
 #include "io/atomic_file.h"
 #include "io/report.h"
@@ -42,7 +43,8 @@ static int open_scene_and_method(const struct cli_options *o, struct scene *s, c
 }
 
 /* What ran, so that `restir render --params summary.json` runs it again: scene, method, frames,
- * resolution, seed, camera, and every setting of the table as the renderer used it. */
+ * resolution, seed, camera, and every setting of the table as the renderer used it; and the build
+ * that ran it. */
 static cJSON *params_json(const struct cli_options *o, const struct method *method)
 {
     struct render_params p = o->params;
@@ -77,6 +79,9 @@ static cJSON *params_json(const struct cli_options *o, const struct method *meth
     cJSON_AddStringToObject(j, "biased", biased); /* BIASED settings in effect; empty: none */
     if (p.denoise.method > 0) /* a layer of its own: the frame's estimator is as "biased" says */
         cJSON_AddStringToObject(j, "denoised", "frame_NNNN_denoised.*: BIASED by nature (a denoiser)");
+    struct provenance build; /* which build ran it (version, commit, machine, date); --params ignores it */
+    provenance_now(&build, p.threads > 0 ? p.threads : omp_get_max_threads());
+    cJSON_AddItemToObject(j, "provenance", provenance_to_json(&build));
     return j;
 }
 

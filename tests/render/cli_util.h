@@ -194,6 +194,35 @@ static inline int cli_wait_for_file(const char *path, int timeout_ms)
     return stat(path, &st) == 0;
 }
 
+/* Runs `$RESTIR_BIN args` (stderr into err, n bytes, through err_path) and, once `started` exists,
+ * makes a folder (folder 1) or an empty file at `blocker`, so that a write the run makes later fails
+ * there (a non-empty --out is refused before anything runs: a blocker made beforehand would stop
+ * the run at the door). Returns the exit status, or -1 when the run never started or was killed. */
+static inline int cli_run_blocked(const char *args, const char *err_path, const char *started, const char *blocker,
+                                  int folder, char *err, size_t n)
+{
+    const pid_t pid = cli_spawn(args, err_path);
+    int status = 0;
+    if (pid < 0)
+        return -1;
+    int ok = cli_wait_for_file(started, 60000);
+    if (ok && folder)
+        ok = mkdir(blocker, 0777) == 0;
+    else if (ok) {
+        FILE *f = fopen(blocker, "w");
+        ok = f && fclose(f) == 0;
+    }
+    if (!ok)
+        kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    FILE *f = fopen(err_path, "rb");
+    const size_t len = f ? fread(err, 1, n - 1, f) : 0;
+    if (f)
+        fclose(f);
+    err[len] = '\0';
+    return ok && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 /* Signals pid with sig and waits for it; returns the raw wait status. */
 static inline int cli_signal_and_wait(pid_t pid, int sig)
 {

@@ -166,24 +166,26 @@ static void check_bad_render_input(void)
     expect_failure("output is a regular file", fmt, 1, path, NULL);
 }
 
-/* A write that fails mid-run (frame 1's EXR path is taken by a folder): exit 1 naming the file, no
- * temporary files, no metrics.csv / summary.json, and no frame after the failing one. Frame 0,
- * written whole before the failure, may stay. */
+/* A write that fails mid-run (frame 300's EXR path taken by a folder made once frame 0 is written):
+ * exit 1 naming the file, no temporary files, no metrics.csv / summary.json, and no frame after the
+ * failing one. The frames before it, written whole, may stay. */
 static void check_failed_write(void)
 {
-    char out[2 * CLI_PATH_MAX], blocker[3 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX], err[CLI_ERR_MAX];
+    char out[2 * CLI_PATH_MAX], blocker[3 * CLI_PATH_MAX], started[3 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX],
+        log[3 * CLI_PATH_MAX], err[CLI_ERR_MAX];
     snprintf(out, sizeof(out), "%s/blocked", tmp);
-    snprintf(blocker, sizeof(blocker), "%s/frame_0001.exr", out);
-    EXPECT(mkdir(out, 0777) == 0 && mkdir(blocker, 0777) == 0, "cannot create %s", blocker);
-    snprintf(args, sizeof(args), "render --scene cornell --method restir-di --res 16x16 --frames 3 --out '%s'", out);
-    int rc = cli_run(tmp, args, err);
+    snprintf(blocker, sizeof(blocker), "%s/frame_0300.exr", out);
+    snprintf(started, sizeof(started), "%s/frame_0000.exr", out);
+    snprintf(log, sizeof(log), "%s/blocked.log", tmp);
+    snprintf(args, sizeof(args), "render --scene cornell --method restir-di --res 32x32 --frames 600 --out '%s'", out);
+    int rc = cli_run_blocked(args, log, started, blocker, 1, err, sizeof err);
     printf("[failed write] exit %d: %s", rc, err);
     EXPECT(rc == 1, "failed frame write: exit %d", rc);
-    EXPECT(strncmp(err, "restir: ", 8) == 0 && strstr(err, "frame_0001.exr"), "message: %s", err);
+    EXPECT(strncmp(err, "restir: ", 8) == 0 && strstr(err, "frame_0300.exr"), "message: %s", err);
     EXPECT(cli_count_entries(out, ".tmp-") == 0, "temporary files left in %s", out);
     EXPECT(cli_count_entries(out, "metrics.csv") == 0 && cli_count_entries(out, "summary.json") == 0,
            "reports of a failed run were committed in %s", out);
-    EXPECT(cli_count_entries(out, "frame_0002") == 0, "frames after the failure were written");
+    EXPECT(cli_count_entries(out, "frame_0301") == 0, "frames after the failure were written");
 }
 
 /* `restir compare` with no usable method list, and with a method's folder blocked by a file. */
@@ -223,14 +225,15 @@ static void check_compare(void)
     expect_failure("compare spec with an unknown method",
                    "compare --scene cornell --methods 'pt,no-such-method:mis=balance' --res 16x16 --out '%1$s'", 2,
                    "no-such-method", NULL);
+    /* a method's folder blocked by a file made once the reference is written, before the method runs */
+    char started[3 * CLI_PATH_MAX], log[3 * CLI_PATH_MAX];
     snprintf(out, sizeof(out), "%s/compare-blocked", tmp);
+    snprintf(started, sizeof(started), "%s/reference.exr", out);
     snprintf(blocker, sizeof(blocker), "%s/pt", out);
-    EXPECT(mkdir(out, 0777) == 0, "cannot create %s", out);
-    FILE *f = fopen(blocker, "w");
-    if (f)
-        fclose(f);
-    snprintf(fmt, sizeof(fmt), "compare --scene cornell --methods pt --res 16x16 --ref-spp 1 --out '%s'", out);
-    int rc = cli_run(tmp, fmt, err);
+    snprintf(log, sizeof(log), "%s/compare-blocked.log", tmp);
+    snprintf(fmt, sizeof(fmt), "compare --scene cornell --methods pt --res 32x32 --frames 300 --ref-spp 1 --out '%s'",
+             out);
+    int rc = cli_run_blocked(fmt, log, started, blocker, 0, err, sizeof err);
     printf("[compare, method folder blocked] exit %d: %s", rc, err[0] ? err : "(no message)\n");
     EXPECT(rc == 1, "compare could not write %s but exited %d", blocker, rc);
     EXPECT(strstr(err, blocker) != NULL, "message does not name %s: %s", blocker, err);

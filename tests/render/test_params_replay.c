@@ -59,6 +59,8 @@ int main(void)
     snprintf(path, sizeof(path), "%s/summary.json", a);
     char summary[16384];
     cli_read_text(path, summary, sizeof(summary));
+    EXPECT(strstr(summary, "\"provenance\"") && strstr(summary, "\"version\"") && strstr(summary, "\"commit\""),
+           "summary.json does not say which build ran:\n%s", summary);
     EXPECT(strstr(summary, "\"settings\"") && strstr(summary, "\"spatial.radius\":\t17.123457") &&
                strstr(summary, "\"spatial.select\":\t\"compat\"") && strstr(summary, "\"biased\":\t\"\""),
            "summary.json does not record the settings:\n%s", summary);
