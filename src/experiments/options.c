@@ -263,7 +263,9 @@ static const struct opt_def option_table[] = {
     {"--report", " compare study ", OPT_FLAG, O(report), 0, 0, NO_GIVEN, NULL, "", "also write DIR/index.html", NULL},
     /* one run per folder (out_dir.h): what to do when --out (--plan) already holds something */
     {"--force", " render compare study view scene export ", OPT_FLAG, O(force), 0, 0, NO_GIVEN, NULL, "",
-     "empty a non-empty --out DIR (or --plan DIR) first: only a folder restir wrote, never / $HOME or .", NULL},
+     "empty a non-empty --out DIR first (study, compare: or --plan DIR): only a folder restir wrote, never /, "
+     "$HOME or .",
+     NULL},
     {"--force", " reference ", OPT_FLAG, O(force), 0, 0, NO_GIVEN, NULL, "",
      "replace an existing --out FILE.exr; start over from a checkpoint that cannot be continued", NULL},
     {"--force", EVAL, OPT_FLAG, O(force), 0, 0, NO_GIVEN, NULL, "",

@@ -168,14 +168,25 @@ static void test_broken_checkpoints(char *out, char *err)
     printf("broken checkpoints refused, e.g. %s", err);
 }
 
-/* Without --checkpoint-every a stop leaves nothing. */
+/* Without --checkpoint-every a stop leaves nothing. The signal goes once the render has started (its
+ * first progress line, RESTIR_PROGRESS_SECONDS=0), when the handlers are in place: a fixed delay
+ * signalled a start-up that a loaded machine had not finished, whose default action kills. */
 static void test_interrupt_without_checkpoints(void)
 {
-    char final[2 * CLI_PATH_MAX], ckpt[2 * CLI_PATH_MAX];
+    char final[2 * CLI_PATH_MAX], ckpt[2 * CLI_PATH_MAX], log[2 * CLI_PATH_MAX], text[CLI_ERR_MAX];
     path_of(final, "plain.exr");
     path_of(ckpt, "plain.checkpoint.exr");
+    path_of(log, "spawned_stderr.txt");
+    remove(log);
+    setenv("RESTIR_PROGRESS_SECONDS", "0", 1);
     pid_t pid = spawn_reference("--spp 960 --threads 1", "plain.exr");
-    nanosleep(&(struct timespec){0, 300000000L}, NULL);
+    unsetenv("RESTIR_PROGRESS_SECONDS");
+    text[0] = '\0';
+    for (int waited = 0; waited < 6000 && !strstr(text, "reference:"); waited++) {
+        nanosleep(&(struct timespec){0, 10000000L}, NULL);
+        cli_read_text(log, text, sizeof text);
+    }
+    EXPECT(strstr(text, "reference:") != NULL, "no progress line from the reference in 60 s: %s", text);
     int status = cli_signal_and_wait(pid, SIGTERM);
     EXPECT(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM, "SIGTERM: exit status %d",
            WIFEXITED(status) ? WEXITSTATUS(status) : -1);
