@@ -1,4 +1,5 @@
-/* html_report.c: the pieces of a self-contained report page (html_report.h), its style and script inline.
+/* html_report.c: the pieces of a report page (html_report.h), its style and script inline, its images beside it
+ * or embedded.
  * Must never depend on render code. */
 #include "io/html_report.h"
 
@@ -10,6 +11,7 @@
 #include <unistd.h>
 
 #include "io/atomic_file.h"
+#include "io/base64.h"
 #include "io/io_msg.h"
 #include "io/png.h"
 
@@ -25,10 +27,11 @@ static const char *const page_style =
 
 /* One script for every viewer on the page: every image of a viewer shares one zoom and pan (wheel
  * about the cursor, drag), and the A/B view shows one image at a time, the space bar flipping
- * between the two selected. A viewer is a .viewer element holding .frame elements;
- * its A/B part is an element with data-ab. Once the page has loaded, the body records how many of
- * its images and SVG plots there are, how many images failed to load and how many script errors
- * occurred (data-images, data-broken, data-errors), so a headless browser can check the page. */
+ * between the two selected (its options' values index the viewer's grid, whose images it shows).
+ * A viewer is a .viewer element holding .frame elements; its A/B part is an element with data-ab.
+ * Once the page has loaded, the body records how many of its images and SVG plots there are, how
+ * many images failed to load and how many script errors occurred (data-images, data-broken,
+ * data-errors), so a headless browser can check the page. */
 static const char *const page_script =
     "var restirErrors=0;window.addEventListener('error',function(e){if(!(e instanceof ErrorEvent))return;restirErrors++;"
     "document.body.dataset.errors=restirErrors;},true);"
@@ -47,8 +50,8 @@ static const char *const page_script =
     "window.addEventListener('mousemove',function(e){if(d){s.x=e.clientX-d[0];s.y=e.clientY-d[1];apply();}});});"
     "var ab=v.querySelector('[data-ab]');if(!ab)return;"
     "var a=ab.querySelector('.a'),b=ab.querySelector('.b'),img=ab.querySelector('img'),"
-    "lab=ab.querySelector('.which'),showA=true;"
-    "function show(){var sel=showA?a:b;img.src=sel.value;lab.textContent=(showA?'A: ':'B: ')+"
+    "grid=v.querySelectorAll('.grid img'),lab=ab.querySelector('.which'),showA=true;"
+    "function show(){var sel=showA?a:b;img.src=grid[+sel.value].src;lab.textContent=(showA?'A: ':'B: ')+"
     "sel.options[sel.selectedIndex].text;}"
     "a.onchange=b.onchange=show;ab.querySelector('button').onclick=function(){showA=!showA;show();};"
     "document.addEventListener('keydown',function(e){if(e.code==='Space'&&e.target.tagName!=='SELECT'){"
@@ -158,7 +161,7 @@ void html_viewer(struct html_page *pg, int n, const char *const *labels, const c
                 zoom * width, zoom * height, zoom * width, zoom * height);
         html_text(pg, labels[k]);
         fputs("\" src=\"", pg->f);
-        html_text(pg, srcs[k]);
+        html_src(pg, srcs[k]);
         fputs("\"></div><figcaption>", pg->f);
         html_text(pg, labels[k]);
         fputs("</figcaption></figure>\n", pg->f);
@@ -166,8 +169,7 @@ void html_viewer(struct html_page *pg, int n, const char *const *labels, const c
     fputs("</div><div data-ab=\"1\"><p>A <select class=\"a\">", pg->f);
     for (int pass = 0; pass < 2; pass++) {
         for (int k = 0; k < n; k++) {
-            fputs("<option value=\"", pg->f);
-            html_text(pg, srcs[k]);
+            fprintf(pg->f, "<option value=\"%d", k);
             fputs(pass == 0 ? (k == 0 ? "\" selected>" : "\">") : (k == (n > 1 ? 1 : 0) ? "\" selected>" : "\">"),
                   pg->f);
             html_text(pg, labels[k]);
@@ -177,10 +179,59 @@ void html_viewer(struct html_page *pg, int n, const char *const *labels, const c
                                                                "<b class=\"which\"></b></p>",
               pg->f);
     }
-    fprintf(pg->f, "<div class=\"frame\" style=\"width:%dpx;height:%dpx\"><img width=\"%d\" height=\"%d\" alt=\"A/B\" src=\"",
+    fprintf(pg->f, "<div class=\"frame\" style=\"width:%dpx;height:%dpx\"><img width=\"%d\" height=\"%d\" alt=\"A/B\"",
             ab_zoom * width, ab_zoom * height, ab_zoom * width, ab_zoom * height);
-    html_text(pg, n > 0 ? srcs[0] : "");
-    fputs("\"></div></div></div>\n", pg->f);
+    if (!pg->embed && n > 0) { /* embedded, the script gives it the grid's image (a second copy otherwise) */
+        fputs(" src=\"", pg->f);
+        html_src(pg, srcs[0]);
+        fputs("\"", pg->f);
+    }
+    fputs("></div></div></div>\n", pg->f);
+}
+
+/* The MIME type of an image file by its name's ending. */
+static const char *image_type(const char *name)
+{
+    const char *dot = strrchr(name, '.');
+    if (dot && !strcmp(dot, ".svg"))
+        return "image/svg+xml";
+    if (dot && (!strcmp(dot, ".jpg") || !strcmp(dot, ".jpeg")))
+        return "image/jpeg";
+    return "image/png";
+}
+
+void html_src(struct html_page *pg, const char *rel)
+{
+    if (!pg->embed) {
+        html_text(pg, rel);
+        return;
+    }
+    char path[8400];
+    const char *slash = strrchr(pg->path, '/');
+    if (slash)
+        snprintf(path, sizeof path, "%.*s/%s", (int)(slash - pg->path), pg->path, rel);
+    else
+        snprintf(path, sizeof path, "%s", rel);
+    FILE *in = fopen(path, "rb");
+    const int open_errno = errno;
+    fprintf(pg->f, "data:%s;base64,", image_type(rel));
+    const long long got = in ? base64_copy(in, pg->f) : -1;
+    if (in)
+        fclose(in);
+    if (got <= 0 && !pg->failed) {
+        pg->failed = 1;
+        snprintf(pg->why, sizeof pg->why, "cannot embed %.300s: %s", path,
+                 !in ? strerror(open_errno) : got == 0 ? "empty" : "read error");
+    }
+}
+
+void html_image(struct html_page *pg, const char *rel, const char *alt)
+{
+    fputs("<img alt=\"", pg->f);
+    html_text(pg, alt);
+    fputs("\" src=\"", pg->f);
+    html_src(pg, rel);
+    fputs("\">", pg->f);
 }
 
 void html_colorbar(struct html_page *pg, float vmax, const char *what)
@@ -195,6 +246,11 @@ void html_colorbar(struct html_page *pg, float vmax, const char *what)
 
 int html_end(struct html_page *pg, char *msg)
 {
+    if (pg->failed) {
+        io_msg(msg, "%s: %s", pg->path, pg->why);
+        html_abort(pg);
+        return -1;
+    }
     fprintf(pg->f, "<script>%s</script>\n</body></html>\n", page_script);
     FILE *f = pg->f;
     pg->f = NULL;
