@@ -13,6 +13,7 @@
 #include "io/atomic_file.h"
 #include "io/html_report.h"
 #include "io/png.h"
+#include "io/svg_plot.h"
 
 /* Heat maps show the per-pixel terms of MAPE (their image mean is the table's MAPE) on one fixed
  * scale for every method, so maps are comparable side by side. */
@@ -52,25 +53,109 @@ static int write_crop(const char *path, const float *rgb, int w, int x0, int y0,
     return rc;
 }
 
-/* Bars of relMSE per method, as inline SVG (linear axis from 0). */
+/* Colours of the plots' series and segments, in order (a method's line, a pass's segment). */
+static const char *const palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
+                                      "#7f7f7f", "#bcbd22", "#17becf", "#aec7e8", "#ffbb78", "#98df8a", "#ff9896",
+                                      "#c5b0d5", "#c49c94", "#f7b6d2", "#c7c7c7", "#dbdb8d", "#9edae5"};
+#define PALETTE (int)(sizeof palette / sizeof palette[0])
+
+/* Pixels for the longest of the n labels at the plots' 12-pixel font, within [lo, hi]. */
+static int label_width(int n, const char *const *labels, int lo, int hi)
+{
+    int w = lo;
+    for (int k = 0; k < n; k++)
+        w = 7 * (int)strlen(labels[k]) + 12 > w ? 7 * (int)strlen(labels[k]) + 12 : w;
+    return w < hi ? w : hi;
+}
+
+/* Bars of relMSE per row (linear axis from 0), the denoised rows in a colour of their own. */
 static void relmse_plot(struct html_page *pg, int n, const struct compare_report_method *m)
 {
-    double top = 0.0;
+    const char *labels[MAX_REPORT_METHODS];
+    double values[2 * MAX_REPORT_METHODS];
+    int nseg = 1; /* with denoised rows two segments a row, raw and denoised, one of them 0 */
     for (int k = 0; k < n; k++)
-        top = m[k].err.relmse > top ? m[k].err.relmse : top;
-    const int bar_h = 22, label_w = 260, plot_w = 360, height = n * (bar_h + 6) + 30;
-    html_raw(pg, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" font-size=\"12\">",
-             label_w + plot_w + 90, height);
+        nseg = m[k].denoised ? 2 : nseg;
     for (int k = 0; k < n; k++) {
-        int y = 10 + k * (bar_h + 6);
-        double len = top > 0.0 ? plot_w * m[k].err.relmse / top : 0.0;
-        html_raw(pg, "<text x=\"%d\" y=\"%d\" text-anchor=\"end\">", label_w - 6, y + 15);
-        html_text(pg, m[k].label);
-        html_raw(pg, "</text><rect x=\"%d\" y=\"%d\" width=\"%.1f\" height=\"%d\" fill=\"#3b6ea5\"/>"
-                     "<text x=\"%.1f\" y=\"%d\">%.4g</text>",
-                 label_w, y, len, bar_h, label_w + len + 4, y + 15, m[k].err.relmse);
+        labels[k] = m[k].label;
+        values[nseg * k] = m[k].denoised ? 0.0 : m[k].err.relmse;
+        if (nseg == 2)
+            values[2 * k + 1] = m[k].denoised ? m[k].err.relmse : 0.0;
     }
-    html_raw(pg, "<text x=\"%d\" y=\"%d\">relMSE (lower is better)</text></svg>\n", label_w, height - 4);
+    static const char *const names[2] = {"raw", "denoised (BIASED)"}, *const colors[2] = {"#3b6ea5", "#e08a2e"};
+    const struct svg_bars b = {"relMSE (lower is better)", nseg, names, colors, "%.4g",
+                               label_width(n, labels, 120, 420), 360};
+    svg_hbar_plot(pg->f, &b, n, labels, values);
+}
+
+/* relMSE against frame, a line per method, from frames.csv (the frames that have a reference); a
+ * log axis where the errors span more than a factor of 10. */
+static void frames_plot(struct html_page *pg, int n, const struct compare_report_method *m)
+{
+    struct plot_series series[MAX_REPORT_METHODS];
+    const char *labels[MAX_REPORT_METHODS];
+    int ns = 0, most = 0;
+    for (int k = 0; k < n; k++) {
+        if (m[k].denoised || m[k].nframes < 1)
+            continue;
+        series[ns] = (struct plot_series){m[k].label, palette[ns % PALETTE], m[k].nframes, m[k].frame,
+                                          m[k].frame_relmse, NULL};
+        labels[ns++] = m[k].label;
+        most = m[k].nframes > most ? m[k].nframes : most;
+    }
+    html_raw(pg, "<h2>Error against frame</h2>\n");
+    if (most < 2) {
+        html_raw(pg, "<p>frames.csv holds %s: <code>--ref-every K</code> also measures frames K-1, 2K-1, ..., each "
+                     "against a reference of its own.</p>\n",
+                 ns ? "the last frame's error only" : "no errors (a merged plan writes none)");
+        return;
+    }
+    const int log_y = svg_wide_range(series, ns, 10.0);
+    html_raw(pg, "<p>relMSE of the frames that have a reference (frames.csv)%s:</p>\n",
+             log_y ? ", log scale" : "");
+    const int legend_w = label_width(ns, labels, 150, 460) + 40;
+    const struct svg_xy_axes ax = {"relMSE against frame", "frame", log_y ? "relMSE (log scale)" : "relMSE",
+                                   520 + legend_w, 340, legend_w, log_y, 1};
+    svg_xy_plot(pg->f, &ax, series, ns);
+}
+
+/* Each method's ms per frame by pass (passes.csv) as stacked bars; the passes no method spent time in
+ * are left out. */
+static void passes_plot(struct html_page *pg, const struct compare_report_run *run, int n,
+                        const struct compare_report_method *m)
+{
+    if (run->passes < 1)
+        return;
+    int used[64], nused = 0, rows = 0;
+    for (int q = 0; q < run->passes && nused < 64; q++) {
+        int any = 0;
+        for (int k = 0; k < n; k++)
+            any |= m[k].ms_pass && m[k].ms_pass[q] > 0.0;
+        if (any)
+            used[nused++] = q;
+    }
+    const char *labels[MAX_REPORT_METHODS], *names[64], *colors[64];
+    double *values = xcalloc((size_t)n * (size_t)(nused ? nused : 1), sizeof(double));
+    for (int s = 0; s < nused; s++) {
+        names[s] = run->pass_names[used[s]];
+        colors[s] = palette[s % PALETTE];
+    }
+    for (int k = 0; k < n; k++) {
+        if (!m[k].ms_pass || m[k].denoised)
+            continue;
+        labels[rows] = m[k].label;
+        for (int s = 0; s < nused; s++)
+            values[rows * nused + s] = m[k].ms_pass[used[s]];
+        rows++;
+    }
+    if (rows > 0 && nused > 0) {
+        html_raw(pg, "<h2>Time per pass</h2>\n<p>Milliseconds per frame of each pass (passes.csv: the fastest run, "
+                     "its instances summed); hover a segment for its pass and time.</p>\n");
+        const struct svg_bars b = {"ms per frame (lower is faster)", nused, names, colors, "%.2f",
+                                   label_width(rows, labels, 120, 420), 420};
+        svg_hbar_plot(pg->f, &b, rows, labels, values);
+    }
+    free(values);
 }
 
 static void meta(struct html_page *pg, const struct compare_report_run *run)
@@ -171,19 +256,28 @@ static int flip_maps(struct html_page *pg, const struct compare_report_run *run,
     return 0;
 }
 
-/* Crops of the regions where the first method's error most exceeds the second's, and the reverse. */
+/* Crops of the regions where the first method's error most exceeds the second's, and the reverse (the
+ * first two rows that are no denoised frame, or the first two rows where there are fewer). */
 static int crops(struct html_page *pg, const struct compare_report_run *run, int n,
                  const struct compare_report_method *m, const float *maps, char *msg)
 {
     const int w = run->width, h = run->height, side = w < h ? w : h, cw = side / 6 >= 8 ? side / 6 : side;
     const size_t npix = (size_t)w * h;
     const int scale = cw < 32 ? 8 : cw < 64 ? 4 : 2;
+    int pair[2] = {0, 1}, raw = 0;
+    for (int k = 0; k < n && raw < 2; k++)
+        if (!m[k].denoised)
+            pair[raw++] = k;
+    if (raw < 2) { /* one method and its denoised frame */
+        pair[0] = 0;
+        pair[1] = 1;
+    }
     html_raw(pg, "<h2>Where the first two methods differ most</h2>\n");
     for (int r = 0; r < 2; r++) {
         int x0, y0;
-        largest_difference(maps, maps + npix, w, h, cw, r == 0 ? 1.0f : -1.0f, &x0, &y0);
+        largest_difference(maps + pair[0] * npix, maps + pair[1] * npix, w, h, cw, r == 0 ? 1.0f : -1.0f, &x0, &y0);
         html_raw(pg, "<p>%dx%d pixels at (%d, %d), where <b>", cw, cw, x0, y0);
-        html_text(pg, m[r == 0 ? 1 : 0].label);
+        html_text(pg, m[pair[r == 0 ? 1 : 0]].label);
         html_raw(pg, "</b> has the lower error:</p><div class=\"grid crops\">\n");
         for (int k = -1; k < n; k++) {
             char rel[64], path[4300];
@@ -191,8 +285,10 @@ static int crops(struct html_page *pg, const struct compare_report_run *run, int
             snprintf(path, sizeof path, "%s/%s", run->out_dir, rel);
             if (write_crop(path, k < 0 ? run->reference : m[k].image, w, x0, y0, cw, msg) != 0)
                 return -1;
-            html_raw(pg, "<figure class=\"pane\"><img width=\"%d\" height=\"%d\" alt=\"crop\" src=\"%s\"><figcaption>",
-                     cw * scale, cw * scale, rel);
+            html_raw(pg, "<figure class=\"pane\"><img width=\"%d\" height=\"%d\" alt=\"crop\" src=\"", cw * scale,
+                     cw * scale);
+            html_src(pg, rel);
+            html_raw(pg, "\"><figcaption>");
             html_text(pg, k < 0 ? "reference" : m[k].label);
             html_raw(pg, "</figcaption></figure>\n");
         }
@@ -272,12 +368,15 @@ int compare_write_report(const struct compare_report_run *run, int n, const stru
     snprintf(path, sizeof path, "%s/index.html", run->out_dir);
     if (html_begin(&pg, path, "restir compare", msg) != 0)
         return -1;
+    pg.embed = run->self_contained;
     html_raw(&pg, "<h1>restir compare: ");
     html_text(&pg, run->scene);
     html_raw(&pg, "</h1>\n");
     meta(&pg, run);
     table(&pg, n, m);
     relmse_plot(&pg, n, m);
+    frames_plot(&pg, n, m);
+    passes_plot(&pg, run, n, m);
     const char *labels[MAX_REPORT_METHODS + 1], *srcs[MAX_REPORT_METHODS + 1];
     labels[0] = "reference";
     srcs[0] = "reference.png";

@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/compare_report.h"
+#include "experiments/csv_table.h"
 #include "io/report.h"
 
 /* One cell of a printed table: v by fmt, or '-' right-aligned in width characters when v is NaN or
@@ -106,6 +107,73 @@ static int write_runs(const char *out_dir, const struct compare_spec *specs, con
             csv_row(&csv, "%s", row);
         }
     return csv_close(&csv, msg);
+}
+
+/* frames.csv's relMSE of row `label` at the frames that have one, into frame and relmse (at most max);
+ * returns how many. */
+static int frame_errors(const struct csv_table *t, const char *label, int max, double *frame, double *relmse)
+{
+    int n = 0;
+    for (int r = 0; r < t->nrow && n < max; r++) {
+        if (strcmp(t->cell[(size_t)(r + 1) * t->ncol], label) != 0)
+            continue;
+        frame[n] = csv_table_num(t, r, "frame");
+        relmse[n] = csv_table_num(t, r, "relmse");
+        n += isfinite(frame[n]) && isfinite(relmse[n]);
+    }
+    return n;
+}
+
+/* DIR/index.html: each method's row, then its denoised frame's as a row of its own; the time per pass
+ * of passes.csv; the errors along the sequence read back from frames.csv (none where it is missing, as
+ * after a merge). Returns 0 or EXIT_RUNTIME. */
+static int write_report(const struct compare_setup *st, const char *out_dir, const char *command,
+                        const struct compare_result *res, const float *ref)
+{
+    const struct cli_options *o = &st->o;
+    const struct render_params *p = &st->p;
+    const struct compare_spec *specs = st->specs;
+    const int n = st->n;
+    char msg[RESTIR_MSG_LEN], path[4200];
+    char pngs[2 * MAX_METHODS][SPEC_MAX + 64], labels[MAX_METHODS][SPEC_MAX + 40]; /* dir + "/frame_..." */
+    struct compare_report_method rm[2 * MAX_METHODS];
+    double *errs = xmalloc(sizeof(double) * 2 * (size_t)n * (size_t)o->frames);
+    struct csv_table frames;
+    snprintf(path, sizeof path, "%s/frames.csv", out_dir);
+    const int have_frames = csv_table_read(path, &frames, msg) == 0;
+    int nr = 0;
+    for (int k = 0; k < n; k++) {
+        double *fx = errs + 2 * (size_t)k * o->frames, *fy = fx + o->frames;
+        const int nframes = have_frames ? frame_errors(&frames, specs[k].label, o->frames, fx, fy) : 0;
+        int i = nr++;
+        snprintf(pngs[i], sizeof pngs[i], "%s/frame_%04d.png", specs[k].dir, o->frames - 1);
+        rm[i] = (struct compare_report_method){.label = specs[k].label, .png = pngs[i], .dir = specs[k].dir,
+                                               .image = res[k].image, .ms_per_frame = res[k].ms_per_frame,
+                                               .spp = res[k].spp, .instances = res[k].instances, .err = res[k].err,
+                                               .flip = res[k].flip, .ms_pass = res[k].ms_pass, .nframes = nframes,
+                                               .frame = fx, .frame_relmse = fy};
+        if (!res[k].image_dn)
+            continue;
+        snprintf(labels[k], sizeof labels[k], "%.*s, denoised (BIASED)", SPEC_MAX, specs[k].label);
+        i = nr++;
+        snprintf(pngs[i], sizeof pngs[i], "%s/frame_%04d_denoised.png", specs[k].dir, o->frames - 1);
+        rm[i] = (struct compare_report_method){.label = labels[k], .png = pngs[i], .image = res[k].image_dn,
+                                               .ms_per_frame = res[k].ms_per_frame, .spp = res[k].spp,
+                                               .instances = res[k].instances, .err = res[k].err_dn, .flip = NAN,
+                                               .denoised = 1};
+    }
+    if (have_frames)
+        csv_table_free(&frames);
+    const struct compare_report_run run = {out_dir, command, st->s.name, p->width, p->height, o->frames - 1,
+                                           p->camera_path, o->equal_time, ref, o->self_contained, PASS_COUNT,
+                                           pass_names};
+    int rc = 0;
+    if (compare_write_report(&run, nr, rm, msg) != 0) {
+        cli_error("--report: %s", msg);
+        rc = EXIT_RUNTIME;
+    }
+    free(errs);
+    return rc;
 }
 
 int compare_write_table(const struct compare_setup *st, const char *out_dir, const char *command,
@@ -249,32 +317,8 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
     }
-    if (rc == 0 && o->report) {
-        char pngs[2 * MAX_METHODS][SPEC_MAX + 64], labels[MAX_METHODS][SPEC_MAX + 40]; /* dir + "/frame_..." */
-        struct compare_report_method rm[2 * MAX_METHODS];
-        int nr = n;
-        for (int k = 0; k < n; k++) {
-            snprintf(pngs[k], sizeof pngs[k], "%s/frame_%04d.png", specs[k].dir, o->frames - 1);
-            rm[k] = (struct compare_report_method){specs[k].label, pngs[k], specs[k].dir, res[k].image,
-                                                   res[k].ms_per_frame, res[k].spp, res[k].instances, res[k].err,
-                                                   res[k].flip};
-        }
-        for (int k = 0; k < n; k++) /* the denoised frames as rows of their own, after the methods */
-            if (res[k].image_dn) {
-                snprintf(labels[k], sizeof labels[k], "%s, denoised (BIASED)", specs[k].label);
-                snprintf(pngs[nr], sizeof pngs[nr], "%s/frame_%04d_denoised.png", specs[k].dir, o->frames - 1);
-                rm[nr] = (struct compare_report_method){labels[k], pngs[nr], NULL, res[k].image_dn,
-                                                        res[k].ms_per_frame, res[k].spp, res[k].instances,
-                                                        res[k].err_dn, NAN};
-                nr++;
-            }
-        const struct compare_report_run run = {out_dir, command, st->s.name, p->width, p->height, o->frames - 1,
-                                               p->camera_path, o->equal_time, ref};
-        if (compare_write_report(&run, nr, rm, msg) != 0) {
-            cli_error("--report: %s", msg);
-            rc = EXIT_RUNTIME;
-        }
-    }
+    if (rc == 0 && o->report)
+        rc = write_report(st, out_dir, command, res, ref);
     if (rc == 0)
         printf("output: %s%s\n", out_dir, o->report ? " (report: index.html)" : "");
     return rc;

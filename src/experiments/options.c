@@ -260,7 +260,10 @@ static const struct opt_def option_table[] = {
      NULL},
     {"--equal-time", " compare ", OPT_FLAG, O(equal_time), 0, 0, NO_GIVEN, NULL, "",
      "give every method the first stateful method's time per frame", NULL},
-    {"--report", " compare study ", OPT_FLAG, O(report), 0, 0, NO_GIVEN, NULL, "", "also write DIR/index.html", NULL},
+    {"--report", " compare study ", OPT_FLAG, O(report), 0, 0, NO_GIVEN, NULL, "",
+     "also write DIR/index.html, a page that loads the PNGs beside it", NULL},
+    {"--self-contained", " compare study ", OPT_FLAG, O(self_contained), 0, 0, NO_GIVEN, NULL, "",
+     "with --report: every image inside index.html (base64), so the one file holds everything", NULL},
     /* one run per folder (out_dir.h): what to do when --out (--plan) already holds something */
     {"--force", " render compare study view scene export ", OPT_FLAG, O(force), 0, 0, NO_GIVEN, NULL, "",
      "empty a non-empty --out DIR first (study, compare: or --plan DIR): only a folder restir wrote, never /, "
@@ -483,6 +486,10 @@ int cli_parse_options(const char *command, int argc, char **argv, struct cli_opt
         const char *val = d->kind == OPT_FLAG ? NULL : argv[++i];
         if (opt_apply(d, command, val, o, msg) != 0)
             return -1;
+    }
+    if (o->self_contained && !o->report) {
+        snprintf(msg, RESTIR_MSG_LEN, "%s: --self-contained is an option of --report (add --report)", command);
+        return -1;
     }
     return render_params_validate(&o->params, msg);
 }

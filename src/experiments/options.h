@@ -17,6 +17,7 @@ struct cli_options {
     int frame;           /* reference: camera of this frame */
     int equal_time;
     int report;          /* compare, study: write DIR/index.html */
+    int self_contained;  /* compare, study: the report holds its images (data: URIs) */
     const char *camera_file; /* render: --camera FILE, one camera per frame (restir view records them) */
     const char *env;         /* --env FILE|none: the environment light replacing the scene's own */
     const char *script;      /* view: timed input (src/view/view_script.h) */

@@ -314,7 +314,8 @@ static int study_write_outputs(const struct study_setup *st, const char *dir, co
     }
     if (rc == 0 && o->report) {
         const struct study_report_run run = {dir,     command,   st->s.name, o->method, w,       h,
-                                             o->runs, o->warmup, o->frames,  nhard,     strip_y, ref};
+                                             o->runs, o->warmup, o->frames,  nhard,     strip_y, ref,
+                                             o->self_contained};
         if (study_write_report(&run, msg) != 0) {
             cli_error("--report: %s", msg);
             rc = EXIT_RUNTIME;

@@ -1,4 +1,5 @@
-/* study_report.c: `restir study --report` (study_report.h): DIR/index.html beside what the study wrote.
+/* study_report.c: `restir study --report` (study_report.h): DIR/index.html beside what the study wrote, its
+ * images loaded from there or, with --self-contained, embedded.
  * Must never render or compute a study's numbers: the page is built from the files the study wrote. */
 #include "experiments/study_report.h"
 
@@ -11,8 +12,9 @@
 #include "io/html_report.h"
 #include "io/png.h"
 
-/* The page shows study.csv as the table, pareto.svg, hard_pixels.png, strip.png and the reference
- * the study measured against, so it shows exactly the study's numbers. */
+/* The page shows study.csv as the table, pareto.svg (and pareto_denoised.svg where --denoise wrote it),
+ * hard_pixels.png, strip.png and the reference the study measured against, so it shows exactly the
+ * study's numbers. */
 
 #define STUDY_REPORT_MAX_CELLS 4096
 
@@ -66,6 +68,7 @@ int study_write_report(const struct study_report_run *run, char *msg)
     snprintf(path, sizeof path, "%s/index.html", run->out_dir);
     if (html_begin(&pg, path, "restir study", msg) != 0)
         return -1;
+    pg.embed = run->self_contained;
     html_raw(&pg, "<h1>restir study: ");
     html_text(&pg, run->method);
     html_raw(&pg, " on ");
@@ -81,15 +84,23 @@ int study_write_report(const struct study_report_run *run, char *msg)
         return -1;
     }
     html_raw(&pg, "<h2>Pareto plot (000 Figure 3)</h2>\n<p>SMAPE against spatial covariance over radii: every "
-                  "Bitterli configuration, and every compat one with K = 32.</p><img alt=\"Pareto plot\" "
-                  "src=\"pareto.svg\">\n"
-                  "<h2>Hard pixels</h2>\n<p>In red, the pixels whose neighbors within the radius rarely look alike "
+                  "Bitterli configuration, and every compat one with K = 32.</p>");
+    html_image(&pg, "pareto.svg", "Pareto plot");
+    snprintf(path, sizeof path, "%s/pareto_denoised.svg", run->out_dir);
+    FILE *dn = fopen(path, "rb");
+    if (dn) { /* --denoise: the same after denoising */
+        fclose(dn);
+        html_raw(&pg, "<p>After denoising (BIASED; study_denoised.md):</p>");
+        html_image(&pg, "pareto_denoised.svg", "Pareto plot after denoising");
+    }
+    html_raw(&pg, "\n<h2>Hard pixels</h2>\n<p>In red, the pixels whose neighbors within the radius rarely look alike "
                   "(the hardest 10%%), over the reference:</p>\n");
     const char *labels[2] = {"reference", "hard pixels"}, *srcs[2] = {"reference.png", "hard_pixels.png"};
     html_viewer(&pg, 2, labels, srcs, run->width, run->height);
     html_raw(&pg, "<h2>Strip (000 Figure 5)</h2>\n<p>Row %d of run 0 over the measured frames (time downward), one "
-                  "panel per configuration (up to four), luminance over the reference (mid grey = exact):</p>"
-                  "<img alt=\"strip\" src=\"strip.png\">\n",
+                  "panel per configuration (up to four), luminance over the reference (mid grey = exact):</p>",
              run->strip_row);
+    html_image(&pg, "strip.png", "strip");
+    html_raw(&pg, "\n");
     return html_end(&pg, msg);
 }

@@ -1,7 +1,12 @@
-/* test_report.c: `restir compare --report` writes a self-contained page: every image it shows
- * exists beside it, nothing is fetched from a network, and a real browser (headless Chromium)
- * loads it with every image and plot in place and no script error (the page records both on its
- * body once loaded). The report and the browser's screenshot stay in RESTIR_TEST_OUTPUT/report. */
+/* test_report.c: `restir compare --report` writes a page whose every image exists beside it, that
+ * fetches nothing from a network, and that a real browser (headless Chromium) loads with every image
+ * and plot in place and no script error (the page records both on its body once loaded): the table,
+ * the relMSE bars, relMSE against frame (with --ref-every) and the time per pass; with --denoise each
+ * method's denoised row (compare.csv's errors) and image right after its own. With --self-contained
+ * every image is a data: URI, and the page copied alone into an empty folder loads with none broken (the study's
+ * page too).
+ * The reports and the browser's screenshots stay in RESTIR_TEST_OUTPUT. */
+#include <math.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -32,6 +37,27 @@ static int check_sources(const char *dir, const char *html)
         n++;
     }
     return n;
+}
+
+/* How many times s occurs in html. */
+static int count(const char *html, const char *s)
+{
+    int n = 0;
+    for (const char *p = strstr(html, s); p; p = strstr(p + 1, s))
+        n++;
+    return n;
+}
+
+/* The number in the cell `col` (0: the first) of the table row whose first cell is `label`; NaN when absent. */
+static double table_cell(const char *html, const char *label, int col)
+{
+    char key[256];
+    snprintf(key, sizeof key, "<tr><td>%s</td>", label);
+    const char *p = strstr(html, key);
+    p = p ? p + 4 : NULL; /* the first cell's <td> */
+    for (int c = 0; p && c < col; c++)
+        p = strstr(p + 4, "<td>");
+    return p ? strtod(p + 4, NULL) : NAN;
 }
 
 /* The value of data-NAME="..." on the dumped body, or -1. */
@@ -65,6 +91,9 @@ static void check_in_browser(const char *browser, const char *dir, int images, i
     EXPECT(broken == 0, "%d images did not load in the browser", broken);
     EXPECT(seen_plots == plots, "the browser saw %d inline plots, want %d", seen_plots, plots);
     EXPECT(errors == 0, "%d script errors in the browser", errors);
+    /* the script gives each A/B view the selected image of its viewer's grid */
+    EXPECT(count(dom, "alt=\"A/B\" src=\"") == count(dom, "alt=\"A/B\""), "%d of %d A/B views show no image",
+           count(dom, "alt=\"A/B\"") - count(dom, "alt=\"A/B\" src=\""), count(dom, "alt=\"A/B\""));
     /* the browser's log shows every console message as INFO:CONSOLE:LINE; the page writes none */
     char log_path[3 * CLI_PATH_MAX];
     snprintf(log_path, sizeof log_path, "%s/browser.log", dir);
@@ -79,7 +108,8 @@ static void check_in_browser(const char *browser, const char *dir, int images, i
 }
 
 /* Runs `restir ARGS --report --out OUT_ROOT/sub` into a cleared folder (its path into dir) and
- * reads its index.html into page; returns how many images the page shows (all checked present). */
+ * reads its index.html into page; returns how many images the page shows (all checked present, or with
+ * --self-contained in ARGS, all data: URIs). */
 static int run_report(const char *tmp, const char *out_root, const char *sub, const char *args, char *dir,
                       size_t dir_len)
 {
@@ -93,7 +123,74 @@ static int run_report(const char *tmp, const char *out_root, const char *sub, co
     snprintf(path, sizeof path, "%s/index.html", dir);
     cli_read_text(path, page, sizeof page);
     EXPECT(strlen(page) > 1000, "%s is missing or nearly empty", path);
-    return check_sources(dir, page);
+    if (!strstr(args, "--self-contained"))
+        return check_sources(dir, page);
+    EXPECT(count(page, "src=\"") == count(page, "src=\"data:image/"), "%s: %d of %d images are no data: URI", path,
+           count(page, "src=\"") - count(page, "src=\"data:image/"), count(page, "src=\""));
+    return count(page, "<img");
+}
+
+/* Copies dir/index.html alone into the cleared folder dir_alone (its path into alone). */
+static void copy_alone(const char *dir, char *alone, size_t len)
+{
+    char cmd[16 * CLI_PATH_MAX];
+    snprintf(alone, len, "%.*s_alone", 2 * CLI_PATH_MAX, dir);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s' && mkdir -p '%s' && cp '%.*s/index.html' '%s/'", alone, alone,
+             2 * CLI_PATH_MAX, dir, alone);
+    EXPECT(system(cmd) == 0, "cannot copy the page alone: %s", cmd);
+}
+
+/* --denoise: each method's denoised row (compare.csv's relmse_denoised, mape_denoised) right after its own,
+ * and its image after the method's in the viewer. */
+static void check_denoised_rows(const char *dir, const char *const *methods, int n)
+{
+    static char csv[CLI_ERR_MAX];
+    char path[3 * CLI_PATH_MAX];
+    snprintf(path, sizeof path, "%s/compare.csv", dir);
+    cli_read_text(path, csv, sizeof csv);
+    const int relmse = cli_csv_column(csv, "relmse_denoised"), mape = cli_csv_column(csv, "mape_denoised");
+    const char *row = cli_next_line(csv);
+    for (int k = 0; k < n; k++, row = row ? cli_next_line(row) : NULL) {
+        char label[128], raw[192], next[192];
+        snprintf(label, sizeof label, "%s, denoised (BIASED)", methods[k]);
+        const double want[2] = {row ? cli_csv_number(row, relmse) : NAN, row ? cli_csv_number(row, mape) : NAN};
+        const double got[2] = {table_cell(page, label, 4), table_cell(page, label, 5)};
+        printf("%s: relMSE %.5g (compare.csv %.6g), MAPE %.5g (%.6g)\n", label, got[0], want[0], got[1], want[1]);
+        for (int c = 0; c < 2; c++)
+            EXPECT(isfinite(want[c]) && fabs(got[c] - want[c]) <= 1e-4 * want[c],
+                   "%s: the page's %s %.6g, compare.csv's %.6g", label, c ? "MAPE" : "relMSE", got[c], want[c]);
+        snprintf(raw, sizeof raw, "<figcaption>%s</figcaption>", methods[k]);
+        snprintf(next, sizeof next, "<figcaption>%s</figcaption>", label);
+        const char *a = strstr(page, raw), *b = strstr(page, next), *c = NULL;
+        if (a && k + 1 < n) {
+            snprintf(next, sizeof next, "<figcaption>%s</figcaption>", methods[k + 1]);
+            c = strstr(a, next);
+        }
+        EXPECT(a && b && b > a && (!c || c > b), "the viewer does not show '%s' right after '%s'", label, methods[k]);
+    }
+}
+
+/* --denoise --self-contained: the denoised rows, and the page alone in an empty folder loads whole. */
+static void check_self_contained(const char *tmp, const char *out_root, const char *browser)
+{
+    char dir[2 * CLI_PATH_MAX], alone[3 * CLI_PATH_MAX], err[CLI_ERR_MAX];
+    int rc = cli_run(tmp, "compare --scene cornell --methods pt --res 16x16 --self-contained", err);
+    EXPECT(rc == 2 && strstr(err, "--report"), "--self-contained without --report: exit %d, '%s'", rc, err);
+    int images = run_report(tmp, out_root, "report_self_contained",
+                            "compare --scene cornell --methods restir-di,pt --res 48x27 --frames 3 --ref-spp 16 "
+                            "--denoise svgf --self-contained",
+                            dir, sizeof dir);
+    printf("self-contained index.html: %zu bytes, %d images\n", strlen(page), images);
+    /* reference + 2 methods + 2 denoised, heat maps and FLIP maps of the 4 rows (each viewer with its A/B view),
+     * 2 regions x (reference + 4 rows) crops */
+    EXPECT(images == 5 + 1 + 4 + 1 + 4 + 1 + 10, "%d images on the self-contained page", images);
+    static const char *const methods[2] = {"restir-di", "pt"};
+    check_denoised_rows(dir, methods, 2);
+    EXPECT(strstr(page, "the last frame's error only") != NULL,
+           "without --ref-every the page does not say frames.csv holds the last frame's error only");
+    copy_alone(dir, alone, sizeof alone);
+    if (file_size(browser) > 0)
+        check_in_browser(browser, alone, images, 2);
 }
 
 /* Gradient methods: the page adds their primal and gradient layers. */
@@ -108,10 +205,11 @@ static void check_gradient(const char *tmp, const char *out_root, const char *br
     for (size_t k = 0; k < sizeof must / sizeof must[0]; k++)
         EXPECT(strstr(page, must[k]) != NULL, "the gradient page lacks '%s'", must[k]);
     if (file_size(browser) > 0)
-        check_in_browser(browser, dir, images, 1);
+        check_in_browser(browser, dir, images, 2);
 }
 
-/* study --report: the page shows study.csv's rows, the Pareto plot, the mask and the strip. */
+/* study --report: the page shows study.csv's rows, the Pareto plot, the mask and the strip; with
+ * --self-contained it does so alone in a folder. */
 static void check_study(const char *tmp, const char *out_root, const char *browser)
 {
     char dir[2 * CLI_PATH_MAX];
@@ -127,6 +225,17 @@ static void check_study(const char *tmp, const char *out_root, const char *brows
         EXPECT(strstr(page, must[k]) != NULL, "the study page lacks '%s'", must[k]);
     if (file_size(browser) > 0)
         check_in_browser(browser, dir, images, 0);
+    /* --self-contained: the same page, the one file alone in a folder */
+    char alone[3 * CLI_PATH_MAX];
+    images = run_report(tmp, out_root, "study_report_self_contained",
+                        "study --scene cornell --method restir-di --configs bitterli,fast --radii 8,16 --runs 2 "
+                        "--warmup 2 --frames 4 --res 48x27 --ref-spp 16 --self-contained",
+                        dir, sizeof dir);
+    EXPECT(images == 5 && strstr(page, "src=\"data:image/svg+xml;base64,"), "%d images on the self-contained study "
+           "page, or no embedded Pareto plot", images);
+    copy_alone(dir, alone, sizeof alone);
+    if (file_size(browser) > 0)
+        check_in_browser(browser, alone, images, 0);
 }
 
 int main(void)
@@ -138,7 +247,8 @@ int main(void)
         return test_finish();
     }
     int images = run_report(tmp, out_root, "report",
-                            "compare --scene cornell --methods restir-di,ris-di,pt --res 64x36 --frames 3 --ref-spp 16",
+                            "compare --scene cornell --methods restir-di,ris-di,pt --res 64x36 --frames 3 --ref-spp 16 "
+                            "--ref-every 1",
                             dir, sizeof dir);
     printf("index.html: %zu bytes, %d images\n", strlen(page), images);
     /* reference + 3 methods, their A/B view, 3 heat maps and theirs, 3 FLIP maps and theirs, 2 regions x 4 crops */
@@ -147,15 +257,22 @@ int main(void)
            "the page loads something from outside itself");
     const char *must[] = {"restir-di", "ris-di", "<svg", "heat_2.png", "flip_2.png",
                           "crop_1_ref0.png", "restir compare --scene cornell", "Commit:", "Machine:", "relMSE",
-                          "<h2>FLIP</h2>"};
+                          "<h2>FLIP</h2>", "<h2>Error against frame</h2>", "relMSE against frame",
+                          "<h2>Time per pass</h2>", "ms per frame (lower is faster)"};
     for (size_t k = 0; k < sizeof must / sizeof must[0]; k++)
         EXPECT(strstr(page, must[k]) != NULL, "the page lacks '%s'", must[k]);
+    /* relMSE against frame: a point per method at each of frames 0, 1, 2 (--ref-every 1); pass times: a bar per
+     * method (one segment for pt's one pass) */
+    EXPECT(count(page, "<circle") == 9, "%d points in the error-against-frame plot, want 3 methods x 3 frames",
+           count(page, "<circle"));
+    EXPECT(strstr(page, "<title>pt, pt: ") != NULL, "the pass-time bars lack pt's pt pass");
 
     /* A real browser: the page's own check of its images, plots and script errors. */
     const char *browser = getenv("CHROMIUM") ? getenv("CHROMIUM") : "/usr/bin/chromium";
     EXPECT(file_size(browser) > 0, "%s is missing (make test installs Debian's chromium)", browser);
     if (file_size(browser) > 0)
-        check_in_browser(browser, dir, images, 1);
+        check_in_browser(browser, dir, images, 3);
+    check_self_contained(tmp, out_root, browser);
     check_study(tmp, out_root, browser);
     check_gradient(tmp, out_root, browser);
     EXPECT(cli_remove_tree(tmp) == 0, "cannot remove %s", tmp);
