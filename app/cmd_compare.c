@@ -40,7 +40,8 @@ static int spp_for_budget(const struct scene *s, const struct method *m, const s
 static void compare_usage(void)
 {
     printf("usage: restir compare --scene NAME --methods SPEC,SPEC,... [--equal-time] [--frames N] [--res WxH]\n"
-               "                      [--ref FILE.exr | --ref-spp N] [--camera static|path] [--out DIR] [--report]\n"
+               "                      [--ref FILE.exr | --ref-spp N] [--camera static|path] [--out DIR]\n"
+               "                      [--report [--self-contained]]\n"
                "                      [--seed N] [--threads N] [--runs N] [--ref-every K] [--set key=value]...\n"
                "                      [--force]\n"
                "Each SPEC is NAME[:key=value]...: method NAME (see restir list) with the command's parameters,\n"
@@ -92,10 +93,14 @@ static void compare_usage(void)
                "each SPEC's run a job of its own; the merge then has the same errors and standard errors, but\n"
                "no temporal_cov (it needs every run's frame sequence). --ref-every and --equal-time cannot be\n"
                "planned.\n"
-               "--report also writes DIR/index.html: one self-contained page (no network) with the command,\n"
-               "commit and machine, the table, a relMSE plot, every image beside the reference in a viewer\n"
+               "--report also writes DIR/index.html, a page that needs no network, with the command, commit\n"
+               "and machine, the table and a relMSE plot (with --denoise each SPEC's denoised row after its\n"
+               "own), relMSE against frame from frames.csv (with --ref-every), the time per pass from\n"
+               "passes.csv as stacked bars, every image (and denoised image) beside the reference in a viewer\n"
                "(synchronized zoom and pan, A/B flip), relative-error and FLIP heat maps and the crops where\n"
-               "the first two methods differ most.\n");
+               "the first two methods differ most. The page loads the PNGs beside it (reference.png, the\n"
+               "FOLDERs' frames, report/): copy the whole DIR to show it elsewhere. With --self-contained\n"
+               "every image is inside index.html (base64 data: URIs): the one file holds everything.\n");
     cli_options_help(stdout, "compare");
 }
 
