@@ -33,9 +33,10 @@ static void view_usage(FILE *out)
             "replays exactly; escape quits and writes DIR/last_frame.exr and .png. The title shows the\n"
             "per-pass times.\n"
             "--script FILE: timed input, one event per line ('F press KEY', 'F hold KEY N', 'F drag DX DY',\n"
-            "'F quit'; F counts frames from the start). Default DIR: a new folder out/view-SCENE (-2, -3, ...\n"
-            "appended when taken), made at the first save; a given --out DIR must be new or empty, or --force\n"
-            "empties it first. Without a display it says so and exits 1.\n",
+            "'F quit', 'F screenshot FILE': the window as it shows then, as a PNG under DIR unless FILE is\n"
+            "absolute, F >= 1; F counts frames from the start). Default DIR: a new folder out/view-SCENE\n"
+            "(-2, -3, ... appended when taken), made at the first save; a given --out DIR must be new or\n"
+            "empty, or --force empties it first. Without a display it says so and exits 1.\n",
             cycle);
     cli_options_help(out, "view");
 }

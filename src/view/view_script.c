@@ -45,6 +45,20 @@ static int parse_line(char *line, struct view_event *e)
                    ? parse_key(a, &e->key)
                    : -1;
     }
+    if (!strcmp(verb, "screenshot")) { /* the rest of the line, trimmed: a path may hold spaces */
+        e->kind = VIEW_SHOT;
+        while (isspace((unsigned char)*rest))
+            rest++;
+        size_t len = strlen(rest);
+        while (len > 0 && isspace((unsigned char)rest[len - 1]))
+            len--;
+        if (len == 0 || frame < 1) /* frame 0: the window has shown nothing yet */
+            return -1;
+        e->file = xmalloc(len + 1);
+        memcpy(e->file, rest, len);
+        e->file[len] = '\0';
+        return 0;
+    }
     if (!strcmp(verb, "drag")) {
         e->kind = VIEW_DRAG;
         if (sscanf(rest, " %d %d", &x, &y) != 2 || abs(x) > 100000 || abs(y) > 100000)
@@ -77,12 +91,14 @@ int view_script_load(const char *path, struct view_script *s, char *msg)
         struct view_event e;
         if (parse_line(line, &e) != 0) {
             snprintf(msg, RESTIR_MSG_LEN,
-                     "%.300s:%d: expected 'FRAME press KEY', 'FRAME hold KEY N', 'FRAME drag DX DY' or 'FRAME quit'",
+                     "%.300s:%d: expected 'FRAME press KEY', 'FRAME hold KEY N', 'FRAME drag DX DY', 'FRAME quit' "
+                     "or 'FRAME screenshot FILE' (FRAME >= 1)",
                      path, lineno);
             rc = -1;
         } else if (s->count > 0 && e.frame < s->events[s->count - 1].frame) {
             snprintf(msg, RESTIR_MSG_LEN, "%.300s:%d: frame %d comes before the previous line's", path, lineno,
                      e.frame);
+            free(e.file);
             rc = -1;
         } else {
             if (s->count == cap) {
@@ -102,6 +118,8 @@ int view_script_load(const char *path, struct view_script *s, char *msg)
 
 void view_script_fini(struct view_script *s)
 {
+    for (int k = 0; k < s->count; k++)
+        free(s->events[k].file);
     free(s->events);
     memset(s, 0, sizeof(*s));
 }

@@ -5,11 +5,13 @@
  *   FRAME hold KEY N       KEY held for N frames (movement keys)
  *   FRAME drag DX DY       the mouse dragged by DX, DY pixels (turns the camera)
  *   FRAME quit             ends the session after the frames before it
+ *   FRAME screenshot FILE  the window as it shows then (the frame before FRAME, at the window's size)
+ *                          as an 8-bit PNG: FILE under the viewer's --out DIR unless absolute; FRAME >= 1
  * Frames must not decrease from line to line. Must never depend on SDL. */
 #ifndef RESTIR_VIEW_VIEW_SCRIPT_H
 #define RESTIR_VIEW_VIEW_SCRIPT_H
 
-enum view_event_kind { VIEW_PRESS, VIEW_HOLD, VIEW_DRAG, VIEW_QUIT };
+enum view_event_kind { VIEW_PRESS, VIEW_HOLD, VIEW_DRAG, VIEW_QUIT, VIEW_SHOT };
 
 struct view_event {
     int frame;
@@ -17,6 +19,7 @@ struct view_event {
     char key;   /* lower-case letter, or 27 for escape */
     int frames; /* hold: how many frames */
     int dx, dy; /* drag */
+    char *file; /* screenshot: the PNG's path as written in the script (malloc'ed; view_script_fini frees it) */
 };
 
 struct view_script {

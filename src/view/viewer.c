@@ -1,7 +1,8 @@
 /* viewer.c: the interactive viewer (viewer.h). Everything that changes the image is a function of
  * the frame's inputs, never of wall time: a held movement key moves the camera by a fixed step per
  * frame, so a scripted session, and the camera file it records, replay exactly. A screenshot taken
- * in a debug view also writes that view (screenshot_NNNN_view.png). */
+ * in a debug view also writes that view (screenshot_NNNN_view.png); a script's screenshot event writes
+ * the window itself. */
 #include "view/viewer.h"
 
 #include <math.h>
@@ -63,6 +64,8 @@ struct view {
     int shots;
     enum view_mode mode; /* what the window shows (V cycles); screenshots are always the image */
     int show_denoised;   /* O: the denoised frame instead of the raw one (denoise=svgf|atrous) */
+    SDL_Renderer *ren;   /* the window's, and the texture it shows the frame from (window_shot) */
+    SDL_Texture *tex;
 };
 
 static struct camera current_camera(const struct view *v)
@@ -214,6 +217,34 @@ static void key_event(struct view *v, SDL_Keycode k, int down, char *msg, int *r
     }
 }
 
+/* The script's screenshot: the window as it shows now (the texture of the last frame shown, drawn again at the
+ * window's size without presenting it) to file, under the output folder unless absolute, as an 8-bit PNG. */
+static void window_shot(struct view *v, const char *file, char *msg, int *rc)
+{
+    char path[8400];
+    if (file[0] == '/')
+        snprintf(path, sizeof path, "%s", file);
+    else
+        snprintf(path, sizeof path, "%s/%s", v->o->out_dir, file);
+    int w = 0, h = 0;
+    if (SDL_GetRendererOutputSize(v->ren, &w, &h) != 0 || w < 1 || h < 1) {
+        snprintf(msg, RESTIR_MSG_LEN, "screenshot %.200s: no window size (SDL: %.200s)", file, SDL_GetError());
+        *rc = 1;
+        return;
+    }
+    unsigned char *px = xmalloc(3 * (size_t)w * (size_t)h);
+    SDL_RenderClear(v->ren);
+    SDL_RenderCopy(v->ren, v->tex, NULL, NULL);
+    if (SDL_RenderReadPixels(v->ren, NULL, SDL_PIXELFORMAT_RGB24, px, 3 * w) != 0) {
+        snprintf(msg, RESTIR_MSG_LEN, "screenshot %.200s: cannot read the window (SDL: %.200s)", file,
+                 SDL_GetError());
+        *rc = 1;
+    } else if (png_write_rgb8(path, px, w, h, msg) != 0) {
+        *rc = 1;
+    }
+    free(px);
+}
+
 static void scripted(struct view *v, const struct view_script *s, int *next, int tick, char *msg, int *rc)
 {
     for (; *next < s->count && s->events[*next].frame <= tick; (*next)++) {
@@ -222,6 +253,10 @@ static void scripted(struct view *v, const struct view_script *s, int *next, int
         case VIEW_QUIT: v->quit = 1; break;
         case VIEW_DRAG: drag(v, e->dx, e->dy); break;
         case VIEW_HOLD: v->held[(unsigned char)e->key] = e->frames; break;
+        case VIEW_SHOT:
+            if (*rc == 0)
+                window_shot(v, e->file, msg, rc);
+            break;
         case VIEW_PRESS:
             if (e->key == 'k' || e->key == 'c')
                 key_event(v, e->key, 1, msg, rc);
@@ -311,6 +346,8 @@ int view_run(const struct view_options *o, char *msg)
     v.p = o->params;
     v.method = o->method;
     v.show_denoised = v.p.denoise.method > 0; /* --denoise: start on the denoised frame */
+    v.ren = ren;
+    v.tex = tex;
     const struct camera *c0 = &o->scene->camera;
     vec3 d = v3_normalize(v3_sub(c0->target, c0->position));
     v.position = c0->position;

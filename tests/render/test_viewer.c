@@ -1,5 +1,6 @@
 /* test_viewer.c: `restir view` under Xvfb with a script: it opens the window, moves and turns the
- * camera, switches method, saves a screenshot and the camera path, and quits; the screenshot is a
+ * camera, switches method, saves a screenshot, the window's pixels (the script's screenshot event: the
+ * frame on screen magnified to the window) and the camera path, and quits; the screenshot is a
  * rendered image of the scene, and `restir render --camera` of the recorded path reproduces the
  * screenshot's frame and the viewer's last frame byte for byte with the same seed. V cycles the
  * debug views to the last, temporal candidates per technique, whose screenshot_NNNN_view.png holds
@@ -66,6 +67,44 @@ static int count_temporal_view(const char *path, long counts[TC_COLOURS])
     return ok ? 0 : -1;
 }
 
+/* path as 8-bit RGB (malloc'ed) with its size, or NULL. */
+static unsigned char *read_rgb(const char *path, int *w, int *h)
+{
+    png_image im;
+    memset(&im, 0, sizeof im);
+    im.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&im, path))
+        return NULL;
+    im.format = PNG_FORMAT_RGB;
+    unsigned char *px = malloc(PNG_IMAGE_SIZE(im));
+    if (!px || !png_image_finish_read(&im, NULL, px, 0, NULL)) {
+        png_image_free(&im);
+        free(px);
+        return NULL;
+    }
+    *w = (int)im.width;
+    *h = (int)im.height;
+    return px;
+}
+
+/* The script's screenshot event: window (the 640x360 window of a 64x36 render, each pixel 10x10) shows
+ * exactly shown, the frame on screen that K wrote. */
+static void check_window_shot(const char *window, const char *shown)
+{
+    int ww = 0, wh = 0, w = 0, h = 0;
+    unsigned char *win = read_rgb(window, &ww, &wh), *img = read_rgb(shown, &w, &h);
+    EXPECT(win && img && ww == 640 && wh == 360 && w == 64 && h == 36, "%s (%dx%d) or %s (%dx%d) is missing or not "
+           "of the window's and the render's size", window, ww, wh, shown, w, h);
+    long differ = 0;
+    for (int y = 0; win && img && ww == 10 * w && wh == 10 * h && y < h; y++)
+        for (int x = 0; x < w; x++)
+            differ += memcmp(win + 3 * ((size_t)(10 * y + 5) * ww + 10 * x + 5), img + 3 * ((size_t)y * w + x), 3) != 0;
+    printf("%s: %dx%d, %ld of %d pixels differ from %s\n", window, ww, wh, differ, w * h, shown);
+    EXPECT(differ == 0, "the window screenshot differs from what the viewer showed in %ld pixels", differ);
+    free(win);
+    free(img);
+}
+
 /* Runs the viewer on cornell at 64x36 (seed 5) under Xvfb with the script text and extra arguments,
  * writing into out; expects exit 0 (name labels the failure and the log, tmp/xvfb-NAME.log). */
 static void viewer_session(const char *tmp, const char *name, const char *script, const char *extra, const char *out)
@@ -99,7 +138,7 @@ int main(void)
     write_text(script, "# walk, turn, switch method, screenshot, save the path\n"
                        "0 hold w 3\n1 press v\n2 press v\n3 drag 30 -10\n3 press v\n4 hold d 2\n4 press v\n"
                        "5 press v\n6 press m\n7 hold a 4\n10 drag -20 5\n"
-                       "12 press k\n13 press c\n13 quit\n");
+                       "12 press k\n12 screenshot window.png\n13 press c\n13 quit\n");
     snprintf(dir, sizeof dir, "%s/view", tmp);
 
     /* no display: exit 1, a message, no folder */
@@ -123,6 +162,9 @@ int main(void)
     snprintf(args, sizeof args, "view --scene cornell --res 64x36 --script '%s' --out '%s/bad'", out, tmp);
     int rc = cli_run(tmp, args, err);
     EXPECT(rc == 2 && strstr(err, "bad.txt:2") != NULL, "bad script: exit %d, message %s", rc, err);
+    write_text(out, "0 screenshot before_any_frame.png\n"); /* the window has shown nothing yet */
+    rc = cli_run(tmp, args, err);
+    EXPECT(rc == 2 && strstr(err, "bad.txt:1") != NULL, "a screenshot at frame 0: exit %d, message %s", rc, err);
 
     /* the scripted session under Xvfb */
     snprintf(full, sizeof full,
@@ -160,6 +202,9 @@ int main(void)
     EXPECT(count_temporal_view(out, tc) == 0, "cannot read %s at 64x36", out);
     EXPECT(tc[TC_OTHER] == 0 && tc[TC_SPLAT] == 0 && tc[TC_BOTH] == 0 && tc[TC_BP] > 64 * 36 / 4,
            "%s: the temporal-candidates view of temporal.reuse=backproject is not mostly green", out);
+    char window[3 * CLI_PATH_MAX];
+    snprintf(window, sizeof window, "%s/window.png", dir);
+    check_window_shot(window, out);
     /* temporal.reuse=both: splatted candidates too, alone (blue) or with backprojection (cyan) */
     char both[2 * CLI_PATH_MAX];
     snprintf(both, sizeof both, "%s/both", tmp);
