@@ -37,6 +37,17 @@ static int run(const char *fmt, const char *arg, char *out, char *err)
 
 /* A second render into a folder that holds the first: refused, nothing touched; --force: only the
  * new run's files. */
+/* Whether the EXR at path is w x h. */
+static void expect_exr_size(const char *what, const char *path, int w, int h)
+{
+    float *img = NULL;
+    int iw = 0, ih = 0;
+    char msg[MSG_LEN] = "";
+    EXPECT(exr_read_rgb(path, &img, &iw, &ih, msg) == 0 && iw == w && ih == h, "%s: %s is %dx%d, not %dx%d %s", what,
+           path, iw, ih, w, h, msg);
+    free(img);
+}
+
 static void test_second_run(char *out, char *err)
 {
     char dir[2 * CLI_PATH_MAX], frame[3 * CLI_PATH_MAX], copy[3 * CLI_PATH_MAX];
@@ -64,13 +75,8 @@ static void test_second_run(char *out, char *err)
            "after --force %s holds %d entries, not the new run's 4 (frame_0000.exr, .png, metrics.csv, "
            "summary.json)",
            dir, cli_count_entries(dir, ""));
-    float *img = NULL;
-    int w = 0, h = 0;
-    char msg[MSG_LEN];
     snprintf(frame, sizeof frame, "%s/frame_0000.exr", dir);
-    EXPECT(exr_read_rgb(frame, &img, &w, &h, msg) == 0 && w == 16 && h == 9, "frame after --force: %dx%d %s", w, h,
-           msg);
-    free(img);
+    expect_exr_size("frame after --force", frame, 16, 9);
 
     /* links inside are removed, never followed; the current folder is never emptied */
     char outside[2 * CLI_PATH_MAX], keep[3 * CLI_PATH_MAX];
@@ -171,13 +177,8 @@ static void test_reference_size_and_metrics(char *out, char *err)
     snprintf(args, sizeof args, "compare --scene cornell --methods pt,restir-di --ref '%s' --out '%s'", ref, dir);
     EXPECT(cli_run_capture(tmp, args, out, err) == 0, "compare --ref without --res: %s", err);
     EXPECT(strstr(out, "64x36") != NULL, "compare does not say 64x36:\n%s", out);
-    float *img = NULL;
-    int w = 0, h = 0;
-    char msg[MSG_LEN];
     snprintf(frame, sizeof frame, "%s/restir-di/frame_0000.exr", dir);
-    EXPECT(exr_read_rgb(frame, &img, &w, &h, msg) == 0 && w == 64 && h == 36, "compare's frame is %dx%d: %s", w, h,
-           msg);
-    free(img);
+    expect_exr_size("compare's frame", frame, 64, 36);
     path_of(dir, "compare-32");
     snprintf(args, sizeof args, "compare --scene cornell --methods pt --res 32x18 --ref '%s' --out '%s'", ref, dir);
     const int rc = cli_run_capture(tmp, args, out, err);
