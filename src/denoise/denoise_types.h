@@ -24,7 +24,12 @@ struct denoise_guide {
     const unsigned char *valid; /* 1 where the primary ray hit geometry; other pixels pass through */
 };
 
-/* What the denoisers read (render_params' denoise.* keys; the defaults are the papers'). */
+/* denoise_settings.svgf_lum_weight and svgf_taa_clamp, in the order of their names in params.c. */
+enum { DENOISE_LUM_SYMMETRIC, DENOISE_LUM_PAPER };
+enum { DENOISE_TAA_CLAMP_MOVING, DENOISE_TAA_CLAMP_ALWAYS, DENOISE_TAA_CLAMP_OFF };
+
+/* What the denoisers read (render_params' denoise.* keys; the defaults are the papers' but where
+ * docs/DENOISE.md says why not). */
 struct denoise_settings {
     int method; /* index into denoise_names: 0 off, 1 svgf, 2 atrous */
     /* SVGF (Schied et al. 2017, Sec. 4) */
@@ -33,8 +38,8 @@ struct denoise_settings {
     float svgf_sigma_depth;   /* sigma_z of Eq. 3 (1) */
     float svgf_sigma_normal;  /* sigma_n of Eq. 4 (128) */
     float svgf_sigma_lum;     /* sigma_l of Eq. 5 (4) */
-    int svgf_lum_weight;      /* Eq. 5's deviation: 0, the mean of the centre's and the tap's (symmetric, keeps
-                                 the image's energy); 1, the centre's alone, as the paper */
+    int svgf_lum_weight;      /* Eq. 5's deviation: DENOISE_LUM_SYMMETRIC, the mean of the centre's and the
+                                 tap's (keeps the image's energy); DENOISE_LUM_PAPER, the centre's alone */
     int svgf_iterations;      /* à-trous iterations (5) */
     int svgf_kernel;          /* à-trous kernel: 0, the paper's 5x5 B3 spline; 1, 3x3 (1 2 1) / 4, faster */
     int svgf_feedback;        /* the iteration whose output becomes the colour history (1; 0: unfiltered) */
@@ -43,8 +48,8 @@ struct denoise_settings {
     float svgf_plane_max;     /* reprojection: ... where the plane distance exceeds this * depth (0.01) */
     float svgf_taa_alpha;     /* temporal antialiasing's weight of the current frame (0.1; 1: off) */
     float svgf_taa_motion;    /* ... only where the pixel moved at most this many pixels (0.5; 1e6: all) */
-    int svgf_taa_clamp;       /* ... its history clamped to the 3x3 neighbourhood's range: 0 where the pixel
-                                 moved, 1 everywhere (Karis), 2 nowhere */
+    int svgf_taa_clamp;       /* ... its history clamped to the 3x3 neighbourhood's range: where the pixel
+                                 moved (DENOISE_TAA_CLAMP_MOVING), everywhere (_ALWAYS, Karis), nowhere (_OFF) */
     /* edge-avoiding à-trous (Dammertz et al. 2010, Sec. 3) */
     int atrous_iterations;       /* (5) */
     float atrous_sigma_color;    /* sigma_rt, in units of the frame's mean illumination; halved per iteration */

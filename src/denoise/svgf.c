@@ -197,7 +197,7 @@ static void filter(struct svgf *v, const struct denoise_settings *s, struct deno
         }
         pass.lum = P[T_LUM];
         pass.invl = P[T_INVL];
-        pass.lum_symmetric = s->svgf_lum_weight == 0;
+        pass.lum_symmetric = s->svgf_lum_weight == DENOISE_LUM_SYMMETRIC;
         pass.step = 1 << it;
         pass.radius = s->svgf_kernel == 1 ? 1 : 2;
 #pragma omp parallel for schedule(dynamic, 4)
@@ -336,11 +336,11 @@ static void svgf_post(void *state, const struct denoise_settings *s, const struc
     float **P = v->plane;
     const float a = s->svgf_taa_alpha;
     const int on = a < 1.0f && v->has_taa, clamp = s->svgf_taa_clamp, w = v->w, h = v->h;
-    const float moved2 = DENOISE_SNAP * DENOISE_SNAP; /* a still camera's motion, snapped (denoise_snap) */
+    const float moved2 = DENOISE_SNAP * DENOISE_SNAP; /* below 1/1000 pixel a pixel is still (denoise_snap) */
     float *const tmp[6] = {P[T_C0], P[T_C1], P[T_C2], P[T_VAR], P[T_LUM], P[T_INVL]}; /* free after run */
     float *const range[6] = {P[R_LO0], P[R_LO1], P[R_LO2], P[R_HI0], P[R_HI1], P[R_HI2]};
     float *restrict len = P[T_TMP]; /* this frame's history lengths (free after run, too) */
-    if (on && clamp != 2)
+    if (on && clamp != DENOISE_TAA_CLAMP_OFF)
         neighbourhood_range(f, rgb, tmp, range);
 #pragma omp parallel for schedule(static)
     for (int y = 0; y < h; y++)
@@ -355,8 +355,9 @@ static void svgf_post(void *state, const struct denoise_settings *s, const struc
                 continue; /* the output stays this frame's */
             len[i] = MINF(frames + 1.0f, 1e6f);
             const float weight = MAXF(a, 1.0f / len[i]);
+            const int clamped =
+                clamp == DENOISE_TAA_CLAMP_ALWAYS || (clamp == DENOISE_TAA_CLAMP_MOVING && m2 > moved2);
             for (int c = 0; c < 3; c++) {
-                const int clamped = clamp == 1 || (clamp == 0 && m2 > moved2);
                 const float old = clamped ? MINF(MAXF(hc[c], range[c][i]), range[3 + c][i]) : hc[c];
                 rgb[3 * i + c] = old + weight * (rgb[3 * i + c] - old);
             }

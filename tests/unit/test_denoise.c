@@ -263,7 +263,7 @@ static void svgf_hand_case(int w, int h, int iterations, int kernel3, int paper)
 
 static void test_svgf_hand(void)
 {
-    for (int paper = 0; paper <= 1; paper++) { /* denoise.svgf.luminance_weight=symmetric, paper */
+    for (int paper = DENOISE_LUM_SYMMETRIC; paper <= DENOISE_LUM_PAPER; paper++) { /* luminance_weight= */
         svgf_hand_case(11, 9, 1, 0, paper);
         svgf_hand_case(53, 7, 1, 0, paper);
         svgf_hand_case(61, 12, 3, 0, paper);
@@ -608,7 +608,7 @@ static void test_taa_clamp(void)
     static struct scene_buf b;
     static float c[3 * 25], out[3 * 25];
     for (int moving = 0; moving < 2; moving++) {
-        float after[4]; /* clamp moving, always, off; then no antialiasing */
+        float after[4]; /* clamp moving, always, off (DENOISE_TAA_CLAMP_*); then no antialiasing */
         for (int mode = 0; mode < 4; mode++) {
             struct denoise_settings s = settings(1);
             s.svgf_taa_clamp = mode < 3 ? mode : 0;
