@@ -39,7 +39,7 @@ enum method_caps {
 
 struct method {
     const char *name;        /* what --method and method specs spell */
-    const char *description; /* one line for `restir list` and --help */
+    const char *description; /* one line for `restir list` */
     unsigned caps;           /* enum method_caps bits */
     int viewer_order;        /* position in the viewer's M cycle (1, 2, ...); 0: not offered there */
     /* The settings (params.c keys) it reads beyond those every method reads (method.c's
