@@ -40,33 +40,6 @@ enum { TC_BLACK, TC_RECEIVED, TC_BP, TC_SPLAT, TC_BOTH, TC_OTHER, TC_COLOURS };
 static const unsigned char tc_rgb[TC_OTHER][3] = {{0, 0, 0}, {128, 0, 0}, {0, 255, 0}, {0, 0, 255}, {0, 255, 255}};
 static const char *const tc_names[TC_COLOURS] = {"black", "dark red", "green", "blue", "cyan", "other"};
 
-/* Counts path's pixels per colour of the view; 0, or -1 when it cannot be read at 64x36. */
-static int count_temporal_view(const char *path, long counts[TC_COLOURS])
-{
-    png_image im;
-    memset(&im, 0, sizeof im);
-    im.version = PNG_IMAGE_VERSION;
-    memset(counts, 0, TC_COLOURS * sizeof(long));
-    if (!png_image_begin_read_from_file(&im, path))
-        return -1;
-    im.format = PNG_FORMAT_RGB;
-    unsigned char *px = malloc(PNG_IMAGE_SIZE(im));
-    int ok = px && im.width == 64 && im.height == 36 && png_image_finish_read(&im, NULL, px, 0, NULL);
-    png_image_free(&im);
-    for (size_t i = 0; ok && i < (size_t)im.width * im.height; i++) {
-        int c = 0;
-        while (c < TC_OTHER && memcmp(px + 3 * i, tc_rgb[c], 3) != 0)
-            c++;
-        counts[c]++;
-    }
-    printf("%s:", path);
-    for (int c = 0; c < TC_COLOURS; c++)
-        printf(" %ld %s", counts[c], tc_names[c]);
-    printf("\n");
-    free(px);
-    return ok ? 0 : -1;
-}
-
 /* path as 8-bit RGB (malloc'ed) with its size, or NULL. */
 static unsigned char *read_rgb(const char *path, int *w, int *h)
 {
@@ -85,6 +58,27 @@ static unsigned char *read_rgb(const char *path, int *w, int *h)
     *w = (int)im.width;
     *h = (int)im.height;
     return px;
+}
+
+/* Counts path's pixels per colour of the view; 0, or -1 when it cannot be read at 64x36. */
+static int count_temporal_view(const char *path, long counts[TC_COLOURS])
+{
+    int w = 0, h = 0;
+    memset(counts, 0, TC_COLOURS * sizeof(long));
+    unsigned char *px = read_rgb(path, &w, &h);
+    const int ok = px && w == 64 && h == 36;
+    for (size_t i = 0; ok && i < (size_t)w * h; i++) {
+        int c = 0;
+        while (c < TC_OTHER && memcmp(px + 3 * i, tc_rgb[c], 3) != 0)
+            c++;
+        counts[c]++;
+    }
+    printf("%s:", path);
+    for (int c = 0; c < TC_COLOURS; c++)
+        printf(" %ld %s", counts[c], tc_names[c]);
+    printf("\n");
+    free(px);
+    return ok ? 0 : -1;
 }
 
 /* The script's screenshot event: window (the 640x360 window of a 64x36 render, each pixel 10x10) shows
