@@ -6,7 +6,7 @@
 #include <stdlib.h>
 
 #include "core/check.h"
-#include "render/pt.h"
+#include "methods/pt/pt.h"
 #include "scene/scene_file.h"
 
 struct scene bench_load_scene(const char *name)

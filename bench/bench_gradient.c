@@ -15,7 +15,7 @@
 
 #include "bench_common.h"
 #include "core/check.h"
-#include "gradient/grad_frame.h"
+#include "methods/gradient/grad_frame.h"
 #include "io/atomic_file.h"
 #include "io/exr.h"
 #include "io/png.h"

@@ -14,7 +14,7 @@
 #include "io/atomic_file.h"
 #include "io/report.h"
 #include "methods/renderer.h"
-#include "render/pt.h"
+#include "methods/pt/pt.h"
 #include "restir/metrics.h"
 #include "scene/scene_ray_log.h"
 

@@ -32,13 +32,12 @@ ALLOWED = {
     "src/scene": ["src/core"],
     "src/shading": ["src/scene", "src/core"],
     "src/render": ["src/denoise", "src/shading", "src/scene", "src/core", "include/restir"],
-    "src/gradient": ["src/denoise", "src/render", "src/shading", "src/scene", "src/core", "include/restir"],
-    "src/methods": ["src/denoise", "src/gradient", "src/render", "src/shading", "src/scene", "src/core", "include/restir"],
+    "src/methods": ["src/denoise", "src/render", "src/shading", "src/scene", "src/core", "include/restir"],
     "src/io": ["src/scene", "src/core", "include/restir"],
-    "src/experiments": ["src/denoise", "src/methods", "src/gradient", "src/render", "src/io", "src/shading", "src/scene", "src/core",
+    "src/experiments": ["src/denoise", "src/methods", "src/render", "src/io", "src/shading", "src/scene", "src/core",
                         "include/restir"],
     "src/view": ["src/denoise", "src/methods", "src/render", "src/io", "src/scene", "src/core", "include/restir"],
-    "app": ["src/denoise", "src/experiments", "src/view", "src/methods", "src/gradient", "src/render", "src/io", "src/shading", "src/scene",
+    "app": ["src/denoise", "src/experiments", "src/view", "src/methods", "src/render", "src/io", "src/shading", "src/scene",
             "src/core", "include/restir"],
 }
 # Checked for style, size exemptions and cycles, but free to include any layer.

@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "core/check.h"
-#include "gradient/grad_frame.h"
+#include "methods/gradient/grad_frame.h"
 #include "io/exr.h"
 #include "io/png.h"
 #include "methods/memory_estimate.h"

@@ -16,7 +16,7 @@
 #include "experiments/compare_worst.h"
 #include "experiments/options.h"
 #include "experiments/reference_checkpoint.h"
-#include "gradient/grad_frame.h"
+#include "methods/gradient/grad_frame.h"
 #include "io/atomic_file.h"
 #include "io/report.h"
 #include "scene/scene_file.h"

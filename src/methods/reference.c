@@ -7,7 +7,7 @@
 
 #include "core/check.h"
 #include "methods/renderer.h"
-#include "render/pt.h"
+#include "methods/pt/pt.h"
 
 void reference_accum_init(struct reference_accum *a, const struct scene *s, const struct method *method,
                           const struct render_params *p, const struct camera *cam, const struct camera *open, int spp)

@@ -5,14 +5,19 @@
 #ifndef RESTIR_RENDER_NONFINITE_H
 #define RESTIR_RENDER_NONFINITE_H
 
+#include <math.h>
 #include <stddef.h>
 
-#include "render/di_sample.h"
-#include "render/restir_pt.h"
+/* A reservoir is kept when its W, target and confidence are finite; else its method empties it
+ * (nonfinite_discard_di, nonfinite_discard_pt in the method folders), keeping a finite confidence (a
+ * non-finite one becomes 0: a domain that produced nothing). */
+static inline int nonfinite_reservoir_ok(float W, float target, float c)
+{
+    return isfinite(W) && isfinite(target) && isfinite(c);
+}
+static inline float nonfinite_kept_confidence(float c) { return isfinite(c) ? c : 0.0f; }
 
-/* Each returns how many entries it discarded. */
-long long nonfinite_discard_di(struct di_reservoir *res, size_t n);
-long long nonfinite_discard_pt(struct pt_reservoir *res, size_t n);
+/* Sets every non-finite channel of rgb (3 floats per pixel) to 0; returns how many it set. */
 long long nonfinite_discard_rgb(float *rgb, size_t n_pixels);
 
 #endif

@@ -13,7 +13,7 @@
 #include <time.h>
 
 #include "reference_pt.h"
-#include "gradient/grad_frame.h"
+#include "methods/gradient/grad_frame.h"
 #include "unbiased_runs.h"
 
 #define GRADIENT_FRAMES 3

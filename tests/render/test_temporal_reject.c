@@ -4,7 +4,7 @@
 
 #include "core/check.h"
 #include "methods/renderer.h"
-#include "render/di_sample.h"
+#include "methods/restir_di/di_sample.h"
 #include "scene/scenes_builtin.h"
 #include "test_util.h"
 

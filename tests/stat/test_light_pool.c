@@ -12,7 +12,7 @@
 #include "chi2_util.h"
 #include "core/check.h"
 #include "core/rng.h"
-#include "render/light_pool.h"
+#include "methods/restir_di/light_pool.h"
 #include "scene/scenes_builtin.h"
 #include "shading/lights.h"
 #include "test_util.h"

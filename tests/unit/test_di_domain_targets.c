@@ -9,9 +9,9 @@
 #include <string.h>
 
 #include "core/simd.h"
-#include "render/di_visibility.h"
-#include "render/light_pool.h"
-#include "render/restir_di.h"
+#include "methods/restir_di/di_visibility.h"
+#include "methods/restir_di/light_pool.h"
+#include "methods/restir_di/restir_di.h"
 #include "scene/scene_file.h"
 #include "frame_fixture.h"
 #include "test_util.h"

@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/restir_gi.h"
+#include "methods/restir_gi/restir_gi.h"
 #include "scene/scene_file.h"
 #include "frame_fixture.h"
 #include "test_util.h"

@@ -3,6 +3,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "methods/restir_di/di_sample.h"
+#include "methods/restir_pt/restir_pt.h"
 #include "render/nonfinite.h"
 #include "test_util.h"
 

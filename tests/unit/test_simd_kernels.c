@@ -8,7 +8,7 @@
 
 #include "core/rng.h"
 #include "core/simd.h"
-#include "render/di_sample.h"
+#include "methods/restir_di/di_sample.h"
 #include "shading/bsdf.h"
 #include "test_util.h"
 

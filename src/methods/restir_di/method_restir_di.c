@@ -1,0 +1,143 @@
+/* method_restir_di.c: `restir-di` (ReSTIR DI, Bitterli et al. 2020 / 001: initial RIS, temporal and
+ * spatial reuse by GRIS) and `ris-di` (the same initial RIS without reuse, 001's baseline), as
+ * passes over DI reservoirs and the shared screen history. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/check.h"
+#include "methods/screen_history.h"
+#include "methods/restir_di/di_sample.h"
+#include "methods/restir_di/light_pool.h"
+#include "render/nonfinite.h"
+#include "methods/restir_di/restir_di.h"
+#include "render/reuse_cells.h"
+#include "render/spatial_select.h"
+
+struct restir_di_state {
+    struct screen_history h;
+    struct di_reservoir *work;    /* initial, then temporal outputs */
+    struct di_reservoir *hist[2]; /* spatial outputs: this frame's and the previous frame's */
+    struct light_pool lights;     /* this frame's light candidates (initial RIS) */
+};
+
+static void *restir_di_create(const struct renderer *r)
+{
+    const struct render_params *p = &r->p;
+    const size_t n = (size_t)p->width * (size_t)p->height;
+    struct restir_di_state *d = xcalloc(1, sizeof(*d));
+    screen_history_init(&d->h, p, 1, 0); /* the DI passes read the shading points */
+    d->work = xcalloc(n, sizeof(struct di_reservoir));
+    d->hist[0] = xcalloc(n, sizeof(struct di_reservoir));
+    d->hist[1] = xcalloc(n, sizeof(struct di_reservoir));
+    light_pool_init(&d->lights, p->light_candidates);
+    return d;
+}
+
+static void restir_di_destroy(void *state)
+{
+    struct restir_di_state *d = state;
+    screen_history_fini(&d->h);
+    light_pool_fini(&d->lights);
+    free(d->work);
+    free(d->hist[0]);
+    free(d->hist[1]);
+    free(d);
+}
+
+static void restir_di_render_frame(struct renderer *r, void *state, const struct camera_view *view,
+                                   struct frame_stats *st)
+{
+    struct restir_di_state *d = state;
+    struct screen_history *h = &d->h;
+    const struct scene *s = r->scene;
+    const struct render_params *p = &r->p;
+    struct gbuffer *g = screen_history_gbuffer(h), *prev_g = screen_history_prev_gbuffer(h);
+    struct di_reservoir *out = d->hist[h->cur], *prev_res = d->hist[1 - h->cur];
+    const int frame = r->frame;
+    const size_t n = (size_t)g->width * (size_t)g->height;
+    RENDERER_TIMED(st, PASS_GBUFFER,
+                   st->rays += gbuffer_pass(g, s, view, h->has_history ? &r->prev_view : NULL, p->jitter, p->seed,
+                                            frame));
+    RENDERER_TIMED(st, PASS_INITIAL, {
+        light_pool_fill(&d->lights, s, p->seed, frame);
+        st->rays += di_initial_pass(s, &d->lights, p, frame, g, d->work);
+        st->nonfinite += nonfinite_discard_di(d->work, n);
+    });
+    if (p->temporal && h->has_history)
+        RENDERER_TIMED(st, PASS_TEMPORAL,
+                       st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, d->work, &st->rays);
+                       st->nonfinite += nonfinite_discard_di(d->work, n));
+    if (p->spatial && h->spmis) {
+        struct spmis_frame *f = h->spmis;
+        RENDERER_TIMED(st, PASS_CELLS, {
+            di_spmis_weights(p, g, d->work, f);
+            spmis_cells_pass(f, p, g);
+        });
+        RENDERER_TIMED(st, PASS_CELL_SEARCH, spmis_search_pass(f, p, g, frame));
+        RENDERER_TIMED(st, PASS_SPMIS_CANONICAL, st->rays += di_spmis_canonical_pass(s, p, frame, g, d->work, f));
+        RENDERER_TIMED(st, PASS_SPMIS_REUSE, st->rays += di_spmis_reuse_pass(s, p, frame, g, d->work, f, out);
+                       st->nonfinite += nonfinite_discard_di(out, n));
+    } else if (p->spatial) {
+        RENDERER_TIMED(st, PASS_SELECT,
+                       st->neighbors_selected =
+                           spatial_select_pass(p, 0, g, frame, h->disk_offsets, h->neighbors));
+        RENDERER_TIMED(st, PASS_SPATIAL, st->rays += di_spatial_pass(s, p, frame, g, h->neighbors, d->work, out);
+                       st->nonfinite += nonfinite_discard_di(out, n));
+    } else {
+        memcpy(out, d->work, sizeof(*out) * n);
+    }
+    RENDERER_TIMED(st, PASS_SHADE, st->rays += di_shade_pass(s, p, g, out, r->image));
+    if (p->history_temporal && p->spatial)
+        memcpy(out, d->work, sizeof(*out) * n);
+    st->valid_pixels = screen_history_count_valid(h);
+    screen_history_end_frame(h, p);
+}
+
+static float di_confidence(const void *reservoirs, int pixel)
+{
+    return ((const struct di_reservoir *)reservoirs)[pixel].c;
+}
+
+static void restir_di_inspect(const void *state, struct renderer_inspect *out)
+{
+    const struct restir_di_state *d = state;
+    screen_history_inspect(&d->h, out);
+    out->reservoirs = d->hist[1 - d->h.cur];
+    out->confidence = di_confidence;
+}
+
+/* 001's no-reuse baseline: the initial RIS alone. */
+static void ris_di_defaults(struct render_params *p)
+{
+    p->temporal = 0;
+    p->spatial = 0;
+}
+
+/* Reuse, neighbor selection and SPMIS, and the DI candidates. */
+#define RESTIR_DI_SETTINGS                                                                                        \
+    "di. temporal temporal. spatial spatial. history confidence_cap mis spmis. pt.max_bounces"
+
+const struct method method_restir_di = {
+    .name = "restir-di",
+    .description = "ReSTIR DI: initial RIS, temporal and spatial reuse by GRIS (pairwise MIS default)",
+    .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY | METHOD_SELECTION_STUDY,
+    .viewer_order = 1,
+    .settings = RESTIR_DI_SETTINGS,
+    .create = restir_di_create,
+    .destroy = restir_di_destroy,
+    .render_frame = restir_di_render_frame,
+    .inspect = restir_di_inspect,
+};
+
+const struct method method_ris_di = {
+    .name = "ris-di",
+    .description = "direct lighting by initial RIS only, no reuse (the no-reuse baseline of 001)",
+    .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY,
+    .viewer_order = 4,
+    .settings = "di.light_candidates di.bsdf_candidates di.visibility_reuse pt.max_bounces",
+    .defaults = ris_di_defaults,
+    .create = restir_di_create,
+    .destroy = restir_di_destroy,
+    .render_frame = restir_di_render_frame,
+    .inspect = restir_di_inspect,
+};
