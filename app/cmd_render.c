@@ -7,6 +7,7 @@
 #include "experiments/cli.h"
 #include "experiments/options.h"
 #include "experiments/render_run.h"
+#include "methods/settings.h"
 #include "render/params.h"
 #include "restir/metrics.h"
 

@@ -17,6 +17,7 @@
 #include "core/simd.h"
 #include "denoise/denoise.h"
 #include "experiments/cli.h"
+#include "methods/settings.h"
 #include "scene/scene_file.h"
 
 static int cmp_double(const void *a, const void *b)

@@ -11,6 +11,7 @@
 
 #include "bench_common.h"
 #include "core/check.h"
+#include "methods/settings.h"
 #include "restir/metrics.h"
 
 /* Luminance image of the last of `frames` camera-path frames of restir-gi with seed and radiance mode. */

@@ -19,7 +19,9 @@
 #include "io/atomic_file.h"
 #include "io/exr.h"
 #include "io/png.h"
+#include "methods/settings.h"
 #include "restir/metrics.h"
+#include "methods/gradient/grad_settings.h"
 
 #define IMAGE_DIR "docs/gradient"
 #define REF_CACHE_DIR "out/bench-gradient" /* references are reused from here (git-ignored) */
@@ -365,7 +367,7 @@ static void run_method(const struct scene *s, const struct gb_config *c, const s
         /* L2 again (the averaged inputs) and L1 (recon defaults), outside the budget */
         struct frame_stats st;
         memset(&st, 0, sizeof(st));
-        r0.p.recon = RECON_BOTH;
+        recon_settings_mut(&r0.p)->mode = RECON_BOTH;
         renderer_reconstruct(&r0, &st);
         log_time(&l1_log, &l1_n, &l1_cap, st.ms[PASS_RECON_L1]);
         res->l1_image = copy3(renderer_gradients(&r0)->l1, npix);
@@ -625,8 +627,8 @@ int bench_gradient(int argc, char **argv)
            "%d threads\n\nPixel-scale parameters kept at their defaults, not scaled with the resolution: "
            "spatial.radius %g px, grad.radius %g px, grad.search %d. Primal: area ReSTIR (1 initial candidate, "
            "2 spatial neighbors) for area-restir, grad-after-restir and grestir-pt.\n",
-           c.width, c.height, c.frames, c.ref_spp, omp_get_max_threads(), d.spatial_radius, d.grad_radius,
-           d.grad_search);
+           c.width, c.height, c.frames, c.ref_spp, omp_get_max_threads(), d.reuse.spatial_radius, grad_settings_of(&d)->radius,
+           grad_settings_of(&d)->search);
     fflush(stdout);
 
     if (equal_samples_mode) {
@@ -669,8 +671,8 @@ int bench_gradient(int argc, char **argv)
     }
     printf("\n### Screened Poisson reconstruction times at %dx%d (%d threads)\n\n| solve | median ms | solves |\n"
            "|---|---|---|\n| L2 (%s, alpha %g) | %.1f | %d |\n| L1 (IRLS %d x %d CG) | %.1f | %d |\n",
-           c.width, c.height, omp_get_max_threads(), d.recon_solver == RESTIR_POISSON_DCT ? "DCT" : "CG",
-           d.recon_alpha, median(l2_log, l2_n), l2_n, d.recon_l1_iterations, d.recon_l1_cg, median(l1_log, l1_n),
+           c.width, c.height, omp_get_max_threads(), recon_settings_of(&d)->solver == RESTIR_POISSON_DCT ? "DCT" : "CG",
+           recon_settings_of(&d)->alpha, median(l2_log, l2_n), l2_n, recon_settings_of(&d)->l1_iterations, recon_settings_of(&d)->l1_cg, median(l1_log, l1_n),
            l1_n);
     fflush(stdout);
     if (!have_ajar) {

@@ -15,6 +15,7 @@
 #include "io/report.h"
 #include "methods/renderer.h"
 #include "methods/pt/pt.h"
+#include "methods/settings.h"
 #include "restir/metrics.h"
 #include "scene/scene_ray_log.h"
 
@@ -296,8 +297,8 @@ static void bench_temporal(const struct bench_config *c)
             char set[32];
             snprintf(set, sizeof(set), "mis=%s", mis_names[m]);
             render_params_set(&q, set, msg);
-            q.spatial = 0;
-            q.temporal = temporal;
+            q.reuse.spatial = 0;
+            q.reuse.temporal = temporal;
             struct renderer r;
             struct frame_stats st;
             renderer_init(&r, &s, method_named("restir-di"), &q);

@@ -13,6 +13,7 @@
 #include "bench_common.h"
 #include "core/check.h"
 #include "io/png.h"
+#include "methods/settings.h"
 #include "restir/metrics.h"
 
 #define SPMIS_FRAMES 50

@@ -11,6 +11,7 @@
 
 #include "bench_common.h"
 #include "core/check.h"
+#include "methods/settings.h"
 
 #define STREAMS_FRAMES 9
 

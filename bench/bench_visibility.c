@@ -9,7 +9,9 @@
 #include <stdlib.h>
 
 #include "bench_common.h"
+#include "methods/settings.h"
 #include "restir/metrics.h"
+#include "methods/restir_di/di_settings.h"
 
 struct di_variant {
     const char *label;

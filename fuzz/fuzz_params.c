@@ -7,6 +7,7 @@
 #include "core/check.h"
 #include "experiments/settings_file.h"
 #include "fuzz_file.h"
+#include "methods/settings.h"
 #include "render/params.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

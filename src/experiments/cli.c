@@ -18,6 +18,7 @@
 #include "scene/environment.h"
 #include "scene/scene_env.h"
 #include "scene/scene_file.h"
+#include "methods/gradient/grad_settings.h"
 
 void cli_error(const char *fmt, ...)
 {
@@ -188,9 +189,9 @@ int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *
     int n = 1;
     if (g) {
         /* the reconstruction not in R, G, B, when it was computed; then what it was solved from */
-        if (r->p.recon == RECON_L1)
+        if (recon_settings_of(&r->p)->mode == RECON_L1)
             layers[n++] = (struct exr_layer){"L2", g->l2};
-        else if (r->p.recon == RECON_BOTH)
+        else if (recon_settings_of(&r->p)->mode == RECON_BOTH)
             layers[n++] = (struct exr_layer){"L1", g->l1};
         layers[n++] = (struct exr_layer){"primal", g->primal};
         layers[n++] = (struct exr_layer){"dx", g->dx};

@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/reference_size.h"
+#include "methods/settings.h"
 #include "scene/scene_file.h"
 
 /* msg of render_params_set without its "--set" prefix, which

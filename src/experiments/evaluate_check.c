@@ -19,6 +19,7 @@
 #include "experiments/evaluate_record.h"
 #include "experiments/evaluate_tables.h"
 #include "experiments/settings_file.h"
+#include "methods/settings.h"
 #include "scene/scene_hash.h"
 
 #define PATH_LEN (PLAN_PATH_MAX + 200)

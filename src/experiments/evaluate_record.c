@@ -19,6 +19,7 @@
 #include "io/report.h"
 #include "io/text_file.h"
 #include "methods/renderer.h"
+#include "methods/settings.h"
 #include "scene/scene_hash.h"
 
 #define PATH_LEN (PLAN_PATH_MAX + 200)

@@ -14,6 +14,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/settings_file.h"
+#include "methods/settings.h"
 
 static int need_value(int i, int argc, char **argv, char *msg)
 {

@@ -18,6 +18,7 @@
 #include "experiments/reference_size.h"
 #include "io/atomic_file.h"
 #include "io/report.h"
+#include "methods/settings.h"
 #include "scene/scene_file.h"
 #include "scene/scenes_builtin.h"
 

@@ -7,6 +7,7 @@
 
 #include "core/check.h"
 #include "io/text_file.h"
+#include "methods/settings.h"
 
 /* Largest summary or settings file read: far above any real one, small enough to refuse junk. */
 #define SETTINGS_FILE_MAX (1u << 20)

@@ -16,6 +16,7 @@
 #include "experiments/out_dir.h"
 #include "experiments/reference_checkpoint.h"
 #include "experiments/reference_halves.h"
+#include "methods/settings.h"
 #include "experiments/reference_size.h"
 #include "experiments/study_denoised.h"
 #include "experiments/study_report.h"

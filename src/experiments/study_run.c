@@ -100,7 +100,7 @@ int study_parse_configs(const struct cli_options *o, struct study_config *cfg, i
             snprintf(msg, RESTIR_MSG_LEN, "--configs: more than %d configurations", STUDY_MAX_CONFIGS);
             return -1;
         }
-        if (named_config(t, o->params.spatial_radius, o->params.spatial_candidates, &cfg[(*n)++], msg) != 0)
+        if (named_config(t, o->params.reuse.spatial_radius, o->params.reuse.spatial_candidates, &cfg[(*n)++], msg) != 0)
             return -1;
     }
     snprintf(list, sizeof(list), "%s", o->radii ? o->radii : "");
@@ -117,7 +117,7 @@ int study_parse_configs(const struct cli_options *o, struct study_config *cfg, i
                 return -1;
             }
             struct study_config *c = &cfg[(*n)++];
-            named_config(k ? "compat" : "bitterli", (float)r, o->params.spatial_candidates, c, msg);
+            named_config(k ? "compat" : "bitterli", (float)r, o->params.reuse.spatial_candidates, c, msg);
             snprintf(c->name, sizeof(c->name), "%s@%g", k ? "compat" : "bitterli", r);
         }
     }
@@ -145,7 +145,7 @@ int study_hard_pixel_mask(const struct scene *s, const struct render_params *p, 
         normals[3 * i + 2] = g.normal[i].z;
     }
     int hard = restir_metrics_hard_pixels_counting(normals, g.depth, g.valid, p->width, p->height, HARD_RADIUS,
-                                                   p->spatial_normal, p->spatial_depth, HARD_FRACTION,
+                                                   p->reuse.spatial_normal, p->reuse.spatial_depth, HARD_FRACTION,
                                                    (enum restir_hard_neighbors)counting, mask, NULL);
     free(normals);
     gbuffer_fini(&g);
@@ -172,14 +172,14 @@ struct camera study_camera(const struct scene *s)
 
 void study_config_apply(const struct study_config *c, struct render_params *p)
 {
-    p->spatial_select = c->select;
-    p->spatial_radius = c->radius;
+    p->reuse.spatial_select = c->select;
+    p->reuse.spatial_radius = c->radius;
     if (c->candidates > 0)
-        p->spatial_candidates = c->candidates;
+        p->reuse.spatial_candidates = c->candidates;
     if (c->spatial_off)
-        p->spatial = 0;
+        p->reuse.spatial = 0;
     if (c->history_temporal)
-        p->history_temporal = 1;
+        p->reuse.history_temporal = 1;
 }
 
 int study_run_unit(const struct scene *s, const struct method *method, const struct render_params *base,

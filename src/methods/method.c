@@ -41,50 +41,6 @@ void method_names_with(unsigned caps, char *out, size_t n)
     }
 }
 
-/* What every method reads: the scene and ray-tracing settings, the pixel jitter, the camera's lens
- * and shutter (refused by capability where a method does not render them), and temporal.reuse (by
- * capability too). */
-#define METHOD_COMMON_SETTINGS "jitter scene. rays. simd camera. temporal.reuse temporal.splat_steps denoise denoise."
-
-/* 1 when key matches one pattern of the space-separated list. */
-static int setting_in(const char *list, const char *key)
-{
-    const size_t klen = strlen(key);
-    for (const char *s = list; s && *s;) {
-        while (*s == ' ')
-            s++;
-        size_t n = strcspn(s, " ");
-        if (n > 0 && ((s[n - 1] == '.' && klen > n && !strncmp(key, s, n)) || (n == klen && !strncmp(key, s, n))))
-            return 1;
-        s += n;
-    }
-    return 0;
-}
-
-int method_uses_setting(const struct method *m, const char *key)
-{
-    return setting_in(METHOD_COMMON_SETTINGS, key) || setting_in(m->settings, key);
-}
-
-int method_check_assignments(const struct method *m, const char *const *assignments, int n, char *msg)
-{
-    for (int i = 0; i < n; i++) {
-        for (const char *a = assignments[i]; a && *a;) {
-            char key[96];
-            size_t len = strcspn(a, "=:");
-            snprintf(key, sizeof key, "%.*s", (int)(len < sizeof key - 1 ? len : sizeof key - 1), a);
-            if (key[0] && !method_uses_setting(m, key)) {
-                snprintf(msg, RESTIR_MSG_LEN, "--set %s: %s does not read this setting (restir render --help lists "
-                         "what each setting is for)", key, m->name);
-                return -1;
-            }
-            a = strchr(a, ':');
-            a = a ? a + 1 : NULL;
-        }
-    }
-    return 0;
-}
-
 void method_params(const struct method *m, struct render_params *p)
 {
     if (m->defaults)
@@ -109,10 +65,10 @@ static float scene_aperture(const struct scene *s)
 int method_check_settings(const struct method *m, const struct render_params *p, const struct scene *s, char *msg)
 {
     char names[256];
-    if (p->temporal_reuse != TEMPORAL_BACKPROJECT && !method_has(m, METHOD_PATH_RESERVOIRS)) {
+    if (p->reuse.temporal_reuse != TEMPORAL_BACKPROJECT && !method_has(m, METHOD_PATH_RESERVOIRS)) {
         method_names_with(METHOD_PATH_RESERVOIRS, names, sizeof names);
         snprintf(msg, RESTIR_MSG_LEN, "temporal.reuse=%s: %s has no path reservoirs with primary hits to splat (%s have)",
-                 p->temporal_reuse == TEMPORAL_SPLAT ? "splat" : "both", m->name, names);
+                 p->reuse.temporal_reuse == TEMPORAL_SPLAT ? "splat" : "both", m->name, names);
         return -1;
     }
     if (!method_has(m, METHOD_CAMERA_EFFECTS)) {

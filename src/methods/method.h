@@ -42,10 +42,14 @@ struct method {
     const char *description; /* one line for `restir list` */
     unsigned caps;           /* enum method_caps bits */
     int viewer_order;        /* position in the viewer's M cycle (1, 2, ...); 0: not offered there */
-    /* The settings (params.c keys) it reads beyond those every method reads (method.c's
-     * METHOD_COMMON_SETTINGS), space-separated: a key, or a prefix ending in '.' for a family
-     * ("spmis."). A setting given to a method that does not read it is refused by name. */
-    const char *settings;
+    /* The settings blocks it reads beyond the common ones (render/settings_block.h), NULL-terminated:
+     * the toolkit's (render/params.h: &params_block_lights, ...) and its own, declared in its folder.
+     * Which keys it takes follows from them; a setting given to a method that reads none of its
+     * blocks is refused by name. */
+    const struct param_block *const *blocks;
+    /* The names of its own random streams (rng_stream_id, render/tiles.h), NULL-terminated (NULL:
+     * it seeds only through the toolkit's pass ids). The registry refuses two of one id. */
+    const char *const *streams;
     /* The method's own defaults on top of p (NULL: none). renderer_init applies them; reports
      * call method_params to say what ran. */
     void (*defaults)(struct render_params *p);
@@ -80,12 +84,6 @@ static inline int method_has(const struct method *m, unsigned caps) { return (m-
 /* Writes the names of the methods with all of caps, ", "-separated, into out (n bytes): for
  * messages that say which methods would accept a setting. */
 void method_names_with(unsigned caps, char *out, size_t n);
-
-/* 1 when m reads setting `key` (its own list or the common one). */
-int method_uses_setting(const struct method *m, const char *key);
-/* Checks that m reads the key of every "key=value" or "key=value:key=value..." in assignments (n of
- * them). Returns 0, or -1 with msg naming the first key m does not read and the method. */
-int method_check_assignments(const struct method *m, const char *const *assignments, int n, char *msg);
 
 /* Checks what depends on the method (and the scene, when s is not NULL): temporal.reuse=splat|both
  * needs METHOD_PATH_RESERVOIRS; motion blur and depth of field need METHOD_CAMERA_EFFECTS; then

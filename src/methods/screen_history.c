@@ -19,7 +19,7 @@ void screen_history_init(struct screen_history *h, const struct render_params *p
     h->disk_offsets = r2_disk_table();
     h->age[0] = xcalloc(n, 1);
     h->age[1] = xcalloc(n, 1);
-    if (p->spatial && p->spatial_reuse == REUSE_SPMIS) {
+    if (p->reuse.spatial && p->reuse.spatial_reuse == REUSE_SPMIS) {
         h->spmis = xmalloc(sizeof(*h->spmis));
         spmis_frame_init(h->spmis, p);
     }
@@ -56,7 +56,7 @@ void screen_history_end_frame(struct screen_history *h, const struct render_para
     const int n = g->width * g->height, has_history = h->has_history;
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < n; i++) {
-        int q = has_history ? gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane) : -1;
+        int q = has_history ? gbuffer_history_pixel(g, i, prev_g, p->reuse.temporal_normal, p->reuse.temporal_plane) : -1;
         age[i] = q < 0 ? 0 : (unsigned char)(prev[q] < 255 ? prev[q] + 1 : 255);
     }
     h->cur = 1 - h->cur;

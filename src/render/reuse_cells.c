@@ -20,7 +20,7 @@ static void uniforms(pcg32 *rng, int n, float *u, int cap)
 void spmis_frame_init(struct spmis_frame *f, const struct render_params *p)
 {
     size_t n = (size_t)p->width * (size_t)p->height;
-    RESTIR_CHECK(restir_cells_init(&f->cells, p->width, p->height, p->spmis_tile) == 0);
+    RESTIR_CHECK(restir_cells_init(&f->cells, p->width, p->height, p->spmis.tile) == 0);
     f->key = xcalloc(n, sizeof(uint32_t));
     f->conf = xcalloc(n, sizeof(float));
     f->weight = xcalloc(n, sizeof(float));
@@ -40,7 +40,7 @@ void spmis_frame_fini(struct spmis_frame *f)
 
 void spmis_cells_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g)
 {
-    const int w = g->width, n = g->width * g->height, tile = p->spmis_tile;
+    const int w = g->width, n = g->width * g->height, tile = p->spmis.tile;
     const int tiles_x = f->cells.tiles_x;
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < n; i++) {
@@ -49,7 +49,7 @@ void spmis_cells_pass(struct spmis_frame *f, const struct render_params *p, cons
         int x = i % w, y = i / w;
         uint32_t t = (uint32_t)((y / tile) * tiles_x + x / tile);
         const float n3[3] = {g->normal[i].x, g->normal[i].y, g->normal[i].z};
-        f->key[i] = restir_cells_key(t, g->object[i], n3, p->spmis_normal_bins);
+        f->key[i] = restir_cells_key(t, g->object[i], n3, p->spmis.normal_bins);
     }
     restir_cells_build(&f->cells, f->key, g->valid, f->conf, f->weight);
     restir_cells_pack_taps(&f->cells, (const float *)(const void *)g->normal, g->object); /* vec3: 3 floats */
@@ -58,15 +58,15 @@ void spmis_cells_pass(struct spmis_frame *f, const struct render_params *p, cons
 void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, const struct gbuffer *g, int frame)
 {
     const struct restir_cells *cells = &f->cells;
-    const struct restir_cells_search s = {p->spmis_search_steps,
-                                         p->spmis_search_radius,
-                                         p->spmis_search_growth,
-                                         p->spmis_search_normal,
-                                         p->spmis_search_score,
+    const struct restir_cells_search s = {p->spmis.search_steps,
+                                         p->spmis.search_radius,
+                                         p->spmis.search_growth,
+                                         p->spmis.search_normal,
+                                         p->spmis.search_score,
                                          (const float *)(const void *)g->position, /* vec3: 3 floats */
                                          g->depth,
-                                         p->spatial_omega,
-                                         p->spatial_beta};
+                                         p->reuse.spatial_omega,
+                                         p->reuse.spatial_beta};
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
     /* In tiles (64 x 4 pixels), so that neighbouring pixels' near taps share cache lines; each
      * pixel's draws come from its own stream, so the order changes no result. */
@@ -78,12 +78,12 @@ void spmis_search_pass(struct spmis_frame *f, const struct render_params *p, con
                 f->cell[i] = own;
                 continue;
             }
-            if (p->spmis_search == SPMIS_SEARCH_SPARSE && cells->contributing[own] > p->spmis_sparse_count) {
+            if (p->spmis.search == SPMIS_SEARCH_SPARSE && cells->contributing[own] > p->spmis.sparse_count) {
                 f->cell[i] = own; /* BIASED: the count depends on the samples (params help) */
                 continue;
             }
-            if (p->spmis_search == SPMIS_SEARCH_LOW_CONFIDENCE &&
-                cells->conf_sum[own] >= p->spmis_search_confidence * (float)cells->count[own]) {
+            if (p->spmis.search == SPMIS_SEARCH_LOW_CONFIDENCE &&
+                cells->conf_sum[own] >= p->spmis.search_confidence * (float)cells->count[own]) {
                 f->cell[i] = own; /* the own cell holds history: no need to look farther (reads c only) */
                 continue;
             }
@@ -104,11 +104,11 @@ static void spmis_pixel_conf(const struct spmis_frame *f, const struct render_pa
     int cell = f->cell[c];
     int m = restir_cells_others(&f->cells, cell, c);
     float c_sigma = restir_cells_confidence_others(&f->cells, cell, c, f->conf);
-    float scale = restir_spmis_confidence_scale(p->spmis_candidates, m, p->spmis_confidence_adjust);
+    float scale = restir_spmis_confidence_scale(p->spmis.candidates, m, p->spmis.confidence_adjust);
     restir_spmis_conf_set(k, f->conf[c], c_sigma, scale);
     if (merged) {
-        float evaluated = restir_spmis_confidence_scale(p->spmis_candidates, m, 1); /* min(1, N / M) */
-        *merged = restir_gris_confidence_merge(f->conf[c] + evaluated * c_sigma, p->confidence_cap);
+        float evaluated = restir_spmis_confidence_scale(p->spmis.candidates, m, 1); /* min(1, N / M) */
+        *merged = restir_gris_confidence_merge(f->conf[c] + evaluated * c_sigma, p->reuse.confidence_cap);
     }
 }
 
@@ -118,9 +118,9 @@ void spmis_canonical_plan(const struct spmis_frame *f, const struct render_param
     spmis_pixel_conf(f, p, c, k, NULL);
     pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)c, RNG_PASS_SPMIS_CANONICAL);
     float u[RESTIR_SPMIS_MAX_DRAWS];
-    uniforms(&rng, p->spmis_canonical_candidates, u, RESTIR_SPMIS_MAX_DRAWS);
-    restir_spmis_canonical_draws(&f->cells, f->cell[c], c, p->spmis_canonical_candidates,
-                                 (enum restir_spmis_pick)p->spmis_canonical_pick, u, draws);
+    uniforms(&rng, p->spmis.canonical_candidates, u, RESTIR_SPMIS_MAX_DRAWS);
+    restir_spmis_canonical_draws(&f->cells, f->cell[c], c, p->spmis.canonical_candidates,
+                                 (enum restir_spmis_pick)p->spmis.canonical_pick, u, draws);
 }
 
 /* The confidences of the distinct pixels among the draws (with replacement, a pixel may repeat). */
@@ -143,12 +143,12 @@ pcg32 spmis_neighbor_plan(const struct spmis_frame *f, const struct render_param
     spmis_pixel_conf(f, p, c, k, merged);
     pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)c, RNG_PASS_SPMIS_REUSE);
     float u[RESTIR_SPMIS_MAX_DRAWS];
-    uniforms(&rng, p->spmis_candidates, u, RESTIR_SPMIS_MAX_DRAWS);
-    restir_spmis_neighbor_draws(&f->cells, f->cell[c], c, p->spmis_candidates, u, draws);
+    uniforms(&rng, p->spmis.candidates, u, RESTIR_SPMIS_MAX_DRAWS);
+    restir_spmis_neighbor_draws(&f->cells, f->cell[c], c, p->spmis.candidates, u, draws);
     /* The drawn pixels depend on the samples (Eq. 17), but a confidence only weights later merges,
      * whose pairwise weights sum to 1 for any confidences: unbiased either way. */
-    if (merged && p->spmis_confidence_update == SPMIS_CONFIDENCE_DRAWN)
-        *merged = restir_gris_confidence_merge(f->conf[c] + drawn_confidence(f, draws), p->confidence_cap);
+    if (merged && p->spmis.confidence_update == SPMIS_CONFIDENCE_DRAWN)
+        *merged = restir_gris_confidence_merge(f->conf[c] + drawn_confidence(f, draws), p->reuse.confidence_cap);
     return rng;
 }
 

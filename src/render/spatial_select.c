@@ -14,7 +14,7 @@ static const float *key_of(const struct gbuffer *g, int i) { return &g->select_k
  * pixel itself. */
 static int disk_pixel(const struct render_params *p, const struct gbuffer *g, int x, int y, float dx, float dy)
 {
-    int nx = x + (int)lrintf(dx * p->spatial_radius), ny = y + (int)lrintf(dy * p->spatial_radius);
+    int nx = x + (int)lrintf(dx * p->reuse.spatial_radius), ny = y + (int)lrintf(dy * p->reuse.spatial_radius);
     if (nx < 0 || ny < 0 || nx >= g->width || ny >= g->height || (nx == x && ny == y))
         return -1;
     return ny * g->width + nx;
@@ -24,7 +24,7 @@ static int disk_pixel(const struct render_params *p, const struct gbuffer *g, in
 static int bitterli_ok(const struct render_params *p, const float *ki, const float *kj)
 {
     return kj[7] != 0.0f &&
-           restir_neighbors_bitterli(&ki[3], &kj[3], ki[6], kj[6], p->spatial_normal, p->spatial_depth);
+           restir_neighbors_bitterli(&ki[3], &kj[3], ki[6], kj[6], p->reuse.spatial_normal, p->reuse.spatial_depth);
 }
 
 /* The taps land at random within the radius, so each key read is a cache miss; both selections
@@ -84,7 +84,7 @@ static void draw_compat(const struct render_params *p, const struct gbuffer *g, 
                         struct pixel_search *ps)
 {
     ps->start = (int)(pcg32_next(&ps->rng) % R2_DISK_OFFSETS);
-    for (int k = 0; k < p->spatial_candidates && k < COMPAT_PREFETCH; k++)
+    for (int k = 0; k < p->reuse.spatial_candidates && k < COMPAT_PREFETCH; k++)
         prefetch_key(g, compat_tap(p, g, x, y, offsets, ps->start, k));
 }
 
@@ -94,11 +94,11 @@ static int select_compat(const struct render_params *p, const struct gbuffer *g,
 {
     const float *ki = key_of(g, y * g->width + x);
     struct restir_neighbors_scorer scorer;
-    restir_neighbors_scorer_init(&scorer, ki, &ki[3], ki[6], p->spatial_omega, p->spatial_beta);
+    restir_neighbors_scorer_init(&scorer, ki, &ki[3], ki[6], p->reuse.spatial_omega, p->reuse.spatial_beta);
     struct restir_select sel;
     restir_select_init(&sel, m);
     pcg32 *rng = &ps->rng;
-    const int start = ps->start, K = p->spatial_candidates;
+    const int start = ps->start, K = p->reuse.spatial_candidates;
     int good = 0;
     for (int k = 0; k < K; k++) {
         if (k + COMPAT_PREFETCH < K)
@@ -114,7 +114,7 @@ static int select_compat(const struct render_params *p, const struct gbuffer *g,
         if (!(h > 0.0f))
             continue;
         restir_select_offer(&sel, j, h, pcg32_float(rng));
-        if (p->spatial_early_stop && h > 0.5f && ++good > m)
+        if (p->reuse.spatial_early_stop && h > 0.5f && ++good > m)
             break;
     }
     for (int k = 0; k < sel.count; k++)
@@ -127,7 +127,7 @@ static void prepare_search(const struct render_params *p, const struct gbuffer *
                            const float *offsets, int x, int y, struct pixel_search *ps)
 {
     ps->rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)(y * g->width + x), RNG_PASS_SELECT);
-    if (p->spatial_select == SELECT_BITTERLI)
+    if (p->reuse.spatial_select == SELECT_BITTERLI)
         draw_bitterli(p, g, x, y, m, ps);
     else
         draw_compat(p, g, x, y, offsets, ps);
@@ -157,10 +157,10 @@ long long spatial_select_pass(const struct render_params *p, int path_reuse, con
             }
             int n = 0, *list = &out[(size_t)i * m];
             if (g->valid[i]) {
-                if (p->spatial_select == SELECT_BITTERLI)
+                if (p->reuse.spatial_select == SELECT_BITTERLI)
                     n = select_bitterli(p, g, x, y, m, &ps[k & 1], list);
                 else
-                    n = select_compat(p, g, x, y, m, p->spatial_select == SELECT_COMPAT_BINARY, disk_offsets,
+                    n = select_compat(p, g, x, y, m, p->reuse.spatial_select == SELECT_COMPAT_BINARY, disk_offsets,
                                       &ps[k & 1], list);
             }
             found += n;

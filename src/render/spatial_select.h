@@ -11,7 +11,7 @@
 #define SPATIAL_MAX_NEIGHBORS 5
 
 /* Writes m = render_params_spatial_neighbors(p, path_reuse) entries per pixel to out (pixel
- * indices, -1 for none) by p->spatial_select:
+ * indices, -1 for none) by p->reuse.spatial_select:
  *  - bitterli: m pixels uniform in the radius-R disk, each kept when 000 Eq. 7 holds;
  *  - compat: 000 Algorithm 1: K candidates in the disk from the R2 offsets (r2_disk_offsets,
  *    R2_DISK_OFFSETS of them) with a random start, scored by 000 Eq. 14, m distinct ones drawn

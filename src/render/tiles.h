@@ -3,6 +3,8 @@
 #ifndef RESTIR_RENDER_TILES_H
 #define RESTIR_RENDER_TILES_H
 
+#include <stdint.h>
+
 /* Tiles are 64 x 4 pixels, so a tile row spans 64 bytes of a byte mask and 256 of a float plane:
  * two threads share at most the cache lines at a tile row's two ends (the planes are not 64-byte
  * aligned). With 8 x 8 tiles, horizontally adjacent tiles, often on different threads, shared
@@ -104,7 +106,21 @@ enum rng_pass {
     RNG_PASS_GI_INITIAL,
     RNG_PASS_GI_TEMPORAL,
     RNG_PASS_GI_SPATIAL,
-    RNG_PASS_PT_SOBOL /* not a PCG32 stream: the key of pt's Sobol' dimensions (pt.c) */
+    RNG_PASS_PT_SOBOL, /* not a PCG32 stream: the key of pt's Sobol' dimensions (pt.c) */
+    RNG_PASS_COUNT     /* one past the last: the toolkit's ids are the small integers below it */
 };
+
+/* The stream id of a named stream, for a method's own passes (listed in its row's `streams`, which
+ * the registry checks for collisions when it is built): the 64-bit FNV-1a hash of the name with its
+ * top bit set, so that no name can take one of the toolkit's small ids above (kept as they are so that
+ * the images they seed do not move). Compilers fold it to a constant for a literal name; a pass takes
+ * it once, outside its pixel loop. */
+static inline uint64_t rng_stream_id(const char *name)
+{
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (const unsigned char *c = (const unsigned char *)name; *c; c++)
+        h = (h ^ *c) * 0x100000001b3ull;
+    return h | (1ull << 63);
+}
 
 #endif

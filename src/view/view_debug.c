@@ -41,16 +41,16 @@ int view_debug_rgb8(const struct renderer *r, enum view_mode mode, unsigned char
     const int n = r->p.width * r->p.height, m = in.neighbors_per_pixel;
     const int ok = mode == VIEW_CONFIDENCE            ? in.reservoirs != NULL && in.confidence != NULL
                    : mode == VIEW_ACCEPTANCE          ? in.age != NULL
-                   : mode == VIEW_NEIGHBORS           ? in.neighbors != NULL && r->p.spatial &&
-                                                  r->p.spatial_reuse == REUSE_STANDARD && m > 0
-                   : mode == VIEW_CELLS               ? in.spmis != NULL && r->p.spatial_reuse == REUSE_SPMIS
+                   : mode == VIEW_NEIGHBORS           ? in.neighbors != NULL && r->p.reuse.spatial &&
+                                                  r->p.reuse.spatial_reuse == REUSE_STANDARD && m > 0
+                   : mode == VIEW_CELLS               ? in.spmis != NULL && r->p.reuse.spatial_reuse == REUSE_SPMIS
                    : mode == VIEW_TEMPORAL_CANDIDATES ? in.temporal_flags != NULL
                                                       : 0;
     if (!ok) {
         encode_srgb8(r->image, 3 * (size_t)n, 0.0f, rgb8);
         return 0;
     }
-    const float cap = r->p.confidence_cap > 0.0f ? r->p.confidence_cap : 1.0f;
+    const float cap = r->p.reuse.confidence_cap > 0.0f ? r->p.reuse.confidence_cap : 1.0f;
     for (int i = 0; i < n; i++) {
         unsigned char *o = rgb8 + 3 * (size_t)i;
         if (mode == VIEW_CONFIDENCE) {

@@ -4,6 +4,7 @@
  * in a debug view also writes that view (screenshot_NNNN_view.png); a script's screenshot event writes
  * the window itself. */
 #include "view/viewer.h"
+#include "methods/settings.h"
 
 #include <math.h>
 #include <SDL2/SDL.h>
@@ -79,10 +80,10 @@ static void spec(const struct view *v, char *out, size_t len)
 {
     char select[64];
     render_params_get(&v->p, "spatial.select", select, sizeof select);
-    snprintf(out, len, "%s%s%s%s%s%s%s%s", v->method->name, v->p.temporal ? "" : ":temporal=off",
-             v->p.spatial ? "" : ":spatial=off", v->p.spatial_select == SELECT_BITTERLI ? "" : ":spatial.select=",
-             v->p.spatial_select == SELECT_BITTERLI ? "" : select,
-             v->p.spatial_reuse == REUSE_SPMIS ? ":spatial.reuse=spmis" : "",
+    snprintf(out, len, "%s%s%s%s%s%s%s%s", v->method->name, v->p.reuse.temporal ? "" : ":temporal=off",
+             v->p.reuse.spatial ? "" : ":spatial=off", v->p.reuse.spatial_select == SELECT_BITTERLI ? "" : ":spatial.select=",
+             v->p.reuse.spatial_select == SELECT_BITTERLI ? "" : select,
+             v->p.reuse.spatial_reuse == REUSE_SPMIS ? ":spatial.reuse=spmis" : "",
              v->p.denoise.method > 0 ? ":denoise=" : "",
              v->p.denoise.method > 0 ? denoise_names[v->p.denoise.method] : "");
 }
@@ -102,11 +103,11 @@ static void press(struct view *v, char key)
         v->method = view_method_after(v->method);
         restart(v, 0);
         break;
-    case 't': v->p.temporal = !v->p.temporal; restart(v, 0); break;
-    case 'y': v->p.spatial = !v->p.spatial; restart(v, 0); break;
-    case 'n': v->p.spatial_select = (enum spatial_select_mode)((v->p.spatial_select + 1) % 3); restart(v, 0); break;
+    case 't': v->p.reuse.temporal = !v->p.reuse.temporal; restart(v, 0); break;
+    case 'y': v->p.reuse.spatial = !v->p.reuse.spatial; restart(v, 0); break;
+    case 'n': v->p.reuse.spatial_select = (enum spatial_select_mode)((v->p.reuse.spatial_select + 1) % 3); restart(v, 0); break;
     case 'p':
-        v->p.spatial_reuse = v->p.spatial_reuse == REUSE_SPMIS ? REUSE_STANDARD : REUSE_SPMIS;
+        v->p.reuse.spatial_reuse = v->p.reuse.spatial_reuse == REUSE_SPMIS ? REUSE_STANDARD : REUSE_SPMIS;
         restart(v, 0);
         break;
     case 'v': v->mode = (enum view_mode)((v->mode + 1) % VIEW_MODES); break;

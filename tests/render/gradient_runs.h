@@ -12,6 +12,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "methods/settings.h"
 #include "reference_pt.h"
 #include "methods/gradient/grad_frame.h"
 #include "unbiased_runs.h"

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "unbiased_runs.h"
+#include "methods/restir_di/di_settings.h"
 
 /* seconds alone on the 2-core machine of docs/BENCHMARKS.md: ctest starts the longest tests first */
 #define TEST_COST_SECONDS 140

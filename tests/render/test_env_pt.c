@@ -14,6 +14,7 @@
 
 #include "core/check.h"
 #include "methods/renderer.h"
+#include "methods/settings.h"
 #include "scene/environment.h"
 #include "scene/scene.h"
 #include "scene/scene_env.h"

@@ -6,6 +6,7 @@
 
 #include "core/check.h"
 #include "methods/renderer.h"
+#include "methods/settings.h"
 #include "scene/scenes_builtin.h"
 #include "shading/bsdf.h"
 #include "test_util.h"

@@ -17,6 +17,7 @@
 #include <stdlib.h>
 
 #include "methods/reference.h"
+#include "methods/settings.h"
 #include "reference_pt.h"
 #include "methods/renderer.h"
 #include "scene/scene_file.h"

@@ -5,6 +5,7 @@
 #include "core/check.h"
 #include "methods/renderer.h"
 #include "methods/restir_di/di_sample.h"
+#include "methods/settings.h"
 #include "scene/scenes_builtin.h"
 #include "test_util.h"
 
@@ -140,7 +141,7 @@ int main(void)
         return test_finish();
     }
     struct render_params q = p;
-    q.spatial = 0;
+    q.reuse.spatial = 0;
     render_two(&s, &q, &cam, &cam, -1, 0, &a_nospatial);
     render_two(&s, &q, &cam, &cam, block, green, &c);
     EXPECT(count_accepted(&a_nospatial) == a_nospatial.accepted && count_accepted(&c) == c.accepted,

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "methods/settings.h"
 #include "reference_cache.h"
 #include "reference_pt.h"
 #include "methods/renderer.h"

@@ -6,6 +6,7 @@
 
 #include <stdint.h>
 
+#include "methods/settings.h"
 #include "render/gbuffer.h"
 #include "render/params.h"
 #include "scene/scene_file.h"

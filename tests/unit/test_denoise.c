@@ -14,6 +14,7 @@
 #include "core/simd.h"
 #include "denoise/denoise.h"
 #include "denoise/denoise_kernel.h"
+#include "methods/settings.h"
 #include "render/params.h"
 #include "test_util.h"
 

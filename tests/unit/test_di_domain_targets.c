@@ -15,6 +15,7 @@
 #include "scene/scene_file.h"
 #include "frame_fixture.h"
 #include "test_util.h"
+#include "methods/restir_di/di_settings.h"
 
 #define WIDTH 48
 #define HEIGHT 28
@@ -32,7 +33,7 @@ static void check_scene(const char *name)
         return;
     const int n = WIDTH * HEIGHT;
     struct light_pool lp;
-    light_pool_init(&lp, p.light_candidates);
+    light_pool_init(&lp, di_settings_of(&p)->light_candidates);
     light_pool_fill(&lp, &s, 5, 0);
     struct di_reservoir *res = calloc((size_t)n, sizeof(*res));
     di_initial_pass(&s, &lp, &p, 0, &g, res);

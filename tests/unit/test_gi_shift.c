@@ -15,6 +15,7 @@
 #include "scene/scene_file.h"
 #include "frame_fixture.h"
 #include "test_util.h"
+#include "methods/restir_gi/gi_settings.h"
 
 #define WIDTH 32
 #define HEIGHT 20
@@ -34,7 +35,7 @@ static void check_scene(const char *name, enum gi_radiance_mode mode)
     struct camera_view view;
     if (frame_fixture(name, WIDTH, HEIGHT, 0, 11, &s, &p, &g, &view) != 0)
         return;
-    p.gi_radiance = mode;
+    gi_settings_mut(&p)->radiance = mode;
     const int n = WIDTH * HEIGHT;
     struct path_vertex *x1 = calloc((size_t)n, sizeof(*x1));
     vec3 *base = calloc((size_t)n, sizeof(vec3));

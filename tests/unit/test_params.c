@@ -3,8 +3,11 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "methods/settings.h"
 #include "render/params.h"
 #include "test_util.h"
+#include "methods/gradient/grad_settings.h"
+#include "methods/restir_di/di_settings.h"
 
 /* Every key: its value in p, spelled by render_params_get and set again, leaves p unchanged. */
 static void expect_round_trip(const struct render_params *p, const char *what)
@@ -27,15 +30,15 @@ int main(void)
     struct render_params d;
     render_params_defaults(&d);
     /* The table's defaults, spot-checked against the papers' values (DESIGN.md). */
-    EXPECT(d.light_candidates == 32 && d.bsdf_candidates == 1, "DI candidates 32 + 1");
-    EXPECT(d.confidence_cap == 20.0f, "M cap 20");
-    EXPECT(d.spatial_radius == 30.0f && d.spatial_normal == 0.5f && d.spatial_depth == 0.1f, "Bitterli test");
-    EXPECT(d.spatial_omega == 0.05f && d.spatial_beta == 8.0f && d.spatial_candidates == 32, "000 defaults");
-    EXPECT(d.spmis_tile == 8 && d.spmis_candidates == 3 && d.spmis_canonical_candidates == 1 &&
-               d.spmis_search_steps == 12 && d.spmis_search_growth == 1.25f,
+    EXPECT(di_settings_of(&d)->light_candidates == 32 && di_settings_of(&d)->bsdf_candidates == 1, "DI candidates 32 + 1");
+    EXPECT(d.reuse.confidence_cap == 20.0f, "M cap 20");
+    EXPECT(d.reuse.spatial_radius == 30.0f && d.reuse.spatial_normal == 0.5f && d.reuse.spatial_depth == 0.1f, "Bitterli test");
+    EXPECT(d.reuse.spatial_omega == 0.05f && d.reuse.spatial_beta == 8.0f && d.reuse.spatial_candidates == 32, "000 defaults");
+    EXPECT(d.spmis.tile == 8 && d.spmis.candidates == 3 && d.spmis.canonical_candidates == 1 &&
+               d.spmis.search_steps == 12 && d.spmis.search_growth == 1.25f,
            "004 defaults");
-    EXPECT(d.recon_alpha == 0.2f && d.recon == RECON_L2 && d.grad_search == 256, "002 defaults");
-    EXPECT(d.mis == RESTIR_MIS_PAIRWISE && d.shift == SHIFT_HYBRID, "pairwise MIS, hybrid shift");
+    EXPECT(recon_settings_of(&d)->alpha == 0.2f && recon_settings_of(&d)->mode == RECON_L2 && grad_settings_of(&d)->search == 256, "002 defaults");
+    EXPECT(d.reuse.mis == RESTIR_MIS_PAIRWISE && d.shift.kind == SHIFT_HYBRID, "pairwise MIS, hybrid shift");
     EXPECT(d.width == 640 && d.height == 360 && d.seed == 1, "640x360, seed 1");
     EXPECT(render_params_validate(&d, msg) == 0, "defaults invalid: %s", msg);
     char biased[256];
@@ -54,7 +57,7 @@ int main(void)
                           "grad.base=shared", "temporal=off", "confidence_cap=7.25"};
     for (size_t k = 0; k < sizeof(sets) / sizeof(sets[0]); k++)
         EXPECT(render_params_set(&p, sets[k], msg) == 0, "'%s' refused: %s", sets[k], msg);
-    EXPECT(p.spatial_omega == (float)0.0123456789, "omega parsed");
+    EXPECT(p.reuse.spatial_omega == (float)0.0123456789, "omega parsed");
     expect_round_trip(&p, "edited");
 
     /* BIASED values are named, and only those. */
@@ -81,13 +84,13 @@ int main(void)
     r.spp = 0;
     EXPECT(render_params_validate(&r, msg) != 0 && strstr(msg, "spp"), "spp 0 valid: %s", msg);
     r = d;
-    r.spatial_radius = NAN;
+    r.reuse.spatial_radius = NAN;
     EXPECT(render_params_validate(&r, msg) != 0 && strstr(msg, "spatial.radius"), "NaN radius valid: %s", msg);
     r = d;
-    r.spatial_select = (enum spatial_select_mode)7;
+    r.reuse.spatial_select = (enum spatial_select_mode)7;
     EXPECT(render_params_validate(&r, msg) != 0 && strstr(msg, "spatial.select"), "select 7 valid: %s", msg);
     r = d;
-    r.spmis_candidates = 0; /* M: the whole cell */
+    r.spmis.candidates = 0; /* M: the whole cell */
     EXPECT(render_params_validate(&r, msg) == 0, "spmis.candidates=M invalid: %s", msg);
     return test_finish();
 }

@@ -7,6 +7,7 @@
 #include "methods/gradient/grestir.h"
 #include "render/params.h"
 #include "restir/poisson.h"
+#include "methods/gradient/grad_settings.h"
 
 struct grad_frame {
     int width, height;
@@ -25,9 +26,9 @@ void grad_frame_fini(struct grad_frame *g);
 /* Zeroes dx, dy and os before a frame's gradient passes. */
 void grad_frame_begin(struct grad_frame *g);
 
-/* The L2 solve (p->recon_solver, alpha = p->recon_alpha) into g->l2. */
+/* The L2 solve (recon_settings_of(p)->solver, alpha = recon_settings_of(p)->alpha) into g->l2. */
 void grad_reconstruct_l2(const struct render_params *p, struct grad_frame *g);
-/* The L1 IRLS solve (p->recon_l1_iterations x p->recon_l1_cg) into g->l1 (allocated on demand). */
+/* The L1 IRLS solve (recon_settings_of(p)->l1_iterations x recon_settings_of(p)->l1_cg) into g->l1 (allocated on demand). */
 void grad_reconstruct_l1(const struct render_params *p, struct grad_frame *g);
 
 #endif

@@ -16,6 +16,7 @@
 #include "restir/gris.h"
 #include "restir/mis.h"
 #include "restir/reservoir.h"
+#include "methods/gradient/grad_settings.h"
 
 /* The most domains one merge sees: canonical, neighbor r+, neighbor r- (cross-sign reuse); the
  * canonical and four previous pairs (temporal.subpixel=search). */
@@ -90,10 +91,10 @@ static void pair_clear(struct pair_reservoir *r, float c)
 static int pair_has_sample(const struct pair_reservoir *r) { return r->y.length >= 2 && r->W > 0.0f; }
 
 /* The signs in use: r+ and r- with positivization, one |h| reservoir without. */
-static int sign_count(const struct render_params *p) { return p->grad_positivize ? 2 : 1; }
+static int sign_count(const struct render_params *p) { return grad_settings_of(p)->positivize ? 2 : 1; }
 static enum restir_grad_sign sign_of(const struct render_params *p, int s)
 {
-    return p->grad_positivize ? (s == 0 ? RESTIR_GRAD_POS : RESTIR_GRAD_NEG) : RESTIR_GRAD_ABS;
+    return grad_settings_of(p)->positivize ? (s == 0 ? RESTIR_GRAD_POS : RESTIR_GRAD_NEG) : RESTIR_GRAD_ABS;
 }
 
 /* h(y, k) in pair dom, y in pixel dom->px[k]: the inner shift of y into the other pixel, whose
@@ -134,7 +135,7 @@ static int pair_shift(const struct pt_frame *fr, const struct path_sample *x, fl
     if (!path_shift(fr->s, &fr->shift, x, &from->px[k], &to->px[k], y, J, rays))
         return 0;
     *rays += pair_integrand(fr, y, k, to, h, y_inner_J);
-    return !inner_jacobians_disagree(x_inner_J, *y_inner_J, fr->p->grad_inner_jacobian_ratio);
+    return !inner_jacobians_disagree(x_inner_J, *y_inner_J, grad_settings_of(fr->p)->inner_jacobian_ratio);
 }
 
 /* ---- initial candidates ------------------------------------------------------------------------ */
@@ -239,7 +240,7 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
     int ok[PAIR_MAX_DOMAINS];
     float c_sum = 0.0f;
     for (int j = 0; j < n; j++) {
-        c[j] = fminf(in[j]->c, p->confidence_cap);
+        c[j] = fminf(in[j]->c, p->reuse.confidence_cap);
         if (j == 0 || dom_id[j] != dom_id[j - 1])
             c_sum += share ? share[dom_id[j]] * c[j] : c[j];
         J[j] = 0.0f;
@@ -293,7 +294,7 @@ static long long pair_merge(const struct pt_frame *fr, int n, const struct pair_
     }
     const int chosen = restir_gris_resample(mis, n, c, P, W, J, u, &W_Y); /* Eq. 20, 004 Eq. 5-7 */
     struct pair_reservoir result;
-    pair_clear(&result, restir_gris_confidence_merge(c_sum, p->confidence_cap));
+    pair_clear(&result, restir_gris_confidence_merge(c_sum, p->reuse.confidence_cap));
     if (chosen >= 0) {
         result.y = Y[chosen];
         result.k = in[chosen]->k;
@@ -333,11 +334,11 @@ static int temporal_pairs(const struct pt_frame *fr, const struct gbuffer *g, co
         return 0;
     struct gbuffer_history_cell cells[4];
     int m;
-    const int search = p->temporal_subpixel == TEMPORAL_SUBPIXEL_SEARCH;
+    const int search = p->reuse.temporal_subpixel == TEMPORAL_SUBPIXEL_SEARCH;
     if (search) {
-        m = gbuffer_history_square(g, pivot, prev_g, p->temporal_normal, p->temporal_plane, cells);
+        m = gbuffer_history_square(g, pivot, prev_g, p->reuse.temporal_normal, p->reuse.temporal_plane, cells);
     } else {
-        cells[0].q = gbuffer_history_pixel(g, pivot, prev_g, p->temporal_normal, p->temporal_plane);
+        cells[0].q = gbuffer_history_pixel(g, pivot, prev_g, p->reuse.temporal_normal, p->reuse.temporal_plane);
         cells[0].area = 1.0f;
         m = cells[0].q >= 0;
     }
@@ -371,7 +372,7 @@ long long grestir_temporal_pass(const struct pt_frame *fr, const struct gbuffer 
 {
     const struct render_params *p = fr->p;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h), ns = sign_count(p);
-    const enum restir_mis mis = p->temporal_subpixel == TEMPORAL_SUBPIXEL_SEARCH ? render_params_tiled_mis(p) : p->mis;
+    const enum restir_mis mis = p->reuse.temporal_subpixel == TEMPORAL_SUBPIXEL_SEARCH ? render_params_tiled_mis(p) : p->reuse.mis;
     long long rays = 0, acc = 0;
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays, acc)
     for (int t = 0; t < ntiles; t++) {
@@ -412,7 +413,7 @@ long long grestir_temporal_pass(const struct pt_frame *fr, const struct gbuffer 
 
 static int gb_edge(const struct render_params *p, const struct gbuffer *g, int i, int j)
 {
-    const struct restir_grad_edge_test t = {p->grad_edge_albedo, p->grad_edge_normal, p->grad_edge_depth};
+    const struct restir_grad_edge_test t = {grad_settings_of(p)->edge_albedo, grad_settings_of(p)->edge_normal, grad_settings_of(p)->edge_depth};
     const vec3 ai = g->albedo[i], aj = g->albedo[j], ni = g->normal[i], nj = g->normal[j];
     const float A[3] = {ai.x, ai.y, ai.z}, B[3] = {aj.x, aj.y, aj.z}, N[3] = {ni.x, ni.y, ni.z},
                 M[3] = {nj.x, nj.y, nj.z};
@@ -424,7 +425,7 @@ static int gb_edge(const struct render_params *p, const struct gbuffer *g, int i
 static int candidate_ok(const struct render_params *p, const struct gbuffer *g, const struct grestir_state *st,
                         int a, int b, int c, int d, int dir)
 {
-    if (p->grad_spatial == GRAD_SPATIAL_ADAPTIVE && !st->edge[dir][c])
+    if (grad_settings_of(p)->spatial == GRAD_SPATIAL_ADAPTIVE && !st->edge[dir][c])
         return 0;
     return !gb_edge(p, g, a, c) && !gb_edge(p, g, b, d);
 }
@@ -442,7 +443,7 @@ static int any_candidate(const struct render_params *p, const struct gbuffer *g,
     int ex, ey;
     pair_offset(dir, &ex, &ey);
     const int a = y * w + x, b = a + ex + ey * w;
-    const float reach = p->grad_radius + 0.71f; /* a little over sqrt(1/2): a superset is safe */
+    const float reach = grad_settings_of(p)->radius + 0.71f; /* a little over sqrt(1/2): a superset is safe */
     const int R = (int)ceilf(reach);
     for (int dy = -R; dy <= R; dy++) {
         for (int dx = -R; dx <= R; dx++) {
@@ -462,7 +463,7 @@ void grestir_select_pass(const struct pt_frame *fr, const struct gbuffer *g, str
 {
     const struct render_params *p = fr->p;
     const int w = g->width, h = g->height;
-    const int adaptive = p->grad_spatial == GRAD_SPATIAL_ADAPTIVE;
+    const int adaptive = grad_settings_of(p)->spatial == GRAD_SPATIAL_ADAPTIVE;
     /* Every pair's edge test once: the search below asks it of up to grad.search candidate pairs
      * per pair, most of them many times over (the disk of radius 4 holds ~50 pixels). */
 #pragma omp parallel for schedule(static)
@@ -483,7 +484,7 @@ void grestir_select_pass(const struct pt_frame *fr, const struct gbuffer *g, str
             const int a = y * w + x;
             for (int dir = 0; dir < GRAD_PAIR_DIRS; dir++) {
                 st->neighbor[dir][a] = -1;
-                if (p->grad_spatial == GRAD_SPATIAL_OFF || !pair_inside(w, h, x, y, dir))
+                if (grad_settings_of(p)->spatial == GRAD_SPATIAL_OFF || !pair_inside(w, h, x, y, dir))
                     continue;
                 int ex, ey;
                 pair_offset(dir, &ex, &ey);
@@ -495,8 +496,8 @@ void grestir_select_pass(const struct pt_frame *fr, const struct gbuffer *g, str
                     continue; /* no tap could be accepted: the search below would return -1 */
                 pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)a * 2 + (uint64_t)dir,
                                     RNG_PASS_GRAD_SELECT);
-                for (int tap = 0; tap < p->grad_search; tap++) {
-                    float rad = p->grad_radius * sqrtf(pcg32_float(&rng)), phi = 6.2831853f * pcg32_float(&rng);
+                for (int tap = 0; tap < grad_settings_of(p)->search; tap++) {
+                    float rad = grad_settings_of(p)->radius * sqrtf(pcg32_float(&rng)), phi = 6.2831853f * pcg32_float(&rng);
                     int cx = x + (int)lrintf(rad * cosf(phi)), cy = y + (int)lrintf(rad * sinf(phi));
                     if ((cx == x && cy == y) || !pair_inside(w, h, cx, cy, dir))
                         continue;
@@ -521,7 +522,7 @@ long long grestir_spatial_pass(const struct pt_frame *fr, const struct gbuffer *
 {
     const struct render_params *p = fr->p;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h), ns = sign_count(p);
-    const int cross = p->grad_cross_sign && ns == 2;
+    const int cross = grad_settings_of(p)->cross_sign && ns == 2;
     long long rays = 0;
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
@@ -544,7 +545,7 @@ long long grestir_spatial_pass(const struct pt_frame *fr, const struct gbuffer *
                     const enum restir_grad_sign sg[3] = {sign_of(p, s), sign_of(p, s), sign_of(p, 1 - s)};
                     const struct pair_reservoir *in[3] = {&st->work[dir][s][a], &st->work[dir][s][c],
                                                           &st->work[dir][1 - s][c]};
-                    rays += pair_merge(fr, cross ? 3 : 2, dom, dom_id, sg, in, p->mis, NULL, &rng,
+                    rays += pair_merge(fr, cross ? 3 : 2, dom, dom_id, sg, in, p->reuse.mis, NULL, &rng,
                                        &st->hist[slot][dir][s][a]);
                 }
             }

@@ -8,6 +8,7 @@
 #include "methods/gradient/grad_common.h"
 #include "methods/gradient/grad_method.h"
 #include "methods/restir_pt/restir_pt.h"
+#include "methods/gradient/grad_settings.h"
 
 struct gpt_state {
     struct grad_frame grad;
@@ -65,7 +66,8 @@ const struct method method_gpt = {
     .description = "gradient-domain path tracing (Kettunen et al. 2015, 002 B.2): pt base paths shifted to the 4 "
                    "neighbors (hybrid shift), Poisson reconstruction",
     .caps = METHOD_GRADIENT | METHOD_BUDGET_BY_SPP,
-    .settings = "spp pt.max_bounces pt.rr_bounces lights. shift shift. recon recon.",
+    .blocks = (const struct param_block *const[]){&params_block_spp, &params_block_depth, &params_block_roulette,
+                                                  &params_block_lights, &params_block_shift, &recon_block, NULL},
     .create = gpt_create,
     .destroy = gpt_destroy,
     .render_frame = gpt_render_frame,

@@ -11,6 +11,7 @@
 #include "methods/gradient/grestir.h"
 #include "methods/gradient/grad_method.h"
 #include "methods/restir_pt/method_restir_pt.h"
+#include "methods/gradient/grad_settings.h"
 
 struct grad_restir_state {
     struct restir_pt_state primal;
@@ -49,7 +50,7 @@ static void paired_passes(struct renderer *r, struct grad_restir_state *gs_, con
     const size_t n = (size_t)g->width * (size_t)g->height;
     long long accepted = 0;
     RENDERER_TIMED(st, PASS_GRAD_INITIAL, {
-        if (!p->grad_base) {
+        if (!grad_settings_of(p)->base) {
             /* independent initial paths: the same sampler on streams of another seed */
             struct render_params q = *p;
             q.seed = p->seed ^ 0x6772616442617365ull;
@@ -59,7 +60,7 @@ static void paired_passes(struct renderer *r, struct grad_restir_state *gs_, con
         }
         st->rays += grestir_initial_pass(fr, g, gf->base, gs);
     });
-    if (p->temporal && p->grad_temporal && has_history)
+    if (p->reuse.temporal && grad_settings_of(p)->temporal && has_history)
         RENDERER_TIMED(st, PASS_GRAD_TEMPORAL,
                        st->rays += grestir_temporal_pass(fr, g, prev_g, gs, 1 - cur, &accepted));
     RENDERER_TIMED(st, PASS_GRAD_SELECT, grestir_select_pass(fr, g, gs));
@@ -67,7 +68,7 @@ static void paired_passes(struct renderer *r, struct grad_restir_state *gs_, con
     st->edge_pairs = gs->edge_pairs;
     st->pair_neighbors = gs->neighbors_found;
     RENDERER_TIMED(st, PASS_GRAD_SHADE, grestir_shade_pass(p, gs, cur, gf->dx, gf->dy));
-    if (p->history_temporal && p->grad_spatial != GRAD_SPATIAL_OFF)
+    if (p->reuse.history_temporal && grad_settings_of(p)->spatial != GRAD_SPATIAL_OFF)
         for (int d = 0; d < GRAD_PAIR_DIRS; d++)
             for (int s = 0; s < GRAD_SIGNS; s++)
                 memcpy(gs->hist[cur][d][s], gs->work[d][s], sizeof(struct pair_reservoir) * n);
@@ -102,7 +103,7 @@ static void grad_restir_render_frame(struct renderer *r, void *state, const stru
 {
     struct grad_restir_state *gs = state;
     /* grad.base=shared: the pairs' candidates are the primal's initial paths */
-    struct pt_reservoir *base = gs->paired && r->p.grad_base ? gs->grad.base : NULL;
+    struct pt_reservoir *base = gs->paired && grad_settings_of(&r->p)->base ? gs->grad.base : NULL;
     restir_pt_frame(r, &gs->primal, view, base, gradient_passes, gs, st);
 }
 
@@ -125,7 +126,7 @@ const struct method method_grad_after_restir = {
     .description = "Gradient after ReSTIR (002 B.1): area-ReSTIR primal, gradients from shifting each "
                    "pixel's final path to its neighbors, Poisson reconstruction",
     .caps = GRAD_RESTIR_CAPS,
-    .settings = RESTIR_PT_SETTINGS " recon recon.",
+    .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, &recon_block, NULL},
     .defaults = restir_pt_area_defaults,
     .create = grad_after_create,
     .destroy = grad_restir_destroy,
@@ -139,7 +140,7 @@ const struct method method_grestir_pt = {
     .description = "gradient-domain ReSTIR PT (002): area-ReSTIR primal, ReSTIR over paired-pixel samples with "
                    "positivization, temporal and adaptive spatial reuse, Poisson reconstruction",
     .caps = GRAD_RESTIR_CAPS,
-    .settings = RESTIR_PT_SETTINGS " recon recon. grad.",
+    .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, &recon_block, &grad_block, NULL},
     .defaults = restir_pt_area_defaults,
     .create = grestir_create,
     .destroy = grad_restir_destroy,

@@ -12,6 +12,7 @@
 #include "restir/gris.h"
 #include "scene/env_light.h"
 #include "shading/lights.h"
+#include "methods/restir_di/di_settings.h"
 
 /* Light candidates are evaluated in batches of at most DI_BATCH. */
 #define DI_BATCH 64
@@ -155,7 +156,7 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
     struct restir_reservoir wrs;
     restir_reservoir_init(&wrs);
     di_reservoir_clear(r, 1.0f);
-    const int nl = s->num_emitters > 0 || s->env ? p->light_candidates : 0, nb = p->bsdf_candidates;
+    const int nl = s->num_emitters > 0 || s->env ? di_settings_of(p)->light_candidates : 0, nb = di_settings_of(p)->bsdf_candidates;
     struct light_batch lb;
     const int offset = nl ? light_pool_offset(pcg32_float(rng)) : 0; /* this pixel's nl pool entries */
     for (int done = 0; done < nl; done += DI_BATCH) {
@@ -226,7 +227,7 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
 long long di_initial_pass(const struct scene *s, const struct light_pool *lp, const struct render_params *p, int frame,
                           const struct gbuffer *g, struct di_reservoir *out)
 {
-    RESTIR_CHECK(p->light_candidates <= lp->window); /* the pool's windows are that long */
+    RESTIR_CHECK(di_settings_of(p)->light_candidates <= lp->window); /* the pool's windows are that long */
     long long rays = 0;
     const int ntiles = tile_count(g->width, g->height);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
@@ -246,7 +247,7 @@ long long di_initial_pass(const struct scene *s, const struct light_pool *lp, co
              * the target p_hat V. A visible Y keeps W (p_hat V = p_hat there); an occluded one is
              * dropped while the confidence stays 1, so W remains an unbiased contribution weight
              * for p_hat V. The tile's shadow rays are traced together, as one stream, below. */
-            if (p->di_visibility_reuse && out[i].W > 0.0f) {
+            if (di_settings_of(p)->visibility_reuse && out[i].W > 0.0f) {
                 rays++;
                 if (di_visibility_query(sp, &out[i].y, &q[n]))
                     pixel[n++] = i;

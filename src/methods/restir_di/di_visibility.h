@@ -9,13 +9,14 @@
 
 #include "methods/restir_di/di_sample.h"
 #include "render/params.h"
+#include "methods/restir_di/di_settings.h"
 
 /* 1 when every reservoir target includes visibility at its own pixel: reuse then traces the
  * cross-domain shadow rays, and shading needs none. Without reuse (ris-di) that holds for either
  * di.visibility_mis, since only the initial, visibility-tested targets reach shading. */
 static inline int di_targets_visible(const struct render_params *p)
 {
-    return p->di_visibility_reuse && (p->di_visibility_mis == DI_VIS_MIS_RAYS || (!p->temporal && !p->spatial));
+    return di_settings_of(p)->visibility_reuse && (di_reuse_settings_of(p)->visibility_mis == DI_VIS_MIS_RAYS || (!p->reuse.temporal && !p->reuse.spatial));
 }
 
 /* 1 when the light point y is unoccluded from sp (one shadow ray). */

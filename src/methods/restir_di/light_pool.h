@@ -15,12 +15,13 @@
 #include <stdint.h>
 
 #include "scene/scene.h"
+#include "methods/restir_di/di_settings.h"
 
 #define LIGHT_POOL_SIZE (1 << 14)
 
 struct light_pool {
     int size;   /* LIGHT_POOL_SIZE draws, then copies of the first `window` so no window wraps */
-    int window; /* the longest window a pixel takes (di.light_candidates) */
+    int window; /* the longest window a pixel takes (di_settings_of(&di)->light_candidates) */
     int *tri;            /* the emitter's triangle */
     float *b1, *b2;
     float *px, *py, *pz; /* point on the light */

@@ -12,6 +12,7 @@
 #include "methods/restir_di/restir_di.h"
 #include "render/reuse_cells.h"
 #include "render/spatial_select.h"
+#include "methods/restir_di/di_settings.h"
 
 struct restir_di_state {
     struct screen_history h;
@@ -29,7 +30,7 @@ static void *restir_di_create(const struct renderer *r)
     d->work = xcalloc(n, sizeof(struct di_reservoir));
     d->hist[0] = xcalloc(n, sizeof(struct di_reservoir));
     d->hist[1] = xcalloc(n, sizeof(struct di_reservoir));
-    light_pool_init(&d->lights, p->light_candidates);
+    light_pool_init(&d->lights, di_settings_of(p)->light_candidates);
     return d;
 }
 
@@ -63,11 +64,11 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
         st->rays += di_initial_pass(s, &d->lights, p, frame, g, d->work);
         st->nonfinite += nonfinite_discard_di(d->work, n);
     });
-    if (p->temporal && h->has_history)
+    if (p->reuse.temporal && h->has_history)
         RENDERER_TIMED(st, PASS_TEMPORAL,
                        st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, d->work, &st->rays);
                        st->nonfinite += nonfinite_discard_di(d->work, n));
-    if (p->spatial && h->spmis) {
+    if (p->reuse.spatial && h->spmis) {
         struct spmis_frame *f = h->spmis;
         RENDERER_TIMED(st, PASS_CELLS, {
             di_spmis_weights(p, g, d->work, f);
@@ -77,7 +78,7 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
         RENDERER_TIMED(st, PASS_SPMIS_CANONICAL, st->rays += di_spmis_canonical_pass(s, p, frame, g, d->work, f));
         RENDERER_TIMED(st, PASS_SPMIS_REUSE, st->rays += di_spmis_reuse_pass(s, p, frame, g, d->work, f, out);
                        st->nonfinite += nonfinite_discard_di(out, n));
-    } else if (p->spatial) {
+    } else if (p->reuse.spatial) {
         RENDERER_TIMED(st, PASS_SELECT,
                        st->neighbors_selected =
                            spatial_select_pass(p, 0, g, frame, h->disk_offsets, h->neighbors));
@@ -87,7 +88,7 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
         memcpy(out, d->work, sizeof(*out) * n);
     }
     RENDERER_TIMED(st, PASS_SHADE, st->rays += di_shade_pass(s, p, g, out, r->image));
-    if (p->history_temporal && p->spatial)
+    if (p->reuse.history_temporal && p->reuse.spatial)
         memcpy(out, d->work, sizeof(*out) * n);
     st->valid_pixels = screen_history_count_valid(h);
     screen_history_end_frame(h, p);
@@ -109,20 +110,19 @@ static void restir_di_inspect(const void *state, struct renderer_inspect *out)
 /* 001's no-reuse baseline: the initial RIS alone. */
 static void ris_di_defaults(struct render_params *p)
 {
-    p->temporal = 0;
-    p->spatial = 0;
+    p->reuse.temporal = 0;
+    p->reuse.spatial = 0;
 }
 
 /* Reuse, neighbor selection and SPMIS, and the DI candidates. */
-#define RESTIR_DI_SETTINGS                                                                                        \
-    "di. temporal temporal. spatial spatial. history confidence_cap mis spmis. pt.max_bounces"
+#define RESTIR_DI_BLOCKS &di_block, &di_reuse_block, &params_block_reuse, &params_block_spmis, &params_block_depth
 
 const struct method method_restir_di = {
     .name = "restir-di",
     .description = "ReSTIR DI: initial RIS, temporal and spatial reuse by GRIS (pairwise MIS default)",
     .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY | METHOD_SELECTION_STUDY,
     .viewer_order = 1,
-    .settings = RESTIR_DI_SETTINGS,
+    .blocks = (const struct param_block *const[]){RESTIR_DI_BLOCKS, NULL},
     .create = restir_di_create,
     .destroy = restir_di_destroy,
     .render_frame = restir_di_render_frame,
@@ -134,7 +134,7 @@ const struct method method_ris_di = {
     .description = "direct lighting by initial RIS only, no reuse (the no-reuse baseline of 001)",
     .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY,
     .viewer_order = 4,
-    .settings = "di.light_candidates di.bsdf_candidates di.visibility_reuse pt.max_bounces",
+    .blocks = (const struct param_block *const[]){&di_block, &params_block_depth, NULL},
     .defaults = ris_di_defaults,
     .create = restir_di_create,
     .destroy = restir_di_destroy,

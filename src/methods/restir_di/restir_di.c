@@ -60,14 +60,14 @@ static void merge_begin(struct di_merge_batch *b, const struct render_params *p,
     mg->out = out;
     for (int j = 0; j < n; j++) {
         mg->in[j] = in[j];
-        mg->c[j] = fminf(in[j]->c, p->confidence_cap);
+        mg->c[j] = fminf(in[j]->c, p->reuse.confidence_cap);
     }
     for (int k = 0; k < n; k++) {
         for (int j = 0; j < n; j++) {
             float *P = &mg->P[k * n + j];
             *P = 0.0f;
             /* Row 0 (canonical target of every sample) is needed for the resampling weights. */
-            if ((k != 0 && !restir_mis_needs(p->mis, k, j)) || in[j]->y.tri < 0)
+            if ((k != 0 && !restir_mis_needs(p->reuse.mis, k, j)) || in[j]->y.tri < 0)
                 continue;
             if (k == j) {
                 *P = in[j]->target; /* cached p_hat_j(Y_j) */
@@ -91,9 +91,9 @@ static void merge_end(const struct render_params *p, struct di_merge *mg)
         J[j] = mg->in[j]->y.tri >= 0 ? 1.0f : 0.0f; /* a light sample keeps its point: |dT/dX| = 1 */
         u[j] = pcg32_float(&mg->rng);
     }
-    const int chosen = restir_gris_resample(p->mis, n, mg->c, mg->P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
+    const int chosen = restir_gris_resample(p->reuse.mis, n, mg->c, mg->P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
     struct di_reservoir result;
-    di_reservoir_clear(&result, restir_gris_confidence_merge(c_sum, p->confidence_cap));
+    di_reservoir_clear(&result, restir_gris_confidence_merge(c_sum, p->reuse.confidence_cap));
     if (chosen >= 0) {
         result.y = mg->in[chosen]->y;
         result.target = mg->P[chosen];
@@ -147,15 +147,15 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
         for (int t = 0; t < ntiles; t++) {
             for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
                 const int i = px.i;
-                int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
+                int q = gbuffer_history_pixel(g, i, prev_g, p->reuse.temporal_normal, p->reuse.temporal_plane);
                 if (q < 0)
                     continue;
                 const struct shading_point *sp[2] = {gbuffer_shading(g, i), gbuffer_shading(prev_g, q)};
                 const struct di_reservoir *hist = &prev_res[q];
-                if (p->temporal_ratio_guard && hist->y.tri >= 0) {
+                if (p->reuse.temporal_ratio_guard && hist->y.tri >= 0) {
                     /* 001 Sec. 5 guard: depends on the sample, hence BIASED (documented in --help). */
                     float ratio = di_target(sp[0], &hist->y) / hist->target;
-                    if (!(ratio >= p->ratio_lo && ratio <= p->ratio_hi))
+                    if (!(ratio >= p->reuse.ratio_lo && ratio <= p->reuse.ratio_hi))
                         continue;
                 }
                 pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_TEMPORAL);

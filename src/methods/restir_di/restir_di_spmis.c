@@ -21,7 +21,7 @@ void di_spmis_weights(const struct render_params *p, const struct gbuffer *g, co
     const int n = g->width * g->height;
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < n; i++) {
-        f->conf[i] = fminf(in[i].c, p->confidence_cap);
+        f->conf[i] = fminf(in[i].c, p->reuse.confidence_cap);
         /* 004 Eq. 17: c_i p_hat(X_i) W_i with the target cached in pixel i */
         f->weight[i] = has_sample(&in[i]) ? f->conf[i] * in[i].target * in[i].W : 0.0f;
     }

@@ -12,6 +12,7 @@
 #include "methods/screen_history.h"
 #include "methods/restir_gi/restir_gi.h"
 #include "render/spatial_select.h"
+#include "methods/restir_gi/gi_settings.h"
 
 struct restir_gi_state {
     struct screen_history h;
@@ -67,12 +68,12 @@ static void restir_gi_render_frame(struct renderer *r, void *state, const struct
                                             p->seed, r->frame));
     RENDERER_TIMED(st, PASS_INITIAL, st->rays += gi_initial_pass(&fr, g, t->x1[cur], t->base, t->work);
                    st->nonfinite += gi_nonfinite_discard(t->work, n));
-    if (p->temporal && h->has_history)
+    if (p->reuse.temporal && h->has_history)
         RENDERER_TIMED(st, PASS_TEMPORAL,
                        st->rays += gi_temporal_pass(&fr, g, prev_g, t->x1[cur], t->x1[1 - cur], t->hist[1 - cur],
                                                     t->work, &st->temporal_accepted);
                        st->nonfinite += gi_nonfinite_discard(t->work, n));
-    if (p->spatial) {
+    if (p->reuse.spatial) {
         RENDERER_TIMED(st, PASS_SELECT,
                        st->neighbors_selected = spatial_select_pass(p, 1, g, r->frame, h->disk_offsets, h->neighbors));
         RENDERER_TIMED(st, PASS_SPATIAL, st->rays += gi_spatial_pass(&fr, g, h->neighbors, t->x1[cur], t->work, out);
@@ -81,7 +82,7 @@ static void restir_gi_render_frame(struct renderer *r, void *state, const struct
         memcpy(out, t->work, sizeof(*out) * n);
     }
     RENDERER_TIMED(st, PASS_SHADE, gi_shade_pass(g, t->base, out, r->image));
-    if (p->history_temporal && p->spatial)
+    if (p->reuse.history_temporal && p->reuse.spatial)
         memcpy(out, t->work, sizeof(*out) * n);
     st->valid_pixels = screen_history_count_valid(h);
     screen_history_end_frame(h, p);
@@ -104,7 +105,7 @@ static void restir_gi_inspect(const void *state, struct renderer_inspect *out)
 static int restir_gi_check(const struct render_params *p, const struct scene *s, char *msg)
 {
     (void)s;
-    if (p->spatial && p->spatial_reuse != REUSE_STANDARD) {
+    if (p->reuse.spatial && p->reuse.spatial_reuse != REUSE_STANDARD) {
         snprintf(msg, RESTIR_MSG_LEN,
                  "spatial.reuse=spmis: restir-gi reuses from the selection pass only (spatial.reuse=standard)");
         return -1;
@@ -117,8 +118,8 @@ const struct method method_restir_gi = {
     .description = "ReSTIR GI (Ouyang et al. 2021) as GRIS: one secondary vertex per pixel with its path suffix, "
                    "temporal and spatial reuse by reconnection; gi.radiance=reevaluate (unbiased) or stored",
     .caps = METHOD_HISTORY,
-    .settings = "pt.max_bounces pt.rr_bounces lights. temporal temporal. spatial spatial. history "
-                "confidence_cap mis gi.",
+    .blocks = (const struct param_block *const[]){&params_block_depth, &params_block_roulette, &params_block_lights,
+                                                  &params_block_reuse, &gi_block, NULL},
     .check = restir_gi_check,
     .create = restir_gi_create,
     .destroy = restir_gi_destroy,

@@ -14,6 +14,7 @@
 #include "scene/scene_env.h"
 #include "shading/bsdf.h"
 #include "shading/lights.h"
+#include "methods/restir_gi/gi_settings.h"
 
 /* Canonical domain + at most GI_MAX_NEIGHBORS spatial neighbors. */
 #define GI_MAX_DOMAINS (1 + GI_MAX_NEIGHBORS)
@@ -111,7 +112,7 @@ int gi_shift(const struct scene *s, const struct render_params *p, const struct 
     *jacobian = 0.0f;
     if (!x->valid || !gi_x1_valid(to_x1) || !(x->cos2 > 0.0f) || !(x->dist2 > 0.0f))
         return fail(y);
-    if (!evaluate(s, p, to_x1, y, 1, p->gi_radiance == GI_RADIANCE_REEVALUATE, rays))
+    if (!evaluate(s, p, to_x1, y, 1, gi_settings_of(p)->radiance == GI_RADIANCE_REEVALUATE, rays))
         return 0;
     /* ReSTIR GI Eq. 11: the solid angle of x2's surface element seen from the new x1 over the
      * old; the suffix's random numbers are kept (|T'| = 1 there). */
@@ -265,19 +266,19 @@ static long long gris_merge(const struct gi_frame *fr, int n, const struct path_
     const void *x[GI_MAX_DOMAINS];
     struct gi_sample Y[GI_MAX_DOMAINS], z;
     for (int j = 0; j < n; j++) {
-        c[j] = min_f(in[j]->c, p->confidence_cap); /* fminf is a libm call */
+        c[j] = min_f(in[j]->c, p->reuse.confidence_cap); /* fminf is a libm call */
         c_sum += c[j];
         x[j] = gi_reservoir_has_sample(in[j]) ? &in[j]->y : NULL;
         cached[j] = in[j]->target;
     }
-    restir_gris_targets(p->mis, n, &shift, x, cached, Y, P, J, &z); /* 004 Eq. 10 */
+    restir_gris_targets(p->reuse.mis, n, &shift, x, cached, Y, P, J, &z); /* 004 Eq. 10 */
     for (int j = 0; j < n; j++) {
         W[j] = in[j]->W;
         u[j] = pcg32_float(rng);
     }
-    const int chosen = restir_gris_resample(p->mis, n, c, P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
+    const int chosen = restir_gris_resample(p->reuse.mis, n, c, P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
     struct gi_reservoir result;
-    gi_reservoir_clear(&result, restir_gris_confidence_merge(c_sum, p->confidence_cap));
+    gi_reservoir_clear(&result, restir_gris_confidence_merge(c_sum, p->reuse.confidence_cap));
     if (chosen >= 0) {
         result.y = Y[chosen];
         result.target = P[chosen];
@@ -305,7 +306,7 @@ long long gi_temporal_pass(const struct gi_frame *fr, const struct gbuffer *g, c
             if (!gi_x1_valid(&x1[i]))
                 continue;
             /* Reads G-buffers only, so the domain pair does not depend on the samples. */
-            int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
+            int q = gbuffer_history_pixel(g, i, prev_g, p->reuse.temporal_normal, p->reuse.temporal_plane);
             if (q < 0 || !gi_x1_valid(&prev_x1[q]))
                 continue;
             pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_GI_TEMPORAL);

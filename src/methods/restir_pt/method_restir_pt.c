@@ -22,7 +22,7 @@ void restir_pt_state_init(struct restir_pt_state *t, const struct renderer *r)
     t->hist[1] = xcalloc(n, sizeof(struct pt_reservoir));
     t->emission = xcalloc(n, sizeof(vec3));
     t->temporal_flags = xcalloc(n, 1);
-    if (p->temporal_reuse != TEMPORAL_BACKPROJECT) {
+    if (p->reuse.temporal_reuse != TEMPORAL_BACKPROJECT) {
         t->splat = xmalloc(sizeof(*t->splat));
         pt_splat_buffers_init(t->splat, p->width, p->height, pt_splat_steps(p));
     }
@@ -69,7 +69,7 @@ void restir_pt_frame(struct renderer *r, struct restir_pt_state *t, const struct
     if (base)
         memcpy(base, t->work, sizeof(*out) * n);
     memset(t->temporal_flags, 0, n);
-    if (p->temporal && h->has_history)
+    if (p->reuse.temporal && h->has_history)
         RENDERER_TIMED(st, PASS_TEMPORAL, {
             if (t->splat)
                 st->rays += pt_temporal_splat_pass(&fr, g, prev_g, prev_res, t->work, t->splat, t->temporal_flags);
@@ -81,7 +81,7 @@ void restir_pt_frame(struct renderer *r, struct restir_pt_state *t, const struct
     pt_temporal_counts(t->temporal_flags, (int)n, &st->temporal);
     if (t->splat) /* pixels that reused history: a candidate of either technique shifted in */
         st->temporal_accepted = temporal_counts_any_accepted(t->temporal_flags, (int)n);
-    if (p->spatial && h->spmis) {
+    if (p->reuse.spatial && h->spmis) {
         struct spmis_frame *f = h->spmis;
         RENDERER_TIMED(st, PASS_CELLS, {
             pt_spmis_weights(&fr, g, t->work, f);
@@ -91,7 +91,7 @@ void restir_pt_frame(struct renderer *r, struct restir_pt_state *t, const struct
         RENDERER_TIMED(st, PASS_SPMIS_CANONICAL, st->rays += pt_spmis_canonical_pass(&fr, g, t->work, f));
         RENDERER_TIMED(st, PASS_SPMIS_REUSE, st->rays += pt_spmis_reuse_pass(&fr, g, t->work, f, out);
                        st->nonfinite += nonfinite_discard_pt(out, n));
-    } else if (p->spatial) {
+    } else if (p->reuse.spatial) {
         RENDERER_TIMED(st, PASS_SELECT,
                        st->neighbors_selected =
                            spatial_select_pass(p, 1, g, r->frame, h->disk_offsets, h->neighbors));
@@ -103,7 +103,7 @@ void restir_pt_frame(struct renderer *r, struct restir_pt_state *t, const struct
     RENDERER_TIMED(st, PASS_SHADE, pt_shade_pass(g, out, t->emission, r->image));
     if (after_shade)
         after_shade(r, ctx, t, &fr, out, st);
-    if (p->history_temporal && p->spatial)
+    if (p->reuse.history_temporal && p->reuse.spatial)
         memcpy(out, t->work, sizeof(*out) * n);
     st->valid_pixels = screen_history_count_valid(h);
     screen_history_end_frame(h, p);
@@ -124,8 +124,8 @@ void restir_pt_inspect(const struct restir_pt_state *t, struct renderer_inspect 
 
 void restir_pt_area_defaults(struct render_params *p)
 {
-    if (p->spatial_neighbors == 0)
-        p->spatial_neighbors = 2;
+    if (p->reuse.spatial_neighbors == 0)
+        p->reuse.spatial_neighbors = 2;
 }
 
 static void *restir_pt_create(const struct renderer *r)
@@ -159,7 +159,7 @@ const struct method method_restir_pt = {
     .description = "ReSTIR PT: path resampling, temporal and spatial path reuse by GRIS with shift mappings "
                    "(hybrid default) and sub-pixel reservoirs",
     .caps = RESTIR_PT_CAPS | METHOD_SELECTION_STUDY,
-    .settings = RESTIR_PT_SETTINGS,
+    .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, NULL},
     .viewer_order = 2,
     .create = restir_pt_create,
     .destroy = restir_pt_destroy,
@@ -172,7 +172,7 @@ const struct method method_area_restir = {
     .description = "Area ReSTIR (002 B.3): restir-pt with 1 initial candidate and 2 spatial neighbors, "
                    "sub-pixel reservoirs",
     .caps = RESTIR_PT_CAPS,
-    .settings = RESTIR_PT_SETTINGS,
+    .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, NULL},
     .defaults = restir_pt_area_defaults,
     .create = restir_pt_create,
     .destroy = restir_pt_destroy,

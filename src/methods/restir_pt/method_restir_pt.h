@@ -7,6 +7,7 @@
 #include "methods/screen_history.h"
 #include "methods/restir_pt/pt_splat.h"
 #include "methods/restir_pt/restir_pt.h"
+#include "methods/restir_pt/restir_pt_settings.h"
 
 struct restir_pt_state {
     struct screen_history h;
@@ -19,10 +20,10 @@ struct restir_pt_state {
     unsigned char *material_rough;  /* the hybrid shift's roughness class per material */
 };
 
-/* The settings ReSTIR PT's passes read (struct method.settings). */
-#define RESTIR_PT_SETTINGS                                                                                        \
-    "pt. lights. temporal temporal. spatial spatial. history confidence_cap mis spmis. shift "  \
-    "shift."
+/* The settings blocks ReSTIR PT's passes read (struct method.blocks), for its rows and the gradient methods'. */
+#define RESTIR_PT_BLOCKS                                                                                          \
+    &params_block_depth, &params_block_roulette, &params_block_lights, &params_block_reuse, &params_block_spmis,    \
+        &params_block_shift, &restir_pt_block
 
 void restir_pt_state_init(struct restir_pt_state *t, const struct renderer *r);
 void restir_pt_state_fini(struct restir_pt_state *t);

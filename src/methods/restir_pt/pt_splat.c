@@ -32,7 +32,7 @@ void pt_splat_buffers_fini(struct pt_splat_buffers *b)
     memset(b, 0, sizeof(*b));
 }
 
-int pt_splat_steps(const struct render_params *p) { return p->camera_shutter > 0.0f ? p->temporal_splat_steps : 1; }
+int pt_splat_steps(const struct render_params *p) { return p->camera_shutter > 0.0f ? p->reuse.temporal_splat_steps : 1; }
 
 /* The shutter-time map of stratum k of K: t -> (k + t) / K, onto [k/K, (k+1)/K) (|dt'/dt| = 1/K).
  * With K = 1 the time is kept. */
@@ -114,7 +114,7 @@ struct pixel_merge {
     float chosen_target;
 };
 
-static float capped(const struct pixel_merge *m, float c) { return min_f(c, m->fr->p->confidence_cap); }
+static float capped(const struct pixel_merge *m, float c) { return min_f(c, m->fr->p->reuse.confidence_cap); }
 
 /* c_s p_hat_{<-s}(y): the splat technique at path y of this pixel, by the inverse splat into the
  * previous frame (its primary hit projected through the previous camera at the inverse time). */
@@ -157,7 +157,7 @@ static void offer(struct pixel_merge *m, int own, float own_term, float c_own, c
     if (own != TECH_BACKPROJECT)
         term[TECH_BACKPROJECT] = backproject_term(m, y);
     float mis;
-    if (m->fr->p->mis == RESTIR_MIS_UNIFORM) {
+    if (m->fr->p->reuse.mis == RESTIR_MIS_UNIFORM) {
         mis = c_own; /* divided by the sum of offered confidences when the merge ends */
         m->c_offered += c_own;
     } else {
@@ -208,7 +208,7 @@ static void merge_pixel(struct pixel_merge *m, const struct gbuffer *g, const st
         const float c_s = m->share * capped(m, h->c);
         if (!path_shift_splat(fr->s, &fr->shift, &h->y, fr->prev_view, fr->view, stratum_time(h->y.time, k, m->K),
                               1.0f / (float)m->K, &pixel, &y, &J, &m->rays)) {
-            m->c_offered += p->mis == RESTIR_MIS_UNIFORM ? c_s : 0.0f;
+            m->c_offered += p->reuse.mis == RESTIR_MIS_UNIFORM ? c_s : 0.0f;
             continue;
         }
         RESTIR_CHECK(pixel == i); /* the same projection as land_pass */
@@ -224,16 +224,16 @@ static void merge_pixel(struct pixel_merge *m, const struct gbuffer *g, const st
         if (pt_reservoir_has_sample(h) && path_shift(fr->s, &fr->shift, &h->y, &m->dom_bp, &m->dom, &y, &J, &m->rays)) {
             fl |= TEMPORAL_BP_ACCEPTED;
             offer(m, TECH_BACKPROJECT, m->c_bp * h->target / J, m->c_bp, &y, v3_luminance(y.f), h->W, J, &rng);
-        } else if (p->mis == RESTIR_MIS_UNIFORM) {
+        } else if (p->reuse.mis == RESTIR_MIS_UNIFORM) {
             m->c_offered += m->c_bp;
         }
     }
     flags[i] = fl;
     struct pt_reservoir out;
     pt_reservoir_clear(&out, restir_gris_confidence_merge(canonical.c + history_confidence(g, prev_g, m->prev_res, i),
-                                                     p->confidence_cap));
+                                                     p->reuse.confidence_cap));
     if (m->wrs.selected >= 0) {
-        if (p->mis == RESTIR_MIS_UNIFORM && m->c_offered > 0.0f)
+        if (p->reuse.mis == RESTIR_MIS_UNIFORM && m->c_offered > 0.0f)
             m->wrs.w_sum /= m->c_offered; /* 1/M: m_j = c_j / sum of the offered confidences */
         out.y = m->chosen;
         out.target = m->chosen_target;
@@ -249,7 +249,7 @@ long long pt_temporal_splat_pass(const struct pt_frame *fr, const struct gbuffer
                                  struct pt_splat_buffers *b, unsigned char *flags)
 {
     const struct render_params *p = fr->p;
-    const int both = p->temporal_reuse == TEMPORAL_BOTH;
+    const int both = p->reuse.temporal_reuse == TEMPORAL_BOTH;
     land_pass(fr, prev_res, b);
     bucket_pass(b);
     long long rays = 0;
@@ -266,7 +266,7 @@ long long pt_temporal_splat_pass(const struct pt_frame *fr, const struct gbuffer
         for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
             const int x = px.x, y = px.y, i = px.i;
             m.dom = pt_pixel_domain(fr->view, x, y);
-            m.q_bp = both ? gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane) : -1;
+            m.q_bp = both ? gbuffer_history_pixel(g, i, prev_g, p->reuse.temporal_normal, p->reuse.temporal_plane) : -1;
             if (m.q_bp >= 0) {
                 m.dom_bp = pt_pixel_domain(fr->prev_view, m.q_bp % w, m.q_bp / w);
                 m.dom_bp.origin[0] -= g->motion[2 * i]; /* as pt_temporal_pass */

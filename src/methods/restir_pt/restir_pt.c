@@ -12,18 +12,19 @@
 #include "restir/reservoir.h"
 #include "scene/scene_env.h"
 #include "shading/lights.h"
+#include "methods/restir_pt/restir_pt_settings.h"
 
 /* Canonical domain + at most 5 spatial neighbors. */
 #define PT_MAX_DOMAINS 6
 
 void pt_shift_params(const struct render_params *p, float scene_diagonal, vec3 camera, struct shift_params *out)
 {
-    out->kind = (enum shift_kind)p->shift;
-    out->min_roughness = p->shift_roughness;
-    out->distance_mode = (enum shift_distance_mode)p->shift_distance_mode;
+    out->kind = p->shift.kind;
+    out->min_roughness = p->shift.roughness;
+    out->distance_mode = (enum shift_distance_mode)p->shift.distance_mode;
     out->min_distance =
-        out->distance_mode == SHIFT_DISTANCE_SCENE ? p->shift_distance * scene_diagonal : p->shift_distance;
-    out->distance_factor = p->shift_distance;
+        out->distance_mode == SHIFT_DISTANCE_SCENE ? p->shift.distance * scene_diagonal : p->shift.distance;
+    out->distance_factor = p->shift.distance;
     out->camera = camera;
     out->rough = NULL;
 }
@@ -92,11 +93,11 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
             ctx.shift = &fr->shift;
             restir_reservoir_init(&ctx.wrs);
             ctx.rng = &rng;
-            ctx.inv_paths = 1.0f / (float)p->pt_candidates;
+            ctx.inv_paths = 1.0f / (float)restir_pt_settings_of(p)->candidates;
             ctx.r = res;
             ctx.chosen_here = 0;
             vec3 Le = v3s(0.0f);
-            for (int n = 0; n < p->pt_candidates; n++) {
+            for (int n = 0; n < restir_pt_settings_of(p)->candidates; n++) {
                 ctx.trial.u[0] = p->jitter ? pcg32_float(&rng) : 0.5f;
                 ctx.trial.u[1] = p->jitter ? pcg32_float(&rng) : 0.5f;
                 const struct camera_sample cs = camera_sample_draw(fr->view, &rng);
@@ -122,7 +123,7 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
                 keep_chosen(&ctx, &walk);
             }
             emission[i] = v3_scale(Le, ctx.inv_paths);
-            res->c = (float)p->pt_candidates;
+            res->c = (float)restir_pt_settings_of(p)->candidates;
             if (ctx.wrs.selected >= 0) {
                 /* W must divide by the p_hat the weights used (the walk's f); it is then a
                  * UCW for any integrand, and the reservoir caches the target as shifts
@@ -177,7 +178,7 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
     const void *x[PT_MAX_DOMAINS];
     struct path_sample Y[PT_MAX_DOMAINS], z;
     for (int j = 0; j < n; j++) {
-        c[j] = min_f(in[j]->c, p->confidence_cap); /* fminf is a libm call */
+        c[j] = min_f(in[j]->c, p->reuse.confidence_cap); /* fminf is a libm call */
         c_sum += share ? share[j] * c[j] : c[j];
         x[j] = pt_reservoir_has_sample(in[j]) ? &in[j]->y : NULL;
         cached[j] = in[j]->target;
@@ -194,7 +195,7 @@ static long long gris_merge(const struct pt_frame *fr, int n, const struct pt_do
     }
     const int chosen = restir_gris_resample(mis, n, c, P, W, J, u, &W_Y); /* 004 Eq. 5-7 */
     struct pt_reservoir result;
-    pt_reservoir_clear(&result, restir_gris_confidence_merge(c_sum, p->confidence_cap));
+    pt_reservoir_clear(&result, restir_gris_confidence_merge(c_sum, p->reuse.confidence_cap));
     if (chosen >= 0) {
         result.y = Y[chosen];
         result.target = P[chosen];
@@ -224,7 +225,7 @@ static unsigned temporal_search_merge(const struct pt_frame *fr, const struct gb
 {
     const struct render_params *p = fr->p;
     struct gbuffer_history_cell cells[4];
-    const int m = gbuffer_history_square(g, i, prev_g, p->temporal_normal, p->temporal_plane, cells);
+    const int m = gbuffer_history_square(g, i, prev_g, p->reuse.temporal_normal, p->reuse.temporal_plane, cells);
     if (m == 0)
         return 0;
     struct pt_domain dom[5];
@@ -259,14 +260,14 @@ long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, c
         for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
             const int x = px.x, y = px.y, i = px.i;
             flags[i] = 0;
-            if (p->temporal_subpixel == TEMPORAL_SUBPIXEL_SEARCH) {
+            if (p->reuse.temporal_subpixel == TEMPORAL_SUBPIXEL_SEARCH) {
                 unsigned shifted = temporal_search_merge(fr, g, prev_g, prev_res, i, &io[i], &rays);
                 flags[i] = (unsigned char)(shifted & 1u ? TEMPORAL_BP_RECEIVED : 0) |
                            (unsigned char)(shifted & ~1u ? TEMPORAL_BP_ACCEPTED : 0);
                 acc += shifted & 1u;
                 continue;
             }
-            int q = gbuffer_history_pixel(g, i, prev_g, p->temporal_normal, p->temporal_plane);
+            int q = gbuffer_history_pixel(g, i, prev_g, p->reuse.temporal_normal, p->reuse.temporal_plane);
             if (q < 0)
                 continue;
             struct pt_domain dom[2];
@@ -281,7 +282,7 @@ long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, c
             pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)i, RNG_PASS_PT_TEMPORAL);
             const struct pt_reservoir *in[2] = {&io[i], &prev_res[q]};
             unsigned shifted;
-            rays += gris_merge(fr, 2, dom, in, p->mis, NULL, &rng, &io[i], &shifted);
+            rays += gris_merge(fr, 2, dom, in, p->reuse.mis, NULL, &rng, &io[i], &shifted);
             flags[i] = (unsigned char)(TEMPORAL_BP_RECEIVED | (shifted & 2u ? TEMPORAL_BP_ACCEPTED : 0));
             acc++;
         }
@@ -335,7 +336,7 @@ long long pt_spatial_pass(const struct pt_frame *fr, const struct gbuffer *g, co
                 dom[n] = pt_pixel_domain(fr->view, j % w, j / w);
                 src[n++] = &in[j];
             }
-            rays += gris_merge(fr, n, dom, src, p->mis, NULL, &rng, &out[i], NULL);
+            rays += gris_merge(fr, n, dom, src, p->reuse.mis, NULL, &rng, &out[i], NULL);
         }
     }
     return rays;

@@ -8,6 +8,7 @@
 #include "render/gbuffer.h"
 #include "render/params.h"
 #include "render/path_shift.h"
+#include "methods/restir_pt/restir_pt_settings.h"
 
 /* A path reservoir (004 Sec. 2.6): the path, its unbiased contribution weight W, confidence c and
  * the cached target p_hat = luminance(f) in the pixel that owns it. */
@@ -48,7 +49,7 @@ struct pt_frame {
 /* The shift parameters the render parameters ask for; scene_diagonal scales shift.distance. */
 void pt_shift_params(const struct render_params *p, float scene_diagonal, vec3 camera, struct shift_params *out);
 
-/* Initial sampling: p->pt_candidates paths per pixel by the shared path walk, each from its own
+/* Initial sampling: restir_pt_settings_of(p)->candidates paths per pixel by the shared path walk, each from its own
  * jittered primary ray, every NEE/BSDF candidate resampled with weight m f / p into one
  * reservoir, c = number of paths; emission seen directly goes to `emission` (paths of length 1
  * are not resampled). The primary rays must not share random numbers with the G-buffer: neighbor

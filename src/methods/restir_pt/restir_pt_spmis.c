@@ -16,7 +16,7 @@ void pt_spmis_weights(const struct pt_frame *fr, const struct gbuffer *g, const 
                       struct spmis_frame *f)
 {
     const int n = g->width * g->height;
-    const float cap = fr->p->confidence_cap;
+    const float cap = fr->p->reuse.confidence_cap;
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < n; i++) {
         f->conf[i] = fminf(in[i].c, cap);

@@ -1,0 +1,30 @@
+/* di_settings.h: ReSTIR DI's own settings: its initial candidates (di.light_candidates, di.bsdf_candidates, di.visibility_reuse;
+ * ris-di reads them too) and the visibility in its reuse's targets (di.visibility_mis) */
+#ifndef RESTIR_METHODS_RESTIR_DI_DI_SETTINGS_H
+#define RESTIR_METHODS_RESTIR_DI_DI_SETTINGS_H
+
+#include "render/params.h"
+
+/* Visibility in the targets that ReSTIR DI's reuse compares (Bitterli et al. 2020 Alg. 5):
+ * rays traces a shadow ray for every cross-domain target (unbiased); none uses unshadowed ones
+ * (BIASED: a domain that cannot see the sample still takes MIS weight). */
+enum di_visibility_mis { DI_VIS_MIS_RAYS = 0, DI_VIS_MIS_NONE };
+
+struct di_settings {
+    int light_candidates;
+    int bsdf_candidates;
+    int visibility_reuse; /* shadow ray for the initial sample; occluded ones dropped */
+};
+
+struct di_reuse_settings {
+    enum di_visibility_mis visibility_mis;
+};
+
+extern struct param_block di_block; /* di: the initial candidates */
+static inline const struct di_settings *di_settings_of(const struct render_params *p) { return param_block_in(p, &di_block); }
+static inline struct di_settings *di_settings_of_mut(struct render_params *p) { return param_block_in_mut(p, &di_block); }
+extern struct param_block di_reuse_block; /* di reuse: visibility in reuse */
+static inline const struct di_reuse_settings *di_reuse_settings_of(const struct render_params *p) { return param_block_in(p, &di_reuse_block); }
+static inline struct di_reuse_settings *di_reuse_settings_of_mut(struct render_params *p) { return param_block_in_mut(p, &di_reuse_block); }
+
+#endif

@@ -1,0 +1,22 @@
+/* gi_settings.c: ReSTIR GI's settings block (gi_settings.h). */
+#include "methods/restir_gi/gi_settings.h"
+
+#include <stdalign.h>
+#include <stddef.h>
+
+static const char *const gi_radiance_names[] = {"reevaluate", "stored", NULL}; /* enum gi_radiance_mode */
+_Static_assert(sizeof(enum gi_radiance_mode) == sizeof(int), "enum size");
+
+#define I(field) offsetof(struct gi_settings, field)
+static const struct param_def gi_rows[] = {
+    {"gi.radiance", P_NAMES, I(radiance), 0, 0, "reevaluate", "stored",
+     "the outgoing radiance of a reused sample point toward the reusing shading point: reevaluate "
+     "(the sample point's path estimate traced again from its own random numbers) or stored (the radiance it "
+     "sent toward the pixel that traced it, as Ouyang et al. 2021; BIASED where the sample point is glossy)",
+     gi_radiance_names},
+};
+#undef I
+
+struct param_block gi_block = {
+    "gi", gi_rows, sizeof(gi_rows) / sizeof(gi_rows[0]), 0, sizeof(struct gi_settings), alignof(struct gi_settings),
+    0, NULL, NULL};
