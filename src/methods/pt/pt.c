@@ -3,18 +3,11 @@
 #include "methods/pt/pt.h"
 
 #include "core/sobol.h"
+#include "render/path_estimate.h"
 #include "render/path_walk.h"
 #include "render/tiles.h"
 #include "scene/scene_env.h"
 #include "shading/lights.h"
-
-static void accumulate(void *ctx, const struct path_walk *w, const struct path_candidate *c)
-{
-    (void)w;
-    vec3 *L = ctx;
-    if (c->pdf > 0.0f)
-        *L = v3_add(*L, v3_scale(c->f, c->mis / c->pdf));
-}
 
 /* The padded Sobol' dimensions of sample `index` in one pixel and frame (core/sobol.h), each pair or
  * single named by a key hashed from the pixel's key and its dimension number: 0 the pixel position
@@ -70,8 +63,8 @@ static vec3 pt_trace_numbers(const struct scene *s, vec3 o, vec3 d, int max_boun
     struct path_walk w;
     struct path_vertex x1 = path_vertex_from_hit(&h, d);
     const struct path_numbers seeded = path_numbers_seeded(&path_seed);
-    *rays += path_walk_run_numbers(s, &x1, numbers ? numbers : &seeded, lights, max_bounces, rr_bounces, &w, accumulate,
-                                   &L);
+    *rays += path_walk_run_numbers(s, &x1, numbers ? numbers : &seeded, lights, max_bounces, rr_bounces, &w,
+                                   path_sum_candidates, &L);
     return L;
 }
 
@@ -134,11 +127,9 @@ static struct sum3d pixel_independent(const struct scene *s, const struct camera
     pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_PT);
     struct sum3d sum = {0.0, 0.0, 0.0};
     for (int k = 0; k < spp; k++) {
-        float jx = p->jitter ? pcg32_float(&rng) : 0.5f, jy = p->jitter ? pcg32_float(&rng) : 0.5f;
-        uint64_t path_seed = ((uint64_t)pcg32_next(&rng) << 32) | pcg32_next(&rng);
-        struct camera_sample cs = camera_sample_draw(view, &rng);
+        uint64_t path_seed;
         vec3 o, d;
-        camera_sample_ray(view, &cs, (float)x + jx, (float)y + jy, &o, &d);
+        path_primary_ray(view, p->jitter, &rng, x, y, &path_seed, &o, &d);
         vec3 L = pt_trace_numbers(s, o, d, p->max_bounces, NULL, path_seed, render_params_light_choice(p),
                                   p->rr_bounces, rays);
         if (v3_is_finite(L))

@@ -7,6 +7,7 @@
 
 #include <math.h>
 
+#include "render/path_estimate.h"
 #include "render/tiles.h"
 #include "restir/gris.h"
 #include "restir/mis.h"
@@ -21,15 +22,6 @@
 
 /* ---- the integrand --------------------------------------------------------------------------- */
 
-/* Sums m f / p over the candidates of a walk, as pt does. */
-static void accumulate(void *ctx, const struct path_walk *w, const struct path_candidate *c)
-{
-    (void)w;
-    vec3 *L = ctx;
-    if (c->pdf > 0.0f)
-        *L = v3_add(*L, v3_scale(c->f, c->mis / c->pdf));
-}
-
 static uint64_t draw_seed(pcg32 *rng)
 {
     uint64_t hi = pcg32_next(rng);
@@ -40,19 +32,6 @@ static int fail(struct gi_sample *y)
 {
     y->valid = 0;
     return 0;
-}
-
-/* Lr(x2 -> x1; seed): the path walk from x2 (wo toward x1) with the scattering events left after
- * x1's, Russian roulette after the same total number of bounces as pt. x2's own emission is not
- * reported (path_walk_run), so this is the radiance of paths of length >= 3 through x1 and x2. */
-static vec3 suffix_radiance(const struct scene *s, const struct render_params *p, const struct path_vertex *x2,
-                            uint64_t seed, long long *rays)
-{
-    struct path_walk walk;
-    vec3 L = v3s(0.0f);
-    const int rr = p->rr_bounces > 1 ? p->rr_bounces - 1 : 0;
-    *rays += path_walk_run(s, x2, seed, render_params_light_choice(p), p->max_bounces - 1, rr, &walk, accumulate, &L);
-    return L;
 }
 
 /* f of sample y in the domain of shading point x1 (restir_gi.h): the straight connection
@@ -96,7 +75,7 @@ static int evaluate(const struct scene *s, const struct render_params *p, const 
     }
     if (walk) {
         const struct path_vertex x2 = path_vertex_from_hit(&h, w);
-        y->Lo = suffix_radiance(s, p, &x2, y->seed, rays);
+        y->Lo = path_suffix_radiance(s, p, &x2, y->seed, rays);
     }
     y->f = v3_mul(fcos, y->Lo);
     if (!(v3_max_component(y->f) > 0.0f) || !v3_is_finite(y->f))
@@ -187,10 +166,8 @@ long long gi_initial_pass(const struct gi_frame *fr, const struct gbuffer *g, st
     const struct render_params *p = fr->p;
     long long rays = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
-    const int direct_bounces = p->max_bounces < 1 ? p->max_bounces : 1;
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
     for (int t = 0; t < ntiles; t++) {
-        struct path_walk walk;
         for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
             const int i = px.i;
             struct gi_reservoir *res = &out[i];
@@ -210,15 +187,9 @@ long long gi_initial_pass(const struct gi_frame *fr, const struct gbuffer *g, st
                 base[i] = scene_env_radiance(s, d);
                 continue;
             }
-            vec3 Le = v3s(0.0f);
-            if (s->tri_emitter[hit.tri] >= 0 && hit.front)
-                Le = lights_radiance(s, hit.tri, hit.b1, hit.b2, v3_neg(d));
+            /* Le + D: emission and paths of length 2, NEE and BSDF hit MIS'd as in pt. */
+            base[i] = path_emission_and_direct(s, p, &hit, d, draw_seed(&rng), &rays);
             const struct path_vertex v = path_vertex_from_hit(&hit, d);
-            /* D: paths of length 2, NEE and BSDF hit MIS'd as in pt. */
-            vec3 D = v3s(0.0f);
-            rays += path_walk_run(s, &v, draw_seed(&rng), render_params_light_choice(p), direct_bounces, p->rr_bounces,
-                                  &walk, accumulate, &D);
-            base[i] = v3_is_finite(D) ? v3_add(Le, D) : Le;
             x1[i] = v;
             res->c = 1.0f;
             if (p->max_bounces > 1)
