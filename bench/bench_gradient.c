@@ -15,6 +15,7 @@
 
 #include "bench_common.h"
 #include "core/check.h"
+#include "experiments/equal_time.h"
 #include "methods/gradient/grad_frame.h"
 #include "io/atomic_file.h"
 #include "io/exr.h"
@@ -248,34 +249,6 @@ static double render_frames(struct renderer *r, const struct scene *s, int from,
     return total / timed;
 }
 
-/* Frame time of a stateless method (pt, gpt) at spp paths per pixel: the second of two frames. */
-static double frame_ms_at_spp(const struct scene *s, const struct method *m, const struct render_params *p, int spp,
-                              int frame)
-{
-    struct render_params q = *p;
-    q.spp = spp;
-    struct renderer r;
-    struct frame_stats st;
-    struct camera cam = scene_camera_at(s, 1, (float)frame);
-    renderer_init(&r, s, m, &q);
-    renderer_render(&r, frame, &cam, &st);
-    renderer_render(&r, frame, &cam, &st);
-    renderer_fini(&r);
-    return st.ms_total;
-}
-
-/* Paths per pixel that fit budget_ms: the cost per path from 1 and 4 spp (their difference removes the
- * fixed per-frame cost, e.g. gpt's reconstruction), as restir compare --equal-time does. */
-static int spp_for_budget(const struct scene *s, const struct method *m, const struct render_params *p, double budget_ms,
-                          int frame)
-{
-    double t1 = frame_ms_at_spp(s, m, p, 1, frame), t4 = frame_ms_at_spp(s, m, p, 4, frame);
-    double per_spp = (t4 - t1) / 3.0 > 0.25 * t1 ? (t4 - t1) / 3.0 : t1;
-    double fixed = t1 - per_spp > 0.0 ? t1 - per_spp : 0.0;
-    int spp = (int)((budget_ms - fixed) / per_spp);
-    return spp < 1 ? 1 : spp;
-}
-
 /* Runs method m (common parameters, then `sets`) on the camera path and measures its last frame.
  * budget_ms <= 0: 1 instance at 1 spp. equal_samples (with budget_ms <= 0): pt and gpt too render
  * every frame of the path, timed from TIMING_SKIP as the ReSTIR methods, and every frame is logged
@@ -309,8 +282,10 @@ static void run_method(const struct scene *s, const struct gb_config *c, const s
     res->instances = 1;
     res->spp = 1;
     if (m == method_named("pt") || m == method_named("gpt")) {
-        if (budget_ms > 0.0)
-            p.spp = spp_for_budget(s, m, &p, budget_ms, last);
+        if (budget_ms > 0.0) { /* as restir compare --equal-time, from the last frame's camera */
+            struct camera cam = scene_camera_at(s, 1, (float)last);
+            p.spp = equal_time_spp_for(s, m, &p, &cam, last, budget_ms);
+        }
         res->spp = p.spp;
         renderer_init(&r0, s, m, &p);
         int from = equal_samples ? 0 : c->frames - 3, timed_from = equal_samples ? TIMING_SKIP : from + 1;

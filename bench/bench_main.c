@@ -10,7 +10,7 @@
 
 #include "bench_common.h"
 #include "core/check.h"
-#include "experiments/stats.h"
+#include "experiments/equal_time.h"
 #include "io/atomic_file.h"
 #include "io/report.h"
 #include "methods/renderer.h"
@@ -219,20 +219,12 @@ static void bench_equal_time(const struct bench_config *c, const struct method *
     restir_metrics_compute(r.image, ref, npix, NULL, &e_m);
     renderer_fini(&r);
 
-    /* pt cost per path: time 1 and 4 spp (the difference removes per-frame overhead). */
+    /* pt's paths per pixel in the budget: the cost per path from 1 and 4 spp (their difference removes
+     * the per-frame overhead), timed from the last frame's camera. */
     struct camera cam = scene_camera_at(&s, use_path, (float)last);
     struct render_params q = p;
     method_reference_params(method, &q);
-    double t[2];
-    for (int k = 0; k < 2; k++) {
-        q.spp = k ? 4 : 1;
-        renderer_init(&r, &s, method_named("pt"), &q);
-        renderer_render(&r, 0, &cam, &st);
-        renderer_render(&r, 0, &cam, &st);
-        t[k] = st.ms_total;
-        renderer_fini(&r);
-    }
-    q.spp = equal_time_spp(budget, t[0], t[1]); /* as restir compare --equal-time */
+    q.spp = equal_time_spp_for(&s, method_named("pt"), &q, &cam, 0, budget); /* as restir compare --equal-time */
     renderer_init(&r, &s, method_named("pt"), &q);
     renderer_render(&r, last, &cam, &st);
     struct restir_metrics_error e_pt;
