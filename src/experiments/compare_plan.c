@@ -1,5 +1,6 @@
 /* compare_plan.c: a comparison split into jobs (compare_plan.h): the plan, one job, the merge.
- * Must never implement a method or be called by compare_run.c: cmd_compare.c and cmd_job.c call it. */
+ * Must never implement a method or be called by compare_run.c: compare_command.c, cmd_compare.c (--merge)
+ * and cmd_job.c call it. */
 #include "experiments/compare_plan.h"
 
 #include <dirent.h>

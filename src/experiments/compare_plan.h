@@ -1,5 +1,6 @@
 /* compare_plan.h: `restir compare` split into jobs (compare_plan.c): --plan DIR, `restir job`, --merge DIR.
- * Must never implement a method; only cmd_compare.c and cmd_job.c call it. */
+ * Must never implement a method; only compare_command.c, cmd_compare.c (--merge) and
+ * cmd_job.c call it. */
 #ifndef RESTIR_EXPERIMENTS_COMPARE_PLAN_H
 #define RESTIR_EXPERIMENTS_COMPARE_PLAN_H
 

@@ -1,6 +1,7 @@
 /* compare_run.h: the comparison harness that `restir compare` and its planned form (compare_plan.c)
- * share: compare_setup.c turns a description into specs, compare_run.c runs a spec, compare_reference.c
- * renders the references, compare_table.c writes the table. Must never implement a method. */
+ * share: compare_setup.c turns a description into specs, compare_run.c runs a spec, compare_schedule.c
+ * runs them all within an equal-time budget, compare_reference.c renders the references,
+ * compare_table.c writes the table. Must never implement a method. */
 #ifndef RESTIR_EXPERIMENTS_COMPARE_RUN_H
 #define RESTIR_EXPERIMENTS_COMPARE_RUN_H
 
@@ -173,6 +174,16 @@ static inline uint64_t compare_run_seed(uint64_t seed, int n)
  * autocovariance; the track's rows for c go to frames.csv. Returns as compare_run_method. */
 int compare_run_spec(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
                      int instances, int runs, const float *ref, const char *out_dir, int keep_image,
+                     struct compare_track *track, struct compare_result *res, char *msg);
+/* Runs every spec of st (compare_run_spec, --runs runs each) against ref into res[0 .. st->n - 1]
+ * (zeroed by the caller), each writing its last frame under out_dir and its frames to track. With
+ * --equal-time the first spec of a method with state between frames runs first and its frame time is
+ * the budget: the methods that fit it by paths per pixel (compare_budget_by_spp) get the spp that fit
+ * (equal_time_spp_for), the others as many averaged instances as fit (at least 1, at most
+ * MAX_INSTANCES, timed on a short run of one). Returns 0; EXIT_RUNTIME with msg; or 128 + the signal
+ * after a stop signal, having said which spec it stopped and what out_dir keeps. Not thread-safe
+ * (the renderers use every thread). */
+int compare_schedule(const struct compare_setup *st, const float *ref, const char *out_dir,
                      struct compare_track *track, struct compare_result *res, char *msg);
 /* The comparison's reference at frame `frame` (the last frame's: compare_render_reference), or NULL
  * when a stop signal arrived. */
