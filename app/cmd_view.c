@@ -10,6 +10,7 @@
 #include "experiments/cli.h"
 #include "experiments/options.h"
 #include "experiments/out_dir.h"
+#include "experiments/run_prepare.h"
 #include "scene/scene_file.h"
 #include "view/viewer.h"
 
@@ -57,26 +58,13 @@ int cmd_view(int argc, char **argv)
         cli_error("%s", msg); /* a folder of its own: nothing is touched */
         return EXIT_USAGE;
     }
-    const struct method *m = o.method ? method_find(o.method) : view_method_after(NULL);
-    if (!m) {
-        cli_error("unknown method '%s' (see restir list)", o.method);
+    const struct method *m = o.method ? run_find_method(o.method) : view_method_after(NULL);
+    if (!m)
         return EXIT_USAGE;
-    }
     struct scene s;
-    if (cli_scene_load(&o.params, o.env, o.scene, &s, msg) != 0) {
-        cli_error("%s", msg);
-        return EXIT_USAGE;
-    }
-    if (method_check_settings(m, &o.params, &s, msg) != 0) {
-        cli_error("%s", msg);
-        scene_destroy(&s);
-        return EXIT_USAGE;
-    }
-    if (cli_check_memory(&s, m, &o.params, o.max_memory_mb, msg) != 0) {
-        cli_error("%s", msg);
-        scene_destroy(&s);
-        return EXIT_RUNTIME;
-    }
+    int rc = run_prepare(&o, m, RUN_CHECK_MEMORY, &s);
+    if (rc != 0)
+        return rc;
     if (o.params.threads > 0)
         omp_set_num_threads(o.params.threads);
     char out_dir[4096], base[4096];
@@ -91,7 +79,7 @@ int cmd_view(int argc, char **argv)
         return EXIT_RUNTIME;
     }
     const struct view_options vo = {&s, m, o.params, o.script, out_dir};
-    int rc = view_run(&vo, msg);
+    rc = view_run(&vo, msg);
     if (rc != 0)
         cli_error("view: %s", msg);
     scene_destroy(&s);

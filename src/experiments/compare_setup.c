@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "experiments/cli.h"
 #include "experiments/reference_size.h"
+#include "experiments/run_prepare.h"
 #include "methods/settings.h"
 #include "scene/scene_file.h"
 
@@ -197,15 +198,13 @@ int compare_setup(const struct cli_options *desc, struct compare_setup *st)
         return EXIT_USAGE;
     }
     for (int k = 0; k < st->n; k++) { /* each method's renderers exist one at a time */
-        if (method_check_settings(st->specs[k].method, &st->specs[k].p, &st->s, msg) != 0) {
+        /* the --set keys were checked against the specs above, as a key may be any spec's */
+        int rc = run_check_method(&st->s, st->specs[k].method, &st->specs[k].p, NULL, 0, o->max_memory_mb,
+                                  RUN_CHECK_MEMORY, msg);
+        if (rc != 0) {
             cli_error("--methods spec '%s': %s", st->specs[k].label, msg);
             scene_destroy(&st->s);
-            return EXIT_USAGE;
-        }
-        if (cli_check_memory(&st->s, st->specs[k].method, &st->specs[k].p, o->max_memory_mb, msg) != 0) {
-            cli_error("--methods spec '%s': %s", st->specs[k].label, msg);
-            scene_destroy(&st->s);
-            return EXIT_RUNTIME;
+            return rc;
         }
     }
     if (o->params.threads > 0)

@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "experiments/cli.h"
+#include "experiments/run_prepare.h"
 #include "io/exr.h"
 #include "methods/reference.h"
 #include "scene/scene_file.h"
@@ -38,21 +39,12 @@ int reference_setup(const struct cli_options *desc, int need_out, struct referen
         cli_error("--out FILE.exr (or --shards N --plan DIR) is required");
         return EXIT_USAGE;
     }
-    if (!method_find(o->method)) {
-        cli_error(o->method ? "unknown method '%s' (see restir list)" : "--method is required (see restir list)%s",
-                  o->method ? o->method : "");
+    if (!(st->method = run_find_method(o->method)))
         return EXIT_USAGE;
-    }
-    st->method = method_find(o->method);
-    if (cli_scene_load(&o->params, o->env, o->scene, &st->s, msg) != 0) {
-        cli_error("%s", msg);
-        return EXIT_USAGE;
-    }
-    if (method_check_settings(st->method, &o->params, &st->s, msg) != 0) {
-        cli_error("%s", msg);
-        scene_destroy(&st->s);
-        return EXIT_USAGE;
-    }
+    /* the reference renders pt over the method's integrand, not the method: its memory is checked below */
+    int rc = run_prepare(o, st->method, 0, &st->s);
+    if (rc != 0)
+        return rc;
     /* the mean, the chunk and, while resuming or merging, one image read: three RGB float images;
      * with a relMSE target the variance state and its read too */
     const double per_pixel = (o->target_relmse > 0.0 ? 5.0 : 3.0) * 3.0 * sizeof(float);

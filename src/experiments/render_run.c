@@ -16,32 +16,12 @@
 #include "experiments/out_dir.h"
 #include "experiments/provenance.h"
 #include "experiments/reference_size.h"
+#include "experiments/run_prepare.h"
 #include "io/atomic_file.h"
 #include "io/report.h"
 #include "methods/settings.h"
 #include "scene/scene_file.h"
 #include "scene/scenes_builtin.h"
-
-/* Resolves scene and method; returns 0 or an exit code after printing the problem. */
-static int open_scene_and_method(const struct cli_options *o, struct scene *s, const struct method **method)
-{
-    char msg[RESTIR_MSG_LEN];
-    if (!o->method) {
-        cli_error("--method is required (see restir list)");
-        return EXIT_USAGE;
-    }
-    const struct method *m = method_find(o->method);
-    if (!m) {
-        cli_error("unknown method '%s' (see restir list)", o->method);
-        return EXIT_USAGE;
-    }
-    *method = m;
-    if (cli_scene_load(&o->params, o->env, o->scene, s, msg) != 0) {
-        cli_error("%s", msg);
-        return EXIT_USAGE;
-    }
-    return 0;
-}
 
 /* What ran, so that `restir render --params summary.json` runs it again: scene, method, frames,
  * resolution, seed, camera, and every setting of the table as the renderer used it; and the build
@@ -131,20 +111,11 @@ int render_run(const struct cli_options *desc)
         cli_error("%s", msg);
         return rc;
     }
-    rc = open_scene_and_method(&o, &s, &method);
+    if (!(method = run_find_method(o.method)))
+        return EXIT_USAGE;
+    rc = run_prepare(&o, method, RUN_CHECK_SETS | RUN_CHECK_MEMORY, &s);
     if (rc != 0)
         return rc;
-    if (method_check_assignments(method, o.sets, o.n_sets, msg) != 0 ||
-        method_check_settings(method, &o.params, &s, msg) != 0) {
-        cli_error("%s", msg);
-        scene_destroy(&s);
-        return EXIT_USAGE;
-    }
-    if (cli_check_memory(&s, method, &o.params, o.max_memory_mb, msg) != 0) {
-        cli_error("%s", msg);
-        scene_destroy(&s);
-        return EXIT_RUNTIME;
-    }
     struct camera *cams = NULL; /* --camera FILE: one per frame */
     int ncams = 0;
     if (o.camera_file) {

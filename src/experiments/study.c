@@ -18,6 +18,7 @@
 #include "experiments/reference_halves.h"
 #include "methods/settings.h"
 #include "experiments/reference_size.h"
+#include "experiments/run_prepare.h"
 #include "experiments/study_denoised.h"
 #include "experiments/study_report.h"
 #include "io/atomic_file.h"
@@ -232,22 +233,7 @@ int study_setup(const struct cli_options *desc, int need_out, struct study_setup
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
-    if (cli_scene_load(&o->params, o->env, o->scene, &st->s, msg) != 0) {
-        cli_error("%s", msg);
-        return EXIT_USAGE;
-    }
-    if (method_check_assignments(st->method, o->sets, o->n_sets, msg) != 0 ||
-        method_check_settings(st->method, &o->params, &st->s, msg) != 0) {
-        cli_error("%s", msg);
-        scene_destroy(&st->s);
-        return EXIT_USAGE;
-    }
-    if (cli_check_memory(&st->s, st->method, &o->params, o->max_memory_mb, msg) != 0) {
-        cli_error("%s", msg);
-        scene_destroy(&st->s);
-        return EXIT_RUNTIME;
-    }
-    return 0;
+    return run_prepare(o, st->method, RUN_CHECK_SETS | RUN_CHECK_MEMORY, &st->s);
 }
 
 /* The study's own reference: pt over the method's integrand from a still camera, independently
