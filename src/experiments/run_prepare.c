@@ -3,6 +3,7 @@
 
 #include "core/check.h"
 #include "experiments/cli.h"
+#include "methods/settings.h"
 
 const struct method *run_find_method(const char *name)
 {
