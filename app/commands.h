@@ -4,6 +4,7 @@
 #define RESTIR_APP_COMMANDS_H
 
 /* Each takes the arguments after its name and returns the process's exit code. */
+int cmd_list(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_reference(int argc, char **argv);
 int cmd_compare(int argc, char **argv);

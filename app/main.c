@@ -8,14 +8,13 @@
 #include "experiments/cli.h"
 #include "experiments/provenance.h"
 #include <restir/version.h>
-#include "scene/scenes_builtin.h"
 
 static void usage(FILE *out)
 {
     fprintf(out,
             "usage: restir <command> [options]\n"
             "commands:\n"
-            "  list        scenes and methods, one per line\n"
+            "  list        scenes and methods, one per line (--json: one JSON document, for scripts)\n"
             "  render      render frames of one method (restir render --help)\n"
             "  reference   render a converged reference of what a method estimates\n"
             "  compare     run several methods on the same frames, optionally at equal time\n"
@@ -29,24 +28,6 @@ static void usage(FILE *out)
             "Progress goes to stderr: a bar on a terminal, else a line at most every %.0f s (the environment's\n"
             "RESTIR_PROGRESS_SECONDS sets the interval; off: none).\n",
             PROGRESS_LINE_SECONDS);
-}
-
-static int cmd_list(int argc, char **argv)
-{
-    if (argc == 1 && (!strcmp(argv[0], "--help") || !strcmp(argv[0], "-h"))) {
-        printf("usage: restir list\nPrints the built-in scenes and the registered methods, one per line:\n"
-               "scene NAME<tab>description, then method NAME<tab>description.\n");
-        return 0;
-    }
-    if (argc > 0) {
-        cli_error("list takes no arguments, got '%s'", argv[0]);
-        return EXIT_USAGE;
-    }
-    for (int i = 0; scene_builtin_names[i]; i++)
-        printf("scene %s\t%s\n", scene_builtin_names[i], scene_builtin_descriptions[i]);
-    for (int k = 0; k < method_count(); k++)
-        printf("method %s\t%s\n", method_at(k)->name, method_at(k)->description);
-    return 0;
 }
 
 int main(int argc, char **argv)

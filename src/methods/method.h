@@ -15,7 +15,7 @@ struct frame_stats;
 struct camera_view;
 struct renderer_inspect;
 
-/* Capability bits of struct method.caps. */
+/* Capability bits of struct method.caps (a new bit gets its name for restir list --json in method_json.c). */
 enum method_caps {
     /* estimates direct lighting only: its reference is pt with max_bounces = 1 */
     METHOD_DIRECT_ONLY = 1u << 0,
@@ -50,6 +50,13 @@ struct method {
     /* The names of its own random streams (rng_stream_id, render/tiles.h), NULL-terminated (NULL:
      * it seeds only through the toolkit's pass ids). The registry refuses two of one id. */
     const char *const *streams;
+    /* Settings that exercise its own code paths beyond its defaults, space-separated, each "key=value" or
+     * "key=value:key=value" (NULL: none). restir list --json lists them; scripts/render_hashes.sh and
+     * scripts/tsan.sh render each one, so a new method's variants are covered without editing a script. */
+    const char *variants;
+    /* What scripts pick it for, space-separated (NULL: nothing): "reference", the method whose paths every
+     * reference integrates (methods/reference.c); "demo", the method scripts/demo.sh shows against it. */
+    const char *roles;
     /* The method's own defaults on top of p (NULL: none). renderer_init applies them; reports
      * call method_params to say what ran. */
     void (*defaults)(struct render_params *p);

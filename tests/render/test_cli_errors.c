@@ -379,6 +379,15 @@ static void check_list_and_help(void)
         snprintf(want, sizeof(want), "method %s\t", method_at(k)->name);
         EXPECT(strstr(out, want) != NULL, "restir list does not list method %s", method_at(k)->name);
     }
+    /* --json: the registry for scripts (scripts/registry.py; lint.method_lists reads every field) */
+    rc = cli_run_capture(tmp, "list --json", out, err);
+    EXPECT(rc == 0 && out[0] == '{', "restir list --json exited %d: %s", rc, err);
+    for (int k = 0; k < method_count(); k++) {
+        snprintf(want, sizeof(want), "\"name\":\t\"%s\"", method_at(k)->name);
+        EXPECT(strstr(out, want) != NULL, "restir list --json does not list method %s", method_at(k)->name);
+    }
+    rc = cli_run_capture(tmp, "list --yaml", out, err);
+    EXPECT(rc == 2 && strstr(err, "--yaml") != NULL, "restir list --yaml exited %d without naming it: %s", rc, err);
 
     rc = cli_run_capture(tmp, "", out, err);
     EXPECT(rc == 2, "bare restir exited %d", rc);
