@@ -141,6 +141,7 @@ const struct method method_grestir_pt = {
                    "positivization, temporal and adaptive spatial reuse, Poisson reconstruction",
     .caps = GRAD_RESTIR_CAPS,
     .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, &recon_block, &grad_block, NULL},
+    .variants = "recon=both grad.base=shared",
     .defaults = restir_pt_area_defaults,
     .create = grestir_create,
     .destroy = grad_restir_destroy,

@@ -123,6 +123,8 @@ const struct method method_restir_di = {
     .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY | METHOD_SELECTION_STUDY,
     .viewer_order = 1,
     .blocks = (const struct param_block *const[]){RESTIR_DI_BLOCKS, NULL},
+    .variants = "spatial.reuse=spmis spatial.preset=fast mis=balance",
+    .roles = "demo",
     .create = restir_di_create,
     .destroy = restir_di_destroy,
     .render_frame = restir_di_render_frame,

@@ -160,6 +160,7 @@ const struct method method_restir_pt = {
                    "(hybrid default) and sub-pixel reservoirs",
     .caps = RESTIR_PT_CAPS | METHOD_SELECTION_STUDY,
     .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, NULL},
+    .variants = "spatial.reuse=spmis spatial.select=compat-binary shift=reconnection",
     .viewer_order = 2,
     .create = restir_pt_create,
     .destroy = restir_pt_destroy,
