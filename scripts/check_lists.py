@@ -41,6 +41,8 @@ def render_keys(bin_path):
             inside = True
         elif inside and not line.strip():
             break
+        elif inside and line.startswith("  [") and "] read by " in line:
+            continue  # a block's heading: which methods read the keys below it
         elif inside and line.startswith("  "):
             keys.append(line.split()[0])
     if not keys:
