@@ -131,8 +131,14 @@ int evaluate_parse(int argc, char **argv, struct eval_options *o, const char **d
         cli_error("evaluate: which paper? (000, 004, 002 or all; restir evaluate --help)");
         return EXIT_USAGE;
     }
-    if (o->configs[0] && strcmp(o->paper, "000") && strcmp(o->paper, "all")) {
-        cli_error("evaluate: --configs chooses among 000's configurations; %s has none to choose", o->paper);
+    const struct eval_paper *paper = eval_paper_find(o->paper);
+    if (o->configs[0] && strcmp(o->paper, "all") && !(paper && paper->configs)) {
+        char with[64] = ""; /* the papers whose recipes name configurations */
+        for (int i = 0; eval_papers[i]; i++)
+            if (eval_papers[i]->configs)
+                snprintf(with + strlen(with), sizeof with - strlen(with), "%s%s", with[0] ? ", " : "",
+                         eval_papers[i]->id);
+        cli_error("evaluate: --configs chooses among %s's configurations; %s has none to choose", with, o->paper);
         return EXIT_USAGE;
     }
     return 0;

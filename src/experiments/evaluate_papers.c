@@ -1,5 +1,5 @@
-/* evaluate_papers.c: each paper's evaluation as study / compare commands (evaluate_papers.h).
- * Must never run a command or read results. */
+/* evaluate_papers.c: each paper's evaluation as study / compare commands, planned from its recipe
+ * (evaluate_papers.h; the recipes are evaluate_recipes.c). Must never run a command or read results. */
 #include "experiments/evaluate_papers.h"
 
 #include <stdarg.h>
@@ -10,44 +10,22 @@
 #include "experiments/cli.h"
 #include "scene/scenes_builtin.h"
 
-/* The papers' settings (read from the papers; docs/EVALUATION.md lists them with their sources). */
-#define EVAL_RUNS 4         /* independent runs per configuration: the issue's minimum for a spread */
-#define EVAL_002_RUNS 8     /* measured: 002's gradient errors had standard errors of 15-40% with 4 runs */
-#define EVAL_REF_SPP 1024   /* paths per pixel of each comparison's reference */
-#define EVAL_000_WARMUP 40  /* 000 Sec. 7: 40 frames before measuring, static camera */
-#define EVAL_000_FRAMES 16  /* measured frames (000 does not say how many) */
-#define EVAL_000_RADIUS 100 /* the largest radius 000 uses: CONSERVATIVE, Table 2's R = 100 */
-#define EVAL_004_FRAMES 50  /* 004 Sec. 6: the last frame of a 50-frame animation */
-#define EVAL_004_RADIUS 30  /* 004: standard reuse within 30 px, the cell search starting at 30 px */
-#define EVAL_002_FRAMES 16  /* 002 shows single frames of camera animations; their length is not given */
-#define EVAL_002_RADIUS 30  /* area ReSTIR's spatial radius, which 002's primal and baselines use */
+#define EVAL_RUNS 4        /* an unknown paper's runs per configuration (no step is planned for one) */
+#define EVAL_FRAMES 16     /* and its measured frames */
+#define EVAL_REF_SPP 1024  /* paths per pixel of each comparison's reference */
 
-const struct eval_scene_note eval_scene_notes[] = {
-    {"000", "forest", "EMERALD SQUARE",
-     "dense outdoor foliage: 25 trees with 75,000 alpha-tested leaf cards under a sun and sky, seen from the path "
-     "into the crowns, static camera as in all of 000's results; the hard-pixel case 000 targets"},
-    {"000", "ajar", "VEACH AJAR",
-     "the same scene idea: a closed room lit through the gap of a door, mostly indirect light; static camera"},
-    {"004", "pillars", "disocclusion under fast camera motion, as in 004 Figure 1",
-     "the camera strafes 8 m in 64 frames (0.125 m per frame on average), 6 m from seven pillars and 8.5 m from "
-     "the wall behind them: at "
-     "1920x1080 the pillars move about 24 px per frame and the wall 17 px on average, so each pillar edge uncovers "
-     "a band "
-     "of about 7 px per frame (004 gives no speeds; this is faster than a walk at 60 Hz); frame 49 is 3/4 of "
-     "the way along"},
-    {"004", "forest", "dense foliage in motion",
-     "the camera walks 12 m in 120 frames along the path between the trees, looking up into the crowns: every "
-     "leaf edge disoccludes sky or leaves behind it"},
-    {"002", "ajar", "VEACH AJAR", "the paper's own scene idea: glossy floor, light through a door gap"},
-    {"002", "cornell", "an indoor scene (AACHEN TOYS, CLASSROOM, KITCHEN are not ours)",
-     "closed room with a ceiling light, diffuse and glossy blocks: smooth indirect light and sharp edges"},
-    {NULL, NULL, NULL, NULL}};
+const struct eval_paper *eval_paper_find(const char *id)
+{
+    for (int i = 0; id && eval_papers[i]; i++)
+        if (!strcmp(eval_papers[i]->id, id))
+            return eval_papers[i];
+    return NULL;
+}
 
 int eval_runs(const struct eval_options *o, const char *paper)
 {
-    if (o->runs > 0)
-        return o->runs;
-    return !strcmp(paper, "002") ? EVAL_002_RUNS : EVAL_RUNS;
+    const struct eval_paper *p = eval_paper_find(paper);
+    return o->runs > 0 ? o->runs : p ? p->runs : EVAL_RUNS;
 }
 
 int eval_ref_spp(const struct eval_options *o)
@@ -55,16 +33,16 @@ int eval_ref_spp(const struct eval_options *o)
     return o->ref_spp > 0 ? o->ref_spp : EVAL_REF_SPP;
 }
 
-int eval_warmup(const struct eval_options *o)
+int eval_warmup(const struct eval_options *o, const char *paper)
 {
-    return o->warmup > 0 ? o->warmup : EVAL_000_WARMUP;
+    const struct eval_paper *p = eval_paper_find(paper);
+    return o->warmup > 0 ? o->warmup : p ? p->warmup : 0;
 }
 
 int eval_frames(const struct eval_options *o, const char *paper)
 {
-    if (o->frames > 0)
-        return o->frames;
-    return !strcmp(paper, "000") ? EVAL_000_FRAMES : !strcmp(paper, "004") ? EVAL_004_FRAMES : EVAL_002_FRAMES;
+    const struct eval_paper *p = eval_paper_find(paper);
+    return o->frames > 0 ? o->frames : p ? p->frames : EVAL_FRAMES;
 }
 
 /* Appends one argument (printf-formatted) to step s. */
@@ -81,28 +59,30 @@ static void add(struct eval_step *s, const char *fmt, ...)
     s->argv[s->argc++] = s->text + used;
 }
 
-/* A new step of paper on scene, with the options every step shares. */
-static struct eval_step *begin(struct eval_step *steps, int *n, const char *paper, const char *kind,
-                               const char *scene, const char *base, const struct eval_options *o)
+/* A new step of paper's recipe r on scene, with the options every step shares. */
+static struct eval_step *begin(struct eval_step *steps, int *n, const struct eval_paper *paper,
+                               const struct eval_step_recipe *r, const char *scene, const struct eval_options *o)
 {
     RESTIR_CHECK(*n < EVAL_MAX_STEPS);
     struct eval_step *s = &steps[(*n)++];
     memset(s, 0, sizeof *s);
-    snprintf(s->paper, sizeof s->paper, "%s", paper);
-    snprintf(s->kind, sizeof s->kind, "%s", kind);
+    s->recipe = paper;
+    s->step_recipe = r;
+    snprintf(s->paper, sizeof s->paper, "%s", paper->id);
+    snprintf(s->kind, sizeof s->kind, "%s", r->kind);
     snprintf(s->scene, sizeof s->scene, "%s", scene);
-    snprintf(s->base, sizeof s->base, "%s", strcmp(base, "ablation") ? base : "restir-pt");
-    snprintf(s->name, sizeof s->name, "%s-%s%s%s", paper, scene, *base ? "-" : "", base);
+    snprintf(s->base, sizeof s->base, "%s", r->base);
+    snprintf(s->name, sizeof s->name, "%s-%s%s%s", paper->id, scene, *r->folder ? "-" : "", r->folder);
     add(s, "--scene");
     add(s, "%s", scene);
     add(s, "--res");
     add(s, "%dx%d", o->width, o->height);
     add(s, "--runs");
-    add(s, "%d", eval_runs(o, paper));
+    add(s, "%d", eval_runs(o, paper->id));
     add(s, "--ref-spp");
     add(s, "%d", eval_ref_spp(o));
     add(s, "--frames");
-    add(s, "%d", eval_frames(o, paper));
+    add(s, "%d", eval_frames(o, paper->id));
     if (o->threads > 0) {
         add(s, "--threads");
         add(s, "%d", o->threads);
@@ -111,37 +91,6 @@ static struct eval_step *begin(struct eval_step *steps, int *n, const char *pape
         add(s, "--report");
     return s;
 }
-
-static void set(struct eval_step *s, const char *kv)
-{
-    add(s, "--set");
-    add(s, "%s", kv);
-}
-
-const char *const eval_000_configs[] = {"bitterli",
-                                        "fast",
-                                        "balanced",
-                                        "conservative", /* Table 1 */
-                                        "compat-r30-k8",
-                                        "compat-r30-k128",
-                                        "compat-r50-k8",
-                                        "compat-r50-k128", /* Table 2's R x K */
-                                        "compat-r100-k8",
-                                        "compat-r100-k128",
-                                        "bitterli-r10",
-                                        "bitterli-r50",
-                                        "bitterli-r100",
-                                        "compat-r10-k32", /* Figure 3's radii */
-                                        "spatial-off",
-                                        "bitterli-history-temporal",
-                                        "fast-history-temporal", /* does spatial reuse itself help? */
-                                        NULL};
-
-const char *const eval_004_suffixes[EVAL_004_ROWS] = {
-    "", ":spatial.reuse=spmis", ":spatial.reuse=spmis:spmis.search_score=compat",
-    /* the rows that decide 004's claims here: the own cell only (does the search cost SPMIS its overall loss?),
-     * and the search only where the own cell's confidence is low */
-    ":spatial.reuse=spmis:spmis.search_steps=0", ":spatial.reuse=spmis:spmis.search=low-confidence"};
 
 /* Whether name is an item of the comma-separated list. */
 static int in_list(const char *list, const char *name)
@@ -157,148 +106,107 @@ static int in_list(const char *list, const char *name)
     return 0;
 }
 
-/* Checks --configs: every name one of 000's, and Bitterli's R = 30 (every claim's baseline) among them. */
-static int check_configs_000(const struct eval_options *o, char *msg)
+/* Checks --configs: every name one of the paper's configurations, and its baseline among them. */
+static int check_configs(const struct eval_options *o, const struct eval_paper *p, char *msg)
 {
-    if (!o->configs[0])
+    if (!o->configs[0] || !p->configs)
         return 0;
     char list[sizeof o->configs];
     snprintf(list, sizeof list, "%s", o->configs);
     for (char *save = NULL, *t = strtok_r(list, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
         int known = 0;
-        for (int i = 0; eval_000_configs[i] && !known; i++)
-            known = !strcmp(eval_000_configs[i], t);
+        for (int i = 0; p->configs[i] && !known; i++)
+            known = !strcmp(p->configs[i], t);
         if (!known) {
             snprintf(msg, RESTIR_MSG_LEN,
-                     "--configs: '%.40s' is not one of 000's configurations (restir evaluate --help)", t);
+                     "--configs: '%.40s' is not one of %s's configurations (restir evaluate --help)", t, p->id);
             return -1;
         }
     }
-    if (!in_list(o->configs, "bitterli")) {
-        snprintf(msg, RESTIR_MSG_LEN,
-                 "--configs: 'bitterli' (Bitterli's R = 30) is missing: every 000 claim is "
-                 "measured against it");
+    if (!in_list(o->configs, p->baseline)) {
+        snprintf(msg, RESTIR_MSG_LEN, "--configs: '%s' %s", p->baseline, p->baseline_why);
         return -1;
     }
     return 0;
 }
 
-/* 000 Sec. 7: the error-correlation study of ReSTIR PT with M = 1 neighbor, Bitterli's R = 30
- * against FAST / BALANCED / CONSERVATIVE (Table 1); on the first scene also the R x K grid of
- * Table 2 (K = 32 is the presets' row), Figure 3's Pareto curves (Bitterli at R 10, 30, 50,
- * 100; ours at K 32 and R 10 and the presets' 30, 50, 100) and the rows that decide whether
- * spatial reuse itself helps there (no spatial reuse; Bitterli and FAST with the temporal output
- * as history). --configs keeps a subset. */
-static void steps_000(const struct eval_options *o, const char *scene, int first, struct eval_step *steps, int *n)
+/* Step r of paper p on scene (first: the first of the evaluation's scenes): the options every step
+ * shares, then what r gives, in the order struct eval_step_recipe states. */
+static void plan_step(const struct eval_options *o, const struct eval_paper *p, const struct eval_step_recipe *r,
+                      const char *scene, int first, struct eval_step *steps, int *n)
 {
-    struct eval_step *s = begin(steps, n, "000", "study", scene, "", o);
-    s->table2 = first;
-    add(s, "--method");
-    add(s, "restir-pt");
-    add(s, "--warmup");
-    add(s, "%d", eval_warmup(o));
-    char list[512] = "";
-    size_t used = 0;
-    for (int i = 0; eval_000_configs[i] && (first || i < EVAL_000_TABLE1_CONFIGS); i++)
-        if (!o->configs[0] || in_list(o->configs, eval_000_configs[i]))
-            used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", used ? "," : "", eval_000_configs[i]);
-    add(s, "--configs");
-    add(s, "%s", list);
-    /* 000 Sec. 7's hard pixels: every neighbor within 30 px counts, the sky's included (study's
-     * default leaves sky neighbors out) */
-    add(s, "--hard-neighbors");
-    add(s, "all");
-    set(s, "spatial.neighbors=1");
-    set(s, "temporal.reuse=splat"); /* 000 Sec. 7: Area ReSTIR's reservoirs with splatting */
-}
-
-/* 004 Sec. 6: the last frame of a camera animation; standard reuse (3 neighbors in 30 px, pairwise
- * MIS) against SPMIS (8x8 cells, N = 3, N_c = 1, the 12-tap search from 30 px), SPMIS with our
- * compatibility-scored cell search, with the own cell only, and with the low-confidence search
- * (eval_004_suffixes). ReSTIR PT: 1 initial candidate, 8 bounces, cap 20. The
- * ablation step varies SPMIS alone as Figures 2, 6 and 7 do. */
-static void steps_004(const struct eval_options *o, const char *scene, const char *base, int ablation,
-                      struct eval_step *steps, int *n)
-{
-    struct eval_step *s = begin(steps, n, "004", "compare", scene, ablation ? "ablation" : base, o);
-    s->ablation = ablation;
-    add(s, "--camera");
-    add(s, "path");
-    add(s, "--methods");
-    /* Figure 2 (N / M confidence scaling), Figure 7 (N of M; its N = M, "standard deterministic reuse
-     * over the whole tile", needs N_c = M too, or the canonical weight stays stochastic), Figure 6 (N_c) */
-    if (ablation)
-        add(s,
-            "%s:spatial.reuse=spmis,%s:spatial.reuse=spmis:spmis.confidence_adjust=off,"
-            "%s:spatial.reuse=spmis:spmis.candidates=1,"
-            "%s:spatial.reuse=spmis:spmis.candidates=M:spmis.canonical_candidates=M,"
-            "%s:spatial.reuse=spmis:spmis.canonical_candidates=4,%s:spatial.reuse=spmis:spmis.canonical_candidates="
-            "M",
-            base, base, base, base, base, base);
-    else {
+    struct eval_step *s = begin(steps, n, p, r, scene, o);
+    if (!p->warmup) {
+        add(s, "--camera");
+        add(s, "path");
+    }
+    if (r->method) {
+        add(s, "--method");
+        add(s, "%s", r->method);
+    }
+    if (r->configs) {
+        s->all_configs = first;
+        add(s, "--warmup");
+        add(s, "%d", eval_warmup(o, p->id));
         char list[512] = "";
         size_t used = 0;
-        for (int k = 0; k < EVAL_004_ROWS; k++)
-            used += (size_t)snprintf(list + used, sizeof list - used, "%s%s%s", k ? "," : "", base,
-                                     eval_004_suffixes[k]);
+        for (int i = 0; p->configs[i] && (first || i < p->configs_every_scene); i++)
+            if (!o->configs[0] || in_list(o->configs, p->configs[i]))
+                used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", used ? "," : "", p->configs[i]);
+        add(s, "--configs");
         add(s, "%s", list);
     }
-    set(s, "spatial.neighbors=3");
-    set(s, "spatial.radius=30");
-    set(s, "mis=pairwise");
-    set(s, "confidence_cap=20");
-    if (!strcmp(base, "restir-pt")) {
-        set(s, "pt.candidates=1");
-        set(s, "pt.max_bounces=8");
+    if (r->nvariants > 0) {
+        char list[1024] = "";
+        size_t used = 0;
+        for (int k = 0; k < r->nvariants; k++) {
+            used += (size_t)snprintf(list + used, sizeof list - used, "%s%s%s", k ? "," : "", r->base,
+                                     r->variants[k].spec);
+            RESTIR_CHECK(used < sizeof list);
+        }
+        add(s, "--methods");
+        add(s, "%s", list);
     }
-}
-
-/* 002 Sec. 5: equal time at the paper's own cost ratios (30 ms: ours x 1, Gradient after ReSTIR x 2,
- * Area ReSTIR x 4, G-PT at 3 spp), L2 and L1 reconstructions, a moving camera. */
-static void steps_002(const struct eval_options *o, const char *scene, struct eval_step *steps, int *n)
-{
-    struct eval_step *s = begin(steps, n, "002", "compare", scene, "", o);
-    add(s, "--camera");
-    add(s, "path");
-    add(s, "--methods");
-    /* the L2 rows first: the report's crops are where the first two (ours and B.1) differ most; B.1
-     * once (equal samples, not the paper's equal time) last, so that the paper's rows stay in place
-     * (measured: per sample ours is 1.1-2x better, at equal time against two averaged B.1 instances) */
-    add(s, "grestir-pt,grad-after-restir:instances=2,area-restir:instances=4,gpt:spp=3,grestir-pt:recon=l1,"
-           "grad-after-restir:instances=2:recon=l1,gpt:spp=3:recon=l1,grad-after-restir");
-}
-
-static const char *default_scenes(const char *paper)
-{
-    return !strcmp(paper, "000") ? "forest,ajar" : !strcmp(paper, "004") ? "pillars,forest" : "ajar,cornell";
+    for (int i = 0; r->extra && r->extra[i]; i++)
+        add(s, "%s", r->extra[i]);
+    for (int i = 0; r->settings && r->settings[i]; i++) {
+        add(s, "--set");
+        add(s, "%s", r->settings[i]);
+    }
 }
 
 /* Checks that the image holds the disk of the paper's largest pixel radius. */
-static int check_res(const struct eval_options *o, const char *paper, int radius, const char *what, char *msg)
+static int check_res(const struct eval_options *o, const struct eval_paper *p, char *msg)
 {
-    const int need = 2 * radius + 1;
+    const int need = 2 * p->radius + 1;
     if (o->width >= need && o->height >= need)
         return 0;
     snprintf(msg, RESTIR_MSG_LEN,
              "--res %dx%d is below what %s's radii allow: %s reaches %d pixels, which needs at least %dx%d "
              "(the paper evaluates at %dx%d)",
-             o->width, o->height, paper, what, radius, need, need, EVAL_PAPER_WIDTH, EVAL_PAPER_HEIGHT);
+             o->width, o->height, p->id, p->radius_what, p->radius, need, need, EVAL_PAPER_WIDTH, EVAL_PAPER_HEIGHT);
     return -1;
 }
 
-static int paper_steps(const struct eval_options *o, const char *paper, struct eval_step *steps, int *n, char *msg)
+/* The most steps any paper plans per scene: the room --scenes must leave for each scene. */
+static int most_steps_per_scene(void)
 {
-    int rc = !strcmp(paper, "000") ? check_res(o, paper, EVAL_000_RADIUS, "CONSERVATIVE (R = 100)", msg)
-             : !strcmp(paper, "004")
-                 ? check_res(o, paper, EVAL_004_RADIUS, "the 30-pixel reuse and cell search", msg)
-                 : check_res(o, paper, EVAL_002_RADIUS, "area ReSTIR's 30-pixel reuse", msg);
-    if (rc != 0 || (!strcmp(paper, "000") && check_configs_000(o, msg) != 0))
+    int most = 0;
+    for (int i = 0; eval_papers[i]; i++)
+        most = eval_papers[i]->nsteps > most ? eval_papers[i]->nsteps : most;
+    return most;
+}
+
+static int paper_steps(const struct eval_options *o, const struct eval_paper *p, struct eval_step *steps, int *n,
+                       char *msg)
+{
+    if (check_res(o, p, msg) != 0 || check_configs(o, p, msg) != 0)
         return -1;
     char list[256], first_scene[32] = "";
-    snprintf(list, sizeof list, "%s", o->scenes[0] ? o->scenes : default_scenes(paper));
+    snprintf(list, sizeof list, "%s", o->scenes[0] ? o->scenes : p->default_scenes);
     int first = 1;
     for (char *save = NULL, *t = strtok_r(list, ",", &save); t; t = strtok_r(NULL, ",", &save), first = 0) {
-        if (*n + 3 > EVAL_MAX_STEPS) {
+        if (*n + most_steps_per_scene() > EVAL_MAX_STEPS) {
             snprintf(msg, RESTIR_MSG_LEN, "--scenes: more than %d steps in all", EVAL_MAX_STEPS);
             return -1;
         }
@@ -311,28 +219,25 @@ static int paper_steps(const struct eval_options *o, const char *paper, struct e
         }
         if (first)
             snprintf(first_scene, sizeof first_scene, "%s", t);
-        if (!strcmp(paper, "000"))
-            steps_000(o, t, first, steps, n);
-        else if (!strcmp(paper, "004")) {
-            steps_004(o, t, "restir-pt", 0, steps, n);
-            steps_004(o, t, "restir-di", 0, steps, n);
-        } else
-            steps_002(o, t, steps, n);
+        for (int k = 0; k < p->nsteps; k++)
+            if (!p->steps[k].first_scene_only)
+                plan_step(o, p, &p->steps[k], t, first, steps, n);
     }
-    if (!strcmp(paper, "004")) /* the ablations on the first scene, after the main table's steps */
-        steps_004(o, first_scene, "restir-pt", 1, steps, n);
+    for (int k = 0; k < p->nsteps; k++) /* e.g. 004's ablations, after the main table's steps */
+        if (p->steps[k].first_scene_only)
+            plan_step(o, p, &p->steps[k], first_scene, 1, steps, n);
     return 0;
 }
 
 int eval_steps(const struct eval_options *o, struct eval_step *steps, int *n, char *msg)
 {
     *n = 0;
-    static const char *const papers[] = {"000", "004", "002"};
+    const int all = !strcmp(o->paper, "all");
     int any = 0;
-    for (int i = 0; i < 3; i++)
-        if (!strcmp(o->paper, papers[i]) || !strcmp(o->paper, "all")) {
+    for (int i = 0; eval_papers[i]; i++)
+        if (all || !strcmp(o->paper, eval_papers[i]->id)) {
             any = 1;
-            if (paper_steps(o, papers[i], steps, n, msg) != 0)
+            if (paper_steps(o, eval_papers[i], steps, n, msg) != 0)
                 return -1;
         }
     if (!any) {

@@ -21,6 +21,7 @@
 #include "io/atomic_file.h"
 #include "io/html_report.h"
 #include "io/report.h"
+#include "methods/method.h"
 
 #define PATH_LEN 4400
 
@@ -36,10 +37,10 @@ static void fmt_pm(double v, double sem, char *out, size_t len)
 
 /* The scene of ours that stands in for one of the paper's, as "ours (for
  * PAPER'S)". */
-static void scene_label(const char *paper, const char *scene, char *out, size_t len)
+static void scene_label(const struct eval_paper *paper, const char *scene, char *out, size_t len)
 {
-    for (const struct eval_scene_note *n = eval_scene_notes; n->paper; n++)
-        if (!strcmp(n->paper, paper) && !strcmp(n->scene, scene)) {
+    for (const struct eval_scene_note *n = paper->scenes; n->scene; n++)
+        if (!strcmp(n->scene, scene)) {
             snprintf(out, len, "%s (for %s)", scene, n->stands_for);
             return;
         }
@@ -48,25 +49,22 @@ static void scene_label(const char *paper, const char *scene, char *out, size_t 
 
 /* What every line of a paper's claims shares: the setup's departures from the
  * paper's. */
-static void differences(const struct eval_options *o, const char *paper, const char *scene, char *out, size_t len)
+static void differences(const struct eval_options *o, const struct eval_paper *paper, const char *scene, char *out,
+                        size_t len)
 {
     char res[64] = "";
     if (o->width != EVAL_PAPER_WIDTH || o->height != EVAL_PAPER_HEIGHT)
         snprintf(res, sizeof res, "%dx%d, not 1920x1080; ", o->width, o->height);
     const char *scene_note = "scene: ours";
-    for (const struct eval_scene_note *n = eval_scene_notes; n->paper; n++)
-        if (!strcmp(n->paper, paper) && !strcmp(n->scene, scene))
+    for (const struct eval_scene_note *n = paper->scenes; n->scene; n++)
+        if (!strcmp(n->scene, scene))
             scene_note = "scene: ours, not the paper's";
-    const char *method = !strcmp(paper, "000")   ? "base: our ReSTIR PT (hybrid shift, sub-pixel "
-                                                   "reservoirs, splatting)"
-                         : !strcmp(paper, "004") ? "disocclusion: history rejected in the last 4 frames (the paper "
-                                                   "does not define it)"
-                                                 : "equal time by the paper's GPU ratios; our times are in the table";
-    snprintf(out, len, "%s%s; %s", res, scene_note, method);
+    snprintf(out, len, "%s%s; %s", res, scene_note, paper->setup_note);
 }
 
 /* What a step's table and claims say about it: the heading (the scene and what
- * it stands for), the claims' "where" (the scene, and the base method for 004)
+ * it stands for), the claims' "where" (the scene, and the base method where the
+ * paper's recipe says so: 004)
  * and the setup's departures. */
 struct step_text {
     char heading[96], where[96], diff[300];
@@ -74,12 +72,12 @@ struct step_text {
 
 static void step_text(const struct eval_options *o, const struct eval_step *s, struct step_text *x)
 {
-    scene_label(s->paper, s->scene, x->heading, sizeof x->heading);
-    if (!strcmp(s->paper, "004"))
+    scene_label(s->recipe, s->scene, x->heading, sizeof x->heading);
+    if (s->recipe->where_names_base)
         snprintf(x->where, sizeof x->where, "%s, %s", s->scene, s->base);
     else
         snprintf(x->where, sizeof x->where, "%s", s->scene);
-    differences(o, s->paper, s->scene, x->diff, sizeof x->diff);
+    differences(o, s->recipe, s->scene, x->diff, sizeof x->diff);
 }
 
 /* DIR/STEP/NAME.csv into t. */
@@ -177,9 +175,10 @@ static void pareto_000(struct md_text *md, struct claims *cl, const struct eval_
     }
 }
 
-static void paper_000(struct md_text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
-                      const struct step_tables *d)
+int eval_table_000(struct md_text *md, struct claims *cl, const struct eval_options *o, const char *dir,
+                   const struct eval_step *s, const struct step_tables *d)
 {
+    (void)dir;
     const struct csv_table *t = d->t;
     static const char *const presets[] = {"fast", "balanced", "conservative"};
     char a[64], b[64], c[64], sp[64], e[64];
@@ -196,7 +195,7 @@ static void paper_000(struct md_text *md, struct claims *cl, const struct eval_o
     const double base_ms = csv_table_num(t, bit, "ms_frame");
     for (int r = 0; r < t->nrow; r++) {
         const double ms = csv_table_num(t, r, "ms_frame");
-        cl->render_ms += ms * (eval_warmup(o) + eval_frames(o, "000")) * eval_runs(o, "000");
+        cl->render_ms += ms * (eval_warmup(o, s->paper) + eval_frames(o, s->paper)) * eval_runs(o, s->paper);
         md_put(md, "| %s | %g | %g | %.1f | %.1f | %.1f | %+.1f%% |\n", t->cell[(size_t)(r + 1) * t->ncol],
                csv_table_num(t, r, "radius"), csv_table_num(t, r, "K"), csv_table_num(t, r, "ms_select"),
                csv_table_num(t, r, "ms_spatial"), ms, 100.0 * (ms / base_ms - 1.0));
@@ -256,8 +255,8 @@ static void paper_000(struct md_text *md, struct claims *cl, const struct eval_o
         claim_found(cl, "000", what, where, eval_change(d, r, bit, "ms_frame"), cost_figure[k],
                     COSTS_AT_MOST(cost_max[k]), r >= 0 ? why : "", diff);
     }
-    if (!s->table2)
-        return;
+    if (!s->all_configs)
+        return 0;
     /* 000 Sec. 7.3 and Table 2 (EMERALD SQUARE): a larger R lowers spatial
      * covariance (K 32: 6.0 at R 30, 1.5 at R 100, x 1e-3); a larger K raises it
      * (R 30: 4.6 at K 8, 6.6 at K 128) and lowers SMAPE (29.9 at K 8, 29.3 at K
@@ -271,6 +270,7 @@ static void paper_000(struct md_text *md, struct claims *cl, const struct eval_o
     claim(cl, "000", "Table 2: SMAPE, K 128 vs K 8 (R 30)", where, eval_change(d, k128, k8, "smape_all"),
           "-2% (29.9 -> 29.3)", REDUCTION(0.0), diff);
     pareto_000(md, cl, s, d, where, diff);
+    return 0;
 }
 
 /* 004: the main table (MAPE overall and over disoccluded pixels) and its
@@ -319,96 +319,89 @@ static int table2_004(struct md_text *md, const char *dir, const struct eval_ste
     return 0;
 }
 
-static int paper_004(struct md_text *md, struct claims *cl, const struct eval_options *o, const char *dir,
-                     const struct eval_step *s, const struct step_tables *d)
+int eval_table_004(struct md_text *md, struct claims *cl, const struct eval_options *o, const char *dir,
+                   const struct eval_step *s, const struct step_tables *d)
 {
     const struct csv_table *t = d->t;
-    char a[64], b[64], c[64], fl[64], label[EVAL_004_ROWS][160];
+    const struct eval_step_recipe *rc = s->step_recipe;
+    const int rows = rc->nvariants;
+    RESTIR_CHECK(rows >= 4 && rows <= EVAL_MAX_VARIANTS); /* the claims read rows 0 (standard), 1 and 3 */
+    char a[64], b[64], c[64], fl[64], label[EVAL_MAX_VARIANTS][160];
+    const char *names[EVAL_MAX_VARIANTS];
     struct step_text x;
     step_text(o, s, &x);
     const char *scene = x.heading, *where = x.where, *diff = x.diff;
-    for (int k = 0; k < EVAL_004_ROWS; k++)
-        snprintf(label[k], sizeof label[k], "%s%s", s->base, eval_004_suffixes[k]);
-    static const char *const names[EVAL_004_ROWS] = {"standard (3 neighbors, 30 px)", "SPMIS (004)",
-                                                     "SPMIS, compat search (ours)", "SPMIS, own cell only",
-                                                     "SPMIS, low-confidence search (ours)"};
+    for (int k = 0; k < rows; k++) {
+        snprintf(label[k], sizeof label[k], "%s%s", s->base, rc->variants[k].spec);
+        names[k] = rc->variants[k].name;
+    }
     md_put(md,
            "\n### %s, %s\n\nLast frame (%d) of the camera path, means over %d "
            "runs +- standard errors:\n\n"
            "| reuse | ms/frame | MAPE | MAPE disoccluded | disoccluded share | "
            "relMSE | FLIP |\n|---|---|---|---|---|---|---|\n",
-           scene, s->base, eval_frames(o, "004") - 1, eval_runs(o, "004"));
-    int row[EVAL_004_ROWS];
-    for (int k = 0; k < EVAL_004_ROWS; k++) {
+           scene, s->base, eval_frames(o, s->paper) - 1, eval_runs(o, s->paper));
+    int row[EVAL_MAX_VARIANTS];
+    for (int k = 0; k < rows; k++) {
         const int r = row[k] = csv_table_find(t, label[k]);
         fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), a, sizeof a);
         fmt_pm(csv_table_num(t, r, "mape_disoccluded"), csv_table_num(t, r, "mape_disoccluded_sem"), b, sizeof b);
         fmt_pm(relmse_shown(t, r), csv_table_num(t, r, "relmse_sem"), c, sizeof c);
-        cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "004") * eval_runs(o, "004");
+        cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, s->paper) * eval_runs(o, s->paper);
         fmt_pm(csv_table_num(t, r, "flip"), csv_table_num(t, r, "flip_sem"), fl, sizeof fl);
         md_put(md, "| %s | %.1f | %s | %s | %.3f | %s | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b,
                csv_table_num(t, r, "disoccluded_share"), c, fl);
     }
     static const char *const share_cols[2] = {"mape", "relmse"}, *const share_names[2] = {"MAPE", "relMSE"};
     reference_share(md, t, row[0], share_cols, share_names, 2);
-    const int pt = !strcmp(s->base, "restir-pt");
+    const int own = rc->paper_ran_base; /* the paper's claims as it states them, or carried over to our base */
     static const char *const col[2][2] = {{"mape", "mape_sem"}, {"mape_disoccluded", "mape_disoccluded_sem"}};
     char found[2][1000];
     for (int m = 0; m < 2; m++)
         eval_deciding_004(d, row[0], row[1], row[3], col[m][0], found[m], sizeof found[m]);
-    static const char *const what[EVAL_004_ROWS - 1][2] = {
-        {"SPMIS: MAPE overall vs standard", "SPMIS: MAPE disoccluded vs standard"},
-        {"compat search (ours): MAPE overall vs standard", "compat search (ours): MAPE disoccluded vs standard"},
-        {"SPMIS, own cell only: MAPE overall vs standard", "SPMIS, own cell only: MAPE disoccluded vs standard"},
-        {"low-confidence search (ours): MAPE overall vs standard",
-         "low-confidence search (ours): MAPE disoccluded vs standard"}};
-    for (int v = 0; v < EVAL_004_ROWS - 1; v++)
-        for (int m = 0; m < 2; m++)
-            claim_found(
-                cl, "004", what[v][m], where, eval_change(d, row[v + 1], row[0], col[m][0]),
-                v    ? "none (not in the paper)"
-                : pt ? (m ? "lower, \"especially in disocclusions\"" : "lower overall")
-                     : (m ? "lower in disocclusions (the paper: ReSTIR PT only)" : "lower (the paper: ReSTIR PT only)"),
-                v ? NO_CLAIM : REDUCTION(0.0), v ? "" : found[m], diff);
-    return table2_004(md, dir, s, label, names, EVAL_004_ROWS) == 0 ? 0 : EXIT_RUNTIME;
+    /* each variant against standard reuse; the paper claims SPMIS's (the first), the others are ours */
+    for (int v = 0; v < rows - 1; v++)
+        for (int m = 0; m < 2; m++) {
+            char what[160];
+            snprintf(what, sizeof what, "%s: MAPE %s vs standard", rc->variants[v + 1].claim,
+                     m ? "disoccluded" : "overall");
+            const char *figure = v     ? "none (not in the paper)"
+                                 : own ? (m ? "lower, \"especially in disocclusions\"" : "lower overall")
+                                 : m   ? "lower in disocclusions (the paper: ReSTIR PT only)"
+                                       : "lower (the paper: ReSTIR PT only)";
+            claim_found(cl, s->paper, what, where, eval_change(d, row[v + 1], row[0], col[m][0]), figure,
+                        v ? NO_CLAIM : REDUCTION(0.0), v ? "" : found[m], diff);
+        }
+    return table2_004(md, dir, s, label, names, rows) == 0 ? 0 : EXIT_RUNTIME;
 }
 
 /* 004 Figures 2, 6 and 7: SPMIS's own variants on one scene, and the claims the
  * figures make. */
-static void paper_004_ablation(struct md_text *md, struct claims *cl, const struct eval_options *o,
-                               const struct eval_step *s, const struct step_tables *d)
+int eval_table_004_ablation(struct md_text *md, struct claims *cl, const struct eval_options *o, const char *dir,
+                            const struct eval_step *s, const struct step_tables *d)
 {
+    (void)dir;
     const struct csv_table *t = d->t;
+    const struct eval_step_recipe *rc = s->step_recipe;
+    RESTIR_CHECK(rc->nvariants == 6); /* the claims read the rows by their place in the recipe */
     char a[64], b[64], label[6][200];
     struct step_text x;
     step_text(o, s, &x);
     const char *scene = x.heading, *where = x.where, *diff = x.diff;
-    static const char *const suffix[6] = {"",
-                                          ":spmis.confidence_adjust=off",
-                                          ":spmis.candidates=1",
-                                          ":spmis.candidates=M:spmis.canonical_candidates=M",
-                                          ":spmis.canonical_candidates=4",
-                                          ":spmis.canonical_candidates=M"};
-    static const char *const names[6] = {"SPMIS: N = 3, N_c = 1, confidences x N / M",
-                                         "Fig. 2: without the N / M confidence scaling",
-                                         "Fig. 7: N = 1",
-                                         "Fig. 7: N = N_c = M (deterministic pairwise MIS over the cell)",
-                                         "Fig. 6: N_c = 4",
-                                         "Fig. 6: N_c = M (exact Eq. 11b)"};
     int row[6];
     md_put(md,
            "\n### %s, SPMIS variants (004 Figures 2, 6, 7), %s\n\nLast frame "
            "(%d) of the camera path, means over %d "
            "runs +- standard errors:\n\n| variant | ms/frame | MAPE | MAPE "
            "disoccluded |\n|---|---|---|---|\n",
-           scene, s->base, eval_frames(o, "004") - 1, eval_runs(o, "004"));
+           scene, s->base, eval_frames(o, s->paper) - 1, eval_runs(o, s->paper));
     for (int k = 0; k < 6; k++) {
-        snprintf(label[k], sizeof label[k], "%s:spatial.reuse=spmis%s", s->base, suffix[k]);
+        snprintf(label[k], sizeof label[k], "%s%s", s->base, rc->variants[k].spec);
         const int r = row[k] = csv_table_find(t, label[k]);
         fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), a, sizeof a);
         fmt_pm(csv_table_num(t, r, "mape_disoccluded"), csv_table_num(t, r, "mape_disoccluded_sem"), b, sizeof b);
-        cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "004") * eval_runs(o, "004");
-        md_put(md, "| %s | %.1f | %s | %s |\n", names[k], csv_table_num(t, r, "ms_per_frame"), a, b);
+        cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, s->paper) * eval_runs(o, s->paper);
+        md_put(md, "| %s | %.1f | %s | %s |\n", rc->variants[k].name, csv_table_num(t, r, "ms_per_frame"), a, b);
     }
 #define MAPE_CHANGE(x, y) eval_change(d, row[x], row[y], "mape")
     claim(cl, "004", "Fig. 2: the N / M scaling vs none: MAPE", where, MAPE_CHANGE(0, 1), "lower (images only)",
@@ -420,13 +413,29 @@ static void paper_004_ablation(struct md_text *md, struct claims *cl, const stru
     claim(cl, "004", "Fig. 6: N_c = M vs N_c = 1: MAPE", where, MAPE_CHANGE(5, 0), "\"only slightly\" different",
           SMALL_CHANGE(5.0), diff);
 #undef MAPE_CHANGE
+    return 0;
 }
 
-/* 002: the equal-time table (L2 and L1) and its claims. */
-static void paper_002(struct md_text *md, struct claims *cl, const struct eval_options *o, const struct eval_step *s,
-                      const struct step_tables *d)
+/* The method of a method spec ("gpt:spp=3": gpt), or NULL when it names none registered. */
+static const struct method *spec_method(const char *spec)
 {
+    char name[64];
+    snprintf(name, sizeof name, "%.*s", (int)strcspn(spec, ":"), spec);
+    return method_find(name);
+}
+
+/* The rows of 002's recipe (evaluate_recipes.c) by their place: ours and its three rivals with the L2
+ * and the L1 reconstruction, and Gradient after ReSTIR once. */
+static const int ours_at[2] = {0, 4}, rivals_at[2][3] = {{1, 2, 3}, {5, 2, 6}}, once_at = 7;
+
+/* 002: the equal-time table (L2 and L1) and its claims. */
+int eval_table_002(struct md_text *md, struct claims *cl, const struct eval_options *o, const char *dir,
+                   const struct eval_step *s, const struct step_tables *d)
+{
+    (void)dir;
     const struct csv_table *t = d->t;
+    const struct eval_variant *v = s->step_recipe->variants;
+    RESTIR_CHECK(s->step_recipe->nvariants == 8);
     char a[64], b[64], fl[64], g[3][64];
     struct step_text x;
     step_text(o, s, &x);
@@ -448,42 +457,42 @@ static void paper_002(struct md_text *md, struct claims *cl, const struct eval_o
            "relMSE | MAPE | FLIP | gradient relMSE | "
            "gradient relMSE trim 1%% | gradient MAPE |\n"
            "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
-           heading, eval_frames(o, "002") - 1, eval_runs(o, "002"));
+           heading, eval_frames(o, s->paper) - 1, eval_runs(o, s->paper));
     static const char *const grad_col[3][2] = {{"gradient_relmse", "gradient_relmse_sem"},
                                                {"gradient_relmse_trim1", "gradient_relmse_trim1_sem"},
                                                {"gradient_mape", "gradient_mape_sem"}};
-    const int ours_row = csv_table_find(t, "grestir-pt");
+    const int ours_row = csv_table_find(t, v[ours_at[0]].spec);
     for (int r = 0; r < t->nrow; r++) {
         fmt_pm(relmse_shown(t, r), csv_table_num(t, r, "relmse_sem"), a, sizeof a);
         fmt_pm(csv_table_num(t, r, "mape"), csv_table_num(t, r, "mape_sem"), b, sizeof b);
         for (int k = 0; k < 3; k++)
             fmt_pm(csv_table_num(t, r, grad_col[k][0]), csv_table_num(t, r, grad_col[k][1]), g[k], sizeof g[k]);
-        cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, "002") * eval_runs(o, "002");
+        cl->render_ms += csv_table_num(t, r, "ms_per_frame") * eval_frames(o, s->paper) * eval_runs(o, s->paper);
         fmt_pm(csv_table_num(t, r, "flip"), csv_table_num(t, r, "flip_sem"), fl, sizeof fl);
         /* the paper's ratios give every row ours' time on its GPU (time / ours' = 1
-         * there); here the ratio is measured, and the instances (or G-PT's paths)
-         * that would fit ours' time follow */
+         * there); here the ratio is measured, and the instances (or, for a method
+         * budgeted by paths per pixel such as G-PT, the paths) that would fit ours'
+         * time follow */
         const double ms = csv_table_num(t, r, "ms_per_frame"), ours_ms = csv_table_num(t, ours_row, "ms_per_frame"),
                      inst = csv_table_num(t, r, "instances"), spp = csv_table_num(t, r, "spp");
-        const double per = strstr(t->cell[(size_t)(r + 1) * t->ncol], "gpt") ? ms / spp : ms / inst;
+        const struct method *m = spec_method(t->cell[(size_t)(r + 1) * t->ncol]);
+        const double per = m && method_has(m, METHOD_BUDGET_BY_SPP) ? ms / spp : ms / inst;
         md_put(md, "| %s | %g | %g | %.1f | %.2f | %.2f | %s | %s | %s | %s | %s | %s |\n",
                t->cell[(size_t)(r + 1) * t->ncol], inst, spp, ms, ms / ours_ms, ours_ms / per, a, b, fl, g[0], g[1],
                g[2]);
     }
     static const char *const share_cols[2] = {"mape", "relmse"}, *const share_names[2] = {"MAPE", "relMSE"};
-    reference_share(md, t, csv_table_find(t, "grestir-pt"), share_cols, share_names, 2);
-    static const char *const ours[2] = {"grestir-pt", "grestir-pt:recon=l1"};
-    static const char *const rivals[2][3] = {
-        {"grad-after-restir:instances=2", "area-restir:instances=4", "gpt:spp=3"},
-        {"grad-after-restir:instances=2:recon=l1", "area-restir:instances=4", "gpt:spp=3:recon=l1"}};
-    static const char *const names[3] = {"Gradient after ReSTIR x 2", "Area ReSTIR x 4", "G-PT 3 spp"};
+    reference_share(md, t, ours_row, share_cols, share_names, 2);
     for (int l = 0; l < 2; l++) {
-        const int me = csv_table_find(t, ours[l]);
+        const int me = csv_table_find(t, v[ours_at[l]].spec);
         for (int k = 0; k < 3; k++) {
-            if (l == 1 && k == 1) /* Area ReSTIR has no gradients: Figure 8 shows it
-                                     in the L2 row only */
+            const char *rival = v[rivals_at[l][k]].spec, *name = v[rivals_at[0][k]].claim;
+            const struct method *rm = spec_method(rival);
+            if (l == 1 && !(rm && method_has(rm, METHOD_GRADIENT))) /* no gradients, no L1 reconstruction
+                                                                       (Area ReSTIR): Figure 8 shows it in the
+                                                                       L2 row only */
                 continue;
-            const int r = csv_table_find(t, rivals[l][k]);
+            const int r = csv_table_find(t, rival);
             /* relMSE as the paper; MAPE too: relMSE's few outlier pixels can hide a
              * difference (their spread over runs is of the order of the mean) that
              * MAPE, robust to them, shows */
@@ -492,7 +501,7 @@ static void paper_002(struct md_text *md, struct claims *cl, const struct eval_o
             eval_gradient_findings(d, me, r, found, sizeof found);
             for (int m = 0; m < 2; m++) {
                 char what[128];
-                snprintf(what, sizeof what, "%s: %s vs %s", l ? "L1" : "L2", metric[m][0], names[k]);
+                snprintf(what, sizeof what, "%s: %s vs %s", l ? "L1" : "L2", metric[m][0], name);
                 claim_found(cl, "002", what, where, eval_change(d, me, r, metric[m][1]),
                             m ? "lower at equal time (Fig. 7, 8 show images; the paper "
                                 "names no metric)"
@@ -504,26 +513,28 @@ static void paper_002(struct md_text *md, struct claims *cl, const struct eval_o
     /* Fig. 7 and Sec. 6: "our method tends to produce highest-quality gradients"
      * at equal time. The gradients do not depend on the reconstruction: the L2
      * rows judge it. */
-    const int me = csv_table_find(t, ours[0]);
+    const int me = ours_row;
     for (int k = 0; k < 3; k += 2) {
-        const int r = csv_table_find(t, rivals[0][k]);
+        const int r = csv_table_find(t, v[rivals_at[0][k]].spec);
         char what[128], found[1000];
-        snprintf(what, sizeof what, "Fig. 7: gradient relMSE vs %s", names[k]);
+        snprintf(what, sizeof what, "Fig. 7: gradient relMSE vs %s", v[rivals_at[0][k]].claim);
         eval_gradient_findings(d, me, r, found, sizeof found);
         claim_found(cl, "002", what, where, eval_change(d, me, r, "gradient_relmse"),
                     "lower at equal time (images only)", REDUCTION(0.0), found, diff);
     }
     /* Gradient after ReSTIR once: the same samples per frame as ours, not the
      * paper's equal time */
-    const int once = csv_table_find(t, "grad-after-restir");
-    claim(cl, "002", "gradient relMSE vs Gradient after ReSTIR x 1 (equal samples)", where,
-          eval_change(d, me, once, "gradient_relmse"), "none (not in the paper)", NO_CLAIM, diff);
+    const int once = csv_table_find(t, v[once_at].spec);
+    char once_what[128];
+    snprintf(once_what, sizeof once_what, "gradient relMSE vs %s (equal samples)", v[once_at].claim);
+    claim(cl, "002", once_what, where, eval_change(d, me, once, "gradient_relmse"), "none (not in the paper)", NO_CLAIM,
+          diff);
     /* the gradient claim again without the worst 1% of pairs and as
      * MAPE, informational: the paper shows images only, and these say whether a
      * few pairs decide the relMSE verdict */
     static const char *const robust[2] = {"gradient relMSE trim 1%", "gradient MAPE"};
-    const int vs[2] = {csv_table_find(t, rivals[0][0]), once};
-    static const char *const vs_name[2] = {"Gradient after ReSTIR x 2", "Gradient after ReSTIR x 1"};
+    const int vs[2] = {csv_table_find(t, v[rivals_at[0][0]].spec), once};
+    const char *const vs_name[2] = {v[rivals_at[0][0]].claim, v[once_at].claim};
     for (int m = 0; m < 2; m++)
         for (int k = 0; k < 2; k++) {
             char what[128];
@@ -531,13 +542,7 @@ static void paper_002(struct md_text *md, struct claims *cl, const struct eval_o
             claim(cl, "002", what, where, eval_change(d, me, vs[k], grad_col[m + 1][0]),
                   "none (the relMSE claim without its worst pairs)", NO_CLAIM, diff);
         }
-}
-
-static const char *paper_title(const char *paper)
-{
-    return !strcmp(paper, "000")   ? "000: compatibility-guided spatial neighbor selection"
-           : !strcmp(paper, "004") ? "004: stochastic pairwise MIS with reuse cells"
-                                   : "002: gradient-domain ReSTIR PT";
+    return 0;
 }
 
 /* index.html: the evaluation's text and a link to each step's own page. */
@@ -577,21 +582,22 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
     }
     cl.csv_ok = 1;
     int rc = 0;
-    const char *current = "";
+    const struct eval_paper *paper = NULL;
     for (int k = 0; k < n && rc == 0; k++) {
         const struct eval_step *s = &steps[k];
-        if (strcmp(current, s->paper) != 0) { /* a paper's section: its setup, then its steps, then its claims */
-            if (current[0])
-                flush_claims(&md, &cl, current);
-            current = s->paper;
+        if (s->recipe != paper) { /* a paper's section: its setup, then its steps, then its claims */
+            if (paper)
+                flush_claims(&md, &cl, paper->id);
+            paper = s->recipe;
+            const char *current = paper->id;
             md_put(&md,
                    "\n## %s\n\n`%s`\n\n%dx%d (the paper: %dx%d), %d independently "
                    "seeded runs per configuration, "
                    "references of %d paths per pixel, ",
-                   paper_title(current), command, o->width, o->height, EVAL_PAPER_WIDTH, EVAL_PAPER_HEIGHT,
+                   paper->title, command, o->width, o->height, EVAL_PAPER_WIDTH, EVAL_PAPER_HEIGHT,
                    eval_runs(o, current), eval_ref_spp(o));
-            if (!strcmp(current, "000"))
-                md_put(&md, "static camera, %d warm-up frames, %d measured frames.\n", eval_warmup(o),
+            if (paper->warmup > 0)
+                md_put(&md, "static camera, %d warm-up frames, %d measured frames.\n", eval_warmup(o, current),
                        eval_frames(o, current));
             else
                 md_put(&md, "camera path, error of frame %d.\n", eval_frames(o, current) - 1);
@@ -600,18 +606,14 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
                                       the merge's very line */
             evaluate_provenance_text(dir, steps, n, merged, current, provenance, sizeof provenance);
             md_put(&md, "%s\n", provenance);
-            if (!strcmp(current, "000") && o->configs[0])
+            if (paper->configs && o->configs[0])
                 md_put(&md,
-                       "Configurations: only %s (--configs; the whole evaluation runs "
-                       "Table 1's four on every "
-                       "scene and Table 2's grid and Figure 3's radii on the first): "
-                       "claims on the others read "
+                       "Configurations: only %s (--configs; the whole evaluation runs %s): claims on the others read "
                        "\"not measured\".\n",
-                       o->configs);
-            for (int j = k; j < n && !strcmp(steps[j].paper, current); j++)
-                for (const struct eval_scene_note *sn = eval_scene_notes; sn->paper; sn++)
-                    if (!strcmp(sn->paper, current) && !strcmp(sn->scene, steps[j].scene) &&
-                        (j == k || strcmp(steps[j - 1].scene, steps[j].scene)))
+                       o->configs, paper->configs_whole);
+            for (int j = k; j < n && steps[j].recipe == paper; j++)
+                for (const struct eval_scene_note *sn = paper->scenes; sn->scene; sn++)
+                    if (!strcmp(sn->scene, steps[j].scene) && (j == k || strcmp(steps[j - 1].scene, steps[j].scene)))
                         md_put(&md, "- scene `%s` for %s: %s.\n", sn->scene, sn->stands_for, sn->why);
         }
         if (!merged[k]) {
@@ -629,20 +631,13 @@ int evaluate_write_tables(const char *dir, const char *command, const struct eva
         }
         const int has_runs = read_step_runs(dir, s, &runs);
         const struct step_tables d = {&t, has_runs ? &runs : NULL, eval_runs(o, s->paper)};
-        if (!strcmp(s->paper, "000"))
-            paper_000(&md, &cl, o, s, &d);
-        else if (!strcmp(s->paper, "004") && s->ablation)
-            paper_004_ablation(&md, &cl, o, s, &d);
-        else if (!strcmp(s->paper, "004"))
-            rc = paper_004(&md, &cl, o, dir, s, &d);
-        else
-            paper_002(&md, &cl, o, s, &d);
+        rc = s->step_recipe->table(&md, &cl, o, dir, s, &d);
         csv_table_free(&t);
         if (has_runs)
             csv_table_free(&runs);
     }
-    if (rc == 0 && current[0])
-        flush_claims(&md, &cl, current);
+    if (rc == 0 && paper)
+        flush_claims(&md, &cl, paper->id);
     free(cl.md.s);
     if (rc == 0 && csv_close(&cl.csv, msg) != 0) {
         cli_error("%s", msg);

@@ -153,7 +153,7 @@ static const char *const save_names[] = {"last", "all", NULL};
 static const char *const hard_neighbor_names[] = {"valid", "all", NULL}; /* enum restir_hard_neighbors */
 
 static const struct opt_def option_table[] = {
-    /* evaluate's own: zero means the paper's value (evaluate_papers.c) */
+    /* evaluate's own: zero means the paper's value (its recipe, evaluate_recipes.c) */
     {"--runs", EVAL, OPT_INT, O(runs), 2, 64, NO_GIVEN, NULL, "N", "independently seeded runs per configuration [4]",
      NULL},
     {"--frames", EVAL, OPT_INT, O(frames), 4, 100000, O(frames_given), NULL, "N",
