@@ -430,124 +430,187 @@ static void bench_bias(const char *scene, const struct method *method, int w, in
     scene_destroy(&s);
 }
 
+/* What the sections of the default run share: the base configuration, the spmis options and the
+ * modes. */
+struct bench_run {
+    struct bench_config c;
+    struct bench_spmis_options so;
+    int quick;       /* --quick: smaller images and references */
+    int bench_quick; /* BENCH_QUICK set (not 0): the rows of passes.csv and equal_time.csv only */
+};
+
+static void section_passes(struct bench_run *r)
+{
+    const struct method *di_methods[] = {method_named("restir-di"), method_named("ris-di"), method_named("pt")};
+    bench_passes(&r->c, di_methods, 3);
+}
+
+static void section_equal_time(struct bench_run *r)
+{
+    bench_equal_time(&r->c, method_named("restir-di"), 0);
+    if (r->bench_quick)
+        bench_equal_time(&r->c, method_named("restir-di"), 1);
+}
+
+static void section_visibility(struct bench_run *r)
+{
+    bench_di_visibility(r->c.scene, r->c.width, r->c.height, r->c.frames, r->c.ref_spp);
+}
+
+/* restir-pt's passes and equal-time rows on scene (both cameras). */
+static void pt_rows(const struct bench_config *c, const char *scene)
+{
+    struct bench_config pc = *c;
+    pc.scene = scene;
+    const struct method *pt_methods[] = {method_named("restir-pt"), method_named("pt")};
+    bench_passes(&pc, pt_methods, 2);
+    bench_equal_time(&pc, method_named("restir-pt"), 0);
+    bench_equal_time(&pc, method_named("restir-pt"), 1);
+}
+
+static void section_pt(struct bench_run *r)
+{
+    const char *const pt_scenes[] = {"ajar", "cornell"};
+    bench_table1(&r->c, pt_scenes, 2);
+    for (int sc = 0; sc < 2; sc++) {
+        pt_rows(&r->c, pt_scenes[sc]);
+        bench_bias(pt_scenes[sc], method_named("restir-pt"), 64, 36, r->c.width < 640 ? 64 : 256, 8, 4096);
+    }
+}
+
+static void section_temporal(struct bench_run *r)
+{
+    struct bench_config t = r->c;
+    t.width = r->c.width / 2;
+    t.height = r->c.height / 2;
+    bench_temporal(&t);
+}
+
+static void section_spmis(struct bench_run *r)
+{
+    if (r->quick) {
+        r->so.runs = 1;
+        r->so.ref_spp = 256;
+    }
+    bench_spmis(&r->so);
+}
+
+/* The sections of the default run, in the order they run: `restir_bench NAME...` runs those named,
+ * none named runs them all (BENCH_QUICK: those marked quick, then restir-pt's rows on ajar). */
+static const struct bench_section {
+    const char *name;
+    void (*run)(struct bench_run *r);
+    const char *help;
+    int quick; /* run by BENCH_QUICK when no section is named: what fills passes.csv and equal_time.csv */
+} sections[] = {
+    {"passes", section_passes,
+     "per-pass ms of restir-di, ris-di and pt with rays per second and the Embree-only replay ratio", 1},
+    {"equal-time", section_equal_time, "equal-time error of restir-di against pt (BENCH_QUICK: both cameras)", 1},
+    {"visibility", section_visibility, "restir-di's visibility reuse variants and its defaults at equal time", 0},
+    {"pt", section_pt, "restir-pt against pt on ajar and cornell: 000's Table 1, passes, equal time, 1/M bias", 0},
+    {"temporal", section_temporal, "the temporal-reuse experiment of 001 Sec. 6", 0},
+    {"spmis", section_spmis, "004 Sec. 6: standard spatial reuse against SPMIS, its tables and ablations", 0},
+};
+
+/* The commands with their own arguments, `restir_bench NAME ARGS...` (run receives argv from NAME
+ * on); never part of the default run. */
+static const struct bench_command {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *args, *help;
+} commands[] = {
+    {"poisson", bench_poisson, "[--runs N] [--res WxH[,WxH...]] [--lib-threads N]",
+     "wall time of the Poisson reconstructions on a synthetic image"},
+    {"l1-bias", bench_l1_bias, "FRAME.exr REF.exr", "where L1 reconstruction's dark bias comes from"},
+    {"error", bench_error, "IMAGE.exr REF.exr", "the error metrics and HDR-FLIP of one image against a reference"},
+    {"gi-bias", bench_gi_bias, "[--scenes a,b] [--res WxH] [--runs N] [--frames N]",
+     "the bias of restir-gi's gi.radiance=stored"},
+    {"streams", bench_streams, "[--res WxH] [--rounds N]", "the batched passes with rays.streams on against off"},
+    {"gradient", bench_gradient, "[--res WxH] [--frames N] [--ref-spp N] [--scenes a,b,c] [--quick]",
+     "002 Sec. 5 on our scenes (restir_bench gradient --help: all its options)"},
+    {"denoise", bench_denoise,
+     "[--scene S] [--method M] [--res WxH] [--frames N>=3] [--threads T] [--camera static|path] "
+     "[--isa baseline|avx2|avx512] [--set key=value]...",
+     "what each denoiser costs beside the frame it denoises"},
+};
+
+#define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
+
+/* The usage: the default run's sections, each command's arguments, spmis's options, then what each
+ * section and command measures. */
+static int usage(void)
+{
+    fprintf(stderr, "usage: restir_bench");
+    for (int k = 0; k < COUNT(sections); k++)
+        fprintf(stderr, " [%s]", sections[k].name);
+    fprintf(stderr, " [--quick]\n");
+    for (int k = 0; k < COUNT(commands); k++)
+        fprintf(stderr, "       restir_bench %s %s\n", commands[k].name, commands[k].args);
+    fprintf(stderr, "       spmis options: [--spmis-res WxH] [--spmis-scaled] [--spmis-main | --spmis-ablations | "
+                    "--spmis-interplay]\n"
+                    "sections (none named: all of them; BENCH_QUICK=1: passes and equal-time, then restir-pt's "
+                    "rows on ajar):\n");
+    for (int k = 0; k < COUNT(sections); k++)
+        fprintf(stderr, "  %-12s %s\n", sections[k].name, sections[k].help);
+    fprintf(stderr, "commands (their own arguments; not part of the default run):\n");
+    for (int k = 0; k < COUNT(commands); k++)
+        fprintf(stderr, "  %-12s %s\n", commands[k].name, commands[k].help);
+    return 2;
+}
+
 int main(int argc, char **argv)
 {
-    struct bench_config c = {"many-lights", 640, 360, 17, 1024, 64};
-    int run_passes = 0, run_equal = 0, run_temporal = 0, run_pt = 0, run_spmis = 0, run_visibility = 0, quick = 0;
-    struct bench_spmis_options so = {320, 180, 2, 1024, 0, 1, 1, 1};
-    if (argc > 1 && !strcmp(argv[1], "poisson")) /* its own options; not part of the default run */
-        return bench_poisson(argc - 1, argv + 1);
-    if (argc > 1 && !strcmp(argv[1], "gradient")) /* its own options; not part of the default run */
-        return bench_gradient(argc - 1, argv + 1);
-    if (argc > 1 && !strcmp(argv[1], "streams")) /* its own options; not part of the default run */
-        return bench_streams(argc - 1, argv + 1);
-    if (argc > 1 && !strcmp(argv[1], "gi-bias")) /* its own options; not part of the default run */
-        return bench_gi_bias(argc - 1, argv + 1);
-    if (argc > 1 && !strcmp(argv[1], "l1-bias")) /* its own arguments; not part of the default run */
-        return bench_l1_bias(argc - 1, argv + 1);
-    if (argc > 1 && !strcmp(argv[1], "denoise")) /* its own options; not part of the default run */
-        return bench_denoise(argc - 1, argv + 1);
-    if (argc > 1 && !strcmp(argv[1], "error")) /* its own arguments; not part of the default run */
-        return bench_error(argc - 1, argv + 1);
+    struct bench_run r = {.c = {"many-lights", 640, 360, 17, 1024, 64}, .so = {320, 180, 2, 1024, 0, 1, 1, 1}};
+    int selected[COUNT(sections)] = {0}, any = 0;
+    for (int k = 0; argc > 1 && k < COUNT(commands); k++)
+        if (!strcmp(argv[1], commands[k].name))
+            return commands[k].run(argc - 1, argv + 1);
     for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "passes"))
-            run_passes = 1;
-        else if (!strcmp(argv[i], "equal-time"))
-            run_equal = 1;
-        else if (!strcmp(argv[i], "temporal"))
-            run_temporal = 1;
-        else if (!strcmp(argv[i], "pt"))
-            run_pt = 1;
-        else if (!strcmp(argv[i], "spmis"))
-            run_spmis = 1;
-        else if (!strcmp(argv[i], "visibility"))
-            run_visibility = 1;
+        int section = -1;
+        for (int k = 0; k < COUNT(sections) && section < 0; k++)
+            if (!strcmp(argv[i], sections[k].name))
+                section = k;
+        if (section >= 0)
+            selected[section] = any = 1;
         else if (!strcmp(argv[i], "--spmis-res") && i + 1 < argc &&
-                 sscanf(argv[i + 1], "%dx%d", &so.width, &so.height) == 2 && so.width > 0 && so.height > 0)
+                 sscanf(argv[i + 1], "%dx%d", &r.so.width, &r.so.height) == 2 && r.so.width > 0 && r.so.height > 0)
             i++;
         else if (!strcmp(argv[i], "--spmis-scaled"))
-            so.scale_radii = 1;
+            r.so.scale_radii = 1;
         else if (!strcmp(argv[i], "--spmis-main"))
-            so.ablations = so.interplay = 0;
+            r.so.ablations = r.so.interplay = 0;
         else if (!strcmp(argv[i], "--spmis-ablations"))
-            so.main = so.interplay = 0;
+            r.so.main = r.so.interplay = 0;
         else if (!strcmp(argv[i], "--spmis-interplay"))
-            so.main = so.ablations = 0;
+            r.so.main = r.so.ablations = 0;
         else if (!strcmp(argv[i], "--quick")) {
-            quick = 1;
-            c.width = 320;
-            c.height = 180;
-            c.ref_spp = 256;
-            c.temporal_frames = 16;
-        } else {
-            fprintf(stderr, "usage: restir_bench [passes] [equal-time] [visibility] [temporal] [pt] [spmis] [--quick]\n"
-                    "       restir_bench poisson [--runs N] [--res WxH[,WxH...]] [--lib-threads N]\n"
-                    "       restir_bench l1-bias FRAME.exr REF.exr\n"
-                    "       restir_bench error IMAGE.exr REF.exr\n"
-                    "       restir_bench gi-bias [--scenes a,b] [--res WxH] [--runs N] [--frames N]\n"
-                    "       restir_bench streams [--res WxH] [--rounds N]\n"
-                    "       restir_bench gradient [--res WxH] [--frames N] [--ref-spp N] [--scenes a,b,c] [--quick]\n"
-                    "       spmis options: [--spmis-res WxH] [--spmis-scaled] [--spmis-main | --spmis-ablations | --spmis-interplay]\n");
-            return 2;
-        }
+            r.quick = 1;
+            r.c.width = 320;
+            r.c.height = 180;
+            r.c.ref_spp = 256;
+            r.c.temporal_frames = 16;
+        } else
+            return usage();
     }
     const char *bq = getenv("BENCH_QUICK");
-    const int bench_quick = bq && *bq && strcmp(bq, "0") != 0;
-    const int any = run_passes || run_equal || run_visibility || run_temporal || run_pt || run_spmis;
-    if (bench_quick && !any) {
-        /* what fills passes.csv and equal_time.csv: the DI tables and restir-pt's on ajar, with
-         * 256-spp references (BENCHMARKS.md says which rows came from this mode) */
-        run_passes = run_equal = 1;
-        c.ref_spp = 256;
-    }
-    if (!bench_quick && !any)
-        run_passes = run_equal = run_visibility = run_temporal = run_pt = run_spmis = 1;
+    r.bench_quick = bq && *bq && strcmp(bq, "0") != 0;
+    /* none named: all, or under BENCH_QUICK what fills passes.csv and equal_time.csv (the DI tables and
+     * restir-pt's on ajar, below) with 256-spp references (BENCHMARKS.md says which rows came from
+     * this mode) */
+    for (int k = 0; k < COUNT(sections) && !any; k++)
+        selected[k] = !r.bench_quick || sections[k].quick;
+    if (r.bench_quick && !any)
+        r.c.ref_spp = 256;
     struct csv_writer pw, ew;
     bench_csv_open(&pw, &ew);
-    const struct method *di_methods[] = {method_named("restir-di"), method_named("ris-di"), method_named("pt")};
-    if (run_passes)
-        bench_passes(&c, di_methods, 3);
-    if (run_equal) {
-        bench_equal_time(&c, method_named("restir-di"), 0);
-        if (bench_quick)
-            bench_equal_time(&c, method_named("restir-di"), 1);
-    }
-    if (run_visibility)
-        bench_di_visibility(c.scene, c.width, c.height, c.frames, c.ref_spp);
-    if (run_pt) {
-        const char *const pt_scenes[] = {"ajar", "cornell"};
-        const struct method *pt_methods[] = {method_named("restir-pt"), method_named("pt")};
-        bench_table1(&c, pt_scenes, 2);
-        for (int sc = 0; sc < 2; sc++) {
-            struct bench_config pc = c;
-            pc.scene = pt_scenes[sc];
-            bench_passes(&pc, pt_methods, 2);
-            bench_equal_time(&pc, method_named("restir-pt"), 0);
-            bench_equal_time(&pc, method_named("restir-pt"), 1);
-            bench_bias(pt_scenes[sc], method_named("restir-pt"), 64, 36, c.width < 640 ? 64 : 256, 8, 4096);
+    int ran_pt = 0;
+    for (int k = 0; k < COUNT(sections); k++)
+        if (selected[k]) {
+            sections[k].run(&r);
+            ran_pt |= sections[k].run == section_pt;
         }
-    }
-    if (run_temporal) {
-        struct bench_config t = c;
-        t.width = c.width / 2;
-        t.height = c.height / 2;
-        bench_temporal(&t);
-    }
-    if (run_spmis) {
-        if (quick) {
-            so.runs = 1;
-            so.ref_spp = 256;
-        }
-        bench_spmis(&so);
-    }
-    if (bench_quick && !run_pt) {
-        struct bench_config pc = c;
-        pc.scene = "ajar";
-        const struct method *pt_methods[] = {method_named("restir-pt"), method_named("pt")};
-        bench_passes(&pc, pt_methods, 2);
-        bench_equal_time(&pc, method_named("restir-pt"), 0);
-        bench_equal_time(&pc, method_named("restir-pt"), 1);
-    }
+    if (r.bench_quick && !ran_pt)
+        pt_rows(&r.c, "ajar");
     bench_csv_close();
     return 0;
 }
