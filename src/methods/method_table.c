@@ -4,12 +4,12 @@
 #include "methods/method.h"
 
 extern const struct method method_pt, method_ris_di, method_restir_di, method_restir_pt, method_area_restir,
-    method_gpt, method_grad_after_restir, method_grestir_pt, method_restir_gi;
+    method_gpt, method_grad_after_restir, method_grestir_pt, method_restir_gi, method_ris_gi;
 
 static const struct method *const table[] = {
     &method_pt,  &method_ris_di,  &method_restir_di,         &method_restir_pt,
     &method_area_restir, &method_gpt, &method_grad_after_restir, &method_grestir_pt,
-    &method_restir_gi,
+    &method_restir_gi,   &method_ris_gi,
 };
 
 int method_count(void) { return (int)(sizeof(table) / sizeof(table[0])); }
