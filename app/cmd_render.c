@@ -13,6 +13,9 @@
 
 static void render_usage(FILE *out)
 {
+    char spp_readers[256], gradient_methods[256];
+    settings_readers("spp", spp_readers, sizeof spp_readers);
+    settings_readers("recon", gradient_methods, sizeof gradient_methods); /* the methods that reconstruct */
     fprintf(out,
             "usage: restir render --scene NAME --method NAME [--res WxH] [--frames N] [--spp N] [--seed N]\n"
             "                     [--threads N] [--camera static|path|FILE] [--ref FILE.exr] [--out DIR]\n"
@@ -25,7 +28,7 @@ static void render_usage(FILE *out)
             "first, but only a folder restir wrote (summary.json, metrics.csv, frame_NNNN.*, ...), never /,\n"
             "$HOME or the current folder, and removes links inside without following them.\n"
             "--ref FILE.exr without --res renders at the reference's size; a --res that differs is an error.\n"
-            "ReSTIR methods render 1 sample per pixel per frame; --spp applies to pt and gpt.\n"
+            "--spp applies to %s; the others render 1 sample per pixel per frame.\n"
             "--env FILE (.hdr or .exr, equirectangular) gives the scene that environment light, replacing its\n"
             "own; --env none removes it (every command that takes --scene reads --env; pt only renders it).\n"
             "--params FILE reads settings in order with the other options: a summary.json reruns that run\n"
@@ -33,10 +36,11 @@ static void render_usage(FILE *out)
             "a plain JSON object of --set keys ({\"mis\": \"balance\", \"spatial.radius\": 50}) sets those.\n"
             "--camera FILE replays a camera file (one camera per frame, as restir view records them) and\n"
             "renders as many frames as it holds unless --frames says fewer.\n"
-            "Gradient methods (gpt, grad-after-restir, grestir-pt) write the reconstruction as the image\n"
+            "Gradient methods (%s) write the reconstruction as the image\n"
             "(L2; L1 with recon=l1), EXR layers primal, dx, dy (and L1 or L2 when computed), and\n"
             "frame_NNNN_{primal,dx,dy}.png (gradients in false colour: red positive, blue negative).\n\n"
-            "Parameters (--set key=value, defaults shown):\n");
+            "Parameters (--set key=value, defaults shown):\n",
+            spp_readers, gradient_methods);
     render_params_help(out);
     fprintf(out, "\nMetrics (against --ref):\n%s", restir_metrics_definitions());
     cli_options_help(out, "render");

@@ -42,6 +42,19 @@ static void view_usage(FILE *out)
     cli_options_help(out, "view");
 }
 
+/* What the viewer checks before it restarts with another method or setting: what run_prepare checked
+ * before the first frame (the settings against the method and the scene, and memory). */
+struct view_check {
+    const struct scene *scene;
+    long long max_memory_mb;
+};
+
+static int view_check_method(void *ctx, const struct method *m, const struct render_params *p, char *msg)
+{
+    const struct view_check *c = ctx;
+    return run_check_method(c->scene, m, p, NULL, 0, c->max_memory_mb, RUN_CHECK_MEMORY, msg);
+}
+
 int cmd_view(int argc, char **argv)
 {
     struct cli_options o;
@@ -78,7 +91,8 @@ int cmd_view(int argc, char **argv)
         scene_destroy(&s);
         return EXIT_RUNTIME;
     }
-    const struct view_options vo = {&s, m, o.params, o.script, out_dir};
+    struct view_check check = {&s, o.max_memory_mb};
+    const struct view_options vo = {&s, m, o.params, o.script, out_dir, view_check_method, &check};
     rc = view_run(&vo, msg);
     if (rc != 0)
         cli_error("view: %s", msg);

@@ -2,8 +2,13 @@
  * SPEC is, how equal time is reached, every file the command writes and its columns. */
 #include "experiments/compare_command.h"
 
+#include "experiments/cli.h"
+#include "methods/method.h"
+
 void compare_usage(FILE *out)
 {
+    char by_spp[256];
+    method_names_with(METHOD_BUDGET_BY_SPP, by_spp, sizeof by_spp);
     fprintf(out,
             "usage: restir compare --scene NAME --methods SPEC,SPEC,... [--equal-time] [--frames N] [--res WxH]\n"
             "                      [--ref FILE.exr | --ref-spp N] [--camera static|path] [--out DIR]\n"
@@ -18,9 +23,10 @@ void compare_usage(FILE *out)
             "The whole SPEC labels its row. Runs each SPEC for N frames (default 1) and measures the last\n"
             "frame against the reference, rendered from the common parameters with --ref-spp paths\n"
             "(default 1024) when --ref is absent. With --equal-time every row gets the frame time of the\n"
-            "first SPEC other than pt (gradient methods: L2 reconstruction included, 002 Sec. 5): pt and\n"
-            "gpt get as many paths per pixel as fit, the other methods average as many independently\n"
-            "seeded instances as fit (gradient methods average primal and gradients, then reconstruct\n"
+            "first SPEC of a method with state between frames (gradient methods: L2 reconstruction\n"
+            "included, 002 Sec. 5): the stateless methods (%s)\n"
+            "get as many paths per pixel as fit, the other methods average as many independently seeded\n"
+            "instances as fit (gradient methods average primal and gradients, then reconstruct\n"
             "once). When DI methods are compared, pt estimates direct lighting only (1 bounce), like them.\n"
             "Writes DIR/compare.csv (method = the SPEC, ms per frame, spp, instances, relmse, mape, smape,\n"
             "luma_rmse, runs, temporal_cov, and with --runs the standard errors relmse_sem, mape_sem,\n"
@@ -42,7 +48,8 @@ void compare_usage(FILE *out)
             "$HOME or the current folder; links inside are removed, not followed). --ref without --res: the\n"
             "reference's size. For gradient rows DIR/FOLDER_grad_worst1.png shows where\n"
             "the worst 1%% of gradient_relmse's pixel pairs are, over the dimmed reference: red the\n"
-            "pair with the right neighbour, cyan with the one below, white both.\n");
+            "pair with the right neighbour, cyan with the one below, white both.\n",
+            by_spp);
     fprintf(out,
             "DIR/frames.csv has a row per SPEC and frame: frame time, temporal pass time, the shares of\n"
             "valid pixels whose history shifted in (temporal_accept) and, for path reservoirs, that were\n"

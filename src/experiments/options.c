@@ -215,7 +215,8 @@ static const struct opt_def option_table[] = {
     {"--spp", " reference ", OPT_INT, O(params.spp), 1, 1 << 20, O(spp_given), NULL, "N",
      "paths per pixel (with --target-relmse: the most) [1024]", NULL},
     {"--spp", " render compare view ", OPT_INT, O(params.spp), 1, 1 << 20, O(spp_given), NULL, "N",
-     "paths per pixel of pt and gpt (ReSTIR methods render 1 per frame) [1]", NULL},
+     "paths per pixel of the methods that read spp (restir render --help names them; the others render 1 "
+     "per frame) [1]", NULL},
     {"--ref-spp", " compare study ", OPT_INT, O(ref_spp), 1, 1 << 20, NO_GIVEN, "1024", "N",
      "paths per pixel of a reference rendered when --ref is absent", NULL},
     {"--seed", RENDERING, OPT_U64, O(params.seed), 0, 1ll << 62, NO_GIVEN, NULL, "N", "the seed of every random stream",

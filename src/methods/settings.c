@@ -188,6 +188,21 @@ int method_reads_block(const struct method *m, const struct param_block *b)
     return 0;
 }
 
+void settings_readers(const char *key, char *out, size_t n)
+{
+    size_t len = 0;
+    if (n > 0)
+        out[0] = '\0';
+    for (int k = 0; k < method_count(); k++) {
+        if (!method_uses_setting(method_at(k), key))
+            continue;
+        int w = snprintf(out + len, n - len, "%s%s", len ? ", " : "", method_at(k)->name);
+        if (w < 0 || (size_t)w >= n - len)
+            return;
+        len += (size_t)w;
+    }
+}
+
 void render_params_defaults(struct render_params *p)
 {
     registry();

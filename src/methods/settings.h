@@ -54,6 +54,10 @@ int method_uses_setting(const struct method *m, const char *key);
  * them). Returns 0, or -1 with msg naming the first key m does not read and the method. */
 int method_check_assignments(const struct method *m, const char *const *assignments, int n, char *msg);
 
+/* Writes the names of the methods that read setting key, ", "-separated, into out (n bytes): for help
+ * texts that say who a setting is for without a list kept by hand. */
+void settings_readers(const char *key, char *out, size_t n);
+
 /* Checks that methods[0..n) and the toolkit's blocks can form a registry: method names distinct, every
  * key declared by one block only, the methods' blocks fit RENDER_PARAMS_METHOD_BYTES, the methods'
  * random streams of distinct ids (and none of them a toolkit pass id). Returns 0, or -1 with msg naming

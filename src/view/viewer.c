@@ -96,34 +96,51 @@ static void restart(struct view *v, int first)
     v->frame = 0;
 }
 
+/* Restarts with method m and parameters q when the command's checks accept them (the same checks as
+ * before the first frame: settings against the method and the scene, memory); otherwise says why on
+ * stderr and keeps what runs. Returns 1 when it switched. */
+static int switch_to(struct view *v, const struct method *m, const struct render_params *q)
+{
+    char msg[RESTIR_MSG_LEN];
+    if (v->o->check && v->o->check(v->o->check_ctx, m, q, msg) != 0) {
+        fprintf(stderr, "restir: view: %s; %s keeps running as it was\n", msg, v->method->name);
+        return 0;
+    }
+    v->method = m;
+    v->p = *q;
+    restart(v, 0);
+    return 1;
+}
+
 static void press(struct view *v, char key)
 {
+    struct render_params q = v->p;
     switch (key) {
-    case 'm':
-        v->method = view_method_after(v->method);
-        restart(v, 0);
+    case 'm': switch_to(v, view_method_after(v->method), &q); break;
+    case 't': q.reuse.temporal = !q.reuse.temporal; switch_to(v, v->method, &q); break;
+    case 'y': q.reuse.spatial = !q.reuse.spatial; switch_to(v, v->method, &q); break;
+    case 'n':
+        q.reuse.spatial_select = (enum spatial_select_mode)((q.reuse.spatial_select + 1) % 3);
+        switch_to(v, v->method, &q);
         break;
-    case 't': v->p.reuse.temporal = !v->p.reuse.temporal; restart(v, 0); break;
-    case 'y': v->p.reuse.spatial = !v->p.reuse.spatial; restart(v, 0); break;
-    case 'n': v->p.reuse.spatial_select = (enum spatial_select_mode)((v->p.reuse.spatial_select + 1) % 3); restart(v, 0); break;
     case 'p':
-        v->p.reuse.spatial_reuse = v->p.reuse.spatial_reuse == REUSE_SPMIS ? REUSE_STANDARD : REUSE_SPMIS;
-        restart(v, 0);
+        q.reuse.spatial_reuse = q.reuse.spatial_reuse == REUSE_SPMIS ? REUSE_STANDARD : REUSE_SPMIS;
+        switch_to(v, v->method, &q);
         break;
     case 'v': v->mode = (enum view_mode)((v->mode + 1) % VIEW_MODES); break;
     case 'o': /* raw / denoised; the first time turns SVGF on */
         if (v->p.denoise.method == 0) {
-            v->p.denoise.method = 1;
-            restart(v, 0);
-            v->show_denoised = 1;
+            q.denoise.method = 1;
+            if (switch_to(v, v->method, &q))
+                v->show_denoised = 1;
         } else {
             v->show_denoised = !v->show_denoised;
         }
         break;
     case 'i': /* the next denoiser (denoise_names after "off") */
         if (v->p.denoise.method > 0) {
-            v->p.denoise.method = denoise_names[v->p.denoise.method + 1] ? v->p.denoise.method + 1 : 1;
-            restart(v, 0);
+            q.denoise.method = denoise_names[q.denoise.method + 1] ? q.denoise.method + 1 : 1;
+            switch_to(v, v->method, &q);
         }
         break;
     case 27: v->quit = 1; break;

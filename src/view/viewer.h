@@ -20,6 +20,11 @@ struct view_options {
     struct render_params params;
     const char *script;  /* timed input (view_script.h), or NULL */
     const char *out_dir; /* screenshots, camera files and the last frame */
+    /* The command's checks of a method and its parameters on this scene, run before every restart
+     * (M, T, Y, N, P, O, I): 0, or nonzero with msg (RESTIR_MSG_LEN bytes), and the viewer keeps what
+     * runs. NULL: none. */
+    int (*check)(void *ctx, const struct method *m, const struct render_params *p, char *msg);
+    void *check_ctx;
 };
 
 /* Runs the viewer until escape, the window is closed or the script quits; on leaving it writes

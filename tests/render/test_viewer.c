@@ -221,6 +221,18 @@ int main(void)
         EXPECT(file_size(raw) > 0 && file_size(out) > 0, "screenshot %d: %s and its denoised frame", k, raw);
     }
 
+    /* M from pt with a lens to the next method of the cycle, which renders no depth of field: refused by
+     * the checks the command ran before the first frame, and pt keeps running */
+    char refused[2 * CLI_PATH_MAX], log[2 * CLI_PATH_MAX];
+    snprintf(refused, sizeof refused, "%s/refused", tmp);
+    viewer_session(tmp, "refused", "0 press m\n2 press k\n3 quit\n", "--method pt --set camera.aperture=0.05", refused);
+    snprintf(log, sizeof log, "%s/xvfb-refused.log", tmp);
+    cli_read_text(log, err, sizeof err);
+    EXPECT(strstr(err, "camera.aperture") && strstr(err, "does not render") && strstr(err, "pt keeps running as it was"),
+           "M to a method that cannot render the lens: not refused by name:\n%s", err);
+    snprintf(out, sizeof out, "%s/screenshot_0000.exr", refused);
+    EXPECT(file_size(out) > 0, "the refused switch stopped the session (no %s)", out);
+
     /* replay the recorded path: restir-pt (one M press from restir-di), same seed and size */
     snprintf(replay, sizeof replay, "%s/replay", tmp);
     snprintf(args, sizeof args,
