@@ -318,7 +318,8 @@ static void run_method(const struct scene *s, const struct gb_config *c, const s
                 res->rays += rays_k;
                 res->ms += ms_k - pass_ms[PASS_RECON_L2] - pass_ms[PASS_RECON_L1];
                 res->grad_ms += grad_pass_ms(pass_ms);
-                const float *src[4] = {rk.image, renderer_gradients(&rk) ? renderer_gradients(&rk)->primal : NULL, renderer_gradients(&rk) ? renderer_gradients(&rk)->dx : NULL,
+                const float *src[4] = {rk.image, renderer_gradients(&rk) ? renderer_gradients(&rk)->primal : NULL,
+                                       renderer_gradients(&rk) ? renderer_gradients(&rk)->dx : NULL,
                                        renderer_gradients(&rk) ? renderer_gradients(&rk)->dy : NULL};
                 for (int b = 0; b < 4; b++)
                     if (sum[b])
@@ -326,7 +327,8 @@ static void run_method(const struct scene *s, const struct gb_config *c, const s
                             sum[b][i] += src[b][i];
                 renderer_fini(&rk);
             }
-            float *dst[4] = {r0.image, renderer_gradients(&r0) ? renderer_gradients(&r0)->primal : NULL, renderer_gradients(&r0) ? renderer_gradients(&r0)->dx : NULL,
+            float *dst[4] = {r0.image, renderer_gradients(&r0) ? renderer_gradients(&r0)->primal : NULL,
+                             renderer_gradients(&r0) ? renderer_gradients(&r0)->dx : NULL,
                              renderer_gradients(&r0) ? renderer_gradients(&r0)->dy : NULL};
             const float inv = 1.0f / (float)res->instances;
             for (int b = 0; b < 4; b++) {
@@ -602,8 +604,8 @@ int bench_gradient(int argc, char **argv)
            "%d threads\n\nPixel-scale parameters kept at their defaults, not scaled with the resolution: "
            "spatial.radius %g px, grad.radius %g px, grad.search %d. Primal: area ReSTIR (1 initial candidate, "
            "2 spatial neighbors) for area-restir, grad-after-restir and grestir-pt.\n",
-           c.width, c.height, c.frames, c.ref_spp, omp_get_max_threads(), d.reuse.spatial_radius, grad_settings_of(&d)->radius,
-           grad_settings_of(&d)->search);
+           c.width, c.height, c.frames, c.ref_spp, omp_get_max_threads(), d.reuse.spatial_radius,
+           grad_settings_of(&d)->radius, grad_settings_of(&d)->search);
     fflush(stdout);
 
     if (equal_samples_mode) {
@@ -647,8 +649,8 @@ int bench_gradient(int argc, char **argv)
     printf("\n### Screened Poisson reconstruction times at %dx%d (%d threads)\n\n| solve | median ms | solves |\n"
            "|---|---|---|\n| L2 (%s, alpha %g) | %.1f | %d |\n| L1 (IRLS %d x %d CG) | %.1f | %d |\n",
            c.width, c.height, omp_get_max_threads(), recon_settings_of(&d)->solver == RESTIR_POISSON_DCT ? "DCT" : "CG",
-           recon_settings_of(&d)->alpha, median(l2_log, l2_n), l2_n, recon_settings_of(&d)->l1_iterations, recon_settings_of(&d)->l1_cg, median(l1_log, l1_n),
-           l1_n);
+           recon_settings_of(&d)->alpha, median(l2_log, l2_n), l2_n, recon_settings_of(&d)->l1_iterations,
+           recon_settings_of(&d)->l1_cg, median(l1_log, l1_n), l1_n);
     fflush(stdout);
     if (!have_ajar) {
         ajar = bench_load_scene("ajar");

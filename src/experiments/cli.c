@@ -258,8 +258,8 @@ void cli_command_line(const char *command, int argc, char **argv, char *out, siz
     }
 }
 
-int cli_check_memory(const struct scene *s, const struct method *m, const struct render_params *p, long long max_memory_mb,
-                     char *msg)
+int cli_check_memory(const struct scene *s, const struct method *m, const struct render_params *p,
+                     long long max_memory_mb, char *msg)
 {
     double per_pixel = 0.0;
     const double need = (double)renderer_estimate_bytes(s, m, p, &per_pixel);
@@ -270,7 +270,8 @@ int cli_check_bytes(const char *what, int width, int height, double need_bytes, 
                     long long max_memory_mb, char *msg)
 {
     const double need = need_bytes / (1024.0 * 1024.0);
-    const double have = max_memory_mb > 0 ? (double)max_memory_mb : (double)memory_available_bytes() / (1024.0 * 1024.0);
+    const double have =
+        max_memory_mb > 0 ? (double)max_memory_mb : (double)memory_available_bytes() / (1024.0 * 1024.0);
     if (have <= 0.0 || need <= have)
         return 0;
     snprintf(msg, RESTIR_MSG_LEN,

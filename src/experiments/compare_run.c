@@ -105,8 +105,8 @@ static float *instances_denoised(const struct renderer *r, int instances, size_t
 }
 
 int compare_run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
-                       int instances, const float *ref, const char *out_dir, int keep_image, struct compare_track *track,
-                       int run, struct compare_result *res, char *msg)
+                       int instances, const float *ref, const char *out_dir, int keep_image,
+                       struct compare_track *track, int run, struct compare_result *res, char *msg)
 {
     const struct method *m = c->method;
     struct renderer r[MAX_INSTANCES];

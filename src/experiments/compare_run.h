@@ -146,8 +146,8 @@ void compare_reference_noise(struct compare_result *res, int n, const float *a, 
  * (may be NULL) every frame's statistics and the frames it asks for go to it as run `run`.
  * Returns 0, -1 with msg (the frame cannot be written), or RUN_STOPPED having written nothing. */
 int compare_run_method(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
-                       int instances, const float *ref, const char *out_dir, int keep_image, struct compare_track *track,
-                       int run, struct compare_result *res, char *msg);
+                       int instances, const float *ref, const char *out_dir, int keep_image,
+                       struct compare_track *track, int run, struct compare_result *res, char *msg);
 /* The errors of a spec's runs as they arrive (run order), and their means and standard errors. */
 struct compare_runs {
     int n, cap;

@@ -155,7 +155,10 @@ static int settings_shape(const cJSON *j, struct eval_hash_render *hr, char *msg
     return 0;
 }
 
-static const char *str_of(const cJSON *j, const char *key) { return cJSON_GetObjectItemCaseSensitive(j, key)->valuestring; }
+static const char *str_of(const cJSON *j, const char *key)
+{
+    return cJSON_GetObjectItemCaseSensitive(j, key)->valuestring;
+}
 
 /* Renders step j's rows and compares. Returns 0 (all as recorded), 1 (some row stale: said), or 2
  * having said why (the scene cannot be loaded). */
@@ -170,7 +173,8 @@ static int check_step(const char *name, const char *path, const cJSON *j, const 
     /* the scene is loaded with the first row's scene.* settings, as the step loaded it */
     struct render_params p0;
     render_params_defaults(&p0);
-    if (settings_apply_object(path, cJSON_GetObjectItemCaseSensitive(cJSON_GetArrayItem(rows, 0), "settings"), &p0, msg) != 0) {
+    if (settings_apply_object(path, cJSON_GetObjectItemCaseSensitive(cJSON_GetArrayItem(rows, 0), "settings"), &p0,
+                              msg) != 0) {
         printf("STALE: table %s, row %s: its settings are not today's: %s (recorded by commit %s)\n", name,
                str_of(cJSON_GetArrayItem(rows, 0), "label"), msg, since);
         return 1;
@@ -304,7 +308,8 @@ static int step_provenance(const char *dir, const struct eval_options *o, const 
         rc = EXIT_USAGE;
     } else {
         provenance_build_id(&planned, build, sizeof build);
-        const cJSON *w = cJSON_GetObjectItemCaseSensitive(j, "width"), *h = cJSON_GetObjectItemCaseSensitive(j, "height");
+        const cJSON *w = cJSON_GetObjectItemCaseSensitive(j, "width"),
+                    *h = cJSON_GetObjectItemCaseSensitive(j, "height");
         const cJSON *runs = cJSON_GetObjectItemCaseSensitive(j, "runs");
         if (strcmp(build, plan_build) != 0) {
             cli_error("evaluate --tables: step %s was made by commit %s, the evaluation (plan.json) by %s: a "

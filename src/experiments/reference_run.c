@@ -49,7 +49,8 @@ int reference_setup(const struct cli_options *desc, int need_out, struct referen
      * with a relMSE target the variance state and its read too */
     const double per_pixel = (o->target_relmse > 0.0 ? 5.0 : 3.0) * 3.0 * sizeof(float);
     if (cli_check_bytes("reference", o->params.width, o->params.height,
-                        per_pixel * o->params.width * (double)o->params.height, per_pixel, o->max_memory_mb, msg) != 0) {
+                        per_pixel * o->params.width * (double)o->params.height, per_pixel, o->max_memory_mb,
+                        msg) != 0) {
         cli_error("%s", msg);
         scene_destroy(&st->s);
         return EXIT_RUNTIME;

@@ -372,12 +372,16 @@ void study_row_end(struct study_row *row, const unsigned char *hard, struct stud
     double *theta_t = xcalloc((size_t)runs, sizeof(double)), *theta_s = xcalloc((size_t)runs, sizeof(double)),
            *theta_h = xcalloc((size_t)runs, sizeof(double));
     const size_t seq_block = (size_t)frames * npix;
-    res->temporal_cov = restir_metrics_temporal_autocovariance(row->seq, runs, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
-    res->temporal_cov_hard = restir_metrics_temporal_autocovariance(row->seq, runs, frames, w, h, STUDY_COV_LAG, COV_EPS, hard);
+    res->temporal_cov =
+        restir_metrics_temporal_autocovariance(row->seq, runs, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
+    res->temporal_cov_hard =
+        restir_metrics_temporal_autocovariance(row->seq, runs, frames, w, h, STUDY_COV_LAG, COV_EPS, hard);
     for (int i = 0; i < runs && jack; i++) {
         swap_blocks(row->seq, seq_block, i, runs - 1);
-        theta_t[i] = restir_metrics_temporal_autocovariance(row->seq, runs - 1, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
-        theta_h[i] = restir_metrics_temporal_autocovariance(row->seq, runs - 1, frames, w, h, STUDY_COV_LAG, COV_EPS, hard);
+        theta_t[i] =
+            restir_metrics_temporal_autocovariance(row->seq, runs - 1, frames, w, h, STUDY_COV_LAG, COV_EPS, NULL);
+        theta_h[i] =
+            restir_metrics_temporal_autocovariance(row->seq, runs - 1, frames, w, h, STUDY_COV_LAG, COV_EPS, hard);
         swap_blocks(row->seq, seq_block, i, runs - 1);
     }
     /* Spatial covariance of each measured frame across runs, averaged over frames. */

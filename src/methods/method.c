@@ -67,7 +67,8 @@ int method_check_settings(const struct method *m, const struct render_params *p,
     char names[256];
     if (p->reuse.temporal_reuse != TEMPORAL_BACKPROJECT && !method_has(m, METHOD_PATH_RESERVOIRS)) {
         method_names_with(METHOD_PATH_RESERVOIRS, names, sizeof names);
-        snprintf(msg, RESTIR_MSG_LEN, "temporal.reuse=%s: %s has no path reservoirs with primary hits to splat (%s have)",
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "temporal.reuse=%s: %s has no path reservoirs with primary hits to splat (%s have)",
                  p->reuse.temporal_reuse == TEMPORAL_SPLAT ? "splat" : "both", m->name, names);
         return -1;
     }

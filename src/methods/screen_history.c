@@ -56,7 +56,8 @@ void screen_history_end_frame(struct screen_history *h, const struct render_para
     const int n = g->width * g->height, has_history = h->has_history;
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < n; i++) {
-        int q = has_history ? gbuffer_history_pixel(g, i, prev_g, p->reuse.temporal_normal, p->reuse.temporal_plane) : -1;
+        int q =
+            has_history ? gbuffer_history_pixel(g, i, prev_g, p->reuse.temporal_normal, p->reuse.temporal_plane) : -1;
         age[i] = q < 0 ? 0 : (unsigned char)(prev[q] < 255 ? prev[q] + 1 : 255);
     }
     h->cur = 1 - h->cur;

@@ -59,7 +59,8 @@ static const struct param_def spp_rows[] = {
     {"spp", P_INT, F(spp), 1, 1 << 20, "1", NULL, "paths per pixel per frame", NULL},
 };
 static const struct param_def image_rows[] = {
-    {"jitter", P_BOOL, F(jitter), 0, 1, "on", NULL, "jitter primary rays over the pixel (integrates the box filter)", NULL},
+    {"jitter", P_BOOL, F(jitter), 0, 1, "on", NULL, "jitter primary rays over the pixel (integrates the box filter)",
+     NULL},
 };
 static const struct param_def depth_rows[] = {
     {"pt.max_bounces", P_INT, F(max_bounces), 1, 64, "8", NULL,
@@ -76,13 +77,14 @@ static const struct param_def sampler_rows[] = {
 };
 static const struct param_def lights_rows[] = {
     {"lights.sample", P_NAMES, F(light_sampling), 0, 0, "area", NULL,
-     "next-event estimation's point on the chosen emitting triangle in every path walk: area (uniform on it) or solid-angle "
-     "(uniform in the solid angle it subtends, Arvo 1995; area where it subtends less than 0.02 sr), with the "
+     "next-event estimation's point on the chosen emitting triangle in every path walk: area (uniform on it) or "
+     "solid-angle (uniform in the solid angle it subtends, Arvo 1995; area where it subtends less than 0.02 sr), "
+     "with the "
      "matching density in NEE and in the MIS weight of BSDF-sampled hits",
      light_sampling_names},
     {"lights.select", P_NAMES, F(light_selection), 0, 0, "bvh", NULL,
-     "next-event estimation's choice of emitting triangle in every path walk: power (in proportion to its power, one alias "
-     "table) or bvh (down the emitters' BVH by each node's importance at the shading point from its power, "
+     "next-event estimation's choice of emitting triangle in every path walk: power (in proportion to its power, one "
+     "alias table) or bvh (down the emitters' BVH by each node's importance at the shading point from its power, "
      "distance and orientation bounds, Conty Estevez & Kulla 2018), with the matching probability in NEE and in "
      "the MIS weight of BSDF-sampled hits; unbiased either way",
      light_selection_names},
@@ -106,12 +108,15 @@ static const struct param_def reuse_rows[] = {
     {"spatial.preset", P_PRESET, 0, 0, 0, NULL, NULL,
      "000 presets: fast (compat, R 30, K 32), balanced (R 50), conservative (R 100)", preset_names},
     {"spatial.candidates", P_INT, R(spatial_candidates), 1, 4096, "32", NULL, "compat: candidates K per pixel", NULL},
-    {"spatial.omega", P_FLOAT, R(spatial_omega), 1e-9, 12.57, "0.05", NULL, "compat: solid angle Omega of the position scale (Eq. 15)", NULL},
+    {"spatial.omega", P_FLOAT, R(spatial_omega), 1e-9, 12.57, "0.05", NULL,
+     "compat: solid angle Omega of the position scale (Eq. 15)", NULL},
     {"spatial.beta", P_FLOAT, R(spatial_beta), 0, 1e3, "8", NULL, "compat: normal exponent beta (Eq. 15)", NULL},
     {"spatial.early_stop", P_BOOL, R(spatial_early_stop), 0, 1, "on", NULL,
      "compat: stop once more than M candidates score above 0.5 (000 Sec. 5)", NULL},
-    {"spatial.normal", P_FLOAT, R(spatial_normal), -1, 1, "0.5", NULL, "Bitterli test (000 Eq. 7): minimum n . n_i", NULL},
-    {"spatial.depth", P_FLOAT, R(spatial_depth), 0, 1e30, "0.1", NULL, "Bitterli test (000 Eq. 7): max |d_i - d| / d", NULL},
+    {"spatial.normal", P_FLOAT, R(spatial_normal), -1, 1, "0.5", NULL, "Bitterli test (000 Eq. 7): minimum n . n_i",
+     NULL},
+    {"spatial.depth", P_FLOAT, R(spatial_depth), 0, 1e30, "0.1", NULL, "Bitterli test (000 Eq. 7): max |d_i - d| / d",
+     NULL},
     {"spatial.reuse", P_NAMES, R(spatial_reuse), 0, 0, "standard", NULL,
      "spatial reuse: standard (GRIS over the selected neighbors) or spmis (004 Algorithm 2: stochastic "
      "pairwise MIS over one reuse cell; unbiased)",
@@ -123,8 +128,10 @@ static const struct param_def reuse_rows[] = {
     {"confidence_cap", P_FLOAT, R(confidence_cap), 1, 1e9, "20", NULL, "cap on confidence weights c (M cap)", NULL},
     {"mis", P_MIS, R(mis), 0, 0, "pairwise", "1/M",
      "resampling MIS: pairwise (defensive, unbiased), balance (unbiased), 1/M (BIASED: ignores that "
-     "domains cannot all produce every sample)", NULL},
-    {"temporal.normal", P_FLOAT, R(temporal_normal), -1, 1, "0.8", NULL, "history rejected when n . n_prev is below", NULL},
+     "domains cannot all produce every sample)",
+     NULL},
+    {"temporal.normal", P_FLOAT, R(temporal_normal), -1, 1, "0.8", NULL, "history rejected when n . n_prev is below",
+     NULL},
     {"temporal.plane", P_FLOAT, R(temporal_plane), 0, 1e30, "0.05", NULL,
      "history rejected when the plane distance / depth is above", NULL},
     {"temporal.ratio_guard", P_BOOL, R(temporal_ratio_guard), 0, 1, "off", "on",
@@ -155,13 +162,16 @@ static const struct param_def spmis_rows[] = {
      "spmis: neighbor draws N (004 Eq. 15-17); M = deterministic pairwise over the whole cell", NULL},
     {"spmis.canonical_candidates", P_COUNT, S(canonical_candidates), 1, RESTIR_SPMIS_MAX_DRAWS, "1", NULL,
      "spmis: canonical-weight draws N_c (004 Eq. 18); M = the exact Eq. 11b sum", NULL},
-    {"spmis.tile", P_INT, S(tile), 1, RESTIR_CELLS_MAX_TILE, "8", NULL, "spmis: reuse-cell tile edge in pixels (004 Sec. 5)", NULL},
+    {"spmis.tile", P_INT, S(tile), 1, RESTIR_CELLS_MAX_TILE, "8", NULL,
+     "spmis: reuse-cell tile edge in pixels (004 Sec. 5)", NULL},
     {"spmis.normal_bins", P_INT, S(normal_bins), 1, 64, "4", NULL,
      "spmis: cell key quantizes each normal component into this many buckets", NULL},
     {"spmis.search_steps", P_INT, S(search_steps), 0, SPMIS_MAX_SEARCH_STEPS, "12", NULL,
      "spmis: cell-search taps (004 Sec. 5.1; 0 = always the pixel's own cell)", NULL},
-    {"spmis.search_radius", P_FLOAT, S(search_radius), 0, 4096, "30", NULL, "spmis: initial cell-search radius, pixels", NULL},
-    {"spmis.search_growth", P_FLOAT, S(search_growth), 1, 16, "1.25", NULL, "spmis: cell-search radius factor per tap", NULL},
+    {"spmis.search_radius", P_FLOAT, S(search_radius), 0, 4096, "30", NULL, "spmis: initial cell-search radius, pixels",
+     NULL},
+    {"spmis.search_growth", P_FLOAT, S(search_growth), 1, 16, "1.25", NULL, "spmis: cell-search radius factor per tap",
+     NULL},
     {"spmis.search_normal", P_FLOAT, S(search_normal), -1, 1, "0.9", NULL,
      "spmis: a search tap is rejected when n . n_tap is below this (or on another object)", NULL},
     {"spmis.search", P_NAMES, S(search), 0, 0, "always", "sparse",
@@ -192,8 +202,10 @@ static const struct param_def spmis_rows[] = {
 static const struct param_def shift_rows[] = {
     {"shift", P_SHIFT, H(kind), 0, 0, "hybrid", NULL,
      "shift mapping of path reuse: hybrid (replay until two rough, distant vertices, then reconnect), "
-     "reconnection (at the secondary vertex), replay (whole prefix; reconnects only at the light)", NULL},
-    {"shift.roughness", P_FLOAT, H(roughness), 0, 1, "0.2", NULL, "hybrid shift: GGX alpha at or above which a vertex is rough", NULL},
+     "reconnection (at the secondary vertex), replay (whole prefix; reconnects only at the light)",
+     NULL},
+    {"shift.roughness", P_FLOAT, H(roughness), 0, 1, "0.2", NULL,
+     "hybrid shift: GGX alpha at or above which a vertex is rough", NULL},
     {"shift.distance", P_FLOAT, H(distance), 0, 1e9, "0.01", NULL,
      "hybrid shift: minimum reconnection length, in shift.distance_mode's measure", NULL},
     {"shift.distance_mode", P_NAMES, H(distance_mode), 0, 0, "scene", NULL,
@@ -234,13 +246,17 @@ static const struct param_def trace_rows[] = {
 static const struct param_def camera_rows[] = {
     {"camera.shutter", P_FLOAT, F(camera_shutter), 0, 1, "0", NULL,
      "motion blur: the shutter is open for this fraction of a frame before each frame's instant, while the "
-     "camera moves from the previous frame's pose (0: off; refused by methods whose samples do not carry the primary ray)", NULL},
+     "camera moves from the previous frame's pose (0: off; refused by methods whose samples do not carry the primary "
+     "ray)",
+     NULL},
     {"camera.aperture", P_FLOAT, F(camera_aperture), 0, 1e30, "0", NULL,
      "depth of field: thin-lens aperture radius in scene units (0: the scene camera's, a pinhole unless its "
-     "file sets aperture; refused by methods whose samples do not carry the primary ray)", NULL},
+     "file sets aperture; refused by methods whose samples do not carry the primary ray)",
+     NULL},
     {"camera.focus_distance", P_FLOAT, F(camera_focus), 0, 1e30, "0", NULL,
      "thin lens: distance of the plane in focus along the view direction (0: the scene camera's "
-     "focus_distance, else the distance to its look_at point)", NULL},
+     "focus_distance, else the distance to its look_at point)",
+     NULL},
 };
 
 static int reuse_validate(const struct render_params *p, const void *block, char *msg)
@@ -312,4 +328,5 @@ const struct param_block *const render_params_toolkit_blocks[] = {
     &params_block_trace,
     &params_block_camera,
 };
-const size_t render_params_toolkit_block_count = sizeof(render_params_toolkit_blocks) / sizeof(render_params_toolkit_blocks[0]);
+const size_t render_params_toolkit_block_count =
+    sizeof(render_params_toolkit_blocks) / sizeof(render_params_toolkit_blocks[0]);

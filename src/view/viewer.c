@@ -81,7 +81,8 @@ static void spec(const struct view *v, char *out, size_t len)
     char select[64];
     render_params_get(&v->p, "spatial.select", select, sizeof select);
     snprintf(out, len, "%s%s%s%s%s%s%s%s", v->method->name, v->p.reuse.temporal ? "" : ":temporal=off",
-             v->p.reuse.spatial ? "" : ":spatial=off", v->p.reuse.spatial_select == SELECT_BITTERLI ? "" : ":spatial.select=",
+             v->p.reuse.spatial ? "" : ":spatial=off",
+             v->p.reuse.spatial_select == SELECT_BITTERLI ? "" : ":spatial.select=",
              v->p.reuse.spatial_select == SELECT_BITTERLI ? "" : select,
              v->p.reuse.spatial_reuse == REUSE_SPMIS ? ":spatial.reuse=spmis" : "",
              v->p.denoise.method > 0 ? ":denoise=" : "",

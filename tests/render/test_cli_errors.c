@@ -106,8 +106,9 @@ static void check_bad_render_input(void)
     expect_failure("reference too large for --max-memory",
                    "reference --scene cornell --method pt --res 8000x6000 --max-memory 200 --out '%1$s/r.exr'", 1,
                    "reference at 8000x6000 needs about", "than the 200 MB that --max-memory allows");
-    expect_failure("bad --checkpoint-every", "reference --scene cornell --method pt --checkpoint-every -1 --out '%1$s/r.exr'",
-                   2, "--checkpoint-every", "-1");
+    expect_failure("bad --checkpoint-every",
+                   "reference --scene cornell --method pt --checkpoint-every -1 --out '%1$s/r.exr'", 2,
+                   "--checkpoint-every", "-1");
     expect_failure("--checkpoint-every outside reference", RENDER_ARGS("--checkpoint-every 5"), 2,
                    "--checkpoint-every", NULL);
     const char *const bad_targets[] = {"0", "-0.01", "nan", "2", "abc", "1e-3x"};
@@ -201,8 +202,8 @@ static void check_compare(void)
                    "compare --scene cornell --methods pt --ref-every 2 --frames 4 --res 16x16 --plan '%1$s'", 2,
                    "--ref-every", "unsplit");
     expect_failure("compare instances= with --equal-time",
-                   "compare --scene cornell --methods restir-di,pt:instances=2 --equal-time --res 16x16 --out '%1$s'", 2,
-                   "instances=", "--equal-time");
+                   "compare --scene cornell --methods restir-di,pt:instances=2 --equal-time --res 16x16 --out '%1$s'",
+                   2, "instances=", "--equal-time");
     expect_failure("compare instances=0",
                    "compare --scene cornell --methods restir-di:instances=0 --res 16x16 --out '%1$s'", 2, "instances",
                    "[1, 16]");
@@ -518,15 +519,19 @@ static void check_scene_files(void)
      * the factor, saying which file on stderr. */
     char missing[2 * CLI_PATH_MAX], out[3 * CLI_PATH_MAX], err[CLI_ERR_MAX];
     snprintf(missing, sizeof missing, "%s/missing-texture.json", tmp);
-    write_text(missing, "{\"format\": \"restir-scene 1\", \"camera\": {\"position\": [0, 1, 3], \"look_at\": [0, 0.5, 0]},"
-                        " \"materials\": [{\"name\": \"wall\", \"base_color_texture\": \"no-such-image.png\"},"
-                        " {\"name\": \"lamp\", \"emission\": [1, 1, 1]}], \"shapes\": ["
-                        " {\"type\": \"quads\", \"material\": \"wall\", \"quads\": [[[-1, 0, -1], [1, 0, -1], [1, 2, -1], [-1, 2, -1]]]},"
-                        " {\"type\": \"quads\", \"material\": \"lamp\", \"quads\": [[[-1, 2, 1], [1, 2, 1], [1, 2, -1], [-1, 2, -1]]]}]}");
+    write_text(missing,
+               "{\"format\": \"restir-scene 1\", \"camera\": {\"position\": [0, 1, 3], \"look_at\": [0, 0.5, 0]},"
+               " \"materials\": [{\"name\": \"wall\", \"base_color_texture\": \"no-such-image.png\"},"
+               " {\"name\": \"lamp\", \"emission\": [1, 1, 1]}], \"shapes\": ["
+               " {\"type\": \"quads\", \"material\": \"wall\", \"quads\": [[[-1, 0, -1], [1, 0, -1], [1, 2, -1], [-1, "
+               "2, -1]]]},"
+               " {\"type\": \"quads\", \"material\": \"lamp\", \"quads\": [[[-1, 2, 1], [1, 2, 1], [1, 2, -1], [-1, 2, "
+               "-1]]]}]}");
     snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --out '%%1$s'", missing);
     expect_failure("scene with a missing texture", fmt, 2, "no-such-image.png", "base_color_texture");
-    snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --set scene.missing_textures=warn --out '%s/warned'",
-             missing, tmp);
+    snprintf(fmt, sizeof fmt,
+             "render --scene '%s' --method pt --res 16x16 --set scene.missing_textures=warn --out '%s/warned'", missing,
+             tmp);
     int rc = cli_run(tmp, fmt, err);
     EXPECT(rc == 0 && strstr(err, "warning") && strstr(err, "no-such-image.png"),
            "scene.missing_textures=warn must render and warn naming the file: exit %d, %s", rc, err);
@@ -536,14 +541,17 @@ static void check_scene_files(void)
     EXPECT(cli_run(tmp, fmt, err) == 0 && strstr(err, "no-such-image.png"), "scene info with warn: %s", err);
     /* Environment light: an unreadable --env names the file; every kind of method
      * renders an environment-lit scene. */
-    expect_failure("--env of a missing image", "render --scene cornell --method pt --res 16x16 --env /nonexistent/sky.hdr "
-                   "--out '%1$s'", 2, "/nonexistent/sky.hdr", "--env");
+    expect_failure("--env of a missing image",
+                   "render --scene cornell --method pt --res 16x16 --env /nonexistent/sky.hdr "
+                   "--out '%1$s'",
+                   2, "/nonexistent/sky.hdr", "--env");
     char sky[2 * CLI_PATH_MAX];
     snprintf(sky, sizeof sky, "%s/sky.json", tmp);
     write_text(sky, "{\"format\": \"restir-scene 1\", \"camera\": {\"position\": [0, 1, 3], \"look_at\": [0, 0, 0]},"
                     " \"environment\": {\"color\": [0.5, 0.6, 0.8], \"intensity\": 2},"
                     " \"materials\": [{\"name\": \"ground\", \"base_color\": [0.5, 0.5, 0.5]}],"
-                    " \"shapes\": [{\"type\": \"quads\", \"material\": \"ground\", \"quads\": [[[-1, 0, 1], [1, 0, 1], [1, 0, -1], [-1, 0, -1]]]}]}");
+                    " \"shapes\": [{\"type\": \"quads\", \"material\": \"ground\", \"quads\": [[[-1, 0, 1], [1, 0, 1], "
+                    "[1, 0, -1], [-1, 0, -1]]]}]}");
     snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --env none --out '%%1$s'", sky);
     expect_failure("--env none leaving no light", fmt, 2, "--env none", NULL);
     const char *methods[] = {"pt", "restir-di", "restir-pt", "grestir-pt"};

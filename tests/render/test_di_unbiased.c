@@ -33,8 +33,8 @@ static void check_reference(const struct method *method, const char *scene_name,
     unbiased_check(&c, all, nsets + 1, expect_unbiased);
 }
 
-static void check_method(const struct method *method, const char *scene_name, int w, int h, const char *const *sets, int nsets,
-                         int expect_unbiased)
+static void check_method(const struct method *method, const char *scene_name, int w, int h, const char *const *sets,
+                         int nsets, int expect_unbiased)
 {
     check_reference(method, scene_name, w, h, 16, sets, nsets, expect_unbiased);
 }

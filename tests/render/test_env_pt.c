@@ -126,8 +126,8 @@ static void check_method(const char *what, const struct scene *s, double expect,
     printf("%s, %s: image mean %.5f, expected %s%.5f, z %.2f, worst pixel |z| %.2f (limit %.2f), %d pixels off\n",
            m->name, what, mean, at_most ? "<= " : "", expect, z, worst, z_crit, failed);
     EXPECT(failed == 0, "%s, %s: %d pixels off", m->name, what, failed);
-    EXPECT(at_most ? z < IMAGE_Z_MAX : fabs(z) < IMAGE_Z_MAX, "%s, %s: image mean %.5f vs %.5f (z %.2f)", m->name, what, mean,
-           expect, z);
+    EXPECT(at_most ? z < IMAGE_Z_MAX : fabs(z) < IMAGE_Z_MAX, "%s, %s: image mean %.5f vs %.5f (z %.2f)", m->name, what,
+           mean, expect, z);
     pixel_stats_free(&st);
 }
 

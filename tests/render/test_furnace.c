@@ -1,7 +1,7 @@
 /* test_furnace.c: the analytic furnace: inside a closed sphere of a Lambertian of albedo a = 0.5
  * emitting Le = 0.5, L = Le / (1 - a) = 1, and with one bounce L = Le (1 + a) = 0.75. pt and
- * restir-pt (all bounces), pt and restir-di (one bounce) must match per pixel and over the image. Must never use pt internals: a bsdf_eval quadrature checks
- * the material independently. */
+ * restir-pt (all bounces), pt and restir-di (one bounce) must match per pixel and over the image. Must never use pt
+ * internals: a bsdf_eval quadrature checks the material independently. */
 #include <string.h>
 
 #include "core/check.h"
@@ -160,7 +160,8 @@ static struct furnace_result render_furnace(const struct scene *s, const struct 
     }
     printf("%s, max_bounces %d: image mean %.5f (se %.5f), expected %.5f, pixel se %.4f, worst |z| %.2f "
            "(crit %.2f), %d pixels fail\n",
-           method->name, max_bounces, res.image_mean, res.image_se, expect, se_pixel, res.worst_z, z_crit, res.pixels_failed);
+           method->name, max_bounces, res.image_mean, res.image_se, expect, se_pixel, res.worst_z, z_crit,
+           res.pixels_failed);
     EXPECT(var_run > 0.0, "%s with jitter and random bounces must show noise", method->name);
     pixel_stats_free(&st);
     return res;
@@ -179,7 +180,8 @@ static void smooth_furnace(double le)
     char msg[RESTIR_MSG_LEN];
     scene_builder_begin(&b, &s, "smooth-furnace");
     int m = scene_add_material(
-        &b, (struct material){.base_color = v3s(0.5f), .roughness = 1.0f, .emission = v3s((float)le), .lambert_only = 1});
+        &b,
+        (struct material){.base_color = v3s(0.5f), .roughness = 1.0f, .emission = v3s((float)le), .lambert_only = 1});
     scene_add_sphere(&b, v3(0, 0, 0), 1.0f, 12, SPHERE_INWARD | SPHERE_SMOOTH, m, scene_new_object(&b));
     s.camera = (struct camera){v3(0.3f, 0.1f, 0), v3(1, 0, 1), v3(0, 1, 0), 60.0f, 0.0f, 0.0f};
     if (scene_builder_end(&b, msg) != 0) {

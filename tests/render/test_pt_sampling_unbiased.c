@@ -29,8 +29,8 @@
 
 #define RUNS 1024
 
-/* K runs of pt with the assignment `sampler` (NULL: none) over base, `frames` frames of `spp` paths each along the camera path,
- * averaged per run. */
+/* K runs of pt with the assignment `sampler` (NULL: none) over base, `frames` frames of `spp` paths each along the
+ * camera path, averaged per run. */
 static void run_pt(const struct scene *s, const struct render_params *base, const char *sampler, uint64_t seed0,
                    int runs, int frames, struct pixel_stats *st)
 {
@@ -132,8 +132,8 @@ static void check_variant(const char *variant, const char *variant2, const char 
     EXPECT(!variant2 || render_params_set(&tested, variant2, msg) == 0, "%s", msg);
     run_pt(&s, &tested, NULL, 1000, runs, 2, &sobol);
     run_pt(&s, &p, "sampler=independent", 900000, runs, 2, &independent);
-    printf("%s 20x12 pt %s%s%s against sampler=independent lights.sample=area, %d runs of 2 frames:", scene_name, variant,
-           variant2 ? " " : "", variant2 ? variant2 : "", runs);
+    printf("%s 20x12 pt %s%s%s against sampler=independent lights.sample=area, %d runs of 2 frames:", scene_name,
+           variant, variant2 ? " " : "", variant2 ? variant2 : "", runs);
     for (int k = 0; k < nsets; k++)
         printf(" %s", sets[k]);
     printf("\n");

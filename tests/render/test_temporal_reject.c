@@ -1,5 +1,6 @@
 /* test_temporal_reject.c: restir-di keeps temporal history under a static camera and rejects it after a camera cut
- * and on pixels whose material changed. Must never depend on reuse-pass internals: only frame_stats, G-buffers, confidences. */
+ * and on pixels whose material changed. Must never depend on reuse-pass internals: only frame_stats, G-buffers,
+ * confidences. */
 #include <string.h>
 
 #include "core/check.h"

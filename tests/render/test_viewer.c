@@ -202,7 +202,8 @@ int main(void)
     /* temporal.reuse=both: splatted candidates too, alone (blue) or with backprojection (cyan) */
     char both[2 * CLI_PATH_MAX];
     snprintf(both, sizeof both, "%s/both", tmp);
-    viewer_session(tmp, "both", "0 hold d 4\n0 press v\n0 press v\n0 press v\n0 press v\n0 press v\n5 press k\n6 quit\n",
+    viewer_session(tmp, "both",
+                   "0 hold d 4\n0 press v\n0 press v\n0 press v\n0 press v\n0 press v\n5 press k\n6 quit\n",
                    "--method restir-pt --set temporal.reuse=both", both);
     snprintf(out, sizeof out, "%s/screenshot_0000_view.png", both);
     EXPECT(count_temporal_view(out, tc) == 0, "cannot read %s at 64x36", out);
@@ -228,7 +229,8 @@ int main(void)
     viewer_session(tmp, "refused", "0 press m\n2 press k\n3 quit\n", "--method pt --set camera.aperture=0.05", refused);
     snprintf(log, sizeof log, "%s/xvfb-refused.log", tmp);
     cli_read_text(log, err, sizeof err);
-    EXPECT(strstr(err, "camera.aperture") && strstr(err, "does not render") && strstr(err, "pt keeps running as it was"),
+    EXPECT(strstr(err, "camera.aperture") && strstr(err, "does not render") &&
+               strstr(err, "pt keeps running as it was"),
            "M to a method that cannot render the lens: not refused by name:\n%s", err);
     snprintf(out, sizeof out, "%s/screenshot_0000.exr", refused);
     EXPECT(file_size(out) > 0, "the refused switch stopped the session (no %s)", out);

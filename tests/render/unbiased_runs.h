@@ -37,9 +37,9 @@ static inline void unbiased_run_method(const struct scene *s, const struct metho
 /* The reference of method m (pt over the same integrand) with spp paths per run, seen from
  * camera-path frame camera_frame with the shutter opening at frame open_frame: runs 0 .. runs-1 of
  * the process's reference cache (rendered once however many cases share them). */
-static inline void unbiased_run_reference(const struct scene *s, const struct method *m, const struct render_params *base,
-                                          int runs, int spp, float camera_frame, float open_frame,
-                                          struct pixel_stats *st)
+static inline void unbiased_run_reference(const struct scene *s, const struct method *m,
+                                          const struct render_params *base, int runs, int spp, float camera_frame,
+                                          float open_frame, struct pixel_stats *st)
 {
     struct render_params rp = *base;
     method_reference_params(m, &rp);

@@ -126,7 +126,8 @@ static void atrous_hand(const struct scene_buf *b, float *I, float *var, int ite
                         const int q = p + oy * w + ox;
                         const double den = 1.0 * fabs(gx * ox + gy * oy) + 1e-3 * b->depth[p];
                         const double dev = sym ? 0.5 * (sd[p] + sd[q]) : sd[p];
-                        const double a = fabs(b->depth[p] - b->depth[q]) / den + fabs(l[p] - l[q]) / (4.0 * dev + 1e-10);
+                        const double a =
+                            fabs(b->depth[p] - b->depth[q]) / den + fabs(l[p] - l[q]) / (4.0 * dev + 1e-10);
                         const double nd = fmax(0.0, v3_dot(b->nrm[p], b->nrm[q]));
                         const double wt = hk[ty] * hk[tx] * pow(nd, 128.0) * exp(-a);
                         sw += wt;

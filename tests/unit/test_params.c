@@ -30,14 +30,19 @@ int main(void)
     struct render_params d;
     render_params_defaults(&d);
     /* The table's defaults, spot-checked against the papers' values (DESIGN.md). */
-    EXPECT(di_settings_of(&d)->light_candidates == 32 && di_settings_of(&d)->bsdf_candidates == 1, "DI candidates 32 + 1");
+    EXPECT(di_settings_of(&d)->light_candidates == 32 && di_settings_of(&d)->bsdf_candidates == 1,
+           "DI candidates 32 + 1");
     EXPECT(d.reuse.confidence_cap == 20.0f, "M cap 20");
-    EXPECT(d.reuse.spatial_radius == 30.0f && d.reuse.spatial_normal == 0.5f && d.reuse.spatial_depth == 0.1f, "Bitterli test");
-    EXPECT(d.reuse.spatial_omega == 0.05f && d.reuse.spatial_beta == 8.0f && d.reuse.spatial_candidates == 32, "000 defaults");
+    EXPECT(d.reuse.spatial_radius == 30.0f && d.reuse.spatial_normal == 0.5f && d.reuse.spatial_depth == 0.1f,
+           "Bitterli test");
+    EXPECT(d.reuse.spatial_omega == 0.05f && d.reuse.spatial_beta == 8.0f && d.reuse.spatial_candidates == 32,
+           "000 defaults");
     EXPECT(d.spmis.tile == 8 && d.spmis.candidates == 3 && d.spmis.canonical_candidates == 1 &&
                d.spmis.search_steps == 12 && d.spmis.search_growth == 1.25f,
            "004 defaults");
-    EXPECT(recon_settings_of(&d)->alpha == 0.2f && recon_settings_of(&d)->mode == RECON_L2 && grad_settings_of(&d)->search == 256, "002 defaults");
+    EXPECT(recon_settings_of(&d)->alpha == 0.2f && recon_settings_of(&d)->mode == RECON_L2 &&
+               grad_settings_of(&d)->search == 256,
+           "002 defaults");
     EXPECT(d.reuse.mis == RESTIR_MIS_PAIRWISE && d.shift.kind == SHIFT_HYBRID, "pairwise MIS, hybrid shift");
     EXPECT(d.width == 640 && d.height == 360 && d.seed == 1, "640x360, seed 1");
     EXPECT(render_params_validate(&d, msg) == 0, "defaults invalid: %s", msg);

@@ -60,8 +60,9 @@ void grad_reconstruct_l2(const struct render_params *p, struct grad_frame *g)
      * it, with the exact solution). */
     const int fixed = recon_settings_of(p)->iterations > 0;
     int rc = restir_poisson_l2(g->width, g->height, g->primal, g->dx, g->dy, recon_settings_of(p)->alpha,
-                               (enum restir_poisson_solver)recon_settings_of(p)->solver, fixed ? DBL_MIN : RESTIR_POISSON_TOL,
-                               fixed ? recon_settings_of(p)->iterations : 2000, g->l2, &g->l2_stats);
+                               (enum restir_poisson_solver)recon_settings_of(p)->solver,
+                               fixed ? DBL_MIN : RESTIR_POISSON_TOL, fixed ? recon_settings_of(p)->iterations : 2000,
+                               g->l2, &g->l2_stats);
     RESTIR_CHECK(rc == 0);
 }
 
@@ -73,7 +74,7 @@ void grad_reconstruct_l1(const struct render_params *p, struct grad_frame *g)
     const int steps = recon_settings_of(p)->l1_cg > 0                           ? recon_settings_of(p)->l1_cg
                       : pre == RESTIR_POISSON_PRECOND_MULTIGRID ? RESTIR_POISSON_L1_MG_STEPS
                                                                 : RESTIR_POISSON_L1_CG_STEPS;
-    int rc = restir_poisson_l1(g->width, g->height, g->primal, g->dx, g->dy, recon_settings_of(p)->alpha, recon_settings_of(p)->l1_iterations,
-                               pre, steps, g->l1, &g->l1_stats);
+    int rc = restir_poisson_l1(g->width, g->height, g->primal, g->dx, g->dy, recon_settings_of(p)->alpha,
+                               recon_settings_of(p)->l1_iterations, pre, steps, g->l1, &g->l1_stats);
     RESTIR_CHECK(rc == 0);
 }

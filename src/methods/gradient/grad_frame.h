@@ -28,7 +28,8 @@ void grad_frame_begin(struct grad_frame *g);
 
 /* The L2 solve (recon_settings_of(p)->solver, alpha = recon_settings_of(p)->alpha) into g->l2. */
 void grad_reconstruct_l2(const struct render_params *p, struct grad_frame *g);
-/* The L1 IRLS solve (recon_settings_of(p)->l1_iterations x recon_settings_of(p)->l1_cg) into g->l1 (allocated on demand). */
+/* The L1 IRLS solve (recon_settings_of(p)->l1_iterations x recon_settings_of(p)->l1_cg) into g->l1 (allocated on
+ * demand). */
 void grad_reconstruct_l1(const struct render_params *p, struct grad_frame *g);
 
 #endif

@@ -54,17 +54,21 @@ static const struct param_def recon_rows[] = {
      "which screened Poisson solve fills the image: l2 (unbiased: linear in unbiased "
      "inputs), l1 (BIASED: iteratively reweighted, robust to outliers) or both (image = L2, L1 as a layer)",
      recon_names},
-    {"recon.alpha", P_FLOAT, C(alpha), 1e-6, 1e6, "0.2", NULL, "screened Poisson: weight alpha of the primal term", NULL},
+    {"recon.alpha", P_FLOAT, C(alpha), 1e-6, 1e6, "0.2", NULL, "screened Poisson: weight alpha of the primal term",
+     NULL},
     {"recon.solver", P_NAMES, C(solver), 0, 0, "dct", NULL,
      "L2 solver: dct (direct, exact) or cg (conjugate gradient to a relative residual of 1e-6, or recon.iterations "
-     "steps)", solver_names},
+     "steps)",
+     solver_names},
     {"recon.iterations", P_INT, C(iterations), 0, 100000, "0", NULL,
      "L2 with recon.solver=cg: 0 solves to a relative residual of 1e-6; N stops after exactly N CG steps from the "
      "primal, as 002's public code and Kettunen et al. do (BIASED: a truncated CG is not linear in its noisy "
-     "inputs; measured in docs/BENCHMARKS.md)", NULL},
+     "inputs; measured in docs/BENCHMARKS.md)",
+     NULL},
     {"recon.l1_iterations", P_INT, C(l1_iterations), 1, 1000, "20", NULL, "L1: IRLS reweighting iterations", NULL},
     {"recon.l1_precond", P_NAMES, C(l1_precond), 0, 0, "multigrid", NULL,
-     "L1: preconditioner of the inner CG: multigrid (V-cycle) or jacobi (the public G-PT solver's kind)", precond_names},
+     "L1: preconditioner of the inner CG: multigrid (V-cycle) or jacobi (the public G-PT solver's kind)",
+     precond_names},
     {"recon.l1_cg", P_INT, C(l1_cg), 0, 100000, "0", NULL,
      "L1: conjugate-gradient steps per reweighting; 0: the preconditioner's default (multigrid 4, jacobi 50)", NULL},
 };
@@ -87,7 +91,8 @@ static int recon_validate(const struct render_params *p, const void *block, char
     (void)p;
     const struct recon_settings *c = block;
     if (c->iterations > 0 && c->solver != RESTIR_POISSON_CG) {
-        snprintf(msg, RESTIR_MSG_LEN, "recon.iterations = %d needs recon.solver=cg (dct solves exactly)", c->iterations);
+        snprintf(msg, RESTIR_MSG_LEN, "recon.iterations = %d needs recon.solver=cg (dct solves exactly)",
+                 c->iterations);
         return -1;
     }
     return 0;

@@ -39,7 +39,10 @@ static inline const struct grad_settings *grad_settings_of(const struct render_p
 {
     return param_block_in(p, &grad_block);
 }
-static inline struct grad_settings *grad_settings_mut(struct render_params *p) { return param_block_in_mut(p, &grad_block); }
+static inline struct grad_settings *grad_settings_mut(struct render_params *p)
+{
+    return param_block_in_mut(p, &grad_block);
+}
 static inline const struct recon_settings *recon_settings_of(const struct render_params *p)
 {
     return param_block_in(p, &recon_block);

@@ -199,7 +199,9 @@ long long grestir_initial_pass(const struct pt_frame *fr, const struct gbuffer *
                     for (int k = 0; k < 2; k++) {
                         target[k] = pt_reservoir_has_sample(src[k]) ? restir_grad_target(sg, hk[k]) : 0.0f;
                         /* Eq. 20 with m = 1 (disjoint parts) and the pixel path's UCW */
-                        if (restir_reservoir_offer(&wrs, restir_gris_resampling_weight(1.0f, target[k], src[k]->W, 1.0f), pcg32_float(&rng)))
+                        if (restir_reservoir_offer(&wrs,
+                                                   restir_gris_resampling_weight(1.0f, target[k], src[k]->W, 1.0f),
+                                                   pcg32_float(&rng)))
                             chosen = k;
                     }
                     struct pair_reservoir *out = &st->work[dir][s][a];
@@ -372,7 +374,8 @@ long long grestir_temporal_pass(const struct pt_frame *fr, const struct gbuffer 
 {
     const struct render_params *p = fr->p;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h), ns = sign_count(p);
-    const enum restir_mis mis = p->reuse.temporal_subpixel == TEMPORAL_SUBPIXEL_SEARCH ? render_params_tiled_mis(p) : p->reuse.mis;
+    const enum restir_mis mis =
+        p->reuse.temporal_subpixel == TEMPORAL_SUBPIXEL_SEARCH ? render_params_tiled_mis(p) : p->reuse.mis;
     long long rays = 0, acc = 0;
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays, acc)
     for (int t = 0; t < ntiles; t++) {
@@ -413,7 +416,8 @@ long long grestir_temporal_pass(const struct pt_frame *fr, const struct gbuffer 
 
 static int gb_edge(const struct render_params *p, const struct gbuffer *g, int i, int j)
 {
-    const struct restir_grad_edge_test t = {grad_settings_of(p)->edge_albedo, grad_settings_of(p)->edge_normal, grad_settings_of(p)->edge_depth};
+    const struct restir_grad_edge_test t = {grad_settings_of(p)->edge_albedo, grad_settings_of(p)->edge_normal,
+                                            grad_settings_of(p)->edge_depth};
     const vec3 ai = g->albedo[i], aj = g->albedo[j], ni = g->normal[i], nj = g->normal[j];
     const float A[3] = {ai.x, ai.y, ai.z}, B[3] = {aj.x, aj.y, aj.z}, N[3] = {ni.x, ni.y, ni.z},
                 M[3] = {nj.x, nj.y, nj.z};
@@ -497,7 +501,8 @@ void grestir_select_pass(const struct pt_frame *fr, const struct gbuffer *g, str
                 pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)a * 2 + (uint64_t)dir,
                                     RNG_PASS_GRAD_SELECT);
                 for (int tap = 0; tap < grad_settings_of(p)->search; tap++) {
-                    float rad = grad_settings_of(p)->radius * sqrtf(pcg32_float(&rng)), phi = 6.2831853f * pcg32_float(&rng);
+                    float rad = grad_settings_of(p)->radius * sqrtf(pcg32_float(&rng)),
+                          phi = 6.2831853f * pcg32_float(&rng);
                     int cx = x + (int)lrintf(rad * cosf(phi)), cy = y + (int)lrintf(rad * sinf(phi));
                     if ((cx == x && cy == y) || !pair_inside(w, h, cx, cy, dir))
                         continue;

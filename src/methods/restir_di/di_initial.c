@@ -156,7 +156,8 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
     struct restir_reservoir wrs;
     restir_reservoir_init(&wrs);
     di_reservoir_clear(r, 1.0f);
-    const int nl = s->num_emitters > 0 || s->env ? di_settings_of(p)->light_candidates : 0, nb = di_settings_of(p)->bsdf_candidates;
+    const int nl = s->num_emitters > 0 || s->env ? di_settings_of(p)->light_candidates : 0,
+              nb = di_settings_of(p)->bsdf_candidates;
     struct light_batch lb;
     const int offset = nl ? light_pool_offset(pcg32_float(rng)) : 0; /* this pixel's nl pool entries */
     for (int done = 0; done < nl; done += DI_BATCH) {

@@ -12,12 +12,14 @@
 static const char *const visibility_mis_names[] = {"rays", "none", NULL};
 
 static const struct param_def di_rows[] = {
-    {"di.light_candidates", P_INT, D(light_candidates), 0, 4096, "32", NULL, "initial RIS: light-sampled candidates", NULL},
+    {"di.light_candidates", P_INT, D(light_candidates), 0, 4096, "32", NULL, "initial RIS: light-sampled candidates",
+     NULL},
     {"di.bsdf_candidates", P_INT, D(bsdf_candidates), 0, 64, "1", NULL, "initial RIS: BSDF-sampled candidates", NULL},
     {"di.visibility_reuse", P_BOOL, D(visibility_reuse), 0, 1, "on", NULL,
      "trace a shadow ray for the initial sample and drop it when occluded (Bitterli et al. "
      "2020 Alg. 5), so reuse carries visible samples (with di.visibility_mis=rays shading then needs no "
-     "shadow ray)", NULL},
+     "shadow ray)",
+     NULL},
 };
 static const struct param_def di_reuse_rows[] = {
     {"di.visibility_mis", P_NAMES, offsetof(struct di_reuse_settings, visibility_mis), 0, 0, "rays", "none",
@@ -43,5 +45,12 @@ static int di_validate(const struct render_params *p, const void *block, char *m
 
 struct param_block di_block = {"di", di_rows, sizeof(di_rows) / sizeof(di_rows[0]), 0,
                                sizeof(struct di_settings), alignof(struct di_settings), 0, di_validate, NULL};
-struct param_block di_reuse_block = {"di reuse", di_reuse_rows, sizeof(di_reuse_rows) / sizeof(di_reuse_rows[0]),
-                                     0, sizeof(struct di_reuse_settings), alignof(struct di_reuse_settings), 0, NULL, NULL};
+struct param_block di_reuse_block = {"di reuse",
+                                     di_reuse_rows,
+                                     sizeof(di_reuse_rows) / sizeof(di_reuse_rows[0]),
+                                     0,
+                                     sizeof(struct di_reuse_settings),
+                                     alignof(struct di_reuse_settings),
+                                     0,
+                                     NULL,
+                                     NULL};

@@ -1,5 +1,5 @@
-/* di_settings.h: ReSTIR DI's own settings: its initial candidates (di.light_candidates, di.bsdf_candidates, di.visibility_reuse;
- * ris-di reads them too) and the visibility in its reuse's targets (di.visibility_mis) */
+/* di_settings.h: ReSTIR DI's own settings: its initial candidates (di.light_candidates, di.bsdf_candidates,
+ * di.visibility_reuse; ris-di reads them too) and the visibility in its reuse's targets (di.visibility_mis) */
 #ifndef RESTIR_METHODS_RESTIR_DI_DI_SETTINGS_H
 #define RESTIR_METHODS_RESTIR_DI_DI_SETTINGS_H
 
@@ -21,10 +21,22 @@ struct di_reuse_settings {
 };
 
 extern struct param_block di_block; /* di: the initial candidates */
-static inline const struct di_settings *di_settings_of(const struct render_params *p) { return param_block_in(p, &di_block); }
-static inline struct di_settings *di_settings_of_mut(struct render_params *p) { return param_block_in_mut(p, &di_block); }
+static inline const struct di_settings *di_settings_of(const struct render_params *p)
+{
+    return param_block_in(p, &di_block);
+}
+static inline struct di_settings *di_settings_of_mut(struct render_params *p)
+{
+    return param_block_in_mut(p, &di_block);
+}
 extern struct param_block di_reuse_block; /* di reuse: visibility in reuse */
-static inline const struct di_reuse_settings *di_reuse_settings_of(const struct render_params *p) { return param_block_in(p, &di_reuse_block); }
-static inline struct di_reuse_settings *di_reuse_settings_of_mut(struct render_params *p) { return param_block_in_mut(p, &di_reuse_block); }
+static inline const struct di_reuse_settings *di_reuse_settings_of(const struct render_params *p)
+{
+    return param_block_in(p, &di_reuse_block);
+}
+static inline struct di_reuse_settings *di_reuse_settings_of_mut(struct render_params *p)
+{
+    return param_block_in_mut(p, &di_reuse_block);
+}
 
 #endif

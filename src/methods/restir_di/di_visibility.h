@@ -16,7 +16,8 @@
  * di.visibility_mis, since only the initial, visibility-tested targets reach shading. */
 static inline int di_targets_visible(const struct render_params *p)
 {
-    return di_settings_of(p)->visibility_reuse && (di_reuse_settings_of(p)->visibility_mis == DI_VIS_MIS_RAYS || (!p->reuse.temporal && !p->reuse.spatial));
+    return di_settings_of(p)->visibility_reuse &&
+           (di_reuse_settings_of(p)->visibility_mis == DI_VIS_MIS_RAYS || (!p->reuse.temporal && !p->reuse.spatial));
 }
 
 /* 1 when the light point y is unoccluded from sp (one shadow ray). */

@@ -15,7 +15,10 @@ struct gi_settings {
 };
 
 extern struct param_block gi_block;
-static inline const struct gi_settings *gi_settings_of(const struct render_params *p) { return param_block_in(p, &gi_block); }
+static inline const struct gi_settings *gi_settings_of(const struct render_params *p)
+{
+    return param_block_in(p, &gi_block);
+}
 static inline struct gi_settings *gi_settings_mut(struct render_params *p) { return param_block_in_mut(p, &gi_block); }
 
 #endif

@@ -32,7 +32,10 @@ void pt_splat_buffers_fini(struct pt_splat_buffers *b)
     memset(b, 0, sizeof(*b));
 }
 
-int pt_splat_steps(const struct render_params *p) { return p->camera_shutter > 0.0f ? p->reuse.temporal_splat_steps : 1; }
+int pt_splat_steps(const struct render_params *p)
+{
+    return p->camera_shutter > 0.0f ? p->reuse.temporal_splat_steps : 1;
+}
 
 /* The shutter-time map of stratum k of K: t -> (k + t) / K, onto [k/K, (k+1)/K) (|dt'/dt| = 1/K).
  * With K = 1 the time is kept. */
@@ -174,8 +177,8 @@ static void offer(struct pixel_merge *m, int own, float own_term, float c_own, c
 /* The history confidence a merged pixel adds: that of the previous pixel under its G-buffer
  * motion vector (gbuffer_motion_pixel). A function of G-buffers only, like every confidence
  * here, so the MIS weights that read confidences stay unbiased. */
-static float history_confidence(const struct gbuffer *g, const struct gbuffer *prev_g, const struct pt_reservoir *prev_res,
-                                int i)
+static float history_confidence(const struct gbuffer *g, const struct gbuffer *prev_g,
+                                const struct pt_reservoir *prev_res, int i)
 {
     int q = gbuffer_motion_pixel(g, i, prev_g);
     return q >= 0 ? prev_res[q].c : 0.0f;

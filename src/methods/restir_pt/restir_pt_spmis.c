@@ -21,7 +21,8 @@ void pt_spmis_weights(const struct pt_frame *fr, const struct gbuffer *g, const 
     for (int i = 0; i < n; i++) {
         f->conf[i] = fminf(in[i].c, cap);
         /* 004 Eq. 17: c_i p_hat(X_i) W_i, with p_hat(X_i) the target cached in pixel i */
-        f->weight[i] = pt_reservoir_has_sample(&in[i]) ? f->conf[i] * in[i].target * in[i].W : 0.0f; /* non-finite: 0 in cells */
+        f->weight[i] =
+            pt_reservoir_has_sample(&in[i]) ? f->conf[i] * in[i].target * in[i].W : 0.0f; /* non-finite: 0 in cells */
     }
 }
 
@@ -36,7 +37,10 @@ static int pt_canonical_has_sample(const void *ctx, int c)
     return pt_reservoir_has_sample(&((const struct pt_canonical_ctx *)ctx)->in[c]);
 }
 
-static float pt_canonical_target(const void *ctx, int c) { return ((const struct pt_canonical_ctx *)ctx)->in[c].target; }
+static float pt_canonical_target(const void *ctx, int c)
+{
+    return ((const struct pt_canonical_ctx *)ctx)->in[c].target;
+}
 
 /* p_hat_{<-i}(Y_c) = p_hat_i(T_i^{-1}(Y_c)) |dT_i^{-1}/dY| (Eq. 10): the canonical path shifted
  * into pixel i, 0 where the shift fails */
@@ -85,7 +89,8 @@ long long pt_spmis_reuse_pass(const struct pt_frame *fr, const struct gbuffer *g
             pt_reservoir_clear(&result, merged_c);
             /* Algorithm 2 lines 11-12: the canonical sample with w~_c = m~_c p_hat(X_c) W_c (Eq. 14) */
             if (pt_reservoir_has_sample(&in[c]) &&
-                restir_reservoir_offer(&wrs, restir_gris_resampling_weight(f->m_c[c], in[c].target, in[c].W, 1.0f), pcg32_float(&rng))) {
+                restir_reservoir_offer(&wrs, restir_gris_resampling_weight(f->m_c[c], in[c].target, in[c].W, 1.0f),
+                                       pcg32_float(&rng))) {
                 result.y = in[c].y;
                 result.target = in[c].target;
             }
