@@ -26,13 +26,14 @@ const struct method *method_named(const char *name)
     return m;
 }
 
-void method_names_with(unsigned caps, char *out, size_t n)
+void method_names_where(int (*keep)(const struct method *m, const void *ctx), const void *ctx, char *out, size_t n)
 {
     size_t len = 0;
-    out[0] = '\0';
+    if (n > 0)
+        out[0] = '\0';
     for (int k = 0; k < method_count(); k++) {
         const struct method *m = method_at(k);
-        if (!method_has(m, caps))
+        if (!keep(m, ctx))
             continue;
         int w = snprintf(out + len, n - len, "%s%s", len ? ", " : "", m->name);
         if (w < 0 || (size_t)w >= n - len)
@@ -40,6 +41,10 @@ void method_names_with(unsigned caps, char *out, size_t n)
         len += (size_t)w;
     }
 }
+
+static int has_caps(const struct method *m, const void *caps) { return method_has(m, *(const unsigned *)caps); }
+
+void method_names_with(unsigned caps, char *out, size_t n) { method_names_where(has_caps, &caps, out, n); }
 
 void method_params(const struct method *m, struct render_params *p)
 {

@@ -91,6 +91,8 @@ static inline int method_has(const struct method *m, unsigned caps) { return (m-
 /* Writes the names of the methods with all of caps, ", "-separated, into out (n bytes): for
  * messages that say which methods would accept a setting. */
 void method_names_with(unsigned caps, char *out, size_t n);
+/* The same for the methods for which keep(m, ctx) is nonzero. */
+void method_names_where(int (*keep)(const struct method *m, const void *ctx), const void *ctx, char *out, size_t n);
 
 /* Checks what depends on the method (and the scene, when s is not NULL): temporal.reuse=splat|both
  * needs METHOD_PATH_RESERVOIRS; motion blur and depth of field need METHOD_CAMERA_EFFECTS; then

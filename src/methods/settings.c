@@ -188,20 +188,9 @@ int method_reads_block(const struct method *m, const struct param_block *b)
     return 0;
 }
 
-void settings_readers(const char *key, char *out, size_t n)
-{
-    size_t len = 0;
-    if (n > 0)
-        out[0] = '\0';
-    for (int k = 0; k < method_count(); k++) {
-        if (!method_uses_setting(method_at(k), key))
-            continue;
-        int w = snprintf(out + len, n - len, "%s%s", len ? ", " : "", method_at(k)->name);
-        if (w < 0 || (size_t)w >= n - len)
-            return;
-        len += (size_t)w;
-    }
-}
+static int reads_key(const struct method *m, const void *key) { return method_uses_setting(m, key); }
+
+void settings_readers(const char *key, char *out, size_t n) { method_names_where(reads_key, key, out, n); }
 
 void render_params_defaults(struct render_params *p)
 {

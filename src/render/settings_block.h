@@ -48,6 +48,12 @@ struct param_block {
     void (*preset)(void *block, int k);
 };
 
+/* The initializer of a method's own block: its name, its rows (an array), the struct its values live in
+ * and its validate function (or NULL); the registry places it.
+ *   struct param_block ris_gi_block = PARAM_METHOD_BLOCK("ris-gi", ris_gi_rows, struct ris_gi_settings, NULL); */
+#define PARAM_METHOD_BLOCK(name, rows, type, validate)                                                               \
+    {(name), (rows), sizeof(rows) / sizeof((rows)[0]), 0, sizeof(type), _Alignof(type), 0, (validate), NULL}
+
 /* The block's struct in p. Aborts, naming the block, when a method block was never placed (the
  * registry places every registered method's blocks before the first parameters exist). */
 const void *param_block_in(const struct render_params *p, const struct param_block *b);

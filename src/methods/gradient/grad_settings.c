@@ -1,7 +1,6 @@
 /* grad_settings.c: the gradient methods' settings blocks (grad_settings.h). */
 #include "methods/gradient/grad_settings.h"
 
-#include <stdalign.h>
 #include <stddef.h>
 #include <stdio.h>
 
@@ -98,21 +97,5 @@ static int recon_validate(const struct render_params *p, const void *block, char
     return 0;
 }
 
-struct param_block grad_block = {"grad",
-                                 grad_rows,
-                                 sizeof(grad_rows) / sizeof(grad_rows[0]),
-                                 0,
-                                 sizeof(struct grad_settings),
-                                 alignof(struct grad_settings),
-                                 0,
-                                 grad_validate,
-                                 NULL};
-struct param_block recon_block = {"recon",
-                                  recon_rows,
-                                  sizeof(recon_rows) / sizeof(recon_rows[0]),
-                                  0,
-                                  sizeof(struct recon_settings),
-                                  alignof(struct recon_settings),
-                                  0,
-                                  recon_validate,
-                                  NULL};
+struct param_block grad_block = PARAM_METHOD_BLOCK("grad", grad_rows, struct grad_settings, grad_validate);
+struct param_block recon_block = PARAM_METHOD_BLOCK("recon", recon_rows, struct recon_settings, recon_validate);

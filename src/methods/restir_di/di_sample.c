@@ -143,15 +143,4 @@ void di_target_many(int n, const struct shading_point *const *sp, const struct d
     }
 }
 
-long long nonfinite_discard_di(struct di_reservoir *res, size_t n)
-{
-    long long bad = 0;
-#pragma omp parallel for schedule(static) reduction(+ : bad)
-    for (long long i = 0; i < (long long)n; i++) {
-        if (!nonfinite_reservoir_ok(res[i].W, res[i].target, res[i].c)) {
-            di_reservoir_clear(&res[i], nonfinite_kept_confidence(res[i].c));
-            bad++;
-        }
-    }
-    return bad;
-}
+NONFINITE_DEFINE_DISCARD(nonfinite_discard_di, struct di_reservoir, di_reservoir_clear)

@@ -1,7 +1,6 @@
 /* di_settings.c: ReSTIR DI's settings blocks (di_settings.h). */
 #include "methods/restir_di/di_settings.h"
 
-#include <stdalign.h>
 #include <stddef.h>
 #include <stdio.h>
 
@@ -43,14 +42,5 @@ static int di_validate(const struct render_params *p, const void *block, char *m
 
 #undef D
 
-struct param_block di_block = {"di", di_rows, sizeof(di_rows) / sizeof(di_rows[0]), 0,
-                               sizeof(struct di_settings), alignof(struct di_settings), 0, di_validate, NULL};
-struct param_block di_reuse_block = {"di reuse",
-                                     di_reuse_rows,
-                                     sizeof(di_reuse_rows) / sizeof(di_reuse_rows[0]),
-                                     0,
-                                     sizeof(struct di_reuse_settings),
-                                     alignof(struct di_reuse_settings),
-                                     0,
-                                     NULL,
-                                     NULL};
+struct param_block di_block = PARAM_METHOD_BLOCK("di", di_rows, struct di_settings, di_validate);
+struct param_block di_reuse_block = PARAM_METHOD_BLOCK("di reuse", di_reuse_rows, struct di_reuse_settings, NULL);

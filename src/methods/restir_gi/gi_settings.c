@@ -1,7 +1,6 @@
 /* gi_settings.c: ReSTIR GI's settings block (gi_settings.h). */
 #include "methods/restir_gi/gi_settings.h"
 
-#include <stdalign.h>
 #include <stddef.h>
 
 static const char *const gi_radiance_names[] = {"reevaluate", "stored", NULL}; /* enum gi_radiance_mode */
@@ -17,6 +16,4 @@ static const struct param_def gi_rows[] = {
 };
 #undef I
 
-struct param_block gi_block = {
-    "gi", gi_rows, sizeof(gi_rows) / sizeof(gi_rows[0]), 0, sizeof(struct gi_settings), alignof(struct gi_settings),
-    0, NULL, NULL};
+struct param_block gi_block = PARAM_METHOD_BLOCK("gi", gi_rows, struct gi_settings, NULL);

@@ -356,15 +356,4 @@ void pt_shade_pass(const struct gbuffer *g, const struct pt_reservoir *res, cons
     }
 }
 
-long long nonfinite_discard_pt(struct pt_reservoir *res, size_t n)
-{
-    long long bad = 0;
-#pragma omp parallel for schedule(static) reduction(+ : bad)
-    for (long long i = 0; i < (long long)n; i++) {
-        if (!nonfinite_reservoir_ok(res[i].W, res[i].target, res[i].c)) {
-            pt_reservoir_clear(&res[i], nonfinite_kept_confidence(res[i].c));
-            bad++;
-        }
-    }
-    return bad;
-}
+NONFINITE_DEFINE_DISCARD(nonfinite_discard_pt, struct pt_reservoir, pt_reservoir_clear)

@@ -1,7 +1,6 @@
 /* restir_pt_settings.c: ReSTIR PT's settings block (restir_pt_settings.h). */
 #include "methods/restir_pt/restir_pt_settings.h"
 
-#include <stdalign.h>
 #include <stddef.h>
 
 #define P(field) offsetof(struct restir_pt_settings, field)
@@ -10,12 +9,4 @@ static const struct param_def restir_pt_rows[] = {
 };
 #undef P
 
-struct param_block restir_pt_block = {"restir-pt",
-                                      restir_pt_rows,
-                                      sizeof(restir_pt_rows) / sizeof(restir_pt_rows[0]),
-                                      0,
-                                      sizeof(struct restir_pt_settings),
-                                      alignof(struct restir_pt_settings),
-                                      0,
-                                      NULL,
-                                      NULL};
+struct param_block restir_pt_block = PARAM_METHOD_BLOCK("restir-pt", restir_pt_rows, struct restir_pt_settings, NULL);

@@ -2,7 +2,6 @@
 #include "methods/ris_gi/ris_gi.h"
 
 #include <math.h>
-#include <stdalign.h>
 #include <stddef.h>
 
 #include "render/path_estimate.h"
@@ -16,8 +15,7 @@ static const struct param_def ris_gi_rows[] = {
     {"risgi.candidates", P_INT, offsetof(struct ris_gi_settings, candidates), 1, 64, "4", NULL,
      "BSDF directions K resampled per primary hit, each traced with its path suffix (K = 1: BSDF sampling)", NULL},
 };
-struct param_block ris_gi_block = {"ris-gi", ris_gi_rows, 1, 0, sizeof(struct ris_gi_settings),
-                                   alignof(struct ris_gi_settings), 0, NULL, NULL};
+struct param_block ris_gi_block = PARAM_METHOD_BLOCK("ris-gi", ris_gi_rows, struct ris_gi_settings, NULL);
 
 /* One candidate's f = f_r(wo, w) cos(n, w) Lr(x2 -> x1) for direction w of density pdf (0 where the
  * direction leaves through x1's geometric surface, escapes to the environment, which x1's paths of
