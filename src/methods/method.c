@@ -26,6 +26,22 @@ const struct method *method_named(const char *name)
     return m;
 }
 
+int method_output_count(const struct method *m)
+{
+    int n = 0;
+    while (m->outputs && m->outputs[n].name)
+        n++;
+    return n;
+}
+
+int method_output_find(const struct method *m, const char *name, enum method_output_kind kind)
+{
+    for (int k = 0; k < method_output_count(m); k++)
+        if (m->outputs[k].kind == kind && !strcmp(m->outputs[k].name, name))
+            return k;
+    return -1;
+}
+
 void method_names_where(int (*keep)(const struct method *m, const void *ctx), const void *ctx, char *out, size_t n)
 {
     size_t len = 0;

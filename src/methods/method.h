@@ -37,6 +37,30 @@ enum method_caps {
     METHOD_SELECTION_STUDY = 1u << 6,
 };
 
+/* What the harness does with an output a method declares (struct method_output). */
+enum method_output_kind {
+    /* an estimate of radiance: averaged over a compare row's instances, written as the EXR layer and
+     * as frame_NNNN_<name>.png (sRGB) */
+    METHOD_OUTPUT_RADIANCE,
+    /* a signed estimate: averaged as radiance is, written as the EXR layer and as frame_NNNN_<name>.png
+     * (png_write_signed: red positive, blue negative). A pair named "dx" and "dy" is read as forward
+     * differences dx[a] = F(a + x) - F(a), dy[a] = F(a + y) - F(a): compare's gradient_relmse columns
+     * and worst pairs measure it (002 Fig. 7) */
+    METHOD_OUTPUT_SIGNED,
+    /* derived from the others or diagnostic: an EXR layer and a viewer view only, never averaged (a
+     * method with a reconstruct recomputes what it derives after the averaging) */
+    METHOD_OUTPUT_DEBUG,
+};
+
+/* One image a method renders beside its frame (r->image), e.g. the gradient methods' primal and
+ * differences. Frame writers, compare's averaging and measures and the viewer's views iterate over
+ * a method's list and name no method. */
+struct method_output {
+    const char *name; /* the EXR layer's name and the PNG's suffix: letters, digits and '_' */
+    int channels;     /* floats per pixel; 3 (RGB) is what the writers take today (the registry checks it) */
+    enum method_output_kind kind;
+};
+
 struct method {
     const char *name;        /* what --method and method specs spell */
     const char *description; /* one line for `restir list` */
@@ -76,6 +100,14 @@ struct method {
     /* What the last frame left for debug views and metrics (NULL: nothing; renderer_inspect
      * zeroes the record first). */
     void (*inspect)(const void *state, struct renderer_inspect *out);
+    /* The images it renders beside r->image, terminated by a row with a NULL name (NULL: none), in
+     * the order the EXR layers are written after R, G, B. */
+    const struct method_output *outputs;
+    /* Output k of outputs for the last frame: width x height x channels floats owned by the state,
+     * valid until the next frame or destroy; writable, so that a caller averaging instances writes
+     * the mean into the first one's and reconstructs from it. NULL where these settings leave the
+     * output out (e.g. the L1 layer with recon=l2). Required when outputs is not NULL. */
+    float *(*output)(const struct renderer *r, void *state, int k);
 };
 
 /* The registered methods, in `restir list` order: method_at(0 .. method_count() - 1). */
@@ -87,6 +119,10 @@ const struct method *method_find(const char *name);
  * name when it is not registered. */
 const struct method *method_named(const char *name);
 static inline int method_has(const struct method *m, unsigned caps) { return (m->caps & caps) == caps; }
+/* The number of outputs m declares (struct method.outputs). */
+int method_output_count(const struct method *m);
+/* The index in m->outputs of the output called name with that kind, or -1 when m has none. */
+int method_output_find(const struct method *m, const char *name, enum method_output_kind kind);
 
 /* Writes the names of the methods with all of caps, ", "-separated, into out (n bytes): for
  * messages that say which methods would accept a setting. */

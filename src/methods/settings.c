@@ -60,6 +60,39 @@ static const char *owner_of(const struct method *const *methods, int n, const st
     return "the toolkit";
 }
 
+/* A method's declared outputs (method.h): an output function with them, 3 channels (what the writers
+ * take), names that are file-name suffixes and EXR layers ([A-Za-z0-9_], not "denoised", which the
+ * denoised frame's files use), each once. Returns 0, or -1 with msg naming the method and output. */
+static int check_outputs(const struct method *m, char *msg)
+{
+    const int n = method_output_count(m);
+    if (n > 0 && !m->output) {
+        snprintf(msg, RESTIR_MSG_LEN, "%s declares outputs but no output function", m->name);
+        return -1;
+    }
+    for (int k = 0; k < n; k++) {
+        const char *name = m->outputs[k].name;
+        const size_t len = strlen(name);
+        if (len == 0 || strspn(name, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_") != len ||
+            !strcmp(name, "denoised")) {
+            snprintf(msg, RESTIR_MSG_LEN, "output '%s' of %s: a name is letters, digits and '_', not 'denoised'",
+                     name, m->name);
+            return -1;
+        }
+        if (m->outputs[k].channels != 3) {
+            snprintf(msg, RESTIR_MSG_LEN, "output '%s' of %s has %d channels; the frame writers take 3 (RGB)", name,
+                     m->name, m->outputs[k].channels);
+            return -1;
+        }
+        for (int j = 0; j < k; j++)
+            if (!strcmp(m->outputs[j].name, name)) {
+                snprintf(msg, RESTIR_MSG_LEN, "%s declares output '%s' twice", m->name, name);
+                return -1;
+            }
+    }
+    return 0;
+}
+
 int settings_registry_check(const struct method *const *methods, int n, char *msg)
 {
     for (int a = 0; a < n; a++)
@@ -95,6 +128,9 @@ int settings_registry_check(const struct method *const *methods, int n, char *ms
                  bytes, RENDER_PARAMS_METHOD_BYTES);
         return -1;
     }
+    for (int a = 0; a < n; a++)
+        if (check_outputs(methods[a], msg) != 0)
+            return -1;
     for (int a = 0; a < n; a++)
         for (const char *const *s = methods[a]->streams; s && *s; s++) {
             const uint64_t id = rng_stream_id(*s);

@@ -1,5 +1,6 @@
 /* test_registry.c: the method registry refuses, naming both owners, what would make two settings, two
- * methods or two random streams indistinguishable (methods/settings.h settings_registry_check); and the
+ * methods or two random streams indistinguishable, and outputs the frame writers cannot name or write
+ * (methods/settings.h settings_registry_check); and the
  * real registry passes the same check, with every key of every row read by at least one method. */
 #include <string.h>
 
@@ -40,6 +41,19 @@ static const struct method toy_a_again = {.name = "toy-a", .description = "", .b
 static const struct method thief = {.name = "thief", .description = "", .blocks = thief_blocks};
 static const struct method huge = {.name = "huge", .description = "", .blocks = huge_blocks};
 static const struct method shade_twice = {.name = "toy-c", .description = "", .streams = streams_b};
+static float *toy_output(const struct renderer *r, void *state, int k)
+{
+    (void)r, (void)state, (void)k;
+    return NULL;
+}
+static const struct method_output outputs_twice[] = {
+    {"dx", 3, METHOD_OUTPUT_SIGNED}, {"dx", 3, METHOD_OUTPUT_SIGNED}, {NULL, 0, METHOD_OUTPUT_RADIANCE}};
+static const struct method_output outputs_gray[] = {{"albedo", 1, METHOD_OUTPUT_DEBUG}, {NULL, 0, METHOD_OUTPUT_RADIANCE}};
+static const struct method_output outputs_path[] = {{"../x", 3, METHOD_OUTPUT_DEBUG}, {NULL, 0, METHOD_OUTPUT_RADIANCE}};
+static const struct method output_twice = {.name = "toy-d", .outputs = outputs_twice, .output = toy_output};
+static const struct method output_gray = {.name = "toy-e", .outputs = outputs_gray, .output = toy_output};
+static const struct method output_path = {.name = "toy-f", .outputs = outputs_path, .output = toy_output};
+static const struct method output_none = {.name = "toy-g", .outputs = outputs_gray};
 
 /* Expects settings_registry_check to refuse methods[0..n) with a message holding each of the words. */
 static void expect_refused(const struct method *const *methods, int n, const char *what, const char *w1,
@@ -64,6 +78,12 @@ int main(void)
     expect_refused(bytes, 1, "blocks beyond the method storage", "RENDER_PARAMS_METHOD_BYTES", "bytes");
     const struct method *streams[] = {&toy_a, &shade_twice};
     expect_refused(streams, 2, "one stream name in two methods", "toy.shade", "toy-c");
+
+    const struct method *outputs[][1] = {{&output_twice}, {&output_gray}, {&output_path}, {&output_none}};
+    expect_refused(outputs[0], 1, "one output name twice", "toy-d", "'dx' twice");
+    expect_refused(outputs[1], 1, "a one-channel output", "toy-e", "1 channels");
+    expect_refused(outputs[2], 1, "an output named as a path", "toy-f", "'../x'");
+    expect_refused(outputs[3], 1, "outputs without an output function", "toy-g", "no output function");
 
     /* Named streams never take a toolkit pass id, and differ by name. */
     EXPECT(rng_stream_id("toy.shade") >= RNG_PASS_COUNT, "a named stream below the toolkit's ids");
