@@ -16,7 +16,7 @@
 #include "bench_common.h"
 #include "core/check.h"
 #include "experiments/equal_time.h"
-#include "methods/gradient/grad_frame.h"
+#include "methods/gradient/grad_method.h"
 #include "io/atomic_file.h"
 #include "io/exr.h"
 #include "io/png.h"
@@ -241,7 +241,7 @@ static double render_frames(struct renderer *r, const struct scene *s, int from,
         *rays += st.rays;
         for (int q = 0; q < PASS_COUNT; q++)
             pass_ms[q] += st.ms[q];
-        if (renderer_gradients(r))
+        if (grad_method_frame(r))
             log_time(&l2_log, &l2_n, &l2_cap, st.ms[PASS_RECON_L2]);
     }
     for (int q = 0; q < PASS_COUNT; q++)
@@ -304,10 +304,10 @@ static void run_method(const struct scene *s, const struct gb_config *c, const s
         }
         if (res->instances > 1) {
             float *sum[4] = {copy3(r0.image, npix), NULL, NULL, NULL};
-            if (renderer_gradients(&r0)) {
-                sum[1] = copy3(renderer_gradients(&r0)->primal, npix);
-                sum[2] = copy3(renderer_gradients(&r0)->dx, npix);
-                sum[3] = copy3(renderer_gradients(&r0)->dy, npix);
+            if (grad_method_frame(&r0)) {
+                sum[1] = copy3(grad_method_frame(&r0)->primal, npix);
+                sum[2] = copy3(grad_method_frame(&r0)->dx, npix);
+                sum[3] = copy3(grad_method_frame(&r0)->dy, npix);
             }
             for (int k = 1; k < res->instances; k++) {
                 struct render_params q = p;
@@ -318,18 +318,18 @@ static void run_method(const struct scene *s, const struct gb_config *c, const s
                 res->rays += rays_k;
                 res->ms += ms_k - pass_ms[PASS_RECON_L2] - pass_ms[PASS_RECON_L1];
                 res->grad_ms += grad_pass_ms(pass_ms);
-                const float *src[4] = {rk.image, renderer_gradients(&rk) ? renderer_gradients(&rk)->primal : NULL,
-                                       renderer_gradients(&rk) ? renderer_gradients(&rk)->dx : NULL,
-                                       renderer_gradients(&rk) ? renderer_gradients(&rk)->dy : NULL};
+                const float *src[4] = {rk.image, grad_method_frame(&rk) ? grad_method_frame(&rk)->primal : NULL,
+                                       grad_method_frame(&rk) ? grad_method_frame(&rk)->dx : NULL,
+                                       grad_method_frame(&rk) ? grad_method_frame(&rk)->dy : NULL};
                 for (int b = 0; b < 4; b++)
                     if (sum[b])
                         for (size_t i = 0; i < n3; i++)
                             sum[b][i] += src[b][i];
                 renderer_fini(&rk);
             }
-            float *dst[4] = {r0.image, renderer_gradients(&r0) ? renderer_gradients(&r0)->primal : NULL,
-                             renderer_gradients(&r0) ? renderer_gradients(&r0)->dx : NULL,
-                             renderer_gradients(&r0) ? renderer_gradients(&r0)->dy : NULL};
+            float *dst[4] = {r0.image, grad_method_frame(&r0) ? grad_method_frame(&r0)->primal : NULL,
+                             grad_method_frame(&r0) ? grad_method_frame(&r0)->dx : NULL,
+                             grad_method_frame(&r0) ? grad_method_frame(&r0)->dy : NULL};
             const float inv = 1.0f / (float)res->instances;
             for (int b = 0; b < 4; b++) {
                 if (!sum[b])
@@ -340,16 +340,16 @@ static void run_method(const struct scene *s, const struct gb_config *c, const s
             }
         }
     }
-    if (renderer_gradients(&r0)) {
+    if (grad_method_frame(&r0)) {
         /* L2 again (the averaged inputs) and L1 (recon defaults), outside the budget */
         struct frame_stats st;
         memset(&st, 0, sizeof(st));
         recon_settings_mut(&r0.p)->mode = RECON_BOTH;
         renderer_reconstruct(&r0, &st);
         log_time(&l1_log, &l1_n, &l1_cap, st.ms[PASS_RECON_L1]);
-        res->l1_image = copy3(renderer_gradients(&r0)->l1, npix);
-        res->dx = copy3(renderer_gradients(&r0)->dx, npix);
-        res->dy = copy3(renderer_gradients(&r0)->dy, npix);
+        res->l1_image = copy3(grad_method_frame(&r0)->l1, npix);
+        res->dx = copy3(grad_method_frame(&r0)->dx, npix);
+        res->dy = copy3(grad_method_frame(&r0)->dy, npix);
         restir_metrics_compute(res->l1_image, ref->rgb, npix, NULL, &res->l1);
         res->mean_l1 = mean_lum(res->l1_image, npix) / mean_lum(ref->rgb, npix);
     } else {

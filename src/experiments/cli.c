@@ -10,7 +10,6 @@
 #include <unistd.h>
 
 #include "core/check.h"
-#include "methods/gradient/grad_frame.h"
 #include "io/exr.h"
 #include "io/png.h"
 #include "methods/memory_estimate.h"
@@ -18,7 +17,6 @@
 #include "scene/environment.h"
 #include "scene/scene_env.h"
 #include "scene/scene_file.h"
-#include "methods/gradient/grad_settings.h"
 
 void cli_error(const char *fmt, ...)
 {
@@ -182,23 +180,19 @@ void progress_end(struct progress *pg)
 
 int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *msg)
 {
-    const int w = r->p.width, h = r->p.height;
-    const struct grad_frame *g = renderer_gradients(r);
+    const int w = r->p.width, h = r->p.height, outputs = method_output_count(r->method);
     char path[4200];
-    struct exr_layer layers[5] = {{NULL, r->image}};
+    /* R, G, B, then the method's outputs this frame has (method.h), each a layer named as it is */
+    struct exr_layer *layers = xmalloc(sizeof(struct exr_layer) * (size_t)(1 + outputs));
+    layers[0] = (struct exr_layer){NULL, r->image};
     int n = 1;
-    if (g) {
-        /* the reconstruction not in R, G, B, when it was computed; then what it was solved from */
-        if (recon_settings_of(&r->p)->mode == RECON_L1)
-            layers[n++] = (struct exr_layer){"L2", g->l2};
-        else if (recon_settings_of(&r->p)->mode == RECON_BOTH)
-            layers[n++] = (struct exr_layer){"L1", g->l1};
-        layers[n++] = (struct exr_layer){"primal", g->primal};
-        layers[n++] = (struct exr_layer){"dx", g->dx};
-        layers[n++] = (struct exr_layer){"dy", g->dy};
-    }
+    for (int k = 0; k < outputs; k++)
+        if (renderer_output(r, k))
+            layers[n++] = (struct exr_layer){r->method->outputs[k].name, renderer_output(r, k)};
     snprintf(path, sizeof(path), "%s/frame_%04d.exr", dir, frame);
-    if (exr_write_layers(path, layers, n, w, h, msg) != 0)
+    int rc = exr_write_layers(path, layers, n, w, h, msg);
+    free(layers);
+    if (rc != 0)
         return -1;
     snprintf(path, sizeof(path), "%s/frame_%04d.png", dir, frame);
     if (png_write_srgb(path, r->image, w, h, 0.0f, msg) != 0)
@@ -212,16 +206,18 @@ int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *
         if (png_write_srgb(path, r->denoised, w, h, 0.0f, msg) != 0)
             return -1;
     }
-    if (!g)
-        return 0;
-    snprintf(path, sizeof(path), "%s/frame_%04d_primal.png", dir, frame);
-    if (png_write_srgb(path, g->primal, w, h, 0.0f, msg) != 0)
-        return -1;
-    snprintf(path, sizeof(path), "%s/frame_%04d_dx.png", dir, frame);
-    if (png_write_signed(path, g->dx, w, h, 0.0f, msg) != 0)
-        return -1;
-    snprintf(path, sizeof(path), "%s/frame_%04d_dy.png", dir, frame);
-    return png_write_signed(path, g->dy, w, h, 0.0f, msg);
+    /* the estimates beside it as pictures too (debug outputs stay EXR layers) */
+    for (int k = 0; k < outputs; k++) {
+        const struct method_output *o = &r->method->outputs[k];
+        const float *px = renderer_output(r, k);
+        if (!px || o->kind == METHOD_OUTPUT_DEBUG)
+            continue;
+        snprintf(path, sizeof(path), "%s/frame_%04d_%s.png", dir, frame, o->name);
+        if ((o->kind == METHOD_OUTPUT_SIGNED ? png_write_signed(path, px, w, h, 0.0f, msg)
+                                             : png_write_srgb(path, px, w, h, 0.0f, msg)) != 0)
+            return -1;
+    }
+    return 0;
 }
 
 void cli_frame_cameras(const struct scene *s, int use_path, int frame, struct camera *cam, struct camera *open)

@@ -79,10 +79,11 @@ void progress_begin(struct progress *pg, const char *label, int total);
 void progress_update(struct progress *pg, int done);
 void progress_end(struct progress *pg);
 
-/* Writes DIR/frame_NNNN.exr and .png of r->image; for gradient methods the EXR also holds layers
- * (the other reconstruction when computed, primal, dx, dy) and frame_NNNN_{primal,dx,dy}.png show
- * the primal and the gradients in false colour; with denoise=svgf|atrous also
- * frame_NNNN_denoised.exr and .png of r->denoised. Returns 0, or -1 with msg. */
+/* Writes DIR/frame_NNNN.exr and .png of r->image. The EXR also holds a layer per output the method
+ * declares and this frame has (method.h; the gradient methods: the other reconstruction when computed,
+ * primal, dx, dy), and each radiance or signed output gets frame_NNNN_<name>.png (signed ones in
+ * false colour); with denoise=svgf|atrous also frame_NNNN_denoised.exr and .png of r->denoised.
+ * Returns 0, or -1 with msg. */
 int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *msg);
 
 /* Renders the converged image of what `method` estimates (pt with the method's integrand) with

@@ -32,8 +32,9 @@ static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '4'}; /*
 
 /* What a SPEC's job measured: its frame time, paths per pixel and instances; has_mask: the record
  * goes on with the last frame's disocclusion mask (width x height bytes, compare_run.h); has_grad:
- * then with its gradients (dx, dy: 2 x 3 x width x height floats; 0 in the records of versions
- * before gradient errors, which read as gradient methods without them); has_denoised: then with its
+ * then with its forward differences (the method's signed outputs dx, dy, compare_forward_differences:
+ * 2 x 3 x width x height floats; 0 in the records of versions before gradient errors, which read as
+ * such methods without them); has_denoised: then with its
  * denoised last frame (denoise=svgf|atrous, 3 x width x height floats); a later run's record then
  * holds its last frame (3 x width x height floats). */
 struct job_timing {
@@ -362,7 +363,7 @@ int compare_merge(const char *dir)
             compare_disoccluded_error(image, ref, mask, npix, &one.mape_dis, &one.dis_share);
             compare_gradient_errors(grad, grad ? grad + 3 * npix : NULL, ref, st.p.width, st.p.height, &one);
             compare_denoised_errors(denoised, ref, mask, npix, &one);
-            if (!grad && method_has(st.specs[k].method, METHOD_GRADIENT))
+            if (!grad && method_output_find(st.specs[k].method, "dx", METHOD_OUTPUT_SIGNED) >= 0)
                 fprintf(stderr,
                         "restir: compare --merge: %s, run %d: its job was written without gradients (by a restir "
                         "before gradient errors): no gradient_relmse for the row\n",

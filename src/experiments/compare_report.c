@@ -308,45 +308,54 @@ static int report_file_exists(const char *out_dir, const char *rel)
     return f != NULL;
 }
 
-/* 002's layers of every gradient method: the primal image and the x and y gradients (the PNGs
- * cli_write_frame wrote beside the reconstruction; red positive, blue negative), and where the worst 1% of the
- * gradient relMSE's pairs are (compare_worst.h) when that image was written. */
-static void gradient_layers(struct html_page *pg, const struct compare_report_run *run, int n,
-                            const struct compare_report_method *m)
+/* Every method's declared outputs (method.h) that cli_write_frame wrote as pictures beside its image
+ * (the gradient methods of 002: the primal image and the x and y gradients, red positive, blue negative),
+ * and, for forward differences, where the worst 1% of the gradient relMSE's pairs are (compare_worst.h)
+ * when that image was written. */
+#define REPORT_MAX_OUTPUTS 8 /* pictures per method beside its image; more are left out of the page */
+static void output_layers(struct html_page *pg, const struct compare_report_run *run, int n,
+                          const struct compare_report_method *m)
 {
-    static const char *const layers[3] = {"primal", "dx", "dy"};
     int any = 0;
     for (int k = 0; k < n; k++) {
-        if (!m[k].dir)
+        if (!m[k].dir || !m[k].method)
             continue;
-        char rel[4][SPEC_REL_MAX];
-        const char *labels[5], *srcs[5];
-        labels[0] = "reconstruction";
+        char rel[REPORT_MAX_OUTPUTS + 1][SPEC_REL_MAX];
+        const char *labels[REPORT_MAX_OUTPUTS + 2], *srcs[REPORT_MAX_OUTPUTS + 2];
+        labels[0] = m[k].method->reconstruct ? "reconstruction" : "image";
         srcs[0] = m[k].png;
-        int found = 1;
-        for (int q = 0; q < 3 && found; q++) {
-            snprintf(rel[q], sizeof rel[q], "%s/frame_%04d_%s.png", m[k].dir, run->frame, layers[q]);
-            found = report_file_exists(run->out_dir, rel[q]);
-            labels[q + 1] = layers[q];
-            srcs[q + 1] = rel[q];
+        int shown = 1;
+        for (int q = 0; q < method_output_count(m[k].method) && shown <= REPORT_MAX_OUTPUTS; q++) {
+            const struct method_output *o = &m[k].method->outputs[q];
+            if (o->kind == METHOD_OUTPUT_DEBUG)
+                continue; /* an EXR layer only */
+            snprintf(rel[shown - 1], sizeof rel[0], "%s/frame_%04d_%s.png", m[k].dir, run->frame, o->name);
+            if (!report_file_exists(run->out_dir, rel[shown - 1]))
+                continue;
+            labels[shown] = o->name;
+            srcs[shown] = rel[shown - 1];
+            shown++;
         }
-        if (!found)
+        if (shown == 1)
             continue;
-        snprintf(rel[3], sizeof rel[3], "%s%s", m[k].dir, COMPARE_WORST_SUFFIX);
-        const int worst = report_file_exists(run->out_dir, rel[3]);
-        labels[4] = "worst 1% pairs";
-        srcs[4] = rel[3];
+        snprintf(rel[shown - 1], sizeof rel[0], "%s%s", m[k].dir, COMPARE_WORST_SUFFIX);
+        if (report_file_exists(run->out_dir, rel[shown - 1])) {
+            labels[shown] = "worst 1% pairs";
+            srcs[shown] = rel[shown - 1];
+            shown++;
+        }
         if (!any)
-            html_raw(pg, "<h2>Gradient layers (002)</h2>\n<p>Per gradient method: the reconstruction, its primal "
-                         "image, the x and y gradients (red positive, blue negative) and where the worst 1%% of the "
-                         "pixel pairs of the gradient relMSE are, which carry most of it (over the dimmed "
-                         "reference: red the pair with the right neighbour, cyan with the one below, white "
-                         "both).</p>\n");
+            html_raw(pg, "<h2>Gradient layers and other outputs</h2>\n<p>Per method that declares outputs: its "
+                         "image and each output written as a picture; for 002's gradient methods the "
+                         "reconstruction, its primal image, the x and y gradients (red positive, blue negative) "
+                         "and where the worst 1%% of the pixel pairs of the gradient relMSE are, which carry most "
+                         "of it (over the dimmed reference: red the pair with the right neighbour, cyan with the "
+                         "one below, white both).</p>\n");
         any = 1;
         html_raw(pg, "<h3>");
         html_text(pg, m[k].label);
         html_raw(pg, "</h3>\n");
-        html_viewer(pg, worst ? 5 : 4, labels, srcs, run->width, run->height);
+        html_viewer(pg, shown, labels, srcs, run->width, run->height);
     }
 }
 
@@ -386,7 +395,7 @@ int compare_write_report(const struct compare_report_run *run, int n, const stru
     }
     html_raw(&pg, "<h2>Images</h2>\n");
     html_viewer(&pg, n + 1, labels, srcs, run->width, run->height);
-    gradient_layers(&pg, run, n, m);
+    output_layers(&pg, run, n, m);
     float *maps = xmalloc(sizeof(float) * (size_t)n * (size_t)run->width * (size_t)run->height);
     int rc = heat_maps(&pg, run, n, m, maps, msg);
     if (rc == 0)

@@ -4,6 +4,7 @@
 #ifndef RESTIR_EXPERIMENTS_COMPARE_REPORT_H
 #define RESTIR_EXPERIMENTS_COMPARE_REPORT_H
 
+#include "methods/method.h"
 #include "restir/metrics.h"
 
 /* The page: the run's command, commit and machine, its table and a relMSE bar plot (each denoised
@@ -15,8 +16,9 @@
 struct compare_report_method {
     const char *label;  /* the method spec */
     const char *png;    /* its last frame, relative to the output folder */
-    const char *dir;    /* its folder, relative to the output folder (gradient layers live there); NULL for a
+    const char *dir;    /* its folder, relative to the output folder (its outputs' PNGs live there); NULL for a
                            row's denoised frame, which has none */
+    const struct method *method; /* whose outputs (method.h) the report shows beside the image; NULL: none */
     const float *image; /* its last frame, linear RGB */
     double ms_per_frame;
     int spp, instances;

@@ -16,16 +16,16 @@
 #include "experiments/compare_worst.h"
 #include "experiments/options.h"
 #include "experiments/reference_checkpoint.h"
-#include "methods/gradient/grad_frame.h"
 #include "io/atomic_file.h"
 #include "io/report.h"
 #include "scene/scene_file.h"
 
 int compare_budget_by_spp(const struct method *m) { return method_has(m, METHOD_BUDGET_BY_SPP); }
 
-/* The instances average their last frames. For gradient methods the primal and gradient images
- * are averaged and then reconstructed once (002 Sec. 5, Figure 8), and the frame time counts the
- * instances' passes and one reconstruction. */
+/* The instances average their last frames: the image and the method's radiance and signed outputs
+ * (method.h); a method with a reconstruct (the gradient methods) then rebuilds its image from the
+ * means once (002 Sec. 5, Figure 8), and the frame time counts the instances' passes and one
+ * reconstruction. */
 /* The instances' average image (denoised: of their denoised frames) of a frame before the last (the
  * last frame averages in place). */
 static const float *instances_mean(const struct renderer *r, int instances, size_t n3, int denoised, float *scratch)
@@ -40,6 +40,33 @@ static const float *instances_mean(const struct renderer *r, int instances, size
         scratch[i] = sum * inv;
     }
     return scratch;
+}
+
+/* The mean of the instances' images (output < 0) or of their output `output` (n floats each) into the
+ * first instance's; left alone where the first has none this frame. */
+static void average_into_first(struct renderer *r, int instances, int output, size_t n)
+{
+    float *buf[MAX_INSTANCES];
+    for (int k = 0; k < instances; k++)
+        if (!(buf[k] = output < 0 ? r[k].image : renderer_output(&r[k], output)))
+            return;
+    const float inv = 1.0f / (float)instances;
+    for (size_t i = 0; i < n; i++) {
+        float sum = 0.0f;
+        for (int k = 0; k < instances; k++)
+            sum += buf[k][i];
+        buf[0][i] = sum * inv;
+    }
+}
+
+void compare_forward_differences(const struct renderer *r, const float **dx, const float **dy)
+{
+    const int x = method_output_find(r->method, "dx", METHOD_OUTPUT_SIGNED);
+    const int y = method_output_find(r->method, "dy", METHOD_OUTPUT_SIGNED);
+    *dx = x >= 0 && y >= 0 ? renderer_output(r, x) : NULL;
+    *dy = *dx ? renderer_output(r, y) : NULL;
+    if (!*dy)
+        *dx = NULL;
 }
 
 void compare_disoccluded_error(const float *image, const float *ref, const unsigned char *mask, size_t npix,
@@ -115,7 +142,7 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
         q.seed = p->seed + COMPARE_INSTANCE_SEED_STRIDE * (uint64_t)k;
         renderer_init(&r[k], s, m, &q);
     }
-    const size_t n3 = 3 * (size_t)p->width * (size_t)p->height;
+    const size_t npix = (size_t)p->width * (size_t)p->height, n3 = 3 * npix;
     float *scratch = track && instances > 1 ? xmalloc(sizeof(float) * n3) : NULL;
     double ms = 0.0, ms_pass[PASS_COUNT] = {0};
     struct progress pg;
@@ -153,33 +180,14 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     }
     progress_end(&pg);
     free(scratch);
-    struct grad_frame *grad[MAX_INSTANCES] = {0};
-    for (int k = 0; k < instances; k++)
-        grad[k] = renderer_gradients(&r[k]);
     if (instances > 1) {
-        const float inv = 1.0f / (float)instances;
-        for (size_t i = 0; i < n3; i++) {
-            float sum[4] = {0, 0, 0, 0};
-            for (int k = 0; k < instances; k++) {
-                sum[0] += r[k].image[i];
-                if (grad[k]) {
-                    sum[1] += grad[k]->primal[i];
-                    sum[2] += grad[k]->dx[i];
-                    sum[3] += grad[k]->dy[i];
-                }
-            }
-            r[0].image[i] = sum[0] * inv;
-            if (grad[0]) {
-                grad[0]->primal[i] = sum[1] * inv;
-                grad[0]->dx[i] = sum[2] * inv;
-                grad[0]->dy[i] = sum[3] * inv;
-            }
-        }
-        if (grad[0]) {
-            struct frame_stats st;
-            memset(&st, 0, sizeof(st));
-            renderer_reconstruct(&r[0], &st);
-        }
+        average_into_first(r, instances, -1, n3);
+        for (int k = 0; k < method_output_count(m); k++)
+            if (m->outputs[k].kind != METHOD_OUTPUT_DEBUG)
+                average_into_first(r, instances, k, (size_t)m->outputs[k].channels * npix);
+        struct frame_stats st;
+        memset(&st, 0, sizeof(st));
+        renderer_reconstruct(&r[0], &st); /* what the method derives, from the means (nothing for most) */
     }
     float *denoised = instances_denoised(r, instances, n3); /* each instance's denoised frame, averaged */
     if (track && compare_track_wants_image(track, frames - 1)) {
@@ -193,7 +201,6 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
         res->ms_pass[q] = ms_pass[q] / frames;
     res->spp = compare_budget_by_spp(m) ? p->spp : 1;
     res->instances = instances;
-    const size_t npix = (size_t)p->width * (size_t)p->height;
     unsigned char *mask = NULL;
     if (method_has(m, METHOD_HISTORY)) { /* the first instance's history decides (004 Sec. 6.2) */
         mask = xmalloc(npix);
@@ -208,7 +215,8 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     res->flip = NAN;
     res->err_dn = res->sem_dn = (struct restir_metrics_error){NAN, NAN, NAN, NAN};
     res->mape_dis_dn = res->mape_dis_dn_sem = NAN;
-    const struct grad_frame *g = grad[0];
+    const float *dx, *dy; /* the forward differences the gradient columns measure, NULL without */
+    compare_forward_differences(&r[0], &dx, &dy);
     if (ref) { /* a planned job measures nothing: the merge does, from the frame, mask and gradients it writes */
         restir_metrics_compute(r[0].image, ref, npix, NULL, &res->err);
         res->flip = compare_flip(r[0].image, ref, p->width, p->height);
@@ -216,8 +224,7 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
         if (!keep_image)
             free(denoised);
         compare_disoccluded_error(r[0].image, ref, mask, npix, &res->mape_dis, &res->dis_share);
-        if (g)
-            compare_gradient_errors(g->dx, g->dy, ref, p->width, p->height, res);
+        compare_gradient_errors(dx, dy, ref, p->width, p->height, res);
         if (run == 0) /* for the reference's own error over these pixels (compare_reference_noise) */
             res->dis_mask = mask;
         else
@@ -225,10 +232,10 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     } else {
         res->mask = mask;
         res->denoised = denoised;
-        if (g) {
+        if (dx) {
             res->grad = xmalloc(2 * sizeof(float) * n3);
-            memcpy(res->grad, g->dx, sizeof(float) * n3);
-            memcpy(res->grad + n3, g->dy, sizeof(float) * n3);
+            memcpy(res->grad, dx, sizeof(float) * n3);
+            memcpy(res->grad + n3, dy, sizeof(float) * n3);
         }
     }
     res->image = NULL;
@@ -247,8 +254,8 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     int rc = io_make_dirs(path, msg);
     if (rc == 0)
         rc = cli_write_frame(path, frames - 1, &r[0], msg);
-    if (rc == 0 && ref && g) /* where the gradient relMSE's worst 1% of pixel pairs are */
-        rc = compare_write_worst_pairs(out_dir, c->dir, g->dx, g->dy, ref, p->width, p->height, COMPARE_GRAD_TRIM, msg);
+    if (rc == 0 && ref && dx) /* where the gradient relMSE's worst 1% of pixel pairs are */
+        rc = compare_write_worst_pairs(out_dir, c->dir, dx, dy, ref, p->width, p->height, COMPARE_GRAD_TRIM, msg);
     for (int k = 0; k < instances; k++)
         renderer_fini(&r[k]);
     return rc;

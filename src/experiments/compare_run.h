@@ -42,8 +42,9 @@ struct compare_result {
      * the disoccluded share of the image's pixels (mean over the runs); NaN for methods without a
      * G-buffer history (pt, gpt), MAPE also when no pixel is disoccluded */
     double mape_dis, mape_dis_sem, dis_share;
-    /* gradient methods (002 Fig. 7): restir_metrics_gradient_relmse of the last frame's (instance-averaged)
-     * gradients, mean over the runs, and its standard error; NaN for the other methods */
+    /* methods with forward-difference outputs (signed dx, dy: the gradient methods; 002 Fig. 7):
+     * restir_metrics_gradient_relmse of the last frame's (instance-averaged) gradients, mean over the
+     * runs, and its standard error; NaN for the other methods */
     double grad_relmse, grad_relmse_sem;
     /* the same gradients' relMSE without the worst COMPARE_GRAD_TRIM of the pairs
      * (restir_metrics_gradient_relmse_trimmed) and their MAPE (restir_metrics_gradient_mape), means over
@@ -58,7 +59,7 @@ struct compare_result {
     double mape_dis_dn, mape_dis_dn_sem; /* MAPE of the denoised frame over the disoccluded pixels */
     float *denoised; /* a planned job's denoised last frame for the merge (else NULL; caller frees) */
     unsigned char *mask; /* a planned job's disocclusion mask for the merge (else NULL; caller frees) */
-    float *grad; /* a planned job's gradients for the merge: dx then dy, 3 x width x height floats
+    float *grad; /* a planned job's forward differences for the merge: dx then dy, 3 x width x height floats
                     each (else NULL; caller frees) */
     double temporal_cov;     /* 000 Eq. 17 over the runs (compare_track.h); NaN with one run */
     double temporal_cov_dn;  /* the same of the denoised frames; NaN without denoising */
@@ -105,6 +106,10 @@ int compare_budget_by_spp(const struct method *m);
  * the npix pixels it marks (NaN when mask is NULL), into *mape and *share. */
 void compare_disoccluded_error(const float *image, const float *ref, const unsigned char *mask, size_t npix,
                                double *mape, double *share);
+
+/* The forward differences of r's last frame that the gradient columns measure (002 Fig. 7): its
+ * method's signed outputs named "dx" and "dy" (method.h), borrowed; both NULL unless it has both. */
+void compare_forward_differences(const struct renderer *r, const float **dx, const float **dy);
 
 /* The gradient errors of res (grad_relmse, grad_relmse_trim, grad_mape) from the gradients dx, dy (3 floats per
  * pixel each) against ref; all NaN when dx is NULL (not a gradient method). */

@@ -148,7 +148,8 @@ static int write_report(const struct compare_setup *st, const char *out_dir, con
         int i = nr++;
         snprintf(pngs[i], sizeof pngs[i], "%s/frame_%04d.png", specs[k].dir, o->frames - 1);
         rm[i] = (struct compare_report_method){.label = specs[k].label, .png = pngs[i], .dir = specs[k].dir,
-                                               .image = res[k].image, .ms_per_frame = res[k].ms_per_frame,
+                                               .method = specs[k].method, .image = res[k].image,
+                                               .ms_per_frame = res[k].ms_per_frame,
                                                .spp = res[k].spp, .instances = res[k].instances, .err = res[k].err,
                                                .flip = res[k].flip, .ms_pass = res[k].ms_pass, .nframes = nframes,
                                                .frame = fx, .frame_relmse = fy};

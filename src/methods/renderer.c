@@ -61,11 +61,11 @@ void renderer_inspect(const struct renderer *r, struct renderer_inspect *out)
         r->method->inspect(r->state, out);
 }
 
-struct grad_frame *renderer_gradients(const struct renderer *r)
+float *renderer_output(const struct renderer *r, int k)
 {
-    struct renderer_inspect in;
-    renderer_inspect(r, &in);
-    return in.grad;
+    if (k < 0 || k >= method_output_count(r->method) || !r->method->output)
+        return NULL;
+    return r->method->output(r, r->state, k);
 }
 
 long long renderer_disoccluded(const struct renderer *r, int frames, unsigned char *mask)

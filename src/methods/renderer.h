@@ -13,7 +13,6 @@
 #include "render/temporal_flags.h"
 #include "scene/camera.h"
 
-struct grad_frame;
 struct spmis_frame;
 
 /* PASS_CELLS .. PASS_SPMIS_REUSE are spatial.reuse=spmis's passes, split as 004 Table 2: create
@@ -90,7 +89,6 @@ struct renderer_inspect {
     const unsigned char *temporal_flags; /* path reservoirs: TEMPORAL_* bits per pixel (pt_splat.h) */
     const void *reservoirs;        /* the last frame's final reservoirs, read by confidence() */
     float (*confidence)(const void *reservoirs, int pixel);
-    struct grad_frame *grad;       /* gradient methods: primal, gradients, reconstructions */
 };
 
 /* p must have passed render_params_validate and method_check_settings. Allocates the method's
@@ -110,17 +108,20 @@ void renderer_set_shutter_open(struct renderer *r, const struct camera *open);
  * and with camera.shutter > 0 the shutter opening at `open` (NULL: cam, no motion). */
 void renderer_camera_view(const struct render_params *p, const struct camera *cam, const struct camera *open,
                           struct camera_view *v);
-/* Gradient methods: the screened Poisson reconstruction (L2; L1 too unless recon=l2) of the
- * primal and gradients (renderer_gradients) into r->image, timed into st->ms. renderer_render calls
- * it; call it again after changing the inputs (e.g. averaging instances, 002 Sec. 5). Does nothing
- * for the other methods. */
+/* A method with a reconstruct (the gradient methods: screened Poisson, L2 and L1 unless recon=l2)
+ * recomputes r->image and its derived outputs from its radiance and signed outputs (renderer_output),
+ * timed into st->ms. renderer_render calls it; call it again after changing those inputs (e.g.
+ * averaging instances, 002 Sec. 5). Does nothing for the other methods. */
 void renderer_reconstruct(struct renderer *r, struct frame_stats *st);
 /* The denoisers' view of a G-buffer (borrowed pointers into g). */
 void renderer_denoise_guide(const struct gbuffer *g, struct denoise_guide *out);
 /* What the method exposes of its last frame (struct renderer_inspect). */
 void renderer_inspect(const struct renderer *r, struct renderer_inspect *out);
-/* Gradient methods: the primal, gradients and reconstructions; NULL for the others. */
-struct grad_frame *renderer_gradients(const struct renderer *r);
+/* The pixels of output k of r->method->outputs (method.h) for the last frame: borrowed,
+ * width x height x channels floats, valid until the next renderer_render or renderer_fini, and
+ * writable (instances averaged into the first, then renderer_reconstruct). NULL when k is out of
+ * range or the settings leave that output out. */
+float *renderer_output(const struct renderer *r, int k);
 
 /* After a frame of a METHOD_HISTORY method: mask[i] = 1 for the valid pixels of the last frame
  * whose temporal history was rejected (G-buffer validation, 001) in any of its last `frames`

@@ -14,7 +14,7 @@
 
 #include "methods/settings.h"
 #include "reference_pt.h"
-#include "methods/gradient/grad_frame.h"
+#include "methods/gradient/grad_method.h"
 #include "unbiased_runs.h"
 
 #define GRADIENT_FRAMES 3
@@ -80,12 +80,12 @@ static inline void gradient_run_method(const struct scene *s, const struct metho
             struct camera cam = scene_camera_at(s, 1, (float)(f * GRADIENT_FRAME_STEP));
             renderer_render(&r, f, &cam, &fs);
         }
-        pixel_stats_add(&st[L_PRIMAL], renderer_gradients(&r)->primal);
-        pixel_stats_add(&st[L_DX], renderer_gradients(&r)->dx);
-        pixel_stats_add(&st[L_DY], renderer_gradients(&r)->dy);
-        pixel_stats_add(&st[L_L2], renderer_gradients(&r)->l2);
-        if (renderer_gradients(&r)->l1)
-            pixel_stats_add(&st[L_L1], renderer_gradients(&r)->l1);
+        pixel_stats_add(&st[L_PRIMAL], grad_method_frame(&r)->primal);
+        pixel_stats_add(&st[L_DX], grad_method_frame(&r)->dx);
+        pixel_stats_add(&st[L_DY], grad_method_frame(&r)->dy);
+        pixel_stats_add(&st[L_L2], grad_method_frame(&r)->l2);
+        if (grad_method_frame(&r)->l1)
+            pixel_stats_add(&st[L_L1], grad_method_frame(&r)->l1);
         renderer_fini(&r);
     }
 }

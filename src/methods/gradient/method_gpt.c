@@ -1,6 +1,7 @@
 /* method_gpt.c: `gpt`, gradient-domain path tracing (Kettunen et al. 2015; 002 B.2): pt base paths
  * shifted to the 4 neighbors by the hybrid shift, then the screened Poisson reconstruction.
  * Stateless between frames but for its images. */
+#include <stddef.h>
 #include <stdlib.h>
 
 #include "core/check.h"
@@ -11,7 +12,7 @@
 #include "methods/gradient/grad_settings.h"
 
 struct gpt_state {
-    struct grad_frame grad;
+    struct grad_frame grad; /* first: grad_method_output reads the state as its grad_frame */
     float scene_diagonal;          /* scales shift.distance */
     unsigned char *material_rough; /* the hybrid shift's roughness class per material */
 };
@@ -56,10 +57,7 @@ static void gpt_reconstruct(struct renderer *r, void *state, struct frame_stats 
     grad_method_reconstruct(r, &((struct gpt_state *)state)->grad, st);
 }
 
-static void gpt_inspect(const void *state, struct renderer_inspect *out)
-{
-    out->grad = (struct grad_frame *)&((const struct gpt_state *)state)->grad;
-}
+_Static_assert(offsetof(struct gpt_state, grad) == 0, "grad_method_output reads the state as its grad_frame");
 
 const struct method method_gpt = {
     .name = "gpt",
@@ -72,5 +70,6 @@ const struct method method_gpt = {
     .destroy = gpt_destroy,
     .render_frame = gpt_render_frame,
     .reconstruct = gpt_reconstruct,
-    .inspect = gpt_inspect,
+    .outputs = grad_method_outputs,
+    .output = grad_method_output,
 };

@@ -2,6 +2,7 @@
  * (B.1: gradients from shifting each pixel's final path to its neighbors) and `grestir-pt`
  * (ReSTIR over paired-pixel samples with positivization, temporal and adaptive spatial reuse),
  * both reconstructed by screened Poisson. */
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,8 +15,8 @@
 #include "methods/gradient/grad_settings.h"
 
 struct grad_restir_state {
+    struct grad_frame grad; /* first: grad_method_output reads the state as its grad_frame */
     struct restir_pt_state primal;
-    struct grad_frame grad;
     int paired; /* grestir-pt: ReSTIR over paired-pixel samples; else gradients after ReSTIR */
 };
 
@@ -114,10 +115,10 @@ static void grad_restir_reconstruct(struct renderer *r, void *state, struct fram
 
 static void grad_restir_inspect(const void *state, struct renderer_inspect *out)
 {
-    const struct grad_restir_state *gs = state;
-    restir_pt_inspect(&gs->primal, out);
-    out->grad = (struct grad_frame *)&gs->grad;
+    restir_pt_inspect(&((const struct grad_restir_state *)state)->primal, out);
 }
+
+_Static_assert(offsetof(struct grad_restir_state, grad) == 0, "grad_method_output reads the state as its grad_frame");
 
 #define GRAD_RESTIR_CAPS (METHOD_GRADIENT | METHOD_HISTORY | METHOD_PATH_RESERVOIRS)
 
@@ -133,6 +134,8 @@ const struct method method_grad_after_restir = {
     .render_frame = grad_restir_render_frame,
     .reconstruct = grad_restir_reconstruct,
     .inspect = grad_restir_inspect,
+    .outputs = grad_method_outputs,
+    .output = grad_method_output,
 };
 
 const struct method method_grestir_pt = {
@@ -148,4 +151,6 @@ const struct method method_grestir_pt = {
     .render_frame = grad_restir_render_frame,
     .reconstruct = grad_restir_reconstruct,
     .inspect = grad_restir_inspect,
+    .outputs = grad_method_outputs,
+    .output = grad_method_output,
 };
