@@ -225,24 +225,26 @@ static void png_encode_signed(float lum, float scale, unsigned char *out)
         out[2] = hi;
 }
 
+int encode_signed8(const float *rgb, size_t npix, float scale, unsigned char *out)
+{
+    if ((!(scale > 0.0f) || !isfinite(scale)) && png_signed_auto_scale(rgb, npix, &scale) != 0)
+        return -1;
+    for (size_t i = 0; i < npix; i++)
+        png_encode_signed(png_luminance(rgb + 3 * i), scale, out + 3 * i);
+    return 0;
+}
+
 int png_write_signed(const char *path, const float *rgb, int w, int h, float scale, char *msg)
 {
     if (png_check_args(path, rgb, w, h, msg) != 0)
         return -1;
     size_t npix = (size_t)w * (size_t)h;
-    if (!(scale > 0.0f) || !isfinite(scale)) {
-        if (png_signed_auto_scale(rgb, npix, &scale) != 0) {
-            io_msg(msg, "%s: out of memory for %dx%d PNG", path, w, h);
-            return -1;
-        }
-    }
     unsigned char *pixels = malloc(npix * 3);
-    if (!pixels) {
+    if (!pixels || encode_signed8(rgb, npix, scale, pixels) != 0) {
+        free(pixels);
         io_msg(msg, "%s: out of memory for %dx%d PNG", path, w, h);
         return -1;
     }
-    for (size_t i = 0; i < npix; i++)
-        png_encode_signed(png_luminance(rgb + 3 * i), scale, pixels + 3 * i);
     return png_write_pixels(path, pixels, w, h, msg);
 }
 

@@ -19,6 +19,9 @@ int png_write_srgb(const char *path, const float *rgb, int w, int h, float expos
  * scale = 1 / (99th percentile of the finite |lum|); where that percentile is 0 (fewer than 1%
  * of pixels nonzero), 1 / (largest |lum|); where every lum is 0, 1. Returns 0 or -1 with msg. */
 int png_write_signed(const char *path, const float *rgb, int w, int h, float scale, char *msg);
+/* The 8-bit RGB of png_write_signed's false colour for npix pixels of rgb (what the viewer shows of a
+ * signed image), with its scale rule. Returns 0, or -1 when out of memory (out untouched). */
+int encode_signed8(const float *rgb, size_t npix, float scale, unsigned char *out);
 
 /* The heat-map colour of t in [0, 1] (clamped; NaN is black): black, violet, red, orange,
  * pale yellow at HEAT_STOPS evenly spaced stops, linear between them. */

@@ -34,8 +34,32 @@ static void cell_color(int id, unsigned char *out)
     out[2] = (unsigned char)(64 + (h >> 8) % 192);
 }
 
-int view_debug_rgb8(const struct renderer *r, enum view_mode mode, unsigned char *rgb8)
+int view_count(const struct renderer *r) { return VIEW_MODES + method_output_count(r->method); }
+
+const char *view_name(const struct renderer *r, int mode)
 {
+    if (mode >= VIEW_MODES && mode < view_count(r))
+        return r->method->outputs[mode - VIEW_MODES].name;
+    return mode >= 0 && mode < VIEW_MODES ? view_mode_names[mode] : view_mode_names[VIEW_IMAGE];
+}
+
+/* View VIEW_MODES + k: the method's output k as 8-bit RGB. Returns 1, or 0 without it this frame. */
+static int output_rgb8(const struct renderer *r, int k, unsigned char *rgb8)
+{
+    const float *px = renderer_output(r, k);
+    const size_t n = (size_t)r->p.width * (size_t)r->p.height;
+    if (!px || r->method->outputs[k].channels != 3)
+        return 0;
+    if (r->method->outputs[k].kind == METHOD_OUTPUT_SIGNED)
+        return encode_signed8(px, n, 0.0f, rgb8) == 0;
+    encode_srgb8(px, 3 * n, 0.0f, rgb8);
+    return 1;
+}
+
+int view_debug_rgb8(const struct renderer *r, int mode, unsigned char *rgb8)
+{
+    if (mode >= VIEW_MODES && mode < view_count(r) && output_rgb8(r, mode - VIEW_MODES, rgb8))
+        return 1;
     struct renderer_inspect in;
     renderer_inspect(r, &in);
     const int n = r->p.width * r->p.height, m = in.neighbors_per_pixel;

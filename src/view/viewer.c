@@ -63,7 +63,7 @@ struct view {
     int path_cap;
     int quit;
     int shots;
-    enum view_mode mode; /* what the window shows (V cycles); screenshots are always the image */
+    int mode; /* what the window shows (V cycles; view_debug.h); screenshots are always the image */
     int show_denoised;   /* O: the denoised frame instead of the raw one (denoise=svgf|atrous) */
     SDL_Renderer *ren;   /* the window's, and the texture it shows the frame from (window_shot) */
     SDL_Texture *tex;
@@ -95,6 +95,8 @@ static void restart(struct view *v, int first)
         renderer_fini(&v->r);
     renderer_init(&v->r, v->o->scene, v->method, &v->p);
     v->frame = 0;
+    if (v->mode >= view_count(&v->r)) /* an output of the method before */
+        v->mode = VIEW_IMAGE;
 }
 
 /* Restarts with method m and parameters q when the command's checks accept them (the same checks as
@@ -128,7 +130,7 @@ static void press(struct view *v, char key)
         q.reuse.spatial_reuse = q.reuse.spatial_reuse == REUSE_SPMIS ? REUSE_STANDARD : REUSE_SPMIS;
         switch_to(v, v->method, &q);
         break;
-    case 'v': v->mode = (enum view_mode)((v->mode + 1) % VIEW_MODES); break;
+    case 'v': v->mode = (v->mode + 1) % view_count(&v->r); break;
     case 'o': /* raw / denoised; the first time turns SVGF on */
         if (v->p.denoise.method == 0) {
             q.denoise.method = 1;
@@ -301,7 +303,7 @@ static void show(struct view *v, SDL_Window *win, SDL_Renderer *ren, SDL_Texture
     char title[1024], method[256];
     spec(v, method, sizeof method);
     int n = snprintf(title, sizeof title, "restir view: %s, %s%s%s, frame %d, %.1f ms:", method,
-                     view_mode_names[v->mode], v->mode != VIEW_IMAGE && !shown ? " (none for this method)" : "",
+                     view_name(&v->r, v->mode), v->mode != VIEW_IMAGE && !shown ? " (none for this method)" : "",
                      v->mode == VIEW_IMAGE && denoised ? " denoised (BIASED)" : "", v->frame, st->ms_total);
     for (int q = 0; q < PASS_COUNT && n > 0 && n < (int)sizeof title; q++)
         if (st->ms[q] > 0.0)
