@@ -152,7 +152,7 @@ static void bench_passes(const struct bench_config *c, const struct method **met
            c->width, c->height, c->frames - 1, omp_get_max_threads());
     for (int q = 0; q < PASS_COUNT; q++)
         if (used[q])
-            printf(" %s |", pass_names[q]);
+            printf(" %s |", pass_name(q));
     printf(" frame ms | Mrays/s | rays/px | Embree-only ms | frame / Embree-only |\n|---|");
     for (int q = 0; q < PASS_COUNT; q++)
         if (used[q])

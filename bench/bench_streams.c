@@ -61,7 +61,7 @@ static void streams_case(const char *scene, const struct method *method, int wid
     for (int q = 0; q <= PASS_COUNT; q++) {
         if (!(best[0][q] > 0.0))
             continue;
-        printf("| %s | %.2f | %.2f | %.3f |\n", q < PASS_COUNT ? pass_names[q] : "frame", best[0][q], best[1][q],
+        printf("| %s | %.2f | %.2f | %.3f |\n", q < PASS_COUNT ? pass_name(q) : "frame", best[0][q], best[1][q],
                best[1][q] / best[0][q]);
     }
     scene_destroy(&s);

@@ -28,7 +28,8 @@
  * the machine that runs the others; so is --ref-every. With --runs the merge has no temporal_cov
  * (000 Eq. 17 needs every run's frame sequence, which jobs do not keep). */
 
-static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '4'}; /* 4: denoised frames */
+/* 4: denoised frames; 5: a timer per pass id up to PASS_MAX (methods name their own passes) */
+static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '5'};
 
 /* What a SPEC's job measured: its frame time, paths per pixel and instances; has_mask: the record
  * goes on with the last frame's disocclusion mask (width x height bytes, compare_run.h); has_grad:
@@ -38,7 +39,7 @@ static const char result_magic[8] = {'R', 'C', 'O', 'M', 'P', 'A', 'R', '4'}; /*
  * denoised last frame (denoise=svgf|atrous, 3 x width x height floats); a later run's record then
  * holds its last frame (3 x width x height floats). */
 struct job_timing {
-    double ms_per_frame, ms_pass[PASS_COUNT];
+    double ms_per_frame, ms_pass[PASS_MAX];
     int32_t spp, instances, has_mask, has_grad, has_denoised, reserved;
 };
 

@@ -144,7 +144,7 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     }
     const size_t npix = (size_t)p->width * (size_t)p->height, n3 = 3 * npix;
     float *scratch = track && instances > 1 ? xmalloc(sizeof(float) * n3) : NULL;
-    double ms = 0.0, ms_pass[PASS_COUNT] = {0};
+    double ms = 0.0, ms_pass[PASS_MAX] = {0};
     struct progress pg;
     progress_begin(&pg, c->label, frames);
     for (int f = 0; f < frames; f++) {
@@ -161,9 +161,13 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
         for (int k = 0; k < instances; k++) {
             struct frame_stats st;
             renderer_render(&r[k], f, &cam, &st);
-            ms_frame += st.ms_total - (k > 0 ? st.ms[PASS_RECON_L2] + st.ms[PASS_RECON_L1] : 0.0);
-            for (int q = 0; q < PASS_COUNT; q++) /* as the frame time: one reconstruction */
-                ms_pass[q] += k > 0 && (q == PASS_RECON_L2 || q == PASS_RECON_L1) ? 0.0 : st.ms[q];
+            double ms_recon = 0.0; /* the instances after the first reconstruct nothing: the mean is */
+            for (int q = 0; q < pass_count(); q++)
+                if (st.reconstructed >> q & 1)
+                    ms_recon += st.ms[q];
+            ms_frame += st.ms_total - (k > 0 ? ms_recon : 0.0);
+            for (int q = 0; q < pass_count(); q++) /* as the frame time: one reconstruction */
+                ms_pass[q] += k > 0 && (st.reconstructed >> q & 1) ? 0.0 : st.ms[q];
             if (k == 0)
                 st0 = st;
         }
@@ -197,7 +201,7 @@ int compare_run_method(const struct scene *s, const struct compare_spec *c, cons
     }
     res->method = m;
     res->ms_per_frame = ms / frames;
-    for (int q = 0; q < PASS_COUNT; q++)
+    for (int q = 0; q < PASS_MAX; q++)
         res->ms_pass[q] = ms_pass[q] / frames;
     res->spp = compare_budget_by_spp(m) ? p->spp : 1;
     res->instances = instances;

@@ -31,7 +31,7 @@ struct compare_spec {
 struct compare_result {
     const struct method *method;
     double ms_per_frame;
-    double ms_pass[PASS_COUNT]; /* each pass's mean time per frame (run 0), as ms_per_frame counts */
+    double ms_pass[PASS_MAX]; /* each pass's mean time per frame by pass id (run 0), as ms_per_frame counts */
     int spp;
     int instances;           /* independently seeded renderers averaged per run (equal time) */
     int runs;                /* independently seeded runs measured (--runs) */

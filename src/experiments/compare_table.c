@@ -29,19 +29,19 @@ static void table_cell(char *out, size_t n, const char *fmt, int width, double v
 static int write_passes(const char *out_dir, const struct compare_spec *specs, const struct compare_result *res, int n,
                         char *msg)
 {
-    char path[4200], header[1024] = "method";
+    char path[4200], header[2048] = "method";
     size_t used = strlen(header);
-    for (int q = 0; q < PASS_COUNT; q++)
-        used += (size_t)snprintf(header + used, sizeof header - used, ",%s", pass_names[q]);
+    for (int q = 0; q < pass_count(); q++) /* pass ids in order (methods/passes.h) */
+        used += (size_t)snprintf(header + used, sizeof header - used, ",%s", pass_name(q));
     snprintf(path, sizeof path, "%s/passes.csv", out_dir);
     struct csv_writer csv;
     if (csv_open(&csv, path, header, msg) != 0)
         return -1;
     for (int k = 0; k < n; k++) {
-        char row[2048];
+        char row[4096];
         csv_field(row, sizeof row, specs[k].label);
         used = strlen(row);
-        for (int q = 0; q < PASS_COUNT; q++)
+        for (int q = 0; q < pass_count(); q++)
             used += (size_t)snprintf(row + used, sizeof row - used, ",%.4f", res[k].ms_pass[q]);
         csv_row(&csv, "%s", row);
     }
@@ -165,9 +165,12 @@ static int write_report(const struct compare_setup *st, const char *out_dir, con
     }
     if (have_frames)
         csv_table_free(&frames);
+    const char *names[PASS_MAX];
+    for (int q = 0; q < pass_count(); q++)
+        names[q] = pass_name(q);
     const struct compare_report_run run = {out_dir, command, st->s.name, p->width, p->height, o->frames - 1,
-                                           p->camera_path, o->equal_time, ref, o->self_contained, PASS_COUNT,
-                                           pass_names};
+                                           p->camera_path, o->equal_time, ref, o->self_contained, pass_count(),
+                                           names};
     int rc = 0;
     if (compare_write_report(&run, nr, rm, msg) != 0) {
         cli_error("--report: %s", msg);

@@ -148,10 +148,10 @@ int render_run(const struct cli_options *desc)
     char csv_path[4200], json_path[4200];
     snprintf(csv_path, sizeof(csv_path), "%s/metrics.csv", out_dir);
     snprintf(json_path, sizeof(json_path), "%s/summary.json", out_dir);
-    /* One ms_<pass> column per pass of renderer.h, in pass order. */
-    char header[1024] = "frame,ms_total";
-    for (int q = 0; q < PASS_COUNT; q++)
-        snprintf(header + strlen(header), sizeof(header) - strlen(header), ",ms_%s", pass_names[q]);
+    /* One ms_<pass> column per pass id (methods/passes.h), in id order: today's, then the methods' own. */
+    char header[2048] = "frame,ms_total";
+    for (int q = 0; q < pass_count(); q++)
+        snprintf(header + strlen(header), sizeof(header) - strlen(header), ",ms_%s", pass_name(q));
     snprintf(header + strlen(header), sizeof(header) - strlen(header), "%s",
              ",rays,mrays_per_s,temporal_accept,bp_received,bp_accepted,splat_received,splat_accepted,"
              "disoccluded,relmse,mape,smape,luma_rmse,mape_disoccluded,relmse_denoised,mape_denoised,"
@@ -210,8 +210,8 @@ int render_run(const struct cli_options *desc)
                 has_disoccluded = 1;
             }
         }
-        char passes[512] = "";
-        for (int q = 0; q < PASS_COUNT; q++)
+        char passes[1024] = "";
+        for (int q = 0; q < pass_count(); q++)
             snprintf(passes + strlen(passes), sizeof(passes) - strlen(passes), ",%.3f", st.ms[q]);
         /* Writing is timed on its own (ms_write), outside the frame's ms_total. */
         double ms_write = 0.0;

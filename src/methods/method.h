@@ -81,6 +81,14 @@ struct method {
     /* What scripts pick it for, space-separated (NULL: nothing): "reference", the method whose paths every
      * reference integrates (methods/reference.c); "demo", the method scripts/demo.sh shows against it. */
     const char *roles;
+    /* The passes it times into struct frame_stats.ms, by name, NULL-terminated (NULL: none): every pass
+     * its render_frame and reconstruct time, toolkit passes included (the renderer's own "denoise"
+     * is every method's and not listed). A test renders each method and refuses a pass timed but not
+     * listed. A new pass needs no edit of passes.h: list a name no method uses, look its id up once
+     * with pass_find (it gets the next id after enum pass_id's, in registry order) and time with
+     * RENDERER_TIMED(st, id, ...); metrics.csv and passes.csv then get its column after today's, so
+     * existing columns keep their names and order. */
+    const char *const *passes;
     /* The method's own defaults on top of p (NULL: none). renderer_init applies them; reports
      * call method_params to say what ran. */
     void (*defaults)(struct render_params *p);

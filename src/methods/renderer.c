@@ -10,11 +10,7 @@
 #include "core/simd.h"
 #include "render/nonfinite.h"
 
-const char *const pass_names[PASS_COUNT] = {"gbuffer", "initial",         "temporal",    "select",
-                                            "spatial", "cells",           "cell_search", "spmis_canonical",
-                                            "spmis_reuse", "shade", "pt", "gpt", "grad_initial",
-                                            "grad_temporal", "grad_select", "grad_spatial", "grad_shade",
-                                            "recon_l2", "recon_l1", "denoise"};
+_Static_assert(PASS_MAX <= 64, "struct frame_stats.reconstructed has a bit per pass id");
 
 void renderer_init(struct renderer *r, const struct scene *s, const struct method *method, const struct render_params *p)
 {
@@ -50,8 +46,14 @@ void renderer_fini(struct renderer *r)
 
 void renderer_reconstruct(struct renderer *r, struct frame_stats *st)
 {
-    if (r->method->reconstruct)
-        r->method->reconstruct(r, r->state, st);
+    if (!r->method->reconstruct)
+        return;
+    double before[PASS_MAX];
+    memcpy(before, st->ms, sizeof before);
+    r->method->reconstruct(r, r->state, st);
+    for (int q = 0; q < PASS_MAX; q++)
+        if (st->ms[q] != before[q])
+            st->reconstructed |= 1ull << q;
 }
 
 void renderer_inspect(const struct renderer *r, struct renderer_inspect *out)

@@ -8,6 +8,7 @@
 
 #include "denoise/denoise.h"
 #include "methods/method.h"
+#include "methods/passes.h"
 #include "render/gbuffer.h"
 #include "render/params.h"
 #include "render/temporal_flags.h"
@@ -15,37 +16,12 @@
 
 struct spmis_frame;
 
-/* PASS_CELLS .. PASS_SPMIS_REUSE are spatial.reuse=spmis's passes, split as 004 Table 2: create
- * reuse cells (Algorithm 1), cell search (Algorithm 2 line 2, Sec. 5.1), the canonical weight
- * (lines 6-12) and stochastic neighbor reuse (lines 13-20). */
-enum pass_id {
-    PASS_GBUFFER,
-    PASS_INITIAL,
-    PASS_TEMPORAL,
-    PASS_SELECT,
-    PASS_SPATIAL,
-    PASS_CELLS,
-    PASS_CELL_SEARCH,
-    PASS_SPMIS_CANONICAL,
-    PASS_SPMIS_REUSE,
-    PASS_SHADE,
-    PASS_PT,
-    PASS_GPT,
-    PASS_GRAD_INITIAL,
-    PASS_GRAD_TEMPORAL,
-    PASS_GRAD_SELECT,
-    PASS_GRAD_SPATIAL,
-    PASS_GRAD_SHADE,
-    PASS_RECON_L2,
-    PASS_RECON_L1,
-    PASS_DENOISE, /* denoise=svgf|atrous: the denoiser, and the G-buffer traced for it where the method has none */
-    PASS_COUNT
-};
-extern const char *const pass_names[PASS_COUNT];
-
 struct frame_stats {
-    double ms[PASS_COUNT];
+    double ms[PASS_MAX]; /* milliseconds per pass id (passes.h); 0 for the passes the method has not run */
     double ms_total;
+    /* bit id: pass id ran in the method's reconstruct (renderer_reconstruct), which a compare row that
+     * averages instances runs once: their other instances' frame time leaves it out */
+    unsigned long long reconstructed;
     long long rays;
     long long temporal_accepted; /* pixels whose history passed validation */
     long long neighbors_selected; /* spatial neighbors the selection pass found */

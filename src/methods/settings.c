@@ -9,6 +9,7 @@
 
 #include "core/check.h"
 #include "methods/method.h"
+#include "methods/passes.h"
 #include "render/tiles.h"
 
 /* At most this many blocks (toolkit and methods together) and method rows. */
@@ -93,6 +94,39 @@ static int check_outputs(const struct method *m, char *msg)
     return 0;
 }
 
+/* The methods' pass names (struct method.passes): [a-z0-9_], each once per method, not the renderer's
+ * "denoise", and with today's ids at most PASS_MAX in all. Returns 0, or -1 with msg naming them. */
+static int check_passes(const struct method *const *methods, int n, char *msg)
+{
+    int ids = PASS_COUNT; /* today's, then the names none of them is */
+    for (int a = 0; a < n; a++)
+        for (const char *const *p = methods[a]->passes; p && *p; p++) {
+            const size_t len = strlen(*p);
+            if (len == 0 || strspn(*p, "abcdefghijklmnopqrstuvwxyz0123456789_") != len || !strcmp(*p, "denoise")) {
+                snprintf(msg, RESTIR_MSG_LEN, "pass '%s' of %s: a pass name is [a-z0-9_], and not the renderer's "
+                         "'denoise'", *p, methods[a]->name);
+                return -1;
+            }
+            for (const char *const *q = methods[a]->passes; q != p; q++)
+                if (!strcmp(*q, *p)) {
+                    snprintf(msg, RESTIR_MSG_LEN, "%s lists pass '%s' twice", methods[a]->name, *p);
+                    return -1;
+                }
+            int seen = 0;
+            for (int k = 0; k < PASS_COUNT && !seen; k++)
+                seen = !strcmp(pass_toolkit_names[k], *p);
+            for (int b = 0; b < a && !seen; b++)
+                for (const char *const *q = methods[b]->passes; q && *q && !seen; q++)
+                    seen = !strcmp(*q, *p);
+            if (!seen && ++ids > PASS_MAX) {
+                snprintf(msg, RESTIR_MSG_LEN, "pass '%s' of %s is one more than PASS_MAX (%d) in methods/passes.h",
+                         *p, methods[a]->name, PASS_MAX);
+                return -1;
+            }
+        }
+    return 0;
+}
+
 int settings_registry_check(const struct method *const *methods, int n, char *msg)
 {
     for (int a = 0; a < n; a++)
@@ -131,6 +165,8 @@ int settings_registry_check(const struct method *const *methods, int n, char *ms
     for (int a = 0; a < n; a++)
         if (check_outputs(methods[a], msg) != 0)
             return -1;
+    if (check_passes(methods, n, msg) != 0)
+        return -1;
     for (int a = 0; a < n; a++)
         for (const char *const *s = methods[a]->streams; s && *s; s++) {
             const uint64_t id = rng_stream_id(*s);

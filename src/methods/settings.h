@@ -61,7 +61,8 @@ void settings_readers(const char *key, char *out, size_t n);
 /* Checks that methods[0..n) and the toolkit's blocks can form a registry: method names distinct, every
  * key declared by one block only, the methods' blocks fit RENDER_PARAMS_METHOD_BYTES, the methods'
  * random streams of distinct ids (and none of them a toolkit pass id), their outputs well formed (3
- * channels, file-safe names, each once, an output function). Returns 0, or -1 with msg naming
+ * channels, file-safe names, each once, an output function), their pass names well formed and, with
+ * today's pass ids, at most PASS_MAX (methods/passes.h). Returns 0, or -1 with msg naming
  * both owners of what collides. Pure: for the registry's own build and for tests with rows of their own. */
 int settings_registry_check(const struct method *const *methods, int n, char *msg);
 

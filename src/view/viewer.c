@@ -305,9 +305,9 @@ static void show(struct view *v, SDL_Window *win, SDL_Renderer *ren, SDL_Texture
     int n = snprintf(title, sizeof title, "restir view: %s, %s%s%s, frame %d, %.1f ms:", method,
                      view_name(&v->r, v->mode), v->mode != VIEW_IMAGE && !shown ? " (none for this method)" : "",
                      v->mode == VIEW_IMAGE && denoised ? " denoised (BIASED)" : "", v->frame, st->ms_total);
-    for (int q = 0; q < PASS_COUNT && n > 0 && n < (int)sizeof title; q++)
+    for (int q = 0; q < pass_count() && n > 0 && n < (int)sizeof title; q++)
         if (st->ms[q] > 0.0)
-            n += snprintf(title + n, sizeof title - (size_t)n, " %s %.1f", pass_names[q], st->ms[q]);
+            n += snprintf(title + n, sizeof title - (size_t)n, " %s %.1f", pass_name(q), st->ms[q]);
     SDL_SetWindowTitle(win, title);
 }
 

@@ -13,6 +13,9 @@
  * timed into st->ms[PASS_RECON_L2 / PASS_RECON_L1], residuals into st. */
 void grad_method_reconstruct(struct renderer *r, struct grad_frame *gf, struct frame_stats *st);
 
+/* The passes grad_method_reconstruct times (struct method.passes). */
+#define GRAD_METHOD_PASSES "recon_l2", "recon_l1"
+
 /* The outputs every gradient method declares, in the order their EXR layers follow R, G, B: the
  * reconstruction not in R, G, B ("L2" with recon=l1, "L1" with recon=both; derived, so debug), the
  * primal (radiance) and the forward differences "dx", "dy" (signed). */

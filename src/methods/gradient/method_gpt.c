@@ -66,6 +66,7 @@ const struct method method_gpt = {
     .caps = METHOD_GRADIENT | METHOD_BUDGET_BY_SPP,
     .blocks = (const struct param_block *const[]){&params_block_spp, &params_block_depth, &params_block_roulette,
                                                   &params_block_lights, &params_block_shift, &recon_block, NULL},
+    .passes = (const char *const[]){"gpt", GRAD_METHOD_PASSES, NULL},
     .create = gpt_create,
     .destroy = gpt_destroy,
     .render_frame = gpt_render_frame,

@@ -25,6 +25,7 @@ const struct method method_pt = {
     .viewer_order = 3,
     .blocks = (const struct param_block *const[]){&params_block_spp, &params_block_depth, &params_block_roulette,
                                                   &params_block_sampler, &params_block_lights, NULL},
+    .passes = (const char *const[]){"pt", NULL},
     .roles = "reference",
     .create = pt_create,
     .destroy = pt_destroy,

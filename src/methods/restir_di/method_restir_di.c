@@ -117,12 +117,18 @@ static void ris_di_defaults(struct render_params *p)
 /* Reuse, neighbor selection and SPMIS, and the DI candidates. */
 #define RESTIR_DI_BLOCKS &di_block, &di_reuse_block, &params_block_reuse, &params_block_spmis, &params_block_depth
 
+/* The passes restir_di_render_frame times (struct method.passes). */
+static const char *const restir_di_passes[] = {"gbuffer", "initial",     "temporal",        "select",      "spatial",
+                                               "cells",   "cell_search", "spmis_canonical", "spmis_reuse", "shade",
+                                               NULL};
+
 const struct method method_restir_di = {
     .name = "restir-di",
     .description = "ReSTIR DI: initial RIS, temporal and spatial reuse by GRIS (pairwise MIS default)",
     .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY | METHOD_SELECTION_STUDY,
     .viewer_order = 1,
     .blocks = (const struct param_block *const[]){RESTIR_DI_BLOCKS, NULL},
+    .passes = restir_di_passes,
     .variants = "spatial.reuse=spmis spatial.preset=fast mis=balance",
     .roles = "demo",
     .create = restir_di_create,
@@ -137,6 +143,7 @@ const struct method method_ris_di = {
     .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY,
     .viewer_order = 4,
     .blocks = (const struct param_block *const[]){&di_block, &params_block_depth, NULL},
+    .passes = restir_di_passes,
     .defaults = ris_di_defaults,
     .create = restir_di_create,
     .destroy = restir_di_destroy,

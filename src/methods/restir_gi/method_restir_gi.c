@@ -120,6 +120,7 @@ const struct method method_restir_gi = {
     .caps = METHOD_HISTORY,
     .blocks = (const struct param_block *const[]){&params_block_depth, &params_block_roulette, &params_block_lights,
                                                   &params_block_reuse, &gi_block, NULL},
+    .passes = (const char *const[]){"gbuffer", "initial", "temporal", "select", "spatial", "shade", NULL},
     .check = restir_gi_check,
     .create = restir_gi_create,
     .destroy = restir_gi_destroy,

@@ -25,6 +25,11 @@ struct restir_pt_state {
     &params_block_depth, &params_block_roulette, &params_block_lights, &params_block_reuse, &params_block_spmis,    \
         &params_block_shift, &restir_pt_block
 
+/* The passes restir_pt_frame times (struct method.passes), for its rows and the gradient methods'. */
+#define RESTIR_PT_PASSES                                                                                          \
+    "gbuffer", "initial", "temporal", "select", "spatial", "cells", "cell_search", "spmis_canonical", "spmis_reuse", \
+        "shade"
+
 void restir_pt_state_init(struct restir_pt_state *t, const struct renderer *r);
 void restir_pt_state_fini(struct restir_pt_state *t);
 
