@@ -59,6 +59,15 @@ static cJSON *setting_keys(const struct method *m, int common)
     return a;
 }
 
+/* The NULL-terminated strings of list (NULL: none) as an array. */
+static cJSON *strings(const char *const *list)
+{
+    cJSON *a = checked(cJSON_CreateArray());
+    for (const char *const *x = list; x && *x; x++)
+        cJSON_AddItemToArray(a, checked(cJSON_CreateString(*x)));
+    return a;
+}
+
 /* The names of the blocks m lists in its row. */
 static cJSON *block_names(const struct method *m)
 {
@@ -85,6 +94,8 @@ static cJSON *method_json(const struct method *m)
     cJSON_AddItemToObject(o, "settings", setting_keys(m, 0));
     cJSON_AddItemToObject(o, "variants", words(m->variants));
     cJSON_AddItemToObject(o, "roles", words(m->roles));
+    cJSON_AddItemToObject(o, "streams", strings(m->streams));
+    cJSON_AddItemToObject(o, "passes", strings(m->passes));
     checked(cJSON_AddNumberToObject(o, "viewer_order", m->viewer_order));
     return o;
 }

@@ -25,6 +25,7 @@ const struct method method_ris_gi = {
     .blocks = (const struct param_block *const[]){&params_block_spp, &params_block_depth, &params_block_roulette,
                                                   &params_block_lights, &ris_gi_block, NULL},
     .streams = (const char *const[]){RIS_GI_STREAM, NULL},
+    .passes = (const char *const[]){"pt", NULL}, /* one path-tracing pass, timed as pt's */
     .variants = "risgi.candidates=1",
     .create = ris_gi_create,
     .destroy = ris_gi_destroy,
