@@ -120,40 +120,32 @@ static void grad_restir_inspect(const void *state, struct renderer_inspect *out)
 
 _Static_assert(offsetof(struct grad_restir_state, grad) == 0, "grad_method_output reads the state as its grad_frame");
 
-#define GRAD_RESTIR_CAPS (METHOD_GRADIENT | METHOD_HISTORY | METHOD_PATH_RESERVOIRS)
+/* What the two rows share: gradients beside the area-ReSTIR primal, one state, frame, reconstruction and
+ * set of outputs. */
+#define GRAD_RESTIR_SHARED                                                                                        \
+    .caps = METHOD_GRADIENT | METHOD_HISTORY | METHOD_PATH_RESERVOIRS, .defaults = restir_pt_area_defaults,        \
+    .destroy = grad_restir_destroy, .render_frame = grad_restir_render_frame,                                      \
+    .reconstruct = grad_restir_reconstruct, .inspect = grad_restir_inspect, .outputs = grad_method_outputs,        \
+    .output = grad_method_output
 
 const struct method method_grad_after_restir = {
     .name = "grad-after-restir",
     .description = "Gradient after ReSTIR (002 B.1): area-ReSTIR primal, gradients from shifting each "
                    "pixel's final path to its neighbors, Poisson reconstruction",
-    .caps = GRAD_RESTIR_CAPS,
     .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, &recon_block, NULL},
     .passes = (const char *const[]){RESTIR_PT_PASSES, "grad_initial", "grad_shade", GRAD_METHOD_PASSES, NULL},
-    .defaults = restir_pt_area_defaults,
     .create = grad_after_create,
-    .destroy = grad_restir_destroy,
-    .render_frame = grad_restir_render_frame,
-    .reconstruct = grad_restir_reconstruct,
-    .inspect = grad_restir_inspect,
-    .outputs = grad_method_outputs,
-    .output = grad_method_output,
+    GRAD_RESTIR_SHARED,
 };
 
 const struct method method_grestir_pt = {
     .name = "grestir-pt",
     .description = "gradient-domain ReSTIR PT (002): area-ReSTIR primal, ReSTIR over paired-pixel samples with "
                    "positivization, temporal and adaptive spatial reuse, Poisson reconstruction",
-    .caps = GRAD_RESTIR_CAPS,
     .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, &recon_block, &grad_block, NULL},
     .passes = (const char *const[]){RESTIR_PT_PASSES, "grad_initial", "grad_temporal", "grad_select", "grad_spatial",
                                     "grad_shade", GRAD_METHOD_PASSES, NULL},
     .variants = "recon=both grad.base=shared",
-    .defaults = restir_pt_area_defaults,
     .create = grestir_create,
-    .destroy = grad_restir_destroy,
-    .render_frame = grad_restir_render_frame,
-    .reconstruct = grad_restir_reconstruct,
-    .inspect = grad_restir_inspect,
-    .outputs = grad_method_outputs,
-    .output = grad_method_output,
+    GRAD_RESTIR_SHARED,
 };
