@@ -11,7 +11,7 @@
 #include "experiments/reference_checkpoint.h"
 #include "experiments/reference_run.h"
 #include "experiments/reference_shards.h"
-#include "methods/reference.h"
+#include "methods/pt/reference.h"
 
 static void reference_usage(FILE *out)
 {

@@ -13,7 +13,7 @@
 #include "io/exr.h"
 #include "io/png.h"
 #include "methods/memory_estimate.h"
-#include "methods/reference.h"
+#include "methods/pt/reference.h"
 #include "scene/environment.h"
 #include "scene/scene_env.h"
 #include "scene/scene_file.h"

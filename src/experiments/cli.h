@@ -88,7 +88,7 @@ int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *
 
 /* Renders the converged image of what `method` estimates (pt with the method's integrand) with
  * spp samples per pixel from camera cam (shutter opening at `open`, NULL: cam) into a new
- * malloc'ed RGB buffer (methods/reference.h). Returns NULL, having stopped between chunks, when a
+ * malloc'ed RGB buffer (methods/pt/reference.h). Returns NULL, having stopped between chunks, when a
  * stop signal arrived (cli_stop_signal). */
 float *cli_render_reference(const struct scene *s, const struct method *method, const struct render_params *p,
                             const struct camera *cam, const struct camera *open, int spp);

@@ -6,7 +6,7 @@
 #define RESTIR_EXPERIMENTS_REFERENCE_CHECKPOINT_H
 
 #include "experiments/reference_run.h"
-#include "methods/reference.h"
+#include "methods/pt/reference.h"
 
 /* Seconds between a plan's reference job's saves: a kill costs at most this much rendering. The
  * environment's RESTIR_REFERENCE_CHECKPOINT_SECONDS (a number >= 0; 0: after every chunk) replaces it. */

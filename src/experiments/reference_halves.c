@@ -11,7 +11,7 @@
 #include "experiments/cli.h"
 #include "experiments/reference_checkpoint.h"
 #include "io/exr.h"
-#include "methods/reference.h"
+#include "methods/pt/reference.h"
 
 int reference_half_spp(int spp)
 {

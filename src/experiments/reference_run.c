@@ -10,7 +10,7 @@
 #include "experiments/cli.h"
 #include "experiments/run_prepare.h"
 #include "io/exr.h"
-#include "methods/reference.h"
+#include "methods/pt/reference.h"
 #include "scene/scene_file.h"
 
 int reference_write_image(const char *path, const float *mean, int w, int h, int samples, int spp, const char *run,

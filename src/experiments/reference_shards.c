@@ -12,7 +12,7 @@
 #include "experiments/plan.h"
 #include "experiments/reference_run.h"
 #include "io/exr.h"
-#include "methods/reference.h"
+#include "methods/pt/reference.h"
 
 /* `restir reference ... --shards N --plan DIR` plans N jobs, shard s rendering the chunks
  * [s C / N, (s + 1) C / N) of the C chunks of 16 samples the unsplit reference renders, so the

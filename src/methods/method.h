@@ -79,7 +79,7 @@ struct method {
      * scripts/tsan.sh render each one, so a new method's variants are covered without editing a script. */
     const char *variants;
     /* What scripts pick it for, space-separated (NULL: nothing): "reference", the method whose paths every
-     * reference integrates (methods/reference.c); "demo", the method scripts/demo.sh shows against it. */
+     * reference integrates (methods/pt/reference.c); "demo", the method scripts/demo.sh shows against it. */
     const char *roles;
     /* The passes it times into struct frame_stats.ms, by name, NULL-terminated (NULL: none): every pass
      * its render_frame and reconstruct time, toolkit passes included (the renderer's own "denoise"

@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "methods/reference.h"
+#include "methods/pt/reference.h"
 #include "methods/renderer.h"
 #include "test_util.h"
 

@@ -16,7 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "methods/reference.h"
+#include "methods/pt/reference.h"
 #include "methods/settings.h"
 #include "reference_pt.h"
 #include "methods/renderer.h"

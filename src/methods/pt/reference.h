@@ -1,8 +1,8 @@
 /* reference.h: a converged reference image as a running mean of pt chunks, resumable from its
  * state (the mean and the sample count) with bit-identical results.
  * Must never depend on files or the command line: saving the state is the caller's job. */
-#ifndef RESTIR_METHODS_REFERENCE_H
-#define RESTIR_METHODS_REFERENCE_H
+#ifndef RESTIR_METHODS_PT_REFERENCE_H
+#define RESTIR_METHODS_PT_REFERENCE_H
 
 #include <stddef.h>
 #include <stdint.h>

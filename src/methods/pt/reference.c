@@ -1,5 +1,5 @@
 /* reference.c: the running-mean reference (reference.h). */
-#include "methods/reference.h"
+#include "methods/pt/reference.h"
 
 #include <math.h>
 #include <stdio.h>
