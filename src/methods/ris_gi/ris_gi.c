@@ -17,16 +17,16 @@ static const struct param_def ris_gi_rows[] = {
 };
 struct param_block ris_gi_block = PARAM_METHOD_BLOCK("ris-gi", ris_gi_rows, struct ris_gi_settings, NULL);
 
-/* One candidate's f = f_r(wo, w) cos(n, w) Lr(x2 -> x1) for direction w of density pdf (0 where the
- * direction leaves through x1's geometric surface, escapes to the environment, which x1's paths of
+/* One candidate's f = f_r(wo, w) cos(n, w) Lr(x2 -> x1) for direction w, given fr = f_r(wo, w) (0 where
+ * the direction leaves through x1's geometric surface, escapes to the environment, which x1's paths of
  * length 2 already count, or carries nothing). */
-static vec3 candidate_f(const struct scene *s, const struct render_params *p, const struct path_vertex *x1,
-                        const struct bsdf *b, vec3 n, vec3 w, uint64_t seed, long long *rays)
+static vec3 candidate_f(const struct scene *s, const struct render_params *p, const struct path_vertex *x1, vec3 n,
+                        vec3 w, vec3 fr, uint64_t seed, long long *rays)
 {
     const float cos1 = v3_dot(n, w);
     if (!(cos1 > 0.0f) || v3_dot(x1->ng, w) <= 0.0f)
         return v3s(0.0f);
-    const vec3 fcos = v3_scale(bsdf_eval(b, n, x1->wo, w), cos1);
+    const vec3 fcos = v3_scale(fr, cos1);
     if (!(v3_max_component(fcos) > 0.0f))
         return v3s(0.0f);
     struct surface_hit h;
@@ -47,6 +47,8 @@ static vec3 indirect(const struct scene *s, const struct render_params *p, const
     struct bsdf b;
     path_vertex_bsdf(s, x1, &b);
     const vec3 n = bsdf_shading_normal(x1->ns, x1->ng, x1->wo);
+    struct bsdf_frame bf; /* x1's frame and wo terms, once for the K candidates */
+    bsdf_frame_init(&bf, &b, n, x1->wo);
     struct restir_reservoir wrs;
     restir_reservoir_init(&wrs);
     vec3 kept = v3s(0.0f);
@@ -58,11 +60,11 @@ static vec3 indirect(const struct scene *s, const struct render_params *p, const
         const float u_wrs = pcg32_float(rng);
         vec3 w, fs;
         float pdf;
-        if (!bsdf_sample(&b, n, x1->wo, u0, u1, u2, &w, &pdf, &fs) || !(pdf > 0.0f)) {
+        if (!bsdf_frame_sample(&bf, u0, u1, u2, &w, &pdf, &fs) || !(pdf > 0.0f)) {
             restir_reservoir_offer(&wrs, 0.0f, u_wrs); /* counts toward K, weight 0 */
             continue;
         }
-        const vec3 f = candidate_f(s, p, x1, &b, n, w, seed, rays);
+        const vec3 f = candidate_f(s, p, x1, n, w, fs, seed, rays); /* fs = f_r(wo, w) (bsdf_frame_sample) */
         const float target = v3_luminance(f);
         /* GRIS weight with m_k = 1 / K (004 Eq. 5): the K candidates are i.i.d. */
         if (restir_reservoir_offer(&wrs, target / pdf / (float)K, u_wrs)) {
