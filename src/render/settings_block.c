@@ -4,7 +4,6 @@
 
 #include <errno.h>
 #include <math.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,18 +12,10 @@
 #include "render/shift_kind.h"
 #include "restir/mis.h"
 
-const void *param_block_in(const struct render_params *p, const struct param_block *b)
+_Noreturn void param_block_unplaced(const struct param_block *b)
 {
-    if (b->size > 0 && b->base == 0) {
-        fprintf(stderr, "restir: settings block '%s' was never placed in the parameters (not registered)\n", b->name);
-        abort();
-    }
-    return (const char *)p + b->base;
-}
-
-void *param_block_in_mut(struct render_params *p, const struct param_block *b)
-{
-    return (void *)(uintptr_t)param_block_in(p, b);
+    fprintf(stderr, "restir: settings block '%s' was never placed in the parameters (not registered)\n", b->name);
+    abort();
 }
 
 /* Index of val among the NULL-terminated names, or -1. */

@@ -54,10 +54,23 @@ struct param_block {
 #define PARAM_METHOD_BLOCK(name, rows, type, validate)                                                               \
     {(name), (rows), sizeof(rows) / sizeof((rows)[0]), 0, sizeof(type), _Alignof(type), 0, (validate), NULL}
 
-/* The block's struct in p. Aborts, naming the block, when a method block was never placed (the
- * registry places every registered method's blocks before the first parameters exist). */
-const void *param_block_in(const struct render_params *p, const struct param_block *b);
-void *param_block_in_mut(struct render_params *p, const struct param_block *b);
+/* Aborts, naming b: a method block read before the registry placed it (it places every registered
+ * method's blocks before the first parameters exist). */
+_Noreturn void param_block_unplaced(const struct param_block *b);
+
+/* The block's struct in p: a constant offset, so passes may read it per pixel. */
+static inline const void *param_block_in(const struct render_params *p, const struct param_block *b)
+{
+    if (b->size > 0 && b->base == 0)
+        param_block_unplaced(b);
+    return (const char *)p + b->base;
+}
+static inline void *param_block_in_mut(struct render_params *p, const struct param_block *b)
+{
+    if (b->size > 0 && b->base == 0)
+        param_block_unplaced(b);
+    return (char *)p + b->base;
+}
 
 /* Parses val for row d of block b into the block's struct at block. Returns 0, or -1 with msg naming the key
  * and what was wrong (the value is then unchanged). */

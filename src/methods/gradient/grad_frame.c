@@ -58,11 +58,11 @@ void grad_reconstruct_l2(const struct render_params *p, struct grad_frame *g)
     /* Inputs are sized and alpha is range-checked by the parameter table: this cannot fail. A fixed
      * step count runs CG to a tolerance it cannot reach (DBL_MIN; an exact zero residual still stops
      * it, with the exact solution). */
-    const int fixed = recon_settings_of(p)->iterations > 0;
-    int rc = restir_poisson_l2(g->width, g->height, g->primal, g->dx, g->dy, recon_settings_of(p)->alpha,
-                               (enum restir_poisson_solver)recon_settings_of(p)->solver,
-                               fixed ? DBL_MIN : RESTIR_POISSON_TOL, fixed ? recon_settings_of(p)->iterations : 2000,
-                               g->l2, &g->l2_stats);
+    const struct recon_settings *rs = recon_settings_of(p);
+    const int fixed = rs->iterations > 0;
+    int rc = restir_poisson_l2(g->width, g->height, g->primal, g->dx, g->dy, rs->alpha,
+                               (enum restir_poisson_solver)rs->solver, fixed ? DBL_MIN : RESTIR_POISSON_TOL,
+                               fixed ? rs->iterations : 2000, g->l2, &g->l2_stats);
     RESTIR_CHECK(rc == 0);
 }
 
@@ -70,11 +70,12 @@ void grad_reconstruct_l1(const struct render_params *p, struct grad_frame *g)
 {
     if (!g->l1)
         g->l1 = xcalloc(3 * (size_t)g->width * (size_t)g->height, sizeof(float));
-    const enum restir_poisson_precond pre = (enum restir_poisson_precond)recon_settings_of(p)->l1_precond;
-    const int steps = recon_settings_of(p)->l1_cg > 0                           ? recon_settings_of(p)->l1_cg
+    const struct recon_settings *rs = recon_settings_of(p);
+    const enum restir_poisson_precond pre = (enum restir_poisson_precond)rs->l1_precond;
+    const int steps = rs->l1_cg > 0                                 ? rs->l1_cg
                       : pre == RESTIR_POISSON_PRECOND_MULTIGRID ? RESTIR_POISSON_L1_MG_STEPS
                                                                 : RESTIR_POISSON_L1_CG_STEPS;
-    int rc = restir_poisson_l1(g->width, g->height, g->primal, g->dx, g->dy, recon_settings_of(p)->alpha,
-                               recon_settings_of(p)->l1_iterations, pre, steps, g->l1, &g->l1_stats);
+    int rc = restir_poisson_l1(g->width, g->height, g->primal, g->dx, g->dy, rs->alpha, rs->l1_iterations, pre,
+                               steps, g->l1, &g->l1_stats);
     RESTIR_CHECK(rc == 0);
 }

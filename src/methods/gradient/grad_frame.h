@@ -26,10 +26,9 @@ void grad_frame_fini(struct grad_frame *g);
 /* Zeroes dx, dy and os before a frame's gradient passes. */
 void grad_frame_begin(struct grad_frame *g);
 
-/* The L2 solve (recon_settings_of(p)->solver, alpha = recon_settings_of(p)->alpha) into g->l2. */
+/* The L2 solve (recon.solver, alpha = recon.alpha) into g->l2. */
 void grad_reconstruct_l2(const struct render_params *p, struct grad_frame *g);
-/* The L1 IRLS solve (recon_settings_of(p)->l1_iterations x recon_settings_of(p)->l1_cg) into g->l1 (allocated on
- * demand). */
+/* The L1 IRLS solve (recon.l1_iterations x recon.l1_cg) into g->l1 (allocated on demand). */
 void grad_reconstruct_l1(const struct render_params *p, struct grad_frame *g);
 
 #endif

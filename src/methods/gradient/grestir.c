@@ -416,8 +416,8 @@ long long grestir_temporal_pass(const struct pt_frame *fr, const struct gbuffer 
 
 static int gb_edge(const struct render_params *p, const struct gbuffer *g, int i, int j)
 {
-    const struct restir_grad_edge_test t = {grad_settings_of(p)->edge_albedo, grad_settings_of(p)->edge_normal,
-                                            grad_settings_of(p)->edge_depth};
+    const struct grad_settings *gs = grad_settings_of(p);
+    const struct restir_grad_edge_test t = {gs->edge_albedo, gs->edge_normal, gs->edge_depth};
     const vec3 ai = g->albedo[i], aj = g->albedo[j], ni = g->normal[i], nj = g->normal[j];
     const float A[3] = {ai.x, ai.y, ai.z}, B[3] = {aj.x, aj.y, aj.z}, N[3] = {ni.x, ni.y, ni.z},
                 M[3] = {nj.x, nj.y, nj.z};
@@ -466,8 +466,9 @@ static int any_candidate(const struct render_params *p, const struct gbuffer *g,
 void grestir_select_pass(const struct pt_frame *fr, const struct gbuffer *g, struct grestir_state *st)
 {
     const struct render_params *p = fr->p;
+    const struct grad_settings *gs = grad_settings_of(p);
     const int w = g->width, h = g->height;
-    const int adaptive = grad_settings_of(p)->spatial == GRAD_SPATIAL_ADAPTIVE;
+    const int adaptive = gs->spatial == GRAD_SPATIAL_ADAPTIVE;
     /* Every pair's edge test once: the search below asks it of up to grad.search candidate pairs
      * per pair, most of them many times over (the disk of radius 4 holds ~50 pixels). */
 #pragma omp parallel for schedule(static)
@@ -488,7 +489,7 @@ void grestir_select_pass(const struct pt_frame *fr, const struct gbuffer *g, str
             const int a = y * w + x;
             for (int dir = 0; dir < GRAD_PAIR_DIRS; dir++) {
                 st->neighbor[dir][a] = -1;
-                if (grad_settings_of(p)->spatial == GRAD_SPATIAL_OFF || !pair_inside(w, h, x, y, dir))
+                if (gs->spatial == GRAD_SPATIAL_OFF || !pair_inside(w, h, x, y, dir))
                     continue;
                 int ex, ey;
                 pair_offset(dir, &ex, &ey);
@@ -500,8 +501,8 @@ void grestir_select_pass(const struct pt_frame *fr, const struct gbuffer *g, str
                     continue; /* no tap could be accepted: the search below would return -1 */
                 pcg32 rng = rng_for(p->seed, (uint64_t)fr->frame, (uint64_t)a * 2 + (uint64_t)dir,
                                     RNG_PASS_GRAD_SELECT);
-                for (int tap = 0; tap < grad_settings_of(p)->search; tap++) {
-                    float rad = grad_settings_of(p)->radius * sqrtf(pcg32_float(&rng)),
+                for (int tap = 0; tap < gs->search; tap++) {
+                    float rad = gs->radius * sqrtf(pcg32_float(&rng)),
                           phi = 6.2831853f * pcg32_float(&rng);
                     int cx = x + (int)lrintf(rad * cosf(phi)), cy = y + (int)lrintf(rad * sinf(phi));
                     if ((cx == x && cy == y) || !pair_inside(w, h, cx, cy, dir))

@@ -156,8 +156,8 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
     struct restir_reservoir wrs;
     restir_reservoir_init(&wrs);
     di_reservoir_clear(r, 1.0f);
-    const int nl = s->num_emitters > 0 || s->env ? di_settings_of(p)->light_candidates : 0,
-              nb = di_settings_of(p)->bsdf_candidates;
+    const struct di_settings *ds = di_settings_of(p);
+    const int nl = s->num_emitters > 0 || s->env ? ds->light_candidates : 0, nb = ds->bsdf_candidates;
     struct light_batch lb;
     const int offset = nl ? light_pool_offset(pcg32_float(rng)) : 0; /* this pixel's nl pool entries */
     for (int done = 0; done < nl; done += DI_BATCH) {
@@ -228,7 +228,8 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
 long long di_initial_pass(const struct scene *s, const struct light_pool *lp, const struct render_params *p, int frame,
                           const struct gbuffer *g, struct di_reservoir *out)
 {
-    RESTIR_CHECK(di_settings_of(p)->light_candidates <= lp->window); /* the pool's windows are that long */
+    const struct di_settings *ds = di_settings_of(p);
+    RESTIR_CHECK(ds->light_candidates <= lp->window); /* the pool's windows are that long */
     long long rays = 0;
     const int ntiles = tile_count(g->width, g->height);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
@@ -248,7 +249,7 @@ long long di_initial_pass(const struct scene *s, const struct light_pool *lp, co
              * the target p_hat V. A visible Y keeps W (p_hat V = p_hat there); an occluded one is
              * dropped while the confidence stays 1, so W remains an unbiased contribution weight
              * for p_hat V. The tile's shadow rays are traced together, as one stream, below. */
-            if (di_settings_of(p)->visibility_reuse && out[i].W > 0.0f) {
+            if (ds->visibility_reuse && out[i].W > 0.0f) {
                 rays++;
                 if (di_visibility_query(sp, &out[i].y, &q[n]))
                     pixel[n++] = i;

@@ -21,7 +21,7 @@
 
 struct light_pool {
     int size;   /* LIGHT_POOL_SIZE draws, then copies of the first `window` so no window wraps */
-    int window; /* the longest window a pixel takes (di_settings_of(&di)->light_candidates) */
+    int window; /* the longest window a pixel takes (di.light_candidates) */
     int *tri;            /* the emitter's triangle */
     float *b1, *b2;
     float *px, *py, *pz; /* point on the light */

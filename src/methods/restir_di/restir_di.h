@@ -11,7 +11,7 @@
 struct light_pool;
 /* Initial RIS: light + BSDF candidates combined by MIS into one reservoir per pixel, c = 1; the
  * light candidates are a window of the frame's pool lp (light_pool.h, filled for this frame, for
- * windows of at least di_settings_of(&di)->light_candidates). With di.visibility_reuse the selected sample is then
+ * windows of at least di.light_candidates). With di.visibility_reuse the selected sample is then
  * dropped when occluded. Returns rays traced. */
 long long di_initial_pass(const struct scene *s, const struct light_pool *lp, const struct render_params *p, int frame,
                           const struct gbuffer *g, struct di_reservoir *out);

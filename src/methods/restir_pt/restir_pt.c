@@ -78,6 +78,7 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
 {
     const struct scene *s = fr->s;
     const struct render_params *p = fr->p;
+    const int paths = restir_pt_settings_of(p)->candidates;
     long long rays = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
@@ -93,11 +94,11 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
             ctx.shift = &fr->shift;
             restir_reservoir_init(&ctx.wrs);
             ctx.rng = &rng;
-            ctx.inv_paths = 1.0f / (float)restir_pt_settings_of(p)->candidates;
+            ctx.inv_paths = 1.0f / (float)paths;
             ctx.r = res;
             ctx.chosen_here = 0;
             vec3 Le = v3s(0.0f);
-            for (int n = 0; n < restir_pt_settings_of(p)->candidates; n++) {
+            for (int n = 0; n < paths; n++) {
                 ctx.trial.u[0] = p->jitter ? pcg32_float(&rng) : 0.5f;
                 ctx.trial.u[1] = p->jitter ? pcg32_float(&rng) : 0.5f;
                 const struct camera_sample cs = camera_sample_draw(fr->view, &rng);
@@ -123,7 +124,7 @@ long long pt_initial_pass(const struct pt_frame *fr, const struct gbuffer *g, st
                 keep_chosen(&ctx, &walk);
             }
             emission[i] = v3_scale(Le, ctx.inv_paths);
-            res->c = (float)restir_pt_settings_of(p)->candidates;
+            res->c = (float)paths;
             if (ctx.wrs.selected >= 0) {
                 /* W must divide by the p_hat the weights used (the walk's f); it is then a
                  * UCW for any integrand, and the reservoir caches the target as shifts

@@ -49,7 +49,7 @@ struct pt_frame {
 /* The shift parameters the render parameters ask for; scene_diagonal scales shift.distance. */
 void pt_shift_params(const struct render_params *p, float scene_diagonal, vec3 camera, struct shift_params *out);
 
-/* Initial sampling: restir_pt_settings_of(p)->candidates paths per pixel by the shared path walk, each from its own
+/* Initial sampling: pt.candidates paths per pixel by the shared path walk, each from its own
  * jittered primary ray, every NEE/BSDF candidate resampled with weight m f / p into one
  * reservoir, c = number of paths; emission seen directly goes to `emission` (paths of length 1
  * are not resampled). The primary rays must not share random numbers with the G-buffer: neighbor
