@@ -12,6 +12,16 @@ void *xmalloc(size_t n)
     return p;
 }
 
+void *xrealloc(void *p, size_t n)
+{
+    void *q = realloc(p, n ? n : 1);
+    if (!q) {
+        fprintf(stderr, "out of memory allocating %zu bytes\n", n);
+        exit(1);
+    }
+    return q;
+}
+
 /* Blocks of at least this many bytes get their pages backed when they are allocated. calloc hands
  * out large blocks as untouched zero pages that fault on their first write, which put the faults
  * of every G-buffer, reservoir and history buffer into the first two frames (restir-di on

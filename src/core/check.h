@@ -20,6 +20,8 @@
 
 /* Allocation that dies loudly: running out of memory is not an input error we can recover. */
 void *xmalloc(size_t n);
+/* realloc that dies loudly the same way (p may be NULL); the new tail is not initialized. */
+void *xrealloc(void *p, size_t n);
 /* Zeroed; blocks of 64 KiB or more come with their pages already backed (check.c says why). */
 void *xcalloc(size_t count, size_t size);
 

@@ -39,9 +39,11 @@ float light_tree_importance(const struct light_bvh_node *nd, vec3 p, vec3 n)
     const float cos_t = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
     if (cos_t <= nd->cos_e)
         return 0.0f;
-    /* theta_i': the smallest angle between p's normal and a direction toward the node */
+    /* theta_i': the smallest angle between p's normal and a direction toward the node; a receiver
+     * without orientation (n = 0) drops the term */
     const float cos_i = fabsf(v3_dot(wi, n)), sin_i = safe_sqrt(1.0f - cos_i * cos_i);
-    const float cos_ti = cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
+    const int oriented = n.x != 0.0f || n.y != 0.0f || n.z != 0.0f;
+    const float cos_ti = oriented ? cos_sub_clamped(sin_i, cos_i, sin_b, cos_b) : 1.0f;
     const float importance = nd->power * cos_t * cos_ti / d2;
     return importance > 0.0f ? importance : 0.0f;
 }

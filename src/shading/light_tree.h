@@ -10,7 +10,8 @@
 #include "scene/scene_types.h"
 
 /* The importance of node nd for a shading point p with unit normal n (which side of the surface
- * does not matter: |cos|), in power / area units; 0 when no emitter below can light p. */
+ * does not matter: |cos|), in power / area units; 0 when no emitter below can light p. n = 0 stands
+ * for a receiver of every orientation (ReGIR's cells): the receiver's cosine bound is then 1. */
 float light_tree_importance(const struct light_bvh_node *nd, vec3 p, vec3 n);
 /* An emitter for point p with normal n from one uniform u in [0, 1): its index, with its
  * probability in *pmf; -1 (and *pmf = 0) when the tree is empty or no emitter can light p. */

@@ -554,6 +554,25 @@ static void check_scene_files(void)
                     "[1, 0, -1], [-1, 0, -1]]]}]}");
     snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --env none --out '%%1$s'", sky);
     expect_failure("--env none leaving no light", fmt, 2, "--env none", NULL);
+    /* ReGIR's cells hold emitter samples: a sky-only scene is refused by the key; grid settings out
+     * of range are refused by name */
+    snprintf(fmt, sizeof fmt, "render --scene '%s' --method restir-di --res 16x16 --set di.initial=regir --out '%%1$s'",
+             sky);
+    expect_failure("di.initial=regir without emitters", fmt, 2, "di.initial=regir", "no emissive");
+    expect_failure("di.regir_grid out of range",
+                   "render --scene cornell --method restir-di --res 16x16 --set di.initial=regir "
+                   "--set di.regir_grid=0 --out '%1$s'",
+                   2, "di.regir_grid", NULL);
+    expect_failure("di.regir_slots out of range",
+                   "render --scene cornell --method ris-di --res 16x16 --set di.regir_slots=100000 --out '%1$s'", 2,
+                   "di.regir_slots", NULL);
+    expect_failure("di.regir_candidates out of range",
+                   "render --scene cornell --method restir-di --res 16x16 --set di.regir_candidates=-3 --out '%1$s'",
+                   2, "di.regir_candidates", NULL);
+    expect_failure("ReGIR's reservoirs past the memory bound",
+                   "render --scene cornell --method restir-di --res 1920x1080 --set di.initial=regir "
+                   "--set di.regir_grid=64 --set di.regir_slots=1024 --out '%1$s'",
+                   2, "di.regir_slots", "GiB");
     const char *methods[] = {"pt", "restir-di", "restir-pt", "grestir-pt"};
     for (int m = 0; m < 4; m++) {
         snprintf(fmt, sizeof fmt, "render --scene '%s' --method %s --res 16x16 --out '%s/sky-%s'", sky, methods[m],

@@ -36,7 +36,7 @@ static void check_scene(const char *name)
     light_pool_init(&lp, di_settings_of(&p)->light_candidates);
     light_pool_fill(&lp, &s, 5, 0);
     struct di_reservoir *res = calloc((size_t)n, sizeof(*res));
-    di_initial_pass(&s, &lp, &p, 0, &g, res);
+    di_initial_pass(&s, &lp, NULL, &p, 0, &g, res);
     /* pixel a's shading point with the sample of pixel a + k, k = 0, 3, 17: itself and others */
     static const struct shading_point *sp[PAIRS];
     static const struct di_sample *y[PAIRS];

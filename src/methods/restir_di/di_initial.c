@@ -1,12 +1,13 @@
 /* di_initial.c: ReSTIR DI initial sampling: per pixel, RIS over light-sampled and BSDF-sampled
  * candidates combined by MIS into one reservoir (Bitterli et al. 2020; 001 Sec. 1). Light
- * candidates are windows of the frame's light pool (light_pool.h), evaluated in batches laid out
- * for SIMD. Must never allocate per pixel. */
+ * candidates are windows of the frame's light pool (light_pool.h) or of ReGIR's cell slots
+ * (regir.h), evaluated in batches laid out for SIMD. Must never allocate per pixel. */
 #include "core/check.h"
 #include "core/rng.h"
 #include "core/simd.h"
 #include "methods/restir_di/di_visibility.h"
 #include "methods/restir_di/light_pool.h"
+#include "methods/restir_di/regir.h"
 #include "methods/restir_di/restir_di.h"
 #include "render/tiles.h"
 #include "restir/gris.h"
@@ -76,6 +77,16 @@ SIMD_INLINE void light_batch_fill_body(const struct light_pool *lp, int first, c
     const float *restrict Lr = lp->Lr + first, *restrict Lg = lp->Lg + first, *restrict Lb = lp->Lb + first;
     const float *restrict pdf_light = lp->pdf + first;
     const float fnl = (float)nl, fnb = (float)nb;
+    if (lp->W) { /* ReGIR's slots: w = p_hat W q / (N_light q + N_bsdf p_bsdf) (regir.h) */
+        const float *restrict W = lp->W + first;
+        for (int k = 0; k < n; k++) {
+            float target = lb->geo[k] * (0.2126f * Lr[k] * lb->fr[k] + 0.7152f * Lg[k] * lb->fg[k] +
+                                         0.0722f * Lb[k] * lb->fb[k]);
+            float denom = fnl * pdf_light[k] + fnb * lb->pdf[k] * lb->to_area[k];
+            lb->w[k] = target > 0.0f ? target * W[k] * pdf_light[k] / denom : 0.0f;
+        }
+        return;
+    }
     for (int k = 0; k < n; k++) {
         float target = lb->geo[k] * (0.2126f * Lr[k] * lb->fr[k] + 0.7152f * Lg[k] * lb->fg[k] +
                                      0.0722f * Lb[k] * lb->fb[k]);
@@ -150,8 +161,19 @@ static int pick_by_weight(const float *w, int n, float u, float *total)
                                               : pick_by_weight_baseline(w, n, u, total);
 }
 
-static void initial_pixel(const struct scene *s, const struct light_pool *lp, const struct render_params *p,
-                          const struct shading_point *sp, pcg32 *rng, struct di_reservoir *r, long long *rays)
+/* The light density that the MIS weights of a BSDF candidate on emitter triangle tri use: the pool's
+ * (power sampling) or, with ReGIR, the source density of the pixel's cell (regir_light_pdf). */
+static float light_pdf_for_bsdf_hit(const struct scene *s, const struct regir_grid *rg, const struct di_settings *ds,
+                                    int block, int tri)
+{
+    if (rg)
+        return regir_light_pdf(rg, s, ds, block, tri);
+    return lights_pdf_area(s, tri) * (1.0f - s->env_prob);
+}
+
+static void initial_pixel(const struct scene *s, const struct light_pool *pool, const struct regir_grid *rg,
+                          const struct render_params *p, const struct shading_point *sp, pcg32 *rng,
+                          struct di_reservoir *r, long long *rays)
 {
     struct restir_reservoir wrs;
     restir_reservoir_init(&wrs);
@@ -159,7 +181,12 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
     const struct di_settings *ds = di_settings_of(p);
     const int nl = s->num_emitters > 0 || s->env ? ds->light_candidates : 0, nb = ds->bsdf_candidates;
     struct light_batch lb;
-    const int offset = nl ? light_pool_offset(pcg32_float(rng)) : 0; /* this pixel's nl pool entries */
+    /* this pixel's nl candidates: a window of the pool, or of its cell's slots */
+    const int block = rg ? regir_block_of(rg, sp->p) : -1;
+    const struct light_pool *lp = rg ? &rg->store : pool;
+    int offset = 0;
+    if (nl)
+        offset = rg ? regir_window_first(rg, block, pcg32_float(rng)) : light_pool_offset(pcg32_float(rng));
     for (int done = 0; done < nl; done += DI_BATCH) {
         int n = nl - done < DI_BATCH ? nl - done : DI_BATCH, first = offset + done;
         light_batch_fill(lp, first, sp, n, nl, nb, &lb);
@@ -192,7 +219,7 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
             float target = v3_luminance(di_unshadowed_pdf(sp, &y, &p_bsdf));
             if (target <= 0.0f)
                 continue;
-            float p_light = nl ? lights_pdf_area(s, h.tri) * (1.0f - s->env_prob) : 0.0f;
+            float p_light = nl ? light_pdf_for_bsdf_hit(s, rg, ds, block, h.tri) : 0.0f;
             float w = target / ((float)nl * p_light + (float)nb * p_bsdf);
             if (restir_reservoir_offer(&wrs, w, pcg32_float(rng)))
                 r->y = y;
@@ -225,11 +252,12 @@ static void initial_pixel(const struct scene *s, const struct light_pool *lp, co
         di_reservoir_clear(r, 1.0f);
 }
 
-long long di_initial_pass(const struct scene *s, const struct light_pool *lp, const struct render_params *p, int frame,
-                          const struct gbuffer *g, struct di_reservoir *out)
+long long di_initial_pass(const struct scene *s, const struct light_pool *lp, const struct regir_grid *rg,
+                          const struct render_params *p, int frame, const struct gbuffer *g, struct di_reservoir *out)
 {
     const struct di_settings *ds = di_settings_of(p);
-    RESTIR_CHECK(ds->light_candidates <= lp->window); /* the pool's windows are that long */
+    /* the pool's (or the cells') windows are that long */
+    RESTIR_CHECK(ds->light_candidates <= (rg ? rg->window : lp->window));
     long long rays = 0;
     const int ntiles = tile_count(g->width, g->height);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays)
@@ -244,7 +272,7 @@ long long di_initial_pass(const struct scene *s, const struct light_pool *lp, co
                 continue;
             }
             pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_INITIAL);
-            initial_pixel(s, lp, p, sp, &rng, &out[i], &rays);
+            initial_pixel(s, lp, rg, p, sp, &rng, &out[i], &rays);
             /* Visibility reuse (Bitterli et al. 2020, Alg. 5): a one-candidate resampling step to
              * the target p_hat V. A visible Y keeps W (p_hat V = p_hat there); an occluded one is
              * dropped while the confidence stays 1, so W remains an unbiased contribution weight

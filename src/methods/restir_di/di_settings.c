@@ -9,6 +9,8 @@
 #define D(field) offsetof(struct di_settings, field)
 
 static const char *const visibility_mis_names[] = {"rays", "none", NULL};
+static const char *const initial_names[] = {"pool", "regir", NULL};
+static const char *const regir_source_names[] = {"power", "bvh", NULL};
 
 static const struct param_def di_rows[] = {
     {"di.light_candidates", P_INT, D(light_candidates), 0, 4096, "32", NULL, "initial RIS: light-sampled candidates",
@@ -19,6 +21,21 @@ static const struct param_def di_rows[] = {
      "2020 Alg. 5), so reuse carries visible samples (with di.visibility_mis=rays shading then needs no "
      "shadow ray)",
      NULL},
+    {"di.initial", P_NAMES, D(initial), 0, 0, "pool", NULL,
+     "where initial RIS draws its light candidates: pool (a frame's shared draws by power) or regir (a "
+     "world-space grid of light reservoirs over the visible points, each cell's slots resampled toward the "
+     "lights that matter there; Boksansky et al. 2021, unbiased by GRIS; needs emitters)",
+     initial_names},
+    {"di.regir_grid", P_INT, D(regir_grid), 1, 64, "16", NULL,
+     "di.initial=regir: cells along the longest side of the visible points' bounding box (cubic cells)", NULL},
+    {"di.regir_slots", P_INT, D(regir_slots), 1, 1024, "128", NULL,
+     "di.initial=regir: light reservoirs per occupied cell (memory: about 60 bytes each)", NULL},
+    {"di.regir_candidates", P_INT, D(regir_candidates), 1, 256, "8", NULL,
+     "di.initial=regir: RIS candidates per cell reservoir", NULL},
+    {"di.regir_source", P_NAMES, D(regir_source), 0, 0, "power", NULL,
+     "di.initial=regir: where a cell draws its candidates: power (the scene's alias table) or bvh (the light "
+     "BVH at the cell's centre, a quarter by power so that every light keeps a chance)",
+     regir_source_names},
 };
 static const struct param_def di_reuse_rows[] = {
     {"di.visibility_mis", P_NAMES, offsetof(struct di_reuse_settings, visibility_mis), 0, 0, "rays", "none",
@@ -28,14 +45,31 @@ static const struct param_def di_reuse_rows[] = {
 };
 
 _Static_assert(sizeof(enum di_visibility_mis) == sizeof(int), "enum size");
+_Static_assert(sizeof(enum di_initial) == sizeof(int) && sizeof(enum regir_source) == sizeof(int), "enum size");
+
+/* ReGIR's store at most: one block per occupied cell (no more cells than pixels), each slots +
+ * window entries of 14 floats and an int (regir.h). */
+#define REGIR_MAX_BYTES (4.0 * 1024.0 * 1024.0 * 1024.0)
 
 static int di_validate(const struct render_params *p, const void *block, char *msg)
 {
-    (void)p;
     const struct di_settings *d = block;
     if (d->light_candidates + d->bsdf_candidates < 1) {
         snprintf(msg, RESTIR_MSG_LEN, "di.light_candidates + di.bsdf_candidates must be at least 1");
         return -1;
+    }
+    if (d->initial == DI_INITIAL_REGIR) {
+        const double grid = (double)d->regir_grid * d->regir_grid * d->regir_grid;
+        const double pixels = (double)p->width * p->height;
+        const double bytes = (grid < pixels ? grid : pixels) * (d->regir_slots + d->light_candidates) * 60.0;
+        if (bytes > REGIR_MAX_BYTES) {
+            snprintf(msg, RESTIR_MSG_LEN,
+                     "di.regir_grid=%d with di.regir_slots=%d (+ di.light_candidates=%d) could need %.1f GiB of light "
+                     "reservoirs (at most %.0f GiB): lower di.regir_grid or di.regir_slots",
+                     d->regir_grid, d->regir_slots, d->light_candidates, bytes / (1024.0 * 1024.0 * 1024.0),
+                     REGIR_MAX_BYTES / (1024.0 * 1024.0 * 1024.0));
+            return -1;
+        }
     }
     return 0;
 }

@@ -1,5 +1,5 @@
 /* di_settings.h: ReSTIR DI's own settings: its initial candidates (di.light_candidates, di.bsdf_candidates,
- * di.visibility_reuse; ris-di reads them too) and the visibility in its reuse's targets (di.visibility_mis) */
+ * di.visibility_reuse, di.initial and ReGIR's di.regir_*; ris-di reads them too) and the visibility in its reuse's targets (di.visibility_mis) */
 #ifndef RESTIR_METHODS_RESTIR_DI_DI_SETTINGS_H
 #define RESTIR_METHODS_RESTIR_DI_DI_SETTINGS_H
 
@@ -10,10 +10,22 @@
  * (BIASED: a domain that cannot see the sample still takes MIS weight). */
 enum di_visibility_mis { DI_VIS_MIS_RAYS = 0, DI_VIS_MIS_NONE };
 
+/* Where initial RIS takes its light candidates: the frame's power-sampled pool (light_pool.h) or
+ * the slots of ReGIR's grid cell that holds the pixel's point (regir.h). */
+enum di_initial { DI_INITIAL_POOL = 0, DI_INITIAL_REGIR };
+/* Where ReGIR's cells draw the candidates of their slots: by power from the scene's alias table, or
+ * down the light BVH at the cell's centre mixed with power (REGIR_POWER_SHARE, regir.c). */
+enum regir_source { REGIR_SOURCE_POWER = 0, REGIR_SOURCE_BVH };
+
 struct di_settings {
     int light_candidates;
     int bsdf_candidates;
     int visibility_reuse; /* shadow ray for the initial sample; occluded ones dropped */
+    enum di_initial initial;
+    int regir_grid;       /* cells along the longest axis of the shading points' bounding box */
+    int regir_slots;      /* reservoirs per cell */
+    int regir_candidates; /* RIS candidates per reservoir */
+    enum regir_source regir_source;
 };
 
 struct di_reuse_settings {

@@ -14,31 +14,42 @@
 /* Entries drawn per random stream; chunks are filled in parallel. */
 #define LIGHT_POOL_CHUNK 1024
 
+void light_pool_reserve(struct light_pool *lp, int entries, int with_W)
+{
+    RESTIR_CHECK(entries >= 0);
+    if (entries <= lp->size && (!with_W || lp->W))
+        return;
+    const size_t n = (size_t)(entries > lp->size ? entries : lp->size);
+    lp->tri = xrealloc(lp->tri, sizeof(int) * n);
+    float **f[] = {&lp->b1, &lp->b2, &lp->px, &lp->py, &lp->pz, &lp->nx, &lp->ny, &lp->nz,
+                   &lp->Lr, &lp->Lg, &lp->Lb, &lp->pdf, &lp->at_point};
+    for (size_t k = 0; k < sizeof(f) / sizeof(f[0]); k++)
+        *f[k] = xrealloc(*f[k], sizeof(float) * n);
+    if (with_W || lp->W)
+        lp->W = xrealloc(lp->W, sizeof(float) * n);
+    lp->size = (int)n;
+}
+
 void light_pool_init(struct light_pool *lp, int window)
 {
     RESTIR_CHECK(window >= 0 && window <= LIGHT_POOL_SIZE);
     memset(lp, 0, sizeof(*lp));
     lp->window = window;
-    lp->size = LIGHT_POOL_SIZE + window;
-    size_t n = (size_t)lp->size;
-    lp->tri = xmalloc(sizeof(int) * n);
-    float **f[] = {&lp->b1, &lp->b2, &lp->px, &lp->py, &lp->pz, &lp->nx, &lp->ny, &lp->nz,
-                   &lp->Lr, &lp->Lg, &lp->Lb, &lp->pdf, &lp->at_point};
-    for (size_t k = 0; k < sizeof(f) / sizeof(f[0]); k++)
-        *f[k] = xmalloc(sizeof(float) * n);
+    light_pool_reserve(lp, LIGHT_POOL_SIZE + window, 0);
 }
 
 void light_pool_fini(struct light_pool *lp)
 {
     float *f[] = {lp->b1, lp->b2, lp->px, lp->py, lp->pz, lp->nx, lp->ny, lp->nz, lp->Lr, lp->Lg, lp->Lb, lp->pdf,
-                  lp->at_point};
+                  lp->at_point, lp->W};
     for (size_t k = 0; k < sizeof(f) / sizeof(f[0]); k++)
         free(f[k]);
     free(lp->tri);
     memset(lp, 0, sizeof(*lp));
 }
 
-static void put(struct light_pool *lp, const struct scene *s, int i, const struct emitter *em, float b1, float b2)
+void light_pool_put_emitter(struct light_pool *lp, const struct scene *s, int i, const struct emitter *em, float b1,
+                            float b2)
 {
     struct light_sample ls;
     lights_emitter_point(s, em, b1, b2, &ls);
@@ -52,8 +63,7 @@ static void put(struct light_pool *lp, const struct scene *s, int i, const struc
     lp->at_point[i] = 1.0f;
 }
 
-/* Entry i as an environment direction (DI_ENV_TRI, p = direction, n = -p). */
-static void put_env(struct light_pool *lp, const struct scene *s, int i, float u1, float u2)
+void light_pool_put_env(struct light_pool *lp, const struct scene *s, int i, float u1, float u2)
 {
     float pdf;
     vec3 d = env_sample(s->env_sampler, u1, u2, &pdf);
@@ -81,7 +91,7 @@ void light_pool_fill(struct light_pool *lp, const struct scene *s, uint64_t seed
             float u0 = pcg32_float(&rng);
             if (s->env && u0 < s->env_prob) {
                 float u1 = pcg32_float(&rng), u2 = pcg32_float(&rng);
-                put_env(lp, s, i, u1, u2);
+                light_pool_put_env(lp, s, i, u1, u2);
                 continue;
             }
             if (s->env)
@@ -89,7 +99,7 @@ void light_pool_fill(struct light_pool *lp, const struct scene *s, uint64_t seed
             int e = alias_table_sample(&s->emitter_table, u0);
             float u1 = pcg32_float(&rng), u2 = pcg32_float(&rng), b1, b2;
             warp_uniform_triangle(u1, u2, &b1, &b2);
-            put(lp, s, i, &s->emitters[e], b1, b2);
+            light_pool_put_emitter(lp, s, i, &s->emitters[e], b1, b2);
         }
     }
     /* The tail repeats the head, so a window that starts near the end reads on without wrapping. */

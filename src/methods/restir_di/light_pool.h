@@ -27,13 +27,25 @@ struct light_pool {
     float *px, *py, *pz; /* point on the light */
     float *nx, *ny, *nz; /* its emitting normal */
     float *Lr, *Lg, *Lb; /* its radiance */
-    float *pdf;          /* its area density under light sampling (solid angle for the environment) */
+    float *pdf;          /* its area density under light sampling (solid angle for the environment); for
+                            ReGIR's slots the source density the MIS weights use (regir.h) */
+    float *W;            /* NULL for the pool (an entry is a plain draw of pdf); ReGIR's slots: each
+                            entry's unbiased contribution weight (GRIS, regir.h) */
     float *at_point;     /* 1 for a point on an emitter, 0 for an environment direction (p is then
                             the direction, n = -p): light_batch_fill measures both with one formula */
 };
 
 /* Allocates a pool for windows of up to `window` (<= LIGHT_POOL_SIZE) candidates. */
 void light_pool_init(struct light_pool *lp, int window);
+/* Grows lp's arrays to hold at least `entries` entries (never shrinks; contents kept), and W too
+ * when with_W. For ReGIR's slots (regir.c), which use the same layout for the same batch kernel. */
+void light_pool_reserve(struct light_pool *lp, int entries, int with_W);
+/* Writes entry i: the point b1, b2 of emitter em (pdf: its power-sampling area density times the
+ * emitters' share 1 - env_prob), or an environment direction from the scene's sampler at u1, u2
+ * (DI_ENV_TRI, p = direction, n = -p; pdf: env_prob times its solid-angle density). W untouched. */
+void light_pool_put_emitter(struct light_pool *lp, const struct scene *s, int i, const struct emitter *em, float b1,
+                            float b2);
+void light_pool_put_env(struct light_pool *lp, const struct scene *s, int i, float u1, float u2);
 void light_pool_fini(struct light_pool *lp);
 /* Draws the frame's pool (seeded by seed and frame, whatever the thread count); a scene without
  * emitters or environment, or a pool for windows of 0 candidates, is left as it is (nothing reads

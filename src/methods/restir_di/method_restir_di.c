@@ -1,6 +1,7 @@
 /* method_restir_di.c: `restir-di` (ReSTIR DI, Bitterli et al. 2020 / 001: initial RIS, temporal and
  * spatial reuse by GRIS) and `ris-di` (the same initial RIS without reuse, 001's baseline), as
  * passes over DI reservoirs and the shared screen history. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -8,6 +9,7 @@
 #include "methods/screen_history.h"
 #include "methods/restir_di/di_sample.h"
 #include "methods/restir_di/light_pool.h"
+#include "methods/restir_di/regir.h"
 #include "render/nonfinite.h"
 #include "methods/restir_di/restir_di.h"
 #include "render/reuse_cells.h"
@@ -18,7 +20,8 @@ struct restir_di_state {
     struct screen_history h;
     struct di_reservoir *work;    /* initial, then temporal outputs */
     struct di_reservoir *hist[2]; /* spatial outputs: this frame's and the previous frame's */
-    struct light_pool lights;     /* this frame's light candidates (initial RIS) */
+    struct light_pool lights;     /* this frame's light candidates (initial RIS, di.initial=pool) */
+    struct regir_grid *regir;     /* or this frame's grid of light reservoirs (di.initial=regir) */
 };
 
 static void *restir_di_create(const struct renderer *r)
@@ -30,7 +33,13 @@ static void *restir_di_create(const struct renderer *r)
     d->work = xcalloc(n, sizeof(struct di_reservoir));
     d->hist[0] = xcalloc(n, sizeof(struct di_reservoir));
     d->hist[1] = xcalloc(n, sizeof(struct di_reservoir));
-    light_pool_init(&d->lights, di_settings_of(p)->light_candidates);
+    const struct di_settings *ds = di_settings_of(p);
+    if (ds->initial == DI_INITIAL_REGIR) {
+        d->regir = xmalloc(sizeof(*d->regir));
+        regir_init(d->regir, ds);
+    } else {
+        light_pool_init(&d->lights, ds->light_candidates);
+    }
     return d;
 }
 
@@ -39,6 +48,9 @@ static void restir_di_destroy(void *state)
     struct restir_di_state *d = state;
     screen_history_fini(&d->h);
     light_pool_fini(&d->lights);
+    if (d->regir)
+        regir_fini(d->regir);
+    free(d->regir);
     free(d->work);
     free(d->hist[0]);
     free(d->hist[1]);
@@ -60,8 +72,13 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
                    st->rays += gbuffer_pass(g, s, view, h->has_history ? &r->prev_view : NULL, p->jitter, p->seed,
                                             frame));
     RENDERER_TIMED(st, PASS_INITIAL, {
-        light_pool_fill(&d->lights, s, p->seed, frame);
-        st->rays += di_initial_pass(s, &d->lights, p, frame, g, d->work);
+        if (d->regir) {
+            regir_build(d->regir, g, di_settings_of(p));
+            regir_fill(d->regir, s, di_settings_of(p), p->seed, frame);
+        } else {
+            light_pool_fill(&d->lights, s, p->seed, frame);
+        }
+        st->rays += di_initial_pass(s, &d->lights, d->regir, p, frame, g, d->work);
         st->nonfinite += nonfinite_discard_di(d->work, n);
     });
     if (p->reuse.temporal && h->has_history)
@@ -107,6 +124,18 @@ static void restir_di_inspect(const void *state, struct renderer_inspect *out)
     out->confidence = di_confidence;
 }
 
+/* ReGIR's cells hold emitter samples: a scene without emitters has nothing to put in them. */
+static int restir_di_check(const struct render_params *p, const struct scene *s, char *msg)
+{
+    if (s && di_settings_of(p)->initial == DI_INITIAL_REGIR && s->num_emitters < 1) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "di.initial=regir: the scene has no emissive triangles for the light grid's cells to hold "
+                 "(use di.initial=pool)");
+        return -1;
+    }
+    return 0;
+}
+
 /* 001's no-reuse baseline: the initial RIS alone. */
 static void ris_di_defaults(struct render_params *p)
 {
@@ -131,6 +160,8 @@ const struct method method_restir_di = {
     .passes = restir_di_passes,
     .variants = "spatial.reuse=spmis spatial.preset=fast mis=balance",
     .roles = "demo",
+    .streams = (const char *const[]){REGIR_STREAM, NULL},
+    .check = restir_di_check,
     .create = restir_di_create,
     .destroy = restir_di_destroy,
     .render_frame = restir_di_render_frame,
@@ -144,7 +175,8 @@ const struct method method_ris_di = {
     .viewer_order = 4,
     .blocks = (const struct param_block *const[]){&di_block, &params_block_depth, NULL},
     .passes = restir_di_passes,
-    .defaults = ris_di_defaults,
+    .defaults = ris_di_defaults, /* its passes are restir-di's: REGIR_STREAM is listed there */
+    .check = restir_di_check,
     .create = restir_di_create,
     .destroy = restir_di_destroy,
     .render_frame = restir_di_render_frame,

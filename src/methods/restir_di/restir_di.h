@@ -9,12 +9,14 @@
 #include "methods/restir_di/di_settings.h"
 
 struct light_pool;
+struct regir_grid;
 /* Initial RIS: light + BSDF candidates combined by MIS into one reservoir per pixel, c = 1; the
  * light candidates are a window of the frame's pool lp (light_pool.h, filled for this frame, for
- * windows of at least di.light_candidates). With di.visibility_reuse the selected sample is then
- * dropped when occluded. Returns rays traced. */
-long long di_initial_pass(const struct scene *s, const struct light_pool *lp, const struct render_params *p, int frame,
-                          const struct gbuffer *g, struct di_reservoir *out);
+ * windows of at least di.light_candidates), or, when rg is not NULL, of the slots of the pixel's
+ * ReGIR cell (regir.h, built over g and filled for this frame). With di.visibility_reuse the
+ * selected sample is then dropped when occluded. Returns rays traced. */
+long long di_initial_pass(const struct scene *s, const struct light_pool *lp, const struct regir_grid *rg,
+                          const struct render_params *p, int frame, const struct gbuffer *g, struct di_reservoir *out);
 
 /* Temporal reuse (001): reprojects each pixel into the previous frame, validates against the
  * previous G-buffer and merges the history reservoir by GRIS. io holds the initial reservoirs on
