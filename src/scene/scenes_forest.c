@@ -11,7 +11,8 @@
 
 /* Sizes of the generated images and the scene's counts (the numbers docs/SCENES.md states). */
 enum { LEAF_SIZE = 128, BARK_W = 64, BARK_H = 128, SKY_W = 512, SKY_H = 256 };
-enum { GRID = 5, LEAVES_PER_TREE = 3000, BRANCHES = 6, TRUNK_SEGMENTS = 16, TRUNK_RINGS = 8 };
+enum { GRID = 5, LEAVES_PER_TREE = 3000, BRANCHES = FOREST_BRANCHES, TRUNK_SEGMENTS = 16, TRUNK_RINGS = 8 };
+_Static_assert(GRID * GRID == FOREST_TREES, "scenes_forest.h counts the trees of the grid");
 
 /* Leaf outline in card UVs (u across, v along the leaf; the stalk at v = 0): a petiole up to
  * v = 0.12, then a blade whose half width swells and tapers to a rounded point. */
@@ -208,14 +209,17 @@ static void scatter_leaf(struct scene_builder *b, pcg32 *r, vec3 c, float spread
 }
 
 /* A tree at (x, z): a normal-mapped trunk, BRANCHES branches rising outward, and LEAVES_PER_TREE
- * leaf cards, half around the branches' outer parts and half through an ellipsoidal crown. */
-static void add_tree(struct scene_builder *b, pcg32 *r, float x, float z, int bark, const int leaf[3])
+ * leaf cards, half around the branches' outer parts and half through an ellipsoidal crown. Its
+ * shape goes to t. */
+static void add_tree(struct scene_builder *b, pcg32 *r, float x, float z, int bark, const int leaf[3],
+                     struct forest_tree *t)
 {
     const float h = builtin_rnd(r, 5.5f, 7.5f), r0 = builtin_rnd(r, 0.2f, 0.3f);
     const int wood = scene_new_object(b), crown = scene_new_object(b);
     add_limb(b, v3(x, 0.0f, z), v3(0, 1, 0), h, r0, 0.45f * r0, TRUNK_SEGMENTS, TRUNK_RINGS, 2.0f, 0.8f, bark, wood);
-    vec3 tips[BRANCHES], dirs[BRANCHES];
-    float lens[BRANCHES];
+    *t = (struct forest_tree){.base = v3(x, 0.0f, z), .height = h, .r0 = r0, .r1 = 0.45f * r0};
+    vec3 *tips = t->branch_root, *dirs = t->branch_dir;
+    float *lens = t->branch_len;
     for (int k = 0; k < BRANCHES; k++) {
         float a = builtin_rnd(r, 0.0f, 2.0f * RESTIR_PI), y = h * builtin_rnd(r, 0.3f, 0.8f);
         dirs[k] = v3_normalize(v3(0.8f * cosf(a), builtin_rnd(r, 0.4f, 0.8f), 0.8f * sinf(a)));
@@ -236,7 +240,7 @@ static void add_tree(struct scene_builder *b, pcg32 *r, float x, float z, int ba
     }
 }
 
-void scene_build_forest(struct scene_builder *b)
+void scene_forest_grow(struct scene_builder *b, struct forest_tree trees[FOREST_TREES])
 {
     pcg32 r = pcg32_make(23, 29);
     struct texture leaf_tex = leaf_texture(), bark_tex = bark_normal_texture();
@@ -267,9 +271,15 @@ void scene_build_forest(struct scene_builder *b)
             float z = -12.0f + 5.0f * (float)gz + builtin_rnd(&r, -1.2f, 1.2f);
             if (fabsf(x) < 2.2f) /* keep the middle column off the path */
                 x = copysignf(2.2f + fabsf(x), x == 0.0f ? 1.0f : x);
-            add_tree(b, &r, x, z, bark_mat, leaf);
+            add_tree(b, &r, x, z, bark_mat, leaf, &trees[gz * GRID + gx]);
         }
     }
+}
+
+void scene_build_forest(struct scene_builder *b)
+{
+    struct forest_tree trees[FOREST_TREES];
+    scene_forest_grow(b, trees);
     b->s->camera = (struct camera){v3(0.2f, 1.6f, 9.0f), v3(0.6f, 3.2f, -2.0f), v3(0, 1, 0), 55.0f, 0.0f, 0.0f};
     /* A walk along the path, looking ahead and up into the crowns: 12 m over 120 frames. */
     struct camera_key keys[3] = {{0, {v3(0.2f, 1.6f, 11.0f), v3(0.0f, 2.6f, 0.0f), v3(0, 1, 0), 55.0f, 0.0f, 0.0f}},
