@@ -11,8 +11,7 @@
 
 /* Sizes of the generated images and the scene's counts (the numbers docs/SCENES.md states). */
 enum { LEAF_SIZE = 128, BARK_W = 64, BARK_H = 128, SKY_W = 512, SKY_H = 256 };
-enum { GRID = 5, LEAVES_PER_TREE = 3000, BRANCHES = FOREST_BRANCHES, TRUNK_SEGMENTS = 16, TRUNK_RINGS = 8 };
-_Static_assert(GRID * GRID == FOREST_TREES, "scenes_forest.h counts the trees of the grid");
+enum { GRID = FOREST_GRID, LEAVES_PER_TREE = 3000, BRANCHES = FOREST_BRANCHES, TRUNK_SEGMENTS = 16, TRUNK_RINGS = 8 };
 
 /* Leaf outline in card UVs (u across, v along the leaf; the stalk at v = 0): a petiole up to
  * v = 0.12, then a blade whose half width swells and tapers to a rounded point. */
@@ -281,11 +280,16 @@ void scene_build_forest(struct scene_builder *b)
     struct forest_tree trees[FOREST_TREES];
     scene_forest_grow(b, trees);
     b->s->camera = (struct camera){v3(0.2f, 1.6f, 9.0f), v3(0.6f, 3.2f, -2.0f), v3(0, 1, 0), 55.0f, 0.0f, 0.0f};
+    scene_forest_walk(b->s);
+}
+
+void scene_forest_walk(struct scene *s)
+{
     /* A walk along the path, looking ahead and up into the crowns: 12 m over 120 frames. */
     struct camera_key keys[3] = {{0, {v3(0.2f, 1.6f, 11.0f), v3(0.0f, 2.6f, 0.0f), v3(0, 1, 0), 55.0f, 0.0f, 0.0f}},
                                  {60, {v3(-0.3f, 1.65f, 5.0f), v3(0.6f, 3.0f, -6.0f), v3(0, 1, 0), 55.0f, 0.0f, 0.0f}},
                                  {120, {v3(0.4f, 1.7f, -1.0f), v3(1.5f, 3.2f, -12.0f), v3(0, 1, 0), 55.0f, 0.0f, 0.0f}}};
-    builtin_set_path(b->s, 3, keys);
+    builtin_set_path(s, 3, keys);
 }
 
 int scene_light_forest(struct scene *s, char *msg)

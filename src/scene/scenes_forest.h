@@ -11,7 +11,7 @@
  * top, and its branches, each a thin limb (radius 0.06 to 0.025) from branch_root on the trunk's
  * axis along the unit branch_dir for branch_len. Half the leaves fill the crown, an ellipsoid of
  * semi-axes 2.6 m (across) and 2 m (up) centred 0.72 height above base. */
-enum { FOREST_TREES = 25, FOREST_BRANCHES = 6 };
+enum { FOREST_GRID = 5, FOREST_TREES = FOREST_GRID * FOREST_GRID, FOREST_BRANCHES = 6 };
 struct forest_tree {
     vec3 base;
     float height, r0, r1;
@@ -19,9 +19,12 @@ struct forest_tree {
     float branch_len[FOREST_BRANCHES];
 };
 
-/* The forest's materials, textures, ground and trees (row by row of the 5 x 5 grid, z then x),
- * without camera or sky: what scene_build_forest and the night forest share. */
+/* The forest's materials, textures, ground and trees (row by row of the FOREST_GRID x FOREST_GRID
+ * grid: trees[z * FOREST_GRID + x], x across the path), without camera or sky: what
+ * scene_build_forest and the night forest share. */
 void scene_forest_grow(struct scene_builder *b, struct forest_tree trees[FOREST_TREES]);
+/* Gives s the forest's camera path: a 120-frame walk of 12 m along the path between the trees. */
+void scene_forest_walk(struct scene *s);
 /* 25 trees with normal-mapped trunks and 3000 alpha-masked leaf cards each on a 400 m ground,
  * its camera and a 120-frame walk along a path between them. */
 void scene_build_forest(struct scene_builder *b);
