@@ -1,5 +1,5 @@
 /* scenes_builtin.c: the scenes made in code (cornell, ajar, many-lights, foliage, pillars, furnace;
- * forest in scenes_forest.c),
+ * forest in scenes_forest.c, night-forest in scenes_night_forest.c),
  * each with a default static camera and camera path. Must never read files. */
 #include "scene/scenes_builtin.h"
 
@@ -9,9 +9,10 @@
 
 #include "scene/builtin_shapes.h"
 #include "scene/scenes_forest.h"
+#include "scene/scenes_night_forest.h"
 
-const char *const scene_builtin_names[] = {"many-lights", "cornell", "ajar",    "foliage",
-                                            "pillars",     "furnace", "forest", NULL};
+const char *const scene_builtin_names[] = {"many-lights", "cornell", "ajar",   "foliage",
+                                            "pillars",     "furnace", "forest", "night-forest", NULL};
 const char *const scene_builtin_descriptions[] = {
     "floor and occluders lit by 1200 small emissive triangles of varied colour and power (default)",
     "Cornell box with a ceiling light, a diffuse block and a glossy metal block",
@@ -20,6 +21,7 @@ const char *const scene_builtin_descriptions[] = {
     "a row of pillars before a lit wall; the camera path strafes sideways (disocclusion)",
     "closed sphere of albedo 0.5 and emission 0.5 seen from inside: radiance is exactly 1 (test)",
     "25 trees with 75000 alpha-masked leaf cards and normal-mapped trunks under a sky with a sun (walk)",
+    "the forest at night, no sky, lit only by strings of fairy lights: over 100,000 small emissive triangles (walk)",
     NULL};
 
 static vec3 hue_color(float h)
@@ -261,9 +263,10 @@ static int create_builtin(const char *name, const struct scene_load_desc *d, str
 {
     static void (*const builders[])(struct scene_builder *) = {build_many_lights, build_cornell, build_ajar,
                                                                build_foliage,     build_pillars, build_furnace,
-                                                               scene_build_forest};
+                                                               scene_build_forest, scene_build_night_forest};
     /* Lights that need the finished scene (an environment's share depends on the emitters). */
-    static int (*const lights[])(struct scene *, char *) = {NULL, NULL, NULL, NULL, NULL, NULL, scene_light_forest};
+    static int (*const lights[])(struct scene *, char *) = {NULL, NULL, NULL,          NULL,
+                                                            NULL, NULL, scene_light_forest, NULL};
     const int i = find_builtin(name);
     if (i < 0) {
         int n = snprintf(msg, RESTIR_MSG_LEN, "unknown scene '%s' (built-in scenes:", name);

@@ -1,5 +1,5 @@
-/* scenes_builtin.h: the scenes made in code (cornell, ajar, many-lights, foliage, pillars, furnace),
- * by name. Must never read files. */
+/* scenes_builtin.h: the scenes made in code (cornell, ajar, many-lights, foliage, pillars, furnace, forest,
+ * night-forest), by name. Must never read files. */
 #ifndef RESTIR_SCENE_SCENES_BUILTIN_H
 #define RESTIR_SCENE_SCENES_BUILTIN_H
 
