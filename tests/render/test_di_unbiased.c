@@ -3,7 +3,8 @@
  * path tracer per pixel (Welch t-test, Sidak-corrected). A run uses a moving camera so that
  * temporal reuse merges history from other shading points. The default has visibility reuse with
  * ray-traced visibility in the MIS targets (di.visibility_reuse=on, di.visibility_mis=rays);
- * visibility_reuse=off is checked too, and visibility_mis=none's bias is measured. */
+ * visibility_reuse=off is checked too, and visibility_mis=none's bias is measured; and the initial
+ * candidates from ReGIR's light grid (di.initial=regir) from both of its sources. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -112,7 +113,21 @@ int main(int argc, char **argv)
         check_scene(textured, 24, 16, pairwise, 1, 1);
         snprintf(textured, sizeof textured, "%s/scenes/sky_only.json", data);
         check_scene(textured, 24, 16, pairwise, 1, 1);
+        /* ReGIR's slots with an environment: a slot is a sky direction with probability env_prob,
+         * else a cell reservoir over the alpha-masked lamp's triangles (regir.h) */
+        snprintf(textured, sizeof textured, "%s/scenes/leaves_sky.json", data);
+        const char *regir_sky[] = {"mis=pairwise", "di.initial=regir", "di.regir_source=bvh"};
+        check_scene(textured, 24, 16, regir_sky, 3, 1);
     }
+    /* ReGIR (di.initial=regir): the cells' reservoirs as initial candidates, by GRIS. ris-di alone
+     * (the slots' weights and the pixel's MIS, no reuse to hide a bias), then with reuse along the
+     * camera path from both sources, and where shadows cover much of the image. */
+    const char *regir_ris[] = {"di.initial=regir", "jitter=off"};
+    check_method(method_named("ris-di"), "many-lights", 24, 16, regir_ris, 2, 1);
+    const char *regir_bvh[] = {"mis=pairwise", "di.initial=regir", "di.regir_source=bvh", "jitter=off"};
+    check_scene("many-lights", 24, 16, regir_bvh, 4, 1);
+    const char *regir_pillars[] = {"di.initial=regir"};
+    check_scene("pillars", 24, 16, regir_pillars, 1, 1);
     /* The built-in forest along its walk: leaf cut-outs in every shadow ray, a sky with a sun as
      * the only light. */
     check_scene("forest", 24, 16, pairwise, 1, 1);

@@ -12,6 +12,7 @@
 #include "render/tiles.h"
 #include "restir/gris.h"
 #include "scene/env_light.h"
+#include "shading/light_tree.h"
 #include "shading/lights.h"
 #include "methods/restir_di/di_settings.h"
 
@@ -161,13 +162,65 @@ static int pick_by_weight(const float *w, int n, float u, float *total)
                                               : pick_by_weight_baseline(w, n, u, total);
 }
 
+/* di.initial=bvh: a batch of the pixel's own light candidates, drawn down the light BVH at its point
+ * with its normal (light_tree.h, the choice pt makes with lights.select=bvh), in the pool's layout so
+ * that the same kernel weighs them; pdf holds the mixture's density, (1 - env_prob) P_tree(e) / A_e
+ * for an emitter point. */
+struct pixel_batch {
+    int tri[DI_BATCH];
+    float b1[DI_BATCH], b2[DI_BATCH], px[DI_BATCH], py[DI_BATCH], pz[DI_BATCH], nx[DI_BATCH], ny[DI_BATCH],
+        nz[DI_BATCH], Lr[DI_BATCH], Lg[DI_BATCH], Lb[DI_BATCH], pdf[DI_BATCH], at_point[DI_BATCH];
+};
+
+static struct light_pool pixel_batch_view(struct pixel_batch *pb)
+{
+    return (struct light_pool){.size = DI_BATCH, .window = DI_BATCH, .tri = pb->tri, .b1 = pb->b1, .b2 = pb->b2,
+                               .px = pb->px, .py = pb->py, .pz = pb->pz, .nx = pb->nx, .ny = pb->ny, .nz = pb->nz,
+                               .Lr = pb->Lr, .Lg = pb->Lg, .Lb = pb->Lb, .pdf = pb->pdf, .at_point = pb->at_point};
+}
+
+/* Draws n candidates into view: with an environment, a direction from its sampler with probability
+ * env_prob, else an emitter down the tree (a null candidate where the descent finds none, so that
+ * every emitter's probability is exactly light_tree_pmf's) and a point uniform on it. */
+static void pixel_batch_draw(struct light_pool *view, const struct scene *s, const struct shading_point *sp, int n,
+                             pcg32 *rng)
+{
+    for (int k = 0; k < n; k++) {
+        float u0 = pcg32_float(rng);
+        const float u1 = pcg32_float(rng), u2 = pcg32_float(rng);
+        if (s->env && u0 < s->env_prob) {
+            light_pool_put_env(view, s, k, u1, u2);
+            continue;
+        }
+        if (s->env)
+            u0 = min_f((u0 - s->env_prob) / (1.0f - s->env_prob), 0x1.fffffep-1f);
+        float pmf = 0.0f;
+        const int e = s->num_emitters > 0 ? light_tree_sample(&s->light_bvh, sp->p, sp->n, u0, &pmf) : -1;
+        if (e < 0) {
+            light_pool_put_empty(view, k, sp->p);
+            continue;
+        }
+        float b1, b2;
+        warp_uniform_triangle(u1, u2, &b1, &b2);
+        light_pool_put_emitter(view, s, k, &s->emitters[e], b1, b2);
+        view->pdf[k] = (1.0f - s->env_prob) * pmf / s->tri_area[s->emitters[e].tri];
+    }
+}
+
 /* The light density that the MIS weights of a BSDF candidate on emitter triangle tri use: the pool's
- * (power sampling) or, with ReGIR, the source density of the pixel's cell (regir_light_pdf). */
+ * (power sampling), with ReGIR the source density of the pixel's cell (regir_light_pdf), with bvh
+ * the tree's at the pixel's point (pixel_batch_draw's). */
 static float light_pdf_for_bsdf_hit(const struct scene *s, const struct regir_grid *rg, const struct di_settings *ds,
-                                    int block, int tri)
+                                    const struct shading_point *sp, int block, int tri)
 {
     if (rg)
         return regir_light_pdf(rg, s, ds, block, tri);
+    if (ds->initial == DI_INITIAL_BVH) {
+        const int e = tri >= 0 && tri < s->num_tris ? s->tri_emitter[tri] : -1;
+        if (e < 0)
+            return 0.0f;
+        return (1.0f - s->env_prob) * light_tree_pmf(&s->light_bvh, sp->p, sp->n, e) / s->tri_area[tri];
+    }
     return lights_pdf_area(s, tri) * (1.0f - s->env_prob);
 }
 
@@ -181,14 +234,21 @@ static void initial_pixel(const struct scene *s, const struct light_pool *pool, 
     const struct di_settings *ds = di_settings_of(p);
     const int nl = s->num_emitters > 0 || s->env ? ds->light_candidates : 0, nb = ds->bsdf_candidates;
     struct light_batch lb;
-    /* this pixel's nl candidates: a window of the pool, or of its cell's slots */
+    /* this pixel's nl candidates: a window of the pool, of its cell's slots, or its own draws */
+    const int own = ds->initial == DI_INITIAL_BVH && !rg;
+    struct pixel_batch pb;
+    struct light_pool own_view = pixel_batch_view(&pb);
     const int block = rg ? regir_block_of(rg, sp->p) : -1;
-    const struct light_pool *lp = rg ? &rg->store : pool;
+    const struct light_pool *lp = rg ? &rg->store : own ? &own_view : pool;
     int offset = 0;
-    if (nl)
+    if (nl && !own)
         offset = rg ? regir_window_first(rg, block, pcg32_float(rng)) : light_pool_offset(pcg32_float(rng));
     for (int done = 0; done < nl; done += DI_BATCH) {
         int n = nl - done < DI_BATCH ? nl - done : DI_BATCH, first = offset + done;
+        if (own) {
+            pixel_batch_draw(&own_view, s, sp, n, rng);
+            first = 0;
+        }
         light_batch_fill(lp, first, sp, n, nl, nb, &lb);
         struct restir_reservoir batch;
         restir_reservoir_init(&batch);
@@ -219,7 +279,7 @@ static void initial_pixel(const struct scene *s, const struct light_pool *pool, 
             float target = v3_luminance(di_unshadowed_pdf(sp, &y, &p_bsdf));
             if (target <= 0.0f)
                 continue;
-            float p_light = nl ? light_pdf_for_bsdf_hit(s, rg, ds, block, h.tri) : 0.0f;
+            float p_light = nl ? light_pdf_for_bsdf_hit(s, rg, ds, sp, block, h.tri) : 0.0f;
             float w = target / ((float)nl * p_light + (float)nb * p_bsdf);
             if (restir_reservoir_offer(&wrs, w, pcg32_float(rng)))
                 r->y = y;

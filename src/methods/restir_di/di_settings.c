@@ -9,7 +9,7 @@
 #define D(field) offsetof(struct di_settings, field)
 
 static const char *const visibility_mis_names[] = {"rays", "none", NULL};
-static const char *const initial_names[] = {"pool", "regir", NULL};
+static const char *const initial_names[] = {"pool", "regir", "bvh", NULL};
 static const char *const regir_source_names[] = {"power", "bvh", NULL};
 
 static const struct param_def di_rows[] = {
@@ -24,7 +24,8 @@ static const struct param_def di_rows[] = {
     {"di.initial", P_NAMES, D(initial), 0, 0, "pool", NULL,
      "where initial RIS draws its light candidates: pool (a frame's shared draws by power) or regir (a "
      "world-space grid of light reservoirs over the visible points, each cell's slots resampled toward the "
-     "lights that matter there; Boksansky et al. 2021, unbiased by GRIS; needs emitters)",
+     "lights that matter there; Boksansky et al. 2021, unbiased by GRIS; needs emitters) or bvh (each pixel's own "
+     "draws down the light BVH at its point, as pt chooses emitters: no grid, a tree descent per candidate)",
      initial_names},
     {"di.regir_grid", P_INT, D(regir_grid), 1, 64, "16", NULL,
      "di.initial=regir: cells along the longest side of the visible points' bounding box (cubic cells)", NULL},

@@ -10,9 +10,10 @@
  * (BIASED: a domain that cannot see the sample still takes MIS weight). */
 enum di_visibility_mis { DI_VIS_MIS_RAYS = 0, DI_VIS_MIS_NONE };
 
-/* Where initial RIS takes its light candidates: the frame's power-sampled pool (light_pool.h) or
- * the slots of ReGIR's grid cell that holds the pixel's point (regir.h). */
-enum di_initial { DI_INITIAL_POOL = 0, DI_INITIAL_REGIR };
+/* Where initial RIS takes its light candidates: the frame's power-sampled pool (light_pool.h), the
+ * slots of ReGIR's grid cell that holds the pixel's point (regir.h), or the pixel's own draws down
+ * the light BVH at its point (pt's emitter choice; no sharing, no grid). */
+enum di_initial { DI_INITIAL_POOL = 0, DI_INITIAL_REGIR, DI_INITIAL_BVH };
 /* Where ReGIR's cells draw the candidates of their slots: by power from the scene's alias table, or
  * down the light BVH at the cell's centre mixed with power (REGIR_POWER_SHARE, regir.c). */
 enum regir_source { REGIR_SOURCE_POWER = 0, REGIR_SOURCE_BVH };

@@ -63,6 +63,17 @@ void light_pool_put_emitter(struct light_pool *lp, const struct scene *s, int i,
     lp->at_point[i] = 1.0f;
 }
 
+void light_pool_put_empty(struct light_pool *lp, int i, vec3 at)
+{
+    lp->tri[i] = -1;
+    lp->b1[i] = lp->b2[i] = 0.0f;
+    lp->px[i] = at.x, lp->py[i] = at.y, lp->pz[i] = at.z;
+    lp->nx[i] = 0.0f, lp->ny[i] = 1.0f, lp->nz[i] = 0.0f;
+    lp->Lr[i] = lp->Lg[i] = lp->Lb[i] = 0.0f;
+    lp->pdf[i] = 1.0f;
+    lp->at_point[i] = 1.0f;
+}
+
 void light_pool_put_env(struct light_pool *lp, const struct scene *s, int i, float u1, float u2)
 {
     float pdf;

@@ -46,6 +46,8 @@ void light_pool_reserve(struct light_pool *lp, int entries, int with_W);
 void light_pool_put_emitter(struct light_pool *lp, const struct scene *s, int i, const struct emitter *em, float b1,
                             float b2);
 void light_pool_put_env(struct light_pool *lp, const struct scene *s, int i, float u1, float u2);
+/* Writes entry i as a null candidate: a point at `at` without radiance (pdf 1), whose weight is 0. */
+void light_pool_put_empty(struct light_pool *lp, int i, vec3 at);
 void light_pool_fini(struct light_pool *lp);
 /* Draws the frame's pool (seeded by seed and frame, whatever the thread count); a scene without
  * emitters or environment, or a pool for windows of 0 candidates, is left as it is (nothing reads

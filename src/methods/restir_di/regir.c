@@ -145,48 +145,40 @@ static float cell_weight(const struct scene *s, const struct emitter *em, const 
     return v3_luminance(em->Le) * (solid < 6.2831853f ? solid : 6.2831853f);
 }
 
-/* The source probability of emitter e for a cell centred at c. */
-static float source_pmf(const struct scene *s, enum regir_source src, vec3 c, int e)
+/* The source probability of emitter e for a cell centred at c, from its power and (bvh) tree
+ * probabilities: one expression, so that a slot's q and regir_light_pdf's agree bit for bit. */
+static float source_mix(enum regir_source src, float power, float tree)
 {
-    const float power = s->emitter_table.pmf[e];
-    if (src == REGIR_SOURCE_POWER)
-        return power;
-    return REGIR_POWER_SHARE * power + (1.0f - REGIR_POWER_SHARE) * light_tree_pmf(&s->light_bvh, c, v3s(0.0f), e);
+    return src == REGIR_SOURCE_POWER ? power : REGIR_POWER_SHARE * power + (1.0f - REGIR_POWER_SHARE) * tree;
 }
 
-/* An emitter from the source for a cell centred at c, with its source probability in *pmf. */
+static float source_pmf(const struct scene *s, enum regir_source src, vec3 c, int e)
+{
+    const float tree = src == REGIR_SOURCE_BVH ? light_tree_pmf(&s->light_bvh, c, v3s(0.0f), e) : 0.0f;
+    return source_mix(src, s->emitter_table.pmf[e], tree);
+}
+
+/* An emitter from the source for a cell centred at c, with its source probability in *pmf; -1 (a
+ * null candidate of weight 0) when the tree's descent finds no light for the centre, so that every
+ * emitter's probability stays exactly source_pmf's. */
 static int source_draw(const struct scene *s, enum regir_source src, vec3 c, pcg32 *rng, float *pmf)
 {
     const float u = pcg32_float(rng);
-    int e;
-    if (src == REGIR_SOURCE_POWER || u < REGIR_POWER_SHARE) {
-        const float v = src == REGIR_SOURCE_POWER ? u : u / REGIR_POWER_SHARE;
-        e = alias_table_sample(&s->emitter_table, v < 0x1.fffffep-1f ? v : 0x1.fffffep-1f);
-    } else {
-        float unused;
-        const float v = (u - REGIR_POWER_SHARE) / (1.0f - REGIR_POWER_SHARE);
-        e = light_tree_sample(&s->light_bvh, c, v3s(0.0f), v < 0x1.fffffep-1f ? v : 0x1.fffffep-1f, &unused);
-        if (e < 0) { /* the descent found no light for the centre: a null candidate (weight 0), so that
-                        every emitter's probability stays exactly source_pmf's */
-            *pmf = 0.0f;
-            return -1;
-        }
+    if (src == REGIR_SOURCE_POWER) {
+        const int e = alias_table_sample(&s->emitter_table, u);
+        *pmf = s->emitter_table.pmf[e];
+        return e;
     }
-    *pmf = source_pmf(s, src, c, e);
+    if (u < REGIR_POWER_SHARE) { /* the power share: the tree's probability is looked up */
+        const int e = alias_table_sample(&s->emitter_table, min_f(u / REGIR_POWER_SHARE, 0x1.fffffep-1f));
+        *pmf = source_pmf(s, src, c, e);
+        return e;
+    }
+    float tree;
+    const float v = min_f((u - REGIR_POWER_SHARE) / (1.0f - REGIR_POWER_SHARE), 0x1.fffffep-1f);
+    const int e = light_tree_sample(&s->light_bvh, c, v3s(0.0f), v, &tree); /* tree == light_tree_pmf's */
+    *pmf = e >= 0 ? source_mix(src, s->emitter_table.pmf[e], tree) : 0.0f;
     return e;
-}
-
-/* Slot i: an empty reservoir (a point without radiance and W = 0, which no pixel can select). */
-static void put_empty(struct light_pool *st, int i, vec3 at)
-{
-    st->tri[i] = -1;
-    st->b1[i] = st->b2[i] = 0.0f;
-    st->px[i] = at.x, st->py[i] = at.y, st->pz[i] = at.z;
-    st->nx[i] = 0.0f, st->ny[i] = 1.0f, st->nz[i] = 0.0f;
-    st->Lr[i] = st->Lg[i] = st->Lb[i] = 0.0f;
-    st->pdf[i] = 1.0f;
-    st->at_point[i] = 1.0f;
-    st->W[i] = 0.0f;
 }
 
 /* Slot i of a cell: RIS over K source candidates toward p_c (regir.h), or with probability env_prob
@@ -212,8 +204,9 @@ static void fill_slot(struct light_pool *st, int i, const struct scene *s, const
         if (w > 0.0f && pcg32_float(rng) * w_sum < w)
             chosen = e, chosen_weight = cw, chosen_pmf = pmf;
     }
-    if (chosen < 0) {
-        put_empty(st, i, v->centre);
+    if (chosen < 0) { /* an empty reservoir: W = 0, which no pixel can select */
+        light_pool_put_empty(st, i, v->centre);
+        st->W[i] = 0.0f;
         return;
     }
     float b1, b2;
@@ -260,4 +253,10 @@ float regir_light_pdf(const struct regir_grid *r, const struct scene *s, const s
     const float area = s->tri_area[tri];
     const vec3 c = cell_centre(r, r->cells[b]);
     return (1.0f - s->env_prob) * source_pmf(s, ds->regir_source, c, e) / area;
+}
+
+float regir_cell_weight(const struct regir_grid *r, const struct scene *s, int b, int e)
+{
+    const struct cell_view v = cell_view_of(r, r->cells[b]);
+    return cell_weight(s, &s->emitters[e], &v);
 }

@@ -70,6 +70,9 @@ static inline int regir_window_first(const struct regir_grid *r, int b, float u)
     o = o < r->slots ? o : r->slots - 1;
     return b * (r->slots + r->window) + o;
 }
+/* p_c of emitter e for block b's cell times the emitter's area (regir.h's target, per emitter): 0
+ * exactly where the cell's slots can never hold a point of e. For tests and diagnostics. */
+float regir_cell_weight(const struct regir_grid *r, const struct scene *s, int b, int e);
 /* q at a point of emitter triangle tri for a pixel of block b: the density the MIS weights give the
  * light strategy (what the store's pdf holds for a slot on tri), 0 when tri is not an emitter. */
 float regir_light_pdf(const struct regir_grid *r, const struct scene *s, const struct di_settings *ds, int b, int tri);
