@@ -128,6 +128,9 @@ int main(int argc, char **argv)
     check_scene("many-lights", 24, 16, regir_bvh, 4, 1);
     const char *regir_pillars[] = {"di.initial=regir"};
     check_scene("pillars", 24, 16, regir_pillars, 1, 1);
+    /* Each pixel's own candidates down the light BVH (di.initial=bvh), 8 of them: a descent each */
+    const char *bvh_ris[] = {"di.initial=bvh", "di.light_candidates=8", "jitter=off"};
+    check_method(method_named("ris-di"), "many-lights", 24, 16, bvh_ris, 3, 1);
     /* The built-in forest along its walk: leaf cut-outs in every shadow ray, a sky with a sun as
      * the only light. */
     check_scene("forest", 24, 16, pairwise, 1, 1);
