@@ -1,4 +1,5 @@
-/* test_regir.c: ReGIR's light grid (methods/restir_di/regir.h). Every valid shading point of a frame
+/* test_regir.c: ReGIR's light grid (methods/restir_di/regir.h) and its light cuts (light_cut.h: the
+ * probabilities sum to 1 and match the draws, chi-square). Every valid shading point of a frame
  * lies in an occupied cell; and each slot's contribution weight is unbiased: for f the indicator of
  * a set of emitters, E[f(Y) W] over a cell's slots is the summed area of the set's emitters that the
  * cell's target covers (GRIS, 004 Eq. 7 with f = 1 on those emitters), checked for groups of the
@@ -10,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "core/rng.h"
 #include "methods/restir_di/di_sample.h"
 #include "methods/restir_di/regir.h"
 #include "frame_fixture.h"
@@ -39,7 +41,7 @@ static int check_cell(const char *scene_name, enum regir_source src)
     ds->regir_source = src;
     ds->regir_grid = 2; /* few cells: the fills are the test's cost */
     struct regir_grid r;
-    regir_init(&r, ds);
+    regir_init(&r, &s, ds);
     regir_build(&r, &g, ds);
     int outside = 0;
     for (int i = 0; i < WIDTH * HEIGHT; i++) {
@@ -94,8 +96,63 @@ static int check_cell(const char *scene_name, enum regir_source src)
     return failed;
 }
 
+/* light_cut.h: the probabilities of a cut sum to 1 and are the frequencies of its draws (chi-square
+ * over the emitters expected at least 20 times, the rest pooled into one bin). */
+static void check_cut(const char *scene_name, vec3 c)
+{
+    struct scene s;
+    char msg[512];
+    if (scene_load(scene_name, &s, msg) != 0) {
+        EXPECT(0, "%s", msg);
+        return;
+    }
+    struct light_cut_order o;
+    EXPECT(light_cut_order_init(&o, &s.light_bvh, s.num_emitters) == 0, "%s: no light tree", scene_name);
+    struct light_cut cut;
+    light_cut_build(&cut, &s.light_bvh, &o, c);
+    double total = 0.0;
+    for (int e = 0; e < s.num_emitters; e++)
+        total += light_cut_pmf(&cut, &o, e);
+    EXPECT(cut.nodes > 1 && fabs(total - 1.0) < 1e-4, "%s: %d cut nodes, probabilities sum to %.7f", scene_name,
+           cut.nodes, total);
+    const long draws = 400000;
+    long *count = calloc((size_t)s.num_emitters, sizeof(long)), nulls = 0;
+    pcg32 rng = rng_for(7, 0, 0, 1);
+    for (long k = 0; k < draws; k++) {
+        const int e = light_cut_sample(&cut, &o, pcg32_float(&rng), pcg32_float(&rng));
+        if (e < 0)
+            nulls++;
+        else
+            count[e]++;
+    }
+    double chi2 = 0.0, pooled_obs = 0.0, pooled_exp = 0.0;
+    int bins = 0;
+    for (int e = 0; e < s.num_emitters; e++) {
+        const double expected = draws * (double)light_cut_pmf(&cut, &o, e);
+        if (expected >= 20.0) {
+            chi2 += (count[e] - expected) * (count[e] - expected) / expected;
+            bins++;
+        } else {
+            pooled_obs += count[e];
+            pooled_exp += expected;
+        }
+    }
+    if (pooled_exp > 0.0)
+        chi2 += (pooled_obs - pooled_exp) * (pooled_obs - pooled_exp) / pooled_exp, bins++;
+    /* chi-square with bins - 1 degrees of freedom: mean bins - 1, sd sqrt(2 (bins - 1)); 5 sd */
+    const double dof = bins - 1.0, limit = dof + 5.0 * sqrt(2.0 * dof);
+    printf("%s cut: %d nodes, %d bins, chi2 %.1f (limit %.1f), %ld null draws\n", scene_name, cut.nodes, bins, chi2,
+           limit, nulls);
+    EXPECT(bins > 10 && chi2 < limit && nulls == 0, "%s: the cut's draws do not follow its pmf (chi2 %.1f, %d bins)",
+           scene_name, chi2, bins);
+    free(count);
+    light_cut_order_fini(&o);
+    scene_destroy(&s);
+}
+
 int main(void)
 {
+    check_cut("many-lights", v3(0.0f, 0.5f, 0.0f));
     check_cell("many-lights", REGIR_SOURCE_POWER);
     check_cell("many-lights", REGIR_SOURCE_BVH);
     const char *data = getenv("RESTIR_TEST_DATA");

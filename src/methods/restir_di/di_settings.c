@@ -34,8 +34,9 @@ static const struct param_def di_rows[] = {
     {"di.regir_candidates", P_INT, D(regir_candidates), 1, 256, "8", NULL,
      "di.initial=regir: RIS candidates per cell reservoir", NULL},
     {"di.regir_source", P_NAMES, D(regir_source), 0, 0, "power", NULL,
-     "di.initial=regir: where a cell draws its candidates: power (the scene's alias table) or bvh (the light "
-     "BVH at the cell's centre, a quarter by power so that every light keeps a chance)",
+     "di.initial=regir: where a cell draws its candidates: power (the scene's alias table) or bvh (a cut of "
+     "up to 64 nodes through the light BVH by importance at the cell's centre, each node's lights by power; "
+     "a quarter of the draws by power so that every light keeps a chance)",
      regir_source_names},
 };
 static const struct param_def di_reuse_rows[] = {

@@ -15,7 +15,8 @@ enum di_visibility_mis { DI_VIS_MIS_RAYS = 0, DI_VIS_MIS_NONE };
  * the light BVH at its point (pt's emitter choice; no sharing, no grid). */
 enum di_initial { DI_INITIAL_POOL = 0, DI_INITIAL_REGIR, DI_INITIAL_BVH };
 /* Where ReGIR's cells draw the candidates of their slots: by power from the scene's alias table, or
- * down the light BVH at the cell's centre mixed with power (REGIR_POWER_SHARE, regir.c). */
+ * from a cut through the light BVH at the cell's centre (light_cut.h) mixed with power
+ * (REGIR_POWER_SHARE, regir.c). */
 enum regir_source { REGIR_SOURCE_POWER = 0, REGIR_SOURCE_BVH };
 
 struct di_settings {

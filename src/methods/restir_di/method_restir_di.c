@@ -36,7 +36,7 @@ static void *restir_di_create(const struct renderer *r)
     const struct di_settings *ds = di_settings_of(p);
     if (ds->initial == DI_INITIAL_REGIR) {
         d->regir = xmalloc(sizeof(*d->regir));
-        regir_init(d->regir, ds);
+        regir_init(d->regir, r->scene, ds);
     } else {
         light_pool_init(&d->lights, ds->light_candidates);
     }

@@ -12,7 +12,6 @@
 #include "core/sampling.h"
 #include "methods/restir_di/di_sample.h"
 #include "render/tiles.h"
-#include "shading/light_tree.h"
 
 /* With di.regir_source=bvh, the share of candidates drawn by power: the BVH's importance is taken
  * at the cell's centre, where a light facing away from the centre but toward another point of the
@@ -20,9 +19,11 @@
  * slots cover p_c's whole support. */
 #define REGIR_POWER_SHARE 0.25f
 
-void regir_init(struct regir_grid *r, const struct di_settings *ds)
+void regir_init(struct regir_grid *r, const struct scene *s, const struct di_settings *ds)
 {
     memset(r, 0, sizeof(*r));
+    if (ds->regir_source == REGIR_SOURCE_BVH)
+        light_cut_order_init(&r->order, &s->light_bvh, s->num_emitters);
     r->slots = ds->regir_slots;
     r->window = ds->light_candidates;
     r->block_cap = ds->regir_grid * ds->regir_grid * ds->regir_grid;
@@ -32,6 +33,8 @@ void regir_init(struct regir_grid *r, const struct di_settings *ds)
 void regir_fini(struct regir_grid *r)
 {
     light_pool_fini(&r->store);
+    light_cut_order_fini(&r->order);
+    free(r->cuts);
     free(r->block);
     free(r->cells);
     memset(r, 0, sizeof(*r));
@@ -96,6 +99,8 @@ void regir_build(struct regir_grid *r, const struct gbuffer *g, const struct di_
         if (r->n_blocks == r->cells_cap) {
             r->cells_cap = r->cells_cap ? 2 * r->cells_cap : 256;
             r->cells = xrealloc(r->cells, sizeof(int) * (size_t)r->cells_cap);
+            if (r->order.n > 0) /* di.regir_source=bvh: a cut per block */
+                r->cuts = xrealloc(r->cuts, sizeof(struct light_cut) * (size_t)r->cells_cap);
         }
         r->cells[r->n_blocks] = c;
         r->block[c] = r->n_blocks++;
@@ -145,47 +150,42 @@ static float cell_weight(const struct scene *s, const struct emitter *em, const 
     return v3_luminance(em->Le) * (solid < 6.2831853f ? solid : 6.2831853f);
 }
 
-/* The source probability of emitter e for a cell centred at c, from its power and (bvh) tree
- * probabilities: one expression, so that a slot's q and regir_light_pdf's agree bit for bit. */
-static float source_mix(enum regir_source src, float power, float tree)
+/* The source probability of emitter e for block b, from its power and (bvh) cut probabilities: one
+ * expression, so that a slot's q and regir_light_pdf's agree bit for bit. */
+static float source_pmf(const struct regir_grid *r, const struct scene *s, enum regir_source src, int b, int e)
 {
-    return src == REGIR_SOURCE_POWER ? power : REGIR_POWER_SHARE * power + (1.0f - REGIR_POWER_SHARE) * tree;
+    const float power = s->emitter_table.pmf[e];
+    if (src == REGIR_SOURCE_POWER)
+        return power;
+    const float cut = light_cut_pmf(&r->cuts[b], &r->order, e);
+    return REGIR_POWER_SHARE * power + (1.0f - REGIR_POWER_SHARE) * cut;
 }
 
-static float source_pmf(const struct scene *s, enum regir_source src, vec3 c, int e)
-{
-    const float tree = src == REGIR_SOURCE_BVH ? light_tree_pmf(&s->light_bvh, c, v3s(0.0f), e) : 0.0f;
-    return source_mix(src, s->emitter_table.pmf[e], tree);
-}
-
-/* An emitter from the source for a cell centred at c, with its source probability in *pmf; -1 (a
- * null candidate of weight 0) when the tree's descent finds no light for the centre, so that every
- * emitter's probability stays exactly source_pmf's. */
-static int source_draw(const struct scene *s, enum regir_source src, vec3 c, pcg32 *rng, float *pmf)
+/* An emitter from block b's source, with its source probability in *pmf; -1 (a null candidate of
+ * weight 0) when the cut gives no node any probability, so that every emitter's probability stays
+ * exactly source_pmf's. */
+static int source_draw(const struct regir_grid *r, const struct scene *s, enum regir_source src, int b, pcg32 *rng,
+                       float *pmf)
 {
     const float u = pcg32_float(rng);
-    if (src == REGIR_SOURCE_POWER) {
-        const int e = alias_table_sample(&s->emitter_table, u);
-        *pmf = s->emitter_table.pmf[e];
-        return e;
+    int e;
+    if (src == REGIR_SOURCE_POWER || u < REGIR_POWER_SHARE) {
+        const float v = src == REGIR_SOURCE_POWER ? u : min_f(u / REGIR_POWER_SHARE, 0x1.fffffep-1f);
+        e = alias_table_sample(&s->emitter_table, v);
+    } else {
+        const float v = min_f((u - REGIR_POWER_SHARE) / (1.0f - REGIR_POWER_SHARE), 0x1.fffffep-1f);
+        e = light_cut_sample(&r->cuts[b], &r->order, v, pcg32_float(rng));
     }
-    if (u < REGIR_POWER_SHARE) { /* the power share: the tree's probability is looked up */
-        const int e = alias_table_sample(&s->emitter_table, min_f(u / REGIR_POWER_SHARE, 0x1.fffffep-1f));
-        *pmf = source_pmf(s, src, c, e);
-        return e;
-    }
-    float tree;
-    const float v = min_f((u - REGIR_POWER_SHARE) / (1.0f - REGIR_POWER_SHARE), 0x1.fffffep-1f);
-    const int e = light_tree_sample(&s->light_bvh, c, v3s(0.0f), v, &tree); /* tree == light_tree_pmf's */
-    *pmf = e >= 0 ? source_mix(src, s->emitter_table.pmf[e], tree) : 0.0f;
+    *pmf = e >= 0 ? source_pmf(r, s, src, b, e) : 0.0f;
     return e;
 }
 
 /* Slot i of a cell: RIS over K source candidates toward p_c (regir.h), or with probability env_prob
  * an environment direction. */
-static void fill_slot(struct light_pool *st, int i, const struct scene *s, const struct di_settings *ds,
+static void fill_slot(const struct regir_grid *r, int b, int i, const struct scene *s, const struct di_settings *ds,
                       const struct cell_view *v, pcg32 *rng)
 {
+    struct light_pool *st = (struct light_pool *)&r->store; /* the slots of block b: this thread's alone */
     if (s->env && pcg32_float(rng) < s->env_prob) {
         const float u1 = pcg32_float(rng), u2 = pcg32_float(rng);
         light_pool_put_env(st, s, i, u1, u2);
@@ -197,7 +197,7 @@ static void fill_slot(struct light_pool *st, int i, const struct scene *s, const
     int chosen = -1;
     for (int j = 0; j < K; j++) {
         float pmf;
-        const int e = source_draw(s, ds->regir_source, v->centre, rng, &pmf);
+        const int e = source_draw(r, s, ds->regir_source, b, rng, &pmf);
         const float cw = e >= 0 && pmf > 0.0f ? cell_weight(s, &s->emitters[e], v) : 0.0f;
         const float w = cw > 0.0f ? cw / pmf : 0.0f;
         w_sum += w;
@@ -230,9 +230,11 @@ void regir_fill(struct regir_grid *r, const struct scene *s, const struct di_set
     for (int b = 0; b < r->n_blocks; b++) {
         pcg32 rng = rng_for(seed, (uint64_t)frame, (uint64_t)b, stream);
         const struct cell_view v = cell_view_of(r, r->cells[b]);
+        if (ds->regir_source == REGIR_SOURCE_BVH)
+            light_cut_build(&r->cuts[b], &s->light_bvh, &r->order, v.centre);
         const int first = b * stride;
         for (int k = 0; k < r->slots; k++)
-            fill_slot(st, first + k, s, ds, &v, &rng);
+            fill_slot(r, b, first + k, s, ds, &v, &rng);
         /* the tail repeats the head (slot k mod slots), so a window that starts late reads on */
         for (int k = r->slots; k < stride; k++) {
             const int from = first + k % r->slots, to = first + k;
@@ -250,9 +252,7 @@ float regir_light_pdf(const struct regir_grid *r, const struct scene *s, const s
     const int e = tri >= 0 && tri < s->num_tris ? s->tri_emitter[tri] : -1;
     if (e < 0 || b < 0)
         return 0.0f;
-    const float area = s->tri_area[tri];
-    const vec3 c = cell_centre(r, r->cells[b]);
-    return (1.0f - s->env_prob) * source_pmf(s, ds->regir_source, c, e) / area;
+    return (1.0f - s->env_prob) * source_pmf(r, s, ds->regir_source, b, e) / s->tri_area[tri];
 }
 
 float regir_cell_weight(const struct regir_grid *r, const struct scene *s, int b, int e)

@@ -3,8 +3,8 @@
  * reservoirs", Ray Tracing Gems II ch. 23, in the form RTXDI gives it). Each frame a uniform grid
  * is laid over the bounding box of the G-buffer's shading points; every cell some pixel's point
  * falls in gets di.regir_slots slots, and each slot is an independent RIS reservoir over
- * di.regir_candidates emitters drawn from a source (power, or the light BVH at the cell's centre
- * mixed with power), resampled toward the cell's target
+ * di.regir_candidates emitters drawn from a source (power, or a cut through the light BVH at the
+ * cell's centre, light_cut.h, mixed with power), resampled toward the cell's target
  *   p_c(y) = lum(Le_e) min(A_e / dbar^2, 2 pi) / A_e      (y a point of emitter e, area measure)
  * with dbar = d + R^3 / (d + 1.1547 R)^2 the fitted mean distance from a ball of radius R (the
  * cell's half-diagonal) around the cell's centre to the emitter's centroid at distance d (RTXDI's
@@ -30,6 +30,7 @@
 #include <stdint.h>
 
 #include "methods/restir_di/di_settings.h"
+#include "methods/restir_di/light_cut.h"
 #include "methods/restir_di/light_pool.h"
 #include "render/gbuffer.h"
 
@@ -49,10 +50,13 @@ struct regir_grid {
     int window;       /* the pixel's candidates (di.light_candidates): a block is slots + window long,
                          the tail repeating its first slots so that no window wraps */
     struct light_pool store; /* the slots, block after block, with W */
+    struct light_cut_order order; /* di.regir_source=bvh: the scene's emitters in tree order (n = 0: power) */
+    struct light_cut *cuts;       /* and per block the cut through the tree at its cell's centre */
 };
 
-/* Sizes the grid for ds (allocating the slots of the first frame's cells happens in regir_build). */
-void regir_init(struct regir_grid *r, const struct di_settings *ds);
+/* Sizes the grid for ds and scene s (allocating the slots of the first frame's cells happens in
+ * regir_build). */
+void regir_init(struct regir_grid *r, const struct scene *s, const struct di_settings *ds);
 void regir_fini(struct regir_grid *r);
 /* Lays this frame's grid over g's valid shading points (di.regir_grid cells along the longest axis of
  * their bounding box) and gives every occupied cell a slot block. Serial (a pass over the pixels and
