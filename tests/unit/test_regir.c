@@ -57,12 +57,11 @@ static int check_cell(const char *scene_name, enum regir_source src)
             expect[e % GROUPS] += s.tri_area[s.emitters[e].tri];
             expect[GROUPS] += s.tri_area[s.emitters[e].tri];
         }
-    const int stride = r.slots + r.window;
     long n = 0, env = 0;
     for (int f = 0; f < FRAMES; f++) {
         regir_fill(&r, &s, ds, 1000 + (uint64_t)f, f);
-        for (int k = 0; k < r.slots; k++, n++) {
-            const int i = b * stride + k, tri = r.store.tri[i];
+        for (int k = 0; k < r.block_slots[b]; k++, n++) {
+            const int i = r.block_first[b] + k, tri = r.store.tri[i];
             const int e = tri >= 0 && tri != DI_ENV_TRI ? s.tri_emitter[tri] : -1;
             env += tri == DI_ENV_TRI;
             double x[GROUPS + 1] = {0};

@@ -9,7 +9,7 @@
 #define D(field) offsetof(struct di_settings, field)
 
 static const char *const visibility_mis_names[] = {"rays", "none", NULL};
-static const char *const initial_names[] = {"pool", "regir", "bvh", NULL};
+static const char *const initial_names[] = {"pool", "regir", "bvh", "auto", NULL};
 static const char *const regir_source_names[] = {"power", "bvh", NULL};
 
 static const struct param_def di_rows[] = {
@@ -21,8 +21,9 @@ static const struct param_def di_rows[] = {
      "2020 Alg. 5), so reuse carries visible samples (with di.visibility_mis=rays shading then needs no "
      "shadow ray)",
      NULL},
-    {"di.initial", P_NAMES, D(initial), 0, 0, "pool", NULL,
-     "where initial RIS draws its light candidates: pool (a frame's shared draws by power) or regir (a "
+    {"di.initial", P_NAMES, D(initial), 0, 0, "auto", NULL,
+     "where initial RIS draws its light candidates: auto (regir where the scene has emitters, else pool; chosen "
+     "by measurement, docs/BENCHMARKS.md), pool (a frame's shared draws by power), regir (a "
      "world-space grid of light reservoirs over the visible points, each cell's slots resampled toward the "
      "lights that matter there; Boksansky et al. 2021, unbiased by GRIS; needs emitters) or bvh (each pixel's own "
      "draws down the light BVH at its point, as pt chooses emitters: no grid, a tree descent per candidate)",
@@ -60,7 +61,7 @@ static int di_validate(const struct render_params *p, const void *block, char *m
         snprintf(msg, RESTIR_MSG_LEN, "di.light_candidates + di.bsdf_candidates must be at least 1");
         return -1;
     }
-    if (d->initial == DI_INITIAL_REGIR) {
+    if (d->initial == DI_INITIAL_REGIR || d->initial == DI_INITIAL_AUTO) {
         const double grid = (double)d->regir_grid * d->regir_grid * d->regir_grid;
         const double pixels = (double)p->width * p->height;
         const double bytes = (grid < pixels ? grid : pixels) * (d->regir_slots + d->light_candidates) * 60.0;

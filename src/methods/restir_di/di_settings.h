@@ -13,7 +13,12 @@ enum di_visibility_mis { DI_VIS_MIS_RAYS = 0, DI_VIS_MIS_NONE };
 /* Where initial RIS takes its light candidates: the frame's power-sampled pool (light_pool.h), the
  * slots of ReGIR's grid cell that holds the pixel's point (regir.h), or the pixel's own draws down
  * the light BVH at its point (pt's emitter choice; no sharing, no grid). */
-enum di_initial { DI_INITIAL_POOL = 0, DI_INITIAL_REGIR, DI_INITIAL_BVH };
+enum di_initial { DI_INITIAL_POOL = 0, DI_INITIAL_REGIR, DI_INITIAL_BVH, DI_INITIAL_AUTO };
+/* auto: regir where the scene has emitters (ReGIR's cells hold emitter samples), else pool. */
+static inline int di_initial_uses_regir(enum di_initial initial, int num_emitters)
+{
+    return initial == DI_INITIAL_REGIR || (initial == DI_INITIAL_AUTO && num_emitters > 0);
+}
 /* Where ReGIR's cells draw the candidates of their slots: by power from the scene's alias table, or
  * from a cut through the light BVH at the cell's centre (light_cut.h) mixed with power
  * (REGIR_POWER_SHARE, regir.c). */

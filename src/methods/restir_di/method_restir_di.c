@@ -34,7 +34,7 @@ static void *restir_di_create(const struct renderer *r)
     d->hist[0] = xcalloc(n, sizeof(struct di_reservoir));
     d->hist[1] = xcalloc(n, sizeof(struct di_reservoir));
     const struct di_settings *ds = di_settings_of(p);
-    if (ds->initial == DI_INITIAL_REGIR) {
+    if (di_initial_uses_regir(ds->initial, r->scene->num_emitters)) {
         d->regir = xmalloc(sizeof(*d->regir));
         regir_init(d->regir, r->scene, ds);
     } else {

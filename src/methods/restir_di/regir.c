@@ -35,6 +35,8 @@ void regir_fini(struct regir_grid *r)
     light_pool_fini(&r->store);
     light_cut_order_fini(&r->order);
     free(r->cuts);
+    free(r->block_first);
+    free(r->block_slots);
     free(r->block);
     free(r->cells);
     memset(r, 0, sizeof(*r));
@@ -99,13 +101,30 @@ void regir_build(struct regir_grid *r, const struct gbuffer *g, const struct di_
         if (r->n_blocks == r->cells_cap) {
             r->cells_cap = r->cells_cap ? 2 * r->cells_cap : 256;
             r->cells = xrealloc(r->cells, sizeof(int) * (size_t)r->cells_cap);
+            r->block_first = xrealloc(r->block_first, sizeof(int) * (size_t)r->cells_cap);
+            r->block_slots = xrealloc(r->block_slots, sizeof(int) * (size_t)r->cells_cap);
             if (r->order.n > 0) /* di.regir_source=bvh: a cut per block */
                 r->cuts = xrealloc(r->cuts, sizeof(struct light_cut) * (size_t)r->cells_cap);
         }
         r->cells[r->n_blocks] = c;
+        r->block_slots[r->n_blocks] = 0;
         r->block[c] = r->n_blocks++;
     }
-    light_pool_reserve(&r->store, r->n_blocks * (r->slots + r->window), 1);
+    /* slots per block: the windows of its pixels, at most di.regir_slots, at least 1 */
+    for (int i = 0; i < n; i++) {
+        const struct shading_point *sp = gbuffer_shading(g, i);
+        if (sp->valid) {
+            int *slots = &r->block_slots[r->block[grid_index(r, sp->p)]];
+            *slots = *slots + r->window < r->slots ? *slots + r->window : r->slots;
+        }
+    }
+    int entries = 0;
+    for (int b = 0; b < r->n_blocks; b++) {
+        r->block_slots[b] = r->block_slots[b] > 0 ? r->block_slots[b] : 1;
+        r->block_first[b] = entries;
+        entries += r->block_slots[b] + r->window;
+    }
+    light_pool_reserve(&r->store, entries, 1);
     r->store.window = r->window;
 }
 
@@ -224,7 +243,6 @@ void regir_fill(struct regir_grid *r, const struct scene *s, const struct di_set
     if (s->num_emitters < 1) /* refused by the method's check; nothing to sample */
         return;
     const uint64_t stream = rng_stream_id(REGIR_STREAM);
-    const int stride = r->slots + r->window;
     struct light_pool *st = &r->store;
 #pragma omp parallel for schedule(static)
     for (int b = 0; b < r->n_blocks; b++) {
@@ -232,12 +250,12 @@ void regir_fill(struct regir_grid *r, const struct scene *s, const struct di_set
         const struct cell_view v = cell_view_of(r, r->cells[b]);
         if (ds->regir_source == REGIR_SOURCE_BVH)
             light_cut_build(&r->cuts[b], &s->light_bvh, &r->order, v.centre);
-        const int first = b * stride;
-        for (int k = 0; k < r->slots; k++)
+        const int first = r->block_first[b], slots = r->block_slots[b];
+        for (int k = 0; k < slots; k++)
             fill_slot(r, b, first + k, s, ds, &v, &rng);
         /* the tail repeats the head (slot k mod slots), so a window that starts late reads on */
-        for (int k = r->slots; k < stride; k++) {
-            const int from = first + k % r->slots, to = first + k;
+        for (int k = slots; k < slots + r->window; k++) {
+            const int from = first + k % slots, to = first + k;
             st->tri[to] = st->tri[from];
             float *f[] = {st->b1, st->b2, st->px, st->py, st->pz, st->nx, st->ny, st->nz,
                           st->Lr, st->Lg, st->Lb, st->pdf, st->at_point, st->W};

@@ -2,7 +2,7 @@
  * (di.initial=regir; Boksansky, Jukarainen and Wyman 2021, "Rendering many lights with grid-based
  * reservoirs", Ray Tracing Gems II ch. 23, in the form RTXDI gives it). Each frame a uniform grid
  * is laid over the bounding box of the G-buffer's shading points; every cell some pixel's point
- * falls in gets di.regir_slots slots, and each slot is an independent RIS reservoir over
+ * falls in gets di.regir_slots slots (fewer when few pixels see it), and each slot is an independent RIS reservoir over
  * di.regir_candidates emitters drawn from a source (power, or a cut through the light BVH at the
  * cell's centre, light_cut.h, mixed with power), resampled toward the cell's target
  *   p_c(y) = lum(Le_e) min(A_e / dbar^2, 2 pi) / A_e      (y a point of emitter e, area measure)
@@ -46,9 +46,13 @@ struct regir_grid {
     int *cells;       /* per slot block: its grid cell */
     int n_blocks;     /* occupied cells this frame */
     int cells_cap;
-    int slots;        /* slots per cell (di.regir_slots) */
-    int window;       /* the pixel's candidates (di.light_candidates): a block is slots + window long,
-                         the tail repeating its first slots so that no window wraps */
+    int slots;        /* slots per cell at most (di.regir_slots) */
+    int window;       /* the pixel's candidates (di.light_candidates) */
+    int *block_first; /* per block: its first store entry */
+    int *block_slots; /* per block: its slots, min(di.regir_slots, window x the cell's pixels): a cell
+                         seen by few pixels needs no more distinct slots than their windows take. The
+                         block is block_slots + window entries long, the tail repeating its first
+                         slots so that no window wraps */
     struct light_pool store; /* the slots, block after block, with W */
     struct light_cut_order order; /* di.regir_source=bvh: the scene's emitters in tree order (n = 0: power) */
     struct light_cut *cuts;       /* and per block the cut through the tree at its cell's centre */
@@ -70,9 +74,10 @@ int regir_block_of(const struct regir_grid *r, vec3 p);
 /* The first store entry of a pixel's window in block b, for a uniform u in [0, 1). */
 static inline int regir_window_first(const struct regir_grid *r, int b, float u)
 {
-    int o = (int)(u * (float)r->slots);
-    o = o < r->slots ? o : r->slots - 1;
-    return b * (r->slots + r->window) + o;
+    const int slots = r->block_slots[b];
+    int o = (int)(u * (float)slots);
+    o = o < slots ? o : slots - 1;
+    return r->block_first[b] + o;
 }
 /* p_c of emitter e for block b's cell times the emitter's area (regir.h's target, per emitter): 0
  * exactly where the cell's slots can never hold a point of e. For tests and diagnostics. */
