@@ -495,6 +495,43 @@ static void section_spmis(struct bench_run *r)
     bench_spmis(&r->so);
 }
 
+/* `restir_bench frame-ratio SCENE METHOD[,METHOD...] [--res WxH] [--frames N]`: only the per-pass
+ * table (with Frame / Embree-only) of the methods named, on one scene, without the equal-time
+ * references the sections add: the number issue 57 tracks, cheap enough to take before and after
+ * a change. */
+static int bench_frame_ratio(int argc, char **argv)
+{
+    struct bench_config c = {NULL, 640, 360, 17, 0, 0};
+    const struct method *methods[BENCH_MAX_METHODS];
+    int n = 0;
+    char names[256];
+    if (argc < 3 || snprintf(names, sizeof(names), "%s", argv[2]) >= (int)sizeof(names))
+        goto usage;
+    c.scene = argv[1];
+    for (char *tok = strtok(names, ","); tok; tok = strtok(NULL, ",")) {
+        if (n == BENCH_MAX_METHODS || !(methods[n] = method_named(tok)))
+            goto usage;
+        n++;
+    }
+    for (int i = 3; i < argc; i++) {
+        if (!strcmp(argv[i], "--res") && i + 1 < argc && sscanf(argv[i + 1], "%dx%d", &c.width, &c.height) == 2 &&
+            c.width > 0 && c.height > 0)
+            i++;
+        else if (!strcmp(argv[i], "--frames") && i + 1 < argc && sscanf(argv[i + 1], "%d", &c.frames) == 1 &&
+                 c.frames >= 2)
+            i++;
+        else
+            goto usage;
+    }
+    if (n == 0)
+        goto usage;
+    bench_passes(&c, methods, n);
+    return 0;
+usage:
+    fprintf(stderr, "usage: restir_bench frame-ratio SCENE METHOD[,METHOD...] [--res WxH] [--frames N>=2]\n");
+    return 2;
+}
+
 /* The sections of the default run, in the order they run: `restir_bench NAME...` runs those named,
  * none named runs them all (BENCH_QUICK: those marked quick, then restir-pt's rows on ajar). */
 static const struct bench_section {
@@ -528,6 +565,8 @@ static const struct bench_command {
     {"streams", bench_streams, "[--res WxH] [--rounds N]", "the batched passes with rays.streams on against off"},
     {"gradient", bench_gradient, "[--res WxH] [--frames N] [--ref-spp N] [--scenes a,b,c] [--quick]",
      "002 Sec. 5 on our scenes (restir_bench gradient --help: all its options)"},
+    {"frame-ratio", bench_frame_ratio, "SCENE METHOD[,METHOD...] [--res WxH] [--frames N]",
+     "per-pass ms and Frame / Embree-only of the methods named, nothing else"},
     {"denoise", bench_denoise,
      "[--scene S] [--method M] [--res WxH] [--frames N>=3] [--threads T] [--camera static|path] "
      "[--isa baseline|avx2|avx512] [--set key=value]...",
