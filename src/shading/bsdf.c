@@ -81,22 +81,6 @@ vec3 bsdf_shading_normal(vec3 ns, vec3 ng, vec3 wo)
     return len2 > 0.0f && isfinite(len2) ? v3_scale(n, 1.0f / sqrtf(len2)) : ng;
 }
 
-vec3 bsdf_eval(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi)
-{
-    struct bsdf_frame bf;
-    bsdf_frame_init(&bf, b, n, wo);
-    return bsdf_frame_eval(&bf, wi, NULL);
-}
-
-float bsdf_pdf(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi)
-{
-    struct bsdf_frame bf;
-    float p;
-    bsdf_frame_init(&bf, b, n, wo);
-    bsdf_frame_eval(&bf, wi, &p);
-    return p;
-}
-
 /* Heitz 2018, "Sampling the GGX Distribution of Visible Normals", listing 1: stretch wo to the
  * alpha = 1 configuration, sample the projected hemisphere (a disk whose far half is squashed
  * by the view angle), lift to the hemisphere and unstretch. Returns a unit microfacet normal
@@ -129,15 +113,11 @@ static vec3 sample_local(const struct bsdf *b, vec3 lo, float u0, float u1, floa
     return warp_cosine_hemisphere(u1, u2);
 }
 
-int bsdf_sample(const struct bsdf *b, vec3 n, vec3 wo, float u0, float u1, float u2, vec3 *wi,
-                float *pdf, vec3 *f)
-{
-    struct bsdf_frame bf;
-    bsdf_frame_init(&bf, b, n, wo);
-    return bsdf_frame_sample(&bf, u0, u1, u2, wi, pdf, f);
-}
-
-void bsdf_frame_init(struct bsdf_frame *bf, const struct bsdf *b, vec3 n, vec3 wo)
+/* The frame's body, inlined into bsdf_eval, bsdf_pdf and bsdf_sample as well as bsdf_frame_init:
+ * a one-shot evaluation then keeps the frame in registers and drops the terms it does not read
+ * (the pdf's when only f is asked for), with the same operations in the same order, so the same
+ * bits as through bsdf_frame_init and bsdf_frame_eval. */
+SIMD_INLINE void frame_init(struct bsdf_frame *bf, const struct bsdf *b, vec3 n, vec3 wo)
 {
     bf->b = *b;
     bf->fr = frame_from_normal(n);
@@ -178,7 +158,7 @@ void bsdf_frame_init(struct bsdf_frame *bf, const struct bsdf *b, vec3 n, vec3 w
  * D_vis(h) = G1(wo) max(0, wo.h) D(h) / cos_o (Heitz 2018, "Sampling the GGX Distribution of
  * Visible Normals", eq. 2) and 1 / (4 wo.h) is the reflection Jacobian (Walter et al. 2007,
  * eq. 14). The wo.h factors cancel, leaving G1(wo) D(h) / (4 cos_o). */
-vec3 bsdf_frame_eval(const struct bsdf_frame *bf, vec3 wi, float *pdf)
+SIMD_INLINE vec3 frame_eval(const struct bsdf_frame *bf, vec3 wi, float *pdf)
 {
     const struct bsdf *b = &bf->b;
     vec3 li = frame_to_local(&bf->fr, wi);
@@ -225,7 +205,13 @@ vec3 bsdf_frame_eval(const struct bsdf_frame *bf, vec3 wi, float *pdf)
     return f;
 }
 
-int bsdf_frame_sample(const struct bsdf_frame *bf, float u0, float u1, float u2, vec3 *wi, float *pdf, vec3 *f)
+void bsdf_frame_init(struct bsdf_frame *bf, const struct bsdf *b, vec3 n, vec3 wo) { frame_init(bf, b, n, wo); }
+
+vec3 bsdf_frame_eval(const struct bsdf_frame *bf, vec3 wi, float *pdf) { return frame_eval(bf, wi, pdf); }
+
+/* bsdf_frame_sample's body (inlined into bsdf_sample too): the direction from sample_local, its
+ * f and pdf from frame_eval. */
+SIMD_INLINE int frame_sample(const struct bsdf_frame *bf, float u0, float u1, float u2, vec3 *wi, float *pdf, vec3 *f)
 {
     if (!bf->valid)
         return 0;
@@ -238,13 +224,42 @@ int bsdf_frame_sample(const struct bsdf_frame *bf, float u0, float u1, float u2,
      * rounding of a frame round trip visibly changes the pdf. */
     vec3 w = v3_normalize(frame_to_world(&bf->fr, li));
     float p;
-    vec3 fw = bsdf_frame_eval(bf, w, &p);
+    vec3 fw = frame_eval(bf, w, &p);
     if (!(p > 0.0f) || !isfinite(p))
         return 0;
     *wi = w;
     *pdf = p;
     *f = fw;
     return 1;
+}
+
+int bsdf_frame_sample(const struct bsdf_frame *bf, float u0, float u1, float u2, vec3 *wi, float *pdf, vec3 *f)
+{
+    return frame_sample(bf, u0, u1, u2, wi, pdf, f);
+}
+
+vec3 bsdf_eval(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi)
+{
+    struct bsdf_frame bf;
+    frame_init(&bf, b, n, wo);
+    return frame_eval(&bf, wi, NULL);
+}
+
+float bsdf_pdf(const struct bsdf *b, vec3 n, vec3 wo, vec3 wi)
+{
+    struct bsdf_frame bf;
+    float p;
+    frame_init(&bf, b, n, wo);
+    frame_eval(&bf, wi, &p);
+    return p;
+}
+
+int bsdf_sample(const struct bsdf *b, vec3 n, vec3 wo, float u0, float u1, float u2, vec3 *wi,
+                float *pdf, vec3 *f)
+{
+    struct bsdf_frame bf;
+    frame_init(&bf, b, n, wo);
+    return frame_sample(&bf, u0, u1, u2, wi, pdf, f);
 }
 
 SIMD_INLINE void eval_batch_body(const struct bsdf_frame *bf, int n, const float *restrict wx,
