@@ -375,37 +375,3 @@ void scene_occluded_batch(const struct scene *s, const struct ray_query *q, int 
         scene_rt_occluded_stream(s->rt->scene, q + first, m, 0, occluded + first);
     }
 }
-
-/* Offset scale for self-intersection: relative to the coordinates' magnitude, so it tracks float
- * precision whatever the scene's size. */
-static float ray_epsilon(vec3 p)
-{
-    return 1e-4f * (1.0f + max_f(fabsf(p.x), max_f(fabsf(p.y), fabsf(p.z)))); /* not fmaxf: a libm call */
-}
-
-vec3 scene_offset_point(vec3 p, vec3 n, vec3 toward)
-{
-    float e = ray_epsilon(p);
-    return v3_madd(p, n, v3_dot(n, toward) >= 0.0f ? e : -e);
-}
-
-int scene_visibility_query(vec3 p0, vec3 n0, vec3 p1, vec3 n1, struct ray_query *q)
-{
-    vec3 d = v3_sub(p1, p0);
-    vec3 o = scene_offset_point(p0, n0, d);
-    vec3 e = scene_offset_point(p1, n1, v3_neg(d));
-    vec3 od = v3_sub(e, o);
-    float dist = v3_length(od);
-    if (!(dist > 0.0f))
-        return 0;
-    *q = (struct ray_query){o, v3_scale(od, 1.0f / dist), 0.0f, dist * (1.0f - 1e-4f)};
-    return 1;
-}
-
-int scene_visible(const struct scene *s, vec3 p0, vec3 n0, vec3 p1, vec3 n1)
-{
-    struct ray_query q;
-    if (!scene_visibility_query(p0, n0, p1, n1, &q))
-        return 1;
-    return !scene_occluded(s, q.o, q.d, q.tmin, q.tmax);
-}
