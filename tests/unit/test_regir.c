@@ -118,7 +118,7 @@ static void check_cut(const char *scene_name, vec3 c)
     long *count = calloc((size_t)s.num_emitters, sizeof(long)), nulls = 0;
     pcg32 rng = rng_for(7, 0, 0, 1);
     for (long k = 0; k < draws; k++) {
-        const int e = light_cut_sample(&cut, &o, pcg32_float(&rng), pcg32_float(&rng));
+        const int e = light_cut_sample(&cut, &o, (double)pcg32_next(&rng) * 0x1.0p-32, pcg32_float(&rng));
         if (e < 0)
             nulls++;
         else

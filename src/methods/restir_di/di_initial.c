@@ -84,7 +84,8 @@ SIMD_INLINE void light_batch_fill_body(const struct light_pool *lp, int first, c
             float target = lb->geo[k] * (0.2126f * Lr[k] * lb->fr[k] + 0.7152f * Lg[k] * lb->fg[k] +
                                          0.0722f * Lb[k] * lb->fb[k]);
             float denom = fnl * pdf_light[k] + fnb * lb->pdf[k] * lb->to_area[k];
-            lb->w[k] = target > 0.0f ? target * W[k] * pdf_light[k] / denom : 0.0f;
+            /* W q first: W can be large where q is small (a slot of a rarely drawn light) */
+            lb->w[k] = target > 0.0f && W[k] > 0.0f ? target * (W[k] * pdf_light[k]) / denom : 0.0f;
         }
         return;
     }
@@ -181,7 +182,8 @@ static struct light_pool pixel_batch_view(struct pixel_batch *pb)
 
 /* Draws n candidates into view: with an environment, a direction from its sampler with probability
  * env_prob, else an emitter down the tree (a null candidate where the descent finds none, so that
- * every emitter's probability is exactly light_tree_pmf's) and a point uniform on it. */
+ * an emitter's probability is light_tree_pmf's, to the resolution one 24-bit uniform gives the
+ * whole descent, as in pt) and a point uniform on it. */
 static void pixel_batch_draw(struct light_pool *view, const struct scene *s, const struct shading_point *sp, int n,
                              pcg32 *rng)
 {

@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "core/check.h"
+#include "methods/restir_di/light_cut.h"
 
 #define D(field) offsetof(struct di_settings, field)
 
@@ -51,7 +52,8 @@ _Static_assert(sizeof(enum di_visibility_mis) == sizeof(int), "enum size");
 _Static_assert(sizeof(enum di_initial) == sizeof(int) && sizeof(enum regir_source) == sizeof(int), "enum size");
 
 /* ReGIR's store at most: one block per occupied cell (no more cells than pixels), each slots +
- * window entries of 14 floats and an int (regir.h). */
+ * window entries of 14 floats and an int (regir.h), and with di.regir_source=bvh a light cut of
+ * 772 bytes (light_cut.h). */
 #define REGIR_MAX_BYTES (4.0 * 1024.0 * 1024.0 * 1024.0)
 
 static int di_validate(const struct render_params *p, const void *block, char *msg)
@@ -64,7 +66,8 @@ static int di_validate(const struct render_params *p, const void *block, char *m
     if (d->initial == DI_INITIAL_REGIR || d->initial == DI_INITIAL_AUTO) {
         const double grid = (double)d->regir_grid * d->regir_grid * d->regir_grid;
         const double pixels = (double)p->width * p->height;
-        const double bytes = (grid < pixels ? grid : pixels) * (d->regir_slots + d->light_candidates) * 60.0;
+        const double cut = d->regir_source == REGIR_SOURCE_BVH ? (double)sizeof(struct light_cut) : 0.0;
+        const double bytes = (grid < pixels ? grid : pixels) * ((d->regir_slots + d->light_candidates) * 60.0 + cut);
         if (bytes > REGIR_MAX_BYTES) {
             snprintf(msg, RESTIR_MSG_LEN,
                      "di.regir_grid=%d with di.regir_slots=%d (+ di.light_candidates=%d) could need %.1f GiB of light "

@@ -14,10 +14,12 @@ enum di_visibility_mis { DI_VIS_MIS_RAYS = 0, DI_VIS_MIS_NONE };
  * slots of ReGIR's grid cell that holds the pixel's point (regir.h), or the pixel's own draws down
  * the light BVH at its point (pt's emitter choice; no sharing, no grid). */
 enum di_initial { DI_INITIAL_POOL = 0, DI_INITIAL_REGIR, DI_INITIAL_BVH, DI_INITIAL_AUTO };
-/* auto: regir where the scene has emitters (ReGIR's cells hold emitter samples), else pool. */
+/* Whether a renderer builds ReGIR's grid: for regir and auto where the scene has emitters (the cells
+ * hold emitter samples); auto uses the pool elsewhere, and an explicit regir without emitters is
+ * refused by the method's check (a renderer made without it falls back to the pool too). */
 static inline int di_initial_uses_regir(enum di_initial initial, int num_emitters)
 {
-    return initial == DI_INITIAL_REGIR || (initial == DI_INITIAL_AUTO && num_emitters > 0);
+    return num_emitters > 0 && (initial == DI_INITIAL_REGIR || initial == DI_INITIAL_AUTO);
 }
 /* Where ReGIR's cells draw the candidates of their slots: by power from the scene's alias table, or
  * from a cut through the light BVH at the cell's centre (light_cut.h) mixed with power

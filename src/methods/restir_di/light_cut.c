@@ -88,10 +88,10 @@ void light_cut_build(struct light_cut *cut, const struct light_bvh *t, const str
     }
 }
 
-int light_cut_sample(const struct light_cut *cut, const struct light_cut_order *o, float u_node, float u_emitter)
+int light_cut_sample(const struct light_cut *cut, const struct light_cut_order *o, double u_node, float u_emitter)
 {
     int j = -1, last = -1;
-    float acc = 0.0f;
+    double acc = 0.0; /* in double: a small node's share is not lost against the running sum */
     for (int i = 0; i < cut->nodes && j < 0; i++) {
         acc += cut->prob[i];
         last = cut->prob[i] > 0.0f ? i : last;

@@ -5,7 +5,9 @@
  * emitter inside it proportional to its power. Both steps are tables, so drawing and looking up
  * the probability of an emitter cost a scan of the cut and a binary search, where a descent of the
  * tree costs two importance evaluations per level (17 levels for 100k emitters); the probability
- * is exact, P(e) = P(node of e) power(e) / power(node), the same number for drawing and lookup.
+ * is P(e) = P(node of e) power(e) / power(node), the same number for drawing and lookup, and the
+ * frequency of the draws up to the resolution of their uniforms (2^-32 for the node, summed in
+ * double; 2^-24 of the node's power for the emitter).
  * Light-cut style selection after Walter et al. 2005; the importance is Conty Estevez and Kulla
  * 2018's (light_tree.h). Must never trace rays. */
 #ifndef RESTIR_METHODS_RESTIR_DI_LIGHT_CUT_H
@@ -38,7 +40,7 @@ void light_cut_order_fini(struct light_cut_order *o);
 /* The cut of tree t for the region around centre c. */
 void light_cut_build(struct light_cut *cut, const struct light_bvh *t, const struct light_cut_order *o, vec3 c);
 /* An emitter by the cut from two uniforms in [0, 1); -1 when the cut gives no node any probability. */
-int light_cut_sample(const struct light_cut *cut, const struct light_cut_order *o, float u_node, float u_emitter);
+int light_cut_sample(const struct light_cut *cut, const struct light_cut_order *o, double u_node, float u_emitter);
 /* The probability that light_cut_sample returns emitter e. */
 float light_cut_pmf(const struct light_cut *cut, const struct light_cut_order *o, int e);
 

@@ -75,7 +75,7 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
         if (d->regir) {
             regir_build(d->regir, g, di_settings_of(p));
             regir_fill(d->regir, s, di_settings_of(p), p->seed, frame);
-        } else {
+        } else if (di_settings_of(p)->initial != DI_INITIAL_BVH) { /* bvh: each pixel draws its own */
             light_pool_fill(&d->lights, s, p->seed, frame);
         }
         st->rays += di_initial_pass(s, &d->lights, d->regir, p, frame, g, d->work);

@@ -15,8 +15,9 @@
 
 /* With di.regir_source=bvh, the share of candidates drawn by power: the BVH's importance is taken
  * at the cell's centre, where a light facing away from the centre but toward another point of the
- * cell can have probability 0; the power share keeps every light's probability positive, so the
- * slots cover p_c's whole support. */
+ * cell can have probability 0; the power share keeps every light of positive power drawable (to
+ * the alias table's resolution of one 24-bit uniform, as everywhere lights are drawn by power), so
+ * the slots cover p_c's whole support. */
 #define REGIR_POWER_SHARE 0.25f
 
 void regir_init(struct regir_grid *r, const struct scene *s, const struct di_settings *ds)
@@ -186,14 +187,17 @@ static float source_pmf(const struct regir_grid *r, const struct scene *s, enum 
 static int source_draw(const struct regir_grid *r, const struct scene *s, enum regir_source src, int b, pcg32 *rng,
                        float *pmf)
 {
+    /* the branch by one uniform, the draw by fresh ones: a remapped uniform would leave the alias
+     * table fewer than its 24 bits (a share of 1/4 costs two), and coarser draws than pmf says */
     const float u = pcg32_float(rng);
     int e;
-    if (src == REGIR_SOURCE_POWER || u < REGIR_POWER_SHARE) {
-        const float v = src == REGIR_SOURCE_POWER ? u : min_f(u / REGIR_POWER_SHARE, 0x1.fffffep-1f);
-        e = alias_table_sample(&s->emitter_table, v);
+    if (src == REGIR_SOURCE_POWER) {
+        e = alias_table_sample(&s->emitter_table, u);
+    } else if (u < REGIR_POWER_SHARE) {
+        e = alias_table_sample(&s->emitter_table, pcg32_float(rng));
     } else {
-        const float v = min_f((u - REGIR_POWER_SHARE) / (1.0f - REGIR_POWER_SHARE), 0x1.fffffep-1f);
-        e = light_cut_sample(&r->cuts[b], &r->order, v, pcg32_float(rng));
+        const double u_node = (double)pcg32_next(rng) * 0x1.0p-32; /* 32 bits for the node */
+        e = light_cut_sample(&r->cuts[b], &r->order, u_node, pcg32_float(rng));
     }
     *pmf = e >= 0 ? source_pmf(r, s, src, b, e) : 0.0f;
     return e;
@@ -218,7 +222,7 @@ static void fill_slot(const struct regir_grid *r, int b, int i, const struct sce
         float pmf;
         const int e = source_draw(r, s, ds->regir_source, b, rng, &pmf);
         const float cw = e >= 0 && pmf > 0.0f ? cell_weight(s, &s->emitters[e], v) : 0.0f;
-        const float w = cw > 0.0f ? cw / pmf : 0.0f;
+        const float w = cw > 0.0f ? cw / pmf : 0.0f; /* pmf > 0 here; cw <= lum(Le) 2 pi */
         w_sum += w;
         if (w > 0.0f && pcg32_float(rng) * w_sum < w)
             chosen = e, chosen_weight = cw, chosen_pmf = pmf;

@@ -54,7 +54,7 @@ struct regir_grid {
                          block is block_slots + window entries long, the tail repeating its first
                          slots so that no window wraps */
     struct light_pool store; /* the slots, block after block, with W */
-    struct light_cut_order order; /* di.regir_source=bvh: the scene's emitters in tree order (n = 0: power) */
+    struct light_cut_order order; /* di.regir_source=bvh: the scene's emitters in tree order (else n = 0) */
     struct light_cut *cuts;       /* and per block the cut through the tree at its cell's centre */
 };
 
@@ -63,13 +63,15 @@ struct regir_grid {
 void regir_init(struct regir_grid *r, const struct scene *s, const struct di_settings *ds);
 void regir_fini(struct regir_grid *r);
 /* Lays this frame's grid over g's valid shading points (di.regir_grid cells along the longest axis of
- * their bounding box) and gives every occupied cell a slot block. Serial (a pass over the pixels and
- * one over the grid); grows the store when more cells are occupied than before. */
+ * their bounding box) and gives every occupied cell a slot block. Serial (three passes over the
+ * pixels: bounds, occupancy, slot counts; one over the grid); grows the store when more cells are
+ * occupied than before. */
 void regir_build(struct regir_grid *r, const struct gbuffer *g, const struct di_settings *ds);
 /* Fills every block's slots for this frame (seeded by seed, frame and block, whatever the thread
  * count). Threads: OpenMP over blocks. */
 void regir_fill(struct regir_grid *r, const struct scene *s, const struct di_settings *ds, uint64_t seed, int frame);
-/* The slot block of the cell that holds point p (one of this frame's shading points). */
+/* The slot block of the cell that holds point p, which must be one of the shading points the grid was
+ * built over (another point is clamped to a border cell, whose block may be -1 or not cover it). */
 int regir_block_of(const struct regir_grid *r, vec3 p);
 /* The first store entry of a pixel's window in block b, for a uniform u in [0, 1). */
 static inline int regir_window_first(const struct regir_grid *r, int b, float u)
