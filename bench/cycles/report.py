@@ -1,30 +1,38 @@
 #!/usr/bin/env python3
-"""report.py OUTDIR [--bench RESTIR_BENCH]: the tables of bench/cycles/run.sh from OUTDIR/runs.csv and the
-images it lists. With --bench, relMSE comes from our own `restir_bench error IMAGE REF` (the first one is
-checked against exrtool.py's, which reads the images for everything else).
+"""report.py OUTDIR: the tables of bench/cycles/run.sh, from OUTDIR/runs.csv and the images it lists.
 
-Per scene, renderer (ours: `pt` in each configuration run.sh ran, "default" being the binary's
-defaults; cycles: Blender Cycles) and sample count:
-- relMSE (src/metrics/metrics.c) against the renderer's own long reference and against the other's;
-- CPU seconds (user + sys of the process): one sample's cost is (T_L - T_1) / (L - 1) with L the
-  configuration's longest run (its reference, or its largest sample count), and the start-up
-  (Blender's launch and scene build; our scene load, BVH build and image writing) the 1-sample run's
-  time less one sample's cost; each run's own CPU time less the start-up is in the CSV too (cpu_s),
-  but at a few samples it is mostly the noise of the start-up, so times below are cost * spp;
-- our own per-pass wall time (restir's ms_pt, the sampling loop alone) and Cycles' render call's;
-- time to equal relMSE, ours / Cycles: at each Cycles point (relMSE e, time t), the time our
-  configuration needs for the same e, interpolated linearly in log relMSE - log time between our
-  points (outside them, relMSE * time held constant, as for any unbiased Monte Carlo estimator).
-Also whether the two references agree within their noise: relMSE between them against what their
-noise alone gives (each renderer's largest test run's relMSE scaled by spp / reference spp, summed),
-the ratio of their channel means, and per 16 x 16-pixel block the z-score of the difference of the
-block means (variances from the largest test runs' squared errors, scaled to the reference spp).
-Writes OUTDIR/cycles.csv, OUTDIR/cycles.md and OUTDIR/png/*.png.
+Noise from independent runs, not against a reference: each renderer (ours in each configuration
+run.sh ran; Cycles) renders every scene at every sample count once per seed. Per pixel and
+channel the variance of one run is the sample variance over the seeds (two seeds: 0.5 (a - b)^2,
+unbiased), and relVar = mean over pixels and channels of var / (m^2 + 1e-3), the relMSE a run
+would have against the exact image (src/metrics/metrics.c's weighting and epsilon). m, the same
+for every renderer and sample count of a scene, is the per-pixel mean of all its runs weighted by
+their sample counts, so all rows of a scene weigh pixels alike and a ratio of two relVar is a
+ratio of the same weighted variance.
+
+CPU time is user + sys of the run's process less the start-up: with T1 the mean CPU time of that
+renderer and configuration's 1-sample runs, a run of n samples and CPU time T costs
+(T - T1) n / (n - 1) (the start-up is T1 less one sample). Time to equal noise, ours / Cycles, at a
+sample count: (relVar_ours x CPU_ours) / (relVar_Cycles x CPU_Cycles), CPU the mean over the seeds
+(relVar x time is what an unbiased estimator keeps constant as it renders more; the ratio is the
+CPU time ours needs to reach Cycles' noise at that count, over Cycles'). Its 95% interval: the
+variance ratio by a bootstrap over 16 x 16-pixel blocks (both renderers' blocks resampled
+together), times the CPU time ratio with a normal error in log time whose spread is the
+run-to-run scatter of log CPU time between seeds, pooled per renderer over every scene and count.
+The verdict against the issue's target 0.8 says "below 0.8" or "above 0.8" only when the whole
+interval is, else "undecided".
+
+Do the two renderers compute the same image? Per scene and configuration of ours against Cycles:
+each renderer's mean over its runs (weighted by sample count), per 16 x 16 block the z-score of the
+difference of the block means of luminance (variance from the seeds' spread), the count of blocks
+beyond 4 standard errors, the mean of z^2 (about 1 when they agree) and the ratio of the image means.
+Writes OUTDIR/cycles.md, OUTDIR/cycles.csv and OUTDIR/png/*.png; prints cycles.md.
 """
+import array
 import csv
 import math
 import os
-import subprocess
+import random
 import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
@@ -33,6 +41,9 @@ import exrtool  # noqa: E402
 
 BLOCK = 16
 Z_FLAG = 4.0
+TARGET = 0.8
+BOOTSTRAP = 2000
+LUMA = (0.2126, 0.7152, 0.0722)
 
 
 def load_runs(out):
@@ -40,267 +51,344 @@ def load_runs(out):
         rows = list(csv.DictReader(f))
     for r in rows:
         r["spp"] = int(r["spp"])
+        r["seed"] = int(r["seed"])
         r["cpu"] = float(r["user_s"]) + float(r["sys_s"])
         r["wall"] = float(r["wall_s"])
-        r["inner"] = float(r["inner_s"]) if r["inner_s"] else float("nan")
     return rows
 
 
-_cache = {}
-_bench = {"path": None, "checked": False}
+def read_image(path):
+    img = exrtool.read_exr(path)
+    return img.width, img.height, array.array("d", img.rgb)
 
 
-def relmse(a_path, b_path):
-    """relMSE of image a against reference b: restir_bench error when given, else exrtool."""
-    if not _bench["path"]:
-        return exrtool.relmse(image(a_path), image(b_path))
-    line = subprocess.run([_bench["path"], "error", a_path, b_path], check=True, capture_output=True,
-                          text=True).stdout.split()
-    e = float(line[line.index("relMSE") + 1])
-    if not _bench["checked"]:
-        mine = exrtool.relmse(image(a_path), image(b_path))
-        if abs(mine - e) > 1e-5 * abs(e):
-            sys.exit(f"report.py: restir_bench says relMSE {e}, exrtool.py {mine} ({a_path} against {b_path})")
-        _bench["checked"] = True
-    return e
+def luminance(rgb):
+    n = len(rgb) // 3
+    r, g, b = LUMA
+    return array.array("d", (r * rgb[3 * i] + g * rgb[3 * i + 1] + b * rgb[3 * i + 2] for i in range(n)))
 
 
-def image(path):
-    if path not in _cache:
-        _cache[path] = exrtool.read_exr(path)
-    return _cache[path]
-
-
-def startup_and_cost(rows):
-    """(start-up CPU s, CPU s per sample) from a configuration's 1-sample run and its longest run."""
-    one = [r for r in rows if r["spp"] == 1 and r["kind"] == "test"]
-    longest = max(rows, key=lambda r: r["spp"])
-    if not one or longest["spp"] == 1:
-        return 0.0, float("nan")
-    cost = (longest["cpu"] - one[0]["cpu"]) / (longest["spp"] - 1)
-    if not cost > 0:  # runs too short to tell a sample's cost from the start-up's jitter
-        return one[0]["cpu"], float("nan")
-    return one[0]["cpu"] - cost, cost
-
-
-def time_at(points, e):
-    """Time to reach relMSE e along points [(e_i, t_i)], log-log interpolation, e*t constant outside."""
-    pts = sorted((p for p in points if p[0] > 0 and p[1] > 0), key=lambda p: -p[0])
-    if not pts:
-        return float("nan")
-    if e >= pts[0][0]:
-        return pts[0][0] * pts[0][1] / e
-    if e <= pts[-1][0]:
-        return pts[-1][0] * pts[-1][1] / e
-    for (e0, t0), (e1, t1) in zip(pts, pts[1:]):
-        if e1 <= e <= e0:
-            a = (math.log(e) - math.log(e0)) / (math.log(e1) - math.log(e0))
-            return math.exp(math.log(t0) + a * (math.log(t1) - math.log(t0)))
-    return float("nan")
-
-
-def block_z(ref_a, ref_b, var_a, var_b, w, h):
-    """Per block: (bx, by, z) of the difference of the luminance block means of two references."""
-    out = []
-    for by in range(0, h, BLOCK):
-        for bx in range(0, w, BLOCK):
-            sa = sb = va = vb = 0.0
-            n = 0
-            for y in range(by, min(h, by + BLOCK)):
-                for x in range(bx, min(w, bx + BLOCK)):
-                    i = y * w + x
-                    sa += ref_a[i]
-                    sb += ref_b[i]
-                    va += var_a[i]
-                    vb += var_b[i]
-                    n += 1
-            se = math.sqrt(va + vb) / n
-            out.append((bx, by, (sb - sa) / n / se if se > 0 else 0.0))
+def sample_variance(images):
+    """Per entry, the unbiased sample variance over the images (two: 0.5 (a - b)^2)."""
+    k = len(images)
+    if k == 2:
+        a, b = images
+        return array.array("d", (0.5 * (x - y) * (x - y) for x, y in zip(a, b)))
+    out = array.array("d", bytes(8 * len(images[0])))
+    for i, xs in enumerate(zip(*images)):
+        m = sum(xs) / k
+        out[i] = sum((x - m) * (x - m) for x in xs) / (k - 1)
     return out
 
 
-def luminance(img):
-    p = img.rgb
-    return [0.2126 * p[3 * i] + 0.7152 * p[3 * i + 1] + 0.0722 * p[3 * i + 2] for i in range(img.width * img.height)]
+def block_ids(w, h):
+    nbx = (w + BLOCK - 1) // BLOCK
+    return [(y // BLOCK) * nbx + x // BLOCK for y in range(h) for x in range(w)], nbx * ((h + BLOCK - 1) // BLOCK)
 
 
-def scaled_sq_err(test, ref, factor):
-    a, b = luminance(test), luminance(ref)
-    return [(x - y) ** 2 * factor for x, y in zip(a, b)]
+def percentile(sorted_xs, q):
+    pos = q * (len(sorted_xs) - 1)
+    lo = int(math.floor(pos))
+    hi = min(lo + 1, len(sorted_xs) - 1)
+    return sorted_xs[lo] + (pos - lo) * (sorted_xs[hi] - sorted_xs[lo])
 
 
-def exposure(img):
-    lum = sorted(luminance(img))
-    p = lum[int(0.97 * (len(lum) - 1))]
-    return 0.85 / p if p > 0 else 1.0
-
-
-def write_pngs(out, scene, ours_ref, cyc_ref, blocks, tests):
-    pdir = os.path.join(out, "png")
-    os.makedirs(pdir, exist_ok=True)
-    w, h = ours_ref.width, ours_ref.height
-    k = exposure(ours_ref)
-    exrtool.write_png(os.path.join(pdir, f"{scene}_ref_ours.png"), w, h, ours_ref.rgb, k)
-    exrtool.write_png(os.path.join(pdir, f"{scene}_ref_cycles.png"), w, h, cyc_ref.rgb, k)
-    # relative difference (Cycles - ours) / (ours + 0.05 * mean): red where Cycles is brighter, blue darker; x5
-    mean = sum(luminance(ours_ref)) / (w * h)
-    la, lb = luminance(ours_ref), luminance(cyc_ref)
-    diff = []
-    for a, b in zip(la, lb):
-        d = 5.0 * (b - a) / (a + 0.05 * mean)
-        diff += [max(d, 0.0), 0.0, max(-d, 0.0)]
-    exrtool.write_png(os.path.join(pdir, f"{scene}_diff_x5.png"), w, h, diff)
-    # block z-scores: red Cycles brighter, blue darker, full at |z| = 2 Z_FLAG
-    zimg = [0.0] * (3 * w * h)
-    for bx, by, z in blocks:
-        v = min(1.0, abs(z) / (2 * Z_FLAG))
-        c = (v, 0.0, 0.0) if z > 0 else (0.0, 0.0, v)
-        for y in range(by, min(h, by + BLOCK)):
-            for x in range(bx, min(w, bx + BLOCK)):
-                zimg[3 * (y * w + x):3 * (y * w + x) + 3] = c
-    exrtool.write_png(os.path.join(pdir, f"{scene}_blockz.png"), w, h, zimg)
-    for name, r in tests.items():
-        exrtool.write_png(os.path.join(pdir, f"{scene}_{name}_{r['spp']}.png"), w, h, image(r["exr"]).rgb, k)
-
-
-def fmt(x, digits=4):
-    if x != x:
+def fmt(x, digits=3):
+    if x is None or x != x:
         return "-"
     return f"{x:.{digits}g}"
 
 
-def scene_report(out, scene, sr):
-    """The rows of one scene, its line of the agreement table and its lines of the cost table."""
-    refs = {r["renderer"]: r for r in sr if r["kind"] == "ref"}
-    if "ours" not in refs or "cycles" not in refs:
-        print(f"report.py: {scene}: a reference is missing, skipped", file=sys.stderr)
-        return [], None, []
-    ref_img = {k: image(v["exr"]) for k, v in refs.items()}
-    configs = []
-    for r in sr:
-        if (r["renderer"], r["config"]) not in configs:
-            configs.append((r["renderer"], r["config"]))
-    table, costs, points, largest = [], [], {}, {}
-    for renderer, config in configs:
-        cr = [r for r in sr if (r["renderer"], r["config"]) == (renderer, config)]
-        start, cost = startup_and_cost(cr)
-        other = "cycles" if renderer == "ours" else "ours"
-        inner = [r["inner"] / r["spp"] for r in sorted(cr, key=lambda r: r["spp"]) if r["spp"] > 1]
-        label = "ours " + config if renderer == "ours" else "Cycles"
-        costs.append(f"| {scene} | {label} | {fmt(start, 3)} | {fmt(1e3 * cost, 4)} | "
-                     f"{fmt(1e3 * inner[-1], 4) if inner else '-'} |")
-        pts = []
-        for r in sorted((r for r in cr if r["kind"] == "test"), key=lambda r: r["spp"]):
-            e_own = relmse(r["exr"], refs[renderer]["exr"])
-            row = dict(scene=scene, renderer=renderer, config=config, spp=r["spp"], relmse_own=e_own,
-                       relmse_other=relmse(r["exr"], refs[other]["exr"]), cpu_s=r["cpu"] - start,
-                       cpu_s_model=cost * r["spp"], cpu_ms_per_spp=1e3 * cost,
-                       own_wall_ms_per_spp=1e3 * r["inner"] / r["spp"], wall_s=r["wall"],
-                       own_ref_spp=refs[renderer]["spp"], time_ratio_vs_cycles=float("nan"))
-            table.append(row)
-            pts.append((e_own, row["cpu_s_model"]))
-            if config == "default" and (renderer not in largest or r["spp"] > largest[renderer][0]["spp"]):
-                largest[renderer] = (r, e_own)
-        points[(renderer, config)] = pts
-    for row in table:
-        cyc = [x for x in table if x["renderer"] == "cycles" and x["spp"] == row["spp"]]
-        if row["renderer"] == "ours" and cyc:
-            t_ours = time_at(points[("ours", row["config"])], cyc[0]["relmse_own"])
-            row["time_ratio_vs_cycles"] = t_ours / cyc[0]["cpu_s_model"]
-    # do the references agree?
-    e_refs = relmse(refs["cycles"]["exr"], refs["ours"]["exr"])
-    expected, var = 0.0, {}
-    for renderer in ("ours", "cycles"):
-        r, e_own = largest[renderer]
-        expected += e_own * r["spp"] / refs[renderer]["spp"]
-        var[renderer] = scaled_sq_err(image(r["exr"]), ref_img[renderer], r["spp"] / refs[renderer]["spp"])
-    means_o, means_c = exrtool.channel_means(ref_img["ours"]), exrtool.channel_means(ref_img["cycles"])
-    ratio = " ".join(fmt(c / o, 4) if o > 0 else "-" for c, o in zip(means_c, means_o))
-    w, h = ref_img["ours"].width, ref_img["ours"].height
-    blocks = block_z(luminance(ref_img["ours"]), luminance(ref_img["cycles"]), var["ours"], var["cycles"], w, h)
-    flagged = [b for b in blocks if abs(b[2]) > Z_FLAG]
-    zmax = max(blocks, key=lambda b: abs(b[2]))
-    agree = (f"| {scene} | {refs['ours']['spp']} | {refs['cycles']['spp']} | {fmt(e_refs)} | {fmt(expected)} | "
-             f"{fmt(e_refs / expected, 3) if expected > 0 else '-'} | {ratio} | {len(flagged)} of {len(blocks)} | "
-             f"{zmax[2]:+.2f} at ({zmax[0]}, {zmax[1]}) |")
-    tests = {}
-    for renderer, config in configs:
-        cand = [r for r in sr if (r["renderer"], r["config"]) == (renderer, config) and r["kind"] == "test"
-                and r["spp"] <= 16]
-        if cand:
-            tests[f"{renderer}_{config}"] = max(cand, key=lambda r: r["spp"])
-    write_pngs(out, scene, ref_img["ours"], ref_img["cycles"], blocks, tests)
-    return table, agree, costs
+class Scene:
+    """One scene's groups (renderer, config, spp) -> runs, with relVar and block sums per group."""
+
+    def __init__(self, name, rows):
+        self.name = name
+        self.startup = {}
+        for key in {(r["renderer"], r["config"]) for r in rows if r["kind"] == "startup"}:
+            cpus = [r["cpu"] for r in rows if r["kind"] == "startup" and (r["renderer"], r["config"]) == key]
+            self.startup[key] = sum(cpus) / len(cpus)
+        self.groups = {}
+        for r in rows:
+            if r["kind"] == "test":
+                self.groups.setdefault((r["renderer"], r["config"], r["spp"]), []).append(r)
+        for runs in self.groups.values():
+            runs.sort(key=lambda r: r["seed"])
+        self.stats = {}
+        self.missing_startup = set()
+
+    def net_cpu(self, r):
+        t1 = self.startup.get((r["renderer"], r["config"]))
+        if t1 is None:
+            self.missing_startup.add((r["renderer"], r["config"]))
+            return r["cpu"]
+        return (r["cpu"] - t1) * r["spp"] / (r["spp"] - 1)
+
+    def measure(self):
+        """relVar, block sums and per-pixel luminance variance of every group with two or more seeds."""
+        images, size = {}, None
+        for runs in self.groups.values():
+            for r in runs:
+                w, h, rgb = read_image(r["exr"])
+                if size and (w, h) != size:
+                    sys.exit(f"report.py: {r['exr']} is {w}x{h}, other renders of {self.name} are {size[0]}x{size[1]}")
+                size = (w, h)
+                images[r["exr"]] = rgb
+        if not images:
+            return False
+        self.size = size
+        w, h = size
+        n3 = 3 * w * h
+        total = sum(r["spp"] for runs in self.groups.values() for r in runs)
+        den = array.array("d", bytes(8 * n3))
+        for runs in self.groups.values():
+            for r in runs:
+                f = r["spp"] / total
+                img = images[r["exr"]]
+                for i in range(n3):
+                    den[i] += f * img[i]
+        weight = array.array("d", (1.0 / (m * m + exrtool.RELMSE_EPS) for m in den))
+        bid, nblocks = block_ids(w, h)
+        self.lum = {}
+        for key, runs in self.groups.items():
+            imgs = [images[r["exr"]] for r in runs]
+            lums = [luminance(img) for img in imgs]
+            st = {"runs": runs, "cpu": [self.net_cpu(r) for r in runs], "lum_mean": None}
+            st["lum_mean"] = array.array("d", (sum(xs) / len(xs) for xs in zip(*lums)))
+            if len(runs) >= 2:
+                var = sample_variance(imgs)
+                blocks = [0.0] * nblocks
+                for p in range(w * h):
+                    blocks[bid[p]] += (var[3 * p] * weight[3 * p] + var[3 * p + 1] * weight[3 * p + 1]
+                                       + var[3 * p + 2] * weight[3 * p + 2])
+                st["blocks"] = blocks
+                st["relvar"] = sum(blocks) / n3
+                st["lum_var"] = sample_variance(lums)
+            self.stats[key] = st
+        return True
+
+
+def pooled_log_time_sd(scenes):
+    """Per renderer, the pooled sample standard deviation of log net CPU time between seeds."""
+    acc = {}
+    for sc in scenes:
+        for (renderer, _, _), st in sc.stats.items():
+            logs = [math.log(t) for t in st["cpu"] if t > 0]
+            if len(logs) < 2:
+                continue
+            m = sum(logs) / len(logs)
+            ss, dof = acc.get(renderer, (0.0, 0))
+            acc[renderer] = (ss + sum((x - m) ** 2 for x in logs), dof + len(logs) - 1)
+    return {k: (math.sqrt(ss / dof), dof) for k, (ss, dof) in acc.items() if dof > 0}
+
+
+def ratio_row(sc, config, spp, sd, rng):
+    o = sc.stats.get(("ours", config, spp))
+    c = sc.stats.get(("cycles", "default", spp))
+    if not o or not c or "relvar" not in o or "relvar" not in c:
+        return None
+    t_o = sum(o["cpu"]) / len(o["cpu"])
+    t_c = sum(c["cpu"]) / len(c["cpu"])
+    row = dict(scene=sc.name, config=config, spp=spp, cpu_ours=o["cpu"], cpu_cycles=c["cpu"],
+               relvar_ours=o["relvar"], relvar_cycles=c["relvar"], var_ratio=o["relvar"] / c["relvar"],
+               time_ratio=t_o / t_c if t_c > 0 else float("nan"))
+    row["ratio"] = row["var_ratio"] * row["time_ratio"]
+    se_t = math.sqrt(sd.get("ours", (0.0, 0))[0] ** 2 / len(o["cpu"]) + sd.get("cycles", (0.0, 0))[0] ** 2 / len(c["cpu"]))
+    row["se_log_time"] = se_t
+    if not row["time_ratio"] > 0:  # runs too short to tell their cost from the start-up's jitter
+        row.update(ratio=float("nan"), lo=float("nan"), hi=float("nan"), verdict="CPU time not measurable")
+        return row
+    bo, bc = o["blocks"], c["blocks"]
+    nb = len(bo)
+    log_t = math.log(row["time_ratio"])
+    draws = []
+    for _ in range(BOOTSTRAP):
+        pick = rng.choices(range(nb), k=nb)
+        so, sc_ = sum(bo[j] for j in pick), sum(bc[j] for j in pick)
+        if so > 0 and sc_ > 0:
+            draws.append(math.log(so / sc_) + log_t + rng.gauss(0.0, se_t))
+    draws.sort()
+    row["lo"], row["hi"] = math.exp(percentile(draws, 0.025)), math.exp(percentile(draws, 0.975))
+    if row["hi"] < TARGET:
+        row["verdict"] = f"below {TARGET}"
+    elif row["lo"] > TARGET:
+        row["verdict"] = f"above {TARGET}"
+    else:
+        row["verdict"] = "undecided"
+    return row
+
+
+def combined(sc, renderer, config):
+    """Sample-count-weighted mean luminance over a renderer's runs and its per-pixel variance."""
+    groups = [st for (r, cf, _), st in sc.stats.items() if (r, cf) == (renderer, config) and "lum_var" in st]
+    if not groups:
+        return None
+    total = sum(len(st["runs"]) * st["runs"][0]["spp"] for st in groups)
+    n = len(groups[0]["lum_mean"])
+    mean = array.array("d", bytes(8 * n))
+    var = array.array("d", bytes(8 * n))
+    for st in groups:
+        k, spp = len(st["runs"]), st["runs"][0]["spp"]
+        f = k * spp / total  # the group's mean weighs k * spp
+        g = k * (spp / total) ** 2  # variance of sum over its k runs of (spp / total) x_run
+        lm, lv = st["lum_mean"], st["lum_var"]
+        for i in range(n):
+            mean[i] += f * lm[i]
+            var[i] += g * lv[i]
+    spps = sorted({st["runs"][0]["spp"] for st in groups})
+    return mean, var, sum(len(st["runs"]) for st in groups), spps
+
+
+def agreement(sc, config):
+    o = combined(sc, "ours", config)
+    c = combined(sc, "cycles", "default")
+    if not o or not c:
+        return None
+    w, h = sc.size
+    bid, nblocks = block_ids(w, h)
+    n = w * h
+    sums = [[0.0, 0.0, 0.0, 0.0, 0] for _ in range(nblocks)]
+    for p in range(n):
+        s = sums[bid[p]]
+        s[0] += o[0][p]
+        s[1] += c[0][p]
+        s[2] += o[1][p]
+        s[3] += c[1][p]
+        s[4] += 1
+    zs = []
+    for b, (so, sc_, vo, vc, k) in enumerate(sums):
+        se = math.sqrt(vo + vc)
+        zs.append((b, (sc_ - so) / se if se > 0 else 0.0))
+    mo, mc = sum(o[0]) / n, sum(c[0]) / n
+    se_o, se_c = math.sqrt(sum(o[1])) / n, math.sqrt(sum(c[1])) / n
+    ratio = mc / mo if mo > 0 else float("nan")
+    se_ratio = ratio * math.sqrt((se_o / mo) ** 2 + (se_c / mc) ** 2) if mo > 0 and mc > 0 else float("nan")
+    zmax = max(zs, key=lambda t: abs(t[1]))
+    nbx = (w + BLOCK - 1) // BLOCK
+    return dict(scene=sc.name, config=config, runs_ours=o[2], runs_cycles=c[2], spp_ours=o[3], spp_cycles=c[3],
+                flagged=sum(1 for _, z in zs if abs(z) > Z_FLAG), blocks=nblocks,
+                mean_z2=sum(z * z for _, z in zs) / len(zs), zmax=zmax[1],
+                zmax_at=((zmax[0] % nbx) * BLOCK, (zmax[0] // nbx) * BLOCK), ratio=ratio, se_ratio=se_ratio,
+                z_image=(mc - mo) / math.sqrt(se_o ** 2 + se_c ** 2) if se_o + se_c > 0 else 0.0,
+                zs=zs, mean_ours=o[0], mean_cycles=c[0])
+
+
+def exposure(lum):
+    s = sorted(lum)
+    p = s[int(0.97 * (len(s) - 1))]
+    return 0.85 / p if p > 0 else 1.0
+
+
+def write_pngs(out, sc, ag):
+    pdir = os.path.join(out, "png")
+    os.makedirs(pdir, exist_ok=True)
+    w, h = sc.size
+    k = exposure(ag["mean_ours"])
+    grey = lambda lum: [v for x in lum for v in (x, x, x)]  # noqa: E731
+    tag = f"{sc.name}_{ag['config']}"
+    exrtool.write_png(os.path.join(pdir, f"{tag}_mean_ours.png"), w, h, grey(ag["mean_ours"]), k)
+    exrtool.write_png(os.path.join(pdir, f"{tag}_mean_cycles.png"), w, h, grey(ag["mean_cycles"]), k)
+    nbx = (w + BLOCK - 1) // BLOCK
+    img = [0.0] * (3 * w * h)
+    for b, z in ag["zs"]:  # red where Cycles is brighter, blue darker; full at |z| = 2 Z_FLAG
+        v = min(1.0, abs(z) / (2 * Z_FLAG))
+        col = (v, 0.0, 0.0) if z > 0 else (0.0, 0.0, v)
+        bx, by = (b % nbx) * BLOCK, (b // nbx) * BLOCK
+        for y in range(by, min(h, by + BLOCK)):
+            for x in range(bx, min(w, bx + BLOCK)):
+                img[3 * (y * w + x):3 * (y * w + x) + 3] = col
+    exrtool.write_png(os.path.join(pdir, f"{tag}_blockz.png"), w, h, img)
 
 
 def main():
-    args = sys.argv[1:]
-    if len(args) == 3 and args[1] == "--bench":
-        _bench["path"] = args.pop(2)
-        args.pop(1)
-    if len(args) != 1:
+    if len(sys.argv) != 2 or sys.argv[1].startswith("-"):
         sys.exit(__doc__)
-    out = args[0]
+    out = sys.argv[1]
     rows = load_runs(out)
     path = os.path.join(out, "settings.txt")
     settings = open(path).read().strip() if os.path.exists(path) else ""
-    scenes = []
+    names = []
     for r in rows:
-        if r["scene"] not in scenes:
-            scenes.append(r["scene"])
-    csv_rows = []
-    agree = ["| scene | ours ref spp | Cycles ref spp | relMSE, Cycles ref against ours | expected from noise | "
-             "ratio | mean R G B, Cycles / ours | 16x16 blocks with abs(z) > 4 | largest z (block corner) |",
-             "|---|---|---|---|---|---|---|---|---|"]
-    costs = ["| scene | renderer | start-up CPU s | CPU ms per sample | own wall ms per sample |",
-             "|---|---|---|---|---|"]
-    for scene in scenes:
-        table, line, cost_lines = scene_report(out, scene, [r for r in rows if r["scene"] == scene])
-        csv_rows += table
-        if line:
-            agree.append(line)
-            costs += cost_lines
-    ours_configs = []
-    for r in csv_rows:
-        if r["renderer"] == "ours" and r["config"] not in ours_configs:
-            ours_configs.append(r["config"])
-    head = ["scene", "spp"] + [f"relMSE ours {c} (own ref / Cycles ref)" for c in ours_configs]
-    head += ["relMSE Cycles (own / ours)"] + [f"time to equal relMSE, ours {c} / Cycles" for c in ours_configs]
-    main_table = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-    for scene in scenes:
-        sr = [r for r in csv_rows if r["scene"] == scene]
-        for spp in sorted({r["spp"] for r in sr}):
-            get = {(r["renderer"], r["config"]): r for r in sr if r["spp"] == spp}
-            cells = []
-            for key in [("ours", c) for c in ours_configs] + [("cycles", "default")]:
-                r = get.get(key)
-                cells.append(f"{fmt(r['relmse_own'])} / {fmt(r['relmse_other'])}" if r else "-")
-            for c in ours_configs:
-                r = get.get(("ours", c))
-                cells.append(fmt(r["time_ratio_vs_cycles"], 3) if r else "-")
-            main_table.append(f"| {scene} | {spp} | " + " | ".join(cells) + " |")
-    md = ["# pt against Blender Cycles", "", "```", settings, "```", "",
-          "## Error and time to equal error", "",
-          "relMSE (src/metrics) of one render against the renderer's own long reference and against the other "
-          "renderer's. Time to equal relMSE: our CPU time to reach Cycles' relMSE at that sample count (log-log "
-          "interpolation over our sample counts) over Cycles' CPU time; times are CPU ms per sample times spp, "
-          "start-up excluded; below 1, ours is faster.", ""] + main_table
-    md += ["", "## Do the references agree?", "",
-           "relMSE of Cycles' reference against ours, against what the two references' noise alone gives (each "
-           "renderer's largest test render's relMSE against its own reference, times its spp over the "
-           "reference's, summed); z-scores of the difference of 16 x 16-pixel block means of luminance, "
-           "negative where Cycles is darker.", ""] + agree
-    md += ["", "## Cost", "",
-           "CPU seconds are user + sys of the whole process. CPU ms per sample: (T(L) - T(1)) / (L - 1), L the "
-           "longest run of that configuration; start-up: T(1) less one sample. Own wall ms per sample: ours the "
-           "sampling pass (ms_pt), Cycles the render call, at the longest run.", ""] + costs
-    keys = ["scene", "renderer", "config", "spp", "relmse_own", "relmse_other", "cpu_s", "cpu_s_model",
-            "cpu_ms_per_spp", "own_wall_ms_per_spp", "wall_s", "own_ref_spp", "time_ratio_vs_cycles"]
+        if r["scene"] not in names:
+            names.append(r["scene"])
+    scenes = []
+    for name in names:
+        sc = Scene(name, [r for r in rows if r["scene"] == name])
+        if sc.measure():
+            scenes.append(sc)
+    configs = []
+    for r in rows:
+        if r["renderer"] == "ours" and r["config"] not in configs:
+            configs.append(r["config"])
+    sd = pooled_log_time_sd(scenes)
+    rng = random.Random(57)
+    ratios = []
+    for sc in scenes:
+        for spp in sorted({k[2] for k in sc.stats}):
+            for config in configs:
+                row = ratio_row(sc, config, spp, sd, rng)
+                if row:
+                    ratios.append(row)
+    md = ["# pt against Blender Cycles: time to equal noise", "", "```", settings, "```", "",
+          "relVar: the variance of one run (from the spread between seeds) relative to the scene's mean image, "
+          "averaged over pixels and channels. CPU s: user + sys of the run less the start-up, per seed. Ratio: "
+          "(relVar x CPU) ours / Cycles, the CPU time ours needs for Cycles' noise at that sample count over "
+          "Cycles'; below 1 ours is faster. 95% interval: block bootstrap of the variance ratio and the pooled "
+          "seed-to-seed scatter of CPU time "
+          + ", ".join(f"{k} {100 * v[0]:.1f}% ({v[1]} dof)" for k, v in sorted(sd.items())) + ".", ""]
+    for spp in sorted({r["spp"] for r in ratios}):
+        md += [f"## {spp} samples per pixel", "",
+               "| scene | ours config | CPU s ours (per seed) | CPU s Cycles (per seed) | relVar ours | relVar Cycles "
+               "| variance ratio | CPU ratio | time to equal noise, ours / Cycles | 95% interval | target 0.8 |",
+               "|---|---|---|---|---|---|---|---|---|---|---|"]
+        for r in (r for r in ratios if r["spp"] == spp):
+            md.append(f"| {r['scene']} | {r['config']} | {', '.join(fmt(t, 4) for t in r['cpu_ours'])} | "
+                      f"{', '.join(fmt(t, 4) for t in r['cpu_cycles'])} | {fmt(r['relvar_ours'], 4)} | "
+                      f"{fmt(r['relvar_cycles'], 4)} | {fmt(r['var_ratio'])} | {fmt(r['time_ratio'])} | "
+                      f"**{fmt(r['ratio'])}** | {fmt(r['lo'])} - {fmt(r['hi'])} | {r['verdict']} |")
+        md.append("")
+    md += ["## Do the renderers compute the same image?", "",
+           "Each renderer's mean over all its runs (weighted by sample count; `runs`, at the sample counts listed), "
+           f"z-scores of the difference of {BLOCK} x {BLOCK}-pixel block means of luminance (negative where Cycles "
+           "is darker; variance from the seeds' spread), the mean of z^2 (about 1 when they agree) and the ratio "
+           "of the image means of luminance, Cycles / ours, with its standard error and z.", "",
+           "| scene | ours config | runs ours / Cycles | spp | blocks abs(z) > 4 | mean z^2 | largest z (block corner) | "
+           "image mean, Cycles / ours | z |", "|---|---|---|---|---|---|---|---|---|"]
+    agree_rows = []
+    for sc in scenes:
+        for config in configs:
+            ag = agreement(sc, config)
+            if not ag:
+                continue
+            agree_rows.append(ag)
+            md.append(f"| {sc.name} | {config} | {ag['runs_ours']} / {ag['runs_cycles']} | "
+                      f"{' '.join(map(str, ag['spp_ours']))} | {ag['flagged']} of {ag['blocks']} | "
+                      f"{fmt(ag['mean_z2'])} | {ag['zmax']:+.2f} at {ag['zmax_at']} | "
+                      f"{ag['ratio']:.5f} +- {ag['se_ratio']:.5f} | {ag['z_image']:+.2f} |")
+            write_pngs(out, sc, ag)
+    md += ["", "## Start-up and cost per sample", "",
+           "Start-up: mean CPU s of the 1-sample runs (less one sample at the largest count's cost). CPU ms per "
+           "sample: net CPU / spp at the largest sample count, mean over seeds.", "",
+           "| scene | renderer | start-up CPU s | CPU ms per sample | at spp |", "|---|---|---|---|---|"]
+    for sc in scenes:
+        for key, t1 in sorted(sc.startup.items(), key=lambda kv: (kv[0][0] != "ours", kv[0][1])):
+            tests = [(spp, st) for (r, cf, spp), st in sc.stats.items() if (r, cf) == key]
+            if not tests:
+                continue
+            spp, st = max(tests, key=lambda t: t[0])
+            per = sum(st["cpu"]) / len(st["cpu"]) / spp
+            label = "Cycles" if key[0] == "cycles" else "ours " + key[1]
+            md.append(f"| {sc.name} | {label} | {fmt(t1 - per, 3)} | {fmt(1e3 * per, 4)} | {spp} |")
+        for key in sorted(sc.missing_startup):
+            md.append(f"| {sc.name} | {key[0]} {key[1]} | no 1-sample run: CPU times include the start-up | | |")
+    keys = ["scene", "config", "spp", "cpu_ours", "cpu_cycles", "relvar_ours", "relvar_cycles", "var_ratio",
+            "time_ratio", "ratio", "lo", "hi", "verdict", "se_log_time"]
     with open(os.path.join(out, "cycles.csv"), "w", newline="") as f:
         wr = csv.writer(f)
         wr.writerow(keys)
-        for r in csv_rows:
-            wr.writerow([f"{r[k]:.6g}" if isinstance(r[k], float) else r[k] for k in keys])
+        for r in ratios:
+            wr.writerow([" ".join(f"{t:.4f}" for t in r[k]) if isinstance(r[k], list)
+                         else f"{r[k]:.6g}" if isinstance(r[k], float) else r[k] for k in keys])
     with open(os.path.join(out, "cycles.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     print("\n".join(md))
