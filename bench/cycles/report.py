@@ -25,7 +25,9 @@ interval is, else "undecided".
 Do the two renderers compute the same image? Per scene and configuration of ours against Cycles:
 each renderer's mean over its runs (weighted by sample count), per 16 x 16 block the z-score of the
 difference of the block means of luminance (variance from the seeds' spread), the count of blocks
-beyond 4 standard errors, the mean of z^2 (about 1 when they agree) and the ratio of the image means.
+beyond 4 standard errors, the mean of z^2 (about 1 when they agree; lower where the noise is
+heavy-tailed, as each block's variance comes from the same runs as its difference) and the ratio
+of the image means.
 Writes OUTDIR/cycles.md, OUTDIR/cycles.csv and OUTDIR/png/*.png; prints cycles.md.
 """
 import array
@@ -350,7 +352,8 @@ def main():
     md += ["## Do the renderers compute the same image?", "",
            "Each renderer's mean over all its runs (weighted by sample count; `runs`, at the sample counts listed), "
            f"z-scores of the difference of {BLOCK} x {BLOCK}-pixel block means of luminance (negative where Cycles "
-           "is darker; variance from the seeds' spread), the mean of z^2 (about 1 when they agree) and the ratio "
+           "is darker; variance from the seeds' spread), the mean of z^2 (about 1 when they agree, less with "
+           "heavy-tailed noise) and the ratio "
            "of the image means of luminance, Cycles / ours, with its standard error and z.", "",
            "| scene | ours config | runs ours / Cycles | spp | blocks abs(z) > 4 | mean z^2 | largest z (block corner) | "
            "image mean, Cycles / ours | z |", "|---|---|---|---|---|---|---|---|---|"]
