@@ -6,9 +6,12 @@ run.sh ran; Cycles) renders every scene at every sample count once per seed. Per
 channel the variance of one run is the sample variance over the seeds (two seeds: 0.5 (a - b)^2,
 unbiased), and relVar = mean over pixels and channels of var / (m^2 + 1e-3), the relMSE a run
 would have against the exact image (src/metrics/metrics.c's weighting and epsilon). m, the same
-for every renderer and sample count of a scene, is the per-pixel mean of all its runs weighted by
-their sample counts, so all rows of a scene weigh pixels alike and a ratio of two relVar is a
-ratio of the same weighted variance.
+for every renderer and sample count of a scene, is our long reference render of it (run.sh
+--ref-spp, another seed), so all rows of a scene weigh pixels alike, a ratio of two relVar is a
+ratio of the same weighted variance, and m shares no noise with the runs measured (a mean of the
+measured runs would: a bright outlier of one run would raise its own m and hide itself). Without a
+reference run, m is the mean of all the scene's runs weighted by their sample counts, and the
+tables say so.
 
 CPU time is user + sys of the run's process less the start-up: with T1 the mean CPU time of that
 renderer and configuration's 1-sample runs, a run of n samples and CPU time T costs
@@ -20,7 +23,9 @@ variance ratio by a bootstrap over 16 x 16-pixel blocks (both renderers' blocks 
 together), times the CPU time ratio with a normal error in log time whose spread is the
 run-to-run scatter of log CPU time between seeds, pooled per renderer over every scene and count.
 The verdict against the issue's target 0.8 says "below 0.8" or "above 0.8" only when the whole
-interval is, else "undecided".
+interval is, else "undecided". On a shared machine a sample's CPU cost drifts with the load from
+one sample count to the next, which the interval does not cover; a last column gives the ratio with
+each renderer's CPU per sample over all its runs of the scene (every count and seed) instead.
 
 Do the two renderers compute the same image? Per scene and configuration of ours against Cycles:
 each renderer's mean over its runs (weighted by sample count), per 16 x 16 block the z-score of the
@@ -116,6 +121,8 @@ class Scene:
                 self.groups.setdefault((r["renderer"], r["config"], r["spp"]), []).append(r)
         for runs in self.groups.values():
             runs.sort(key=lambda r: r["seed"])
+        refs = [r for r in rows if r["kind"] == "ref"]
+        self.ref = max(refs, key=lambda r: r["spp"]) if refs else None
         self.stats = {}
         self.missing_startup = set()
 
@@ -125,6 +132,12 @@ class Scene:
             self.missing_startup.add((r["renderer"], r["config"]))
             return r["cpu"]
         return (r["cpu"] - t1) * r["spp"] / (r["spp"] - 1)
+
+    def cost_per_sample(self, renderer, config):
+        """Net CPU s per sample over every test run of a renderer and configuration (all counts, all seeds)."""
+        sts = [st for (r, cf, _), st in self.stats.items() if (r, cf) == (renderer, config)]
+        n = sum(r["spp"] for st in sts for r in st["runs"])
+        return sum(sum(st["cpu"]) for st in sts) / n if n else float("nan")
 
     def measure(self):
         """relVar, block sums and per-pixel luminance variance of every group with two or more seeds."""
@@ -141,17 +154,23 @@ class Scene:
         self.size = size
         w, h = size
         n3 = 3 * w * h
-        total = sum(r["spp"] for runs in self.groups.values() for r in runs)
-        den = array.array("d", bytes(8 * n3))
-        for runs in self.groups.values():
-            for r in runs:
-                f = r["spp"] / total
-                img = images[r["exr"]]
-                for i in range(n3):
-                    den[i] += f * img[i]
+        if self.ref:
+            rw, rh, den = read_image(self.ref["exr"])
+            if (rw, rh) != size:
+                sys.exit(f"report.py: {self.ref['exr']} is {rw}x{rh}, the renders of {self.name} {w}x{h}")
+            self.denominator = f"ours {self.ref['config']}, {self.ref['spp']} spp, seed {self.ref['seed']}"
+        else:
+            total = sum(r["spp"] for runs in self.groups.values() for r in runs)
+            den = array.array("d", bytes(8 * n3))
+            for runs in self.groups.values():
+                for r in runs:
+                    f = r["spp"] / total
+                    img = images[r["exr"]]
+                    for i in range(n3):
+                        den[i] += f * img[i]
+            self.denominator = "no reference run: the mean of the measured runs (biased low where noise is heavy-tailed)"
         weight = array.array("d", (1.0 / (m * m + exrtool.RELMSE_EPS) for m in den))
         bid, nblocks = block_ids(w, h)
-        self.lum = {}
         for key, runs in self.groups.items():
             imgs = [images[r["exr"]] for r in runs]
             lums = [luminance(img) for img in imgs]
@@ -195,6 +214,8 @@ def ratio_row(sc, config, spp, sd, rng):
                relvar_ours=o["relvar"], relvar_cycles=c["relvar"], var_ratio=o["relvar"] / c["relvar"],
                time_ratio=t_o / t_c if t_c > 0 else float("nan"))
     row["ratio"] = row["var_ratio"] * row["time_ratio"]
+    cost_o, cost_c = sc.cost_per_sample("ours", config), sc.cost_per_sample("cycles", "default")
+    row["ratio_pooled_cost"] = row["var_ratio"] * cost_o / cost_c if cost_c > 0 else float("nan")
     se_t = math.sqrt(sd.get("ours", (0.0, 0))[0] ** 2 / len(o["cpu"]) + sd.get("cycles", (0.0, 0))[0] ** 2 / len(c["cpu"]))
     row["se_log_time"] = se_t
     if not row["time_ratio"] > 0:  # runs too short to tell their cost from the start-up's jitter
@@ -337,17 +358,23 @@ def main():
           "(relVar x CPU) ours / Cycles, the CPU time ours needs for Cycles' noise at that sample count over "
           "Cycles'; below 1 ours is faster. 95% interval: block bootstrap of the variance ratio and the pooled "
           "seed-to-seed scatter of CPU time "
-          + ", ".join(f"{k} {100 * v[0]:.1f}% ({v[1]} dof)" for k, v in sorted(sd.items())) + ".", ""]
+          + ", ".join(f"{k} {100 * v[0]:.1f}% ({v[1]} dof)" for k, v in sorted(sd.items())) + " (the "
+          "interval does not cover the load changing between sample counts). Last column: the same ratio with "
+          "each renderer's CPU per sample taken over all its runs of the scene, at every count, which averages "
+          "the load over more runs. m in relVar's var / (m^2 + 1e-3), per scene: "
+          + "; ".join(f"{sc.name} {sc.denominator}" for sc in scenes) + ".", ""]
     for spp in sorted({r["spp"] for r in ratios}):
         md += [f"## {spp} samples per pixel", "",
                "| scene | ours config | CPU s ours (per seed) | CPU s Cycles (per seed) | relVar ours | relVar Cycles "
-               "| variance ratio | CPU ratio | time to equal noise, ours / Cycles | 95% interval | target 0.8 |",
-               "|---|---|---|---|---|---|---|---|---|---|---|"]
+               "| variance ratio | CPU ratio | time to equal noise, ours / Cycles | 95% interval | target 0.8 "
+               "| same, CPU per sample over all counts |",
+               "|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for r in (r for r in ratios if r["spp"] == spp):
             md.append(f"| {r['scene']} | {r['config']} | {', '.join(fmt(t, 4) for t in r['cpu_ours'])} | "
                       f"{', '.join(fmt(t, 4) for t in r['cpu_cycles'])} | {fmt(r['relvar_ours'], 4)} | "
                       f"{fmt(r['relvar_cycles'], 4)} | {fmt(r['var_ratio'])} | {fmt(r['time_ratio'])} | "
-                      f"**{fmt(r['ratio'])}** | {fmt(r['lo'])} - {fmt(r['hi'])} | {r['verdict']} |")
+                      f"**{fmt(r['ratio'])}** | {fmt(r['lo'])} - {fmt(r['hi'])} | {r['verdict']} | "
+                      f"{fmt(r['ratio_pooled_cost'])} |")
         md.append("")
     md += ["## Do the renderers compute the same image?", "",
            "Each renderer's mean over all its runs (weighted by sample count; `runs`, at the sample counts listed), "
@@ -369,23 +396,26 @@ def main():
                       f"{fmt(ag['mean_z2'])} | {ag['zmax']:+.2f} at {ag['zmax_at']} | "
                       f"{ag['ratio']:.5f} +- {ag['se_ratio']:.5f} | {ag['z_image']:+.2f} |")
             write_pngs(out, sc, ag)
+    all_spp = sorted({k[2] for sc in scenes for k in sc.stats})
     md += ["", "## Start-up and cost per sample", "",
            "Start-up: mean CPU s of the 1-sample runs (less one sample at the largest count's cost). CPU ms per "
-           "sample: net CPU / spp at the largest sample count, mean over seeds.", "",
-           "| scene | renderer | start-up CPU s | CPU ms per sample | at spp |", "|---|---|---|---|---|"]
+           "sample at each count: net CPU / spp, mean over seeds (on a shared machine it drifts with the load).", "",
+           "| scene | renderer | start-up CPU s | " + " | ".join(f"CPU ms per sample at {n}" for n in all_spp) + " |",
+           "|---|---|---|" + "---|" * len(all_spp)]
     for sc in scenes:
         for key, t1 in sorted(sc.startup.items(), key=lambda kv: (kv[0][0] != "ours", kv[0][1])):
-            tests = [(spp, st) for (r, cf, spp), st in sc.stats.items() if (r, cf) == key]
-            if not tests:
+            per = {spp: sum(st["cpu"]) / len(st["cpu"]) / spp
+                   for (r, cf, spp), st in sc.stats.items() if (r, cf) == key}
+            if not per:
                 continue
-            spp, st = max(tests, key=lambda t: t[0])
-            per = sum(st["cpu"]) / len(st["cpu"]) / spp
             label = "Cycles" if key[0] == "cycles" else "ours " + key[1]
-            md.append(f"| {sc.name} | {label} | {fmt(t1 - per, 3)} | {fmt(1e3 * per, 4)} | {spp} |")
+            md.append(f"| {sc.name} | {label} | {fmt(t1 - per[max(per)], 3)} | "
+                      + " | ".join(fmt(1e3 * per[n], 4) if n in per else "-" for n in all_spp) + " |")
         for key in sorted(sc.missing_startup):
-            md.append(f"| {sc.name} | {key[0]} {key[1]} | no 1-sample run: CPU times include the start-up | | |")
+            md.append(f"| {sc.name} | {key[0]} {key[1]} | no 1-sample run: CPU times include the start-up |"
+                      + " |" * len(all_spp))
     keys = ["scene", "config", "spp", "cpu_ours", "cpu_cycles", "relvar_ours", "relvar_cycles", "var_ratio",
-            "time_ratio", "ratio", "lo", "hi", "verdict", "se_log_time"]
+            "time_ratio", "ratio", "lo", "hi", "verdict", "se_log_time", "ratio_pooled_cost"]
     with open(os.path.join(out, "cycles.csv"), "w", newline="") as f:
         wr = csv.writer(f)
         wr.writerow(keys)

@@ -1,15 +1,15 @@
 #!/usr/bin/env bash
-# bench/cycles/run.sh BIN OUTDIR [--res WxH] [--spp "64 256 1024"] [--seeds "1 2"] [--threads N]
-#     [--scenes "box cornell many-lights engine-sky closed-room corner-lamp"] [--max-bounces N]
-#     [--config NAME="--set key=value ..."]... [--only-configs "default ..."]
+# bench/cycles/run.sh BIN OUTDIR [--res WxH] [--spp "64 256 1024"] [--seeds "1 2"] [--ref-spp N]
+#     [--scenes "box cornell many-lights engine-sky closed-room corner-lamp"] [--threads N]
+#     [--max-bounces N] [--config NAME="--set key=value ..."]... [--only-configs "default ..."]
 #
 # restir's `pt` against Blender Cycles on the same scenes, computing the same integral
 # (docs/BENCHMARKS.md), at the sample counts users render: for each scene, sample count (--spp,
 # default 64 256 1024) and renderer, one render per seed (--seeds, default 1 2: independent runs).
-# report.py then takes the variance of one run from the spread between the seeds (no reference
-# image to compare against) and gives, per sample count, the time to equal noise, ours / Cycles,
-# with a 95% interval. Installs Debian's blender with apt-get when it is missing (only here; never
-# `make test`).
+# report.py then takes the variance of one run from the spread between the seeds (no image is
+# compared against a reference) and gives, per sample count, the time to equal noise, ours /
+# Cycles, with a 95% interval. Installs Debian's blender with apt-get when it is missing (only
+# here; never `make test`).
 #
 # Per scene the scene's triangles, Lambert materials, camera and constant environment go to
 # Blender through `restir scene export --mesh` and build_scene.py; both renderers run at --threads
@@ -18,18 +18,20 @@
 # defaults), "solid-angle" (--set lights.sample=solid-angle) and each --config NAME="SETTINGS";
 # --only-configs "NAME ..." keeps those alone. Each renderer and configuration also renders 1
 # sample per seed: its CPU time is the start-up (Blender's launch and scene build; our scene load
-# and BVH), subtracted by report.py. Scenes: box, closed-room and corner-lamp (bench/cycles/scenes;
-# closed rooms with large ceiling lamps a few cm from the walls), cornell and many-lights (built-in,
-# made Lambertian by lambertize.py), engine-sky (a glTF engine under a constant sky, flat shaded),
-# or any scene file whose materials are all Lambertian.
+# and BVH), subtracted by report.py. Ours also renders one long reference per scene (--ref-spp,
+# default 2048, 0 for none; the binary's defaults, seed 1000003), used only as the m of relVar's
+# var / (m^2 + eps), which must share no noise with the runs measured. Scenes: box, closed-room
+# and corner-lamp (bench/cycles/scenes; closed rooms with large ceiling lamps a few cm from the
+# walls), cornell and many-lights (built-in, made Lambertian by lambertize.py), engine-sky (a glTF
+# engine under a constant sky, flat shaded), or any scene file whose materials are all Lambertian.
 #
-# Order: every scene's start-up runs, then each sample count in turn over all scenes (so the low
-# counts are complete before the long ones start). Every run's CPU time (user + sys of its
-# process), wall time, inner time (ours: the sampling pass, ms_pt of metrics.csv; Cycles: the wall
-# time of the render call) and the build (restir's --version commit, Blender's version) go to
-# OUTDIR/runs.csv; a run listed there with its image present is not repeated, so an interrupted
-# run resumes, and a later call with more sample counts or scenes adds to it. Our runs'
-# summary.json (every setting in effect) is kept in OUTDIR/logs. Writes OUTDIR/cycles.md,
+# Order: every scene's start-up runs and reference, then each sample count in turn over all
+# scenes (so the low counts are complete before the long ones start). Every run's CPU time (user
+# + sys of its process), wall time, inner time (ours: the sampling pass, ms_pt of metrics.csv;
+# Cycles: the wall time of the render call) and the build (restir's --version commit, Blender's
+# version) go to OUTDIR/runs.csv; a run listed there with its image present is not repeated, so
+# an interrupted run resumes, and a later call with more sample counts or scenes adds to it. Our
+# runs' summary.json (every setting in effect) is kept in OUTDIR/logs. Writes OUTDIR/cycles.md,
 # OUTDIR/cycles.csv and PNGs in OUTDIR/png (report.py OUTDIR redoes them from what is there).
 set -euo pipefail
 
@@ -41,6 +43,8 @@ shift 2
 res=320x240
 spps="64 256 1024"
 seeds="1 2"
+ref_spp=2048
+ref_seed=1000003
 threads=2
 scenes="box cornell many-lights engine-sky closed-room corner-lamp"
 max_bounces=8 # our pt.max_bounces default (restir render --help); Cycles gets max_bounces - 1
@@ -52,6 +56,7 @@ while [ $# -gt 0 ]; do
     --res) res=$2 ;;
     --spp) spps=$2 ;;
     --seeds) seeds=$2 ;;
+    --ref-spp) ref_spp=$2 ;;
     --threads) threads=$2 ;;
     --scenes) scenes=$2 ;;
     --max-bounces) max_bounces=$2 ;;
@@ -63,6 +68,7 @@ while [ $# -gt 0 ]; do
 done
 [ -x "$bin" ] || { echo "run.sh: $bin is not an executable" >&2; exit 2; }
 [ "$(echo $seeds | wc -w)" -ge 2 ] || { echo "run.sh: --seeds needs at least two seeds (the variance comes from their spread)" >&2; exit 2; }
+[[ $ref_spp =~ ^[0-9]+$ ]] || { echo "run.sh: --ref-spp must be an integer (0: no reference)" >&2; exit 2; }
 for spp in $spps; do
   [[ $spp =~ ^[0-9]+$ ]] && [ "$spp" -ge 2 ] || { echo "run.sh: --spp counts must be integers of at least 2" >&2; exit 2; }
 done
@@ -97,7 +103,7 @@ header="scene,renderer,config,kind,spp,seed,user_s,sys_s,wall_s,inner_s,build,ex
   exit 2
 }
 cat >> "$out/settings.txt" << EOF
-$(date -u +%FT%TZ): res=$res spp=$spps seeds=$seeds threads=$threads max_bounces=$max_bounces scenes=$scenes
+$(date -u +%FT%TZ): res=$res spp=$spps seeds=$seeds ref_spp=$ref_spp ref_seed=$ref_seed threads=$threads max_bounces=$max_bounces scenes=$scenes
   blender=$blender_version bin=$bin (commit ${ours_build:-unknown}; tree of this script: $(git -C "$here" describe --always --dirty 2> /dev/null || echo unknown))
   ours configurations: $(printf '%s; ' "${configs[@]}")
   cpu=$(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1) cores=$(nproc) load=$(cut -d' ' -f1-3 /proc/loadavg)
@@ -206,6 +212,10 @@ for scene in $scenes; do
   scene_sets[$scene]=${sets[*]}
   echo "== $scene: $(grep -m1 '"triangles"' "$mesh" | tr -d ' ,\n'), start-up runs ($(date +%T))" >&2
   every_run "$scene" startup 1
+  if [ "$ref_spp" -gt 0 ]; then
+    read -r -a sets <<< "${scene_sets[$scene]}"
+    ours "$scene" "$src" default ref "$ref_spp" "$ref_seed" "${sets[@]}"
+  fi
 done
 for spp in $(echo $spps | tr ' ' '\n' | sort -n -u); do
   for scene in "${keys[@]}"; do

@@ -2,7 +2,8 @@
 # bench/cycles/selftest.sh BIN: checks report.py's statistics without Blender (ctest bench.cycles_report).
 #
 # Renders bench/cycles/scenes/box.json tiny with BIN's pt at four seeds and lists seeds 1 and 2 as
-# "ours", seeds 3 and 4 as "cycles" in a runs.csv with made-up CPU times, then runs report.py on it.
+# "ours", seeds 3 and 4 as "cycles" in a runs.csv with made-up CPU times, with a longer render of
+# seed 5 as our reference (relVar's denominator), then runs report.py on it.
 # Both "renderers" are the same estimator, so report.py must find: a variance ratio near 1 and an
 # interval around the exact CPU ratio the times give, the CPU ratio itself exactly, and images that
 # agree (no 16 x 16 block beyond 4 standard errors, mean z^2 near 1, image means within 4 standard
@@ -27,6 +28,10 @@ for s in 1 2 3 4; do
   echo "box,$renderer,default,startup,1,$s,$startup,0.1,1,1,test," >> "$runs"
   echo "box,$renderer,default,test,16,$s,${user[$s]},0.1,1,1,test,$tmp/out/renders/box_$s.exr" >> "$runs"
 done
+"$bin" render --scene "$here/scenes/box.json" --method pt --res 128x96 --frames 1 --seed 5 --threads 2 \
+  --set spp=64 --save last --out "$tmp/r5" > /dev/null
+mv "$tmp/r5/frame_0000.exr" "$tmp/out/renders/box_ref.exr"
+echo "box,ours,default,ref,64,5,2,0.1,1,1,test,$tmp/out/renders/box_ref.exr" >> "$runs"
 python3 "$here/report.py" "$tmp/out" > "$tmp/report.txt"
 python3 - "$tmp/out" << 'EOF'
 import csv, math, sys
@@ -44,6 +49,7 @@ checks = [
 md = open(sys.argv[1] + "/cycles.md").read()
 line = [l for l in md.splitlines() if l.startswith("| box | default | 2 / 2 |")]
 checks.append((len(line) == 1, "no agreement row for box"))
+checks.append(("box ours default, 64 spp, seed 5" in md, "the reference is not relVar's denominator"))
 if line:
     cells = [c.strip() for c in line[0].strip("|").split("|")]
     flagged, mean_z2, z_image = int(cells[4].split()[0]), float(cells[5]), float(cells[8])
