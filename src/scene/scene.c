@@ -412,6 +412,7 @@ void scene_destroy(struct scene *s)
     free(s->tri_emitter);
     free(s->emitter_tri);
     free(s->emitters);
+    free(s->emitter_quads);
     free(s->materials);
     free(s->camera_path.keys);
     free(s->uv);

@@ -77,6 +77,21 @@ struct emitter {
     float pdf_area;  /* P(choose this emitter) / area */
     int tri;
     int textured;    /* 1: Le is modulated by an emission texture (scene_material_at) */
+    int quad;        /* index into scene->emitter_quads when this triangle is half of a rectangle, else -1 */
+};
+
+/* Two emitting triangles of one material that make a rectangle (scene_lights.c), so that
+ * solid-angle sampling can draw the whole rectangle at once (Urena et al. 2013). A point is
+ * corner + a lx ux + b ly uy with (a, b) in [0, 1]^2; the triangle of e[0] holds a + b <= 1, that of
+ * e[1] the rest. */
+struct emitter_quad {
+    vec3 corner;      /* the vertex of e[0]'s triangle off the shared diagonal */
+    vec3 ux, uy;      /* unit edge directions, orthogonal */
+    vec3 centre;      /* corner + (lx ux + ly uy) / 2 */
+    float lx, ly;     /* edge lengths */
+    float area;       /* lx ly */
+    int e[2];         /* the two emitters */
+    float bary[2][6]; /* per half k, its triangle's barycentrics: b1 = m0 a + m1 b + m2, b2 = m3 a + m4 b + m5 */
 };
 
 /* A node of the emitter BVH (scene_light_bvh.h): bounds of the emitters below it in position, power
@@ -137,6 +152,8 @@ struct scene {
     struct emitter *emitters; /* compact copy of what light sampling reads, per emitter */
     struct alias_table emitter_table;
     struct light_bvh light_bvh; /* the emitters' BVH, for selection by importance at a point */
+    int num_emitter_quads;
+    struct emitter_quad *emitter_quads; /* rectangles made of two emitters (struct emitter's quad) */
 
     /* Environment light (scene_env.h): radiance from infinitely far away, or NULL; its sampler;
      * its MIS-compensated sampler for path walks (NULL where nothing is brighter than the mean);
