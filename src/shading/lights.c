@@ -6,6 +6,7 @@
 #include <math.h>
 
 #include "shading/light_tree.h"
+#include "shading/spherical_rect.h"
 #include "shading/spherical_triangle.h"
 
 static vec3 tri_vertex(const struct scene *s, int tri, int k) { return s->verts[s->indices[3 * tri + k]]; }
@@ -96,6 +97,17 @@ static double emitter_solid_angle(const struct emitter *em, vec3 x)
     return omega >= LIGHTS_SOLID_ANGLE_MIN ? omega : 0.0;
 }
 
+/* The rectangle q as seen from x in *r when it is sampled as a whole there: the same cheap test on
+ * the rectangle's area and centre first, then its solid angle at least LIGHTS_SOLID_ANGLE_MIN.
+ * Returns 0 (area sampling of each half) otherwise; the same rule for both halves, so that a point
+ * of either has one density whichever half was chosen. */
+static int quad_applies(const struct emitter_quad *q, vec3 x, struct spherical_rect *r)
+{
+    if (q->area < (float)LIGHTS_SOLID_ANGLE_MIN * v3_length2(v3_sub(q->centre, x)))
+        return 0;
+    return spherical_rect_init(r, x, q->corner, q->ux, q->uy, q->lx, q->ly) >= (float)LIGHTS_SOLID_ANGLE_MIN;
+}
+
 /* The emitter for shading point x, normal n, by `select`, with its probability. -1 when none. */
 static int select_emitter(const struct scene *s, enum light_selection select, vec3 x, vec3 n, float u, float *pmf)
 {
@@ -111,6 +123,49 @@ static float emitter_pmf(const struct scene *s, enum light_selection select, vec
     return select == LIGHT_SELECT_BVH ? light_tree_pmf(&s->light_bvh, x, n, e) : s->emitter_table.pmf[e];
 }
 
+/* The probability of choosing either half of q, the one chosen (e, with its pmf) and the other:
+ * pmf(e[0]) + pmf(e[1]) in that order whichever was chosen, so that sampler and density agree bit
+ * for bit (light_tree_pmf repeats light_tree_sample's arithmetic). */
+static float quad_pmf(const struct scene *s, enum light_selection select, vec3 x, vec3 n, const struct emitter_quad *q,
+                      int e, float pmf)
+{
+    const float p0 = q->e[0] == e ? pmf : emitter_pmf(s, select, x, n, q->e[0]);
+    const float p1 = q->e[1] == e ? pmf : emitter_pmf(s, select, x, n, q->e[1]);
+    return p0 + p1;
+}
+
+/* ls->pdf_area for a point drawn uniformly in a solid angle omega with probability pmf:
+ * pdf_area d^2 / cos_l = pmf / omega, the density the direction was drawn with. */
+static int solid_angle_density(vec3 x, float pmf, double omega, struct light_sample *ls)
+{
+    const vec3 d = v3_sub(ls->p, x);
+    const float dist2 = v3_length2(d), cos_l = fabsf(v3_dot(ls->n, d)) / sqrtf(dist2);
+    ls->pdf_area = dist2 > 0.0f ? (float)(pmf / omega) * cos_l / dist2 : 0.0f;
+    return ls->pdf_area > 0.0f;
+}
+
+/* A point of rectangle q uniform in its solid angle from x (r, spherical_rect.h): the half it falls
+ * in, its barycentrics there (clamped into the triangle against rounding), density (pmf(e[0]) +
+ * pmf(e[1])) / omega: both halves' choices lead to this one map. */
+static int sample_quad(const struct scene *s, const struct emitter_quad *q, const struct spherical_rect *r, vec3 x,
+                       float pmf_quad, float u1, float u2, struct light_sample *ls)
+{
+    float sx, ty;
+    spherical_rect_sample(r, u1, u2, &sx, &ty);
+    const float a = sx / q->lx, b = ty / q->ly;
+    const int k = a + b <= 1.0f ? 0 : 1;
+    const float *m = q->bary[k];
+    float b1 = m[0] * a + m[1] * b + m[2], b2 = m[3] * a + m[4] * b + m[5];
+    b1 = b1 < 0.0f ? 0.0f : b1;
+    b2 = b2 < 0.0f ? 0.0f : b2;
+    if (b1 + b2 > 1.0f) {
+        const float sum = b1 + b2;
+        b1 /= sum, b2 /= sum;
+    }
+    lights_emitter_point(s, &s->emitters[q->e[k]], b1, b2, ls);
+    return solid_angle_density(x, pmf_quad, r->omega, ls);
+}
+
 int lights_sample_at(const struct scene *s, struct light_choice choice, vec3 x, vec3 n, float u_select, float u1,
                      float u2, struct light_sample *ls)
 {
@@ -121,7 +176,17 @@ int lights_sample_at(const struct scene *s, struct light_choice choice, vec3 x, 
     if (e < 0)
         return 0;
     const struct emitter *em = &s->emitters[e];
-    const double omega = choice.point == LIGHT_SAMPLING_SOLID_ANGLE ? emitter_solid_angle(em, x) : 0.0;
+    double omega = 0.0;
+    if (choice.point == LIGHT_SAMPLING_SOLID_ANGLE) {
+        if (em->quad >= 0) {
+            const struct emitter_quad *q = &s->emitter_quads[em->quad];
+            struct spherical_rect r;
+            if (quad_applies(q, x, &r))
+                return sample_quad(s, q, &r, x, quad_pmf(s, choice.select, x, n, q, e, pmf), u1, u2, ls);
+        } else {
+            omega = emitter_solid_angle(em, x);
+        }
+    }
     vec3 dir;
     if (!(omega > 0.0) || !spherical_triangle_sample(x, em->v0, v3_add(em->v0, em->e1), v3_add(em->v0, em->e2), omega,
                                                      u1, u2, &dir)) {
@@ -147,11 +212,7 @@ int lights_sample_at(const struct scene *s, struct light_choice choice, vec3 x, 
         b1 /= sum, b2 /= sum;
     }
     lights_emitter_point(s, em, b1, b2, ls);
-    /* pdf_area with pdf_area d^2 / cos_l = P(e) / omega, the density the direction was drawn with */
-    const vec3 d = v3_sub(ls->p, x);
-    const float dist2 = v3_length2(d), cos_l = fabsf(v3_dot(ls->n, d)) / sqrtf(dist2);
-    ls->pdf_area = dist2 > 0.0f ? (float)(pmf / omega) * cos_l / dist2 : 0.0f;
-    return ls->pdf_area > 0.0f;
+    return solid_angle_density(x, pmf, omega, ls);
 }
 
 float lights_pdf_at(const struct scene *s, struct light_choice choice, vec3 x, vec3 n, int tri, float dist,
@@ -161,7 +222,18 @@ float lights_pdf_at(const struct scene *s, struct light_choice choice, vec3 x, v
     if (e < 0)
         return 0.0f; /* not an emitter (tri_emitter holds only triangles of positive area) */
     const float pmf = emitter_pmf(s, choice.select, x, n, e);
-    const double omega = choice.point == LIGHT_SAMPLING_SOLID_ANGLE ? emitter_solid_angle(&s->emitters[e], x) : 0.0;
+    const struct emitter *em = &s->emitters[e];
+    double omega = 0.0;
+    if (choice.point == LIGHT_SAMPLING_SOLID_ANGLE) {
+        if (em->quad >= 0) {
+            const struct emitter_quad *q = &s->emitter_quads[em->quad];
+            struct spherical_rect r;
+            if (quad_applies(q, x, &r))
+                return quad_pmf(s, choice.select, x, n, q, e, pmf) / r.omega;
+        } else {
+            omega = emitter_solid_angle(em, x);
+        }
+    }
     if (omega > 0.0)
         return (float)(pmf / omega);
     const float pdf_area = pmf / s->tri_area[tri];
