@@ -82,19 +82,20 @@ int lights_sample(const struct scene *s, float u_select, float u1, float u2, str
     return sample_area(s, &s->emitters[alias_table_sample(&s->emitter_table, u_select)], u1, u2, ls);
 }
 
-/* The solid angle emitter em subtends from x when solid-angle sampling applies there, else 0. A
- * triangle whose area over the squared distance of its centroid is below LIGHTS_SOLID_ANGLE_MIN is
- * not even measured: that test costs a few multiplies where the solid angle costs an atan2 and three
- * square roots, and in tessellated scenes most chosen triangles fail it. */
-static double emitter_solid_angle(const struct emitter *em, vec3 x)
+/* The solid angle emitter em subtends from x when solid-angle sampling applies there (t set up for
+ * the sampler), else 0. A triangle whose area over the squared distance of its centroid is below
+ * LIGHTS_SOLID_ANGLE_MIN is not even measured: that test costs a few multiplies (squared, without a
+ * square root) where the solid angle costs an atan2 and three square roots, and in tessellated scenes
+ * most chosen triangles fail it. */
+static float emitter_solid_angle(const struct emitter *em, vec3 x, struct spherical_triangle *t)
 {
     const vec3 centroid = v3_add(em->v0, v3_scale(v3_add(em->e1, em->e2), 1.0f / 3.0f));
-    const float area = 0.5f * v3_length(v3_cross(em->e1, em->e2));
-    if (area < (float)LIGHTS_SOLID_ANGLE_MIN * v3_length2(v3_sub(centroid, x)))
-        return 0.0;
-    const double omega =
-        spherical_triangle_solid_angle(x, em->v0, v3_add(em->v0, em->e1), v3_add(em->v0, em->e2));
-    return omega >= LIGHTS_SOLID_ANGLE_MIN ? omega : 0.0;
+    const float twice_area2 = v3_length2(v3_cross(em->e1, em->e2)), d2 = v3_length2(v3_sub(centroid, x));
+    const float limit = 2.0f * (float)LIGHTS_SOLID_ANGLE_MIN * d2;
+    if (twice_area2 < limit * limit)
+        return 0.0f;
+    const float omega = spherical_triangle_init(t, x, em->v0, em->e1, em->e2);
+    return omega >= (float)LIGHTS_SOLID_ANGLE_MIN ? omega : 0.0f;
 }
 
 /* The rectangle q as seen from x in *r when it is sampled as a whole there: the same cheap test on
@@ -136,11 +137,11 @@ static float quad_pmf(const struct scene *s, enum light_selection select, vec3 x
 
 /* ls->pdf_area for a point drawn uniformly in a solid angle omega with probability pmf:
  * pdf_area d^2 / cos_l = pmf / omega, the density the direction was drawn with. */
-static int solid_angle_density(vec3 x, float pmf, double omega, struct light_sample *ls)
+static int solid_angle_density(vec3 x, float pmf, float omega, struct light_sample *ls)
 {
     const vec3 d = v3_sub(ls->p, x);
     const float dist2 = v3_length2(d), cos_l = fabsf(v3_dot(ls->n, d)) / sqrtf(dist2);
-    ls->pdf_area = dist2 > 0.0f ? (float)(pmf / omega) * cos_l / dist2 : 0.0f;
+    ls->pdf_area = dist2 > 0.0f ? pmf / omega * cos_l / dist2 : 0.0f;
     return ls->pdf_area > 0.0f;
 }
 
@@ -176,7 +177,8 @@ int lights_sample_at(const struct scene *s, struct light_choice choice, vec3 x, 
     if (e < 0)
         return 0;
     const struct emitter *em = &s->emitters[e];
-    double omega = 0.0;
+    float omega = 0.0f;
+    struct spherical_triangle t;
     if (choice.point == LIGHT_SAMPLING_SOLID_ANGLE) {
         if (em->quad >= 0) {
             const struct emitter_quad *q = &s->emitter_quads[em->quad];
@@ -184,12 +186,11 @@ int lights_sample_at(const struct scene *s, struct light_choice choice, vec3 x, 
             if (quad_applies(q, x, &r))
                 return sample_quad(s, q, &r, x, quad_pmf(s, choice.select, x, n, q, e, pmf), u1, u2, ls);
         } else {
-            omega = emitter_solid_angle(em, x);
+            omega = emitter_solid_angle(em, x, &t);
         }
     }
     vec3 dir;
-    if (!(omega > 0.0) || !spherical_triangle_sample(x, em->v0, v3_add(em->v0, em->e1), v3_add(em->v0, em->e2), omega,
-                                                     u1, u2, &dir)) {
+    if (!(omega > 0.0f) || !spherical_triangle_sample(&t, u1, u2, &dir)) {
         if (!sample_area(s, em, u1, u2, ls))
             return 0;
         ls->pdf_area = pmf / s->tri_area[em->tri]; /* em->pdf_area's formula with this selection's pmf */
@@ -223,7 +224,6 @@ float lights_pdf_at(const struct scene *s, struct light_choice choice, vec3 x, v
         return 0.0f; /* not an emitter (tri_emitter holds only triangles of positive area) */
     const float pmf = emitter_pmf(s, choice.select, x, n, e);
     const struct emitter *em = &s->emitters[e];
-    double omega = 0.0;
     if (choice.point == LIGHT_SAMPLING_SOLID_ANGLE) {
         if (em->quad >= 0) {
             const struct emitter_quad *q = &s->emitter_quads[em->quad];
@@ -231,11 +231,12 @@ float lights_pdf_at(const struct scene *s, struct light_choice choice, vec3 x, v
             if (quad_applies(q, x, &r))
                 return quad_pmf(s, choice.select, x, n, q, e, pmf) / r.omega;
         } else {
-            omega = emitter_solid_angle(em, x);
+            struct spherical_triangle t;
+            const float omega = emitter_solid_angle(em, x, &t);
+            if (omega > 0.0f)
+                return pmf / omega;
         }
     }
-    if (omega > 0.0)
-        return (float)(pmf / omega);
     const float pdf_area = pmf / s->tri_area[tri];
     return pdf_area * dist * dist / (cos_l > 1e-12f ? cos_l : 1e-12f);
 }

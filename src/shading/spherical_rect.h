@@ -12,8 +12,12 @@
  * not matter). */
 struct spherical_rect {
     float x0, y0, x1, y1, h;
-    float phi0;        /* asin(p0 q1) - asin(p0 q0): where the area-preserving angle starts */
-    float omega;       /* solid angle (sr) */
+    float phi0;  /* asin(p0 q1) - asin(p0 q0): where the area-preserving angle starts */
+    float omega; /* solid angle (sr) */
+    int precise; /* 1: x is close to the plane, and the map runs on d */
+    struct {
+        double x0, y0, x1, y1, h, phi0, omega;
+    } d; /* the same in double (precise only) */
 };
 
 /* Sets r up for x and the rectangle and returns its solid angle (Urena et al. 2013, Sec. 3, written

@@ -6,17 +6,28 @@
 
 #include "core/vec3.h"
 
-/* Solid angle (steradians) of triangle a, b, c seen from x, by Van Oosterom and Strackee 1983:
- * tan(omega / 2) = |A . (B x C)| / (|A||B||C| + (A.B)|C| + (A.C)|B| + (B.C)|A|) with A = a - x, ...
- * In double precision; 0 for a degenerate triangle or x in its plane. */
-double spherical_triangle_solid_angle(vec3 x, vec3 a, vec3 b, vec3 c);
+/* Triangle v0, v0 + e1, v0 + e2 as seen from x, set up by spherical_triangle_init. */
+struct spherical_triangle {
+    vec3 x, v0, e1, e2;
+    vec3 a;                   /* v0 - x */
+    float la, lb, lc, triple; /* |a|, |a + e1|, |a + e2|, |a . (e1 x e2)| */
+    float omega;              /* solid angle (sr) */
+    int precise;              /* 1: x is close to the triangle's plane, and the map runs in double */
+    double omega_d;           /* the solid angle in double (precise only) */
+};
 
-/* A direction from x uniform in the solid angle of triangle a, b, c (Arvo 1995) from u1, u2 in
- * [0,1): the area fraction u1 selects the sub-triangle A B C', u2 the point along the arc from B
- * to C'. omega is spherical_triangle_solid_angle(x, a, b, c), which the caller has computed to
- * decide whether to sample this way and to weigh the sample; the direction's density is 1 / omega
- * over the spherical triangle. Writes the unit direction to *dir. Returns 0 when the triangle
- * subtends no solid angle (omega <= 0, x in its plane, a degenerate triangle). */
-int spherical_triangle_sample(vec3 x, vec3 a, vec3 b, vec3 c, double omega, float u1, float u2, vec3 *dir);
+/* Sets t up and returns the solid angle (steradians) of the triangle seen from x, by Van Oosterom
+ * and Strackee 1983: tan(omega / 2) = |A . (B x C)| / (|A||B||C| + (A.B)|C| + (A.C)|B| + (B.C)|A|)
+ * with A = v0 - x, B = A + e1, C = A + e2, and A . (B x C) = A . (e1 x e2) without cancellation.
+ * In float where x is at least 1e-2 of the longer edge from the plane, else in double (the sampler's
+ * map loses precision there, spherical_triangle.c); 0 for a degenerate triangle or x within 1e-4 of
+ * the longer edge from its plane (callers use area sampling there). */
+float spherical_triangle_init(struct spherical_triangle *t, vec3 x, vec3 v0, vec3 e1, vec3 e2);
+
+/* A direction from x uniform in the solid angle of t (Arvo 1995) from u1, u2 in [0,1): the area
+ * fraction u1 selects the sub-triangle A B C', u2 the point along the arc from B to C'. Its density
+ * is 1 / t->omega over the spherical triangle. Writes the direction, not normalized, to *dir.
+ * Returns 0 when the triangle subtends no solid angle (t->omega 0). */
+int spherical_triangle_sample(const struct spherical_triangle *t, float u1, float u2, vec3 *dir);
 
 #endif

@@ -35,7 +35,8 @@ static int build_scene(struct scene *s)
     scene_add_quad(&b, v3(-3, 0, -3), v3(-3, 0, 3), v3(3, 0, 3), v3(3, 0, -3), grey, obj);
     /* the lamp: emitters 0 and 1 */
     const vec3 l = LAMP;
-    scene_add_quad(&b, l, v3(l.x + 0.6f, l.y, l.z), v3(l.x + 0.6f, l.y, l.z + 0.4f), v3(l.x, l.y, l.z + 0.4f), lamp, obj);
+    scene_add_quad(&b, l, v3(l.x + 0.6f, l.y, l.z), v3(l.x + 0.6f, l.y, l.z + 0.4f), v3(l.x, l.y, l.z + 0.4f), lamp,
+                   obj);
     /* a tilted rectangle on a wall (emitters 2, 3) */
     const vec3 o = v3(2.5f, 0.5f, -1), ex = v3(0, 0.6f, 0.8f), ey = v3(-0.3f, 0, 0);
     scene_add_quad(&b, o, v3_add(o, ey), v3_add(o, v3_add(ex, ey)), v3_add(o, ex), blue, obj);
@@ -72,8 +73,8 @@ static vec3 lamp_point(double a, double b) { return v3(LAMP.x + (float)(0.6 * a)
 
 static double cell_solid_angle(vec3 x, int i, int j)
 {
-    const vec3 p00 = lamp_point((double)i / CELLS, (double)j / CELLS), p10 = lamp_point((i + 1.0) / CELLS, (double)j / CELLS);
-    const vec3 p11 = lamp_point((i + 1.0) / CELLS, (j + 1.0) / CELLS), p01 = lamp_point((double)i / CELLS, (j + 1.0) / CELLS);
+    const double a0 = (double)i / CELLS, a1 = (i + 1.0) / CELLS, b0 = (double)j / CELLS, b1 = (j + 1.0) / CELLS;
+    const vec3 p00 = lamp_point(a0, b0), p10 = lamp_point(a1, b0), p11 = lamp_point(a1, b1), p01 = lamp_point(a0, b1);
     return tri_solid_angle(x, p00, p10, p11) + tri_solid_angle(x, p00, p11, p01);
 }
 

@@ -44,7 +44,8 @@ static double cell_solid_angle(const struct config *g, double a0, double a1, dou
     vec3 p[4];
     const double a[4] = {a0, a1, a1, a0}, b[4] = {b0, b0, b1, b1};
     for (int k = 0; k < 4; k++)
-        p[k] = v3_add(g->corner, v3_add(v3_scale(g->ux, (float)(a[k] * g->lx)), v3_scale(g->uy, (float)(b[k] * g->ly))));
+        p[k] = v3_add(g->corner,
+                      v3_add(v3_scale(g->ux, (float)(a[k] * g->lx)), v3_scale(g->uy, (float)(b[k] * g->ly))));
     return tri_solid_angle(g->x, p[0], p[1], p[2]) + tri_solid_angle(g->x, p[0], p[2], p[3]);
 }
 
@@ -111,7 +112,8 @@ int main(void)
         for (int i = 0; i < K; i++)
             for (int j = 0; j < K; j++) {
                 count[i * K + j] = 0.0;
-                prob[i * K + j] = cell_solid_angle(g, (double)i / K, (i + 1.0) / K, (double)j / K, (j + 1.0) / K) / exact;
+                const double cell = cell_solid_angle(g, (double)i / K, (i + 1.0) / K, (double)j / K, (j + 1.0) / K);
+                prob[i * K + j] = cell / exact;
                 sum_cells += prob[i * K + j];
             }
         EXPECT(fabs(sum_cells - 1.0) < 1e-6, "%s: cells' solid angles sum to %.9g of omega", g->name, sum_cells);

@@ -1,6 +1,7 @@
 /* test_spherical_triangle.c: the solid-angle sampler of emitting triangles (shading/
- * spherical_triangle.h). For triangles near, far, oblique and wide as seen from a point:
- *  1. spherical_triangle_solid_angle against a quadrature of cos / d^2 over the triangle's area;
+ * spherical_triangle.h). For triangles near, far, oblique and wide as seen from a point, and close to
+ * its plane (the sampler's double path):
+ *  1. spherical_triangle_init's solid angle against a quadrature of cos / d^2 over the triangle's area;
  *  2. the sampled directions follow 1 / omega: the triangle cut into K^2 sub-triangles, each with
  *     probability omega_cell / omega (its exact solid angle), chi-square over the cells
  *     (Sidak-corrected over the configurations), and the cells' solid angles summing to omega
@@ -20,6 +21,21 @@ struct config {
     const char *name;
     vec3 x, a, b, c;
 };
+
+/* Van Oosterom and Strackee 1983 in double: the solid angle of triangle a, b, c from x, for the
+ * cells' probabilities (independent of the sampler's own float or double solid angle). */
+static double solid_angle_d(vec3 x, vec3 a, vec3 b, vec3 c)
+{
+    const double A[3] = {a.x - x.x, a.y - x.y, a.z - x.z}, B[3] = {b.x - x.x, b.y - x.y, b.z - x.z},
+                 C[3] = {c.x - x.x, c.y - x.y, c.z - x.z};
+    const double la = sqrt(A[0] * A[0] + A[1] * A[1] + A[2] * A[2]), lb = sqrt(B[0] * B[0] + B[1] * B[1] + B[2] * B[2]),
+                 lc = sqrt(C[0] * C[0] + C[1] * C[1] + C[2] * C[2]);
+    const double triple = A[0] * (B[1] * C[2] - B[2] * C[1]) - A[1] * (B[0] * C[2] - B[2] * C[0]) +
+                          A[2] * (B[0] * C[1] - B[1] * C[0]);
+    const double ab = A[0] * B[0] + A[1] * B[1] + A[2] * B[2], ac = A[0] * C[0] + A[1] * C[1] + A[2] * C[2],
+                 bc = B[0] * C[0] + B[1] * C[1] + B[2] * C[2];
+    return 2.0 * atan2(fabs(triple), la * lb * lc + ab * lc + ac * lb + bc * la);
+}
 
 /* omega by quadrature: the midpoint rule over n^2 sub-triangles of cos_l / d^2 dA. */
 static double quadrature(vec3 x, vec3 a, vec3 b, vec3 c, int n)
@@ -82,15 +98,20 @@ int main(void)
         {"oblique", v3(0.3f, 0.2f, 0), v3(2, -1, 0.3f), v3(3, 1, 0.5f), v3(1.5f, 0.5f, 2)},
         {"wide (close to its plane)", v3(0, 0, 0.05f), v3(-3, -3, 0), v3(3, -3, 0), v3(0, 4, 0)},
         {"thin sliver", v3(0, 0, 0), v3(-2, 0, 1), v3(2, 0.02f, 1), v3(0, 0.05f, 1.2f)},
+        {"close to its plane (double)", v3(0.1f, 0.2f, 0.03f), v3(-3, -3, 0), v3(3, -3, 0), v3(0, 4, 0)},
+        {"beside it, grazing (double)", v3(2.5f, 2.5f, 0.02f), v3(-1, -1, 0), v3(2, -1, 0), v3(0, 2, 0)},
     };
     const int ncfg = (int)(sizeof cfg / sizeof cfg[0]);
     const double alpha = chi2_sidak(0.01, ncfg);
     enum { N = 400000 };
     for (int t = 0; t < ncfg; t++) {
         const struct config *g = &cfg[t];
-        const double omega = spherical_triangle_solid_angle(g->x, g->a, g->b, g->c);
+        struct spherical_triangle tri;
+        const double omega = spherical_triangle_init(&tri, g->x, g->a, v3_sub(g->b, g->a), v3_sub(g->c, g->a));
         const double quad = quadrature(g->x, g->a, g->b, g->c, 600);
-        EXPECT(fabs(omega - quad) <= 2e-3 * quad, "%s: solid angle %.9g, quadrature %.9g", g->name, omega, quad);
+        const double exact = solid_angle_d(g->x, g->a, g->b, g->c);
+        EXPECT(fabs(omega - quad) <= 2e-3 * quad && fabs(omega - exact) <= 2e-5 * exact,
+               "%s: solid angle %.9g, quadrature %.9g, in double %.9g", g->name, omega, quad, exact);
         static double count[2 * K * K], prob[2 * K * K];
         double sum_cells = 0.0;
         for (int i = 0; i < K; i++)
@@ -103,7 +124,7 @@ int main(void)
                         continue;
                     vec3 v[3];
                     cell_vertices(g->a, g->b, g->c, i, j, up, v);
-                    prob[k] = spherical_triangle_solid_angle(g->x, v[0], v[1], v[2]) / omega;
+                    prob[k] = solid_angle_d(g->x, v[0], v[1], v[2]) / exact;
                     sum_cells += prob[k];
                 }
         EXPECT(fabs(sum_cells - 1.0) < 1e-6, "%s: cells' solid angles sum to %.9g of omega", g->name, sum_cells);
@@ -112,7 +133,7 @@ int main(void)
         for (int n = 0; n < N; n++) {
             vec3 dir;
             const float u1 = pcg32_float(&rng), u2 = pcg32_float(&rng);
-            int cell = spherical_triangle_sample(g->x, g->a, g->b, g->c, omega, u1, u2, &dir)
+            int cell = spherical_triangle_sample(&tri, u1, u2, &dir)
                            ? cell_of(g->x, dir, g->a, g->b, g->c)
                            : -1;
             if (cell < 0)
@@ -124,7 +145,8 @@ int main(void)
         const double p = chi2_counts(count, prob, 2 * K * K, (double)(N - missed), &dof);
         EXPECT(missed <= N / 100000, "%s: %d of %d directions missed the triangle", g->name, missed, N);
         EXPECT(p > alpha, "%s: chi-square p = %.3g (dof %d)", g->name, p, dof);
-        printf("%-28s omega %.6g (quadrature %.6g), chi-square p = %.3f, %d missed\n", g->name, omega, quad, p, missed);
+        printf("%-30s omega %.6g (quadrature %.6g), %s, chi-square p = %.3f, %d missed\n", g->name, omega, quad,
+               tri.precise ? "double" : "float", p, missed);
     }
     return test_finish();
 }
