@@ -67,6 +67,8 @@ static int pair_quad(const struct scene *s, int ea, int eb, struct emitter_quad 
     q->uy = v3_normalize(v3_sub(ey, v3_scale(q->ux, v3_dot(ey, q->ux)))); /* exactly orthogonal */
     q->lx = lx;
     q->ly = ly;
+    q->inv_lx = 1.0f / lx;
+    q->inv_ly = 1.0f / ly;
     q->area = lx * ly;
     q->centre = v3_add(o, v3_scale(v3_add(ex, ey), 0.5f));
     q->e[0] = ea;

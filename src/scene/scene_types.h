@@ -89,6 +89,7 @@ struct emitter_quad {
     vec3 ux, uy;      /* unit edge directions, orthogonal */
     vec3 centre;      /* corner + (lx ux + ly uy) / 2 */
     float lx, ly;     /* edge lengths */
+    float inv_lx, inv_ly;
     float area;       /* lx ly */
     int e[2];         /* the two emitters */
     float bary[2][6]; /* per half k, its triangle's barycentrics: b1 = m0 a + m1 b + m2, b2 = m3 a + m4 b + m5 */

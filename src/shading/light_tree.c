@@ -69,13 +69,14 @@ static float single_emitter_prob(const struct light_bvh *t, vec3 p, vec3 n)
     return light_tree_importance(&t->nodes[0], p, n) > 0.0f ? 1.0f : 0.0f;
 }
 
-int light_tree_sample(const struct light_bvh *t, vec3 p, vec3 n, float u, float *pmf)
+int light_tree_sample_pair(const struct light_bvh *t, vec3 p, vec3 n, float u, float *pmf, float *pmf_pair)
 {
     *pmf = 0.0f;
+    *pmf_pair = 0.0f;
     if (t->num_nodes < 1)
         return -1;
     if (t->nodes[0].second < 0) { /* a single emitter: chosen wherever it can light p */
-        *pmf = single_emitter_prob(t, p, n);
+        *pmf = *pmf_pair = single_emitter_prob(t, p, n);
         return *pmf > 0.0f ? t->nodes[0].emitter : -1;
     }
     /* u is remapped into each chosen interval, so one uniform makes the whole descent (its 24 bits
@@ -86,6 +87,7 @@ int light_tree_sample(const struct light_bvh *t, vec3 p, vec3 n, float u, float 
         float pc[2];
         if (!child_probs(t, k, p, n, pc))
             return -1;
+        *pmf_pair = prob * (pc[0] + pc[1]); /* the last one written is the leaf's parent's */
         if (u < pc[0]) {
             u = min_f(u / pc[0], 0x1.fffffep-1f);
             prob *= pc[0];
@@ -100,7 +102,15 @@ int light_tree_sample(const struct light_bvh *t, vec3 p, vec3 n, float u, float 
     return t->nodes[k].emitter;
 }
 
-float light_tree_pmf(const struct light_bvh *t, vec3 p, vec3 n, int e)
+int light_tree_sample(const struct light_bvh *t, vec3 p, vec3 n, float u, float *pmf)
+{
+    float pair;
+    return light_tree_sample_pair(t, p, n, u, pmf, &pair);
+}
+
+/* light_tree_pmf, or with pair set the probability of e's leaf's parent times the sum of its two
+ * children's probabilities (light_tree_sample_pair's pmf_pair): the same products in the same order. */
+static float path_prob(const struct light_bvh *t, vec3 p, vec3 n, int e, int pair)
 {
     if (e < 0 || e >= (t->num_nodes + 1) / 2) /* one emitter per leaf: 2 n - 1 nodes */
         return 0.0f;
@@ -117,7 +127,11 @@ float light_tree_pmf(const struct light_bvh *t, vec3 p, vec3 n, int e)
         float pc[2];
         if (!child_probs(t, path[d], p, n, pc))
             return 0.0f;
-        prob *= pc[path[d - 1] == path[d] + 1 ? 0 : 1];
+        prob *= pair && d == 1 ? pc[0] + pc[1] : pc[path[d - 1] == path[d] + 1 ? 0 : 1];
     }
     return prob;
 }
+
+float light_tree_pmf(const struct light_bvh *t, vec3 p, vec3 n, int e) { return path_prob(t, p, n, e, 0); }
+
+float light_tree_pmf_pair(const struct light_bvh *t, vec3 p, vec3 n, int e) { return path_prob(t, p, n, e, 1); }

@@ -19,5 +19,11 @@ int light_tree_sample(const struct light_bvh *t, vec3 p, vec3 n, float u, float 
 /* The probability that light_tree_sample(t, p, n, .) returns emitter e (0 for an index out of
  * range). The same arithmetic in the same order as the sampler's, so the two agree bit for bit. */
 float light_tree_pmf(const struct light_bvh *t, vec3 p, vec3 n, int e);
+/* light_tree_sample, also writing to *pmf_pair the probability that the descent reaches the chosen
+ * leaf's parent times the sum of that parent's two children's probabilities: the probability of
+ * choosing either of two sibling leaves (the two halves of a rectangle, lights.c) in one product. */
+int light_tree_sample_pair(const struct light_bvh *t, vec3 p, vec3 n, float u, float *pmf, float *pmf_pair);
+/* light_tree_sample_pair's pmf_pair for emitter e's leaf, bit for bit (its sibling gives the same). */
+float light_tree_pmf_pair(const struct light_bvh *t, vec3 p, vec3 n, int e);
 
 #endif

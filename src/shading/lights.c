@@ -109,11 +109,13 @@ static int quad_applies(const struct emitter_quad *q, vec3 x, struct spherical_r
     return spherical_rect_init(r, x, q->corner, q->ux, q->uy, q->lx, q->ly) >= (float)LIGHTS_SOLID_ANGLE_MIN;
 }
 
-/* The emitter for shading point x, normal n, by `select`, with its probability. -1 when none. */
-static int select_emitter(const struct scene *s, enum light_selection select, vec3 x, vec3 n, float u, float *pmf)
+/* The emitter for shading point x, normal n, by `select`, with its probability, and by the BVH also
+ * light_tree_sample_pair's pmf_pair (quad_pmf). -1 when none. */
+static int select_emitter(const struct scene *s, enum light_selection select, vec3 x, vec3 n, float u, float *pmf,
+                          float *pmf_pair)
 {
     if (select == LIGHT_SELECT_BVH)
-        return light_tree_sample(&s->light_bvh, x, n, u, pmf);
+        return light_tree_sample_pair(&s->light_bvh, x, n, u, pmf, pmf_pair);
     const int e = alias_table_sample(&s->emitter_table, u);
     *pmf = s->emitter_table.pmf[e];
     return e;
@@ -124,14 +126,22 @@ static float emitter_pmf(const struct scene *s, enum light_selection select, vec
     return select == LIGHT_SELECT_BVH ? light_tree_pmf(&s->light_bvh, x, n, e) : s->emitter_table.pmf[e];
 }
 
-/* The probability of choosing either half of q, the one chosen (e, with its pmf) and the other:
- * pmf(e[0]) + pmf(e[1]) in that order whichever was chosen, so that sampler and density agree bit
- * for bit (light_tree_pmf repeats light_tree_sample's arithmetic). */
+/* The probability of choosing either half of q, given the one chosen (e) with its pmf and, when e
+ * was just drawn down the BVH, its pmf_pair (either negative: not known yet): by power the sum of both
+ * table entries; down the BVH, when the halves are sibling leaves (as the builder pairs them), the
+ * probability of their parent times its children's probabilities' sum in one product
+ * (light_tree_pmf_pair), else pmf(e[0]) + pmf(e[1]) in that order whichever was chosen. Either way
+ * sampler and density agree bit for bit (light_tree.h repeats the sampler's arithmetic). */
 static float quad_pmf(const struct scene *s, enum light_selection select, vec3 x, vec3 n, const struct emitter_quad *q,
-                      int e, float pmf)
+                      int e, float pmf, float pmf_pair)
 {
-    const float p0 = q->e[0] == e ? pmf : emitter_pmf(s, select, x, n, q->e[0]);
-    const float p1 = q->e[1] == e ? pmf : emitter_pmf(s, select, x, n, q->e[1]);
+    if (select != LIGHT_SELECT_BVH)
+        return s->emitter_table.pmf[q->e[0]] + s->emitter_table.pmf[q->e[1]];
+    const struct light_bvh *t = &s->light_bvh;
+    if (t->nodes[t->emitter_leaf[q->e[0]]].parent == t->nodes[t->emitter_leaf[q->e[1]]].parent)
+        return pmf_pair >= 0.0f ? pmf_pair : light_tree_pmf_pair(t, x, n, e);
+    const float p0 = q->e[0] == e && pmf >= 0.0f ? pmf : light_tree_pmf(t, x, n, q->e[0]);
+    const float p1 = q->e[1] == e && pmf >= 0.0f ? pmf : light_tree_pmf(t, x, n, q->e[1]);
     return p0 + p1;
 }
 
@@ -140,8 +150,8 @@ static float quad_pmf(const struct scene *s, enum light_selection select, vec3 x
 static int solid_angle_density(vec3 x, float pmf, float omega, struct light_sample *ls)
 {
     const vec3 d = v3_sub(ls->p, x);
-    const float dist2 = v3_length2(d), cos_l = fabsf(v3_dot(ls->n, d)) / sqrtf(dist2);
-    ls->pdf_area = dist2 > 0.0f ? pmf / omega * cos_l / dist2 : 0.0f;
+    const float dist2 = v3_length2(d); /* cos_l / dist^2 = |n . d| / dist^3 */
+    ls->pdf_area = dist2 > 0.0f ? pmf * fabsf(v3_dot(ls->n, d)) / (omega * dist2 * sqrtf(dist2)) : 0.0f;
     return ls->pdf_area > 0.0f;
 }
 
@@ -153,7 +163,7 @@ static int sample_quad(const struct scene *s, const struct emitter_quad *q, cons
 {
     float sx, ty;
     spherical_rect_sample(r, u1, u2, &sx, &ty);
-    const float a = sx / q->lx, b = ty / q->ly;
+    const float a = sx * q->inv_lx, b = ty * q->inv_ly;
     const int k = a + b <= 1.0f ? 0 : 1;
     const float *m = q->bary[k];
     float b1 = m[0] * a + m[1] * b + m[2], b2 = m[3] * a + m[4] * b + m[5];
@@ -172,8 +182,8 @@ int lights_sample_at(const struct scene *s, struct light_choice choice, vec3 x, 
 {
     if (s->num_emitters < 1)
         return 0;
-    float pmf;
-    const int e = select_emitter(s, choice.select, x, n, u_select, &pmf);
+    float pmf, pmf_pair = -1.0f;
+    const int e = select_emitter(s, choice.select, x, n, u_select, &pmf, &pmf_pair);
     if (e < 0)
         return 0;
     const struct emitter *em = &s->emitters[e];
@@ -184,7 +194,7 @@ int lights_sample_at(const struct scene *s, struct light_choice choice, vec3 x, 
             const struct emitter_quad *q = &s->emitter_quads[em->quad];
             struct spherical_rect r;
             if (quad_applies(q, x, &r))
-                return sample_quad(s, q, &r, x, quad_pmf(s, choice.select, x, n, q, e, pmf), u1, u2, ls);
+                return sample_quad(s, q, &r, x, quad_pmf(s, choice.select, x, n, q, e, pmf, pmf_pair), u1, u2, ls);
         } else {
             omega = emitter_solid_angle(em, x, &t);
         }
@@ -222,20 +232,19 @@ float lights_pdf_at(const struct scene *s, struct light_choice choice, vec3 x, v
     const int e = tri >= 0 && tri < s->num_tris ? s->tri_emitter[tri] : -1;
     if (e < 0)
         return 0.0f; /* not an emitter (tri_emitter holds only triangles of positive area) */
-    const float pmf = emitter_pmf(s, choice.select, x, n, e);
     const struct emitter *em = &s->emitters[e];
-    if (choice.point == LIGHT_SAMPLING_SOLID_ANGLE) {
-        if (em->quad >= 0) {
-            const struct emitter_quad *q = &s->emitter_quads[em->quad];
-            struct spherical_rect r;
-            if (quad_applies(q, x, &r))
-                return quad_pmf(s, choice.select, x, n, q, e, pmf) / r.omega;
-        } else {
-            struct spherical_triangle t;
-            const float omega = emitter_solid_angle(em, x, &t);
-            if (omega > 0.0f)
-                return pmf / omega;
-        }
+    if (choice.point == LIGHT_SAMPLING_SOLID_ANGLE && em->quad >= 0) {
+        const struct emitter_quad *q = &s->emitter_quads[em->quad];
+        struct spherical_rect r;
+        if (quad_applies(q, x, &r))
+            return quad_pmf(s, choice.select, x, n, q, e, -1.0f, -1.0f) / r.omega;
+    }
+    const float pmf = emitter_pmf(s, choice.select, x, n, e);
+    if (choice.point == LIGHT_SAMPLING_SOLID_ANGLE && em->quad < 0) {
+        struct spherical_triangle t;
+        const float omega = emitter_solid_angle(em, x, &t);
+        if (omega > 0.0f)
+            return pmf / omega;
     }
     const float pdf_area = pmf / s->tri_area[tri];
     return pdf_area * dist * dist / (cos_l > 1e-12f ? cos_l : 1e-12f);

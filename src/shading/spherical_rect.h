@@ -9,22 +9,17 @@
 /* Rectangle corner + [0, lx] ux + [0, ly] uy (ux, uy unit and orthogonal) as seen from a point x,
  * in the frame of ux, uy and the plane's normal with x at the origin: the rectangle spans
  * [x0, x1] x [y0, y1] at height -h (h > 0 the distance of x from the plane; which side x is on does
- * not matter). */
+ * not matter). In double (spherical_rect.c says why). */
 struct spherical_rect {
-    float x0, y0, x1, y1, h;
-    float phi0;  /* asin(p0 q1) - asin(p0 q0): where the area-preserving angle starts */
-    float omega; /* solid angle (sr) */
-    int precise; /* 1: x is close to the plane, and the map runs on d */
-    struct {
-        double x0, y0, x1, y1, h, phi0, omega;
-    } d; /* the same in double (precise only) */
+    double x0, y0, x1, y1, h;
+    double pr, pi; /* a complex number whose argument, asin(p0 q1) - asin(p0 q0), is where the
+                      area-preserving angle starts (spherical_rect.c) */
+    float omega;   /* solid angle (sr) */
 };
 
-/* Sets r up for x and the rectangle and returns its solid angle (Urena et al. 2013, Sec. 3, written
- * as four corner terms, spherical_rect.c), or 0 where sampling it is not safe: x within 1e-4 of the
- * rectangle's size of its plane, or a degenerate rectangle. In float: the four terms cancel for small
- * rectangles (relative error of omega up to 1.6e-5 above 0.02 sr in 200k random configurations,
- * measured against double), so callers use it above a minimum solid angle. */
+/* Sets r up for x and the rectangle and returns its solid angle (Urena et al. 2013, Sec. 3, as the
+ * argument of a product of four corner factors, spherical_rect.c), or 0 where sampling it is not
+ * safe: x within 1e-4 of lx + ly of the rectangle's plane, or a degenerate rectangle. */
 float spherical_rect_init(struct spherical_rect *r, vec3 x, vec3 corner, vec3 ux, vec3 uy, float lx, float ly);
 
 /* The point of the rectangle in the direction drawn from u, v in [0, 1) uniformly over the solid

@@ -4,7 +4,8 @@
  *  2. lights_pdf_at is the density of lights_sample_at's points: for points on a quad, the mean of
  *     1{point in cell} / lights_pdf_at over the samples is the cell's solid angle, for a 4 x 4 grid
  *     of cells, from receivers near, beside (grazing), far, behind and in the quad's plane, emitters
- *     chosen by power and by the BVH; and each sample's own density agrees with lights_pdf_at;
+ *     chosen by power and by the BVH (also where the BVH keeps a quad's halves under different
+ *     parents, in the pillars scene); and each sample's own density agrees with lights_pdf_at;
  *  3. no NaN: receivers in the light's plane and a hair-thin quad fall back to area sampling. */
 #include <math.h>
 #include <stdint.h>
@@ -14,6 +15,7 @@
 #include "core/rng.h"
 #include "emitter_material.h"
 #include "scene/scene.h"
+#include "scene/scene_file.h"
 #include "shading/lights.h"
 #include "test_util.h"
 
@@ -47,6 +49,8 @@ static int build_scene(struct scene *s)
     scene_add_triangle(&b, v3(1, 2.5f, 1), v3(1.5f, 2.5f, 1.5f), v3(1, 2.5f, 1.5f), blue, obj);
     /* a hair-thin rectangle (emitters 8, 9), 1e-5 wide */
     scene_add_quad(&b, v3(-1, 1.5f, -2), v3(1, 1.5f, -2), v3(1, 1.5f, -2 + 1e-5f), v3(-1, 1.5f, -2 + 1e-5f), lamp, obj);
+    /* a strip (emitters 10, 11) */
+    scene_add_quad(&b, v3(-2, 2.4f, 1), v3(2, 2.4f, 1), v3(2, 2.4f, 1.1f), v3(-2, 2.4f, 1.1f), lamp, obj);
     if (scene_builder_end(&b, msg) != 0) {
         printf("scene build failed: %s\n", msg);
         return -1;
@@ -68,24 +72,30 @@ static double tri_solid_angle(vec3 x, vec3 a, vec3 b, vec3 c)
     return 2.0 * atan2(fabs(triple), la * lb * lc + ab * lc + ac * lb + bc * la);
 }
 
-/* The lamp's point at fractions (a, b) of its edges. */
-static vec3 lamp_point(double a, double b) { return v3(LAMP.x + (float)(0.6 * a), LAMP.y, LAMP.z + (float)(0.4 * b)); }
+/* Rectangle q's point at fractions (a, b) of its edges. */
+static vec3 quad_point(const struct emitter_quad *q, double a, double b)
+{
+    return v3_add(q->corner, v3_add(v3_scale(q->ux, (float)(a * q->lx)), v3_scale(q->uy, (float)(b * q->ly))));
+}
 
-static double cell_solid_angle(vec3 x, int i, int j)
+static double cell_solid_angle(const struct emitter_quad *q, vec3 x, int i, int j)
 {
     const double a0 = (double)i / CELLS, a1 = (i + 1.0) / CELLS, b0 = (double)j / CELLS, b1 = (j + 1.0) / CELLS;
-    const vec3 p00 = lamp_point(a0, b0), p10 = lamp_point(a1, b0), p11 = lamp_point(a1, b1), p01 = lamp_point(a0, b1);
+    const vec3 p00 = quad_point(q, a0, b0), p10 = quad_point(q, a1, b0), p11 = quad_point(q, a1, b1);
+    const vec3 p01 = quad_point(q, a0, b1);
     return tri_solid_angle(x, p00, p10, p11) + tri_solid_angle(x, p00, p11, p01);
 }
 
-/* Part 2 for receiver x (normal n) and one emitter choice. */
-static void check_density(const struct scene *s, const char *name, vec3 x, vec3 n, enum light_selection select)
+/* Part 2 for rectangle k, receiver x (normal n) and one emitter choice, over `samples` light samples. */
+static void check_density(const struct scene *s, int k, const char *name, vec3 x, vec3 n, enum light_selection select,
+                          int samples)
 {
+    const struct emitter_quad *q = &s->emitter_quads[k];
     const struct light_choice choice = {select, LIGHT_SAMPLING_SOLID_ANGLE, LIGHT_ENV_MAP};
     double sum[CELLS * CELLS] = {0}, sum2[CELLS * CELLS] = {0};
     long mismatched = 0, nonfinite = 0, on_lamp = 0;
     pcg32 rng = pcg32_make(77u, (uint64_t)select);
-    for (int k = 0; k < SAMPLES; k++) {
+    for (int m = 0; m < samples; m++) {
         struct light_sample ls;
         const float u0 = pcg32_float(&rng), u1 = pcg32_float(&rng), u2 = pcg32_float(&rng);
         if (!lights_sample_at(s, choice, x, n, u0, u1, u2, &ls))
@@ -95,7 +105,7 @@ static void check_density(const struct scene *s, const char *name, vec3 x, vec3 
             continue;
         }
         const int e = s->tri_emitter[ls.tri];
-        if (e != 0 && e != 1)
+        if (e != q->e[0] && e != q->e[1])
             continue;
         on_lamp++;
         const vec3 d = v3_sub(ls.p, x);
@@ -104,7 +114,8 @@ static void check_density(const struct scene *s, const char *name, vec3 x, vec3 
         const float own = ls.pdf_area * dist * dist / cos_l;
         if (cos_l > 1e-6f && !(fabsf(own - pdf) <= 1e-4f * pdf)) /* in the plane both are infinite */
             mismatched++;
-        int i = (int)((ls.p.x - LAMP.x) / 0.6f * CELLS), j = (int)((ls.p.z - LAMP.z) / 0.4f * CELLS);
+        const vec3 rel = v3_sub(ls.p, q->corner);
+        int i = (int)(v3_dot(rel, q->ux) / q->lx * CELLS), j = (int)(v3_dot(rel, q->uy) / q->ly * CELLS);
         i = i < 0 ? 0 : (i >= CELLS ? CELLS - 1 : i);
         j = j < 0 ? 0 : (j >= CELLS ? CELLS - 1 : j);
         const double w = 1.0 / pdf;
@@ -114,21 +125,23 @@ static void check_density(const struct scene *s, const char *name, vec3 x, vec3 
     EXPECT(nonfinite == 0, "%s: %ld samples with a NaN point or density", name, nonfinite);
     EXPECT(mismatched == 0, "%s: %ld of %ld samples' densities differ from lights_pdf_at", name, mismatched, on_lamp);
     /* a lamp the BVH cannot choose from x (x behind it): no samples, and its density 0 */
-    const vec3 mid = lamp_point(0.5, 0.5);
-    const float pdf_mid = lights_pdf_at(s, choice, x, n, s->emitter_tri[0], v3_length(v3_sub(mid, x)), 1.0f);
+    const float pdf_mid = lights_pdf_at(s, choice, x, n, s->emitter_tri[q->e[0]], v3_length(v3_sub(q->centre, x)), 1.0f);
     double worst = 0.0, total = 0.0, expected_total = 0.0;
     for (int c = 0; c < CELLS * CELLS; c++) {
-        const double expected = pdf_mid > 0.0f ? cell_solid_angle(x, c / CELLS, c % CELLS) : 0.0;
-        const double mean = sum[c] / SAMPLES, var = sum2[c] / SAMPLES - mean * mean;
-        const double se = sqrt((var > 0.0 ? var : 0.0) / SAMPLES);
+        const double expected = pdf_mid > 0.0f ? cell_solid_angle(q, x, c / CELLS, c % CELLS) : 0.0;
+        const double mean = sum[c] / samples, var = sum2[c] / samples - mean * mean;
+        const double se = sqrt((var > 0.0 ? var : 0.0) / samples);
         const double z = fabs(mean - expected) / (se + 1e-5 * expected + 1e-12);
         worst = z > worst ? z : worst;
         total += mean;
         expected_total += expected;
     }
     EXPECT(worst < 5.0, "%s: a cell's mean of 1/pdf is %.2f standard errors off its solid angle", name, worst);
-    printf("%-34s %-5s %6ld on the lamp, sum over cells %.6f (solid angle %.6f), worst |z| %.2f\n", name,
-           select == LIGHT_SELECT_BVH ? "bvh" : "power", on_lamp, total, expected_total, worst);
+    const struct light_bvh *t = &s->light_bvh;
+    const int siblings = t->nodes[t->emitter_leaf[q->e[0]]].parent == t->nodes[t->emitter_leaf[q->e[1]]].parent;
+    printf("%-34s %-5s%s %6ld on it, sum over cells %.6f (solid angle %.6f), worst |z| %.2f\n", name,
+           select == LIGHT_SELECT_BVH ? "bvh" : "power", select == LIGHT_SELECT_BVH && !siblings ? " (halves apart)" : "",
+           on_lamp, total, expected_total, worst);
 }
 
 int main(void)
@@ -139,10 +152,10 @@ int main(void)
         return test_finish();
     }
     /* 1. pairing */
-    EXPECT(s.num_emitters == 10, "%d emitters, want 10", s.num_emitters);
-    EXPECT(s.num_emitter_quads == 3, "%d rectangles, want 3 (lamp, wall, thin)", s.num_emitter_quads);
-    const int want_quad[10] = {0, 0, 1, 1, -1, -1, -1, -1, 2, 2};
-    for (int e = 0; e < s.num_emitters && e < 10; e++)
+    EXPECT(s.num_emitters == 12, "%d emitters, want 12", s.num_emitters);
+    EXPECT(s.num_emitter_quads == 4, "%d rectangles, want 4 (lamp, wall, thin, strip)", s.num_emitter_quads);
+    const int want_quad[12] = {0, 0, 1, 1, -1, -1, -1, -1, 2, 2, 3, 3};
+    for (int e = 0; e < s.num_emitters && e < 12; e++)
         EXPECT(s.emitters[e].quad == want_quad[e], "emitter %d: quad %d, want %d", e, s.emitters[e].quad, want_quad[e]);
 
     /* 2. density */
@@ -157,9 +170,14 @@ int main(void)
         {"in the lamp's plane", v3(0.6f, 2.0f, 0.0f), v3(0, -1, 0)},
     };
     for (int r = 0; r < (int)(sizeof rx / sizeof rx[0]); r++) {
-        check_density(&s, rx[r].name, rx[r].x, rx[r].n, LIGHT_SELECT_POWER);
-        check_density(&s, rx[r].name, rx[r].x, rx[r].n, LIGHT_SELECT_BVH);
+        check_density(&s, 0, rx[r].name, rx[r].x, rx[r].n, LIGHT_SELECT_POWER, SAMPLES);
+        check_density(&s, 0, rx[r].name, rx[r].x, rx[r].n, LIGHT_SELECT_BVH, SAMPLES);
     }
+    /* the tilted rectangle on the wall, from just in front of it (chosen rarely by power: more samples) */
+    check_density(&s, 1, "wall rectangle, in front", v3(1.9f, 0.9f, -0.5f), v3(1, 0, 0), LIGHT_SELECT_POWER,
+                  5 * SAMPLES);
+    check_density(&s, 1, "wall rectangle, in front", v3(1.9f, 0.9f, -0.5f), v3(1, 0, 0), LIGHT_SELECT_BVH, SAMPLES);
+    check_density(&s, 3, "strip, below", v3(0.5f, 2.0f, 1.0f), v3(0, 1, 0), LIGHT_SELECT_BVH, SAMPLES);
 
     /* 3. the hair-thin rectangle seen from its own plane and from just above it */
     {
@@ -178,6 +196,24 @@ int main(void)
                 bad += !v3_is_finite(ls.p) || !isfinite(ls.pdf_area) || !isfinite(pdf);
             }
         EXPECT(bad == 0, "%d samples with a NaN point or density at the thin rectangle", bad);
+    }
+    scene_destroy(&s);
+
+    /* The pillars scene's BVH puts the halves of one of its light strips under different parents:
+     * the quad's probability is then the sum of two paths' (quad_pmf's other branch). */
+    char msg[RESTIR_MSG_LEN];
+    EXPECT(scene_load("pillars", &s, msg) == 0, "%s", msg);
+    int apart = -1;
+    for (int k = 0; k < s.num_emitter_quads; k++) {
+        const struct light_bvh *t = &s.light_bvh;
+        const struct emitter_quad *q = &s.emitter_quads[k];
+        if (t->nodes[t->emitter_leaf[q->e[0]]].parent != t->nodes[t->emitter_leaf[q->e[1]]].parent)
+            apart = k;
+    }
+    EXPECT(apart >= 0, "pillars: no light strip whose halves the BVH keeps apart (the test needs one)");
+    if (apart >= 0) {
+        const vec3 below = v3_add(s.emitter_quads[apart].centre, v3(0.3f, -0.3f, -0.2f));
+        check_density(&s, apart, "pillars strip, below", below, v3(0, 1, 0), LIGHT_SELECT_BVH, SAMPLES);
     }
     scene_destroy(&s);
     return test_finish();
