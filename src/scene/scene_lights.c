@@ -65,11 +65,13 @@ static int pair_quad(const struct scene *s, int ea, int eb, struct emitter_quad 
     q->corner = o;
     q->ux = v3_scale(ex, 1.0f / lx);
     q->uy = v3_normalize(v3_sub(ey, v3_scale(q->ux, v3_dot(ey, q->ux)))); /* exactly orthogonal */
+    q->uz = v3_cross(q->ux, q->uy);
     q->lx = lx;
     q->ly = ly;
     q->inv_lx = 1.0f / lx;
     q->inv_ly = 1.0f / ly;
     q->area = lx * ly;
+    q->radius = 0.5f * sqrtf(lx * lx + ly * ly);
     q->centre = v3_add(o, v3_scale(v3_add(ex, ey), 0.5f));
     q->e[0] = ea;
     q->e[1] = eb;
@@ -154,6 +156,9 @@ int scene_lights_build(struct scene *s, char *msg)
         em->textured = s->materials[s->tri_material[t]].emission_map != 0 || s->materials[s->tri_material[t]].alpha_mask;
         em->pdf_area = s->emitter_table.pmf[e] / s->tri_area[t];
         em->tri = t;
+        const vec3 centroid = v3_scale(v3_add(em->e1, em->e2), 1.0f / 3.0f); /* from v0 */
+        em->radius = sqrtf(fmaxf(v3_length2(centroid), fmaxf(v3_length2(v3_sub(em->e1, centroid)),
+                                                             v3_length2(v3_sub(em->e2, centroid)))));
     }
     find_quads(s);
     scene_light_bvh_build(s, power);

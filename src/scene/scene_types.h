@@ -78,6 +78,7 @@ struct emitter {
     int tri;
     int textured;    /* 1: Le is modulated by an emission texture (scene_material_at) */
     int quad;        /* index into scene->emitter_quads when this triangle is half of a rectangle, else -1 */
+    float radius;    /* the farthest vertex's distance from the centroid */
 };
 
 /* Two emitting triangles of one material that make a rectangle (scene_lights.c), so that
@@ -86,11 +87,12 @@ struct emitter {
  * e[1] the rest. */
 struct emitter_quad {
     vec3 corner;      /* the vertex of e[0]'s triangle off the shared diagonal */
-    vec3 ux, uy;      /* unit edge directions, orthogonal */
+    vec3 ux, uy, uz;  /* unit edge directions, orthogonal, and ux x uy */
     vec3 centre;      /* corner + (lx ux + ly uy) / 2 */
     float lx, ly;     /* edge lengths */
     float inv_lx, inv_ly;
     float area;       /* lx ly */
+    float radius;     /* half the diagonal */
     int e[2];         /* the two emitters */
     float bary[2][6]; /* per half k, its triangle's barycentrics: b1 = m0 a + m1 b + m2, b2 = m3 a + m4 b + m5 */
 };

@@ -82,29 +82,73 @@ int lights_sample(const struct scene *s, float u_select, float u1, float u2, str
     return sample_area(s, &s->emitters[alias_table_sample(&s->emitter_table, u_select)], u1, u2, ls);
 }
 
-/* The solid angle emitter em subtends from x when solid-angle sampling applies there (t set up for
- * the sampler), else 0. A triangle whose area over the squared distance of its centroid is below
- * LIGHTS_SOLID_ANGLE_MIN is not even measured: that test costs a few multiplies (squared, without a
- * square root) where the solid angle costs an atan2 and three square roots, and in tessellated scenes
- * most chosen triangles fail it. */
-static float emitter_solid_angle(const struct emitter *em, vec3 x, struct spherical_triangle *t)
+/* lights.sample=auto's test (lights.h): whether the area density's factor cos / d^2 = h / d^3 (h the
+ * distance from the emitter's plane) spreads over the emitter seen from x by at least
+ * LIGHTS_AUTO_SPREAD^(3/2), i.e. d_max^2 >= LIGHTS_AUTO_SPREAD d_min^2 for its farthest and closest
+ * points. First, without a square root, the bound of a sphere of radius r around the emitter's centre
+ * c, d_max / d_min <= (|c - x| + r) / (|c - x| - r), below the limit beyond |c - x| = AUTO_FAR r:
+ * most of a scene's emitters are that far from most points. */
+#define AUTO_FAR ((sqrtf(LIGHTS_AUTO_SPREAD) + 1.0f) / (sqrtf(LIGHTS_AUTO_SPREAD) - 1.0f))
+
+/* The test for triangle em: d_max from the vertices, d_min bounded below by
+ * max(h, |centroid - x| - em->radius), so that it errs toward solid angle. */
+static int triangle_spread(const struct emitter *em, vec3 x)
 {
-    const vec3 centroid = v3_add(em->v0, v3_scale(v3_add(em->e1, em->e2), 1.0f / 3.0f));
-    const float twice_area2 = v3_length2(v3_cross(em->e1, em->e2)), d2 = v3_length2(v3_sub(centroid, x));
-    const float limit = 2.0f * (float)LIGHTS_SOLID_ANGLE_MIN * d2;
-    if (twice_area2 < limit * limit)
-        return 0.0f;
+    const vec3 a = v3_sub(em->v0, x), to_c = v3_add(a, v3_scale(v3_add(em->e1, em->e2), 1.0f / 3.0f));
+    const float dc2 = v3_length2(to_c), far = AUTO_FAR * em->radius;
+    if (dc2 > far * far)
+        return 0;
+    const vec3 b = v3_add(a, em->e1), c = v3_add(a, em->e2);
+    const float d_max2 = fmaxf(v3_length2(a), fmaxf(v3_length2(b), v3_length2(c)));
+    const float d_min = fmaxf(fabsf(v3_dot(a, em->n)), sqrtf(dc2) - em->radius);
+    return d_max2 >= LIGHTS_AUTO_SPREAD * d_min * d_min;
+}
+
+/* The test for rectangle q, exactly: its closest and farthest points in its own frame. */
+static int quad_spread(const struct emitter_quad *q, vec3 x)
+{
+    const float far = AUTO_FAR * q->radius;
+    if (v3_length2(v3_sub(q->centre, x)) > far * far)
+        return 0;
+    const vec3 d = v3_sub(q->corner, x);
+    const float x0 = v3_dot(d, q->ux), y0 = v3_dot(d, q->uy), h = v3_dot(d, q->uz);
+    const float x1 = x0 + q->lx, y1 = y0 + q->ly;
+    const float cx = x0 > 0.0f ? x0 : (x1 < 0.0f ? x1 : 0.0f), cy = y0 > 0.0f ? y0 : (y1 < 0.0f ? y1 : 0.0f);
+    const float d_max2 = fmaxf(x0 * x0, x1 * x1) + fmaxf(y0 * y0, y1 * y1) + h * h;
+    return d_max2 >= LIGHTS_AUTO_SPREAD * (cx * cx + cy * cy + h * h);
+}
+
+/* The solid angle emitter em subtends from x when solid-angle sampling applies there (t set up for
+ * the sampler), else 0. solid-angle: a triangle whose area over the squared distance of its
+ * centroid is below LIGHTS_SOLID_ANGLE_MIN is not even measured: that test costs a few multiplies
+ * (squared, without a square root) where the solid angle costs an atan2 and three square roots, and
+ * in tessellated scenes most chosen triangles fail it. auto: the spread test instead. Either way the
+ * solid angle must then be at least LIGHTS_SOLID_ANGLE_MIN. */
+static float emitter_solid_angle(const struct emitter *em, vec3 x, enum light_sampling mode,
+                                 struct spherical_triangle *t)
+{
+    if (mode == LIGHT_SAMPLING_AUTO) {
+        if (!triangle_spread(em, x))
+            return 0.0f;
+    } else {
+        const vec3 centroid = v3_add(em->v0, v3_scale(v3_add(em->e1, em->e2), 1.0f / 3.0f));
+        const float twice_area2 = v3_length2(v3_cross(em->e1, em->e2)), d2 = v3_length2(v3_sub(centroid, x));
+        const float limit = 2.0f * (float)LIGHTS_SOLID_ANGLE_MIN * d2;
+        if (twice_area2 < limit * limit)
+            return 0.0f;
+    }
     const float omega = spherical_triangle_init(t, x, em->v0, em->e1, em->e2);
     return omega >= (float)LIGHTS_SOLID_ANGLE_MIN ? omega : 0.0f;
 }
 
-/* The rectangle q as seen from x in *r when it is sampled as a whole there: the same cheap test on
- * the rectangle's area and centre first, then its solid angle at least LIGHTS_SOLID_ANGLE_MIN.
+/* The rectangle q as seen from x in *r when it is sampled as a whole there, by the same rules as a
+ * triangle's (emitter_solid_angle; auto reads the rectangle's exact closest and farthest points).
  * Returns 0 (area sampling of each half) otherwise; the same rule for both halves, so that a point
  * of either has one density whichever half was chosen. */
-static int quad_applies(const struct emitter_quad *q, vec3 x, struct spherical_rect *r)
+static int quad_applies(const struct emitter_quad *q, vec3 x, enum light_sampling mode, struct spherical_rect *r)
 {
-    if (q->area < (float)LIGHTS_SOLID_ANGLE_MIN * v3_length2(v3_sub(q->centre, x)))
+    if (mode == LIGHT_SAMPLING_AUTO ? !quad_spread(q, x)
+                                    : q->area < (float)LIGHTS_SOLID_ANGLE_MIN * v3_length2(v3_sub(q->centre, x)))
         return 0;
     return spherical_rect_init(r, x, q->corner, q->ux, q->uy, q->lx, q->ly) >= (float)LIGHTS_SOLID_ANGLE_MIN;
 }
@@ -189,14 +233,14 @@ int lights_sample_at(const struct scene *s, struct light_choice choice, vec3 x, 
     const struct emitter *em = &s->emitters[e];
     float omega = 0.0f;
     struct spherical_triangle t;
-    if (choice.point == LIGHT_SAMPLING_SOLID_ANGLE) {
+    if (choice.point != LIGHT_SAMPLING_AREA) {
         if (em->quad >= 0) {
             const struct emitter_quad *q = &s->emitter_quads[em->quad];
             struct spherical_rect r;
-            if (quad_applies(q, x, &r))
+            if (quad_applies(q, x, choice.point, &r))
                 return sample_quad(s, q, &r, x, quad_pmf(s, choice.select, x, n, q, e, pmf, pmf_pair), u1, u2, ls);
         } else {
-            omega = emitter_solid_angle(em, x, &t);
+            omega = emitter_solid_angle(em, x, choice.point, &t);
         }
     }
     vec3 dir;
@@ -233,16 +277,16 @@ float lights_pdf_at(const struct scene *s, struct light_choice choice, vec3 x, v
     if (e < 0)
         return 0.0f; /* not an emitter (tri_emitter holds only triangles of positive area) */
     const struct emitter *em = &s->emitters[e];
-    if (choice.point == LIGHT_SAMPLING_SOLID_ANGLE && em->quad >= 0) {
+    if (choice.point != LIGHT_SAMPLING_AREA && em->quad >= 0) {
         const struct emitter_quad *q = &s->emitter_quads[em->quad];
         struct spherical_rect r;
-        if (quad_applies(q, x, &r))
+        if (quad_applies(q, x, choice.point, &r))
             return quad_pmf(s, choice.select, x, n, q, e, -1.0f, -1.0f) / r.omega;
     }
     const float pmf = emitter_pmf(s, choice.select, x, n, e);
-    if (choice.point == LIGHT_SAMPLING_SOLID_ANGLE && em->quad < 0) {
+    if (choice.point != LIGHT_SAMPLING_AREA && em->quad < 0) {
         struct spherical_triangle t;
-        const float omega = emitter_solid_angle(em, x, &t);
+        const float omega = emitter_solid_angle(em, x, choice.point, &t);
         if (omega > 0.0f)
             return pmf / omega;
     }

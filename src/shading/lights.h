@@ -22,9 +22,12 @@ int lights_sample(const struct scene *s, float u_select, float u1, float u2, str
 /* How next-event estimation picks an emitter: by power from the scene's alias table (the same
  * everywhere), or by importance at the shading point down the emitter BVH (light_tree.h). */
 enum light_selection { LIGHT_SELECT_POWER = 0, LIGHT_SELECT_BVH };
-/* How it then picks a point on the emitting triangle: uniform in its area, or uniform in the solid
- * angle it subtends (Arvo 1995; area where that is below LIGHTS_SOLID_ANGLE_MIN). */
-enum light_sampling { LIGHT_SAMPLING_AREA = 0, LIGHT_SAMPLING_SOLID_ANGLE };
+/* How it then picks a point on the emitting triangle: uniform in its area; uniform in the solid
+ * angle it subtends (Arvo 1995; a triangle that is half of a rectangle (scene_lights.c) draws the
+ * whole rectangle, Urena et al. 2013; area where the solid angle is below LIGHTS_SOLID_ANGLE_MIN); or
+ * auto: solid angle only where the area density spreads over the emitter by LIGHTS_AUTO_SPREAD, the
+ * rule per emitter and receiver that lights_sample_at spells out. */
+enum light_sampling { LIGHT_SAMPLING_AREA = 0, LIGHT_SAMPLING_SOLID_ANGLE, LIGHT_SAMPLING_AUTO };
 /* How a path walk samples the environment: its map's distribution (scene->env_sampler), or the
  * MIS-compensated one (scene->env_sampler_compensated, env_light.h; the map's where that is empty),
  * unbiased only next to BSDF sampling, which every path walk does. */
@@ -40,11 +43,17 @@ struct light_choice {
 
 /* lights_sample for a shading point x with unit normal n (its side does not matter), by the
  * strategy `choice`: the emitter by choice.select, then the point uniform in the solid angle the
- * triangle subtends from x (Arvo 1995) when choice.point is solid-angle and both that solid angle
- * and its area over the squared distance of its centroid are at least LIGHTS_SOLID_ANGLE_MIN, else
- * uniform in its area. ls->pdf_area is the area density that gives the solid-angle density of the
- * choice under lights_pdf_solid_angle (P(triangle) / omega when spherical). Returns 0 when no
- * emitter is chosen (none in the scene, or by BVH none that can light x). */
+ * emitter subtends from x where choice.point says so, else uniform in its area:
+ *  - solid-angle: where the emitter's area over the squared distance of its centre and then its solid
+ *    angle are both at least LIGHTS_SOLID_ANGLE_MIN;
+ *  - auto: where (d_max / d_min)^2 >= LIGHTS_AUTO_SPREAD for its farthest and closest points from x
+ *    (for a triangle d_min bounded below) and its solid angle is at least LIGHTS_SOLID_ANGLE_MIN.
+ * An emitter that is half of a rectangle applies the rule to the rectangle and draws the point over
+ * the whole of it (spherical_rect.h), with probability P(half 0) + P(half 1) for the rectangle;
+ * others use Arvo's spherical triangle (spherical_triangle.h). Receivers within 1e-4 of the size of
+ * the emitter's plane use area sampling. ls->pdf_area is the area density that gives the solid-angle
+ * density of the choice under lights_pdf_solid_angle (P / omega when by solid angle). Returns 0 when
+ * no emitter is chosen (none in the scene, or by BVH none that can light x). */
 int lights_sample_at(const struct scene *s, struct light_choice choice, vec3 x, vec3 n, float u_select, float u1,
                      float u2, struct light_sample *ls);
 /* The solid-angle density with which lights_sample_at(s, choice, x, n, ...) produces a point of
@@ -57,6 +66,12 @@ float lights_pdf_at(const struct scene *s, struct light_choice choice, vec3 x, v
  * trigonometry would cost without lowering variance (measured in docs/BENCHMARKS.md: at 3e-4 sr the
  * furnace's triangles were all sampled spherically, 1.6x the time at the same error). */
 #define LIGHTS_SOLID_ANGLE_MIN 0.02
+/* lights.sample=auto's threshold on (d_max / d_min)^2: the area density's factor cos / d^2 = h / d^3
+ * varies by 8x over the emitter where it is reached. Area sampling's excess variance over solid
+ * angle's (for a uniform integrand) is about 0.1 ((d_max / d_min)^2 - 1) (computed for a square), and
+ * a solid-angle sample costs about 100 ns more (docs/BENCHMARKS.md, issue 57's section: measured 2
+ * and 4 on box, cornell and big_light). */
+#define LIGHTS_AUTO_SPREAD 4.0f
 /* Area density of producing the point on triangle tri (0 when tri is not an emitter). */
 float lights_pdf_area(const struct scene *s, int tri);
 /* Point b1, b2 of emitter em (p = v0 + b1 e1 + b2 e2) with its normal, radiance and density:

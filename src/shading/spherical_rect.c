@@ -34,8 +34,9 @@
 
 static double clampd(double v, double lo, double hi) { return v < lo ? lo : (v > hi ? hi : v); }
 static float clampf(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
+static double corner_distance(double d2, int precise) { return precise ? sqrt(d2) : (double)sqrtf((float)d2); }
 
-float spherical_rect_init(struct spherical_rect *r, vec3 x, vec3 corner, vec3 ux, vec3 uy, float lx, float ly)
+int spherical_rect_frame(struct spherical_rect *r, vec3 x, vec3 corner, vec3 ux, vec3 uy, float lx, float ly)
 {
     /* the frame in double: h is a difference of nearly equal products close to the plane */
     const double dx = (double)corner.x - x.x, dy = (double)corner.y - x.y, dz = (double)corner.z - x.z;
@@ -45,16 +46,23 @@ float spherical_rect_init(struct spherical_rect *r, vec3 x, vec3 corner, vec3 ux
     r->x1 = r->x0 + lx;
     r->y1 = r->y0 + ly;
     r->h = fabs(dx * nz.x + dy * nz.y + dz * nz.z);
-    r->omega = 0.0;
+    r->omega = 0.0f;
     /* x (almost) in the rectangle's plane: the corner terms divide by h, the map by 1 - q^2 */
-    if (!(r->h > 1e-4 * (lx + ly)) || !(lx > 0.0f && ly > 0.0f) || !isfinite(r->h))
-        return 0.0f;
+    return r->h > 1e-4 * (lx + ly) && lx > 0.0f && ly > 0.0f && isfinite(r->h);
+}
+
+float spherical_rect_solid_angle(struct spherical_rect *r)
+{
+    const double lx = r->x1 - r->x0, ly = r->y1 - r->y0;
     const double h = r->h, h2 = h * h, xx0 = r->x0 * r->x0, xx1 = r->x1 * r->x1, yy0 = r->y0 * r->y0,
                  yy1 = r->y1 * r->y1;
-    /* the four corner factors (real, imaginary) */
-    const double c00 = h * sqrt(xx0 + yy0 + h2), s00 = r->x0 * r->y0, c01 = h * sqrt(xx0 + yy1 + h2),
-                 s01 = r->x0 * r->y1, c10 = h * sqrt(xx1 + yy0 + h2), s10 = r->x1 * r->y0,
-                 c11 = h * sqrt(xx1 + yy1 + h2), s11 = r->x1 * r->y1;
+    /* the four corner factors (real, imaginary); the distances in float (an error of 6e-8 of c moves
+     * the argument by less than 6e-8) unless the map needs arg(p) in double */
+    const int precise = h < SPHERICAL_RECT_FLOAT_H * (lx + ly);
+    const double c00 = h * corner_distance(xx0 + yy0 + h2, precise), s00 = r->x0 * r->y0;
+    const double c01 = h * corner_distance(xx0 + yy1 + h2, precise), s01 = r->x0 * r->y1;
+    const double c10 = h * corner_distance(xx1 + yy0 + h2, precise), s10 = r->x1 * r->y0;
+    const double c11 = h * corner_distance(xx1 + yy1 + h2, precise), s11 = r->x1 * r->y1;
     /* p = (c01 + i s01) (c00 - i s00), whose argument phi0 lies in (-pi, pi) */
     r->pr = c01 * c00 + s01 * s00;
     r->pi = s01 * c00 - c01 * s00;
@@ -66,6 +74,11 @@ float spherical_rect_init(struct spherical_rect *r, vec3 x, vec3 corner, vec3 ux
     omega = omega < 0.0f ? omega + 6.28318531f : omega;
     r->omega = omega > 0.0f && isfinite(omega) ? omega : 0.0f;
     return r->omega;
+}
+
+float spherical_rect_init(struct spherical_rect *r, vec3 x, vec3 corner, vec3 ux, vec3 uy, float lx, float ly)
+{
+    return spherical_rect_frame(r, x, corner, ux, uy, lx, ly) ? spherical_rect_solid_angle(r) : 0.0f;
 }
 
 /* The map in double, for x close to the plane (r->h below SPHERICAL_RECT_FLOAT_H of the size). */

@@ -17,9 +17,13 @@ struct spherical_rect {
     float omega;   /* solid angle (sr) */
 };
 
-/* Sets r up for x and the rectangle and returns its solid angle (Urena et al. 2013, Sec. 3, as the
- * argument of a product of four corner factors, spherical_rect.c), or 0 where sampling it is not
- * safe: x within 1e-4 of lx + ly of the rectangle's plane, or a degenerate rectangle. */
+/* Sets r's frame up for x and the rectangle. Returns 0 where sampling it is not safe: x within 1e-4
+ * of lx + ly of the rectangle's plane, or a degenerate rectangle. */
+int spherical_rect_frame(struct spherical_rect *r, vec3 x, vec3 corner, vec3 ux, vec3 uy, float lx, float ly);
+/* The solid angle (r's frame set), stored in r->omega and returned (Urena et al. 2013, Sec. 3, as the
+ * argument of a product of four corner factors, spherical_rect.c). */
+float spherical_rect_solid_angle(struct spherical_rect *r);
+/* spherical_rect_frame, then spherical_rect_solid_angle; 0 where the frame is not safe. */
 float spherical_rect_init(struct spherical_rect *r, vec3 x, vec3 corner, vec3 ux, vec3 uy, float lx, float ly);
 
 /* The point of the rectangle in the direction drawn from u, v in [0, 1) uniformly over the solid

@@ -1,6 +1,7 @@
 /* test_pt_sampling_unbiased.c: pt's sampling options are unbiased against its defaults: K seeded
  * runs of pt with `sampler=sobol` (Owen-scrambled, shuffled Sobol' points, core/sobol.h), with
- * `lights.sample=solid-angle` (Arvo 1995 on emitting triangles, shading/lights.c), with
+ * `lights.sample=solid-angle` (Arvo 1995 on emitting triangles, Urena et al. 2013 on rectangles,
+ * shading/lights.c), with `lights.sample=auto` (solid angle where it pays, lights.h), with
  * `lights.select=bvh` (emitters chosen down the light BVH, shading/light_tree.c), with
  * `lights.env=compensated` (the environment's MIS-compensated distribution, scene/env_light.h) and
  * with pairs match K runs of pt with independent PCG32 numbers and area sampling per pixel (Welch
@@ -25,7 +26,7 @@
 #include "unbiased_util.h"
 
 /* seconds alone on the 2-core machine of docs/BENCHMARKS.md: ctest starts the longest tests first */
-#define TEST_COST_SECONDS 80
+#define TEST_COST_SECONDS 88
 
 #define RUNS 1024
 
@@ -187,11 +188,19 @@ int main(int argc, char **argv)
     for (int k = 0; k < 4; k++)
         check_variant("lights.sample=solid-angle", NULL, sa_scenes[k], RUNS, spp4, 1);
     check_variant("lights.sample=solid-angle", "sampler=sobol", "cornell", RUNS, spp4, 1);
+    /* lights.sample=auto on cornell: the ceiling and the walls near the lamp by solid angle, the
+     * rest by area, both in NEE and in the BSDF hits' MIS weights */
+    check_variant("lights.sample=auto", NULL, "cornell", RUNS, spp4, 1);
     /* A large emitter close to the floor, where solid-angle and area densities differ most: the
      * case with power. With the BSDF hits' MIS weights left on the area density it fails (83 pixels,
      * pooled z 82; checked); the scenes above use the spherical form too rarely to see that. */
     if (data) {
         snprintf(real, sizeof real, "%s/scenes/big_light.json", data);
+        check_variant("lights.sample=solid-angle", NULL, real, RUNS, spp4, 1);
+        /* a large triangle (the float spherical triangle) by solid-angle, and by auto (solid angle
+         * where the area density spreads far over the emitter, lights.h) with the BVH's choice */
+        snprintf(real, sizeof real, "%s/scenes/big_triangle.json", data);
+        check_variant("lights.sample=auto", "lights.select=bvh", real, RUNS, spp4, 1);
         check_variant("lights.sample=solid-angle", NULL, real, RUNS, spp4, 1);
     }
     /* Emitter selection down the light BVH: its per-point probability in NEE and in the BSDF hits'

@@ -5,7 +5,8 @@
  *     1{point in cell} / lights_pdf_at over the samples is the cell's solid angle, for a 4 x 4 grid
  *     of cells, from receivers near, beside (grazing), far, behind and in the quad's plane, emitters
  *     chosen by power and by the BVH (also where the BVH keeps a quad's halves under different
- *     parents, in the pillars scene); and each sample's own density agrees with lights_pdf_at;
+ *     parents, in the pillars scene), with lights.sample=solid-angle and auto; and each sample's own
+ *     density agrees with lights_pdf_at;
  *  3. no NaN: receivers in the light's plane and a hair-thin quad fall back to area sampling. */
 #include <math.h>
 #include <stdint.h>
@@ -88,10 +89,10 @@ static double cell_solid_angle(const struct emitter_quad *q, vec3 x, int i, int 
 
 /* Part 2 for rectangle k, receiver x (normal n) and one emitter choice, over `samples` light samples. */
 static void check_density(const struct scene *s, int k, const char *name, vec3 x, vec3 n, enum light_selection select,
-                          int samples)
+                          enum light_sampling point, int samples)
 {
     const struct emitter_quad *q = &s->emitter_quads[k];
-    const struct light_choice choice = {select, LIGHT_SAMPLING_SOLID_ANGLE, LIGHT_ENV_MAP};
+    const struct light_choice choice = {select, point, LIGHT_ENV_MAP};
     double sum[CELLS * CELLS] = {0}, sum2[CELLS * CELLS] = {0};
     long mismatched = 0, nonfinite = 0, on_lamp = 0;
     pcg32 rng = pcg32_make(77u, (uint64_t)select);
@@ -139,9 +140,9 @@ static void check_density(const struct scene *s, int k, const char *name, vec3 x
     EXPECT(worst < 5.0, "%s: a cell's mean of 1/pdf is %.2f standard errors off its solid angle", name, worst);
     const struct light_bvh *t = &s->light_bvh;
     const int siblings = t->nodes[t->emitter_leaf[q->e[0]]].parent == t->nodes[t->emitter_leaf[q->e[1]]].parent;
-    printf("%-34s %-5s%s %6ld on it, sum over cells %.6f (solid angle %.6f), worst |z| %.2f\n", name,
-           select == LIGHT_SELECT_BVH ? "bvh" : "power", select == LIGHT_SELECT_BVH && !siblings ? " (halves apart)" : "",
-           on_lamp, total, expected_total, worst);
+    printf("%-28s %-5s %-11s%s %6ld on it, sum over cells %.6f (solid angle %.6f), worst |z| %.2f\n", name,
+           select == LIGHT_SELECT_BVH ? "bvh" : "power", point == LIGHT_SAMPLING_AUTO ? "auto" : "solid-angle",
+           select == LIGHT_SELECT_BVH && !siblings ? " (halves apart)" : "", on_lamp, total, expected_total, worst);
 }
 
 int main(void)
@@ -170,14 +171,20 @@ int main(void)
         {"in the lamp's plane", v3(0.6f, 2.0f, 0.0f), v3(0, -1, 0)},
     };
     for (int r = 0; r < (int)(sizeof rx / sizeof rx[0]); r++) {
-        check_density(&s, 0, rx[r].name, rx[r].x, rx[r].n, LIGHT_SELECT_POWER, SAMPLES);
-        check_density(&s, 0, rx[r].name, rx[r].x, rx[r].n, LIGHT_SELECT_BVH, SAMPLES);
+        check_density(&s, 0, rx[r].name, rx[r].x, rx[r].n, LIGHT_SELECT_POWER, LIGHT_SAMPLING_SOLID_ANGLE, SAMPLES);
+        check_density(&s, 0, rx[r].name, rx[r].x, rx[r].n, LIGHT_SELECT_BVH, LIGHT_SAMPLING_SOLID_ANGLE, SAMPLES);
     }
+    /* lights.sample=auto: solid angle below the lamp, area far from it and beside it (its rule) */
+    for (int r = 0; r < 3; r++)
+        check_density(&s, 0, rx[r].name, rx[r].x, rx[r].n, LIGHT_SELECT_BVH, LIGHT_SAMPLING_AUTO, SAMPLES);
     /* the tilted rectangle on the wall, from just in front of it (chosen rarely by power: more samples) */
-    check_density(&s, 1, "wall rectangle, in front", v3(1.9f, 0.9f, -0.5f), v3(1, 0, 0), LIGHT_SELECT_POWER,
+    const vec3 wall_x = v3(1.9f, 0.9f, -0.5f);
+    check_density(&s, 1, "wall rectangle, in front", wall_x, v3(1, 0, 0), LIGHT_SELECT_POWER, LIGHT_SAMPLING_SOLID_ANGLE,
                   5 * SAMPLES);
-    check_density(&s, 1, "wall rectangle, in front", v3(1.9f, 0.9f, -0.5f), v3(1, 0, 0), LIGHT_SELECT_BVH, SAMPLES);
-    check_density(&s, 3, "strip, below", v3(0.5f, 2.0f, 1.0f), v3(0, 1, 0), LIGHT_SELECT_BVH, SAMPLES);
+    check_density(&s, 1, "wall rectangle, in front", wall_x, v3(1, 0, 0), LIGHT_SELECT_BVH, LIGHT_SAMPLING_SOLID_ANGLE,
+                  SAMPLES);
+    check_density(&s, 3, "strip, below", v3(0.5f, 2.0f, 1.0f), v3(0, 1, 0), LIGHT_SELECT_BVH, LIGHT_SAMPLING_SOLID_ANGLE,
+                  SAMPLES);
 
     /* 3. the hair-thin rectangle seen from its own plane and from just above it */
     {
@@ -213,7 +220,8 @@ int main(void)
     EXPECT(apart >= 0, "pillars: no light strip whose halves the BVH keeps apart (the test needs one)");
     if (apart >= 0) {
         const vec3 below = v3_add(s.emitter_quads[apart].centre, v3(0.3f, -0.3f, -0.2f));
-        check_density(&s, apart, "pillars strip, below", below, v3(0, 1, 0), LIGHT_SELECT_BVH, SAMPLES);
+        check_density(&s, apart, "pillars strip, below", below, v3(0, 1, 0), LIGHT_SELECT_BVH,
+                      LIGHT_SAMPLING_SOLID_ANGLE, SAMPLES);
     }
     scene_destroy(&s);
     return test_finish();

@@ -129,6 +129,8 @@ void reference_describe(const struct reference_accum *a, char *out, size_t len)
         used += (size_t)snprintf(out + used, len - used, "; sampler=sobol");
     if (p->light_sampling == LIGHT_SAMPLING_SOLID_ANGLE && used < len)
         used += (size_t)snprintf(out + used, len - used, "; lights=solid-angle");
+    if (p->light_sampling == LIGHT_SAMPLING_AUTO && used < len)
+        used += (size_t)snprintf(out + used, len - used, "; lights=auto");
     if (p->light_selection == LIGHT_SELECT_BVH && used < len)
         used += (size_t)snprintf(out + used, len - used, "; lights.select=bvh");
     if (p->light_env == LIGHT_ENV_COMPENSATED && used < len)
