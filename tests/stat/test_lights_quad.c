@@ -126,7 +126,8 @@ static void check_density(const struct scene *s, int k, const char *name, vec3 x
     EXPECT(nonfinite == 0, "%s: %ld samples with a NaN point or density", name, nonfinite);
     EXPECT(mismatched == 0, "%s: %ld of %ld samples' densities differ from lights_pdf_at", name, mismatched, on_lamp);
     /* a lamp the BVH cannot choose from x (x behind it): no samples, and its density 0 */
-    const float pdf_mid = lights_pdf_at(s, choice, x, n, s->emitter_tri[q->e[0]], v3_length(v3_sub(q->centre, x)), 1.0f);
+    const float pdf_mid =
+        lights_pdf_at(s, choice, x, n, s->emitter_tri[q->e[0]], v3_length(v3_sub(q->centre, x)), 1.0f);
     double worst = 0.0, total = 0.0, expected_total = 0.0;
     for (int c = 0; c < CELLS * CELLS; c++) {
         const double expected = pdf_mid > 0.0f ? cell_solid_angle(q, x, c / CELLS, c % CELLS) : 0.0;
@@ -179,12 +180,10 @@ int main(void)
         check_density(&s, 0, rx[r].name, rx[r].x, rx[r].n, LIGHT_SELECT_BVH, LIGHT_SAMPLING_AUTO, SAMPLES);
     /* the tilted rectangle on the wall, from just in front of it (chosen rarely by power: more samples) */
     const vec3 wall_x = v3(1.9f, 0.9f, -0.5f);
-    check_density(&s, 1, "wall rectangle, in front", wall_x, v3(1, 0, 0), LIGHT_SELECT_POWER, LIGHT_SAMPLING_SOLID_ANGLE,
-                  5 * SAMPLES);
-    check_density(&s, 1, "wall rectangle, in front", wall_x, v3(1, 0, 0), LIGHT_SELECT_BVH, LIGHT_SAMPLING_SOLID_ANGLE,
-                  SAMPLES);
-    check_density(&s, 3, "strip, below", v3(0.5f, 2.0f, 1.0f), v3(0, 1, 0), LIGHT_SELECT_BVH, LIGHT_SAMPLING_SOLID_ANGLE,
-                  SAMPLES);
+    const enum light_sampling sa = LIGHT_SAMPLING_SOLID_ANGLE;
+    check_density(&s, 1, "wall rectangle, in front", wall_x, v3(1, 0, 0), LIGHT_SELECT_POWER, sa, 5 * SAMPLES);
+    check_density(&s, 1, "wall rectangle, in front", wall_x, v3(1, 0, 0), LIGHT_SELECT_BVH, sa, SAMPLES);
+    check_density(&s, 3, "strip, below", v3(0.5f, 2.0f, 1.0f), v3(0, 1, 0), LIGHT_SELECT_BVH, sa, SAMPLES);
 
     /* 3. the hair-thin rectangle seen from its own plane and from just above it */
     {
