@@ -69,8 +69,9 @@ float lights_pdf_at(const struct scene *s, struct light_choice choice, vec3 x, v
 /* lights.sample=auto's threshold on (d_max / d_min)^2: the area density's factor cos / d^2 = h / d^3
  * varies by 8x over the emitter where it is reached. Area sampling's excess variance over solid
  * angle's (for a uniform integrand) is about 0.1 ((d_max / d_min)^2 - 1) (computed for a square), and
- * a solid-angle sample costs about 100 ns more (docs/BENCHMARKS.md, issue 57's section: measured 2
- * and 4 on box, cornell and big_light). */
+ * a solid-angle sample costs about 100 ns more (docs/BENCHMARKS.md, "spherical rectangles, float
+ * spherical triangles and lights.sample=auto": thresholds 2 and 4 measured on box, cornell and
+ * big_light). */
 #define LIGHTS_AUTO_SPREAD 4.0f
 /* Area density of producing the point on triangle tri (0 when tri is not an emitter). */
 float lights_pdf_area(const struct scene *s, int tri);
