@@ -270,7 +270,11 @@ static void initial_pixel(const struct scene *s, const struct light_pool *pool, 
         vec3 o = scene_offset_point(sp->p, sp->ng, wi);
         float tmin = 0.0f;
         struct surface_hit h;
-        for (int hits = 0; hits < 8 && scene_intersect_emitters(s, o, wi, tmin, INFINITY, &h); hits++) {
+        /* Every emitter point along the ray is a candidate of this strategy, however many lie in
+         * front of it: the light candidates' MIS weights count p_bsdf for all of them, so a cap on the
+         * hits would drop the far ones' share (a bias wherever reuse carries them to a pixel that sees
+         * them). tmin grows strictly, so the walk ends after at most one hit per emitter triangle. */
+        while (scene_intersect_emitters(s, o, wi, tmin, INFINITY, &h)) {
             (*rays)++;
             tmin = h.t * (1.0f + 1e-5f) + 1e-6f;
             if (!h.front)
