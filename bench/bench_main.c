@@ -87,10 +87,17 @@ static void replay_best(const struct scene *s, const struct ray_record *rays, si
 }
 
 /* Per-pass timing over frames 1..N-1 (frame 0 has no history), rays per second, and the last
- * frame's rays replayed through Embree alone. Pass columns: those any of the methods ran. */
+ * frame's rays replayed through Embree alone. Pass columns: those any of the methods ran. sets:
+ * NULL, or per method NULL or a "key=value[:key=value]..." list already checked by
+ * render_params_set_list; the row is labelled "method:list". */
 #define BENCH_MAX_METHODS 4
-static void bench_passes(const struct bench_config *c, const struct method **methods, int nmethods)
+static void bench_passes(const struct bench_config *c, const struct method **methods, const char *const *sets,
+                         int nmethods)
 {
+    char label[BENCH_MAX_METHODS][160];
+    for (int k = 0; k < nmethods; k++)
+        snprintf(label[k], sizeof(label[k]), "%s%s%s", methods[k]->name, sets && sets[k] ? ":" : "",
+                 sets && sets[k] ? sets[k] : "");
     struct scene s = bench_load_scene(c->scene);
     double ms[BENCH_MAX_METHODS][PASS_COUNT] = {{0}}, total[BENCH_MAX_METHODS] = {0}, rays[BENCH_MAX_METHODS] = {0};
     double replay_ms[BENCH_MAX_METHODS] = {0}, frame_ms[BENCH_MAX_METHODS] = {0}, rays_px[BENCH_MAX_METHODS] = {0};
@@ -101,6 +108,9 @@ static void bench_passes(const struct bench_config *c, const struct method **met
         struct render_params p = base_params(c);
         if (methods[k] == method_named("pt"))
             method_reference_params(methods[0], &p); /* pt over the first method's integrand, 1 spp */
+        char msg[RESTIR_MSG_LEN];
+        if (sets && sets[k])
+            RESTIR_CHECK(render_params_set_list(&p, sets[k], msg) == 0);
         struct renderer r;
         renderer_init(&r, &s, methods[k], &p);
         struct frame_stats st;
@@ -160,21 +170,21 @@ static void bench_passes(const struct bench_config *c, const struct method **met
     printf("---|---|---|---|---|\n");
     const int n = c->frames - 1;
     for (int k = 0; k < nmethods; k++) {
-        printf("| %s |", methods[k]->name);
+        printf("| %s |", label[k]);
         for (int q = 0; q < PASS_COUNT; q++)
             if (used[q])
                 printf(" %.2f |", ms[k][q] / n);
         printf(" %.2f | %.2f | %.2f | %.2f | %.2f |\n", total[k] / n, rays[k] / (total[k] * 1e3), rays_px[k],
                replay_ms[k], frame_ms[k] / replay_ms[k]);
         if (passes_csv)
-            csv_row(passes_csv, "%s,%s,%d,%d,%.3f,%.3f,%.4f", c->scene, methods[k]->name, c->width,
+            csv_row(passes_csv, "%s,%s,%d,%d,%.3f,%.3f,%.4f", c->scene, label[k], c->width,
                     c->height, frame_ms[k], replay_ms[k], frame_ms[k] / replay_ms[k]);
     }
     printf("\nEmbree-only ms of the same rays batched as the threads traced them (consecutive same-kind "
            "rays):\n\n| method | single | packet 8 | packet 16 | stream 64 | stream 64 coherent |\n"
            "|---|---|---|---|---|---|\n");
     for (int k = 0; k < nmethods; k++) {
-        printf("| %s |", methods[k]->name);
+        printf("| %s |", label[k]);
         for (int b = 0; b < RAY_BATCH_COUNT; b++)
             printf(" %.2f |", batch_ms[k][b]);
         printf("\n");
@@ -187,7 +197,7 @@ static void bench_passes(const struct bench_config *c, const struct method **met
         for (int kind = 0; kind < 3; kind++) {
             if (!kind_count[k][kind])
                 continue;
-            printf("| %s | %s | %zu |", methods[k]->name, kind_names[kind], kind_count[k][kind]);
+            printf("| %s | %s | %zu |", label[k], kind_names[kind], kind_count[k][kind]);
             for (int b = 0; b < RAY_BATCH_COUNT; b++)
                 printf(" %.2f |", kind_ms[k][kind][b]);
             printf("\n");
@@ -442,7 +452,7 @@ struct bench_run {
 static void section_passes(struct bench_run *r)
 {
     const struct method *di_methods[] = {method_named("restir-di"), method_named("ris-di"), method_named("pt")};
-    bench_passes(&r->c, di_methods, 3);
+    bench_passes(&r->c, di_methods, NULL, 3);
 }
 
 static void section_equal_time(struct bench_run *r)
@@ -463,7 +473,7 @@ static void pt_rows(const struct bench_config *c, const char *scene)
     struct bench_config pc = *c;
     pc.scene = scene;
     const struct method *pt_methods[] = {method_named("restir-pt"), method_named("pt")};
-    bench_passes(&pc, pt_methods, 2);
+    bench_passes(&pc, pt_methods, NULL, 2);
     bench_equal_time(&pc, method_named("restir-pt"), 0);
     bench_equal_time(&pc, method_named("restir-pt"), 1);
 }
@@ -495,23 +505,33 @@ static void section_spmis(struct bench_run *r)
     bench_spmis(&r->so);
 }
 
-/* `restir_bench frame-ratio SCENE METHOD[,METHOD...] [--res WxH] [--frames N]`: only the per-pass
- * table (with Frame / Embree-only) of the methods named, on one scene, without the equal-time
- * references the sections add: the number issue 57 tracks, cheap enough to take before and after
- * a change. */
+/* `restir_bench frame-ratio SCENE METHOD[:key=value...][,...] [--res WxH] [--frames N]`: only the
+ * per-pass table (with Frame / Embree-only) of the methods named, on one scene, without the
+ * equal-time references the sections add: the number issue 57 tracks, cheap enough to take before
+ * and after a change, or for two settings of one method in one run. */
 static int bench_frame_ratio(int argc, char **argv)
 {
     struct bench_config c = {NULL, 640, 360, 17, 0, 0};
     const struct method *methods[BENCH_MAX_METHODS];
+    const char *sets[BENCH_MAX_METHODS];
     int n = 0;
-    char names[256];
+    char names[512], msg[RESTIR_MSG_LEN];
     if (argc < 3 || snprintf(names, sizeof(names), "%s", argv[2]) >= (int)sizeof(names))
         goto usage;
     c.scene = argv[1];
     for (char *tok = strtok(names, ","); tok; tok = strtok(NULL, ",")) {
+        char *list = strchr(tok, ':');
+        if (list)
+            *list++ = '\0';
         if (n == BENCH_MAX_METHODS || !(methods[n] = method_named(tok)))
             goto usage;
-        n++;
+        struct render_params probe;
+        render_params_defaults(&probe);
+        if (list && render_params_set_list(&probe, list, msg) != 0) {
+            fprintf(stderr, "restir_bench frame-ratio: %s: %s\n", tok, msg);
+            return 2;
+        }
+        sets[n++] = list;
     }
     for (int i = 3; i < argc; i++) {
         if (!strcmp(argv[i], "--res") && i + 1 < argc && sscanf(argv[i + 1], "%dx%d", &c.width, &c.height) == 2 &&
@@ -525,10 +545,10 @@ static int bench_frame_ratio(int argc, char **argv)
     }
     if (n == 0)
         goto usage;
-    bench_passes(&c, methods, n);
+    bench_passes(&c, methods, sets, n);
     return 0;
 usage:
-    fprintf(stderr, "usage: restir_bench frame-ratio SCENE METHOD[,METHOD...] [--res WxH] [--frames N>=2]\n");
+    fprintf(stderr, "usage: restir_bench frame-ratio SCENE METHOD[:key=value...][,...] [--res WxH] [--frames N>=2]\n");
     return 2;
 }
 
@@ -565,7 +585,7 @@ static const struct bench_command {
     {"streams", bench_streams, "[--res WxH] [--rounds N]", "the batched passes with rays.streams on against off"},
     {"gradient", bench_gradient, "[--res WxH] [--frames N] [--ref-spp N] [--scenes a,b,c] [--quick]",
      "002 Sec. 5 on our scenes (restir_bench gradient --help: all its options)"},
-    {"frame-ratio", bench_frame_ratio, "SCENE METHOD[,METHOD...] [--res WxH] [--frames N]",
+    {"frame-ratio", bench_frame_ratio, "SCENE METHOD[:key=value...][,...] [--res WxH] [--frames N]",
      "per-pass ms and Frame / Embree-only of the methods named, nothing else"},
     {"denoise", bench_denoise,
      "[--scene S] [--method M] [--res WxH] [--frames N>=3] [--threads T] [--camera static|path] "
