@@ -198,7 +198,7 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                  "gradient_relmse_sem,gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem,"
                  "relmse_denoised,relmse_denoised_sem,mape_denoised,mape_denoised_sem,smape_denoised,"
                  "smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem,temporal_cov_denoised,"
-                 "ref_relmse,ref_mape,ref_smape,relmse_net,flip,flip_sem,ref_mape_disoccluded",
+                 "ref_relmse,ref_mape,ref_smape,relmse_net,flip,flip_sem,ref_mape_disoccluded,relmse_time",
                  msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
@@ -217,9 +217,10 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
         printf("(errors: means of %d independently seeded runs, +- their standard error; tcov: 000 Eq. 17 at lag %d "
                "over frames %d-%d)\n",
                o->runs, COMPARE_COV_LAG, o->frames / 2, o->frames - 1);
-    printf("%-*s %10s %6s %5s %12s%s %10s%s %8s%s %8s%s %12s %10s%s %6s%s%s%s%s%s%s%s\n", w, "method", "ms/frame",
-           "spp", "inst", "relMSE", runs ? "       +-" : "", "MAPE", runs ? "       +-" : "", "SMAPE",
-           runs ? "     +-" : "", "FLIP", runs ? "     +-" : "", "relMSE/first", "MAPE dis", runs ? "       +-" : "",
+    printf("%-*s %10s %6s %5s %12s%s %10s%s %8s%s %8s%s %12s %14s %10s%s %6s%s%s%s%s%s%s%s\n", w, "method",
+           "ms/frame", "spp", "inst", "relMSE", runs ? "       +-" : "", "MAPE", runs ? "       +-" : "", "SMAPE",
+           runs ? "     +-" : "", "FLIP", runs ? "     +-" : "", "relMSE/first", "relMSE*t/first", "MAPE dis",
+           runs ? "       +-" : "",
            "dis", runs ? "         tcov" : "",
            any_grad ? "  grad relMSE" : "", any_grad && runs ? "       +-" : "", any_grad ? "   grad trim1" : "",
            any_grad && runs ? "       +-" : "", any_grad ? "    grad MAPE" : "", any_grad && runs ? "       +-" : "");
@@ -247,10 +248,14 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
         table_cell(flip[0], sizeof flip[0], "%8.4f", 8, c->flip);
         table_cell(dis[0], sizeof dis[0], " %10.5g", 11, c->mape_dis);
         table_cell(dis[1], sizeof dis[1], " %6.3f", 7, c->dis_share);
-        printf("%-*s %10.2f %6d %5d %12.5g%s %10.5g%s %8.3f%s %s%s %12.3f%s%s%s%s%s%s%s%s%s%s\n", w, specs[k].label,
-               c->ms_per_frame, c->spp, c->instances, c->err.relmse, se[0], c->err.mape, se[1], c->err.smape, se[2],
-               flip[0], flip[1], res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0, dis[0], se[3],
-               dis[1], tcov, grad[0], grad[1], grad[2], grad[3], grad[4], grad[5]);
+        /* relMSE x frame time: the error an equal budget would give if variance falls as 1/time, which
+         * an integer spp cannot always spend (pt's 1 spp may take less than the budget) */
+        const double first_t = res[0].err.relmse * res[0].ms_per_frame;
+        printf("%-*s %10.2f %6d %5d %12.5g%s %10.5g%s %8.3f%s %s%s %12.3f %14.3f%s%s%s%s%s%s%s%s%s%s\n", w,
+               specs[k].label, c->ms_per_frame, c->spp, c->instances, c->err.relmse, se[0], c->err.mape, se[1],
+               c->err.smape, se[2], flip[0], flip[1], res[0].err.relmse > 0 ? c->err.relmse / res[0].err.relmse : 0.0,
+               first_t > 0 ? c->err.relmse * c->ms_per_frame / first_t : 0.0, dis[0], se[3], dis[1], tcov, grad[0],
+               grad[1], grad[2], grad[3], grad[4], grad[5]);
         if (rc == 0) {
             char field[2 * SPEC_MAX + 4], cov[32] = "", sem[4][32] = {"", "", "", ""}, dis[2][32] = {"", ""},
                                           gr[6][32] = {"", "", "", "", "", ""};
@@ -301,11 +306,11 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                 snprintf(fl[1], sizeof fl[1], "%.6g", c->flip_sem);
             csv_row(&csv,
                     "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,"
-                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s",
+                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%.6g",
                     field, c->ms_per_frame, c->spp, c->instances, c->err.relmse, c->err.mape, c->err.smape,
                     c->err.luma_rmse, c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1],
                     gr[0], gr[1], gr[2], gr[3], gr[4], gr[5], dn[0], dn[1], dn[2], dn[3], dn[4], dn[5], dn[6], dn[7],
-                    dn[8], own[0], own[1], own[2], net, fl[0], fl[1], own[3]);
+                    dn[8], own[0], own[1], own[2], net, fl[0], fl[1], own[3], c->err.relmse * c->ms_per_frame);
         }
     }
     print_denoised(specs, res, n, w, runs, p->denoise.method);
