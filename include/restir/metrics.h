@@ -155,6 +155,27 @@ double restir_metrics_spatial_covariance(const float *runs, int n_runs, int widt
 double restir_metrics_temporal_autocovariance(const float *seq, int n_runs, int frames, int width, int height, int lag,
                                       float eps, const unsigned char *mask);
 
+/* Flicker of a static camera's frames at block scale `block` (issue 58): per run and block of
+ * block x block pixels, the block's mean luminance in each frame and its variance over the frames
+ * (1 / (frames - 1), about that run's own temporal mean), divided by (R^2 + 1e-3), R the reference's
+ * mean over the norm_block x norm_block block that holds it (relMSE's normalisation, taken at one
+ * scale for all block sizes); averaged over the blocks and the runs. Only whole norm_blocks from the
+ * top-left corner count, so every block size sees the same pixels and independent per-pixel noise
+ * gives flicker(s) = flicker(1) / s^2 in expectation, whatever the image; noise that moves s x s
+ * pixels together (boiling) keeps flicker(s) near flicker(1). seq: n_runs >= 1 sequences of
+ * `frames` >= 2 luminance images, seq[((size_t)n * frames + t) * w * h + i] (as
+ * restir_metrics_temporal_autocovariance's); reference: one luminance image of w x h. A NaN value
+ * makes it NaN. Returns NaN for NULL pointers, n_runs < 1, frames < 2, sizes <= 0, block < 1, a
+ * norm_block that is not a multiple of block or is larger than the image, sizes whose images cannot
+ * be addressed, or no memory. */
+double restir_metrics_flicker(const float *seq, int n_runs, int frames, int width, int height,
+                              const float *reference, int block, int norm_block);
+/* The boiling index: 256 flicker(16) / flicker(1), both with norm_block 16: how many of a 16 x 16
+ * block's pixels change together from frame to frame, about 1 for independent per-pixel noise, up
+ * to 256 for blotches that cover whole blocks. NaN or infinite as the division gives it (flicker_1 =
+ * 0: a still image). */
+double restir_metrics_boiling_index(double flicker_1, double flicker_16);
+
 /* 000 Sec. 7 hard pixels. A valid pixel's ratio is the fraction of the valid pixels j != i with
  * |j - i|^2 <= radius^2 that pass restir_neighbors_bitterli (000 Eq. 7) with the pixel as center
  * (0 if it has no valid neighbor). The round(fraction * valid) valid pixels (halves rounded up)

@@ -368,6 +368,12 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
     }
     compare_runs_finish(&acc, res);
     res->temporal_cov = track ? compare_track_end(track, c->label) : NAN;
+    for (int k = 0; k < COMPARE_FLICKER_COLS; k++)
+        res->flicker[k] = res->flicker_dn[k] = NAN;
+    if (track) {
+        compare_track_flicker(track, 0, res->flicker);
+        compare_track_flicker(track, 1, res->flicker_dn);
+    }
     res->temporal_cov_dn = track ? compare_track_end_denoised(track) : NAN;
     return 0;
 }

@@ -63,6 +63,9 @@ struct compare_result {
                     each (else NULL; caller frees) */
     double temporal_cov;     /* 000 Eq. 17 over the runs (compare_track.h); NaN with one run */
     double temporal_cov_dn;  /* the same of the denoised frames; NaN without denoising */
+    /* flicker at 1, 4 and 16 px and the boiling index (compare_track_flicker) over the second half's
+     * frames, of the frames as rendered and denoised (NaN without denoising or a reference) */
+    double flicker[COMPARE_FLICKER_COLS], flicker_dn[COMPARE_FLICKER_COLS];
     float *image;            /* the last frame, kept for --report (else NULL) */
     float *image_dn;         /* and the denoised one (else NULL) */
     /* Each run's own values, for pairing rows by seed (runs.csv): runs * COMPARE_RUN_COLS doubles,

@@ -80,6 +80,39 @@ static void print_denoised(const struct compare_spec *specs, const struct compar
     }
 }
 
+/* Flicker at 1, 4 and 16 px and the boiling index over the second half's frames (compare_track_flicker),
+ * as rendered and, for rows that denoise, denoised; a static camera's only. */
+static void print_flicker(const struct compare_spec *specs, const struct compare_result *res, int n, int w,
+                          int frames)
+{
+    int any = 0, any_dn = 0;
+    for (int k = 0; k < n; k++) {
+        any |= isfinite(res[k].flicker[0]);
+        any_dn |= isfinite(res[k].flicker_dn[0]);
+    }
+    if (!any)
+        return;
+    printf("flicker over frames %d-%d (variance of s x s block means over the frames / reference block mean^2; "
+           "boiling index = 256 flicker16 / flicker1: ~1 for independent noise, up to 256 for blotches):\n",
+           frames / 2, frames - 1);
+    printf("%-*s %11s %11s %11s %8s%s\n", w, "method", "flicker1", "flicker4", "flicker16", "boiling",
+           any_dn ? "   denoised: flicker1   flicker4  flicker16  boiling" : "");
+    for (int k = 0; k < n; k++) {
+        char v[2][COMPARE_FLICKER_COLS][32];
+        for (int d = 0; d < 2; d++) {
+            const double *f = d ? res[k].flicker_dn : res[k].flicker;
+            for (int j = 0; j < COMPARE_FLICKER_SCALES; j++)
+                table_cell(v[d][j], sizeof v[d][j], " %10.4g", 11, f[j]);
+            table_cell(v[d][COMPARE_FLICKER_SCALES], sizeof v[d][COMPARE_FLICKER_SCALES], " %8.2f", 9,
+                       f[COMPARE_FLICKER_SCALES]);
+        }
+        printf("%-*s %s%s%s%s", w, specs[k].label, v[0][0], v[0][1], v[0][2], v[0][3]);
+        if (any_dn)
+            printf("           %s%s%s%s", v[1][0], v[1][1], v[1][2], v[1][3]);
+        printf("\n");
+    }
+}
+
 /* DIR/runs.csv: each row's values per run (compare_run_columns), so that `restir evaluate` pairs rows
  * by seed: run r of every row renders with compare_run_seed(seed, r). Returns 0, or -1 with msg. */
 static int write_runs(const char *out_dir, const struct compare_spec *specs, const struct compare_result *res, int n,
@@ -198,7 +231,9 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                  "gradient_relmse_sem,gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem,"
                  "relmse_denoised,relmse_denoised_sem,mape_denoised,mape_denoised_sem,smape_denoised,"
                  "smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem,temporal_cov_denoised,"
-                 "ref_relmse,ref_mape,ref_smape,relmse_net,flip,flip_sem,ref_mape_disoccluded,relmse_time",
+                 "ref_relmse,ref_mape,ref_smape,relmse_net,flip,flip_sem,ref_mape_disoccluded,relmse_time,flicker1,flicker4,"
+                 "flicker16,boiling_index,flicker1_denoised,flicker4_denoised,flicker16_denoised,"
+                 "boiling_index_denoised",
                  msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
@@ -304,16 +339,25 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                 snprintf(fl[0], sizeof fl[0], "%.6g", c->flip);
             if (c->runs > 1 && isfinite(c->flip_sem))
                 snprintf(fl[1], sizeof fl[1], "%.6g", c->flip_sem);
+            char fk[2 * COMPARE_FLICKER_COLS][32]; /* flicker and boiling index, as rendered then denoised */
+            for (int j = 0; j < 2 * COMPARE_FLICKER_COLS; j++) {
+                const double v = j < COMPARE_FLICKER_COLS ? c->flicker[j] : c->flicker_dn[j - COMPARE_FLICKER_COLS];
+                fk[j][0] = '\0';
+                if (!p->camera_path && isfinite(v))
+                    snprintf(fk[j], sizeof fk[j], "%.6g", v);
+            }
             csv_row(&csv,
                     "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,"
-                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%.6g",
+                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%.6g,%s,%s,%s,%s,%s,%s,%s,%s",
                     field, c->ms_per_frame, c->spp, c->instances, c->err.relmse, c->err.mape, c->err.smape,
                     c->err.luma_rmse, c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1],
                     gr[0], gr[1], gr[2], gr[3], gr[4], gr[5], dn[0], dn[1], dn[2], dn[3], dn[4], dn[5], dn[6], dn[7],
-                    dn[8], own[0], own[1], own[2], net, fl[0], fl[1], own[3], c->err.relmse * c->ms_per_frame);
+                    dn[8], own[0], own[1], own[2], net, fl[0], fl[1], own[3], c->err.relmse * c->ms_per_frame, fk[0], fk[1], fk[2], fk[3], fk[4], fk[5], fk[6], fk[7]);
         }
     }
     print_denoised(specs, res, n, w, runs, p->denoise.method);
+    if (!p->camera_path)
+        print_flicker(specs, res, n, w, o->frames);
     if (rc == 0 && csv_close(&csv, msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;

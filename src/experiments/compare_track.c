@@ -11,6 +11,8 @@
 
 #define COV_EPS 1e-4f /* 000 Appendix A */
 
+const int compare_flicker_block[COMPARE_FLICKER_SCALES] = {1, 4, 16};
+
 void compare_track_init(struct compare_track *t, int frames, int runs, int ref_every, int w, int h,
                         float *last_ref)
 {
@@ -30,7 +32,8 @@ void compare_track_init(struct compare_track *t, int frames, int runs, int ref_e
     t->cov_first = frames / 2;
     t->sums = xcalloc((size_t)frames, sizeof *t->sums);
     const size_t window = (size_t)(frames - t->cov_first);
-    t->seq = runs >= 2 ? xmalloc(sizeof(float) * (size_t)runs * window * (size_t)w * (size_t)h) : NULL;
+    /* every run's window: the autocovariance needs two runs, flicker one */
+    t->seq = window >= 2 ? xmalloc(sizeof(float) * (size_t)runs * window * (size_t)w * (size_t)h) : NULL;
 }
 
 int compare_track_open(struct compare_track *t, const char *out_dir, char *msg)
@@ -141,13 +144,32 @@ double compare_track_end(struct compare_track *t, const char *label)
                 s->splat_accepted * k, err);
     }
     const int window = t->frames - t->cov_first;
-    if (!t->seq || window < COMPARE_COV_LAG + 1)
+    if (!t->seq || t->runs < 2 || window < COMPARE_COV_LAG + 1)
         return NAN;
     if (t->clamped > 0)
         fprintf(stderr, "restir: compare: %s: tcov of the luminance clamped at 0 (%.2f%% of its values were negative: "
                 "a signed reconstruction)\n", label, 100.0 * (double)t->clamped / (double)t->measured);
     return restir_metrics_temporal_autocovariance(t->seq, t->runs, window, t->width, t->height, COMPARE_COV_LAG, COV_EPS,
                                           NULL);
+}
+
+void compare_track_flicker(const struct compare_track *t, int denoised, double out[COMPARE_FLICKER_COLS])
+{
+    const float *seq = denoised ? t->seq_dn : t->seq;
+    for (int k = 0; k < COMPARE_FLICKER_COLS; k++)
+        out[k] = NAN;
+    if (!seq || t->nref < 1)
+        return;
+    const size_t npix = (size_t)t->width * (size_t)t->height;
+    const float *rgb = t->ref[t->nref - 1];
+    float *ref = xmalloc(sizeof(float) * npix);
+    for (size_t i = 0; i < npix; i++) /* Rec. 709 luminance, as the window's frames */
+        ref[i] = 0.2126f * rgb[3 * i] + 0.7152f * rgb[3 * i + 1] + 0.0722f * rgb[3 * i + 2];
+    for (int k = 0; k < COMPARE_FLICKER_SCALES; k++)
+        out[k] = restir_metrics_flicker(seq, t->runs, t->frames - t->cov_first, t->width, t->height, ref,
+                                        compare_flicker_block[k], compare_flicker_block[COMPARE_FLICKER_SCALES - 1]);
+    out[COMPARE_FLICKER_SCALES] = restir_metrics_boiling_index(out[0], out[COMPARE_FLICKER_SCALES - 1]);
+    free(ref);
 }
 
 double compare_track_end_denoised(struct compare_track *t)

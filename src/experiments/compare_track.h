@@ -18,6 +18,10 @@
 #define COMPARE_RUN_SEED_STRIDE 0x9E3779B97F4A7C15ull
 #define COMPARE_INSTANCE_SEED_STRIDE 1000003ull
 #define COMPARE_COV_LAG 3 /* 000 Appendix A: autocovariance at a lag of 3 frames */
+/* Flicker (restir_metrics_flicker) at these block sizes in pixels, then the boiling index. */
+#define COMPARE_FLICKER_SCALES 3
+#define COMPARE_FLICKER_COLS (COMPARE_FLICKER_SCALES + 1)
+extern const int compare_flicker_block[COMPARE_FLICKER_SCALES];
 
 /* One frame of one spec, summed over its runs (compare_track_end divides). */
 struct compare_frame_sums {
@@ -33,7 +37,8 @@ struct compare_track {
     float **ref;       /* their references; ref[nref - 1] is the comparison's reference (not owned) */
     int cov_first;     /* the autocovariance window: frames cov_first .. frames - 1 (the second half) */
     struct compare_frame_sums *sums; /* frames entries for the spec being run */
-    float *seq;        /* runs * (frames - cov_first) * w * h luminance clamped at 0, run-major then frame */
+    float *seq;        /* runs * (frames - cov_first) * w * h luminance clamped at 0, run-major then frame (NULL
+                          when the window holds one frame) */
     float *seq_dn;     /* the same of the denoised frames (denoise=svgf|atrous; allocated by the first) */
     size_t clamped, measured; /* of the spec's luminance values stored in seq: the negative ones, all */
     struct csv_writer csv; /* DIR/frames.csv */
@@ -64,6 +69,11 @@ int compare_track_wants_image(const struct compare_track *t, int f);
  * are signed, and 000 Eq. 17's division by each pixel's mean is unbounded where that mean crosses 0; stderr
  * says how many values were clamped) (NaN with fewer than 2 runs or a window under lag + 1 frames). */
 double compare_track_end(struct compare_track *t, const char *label);
+/* Before compare_track_end_denoised: flicker at compare_flicker_block's scales and the boiling index
+ * (restir_metrics_flicker, _boiling_index) of the window's frames (denoised: the denoised ones)
+ * against the last frame's reference, over the runs; NaN without a reference or those frames. Meant
+ * for a static camera (a moving one's block means change with the view). */
+void compare_track_flicker(const struct compare_track *t, int denoised, double out[COMPARE_FLICKER_COLS]);
 /* After compare_track_end: the relative autocovariance of the denoised frames, as compare_track_end's
  * (NaN without them). */
 double compare_track_end_denoised(struct compare_track *t);

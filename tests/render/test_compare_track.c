@@ -172,7 +172,8 @@ int main(void)
                        "gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem,relmse_denoised,relmse_denoised_sem,"
                        "mape_denoised,mape_denoised_sem,smape_denoised,smape_denoised_sem,mape_disoccluded_denoised,"
                        "mape_disoccluded_denoised_sem,temporal_cov_denoised,ref_relmse,ref_mape,ref_smape,relmse_net,flip,"
-                       "flip_sem,ref_mape_disoccluded,relmse_time\n") != NULL,
+                       "flip_sem,ref_mape_disoccluded,relmse_time,flicker1,flicker4,flicker16,boiling_index,"
+                         "flicker1_denoised,flicker4_denoised,flicker16_denoised,boiling_index_denoised\n") != NULL,
            "compare.csv header: %.300s", csv);
     c = strstr(csv, "\nrestir-pt,");
     static const int mean_col[4] = {4, 5, 6, 13}, sem_col[4] = {10, 11, 12, 14};
@@ -181,6 +182,30 @@ int main(void)
         const double want = fabs(m - x0[k]), tol = 2e-5 * (fabs(m) + fabs(x0[k])) + 1e-5 * want;
         printf("--runs 2, metric %d: mean %.6g, run 0 %.6g, standard error %.6g (want %.6g)\n", k, m, x0[k], sem, want);
         EXPECT(fabs(sem - want) <= tol && want > 0.0, "metric %d: standard error %g, |mean - run 0| = %g", k, sem, want);
+    }
+    /* flicker (issue 58): a moving camera's rows leave it empty; a static camera's pt row has it, with
+     * 16 px block means flickering far less than pixels (independent noise: about 1/256) */
+    field(c ? c + 1 : "", 39, a, sizeof a);
+    EXPECT(c && a[0] == '\0', "a moving camera has no flicker ('%s')", a);
+    char still[2 * CLI_PATH_MAX];
+    snprintf(still, sizeof still, "%s/still", tmp);
+    snprintf(args, sizeof args,
+             "compare --scene cornell --res 32x32 --frames 8 --ref-spp 8 --seed 5 --threads 1 --methods pt,restir-di "
+             "--out '%s'", still);
+    rc = cli_run(tmp, args, err);
+    EXPECT(rc == 0, "compare with a static camera exited %d: %s", rc, err);
+    snprintf(path, sizeof path, "%s/compare.csv", still);
+    cli_read_text(path, csv, sizeof csv);
+    for (int k = 0; k < 2; k++) {
+        const char *row = strstr(csv, k ? "\nrestir-di," : "\npt,");
+        const double f1 = row ? number(row + 1, 39) : NAN, f4 = row ? number(row + 1, 40) : NAN;
+        const double f16 = row ? number(row + 1, 41) : NAN, bi = row ? number(row + 1, 42) : NAN;
+        printf("static camera, %s: flicker %.4g %.4g %.4g, boiling index %.3g\n", k ? "restir-di" : "pt", f1, f4, f16,
+               bi);
+        EXPECT(f1 > 0.0 && f4 > 0.0 && f4 < f1 && f16 > 0.0 && f16 < f4, "%s: flicker %g %g %g", k ? "restir-di" : "pt",
+               f1, f4, f16);
+        EXPECT(fabs(bi - 256.0 * f16 / f1) <= 1e-4 * bi, "%s: boiling index %g is not 256 flicker16 / flicker1",
+               k ? "restir-di" : "pt", bi);
     }
     cli_remove_tree(tmp);
     return test_finish();
