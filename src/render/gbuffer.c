@@ -160,6 +160,29 @@ int gbuffer_history_pixel(const struct gbuffer *g, int i, const struct gbuffer *
     return q >= 0 && same_surface(g, i, prev_g, q, normal_min, plane_max) ? q : -1;
 }
 
+void gbuffer_permutation_offset(uint64_t seed, int frame, int *ox, int *oy)
+{
+    pcg32 rng = rng_for(seed, (uint64_t)frame, 0, RNG_PASS_TEMPORAL_PERMUTATION);
+    const uint32_t u = pcg32_next(&rng);
+    *ox = (int)(u & 3u);
+    *oy = (int)((u >> 2) & 3u);
+}
+
+int gbuffer_history_pixel_permuted(const struct gbuffer *g, int i, const struct gbuffer *prev_g, float normal_min,
+                                   float plane_max, int ox, int oy)
+{
+    const int q = gbuffer_motion_pixel(g, i, prev_g);
+    if (q < 0)
+        return -1;
+    const int x = (((q % prev_g->width) + ox) ^ 3) - ox, y = (((q / prev_g->width) + oy) ^ 3) - oy;
+    if (x >= 0 && y >= 0 && x < prev_g->width && y < prev_g->height) {
+        const int r = y * prev_g->width + x;
+        if (prev_g->valid[r] && same_surface(g, i, prev_g, r, normal_min, plane_max))
+            return r;
+    }
+    return same_surface(g, i, prev_g, q, normal_min, plane_max) ? q : -1;
+}
+
 int gbuffer_history_square(const struct gbuffer *g, int i, const struct gbuffer *prev_g, float normal_min,
                            float plane_max, struct gbuffer_history_cell cells[4])
 {

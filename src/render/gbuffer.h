@@ -63,6 +63,18 @@ int gbuffer_motion_pixel(const struct gbuffer *g, int i, const struct gbuffer *p
 int gbuffer_history_pixel(const struct gbuffer *g, int i, const struct gbuffer *prev_g, float normal_min,
                           float plane_max);
 
+/* RTXDI's permutation sampling of the temporal neighbour (temporal.permutation): frame `frame`'s tile
+ * offset (ox, oy), each in 0..3, one draw of the (seed, frame) stream RNG_PASS_TEMPORAL_PERMUTATION,
+ * the same for every pixel. */
+void gbuffer_permutation_offset(uint64_t seed, int frame, int *ox, int *oy);
+/* gbuffer_history_pixel through the permutation: the reprojected pixel (qx, qy) moved to
+ * (((qx + ox) ^ 3) - ox, ((qy + oy) ^ 3) - oy), its mirror inside the 4 x 4 tiles of a grid shifted by
+ * (ox, oy) (a bijection of the pixels), kept when inside the image, valid and showing pixel i's
+ * surface; otherwise the reprojected pixel under gbuffer_history_pixel's test. Reads only G-buffers
+ * and a per-frame offset, so it cannot bias GRIS. Returns the pixel index, or -1. */
+int gbuffer_history_pixel_permuted(const struct gbuffer *g, int i, const struct gbuffer *prev_g, float normal_min,
+                                   float plane_max, int ox, int oy);
+
 /* A previous pixel that pixel i's square overlaps once moved by its backward motion vector. */
 struct gbuffer_history_cell {
     int q;           /* previous pixel, row-major */

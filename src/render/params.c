@@ -160,6 +160,14 @@ static const struct param_def path_history_rows[] = {
      "splat with camera.shutter > 0: each previous reservoir is splatted into this many shutter-time strata "
      "(1: it keeps its shutter time)", NULL},
 };
+static const struct param_def permutation_rows[] = {
+    {"temporal.permutation", P_BOOL, R(temporal_permutation), 0, 1, "off", NULL,
+     "the temporal neighbour through a per-frame pixel permutation (RTXDI's permutation sampling: the "
+     "reprojected pixel mirrored inside 4 x 4 tiles whose grid shifts every frame; kept only where it shows "
+     "the same surface, else the reprojected pixel itself), so that a pixel's history comes from a "
+     "neighbour and errors decorrelate between frames; reads only G-buffers: unbiased",
+     NULL},
+};
 static const struct param_def spmis_rows[] = {
     {"spmis.candidates", P_COUNT, S(candidates), 1, RESTIR_SPMIS_MAX_DRAWS, "3", NULL,
      "spmis: neighbor draws N (004 Eq. 15-17); M = deterministic pairwise over the whole cell", NULL},
@@ -304,6 +312,7 @@ TOOLKIT_BLOCK(lights, "lights", 0, 0, NULL);
 const struct param_block params_block_reuse = {
     "reuse", reuse_rows, sizeof(reuse_rows) / sizeof(reuse_rows[0]), F(reuse), 0, 0, 0, reuse_validate, apply_preset};
 TOOLKIT_BLOCK(path_history, "path history", 1, F(reuse), path_history_validate);
+TOOLKIT_BLOCK(permutation, "temporal permutation", 0, F(reuse), NULL);
 TOOLKIT_BLOCK(spmis, "spmis", 0, F(spmis), NULL);
 TOOLKIT_BLOCK(shift, "shift", 0, F(shift), NULL);
 TOOLKIT_BLOCK(scene, "scene", 1, 0, NULL);
@@ -325,6 +334,7 @@ const struct param_block *const render_params_toolkit_blocks[] = {
     &params_block_reuse,
     &params_block_denoise,
     &params_block_path_history,
+    &params_block_permutation,
     &params_block_spmis,
     &params_block_shift,
     &params_block_scene,

@@ -67,6 +67,7 @@ struct reuse_settings {
     enum temporal_reuse_mode temporal_reuse; /* path reservoirs only (restir-pt and its relatives) */
     enum temporal_subpixel_mode temporal_subpixel; /* backprojection of sub-pixel samples */
     int temporal_splat_steps; /* splat with motion blur: shutter-time strata per history reservoir */
+    int temporal_permutation; /* RTXDI's permutation sampling of the temporal neighbour (params_block_permutation) */
 };
 
 /* Stochastic pairwise MIS with reuse cells (004): the keys spmis.* (reuse_cells.h). */
@@ -172,6 +173,7 @@ extern const struct param_block params_block_sampler;
 extern const struct param_block params_block_lights;
 extern const struct param_block params_block_reuse;
 extern const struct param_block params_block_path_history;
+extern const struct param_block params_block_permutation; /* temporal.permutation: the methods that implement it */
 extern const struct param_block params_block_spmis;
 extern const struct param_block params_block_shift;
 extern const struct param_block params_block_scene;

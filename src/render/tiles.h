@@ -107,6 +107,7 @@ enum rng_pass {
     RNG_PASS_GI_TEMPORAL,
     RNG_PASS_GI_SPATIAL,
     RNG_PASS_PT_SOBOL, /* not a PCG32 stream: the key of pt's Sobol' dimensions (pt.c) */
+    RNG_PASS_TEMPORAL_PERMUTATION, /* one draw per frame: the permutation's tile offset (gbuffer.h) */
     RNG_PASS_COUNT     /* one past the last: the toolkit's ids are the small integers below it */
 };
 

@@ -4,7 +4,8 @@
  * temporal reuse merges history from other shading points. The default has visibility reuse with
  * ray-traced visibility in the MIS targets (di.visibility_reuse=on, di.visibility_mis=rays);
  * visibility_reuse=off is checked too, and visibility_mis=none's bias is measured; and the initial
- * candidates from ReGIR's light grid (di.initial=regir) from both of its sources. */
+ * candidates from ReGIR's light grid (di.initial=regir) from both of its sources, and the temporal
+ * neighbour through RTXDI's permutation (temporal.permutation=on). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -131,6 +132,10 @@ int main(int argc, char **argv)
     /* Each pixel's own candidates down the light BVH (di.initial=bvh), 8 of them: a descent each */
     const char *bvh_ris[] = {"di.initial=bvh", "di.light_candidates=8", "jitter=off"};
     check_method(method_named("ris-di"), "many-lights", 24, 16, bvh_ris, 3, 1);
+    /* temporal.permutation (issue 58): the history of a neighbour mirrored inside 4 x 4 tiles, where
+     * the pillars' shadows make neighbours differ */
+    const char *permutation[] = {"mis=pairwise", "temporal.permutation=on"};
+    check_scene("pillars", 24, 16, permutation, 2, 1);
     /* The built-in forest along its walk: leaf cut-outs in every shadow ray, a sky with a sun as
      * the only light. */
     check_scene("forest", 24, 16, pairwise, 1, 1);

@@ -144,7 +144,9 @@ static void ris_di_defaults(struct render_params *p)
 }
 
 /* Reuse, neighbor selection and SPMIS, and the DI candidates. */
-#define RESTIR_DI_BLOCKS &di_block, &di_reuse_block, &params_block_reuse, &params_block_spmis, &params_block_depth
+#define RESTIR_DI_BLOCKS                                                                                          \
+    &di_block, &di_reuse_block, &params_block_reuse, &params_block_permutation, &params_block_spmis,              \
+        &params_block_depth
 
 /* The passes restir_di_render_frame times (struct method.passes). */
 static const char *const restir_di_passes[] = {"gbuffer", "initial",     "temporal",        "select",      "spatial",
@@ -158,7 +160,7 @@ const struct method method_restir_di = {
     .viewer_order = 1,
     .blocks = (const struct param_block *const[]){RESTIR_DI_BLOCKS, NULL},
     .passes = restir_di_passes,
-    .variants = "spatial.reuse=spmis spatial.preset=fast mis=balance",
+    .variants = "spatial.reuse=spmis spatial.preset=fast mis=balance temporal.permutation=on",
     .roles = "demo",
     .streams = (const char *const[]){REGIR_STREAM, NULL},
     .check = restir_di_check,

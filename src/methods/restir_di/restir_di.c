@@ -140,6 +140,10 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
 {
     long long accepted = 0, traced = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
+    int ox = 0, oy = 0; /* temporal.permutation: this frame's tile offset */
+    const int permute = p->reuse.temporal_permutation;
+    if (permute)
+        gbuffer_permutation_offset(p->seed, frame, &ox, &oy);
 #pragma omp parallel reduction(+ : accepted, traced)
     {
         struct di_merge_batch *b = merge_batch_new(); /* one per thread and pass */
@@ -147,7 +151,9 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
         for (int t = 0; t < ntiles; t++) {
             for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
                 const int i = px.i;
-                int q = gbuffer_history_pixel(g, i, prev_g, p->reuse.temporal_normal, p->reuse.temporal_plane);
+                const float nmin = p->reuse.temporal_normal, plane = p->reuse.temporal_plane;
+                int q = permute ? gbuffer_history_pixel_permuted(g, i, prev_g, nmin, plane, ox, oy)
+                                : gbuffer_history_pixel(g, i, prev_g, nmin, plane);
                 if (q < 0)
                     continue;
                 const struct shading_point *sp[2] = {gbuffer_shading(g, i), gbuffer_shading(prev_g, q)};
