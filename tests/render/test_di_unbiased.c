@@ -136,6 +136,9 @@ int main(int argc, char **argv)
      * the pillars' shadows make neighbours differ */
     const char *permutation[] = {"mis=pairwise", "temporal.permutation=on"};
     check_scene("pillars", 24, 16, permutation, 2, 1);
+    /* di.boiling_filter (BIASED): dropped outliers take their energy with them; measured, not judged */
+    const char *boiling[] = {"mis=pairwise", "di.boiling_filter=on", "jitter=off"};
+    check_scene("many-lights", 24, 16, boiling, 3, 0);
     /* The built-in forest along its walk: leaf cut-outs in every shadow ray, a sky with a sun as
      * the only light. */
     check_scene("forest", 24, 16, pairwise, 1, 1);

@@ -46,6 +46,13 @@ static const struct param_def di_reuse_rows[] = {
      "with di.visibility_reuse: targets compared across domains include visibility, traced per "
      "merge (rays, unbiased), or not (none: BIASED, darkens where neighbors cannot see the light; no rays)",
      visibility_mis_names},
+    {"di.boiling_filter", P_BOOL, offsetof(struct di_reuse_settings, boiling_filter), 0, 1, "off", "on",
+     "BIASED: after temporal reuse, empty each reservoir whose W exceeds its 8 x 8 pixel group's mean W (over "
+     "the non-empty ones) 10 / di.boiling_strength - 9 times (RTXDI's boiling filter): fewer blotches, less "
+     "energy",
+     NULL},
+    {"di.boiling_strength", P_FLOAT, offsetof(struct di_reuse_settings, boiling_strength), 1e-6, 1, "0.2", NULL,
+     "di.boiling_filter: strength s in (0, 1]; 0.2 drops reservoirs above 41 times the group's mean", NULL},
 };
 
 _Static_assert(sizeof(enum di_visibility_mis) == sizeof(int), "enum size");

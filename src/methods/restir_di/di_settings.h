@@ -39,6 +39,8 @@ struct di_settings {
 
 struct di_reuse_settings {
     enum di_visibility_mis visibility_mis;
+    int boiling_filter;     /* BIASED: drop the temporal pass's outliers (render/boiling_filter.h) */
+    float boiling_strength; /* its s: outliers exceed 10 / s - 9 times their group's mean W */
 };
 
 extern struct param_block di_block; /* di: the initial candidates */
@@ -50,7 +52,7 @@ static inline struct di_settings *di_settings_of_mut(struct render_params *p)
 {
     return param_block_in_mut(p, &di_block);
 }
-extern struct param_block di_reuse_block; /* di reuse: visibility in reuse */
+extern struct param_block di_reuse_block; /* di reuse: visibility in reuse, the boiling filter */
 static inline const struct di_reuse_settings *di_reuse_settings_of(const struct render_params *p)
 {
     return param_block_in(p, &di_reuse_block);

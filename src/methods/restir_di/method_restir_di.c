@@ -10,6 +10,7 @@
 #include "methods/restir_di/di_sample.h"
 #include "methods/restir_di/light_pool.h"
 #include "methods/restir_di/regir.h"
+#include "render/boiling_filter.h"
 #include "render/nonfinite.h"
 #include "methods/restir_di/restir_di.h"
 #include "render/reuse_cells.h"
@@ -22,6 +23,7 @@ struct restir_di_state {
     struct di_reservoir *hist[2]; /* spatial outputs: this frame's and the previous frame's */
     struct light_pool lights;     /* this frame's light candidates (initial RIS, di.initial=pool) */
     struct regir_grid *regir;     /* or this frame's grid of light reservoirs (di.initial=regir) */
+    float *boil;                  /* di.boiling_filter's weights (allocated by its first frame) */
 };
 
 static void *restir_di_create(const struct renderer *r)
@@ -54,7 +56,23 @@ static void restir_di_destroy(void *state)
     free(d->work);
     free(d->hist[0]);
     free(d->hist[1]);
+    free(d->boil);
     free(d);
+}
+
+/* di.boiling_filter (BIASED): the temporal pass's outliers by W, per 8 x 8 group, emptied. */
+static void di_boiling_filter(struct restir_di_state *d, const struct gbuffer *g, const struct render_params *p)
+{
+    const size_t n = (size_t)g->width * (size_t)g->height;
+    if (!d->boil)
+        d->boil = xmalloc(sizeof(float) * n);
+    for (size_t i = 0; i < n; i++)
+        d->boil[i] = d->work[i].y.tri >= 0 ? d->work[i].W : 0.0f; /* DI_ENV_TRI is >= 0 too */
+    if (boiling_filter_mark(d->boil, g->width, g->height, di_reuse_settings_of(p)->boiling_strength) == 0)
+        return;
+    for (size_t i = 0; i < n; i++)
+        if (d->boil[i] < 0.0f)
+            di_reservoir_clear(&d->work[i], d->work[i].c);
 }
 
 static void restir_di_render_frame(struct renderer *r, void *state, const struct camera_view *view,
@@ -84,7 +102,8 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
     if (p->reuse.temporal && h->has_history)
         RENDERER_TIMED(st, PASS_TEMPORAL,
                        st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, d->work, &st->rays);
-                       st->nonfinite += nonfinite_discard_di(d->work, n));
+                       st->nonfinite += nonfinite_discard_di(d->work, n);
+                       if (di_reuse_settings_of(p)->boiling_filter) di_boiling_filter(d, g, p));
     if (p->reuse.spatial && h->spmis) {
         struct spmis_frame *f = h->spmis;
         RENDERER_TIMED(st, PASS_CELLS, {
@@ -160,7 +179,7 @@ const struct method method_restir_di = {
     .viewer_order = 1,
     .blocks = (const struct param_block *const[]){RESTIR_DI_BLOCKS, NULL},
     .passes = restir_di_passes,
-    .variants = "spatial.reuse=spmis spatial.preset=fast mis=balance temporal.permutation=on",
+    .variants = "spatial.reuse=spmis spatial.preset=fast mis=balance temporal.permutation=on di.boiling_filter=on",
     .roles = "demo",
     .streams = (const char *const[]){REGIR_STREAM, NULL},
     .check = restir_di_check,
