@@ -300,6 +300,20 @@ static int path_history_validate(const struct render_params *p, const void *bloc
     return 0;
 }
 
+/* The permutation moves the backprojected pixel; splatted history and the 2x2 search have none. */
+static int permutation_validate(const struct render_params *p, const void *block, char *msg)
+{
+    const struct reuse_settings *r = block;
+    (void)p;
+    if (r->temporal_permutation && (r->temporal_reuse != TEMPORAL_BACKPROJECT || r->temporal_subpixel != TEMPORAL_SUBPIXEL_WRAP)) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "temporal.permutation=on permutes the backprojected pixel: it needs temporal.reuse=backproject "
+                 "and temporal.subpixel=wrap");
+        return -1;
+    }
+    return 0;
+}
+
 #define TOOLKIT_BLOCK(var, name, common, base, validate)                                                            \
     const struct param_block params_block_##var = {name, var##_rows, sizeof(var##_rows) / sizeof(var##_rows[0]),   \
                                                    base, 0, 0, common, validate, NULL}
@@ -312,7 +326,7 @@ TOOLKIT_BLOCK(lights, "lights", 0, 0, NULL);
 const struct param_block params_block_reuse = {
     "reuse", reuse_rows, sizeof(reuse_rows) / sizeof(reuse_rows[0]), F(reuse), 0, 0, 0, reuse_validate, apply_preset};
 TOOLKIT_BLOCK(path_history, "path history", 1, F(reuse), path_history_validate);
-TOOLKIT_BLOCK(permutation, "temporal permutation", 0, F(reuse), NULL);
+TOOLKIT_BLOCK(permutation, "temporal permutation", 0, F(reuse), permutation_validate);
 TOOLKIT_BLOCK(spmis, "spmis", 0, F(spmis), NULL);
 TOOLKIT_BLOCK(shift, "shift", 0, F(shift), NULL);
 TOOLKIT_BLOCK(scene, "scene", 1, 0, NULL);

@@ -159,9 +159,9 @@ const struct method method_restir_pt = {
     .description = "ReSTIR PT: path resampling, temporal and spatial path reuse by GRIS with shift mappings "
                    "(hybrid default) and sub-pixel reservoirs",
     .caps = RESTIR_PT_CAPS | METHOD_SELECTION_STUDY,
-    .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, NULL},
+    .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, &params_block_permutation, NULL},
     .passes = (const char *const[]){RESTIR_PT_PASSES, NULL},
-    .variants = "spatial.reuse=spmis spatial.select=compat-binary shift=reconnection",
+    .variants = "spatial.reuse=spmis spatial.select=compat-binary shift=reconnection temporal.permutation=on",
     .viewer_order = 2,
     .create = restir_pt_create,
     .destroy = restir_pt_destroy,
@@ -174,7 +174,7 @@ const struct method method_area_restir = {
     .description = "Area ReSTIR (002 B.3): restir-pt with 1 initial candidate and 2 spatial neighbors, "
                    "sub-pixel reservoirs",
     .caps = RESTIR_PT_CAPS,
-    .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, NULL},
+    .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, &params_block_permutation, NULL},
     .passes = (const char *const[]){RESTIR_PT_PASSES, NULL},
     .defaults = restir_pt_area_defaults,
     .create = restir_pt_create,

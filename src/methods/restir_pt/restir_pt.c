@@ -256,6 +256,10 @@ long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, c
     const struct render_params *p = fr->p;
     long long rays = 0, acc = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
+    int ox = 0, oy = 0; /* temporal.permutation (wrap only: permutation_validate): this frame's tile offset */
+    const int permute = p->reuse.temporal_permutation;
+    if (permute)
+        gbuffer_permutation_offset(p->seed, fr->frame, &ox, &oy);
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rays, acc)
     for (int t = 0; t < ntiles; t++) {
         for (struct tile_pixel px = tile_first_pixel(w, h, t); px.i >= 0; tile_advance(&px)) {
@@ -268,7 +272,11 @@ long long pt_temporal_pass(const struct pt_frame *fr, const struct gbuffer *g, c
                 acc += shifted & 1u;
                 continue;
             }
-            int q = gbuffer_history_pixel(g, i, prev_g, p->reuse.temporal_normal, p->reuse.temporal_plane);
+            const float nmin = p->reuse.temporal_normal, plane = p->reuse.temporal_plane;
+            /* a permuted neighbour's domain is its own pixel square, moved by pixel i's motion as the
+             * reprojected one's: a translation like a spatial neighbour's */
+            int q = permute ? gbuffer_history_pixel_permuted(g, i, prev_g, nmin, plane, ox, oy)
+                            : gbuffer_history_pixel(g, i, prev_g, nmin, plane);
             if (q < 0)
                 continue;
             struct pt_domain dom[2];
