@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "render/boiling_filter.h"
 #include "render/nonfinite.h"
 #include "render/reuse_cells.h"
 #include "render/spatial_select.h"
@@ -46,7 +47,23 @@ void restir_pt_state_fini(struct restir_pt_state *t)
         free(t->splat);
     }
     free(t->material_rough);
+    free(t->boil);
     memset(t, 0, sizeof(*t));
+}
+
+/* pt.boiling_filter (BIASED): the temporal pass's outliers by target x W, per 8 x 8 group, emptied. */
+static void pt_boiling_filter(struct restir_pt_state *t, const struct gbuffer *g, const struct render_params *p)
+{
+    const size_t n = (size_t)g->width * (size_t)g->height;
+    if (!t->boil)
+        t->boil = xmalloc(sizeof(float) * n);
+    for (size_t i = 0; i < n; i++)
+        t->boil[i] = pt_reservoir_has_sample(&t->work[i]) ? t->work[i].target * t->work[i].W : 0.0f;
+    if (boiling_filter_mark(t->boil, g->width, g->height, restir_pt_boiling_of(p)->strength) == 0)
+        return;
+    for (size_t i = 0; i < n; i++)
+        if (t->boil[i] < 0.0f)
+            pt_reservoir_clear(&t->work[i], t->work[i].c);
 }
 
 void restir_pt_frame(struct renderer *r, struct restir_pt_state *t, const struct camera_view *view,
@@ -77,6 +94,8 @@ void restir_pt_frame(struct renderer *r, struct restir_pt_state *t, const struct
                 st->rays += pt_temporal_pass(&fr, g, prev_g, prev_res, t->work, &st->temporal_accepted,
                                              t->temporal_flags);
             st->nonfinite += nonfinite_discard_pt(t->work, n);
+            if (restir_pt_boiling_of(p)->filter) /* off for the methods that do not list the block */
+                pt_boiling_filter(t, g, p);
         });
     pt_temporal_counts(t->temporal_flags, (int)n, &st->temporal);
     if (t->splat) /* pixels that reused history: a candidate of either technique shifted in */
@@ -159,9 +178,10 @@ const struct method method_restir_pt = {
     .description = "ReSTIR PT: path resampling, temporal and spatial path reuse by GRIS with shift mappings "
                    "(hybrid default) and sub-pixel reservoirs",
     .caps = RESTIR_PT_CAPS | METHOD_SELECTION_STUDY,
-    .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, &params_block_permutation, NULL},
+    .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, &params_block_permutation, &restir_pt_boiling_block,
+                                                  NULL},
     .passes = (const char *const[]){RESTIR_PT_PASSES, NULL},
-    .variants = "spatial.reuse=spmis spatial.select=compat-binary shift=reconnection temporal.permutation=on",
+    .variants = "spatial.reuse=spmis spatial.select=compat-binary shift=reconnection temporal.permutation=on pt.boiling_filter=on",
     .viewer_order = 2,
     .create = restir_pt_create,
     .destroy = restir_pt_destroy,
@@ -174,7 +194,8 @@ const struct method method_area_restir = {
     .description = "Area ReSTIR (002 B.3): restir-pt with 1 initial candidate and 2 spatial neighbors, "
                    "sub-pixel reservoirs",
     .caps = RESTIR_PT_CAPS,
-    .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, &params_block_permutation, NULL},
+    .blocks = (const struct param_block *const[]){RESTIR_PT_BLOCKS, &params_block_permutation, &restir_pt_boiling_block,
+                                                  NULL},
     .passes = (const char *const[]){RESTIR_PT_PASSES, NULL},
     .defaults = restir_pt_area_defaults,
     .create = restir_pt_create,

@@ -18,6 +18,7 @@ struct restir_pt_state {
     struct pt_splat_buffers *splat; /* temporal.reuse=splat|both: landing buckets */
     float scene_diagonal;           /* scales shift.distance */
     unsigned char *material_rough;  /* the hybrid shift's roughness class per material */
+    float *boil;                    /* pt.boiling_filter's weights (allocated by its first frame) */
 };
 
 /* The settings blocks ReSTIR PT's passes read (struct method.blocks), for its rows and the gradient methods'. */
