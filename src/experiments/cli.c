@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "core/check.h"
+#include "scene/scene_animation.h"
 #include "io/exr.h"
 #include "io/png.h"
 #include "methods/memory_estimate.h"
@@ -224,6 +225,7 @@ void cli_frame_cameras(const struct scene *s, int use_path, int frame, struct ca
 {
     *cam = scene_camera_at(s, use_path, (float)frame);
     *open = scene_camera_at(s, use_path, (float)(frame > 0 ? frame - 1 : frame));
+    scene_set_frame(s, (float)frame); /* animated emitters: the references render frame's lights */
 }
 
 float *cli_render_reference(const struct scene *s, const struct method *method, const struct render_params *p,

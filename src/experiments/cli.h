@@ -93,7 +93,8 @@ int cli_write_frame(const char *dir, int frame, const struct renderer *r, char *
 float *cli_render_reference(const struct scene *s, const struct method *method, const struct render_params *p,
                             const struct camera *cam, const struct camera *open, int spp);
 /* The camera at frame `frame` of a sequence (the default path, or the static camera) and where
- * its shutter opens: the camera of the frame before, as renderer_render takes it. */
+ * its shutter opens: the camera of the frame before, as renderer_render takes it. Also sets the
+ * scene's animated emitters to that frame (scene_set_frame), for the reference rendered next. */
 void cli_frame_cameras(const struct scene *s, int use_path, int frame, struct camera *cam, struct camera *open);
 
 #endif

@@ -1,6 +1,7 @@
 /* method.c: looking methods up in the registry, and the checks and defaults every method shares
  * (method.h). Must never depend on the passes or the ray tracer. */
 #include "methods/method.h"
+#include "scene/scene_animation.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -108,6 +109,14 @@ int method_check_settings(const struct method *m, const struct render_params *p,
                      s->name, m->name, names);
             return -1;
         }
+    }
+    if (s && scene_is_animated(s) && !method_has(m, METHOD_ANIMATED_EMITTERS)) {
+        method_names_with(METHOD_ANIMATED_EMITTERS, names, sizeof names);
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "scene %s has animated emitters, which %s does not render yet (samples it reuses would keep "
+                 "an earlier frame's lights); %s do",
+                 s->name, m->name, names);
+        return -1;
     }
     return m->check ? m->check(p, s, msg) : 0;
 }

@@ -35,6 +35,9 @@ enum method_caps {
     METHOD_BUDGET_BY_SPP = 1u << 5,
     /* 000's study (restir study) runs it: spatial reuse from the neighbor selection pass */
     METHOD_SELECTION_STUDY = 1u << 6,
+    /* every sample it reuses from an earlier frame is evaluated under this frame's lights (or it reuses
+     * none): renders scenes with animated emitters (scene/scene_animation.h) */
+    METHOD_ANIMATED_EMITTERS = 1u << 7,
 };
 
 /* What the harness does with an output a method declares (struct method_output). */

@@ -2,6 +2,7 @@
  * (struct method.render_frame), the non-finite guard on the image, and the timing. Must never read
  * or write files or name a method. */
 #include "methods/renderer.h"
+#include "scene/scene_animation.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -152,6 +153,7 @@ void renderer_render(struct renderer *r, int frame, const struct camera *cam, st
     simd_allow(r->p.simd); /* process-wide */
     double t0 = omp_get_wtime();
     r->frame = frame;
+    scene_set_frame(r->scene, (float)frame); /* animated emitters: this frame's lights */
     r->method->render_frame(r, r->state, &view, st);
     renderer_reconstruct(r, st);
     /* the frame's radiance (every method, reconstructions included) */

@@ -426,6 +426,11 @@ void scene_destroy(struct scene *s)
     free(s->textures);
     free(s->texture_keys);
     free(s->load_notes);
+    for (int m = 0; s->emission_anim && m < s->num_materials; m++) {
+        free(s->emission_anim[m].frame);
+        free(s->emission_anim[m].strength);
+    }
+    free(s->emission_anim);
     if (s->num_emitters > 0)
         alias_table_fini(&s->emitter_table);
     scene_light_bvh_free(&s->light_bvh);

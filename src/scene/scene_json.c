@@ -77,7 +77,7 @@ static int read_camera_path(struct json_reader *r, const cJSON *path)
 static const char *const material_keys[] = {"name", "base_color", "metallic", "roughness", "emission",
                                             "emissive_strength", "lambert", "base_color_texture",
                                             "metallic_roughness_texture", "emission_texture", "normal_texture",
-                                            "normal_scale", "alpha", "alpha_mode", "alpha_cutoff", NULL};
+                                            "normal_scale", "alpha", "alpha_mode", "alpha_cutoff", "animation", NULL};
 
 /* glTF alphaMode: "opaque" (default), "mask", or "blend" (read as mask, cutoff 0.5 unless given). */
 static int read_alpha(struct json_reader *r, const cJSON *m, const char *key, struct material *mt)
@@ -180,7 +180,10 @@ static int read_materials(struct json_reader *r)
             texture_map(r, m, key, "emission_texture", 1, &mt.emission_map) != 0 ||
             texture_map(r, m, key, "normal_texture", 0, &mt.normal_map) != 0)
             return -1;
-        scene_add_material(r->b, mt);
+        struct emission_animation anim;
+        if (json_read_animation(r, m, key, &mt.emission, &anim) != 0)
+            return -1;
+        json_keep_animation(r, scene_add_material(r->b, mt), &anim);
     }
     return 0;
 }
@@ -620,6 +623,7 @@ int scene_json_parse_with(const char *text, size_t len, const char *file, const 
         json_msgf(msg, RESTIR_MSG_LEN, "%s: %s", file, inner);
         rc = -1;
     }
+    json_animation_attach(&r, rc == 0 ? s : NULL);
     if (r.env && rc == 0) {
         char inner[RESTIR_MSG_LEN];
         if (scene_set_environment(s, r.env, inner) != 0) {

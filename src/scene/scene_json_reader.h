@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "core/vec3.h"
+#include "scene/scene.h"
 
 struct scene_builder;
 
@@ -19,7 +20,20 @@ struct json_reader {
     struct scene_builder *b;
     cJSON *materials; /* the "materials" array (names resolve through it) */
     struct environment *env; /* the "environment", read (attached after the build), or NULL */
+    struct emission_animation *anim; /* per material id (anim_cap of them): its "animation" (n = 0: none) */
+    int anim_cap, animated;          /* ... and whether any has keys (then attached after the build) */
 };
+
+/* A material's "animation" (scene_json_animation.c): read into *a (a->n = 0 when absent; freed on
+ * failure), with the emission the sampling tables will see (times the largest strength) written
+ * back to *emission. Returns 0, or -1 with the message naming the key. */
+int json_read_animation(struct json_reader *r, const cJSON *m, const char *mkey, vec3 *emission,
+                        struct emission_animation *a);
+/* Keeps material id's animation while the file is read (r->anim grows with the materials). */
+void json_keep_animation(struct json_reader *r, int id, const struct emission_animation *a);
+/* After the build: moves the kept keys into scene s (NULL: the build failed, nothing moves) with frame 0
+ * set, and frees what the reader kept. */
+void json_animation_attach(struct json_reader *r, struct scene *s);
 
 /* vsnprintf into out: a message too long for the buffer is cut, never left unterminated. */
 void json_msgf(char *out, size_t len, const char *fmt, ...);

@@ -69,6 +69,15 @@ struct scene_rt; /* Embree back end, opaque (scene_rt.c) */
 struct environment;  /* environment.h */
 struct env_sampler;  /* env_light.h */
 
+/* An emissive material's strength keys (scene_animation.h). */
+struct emission_animation {
+    int n;          /* keys; 0: the material is still */
+    int step;       /* 1: each key's strength holds until the next key; 0: linear between keys */
+    float *frame;   /* n frames, strictly increasing */
+    float *strength; /* n strengths >= 0 */
+    vec3 emission;  /* the file's emission (times emissive_strength): what strength 1 gives */
+};
+
 /* What sampling a point on an emissive triangle needs, in one cache-friendly record. */
 struct emitter {
     vec3 v0, e1, e2; /* p = v0 + b1 e1 + b2 e2 */
@@ -165,6 +174,10 @@ struct scene {
     struct env_sampler *env_sampler;
     struct env_sampler *env_sampler_compensated;
     float env_prob;
+
+    /* Animated emission strength (scene_animation.h): num_materials entries (n = 0: a still material),
+     * or NULL when nothing is animated. */
+    struct emission_animation *emission_anim;
 
     struct camera camera;           /* default static camera */
     struct camera_path camera_path; /* default moving camera */

@@ -21,7 +21,7 @@ static void pt_render_frame(struct renderer *r, void *state, const struct camera
 const struct method method_pt = {
     .name = "pt",
     .description = "path tracing: NEE + BSDF sampling with MIS, Russian roulette (the reference method)",
-    .caps = METHOD_CAMERA_EFFECTS | METHOD_BUDGET_BY_SPP,
+    .caps = METHOD_CAMERA_EFFECTS | METHOD_BUDGET_BY_SPP | METHOD_ANIMATED_EMITTERS,
     .viewer_order = 3,
     .blocks = (const struct param_block *const[]){&params_block_spp, &params_block_depth, &params_block_roulette,
                                                   &params_block_sampler, &params_block_lights, NULL},

@@ -11,6 +11,8 @@
 #include "methods/restir_di/light_pool.h"
 #include "methods/restir_di/regir.h"
 #include "render/boiling_filter.h"
+#include "scene/scene_animation.h"
+#include "shading/lights.h"
 #include "render/nonfinite.h"
 #include "methods/restir_di/restir_di.h"
 #include "render/reuse_cells.h"
@@ -60,6 +62,25 @@ static void restir_di_destroy(void *state)
     free(d);
 }
 
+/* Animated emitters: the previous frame's samples carry this frame's radiance into the temporal
+ * pass, where the current domain evaluates them, while their cached targets stay the previous
+ * frame's (the previous domain's p_hat at its own sample); the temporal merge evaluates the previous
+ * domain's target at the current sample with that emitter's previous strength (merge_begin's
+ * prev_scale). Every domain then measures with its own frame's lights, as GRIS requires: exact across
+ * a switch (render.animated_unbiased). The chosen sample leaves with this frame's radiance and target. */
+static void di_relight(const struct scene *s, struct di_reservoir *prev, size_t n)
+{
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        struct di_sample *y = &prev[i].y;
+        if (y->tri < 0 || y->tri == DI_ENV_TRI) /* the environment does not change */
+            continue;
+        struct light_sample ls;
+        lights_point(s, y->tri, y->b1, y->b2, &ls);
+        y->Le = ls.Le;
+    }
+}
+
 /* di.boiling_filter (BIASED): the temporal pass's outliers by W, per 8 x 8 group, emptied. */
 static void di_boiling_filter(struct restir_di_state *d, const struct gbuffer *g, const struct render_params *p)
 {
@@ -100,7 +121,7 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
         st->nonfinite += nonfinite_discard_di(d->work, n);
     });
     if (p->reuse.temporal && h->has_history)
-        RENDERER_TIMED(st, PASS_TEMPORAL,
+        RENDERER_TIMED(st, PASS_TEMPORAL, if (scene_is_animated(s)) di_relight(s, prev_res, n);
                        st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, d->work, &st->rays);
                        st->nonfinite += nonfinite_discard_di(d->work, n);
                        if (di_reuse_settings_of(p)->boiling_filter) di_boiling_filter(d, g, p));
@@ -175,7 +196,7 @@ static const char *const restir_di_passes[] = {"gbuffer", "initial",     "tempor
 const struct method method_restir_di = {
     .name = "restir-di",
     .description = "ReSTIR DI: initial RIS, temporal and spatial reuse by GRIS (pairwise MIS default)",
-    .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY | METHOD_SELECTION_STUDY,
+    .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY | METHOD_SELECTION_STUDY | METHOD_ANIMATED_EMITTERS,
     .viewer_order = 1,
     .blocks = (const struct param_block *const[]){RESTIR_DI_BLOCKS, NULL},
     .passes = restir_di_passes,
@@ -192,7 +213,7 @@ const struct method method_restir_di = {
 const struct method method_ris_di = {
     .name = "ris-di",
     .description = "direct lighting by initial RIS only, no reuse (the no-reuse baseline of 001)",
-    .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY,
+    .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY | METHOD_ANIMATED_EMITTERS,
     .viewer_order = 4,
     .blocks = (const struct param_block *const[]){&di_block, &params_block_depth, NULL},
     .passes = restir_di_passes,

@@ -3,6 +3,7 @@
  * selectable resampling MIS (004 Eq. 5-12), and shading (initial RIS is in di_initial.c).
  * Must never allocate per pixel (one merge batch per thread and pass). */
 #include "methods/restir_di/restir_di.h"
+#include "scene/scene_animation.h"
 
 #include <stdlib.h>
 
@@ -43,16 +44,19 @@ struct di_merge_batch {
     const struct shading_point *entry_sp[DI_BATCH_ENTRIES];
     const struct di_sample *entry_y[DI_BATCH_ENTRIES];
     float *entry_P[DI_BATCH_ENTRIES];
+    float entry_scale[DI_BATCH_ENTRIES]; /* what the target is multiplied by (1 but for old lights) */
     float target[DI_BATCH_ENTRIES];
     struct ray_query q[DI_BATCH_ENTRIES]; /* scratch of di_domain_target_many */
     int ray_entry[DI_BATCH_ENTRIES];
     unsigned char occluded[DI_BATCH_ENTRIES];
 };
 
-/* Queues the merge: its cached targets set, its cross-domain ones queued. */
+/* Queues the merge: its cached targets set, its cross-domain ones queued. prev_scale multiplies
+ * domain 1's target at domain 0's sample (P[1][0]): in a temporal merge with animated emitters,
+ * domain 1 (the previous frame) saw that sample's emitter at another strength (1 otherwise). */
 static void merge_begin(struct di_merge_batch *b, const struct render_params *p, int n,
                         const struct shading_point *const *sp, const struct di_reservoir *const *in, pcg32 rng,
-                        struct di_reservoir *out)
+                        float prev_scale, struct di_reservoir *out)
 {
     struct di_merge *mg = &b->mg[b->merges++];
     mg->n = n;
@@ -75,6 +79,7 @@ static void merge_begin(struct di_merge_batch *b, const struct render_params *p,
             }
             b->entry_sp[b->entries] = sp[k];
             b->entry_y[b->entries] = &in[j]->y;
+            b->entry_scale[b->entries] = k == 1 && j == 0 ? prev_scale : 1.0f;
             b->entry_P[b->entries++] = P;
         }
     }
@@ -112,7 +117,7 @@ static long long merge_batch_flush(struct di_merge_batch *b, const struct scene 
     long long rays = di_domain_target_many(s, di_targets_visible(p), b->entries, b->entry_sp, b->entry_y, b->target,
                                            b->q, b->ray_entry, b->occluded);
     for (int e = 0; e < b->entries; e++)
-        *b->entry_P[e] = b->target[e];
+        *b->entry_P[e] = b->target[e] * b->entry_scale[e];
     for (int k = 0; k < b->merges; k++)
         merge_end(p, &b->mg[k]);
     b->merges = b->entries = 0;
@@ -142,6 +147,7 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
     int ox = 0, oy = 0; /* temporal.permutation: this frame's tile offset */
     const int permute = p->reuse.temporal_permutation;
+    const int animated = scene_is_animated(s);
     if (permute)
         gbuffer_permutation_offset(p->seed, frame, &ox, &oy);
 #pragma omp parallel reduction(+ : accepted, traced)
@@ -167,7 +173,15 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
                 pcg32 rng = rng_for(p->seed, (uint64_t)frame, (uint64_t)i, RNG_PASS_DI_TEMPORAL);
                 const struct di_reservoir *in[2] = {&io[i], hist};
                 traced += merge_batch_reserve(b, s, p);
-                merge_begin(b, p, 2, sp, in, rng, &io[i]);
+                /* animated emitters: the previous frame saw the canonical sample's emitter at its
+                 * strength then (di_relight gave the history this frame's radiance, and kept its
+                 * target, the previous frame's) */
+                float prev_scale = 1.0f;
+                if (animated && io[i].y.tri >= 0 && io[i].y.tri != DI_ENV_TRI) {
+                    const float now = scene_emission_strength(s, io[i].y.tri, (float)frame);
+                    prev_scale = now > 0.0f ? scene_emission_strength(s, io[i].y.tri, (float)(frame - 1)) / now : 0.0f;
+                }
+                merge_begin(b, p, 2, sp, in, rng, prev_scale, &io[i]);
                 accepted++;
             }
             traced += merge_batch_flush(b, s, p);
@@ -219,7 +233,7 @@ long long di_spatial_pass(const struct scene *s, const struct render_params *p, 
                     src[n++] = &in[j];
                 }
                 rays += merge_batch_reserve(b, s, p);
-                merge_begin(b, p, n, sp, src, rng, &out[i]);
+                merge_begin(b, p, n, sp, src, rng, 1.0f, &out[i]);
             }
             rays += merge_batch_flush(b, s, p);
         }
