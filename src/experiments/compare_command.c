@@ -2,6 +2,7 @@
  * the reference, the output folder, the per-frame track, the specs run by compare_schedule, and
  * compare.csv. Must never implement a method. */
 #include "experiments/compare_command.h"
+#include "scene/scene_animation.h"
 
 #include <stdio.h>
 
@@ -42,6 +43,7 @@ static int run_specs(const struct compare_setup *st, const struct reference_pair
     const int n = st->n;
     struct compare_track track;
     compare_track_init(&track, st->o.frames, st->o.runs, st->o.ref_every, st->p.width, st->p.height, pair->mean);
+    track.nchanges = scene_animation_changes(&st->s, track.change, COMPARE_MAX_CHANGES);
     int rc = render_earlier_references(st, &track, out_dir);
     if (rc != 0) {
         compare_track_fini(&track);

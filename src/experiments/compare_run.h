@@ -66,6 +66,9 @@ struct compare_result {
     /* flicker at 1, 4 and 16 px and the boiling index (compare_track_flicker) over the second half's
      * frames, of the frames as rendered and denoised (NaN without denoising or a reference) */
     double flicker[COMPARE_FLICKER_COLS], flicker_dn[COMPARE_FLICKER_COLS];
+    /* frames until relMSE settles after each change of an animated scene's lights (compare_track_lag; NaN
+     * where it cannot be measured) */
+    double lag[COMPARE_MAX_CHANGES];
     float *image;            /* the last frame, kept for --report (else NULL) */
     float *image_dn;         /* and the denoised one (else NULL) */
     /* Each run's own values, for pairing rows by seed (runs.csv): runs * COMPARE_RUN_COLS doubles,

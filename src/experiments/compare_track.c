@@ -153,6 +153,31 @@ double compare_track_end(struct compare_track *t, const char *label)
                                           NULL);
 }
 
+void compare_track_lag(const struct compare_track *t, double *lag)
+{
+    for (int c = 0; c < t->nchanges; c++) {
+        const int from = t->change[c], end = c + 1 < t->nchanges ? t->change[c + 1] : t->frames;
+        lag[c] = NAN;
+        if (end - from < 4 || from < 0)
+            continue;
+        int measured = 1;
+        for (int f = from; f < end; f++)
+            measured &= reference_index(t, f) >= 0;
+        if (!measured)
+            continue;
+        const int tail = (end - from) / 4 > 1 ? (end - from) / 4 : 1;
+        double steady = 0.0;
+        for (int f = end - tail; f < end; f++)
+            steady += t->sums[f].err.relmse / (double)(t->runs * tail);
+        lag[c] = end - from;
+        for (int f = from; f < end; f++)
+            if (t->sums[f].err.relmse / t->runs <= (1.0 + COMPARE_LAG_TOLERANCE) * steady) {
+                lag[c] = f - from;
+                break;
+            }
+    }
+}
+
 void compare_track_flicker(const struct compare_track *t, int denoised, double out[COMPARE_FLICKER_COLS])
 {
     const float *seq = denoised ? t->seq_dn : t->seq;

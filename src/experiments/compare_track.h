@@ -22,6 +22,8 @@
 #define COMPARE_FLICKER_SCALES 3
 #define COMPARE_FLICKER_COLS (COMPARE_FLICKER_SCALES + 1)
 extern const int compare_flicker_block[COMPARE_FLICKER_SCALES];
+#define COMPARE_MAX_CHANGES 8 /* lights' changes a lag is measured after */
+#define COMPARE_LAG_TOLERANCE 0.1 /* back "within 10%" of the steady state */
 
 /* One frame of one spec, summed over its runs (compare_track_end divides). */
 struct compare_frame_sums {
@@ -41,6 +43,8 @@ struct compare_track {
                           when the window holds one frame) */
     float *seq_dn;     /* the same of the denoised frames (denoise=svgf|atrous; allocated by the first) */
     size_t clamped, measured; /* of the spec's luminance values stored in seq: the negative ones, all */
+    int nchanges;      /* animated emitters: frames at which the lights stop changing (scene_animation_changes) */
+    int change[COMPARE_MAX_CHANGES];
     struct csv_writer csv; /* DIR/frames.csv */
     int csv_open;
 };
@@ -69,6 +73,13 @@ int compare_track_wants_image(const struct compare_track *t, int f);
  * are signed, and 000 Eq. 17's division by each pixel's mean is unbounded where that mean crosses 0; stderr
  * says how many values were clamped) (NaN with fewer than 2 runs or a window under lag + 1 frames). */
 double compare_track_end(struct compare_track *t, const char *label);
+/* Before the next spec's compare_track_begin: the lag after each change of the lights (t->change):
+ * the frames from the change until the image's relMSE (mean over the runs, against each frame's own
+ * reference) is within COMPARE_LAG_TOLERANCE of its steady state, the mean relMSE of the last quarter
+ * of the frames before the next change (or the end); the segment's length when it never is (it did
+ * not settle). NaN without a reference at every frame (--ref-every 1) or a segment of under 4 frames.
+ * Writes t->nchanges values into lag. */
+void compare_track_lag(const struct compare_track *t, double *lag);
 /* Before compare_track_end_denoised: flicker at compare_flicker_block's scales and the boiling index
  * (restir_metrics_flicker, _boiling_index) of the window's frames (denoised: the denoised ones)
  * against the last frame's reference, over the runs; NaN without a reference or those frames. Meant

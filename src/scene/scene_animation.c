@@ -1,7 +1,9 @@
 /* scene_animation.c: animated emission strength (scene_animation.h). */
 #include "scene/scene_animation.h"
 
+#include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 float emission_animation_at(const struct emission_animation *a, float t)
 {
@@ -48,4 +50,26 @@ void scene_set_frame(const struct scene *s, float t)
         if (s->emission_anim[m].n > 0)
             s->emitters[e].Le = s->materials[m].emission;
     }
+}
+
+int scene_animation_changes(const struct scene *s, int *frames, int max)
+{
+    int n = 0;
+    for (int m = 0; s->emission_anim && m < s->num_materials; m++) {
+        const struct emission_animation *a = &s->emission_anim[m];
+        for (int k = 1; k < a->n; k++) {
+            if (a->strength[k] == a->strength[k - 1])
+                continue;
+            const int f = (int)ceilf(a->frame[k]);
+            int at = 0; /* insertion point in the sorted list */
+            while (at < n && frames[at] < f)
+                at++;
+            if ((at < n && frames[at] == f) || n == max)
+                continue;
+            memmove(frames + at + 1, frames + at, sizeof(int) * (size_t)(n - at));
+            frames[at] = f;
+            n++;
+        }
+    }
+    return n;
 }

@@ -25,6 +25,11 @@ static inline int scene_is_animated(const struct scene *s)
  * non-emitter), its keys' value for an animated one. */
 float scene_emission_strength(const struct scene *s, int tri, float t);
 
+/* The frames at which some emitter stops changing: every key after a first whose strength differs
+ * from the key before it (a step's switch, a ramp's end), rounded up to a whole frame, ascending and
+ * without repeats, at most max of them into frames. Returns how many (0 for a still scene). */
+int scene_animation_changes(const struct scene *s, int *frames, int max);
+
 /* Sets every animated material's emission, and the Le of its emitters, to frame t's (the loaded
  * scene's frame 0 otherwise). The one change a loaded scene takes: its materials' and emitters'
  * arrays are written through the const scene. Not thread-safe with anything that reads the scene;
