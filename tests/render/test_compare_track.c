@@ -207,6 +207,29 @@ int main(void)
         EXPECT(fabs(bi - 256.0 * f16 / f1) <= 1e-4 * bi, "%s: boiling index %g is not 256 flicker16 / flicker1",
                k ? "restir-di" : "pt", bi);
     }
+    /* lag (issue 58): an animated scene's lights change at frames 2, 5 and 6 (switch_lamp.json); with a
+     * reference at every frame the segment after frame 6 (6 frames) has a lag in [0, 6], the shorter
+     * ones none */
+    const char *data = getenv("RESTIR_TEST_DATA");
+    char lagdir[2 * CLI_PATH_MAX];
+    static char out[CLI_ERR_MAX];
+    snprintf(lagdir, sizeof lagdir, "%s/lag", tmp);
+    snprintf(args, sizeof args,
+             "compare --scene '%s/scenes/switch_lamp.json' --res 24x16 --frames 12 --ref-every 1 --ref-spp 8 --seed 5 "
+             "--threads 1 --methods pt,restir-di --out '%s'",
+             data ? data : ".", lagdir);
+    rc = cli_run_capture(tmp, args, out, err);
+    EXPECT(rc == 0, "compare of an animated scene exited %d: %s", rc, err);
+    EXPECT(strstr(out, "after frame   2") && strstr(out, "after frame   6"), "no lag table: %s", out);
+    snprintf(path, sizeof path, "%s/compare.csv", lagdir);
+    cli_read_text(path, csv, sizeof csv);
+    for (int k = 0; k < 2; k++) {
+        const char *row = strstr(csv, k ? "\nrestir-di," : "\npt,");
+        const double lag = row ? number(row + 1, 47) : NAN;
+        printf("animated scene, %s: lag_frames %g\n", k ? "restir-di" : "pt", lag);
+        EXPECT(lag >= 0.0 && lag <= 6.0, "%s: lag_frames %g, want a whole number of frames in [0, 6]",
+               k ? "restir-di" : "pt", lag);
+    }
     cli_remove_tree(tmp);
     return test_finish();
 }
