@@ -371,9 +371,11 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
     for (int k = 0; k < COMPARE_FLICKER_COLS; k++)
         res->flicker[k] = res->flicker_dn[k] = NAN;
     for (int k = 0; k < COMPARE_MAX_CHANGES; k++)
-        res->lag[k] = NAN;
-    if (track)
-        compare_track_lag(track, res->lag);
+        res->lag[k] = res->lag_dn[k] = NAN;
+    if (track) {
+        compare_track_lag(track, 0, res->lag);
+        compare_track_lag(track, 1, res->lag_dn);
+    }
     if (track) {
         compare_track_flicker(track, 0, res->flicker);
         compare_track_flicker(track, 1, res->flicker_dn);

@@ -128,27 +128,33 @@ static void print_lag(const struct compare_setup *st, const struct compare_resul
     printf("lag: frames from a change of the lights until relMSE is within %.0f%% of its steady state (the mean of "
            "the last quarter of the frames before the next change):\n%-*s",
            100.0 * COMPARE_LAG_TOLERANCE, w, "method");
-    for (int c = 0; c < nc; c++)
-        printf("  after frame %3d", changes[c]);
+    int any_dn = 0;
+    for (int k = 0; k < st->n; k++)
+        any_dn |= isfinite(res[k].lag_dn[nc - 1]);
+    for (int d = 0; d <= any_dn; d++)
+        for (int c = 0; c < nc; c++)
+            printf("  %s frame %3d", d ? "denoised, after" : "after", changes[c]);
     printf("\n");
     for (int k = 0; k < st->n; k++) {
         printf("%-*s", w, st->specs[k].label);
-        for (int c = 0; c < nc; c++) {
-            char cell[32];
-            table_cell(cell, sizeof cell, " %15.0f", 16, res[k].lag[c]);
-            printf(" %s", cell);
-        }
+        for (int d = 0; d <= any_dn; d++)
+            for (int c = 0; c < nc; c++) {
+                char cell[32];
+                table_cell(cell, sizeof cell, d ? " %24.0f" : " %14.0f", d ? 25 : 15,
+                           d ? res[k].lag_dn[c] : res[k].lag[c]);
+                printf(" %s", cell);
+            }
         printf("\n");
     }
 }
 
-/* The largest lag of a row (NaN without one). */
-static double worst_lag(const struct compare_result *c)
+/* The largest of a row's lags (NaN without one). */
+static double worst_lag(const double *lag)
 {
     double worst = NAN;
     for (int k = 0; k < COMPARE_MAX_CHANGES; k++)
-        if (isfinite(c->lag[k]) && !(worst >= c->lag[k]))
-            worst = c->lag[k];
+        if (isfinite(lag[k]) && !(worst >= lag[k]))
+            worst = lag[k];
     return worst;
 }
 
@@ -272,7 +278,7 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                  "smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem,temporal_cov_denoised,"
                  "ref_relmse,ref_mape,ref_smape,relmse_net,flip,flip_sem,ref_mape_disoccluded,relmse_time,flicker1,flicker4,"
                  "flicker16,boiling_index,flicker1_denoised,flicker4_denoised,flicker16_denoised,"
-                 "boiling_index_denoised,lag_frames",
+                 "boiling_index_denoised,lag_frames,lag_frames_denoised",
                  msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
@@ -378,9 +384,10 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                 snprintf(fl[0], sizeof fl[0], "%.6g", c->flip);
             if (c->runs > 1 && isfinite(c->flip_sem))
                 snprintf(fl[1], sizeof fl[1], "%.6g", c->flip_sem);
-            char lag[32] = ""; /* the largest lag after a change of the lights */
-            if (isfinite(worst_lag(c)))
-                snprintf(lag, sizeof lag, "%.0f", worst_lag(c));
+            char lag[2][32] = {"", ""}; /* the largest lag after a change of the lights, then denoised */
+            for (int d = 0; d < 2; d++)
+                if (isfinite(worst_lag(d ? c->lag_dn : c->lag)))
+                    snprintf(lag[d], sizeof lag[d], "%.0f", worst_lag(d ? c->lag_dn : c->lag));
             char fk[2 * COMPARE_FLICKER_COLS][32]; /* flicker and boiling index, as rendered then denoised */
             for (int j = 0; j < 2 * COMPARE_FLICKER_COLS; j++) {
                 const double v = j < COMPARE_FLICKER_COLS ? c->flicker[j] : c->flicker_dn[j - COMPARE_FLICKER_COLS];
@@ -390,11 +397,11 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
             }
             csv_row(&csv,
                     "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,"
-                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%.6g,%s,%s,%s,%s,%s,%s,%s,%s,%s",
+                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%.6g,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s",
                     field, c->ms_per_frame, c->spp, c->instances, c->err.relmse, c->err.mape, c->err.smape,
                     c->err.luma_rmse, c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1],
                     gr[0], gr[1], gr[2], gr[3], gr[4], gr[5], dn[0], dn[1], dn[2], dn[3], dn[4], dn[5], dn[6], dn[7],
-                    dn[8], own[0], own[1], own[2], net, fl[0], fl[1], own[3], c->err.relmse * c->ms_per_frame, fk[0], fk[1], fk[2], fk[3], fk[4], fk[5], fk[6], fk[7], lag);
+                    dn[8], own[0], own[1], own[2], net, fl[0], fl[1], own[3], c->err.relmse * c->ms_per_frame, fk[0], fk[1], fk[2], fk[3], fk[4], fk[5], fk[6], fk[7], lag[0], lag[1]);
         }
     }
     print_denoised(specs, res, n, w, runs, p->denoise.method);

@@ -53,6 +53,7 @@ void compare_track_begin(struct compare_track *t)
 {
     memset(t->sums, 0, sizeof(*t->sums) * (size_t)t->frames);
     t->clamped = t->measured = 0;
+    t->has_dn = 0;
 }
 
 void compare_track_stats(struct compare_track *t, int f, double ms, const struct frame_stats *st)
@@ -96,6 +97,12 @@ static void store_luminance(struct compare_track *t, float *seq, int run, int f,
 
 void compare_track_denoised(struct compare_track *t, int run, int f, const float *denoised)
 {
+    if (reference_index(t, f) >= 0) {
+        struct restir_metrics_error e;
+        restir_metrics_compute(denoised, t->ref[reference_index(t, f)], (size_t)t->width * (size_t)t->height, NULL, &e);
+        t->sums[f].relmse_dn += e.relmse;
+        t->has_dn = 1;
+    }
     if (!t->seq || f < t->cov_first)
         return;
     if (!t->seq_dn)
@@ -153,12 +160,12 @@ double compare_track_end(struct compare_track *t, const char *label)
                                           NULL);
 }
 
-void compare_track_lag(const struct compare_track *t, double *lag)
+void compare_track_lag(const struct compare_track *t, int denoised, double *lag)
 {
     for (int c = 0; c < t->nchanges; c++) {
         const int from = t->change[c], end = c + 1 < t->nchanges ? t->change[c + 1] : t->frames;
         lag[c] = NAN;
-        if (end - from < 4 || from < 0)
+        if (end - from < 4 || from < 0 || (denoised && !t->has_dn))
             continue;
         int measured = 1;
         for (int f = from; f < end; f++)
@@ -168,10 +175,11 @@ void compare_track_lag(const struct compare_track *t, double *lag)
         const int tail = (end - from) / 4 > 1 ? (end - from) / 4 : 1;
         double steady = 0.0;
         for (int f = end - tail; f < end; f++)
-            steady += t->sums[f].err.relmse / (double)(t->runs * tail);
+            steady += (denoised ? t->sums[f].relmse_dn : t->sums[f].err.relmse) / (double)(t->runs * tail);
         lag[c] = end - from;
         for (int f = from; f < end; f++)
-            if (t->sums[f].err.relmse / t->runs <= (1.0 + COMPARE_LAG_TOLERANCE) * steady) {
+            if ((denoised ? t->sums[f].relmse_dn : t->sums[f].err.relmse) / t->runs <=
+                (1.0 + COMPARE_LAG_TOLERANCE) * steady) {
                 lag[c] = f - from;
                 break;
             }

@@ -30,6 +30,7 @@ struct compare_frame_sums {
     double ms_frame, ms_temporal;
     double accept, bp_received, bp_accepted, splat_received, splat_accepted; /* shares of valid pixels */
     struct restir_metrics_error err; /* at frames with a reference */
+    double relmse_dn;                /* ... and of the denoised frame there (0 without denoising) */
 };
 
 struct compare_track {
@@ -43,6 +44,7 @@ struct compare_track {
                           when the window holds one frame) */
     float *seq_dn;     /* the same of the denoised frames (denoise=svgf|atrous; allocated by the first) */
     size_t clamped, measured; /* of the spec's luminance values stored in seq: the negative ones, all */
+    int has_dn;        /* the spec being run measured denoised frames */
     int nchanges;      /* animated emitters: frames at which the lights stop changing (scene_animation_changes) */
     int change[COMPARE_MAX_CHANGES];
     struct csv_writer csv; /* DIR/frames.csv */
@@ -64,7 +66,7 @@ void compare_track_begin(struct compare_track *t);
  * instances' average). */
 void compare_track_stats(struct compare_track *t, int f, double ms, const struct frame_stats *st);
 void compare_track_image(struct compare_track *t, int run, int f, const float *image);
-/* The same frame denoised (compare_track_image's covariance window only). */
+/* The same frame denoised: its relMSE at a reference frame, its luminance in the covariance window. */
 void compare_track_denoised(struct compare_track *t, int run, int f, const float *denoised);
 /* 1 when frame f of the sequence needs its image measured (a reference frame or in the window). */
 int compare_track_wants_image(const struct compare_track *t, int f);
@@ -78,8 +80,8 @@ double compare_track_end(struct compare_track *t, const char *label);
  * reference) is within COMPARE_LAG_TOLERANCE of its steady state, the mean relMSE of the last quarter
  * of the frames before the next change (or the end); the segment's length when it never is (it did
  * not settle). NaN without a reference at every frame (--ref-every 1) or a segment of under 4 frames.
- * Writes t->nchanges values into lag. */
-void compare_track_lag(const struct compare_track *t, double *lag);
+ * denoised: of the denoised frames (NaN without them). Writes t->nchanges values into lag. */
+void compare_track_lag(const struct compare_track *t, int denoised, double *lag);
 /* Before compare_track_end_denoised: flicker at compare_flicker_block's scales and the boiling index
  * (restir_metrics_flicker, _boiling_index) of the window's frames (denoised: the denoised ones)
  * against the last frame's reference, over the runs; NaN without a reference or those frames. Meant

@@ -173,7 +173,7 @@ int main(void)
                        "mape_denoised,mape_denoised_sem,smape_denoised,smape_denoised_sem,mape_disoccluded_denoised,"
                        "mape_disoccluded_denoised_sem,temporal_cov_denoised,ref_relmse,ref_mape,ref_smape,relmse_net,flip,"
                        "flip_sem,ref_mape_disoccluded,relmse_time,flicker1,flicker4,flicker16,boiling_index,"
-                         "flicker1_denoised,flicker4_denoised,flicker16_denoised,boiling_index_denoised,lag_frames\n") != NULL,
+                         "flicker1_denoised,flicker4_denoised,flicker16_denoised,boiling_index_denoised,lag_frames,lag_frames_denoised\n") != NULL,
            "compare.csv header: %.300s", csv);
     c = strstr(csv, "\nrestir-pt,");
     static const int mean_col[4] = {4, 5, 6, 13}, sem_col[4] = {10, 11, 12, 14};
