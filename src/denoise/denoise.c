@@ -210,6 +210,7 @@ int denoiser_run(struct denoiser *d, const float *rgb, const struct denoise_guid
                               group,
                               g->object,
                               g->motion,
+                              d->s.svgf_temporal_gradient ? g->temporal_gradient : NULL,
                               lum_count ? lum_sum / (double)lum_count : 0.0};
     struct denoise_stats local = {passed, 0};
     d->method->run(d->state, &d->s, &f, &local);

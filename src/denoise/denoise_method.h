@@ -24,6 +24,7 @@ struct denoise_frame {
                                   counts only where its group is the centre's (denoise.c) */
     const int *object;         /* the guide's mesh ids */
     const float *motion;       /* the guide's motion vectors (2 per pixel) */
+    const float *gradient;     /* the guide's temporal gradient (NULL: none, or the setting off) */
     double mean_lum;           /* mean luminance of the used pixels' illumination (0 when none) */
 };
 

@@ -22,6 +22,8 @@ struct denoise_guide {
     const vec3 *emission;       /* radiance the hit emits toward the camera (NULL: none) */
     const float *motion;        /* backward motion, previous - current image position, in pixels */
     const unsigned char *valid; /* 1 where the primary ray hit geometry; other pixels pass through */
+    const float *temporal_gradient; /* per pixel in [0, 1]: how much of the history is stale (A-SVGF's lambda,
+                                       from the method), or NULL: none */
 };
 
 /* denoise_settings.svgf_lum_weight and svgf_taa_clamp, in the order of their names in params.c. */
@@ -48,6 +50,8 @@ struct denoise_settings {
     float svgf_plane_max;     /* reprojection: ... where the plane distance exceeds this * depth (0.01) */
     float svgf_taa_alpha;     /* temporal antialiasing's weight of the current frame (0.1; 1: off) */
     float svgf_taa_motion;    /* ... only where the pixel moved at most this many pixels (0.5; 1e6: all) */
+    int svgf_temporal_gradient; /* 1: the method's temporal gradient raises the moving averages' weights
+                                   (A-SVGF, Schied et al. 2018) */
     int svgf_taa_clamp;       /* ... its history clamped to the 3x3 neighbourhood's range: where the pixel
                                  moved (DENOISE_TAA_CLAMP_MOVING), everywhere (_ALWAYS, Karis), nowhere (_OFF) */
     /* edge-avoiding à-trous (Dammertz et al. 2010, Sec. 3) */

@@ -354,7 +354,9 @@ static void svgf_post(void *state, const struct denoise_settings *s, const struc
             if (!(on && still && f->use[i] != 0.0f && taa_history(v, f, x, y, hc, &frames)))
                 continue; /* the output stays this frame's */
             len[i] = MINF(frames + 1.0f, 1e6f);
-            const float weight = MAXF(a, 1.0f / len[i]);
+            float weight = MAXF(a, 1.0f / len[i]);
+            if (f->gradient) /* A-SVGF: a stale history weighs less here too */
+                weight += svgf_gradient_response(f->gradient[i]) * (1.0f - weight);
             const int clamped =
                 clamp == DENOISE_TAA_CLAMP_ALWAYS || (clamp == DENOISE_TAA_CLAMP_MOVING && m2 > moved2);
             for (int c = 0; c < 3; c++) {

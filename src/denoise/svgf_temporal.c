@@ -110,9 +110,13 @@ long long svgf_accumulate(const struct svgf_accumulation *a)
             float hist[6];
             const int found = a->prev && reproject(a, x, y, hist);
             reset += !found;
-            const float len = found ? MINF(hist[5] + 1.0f, MAX_HISTORY) : 1.0f;
-            const float al = found ? MAXF(a->alpha, 1.0f / len) : 1.0f;
-            const float am = found ? MAXF(a->moments_alpha, 1.0f / len) : 1.0f;
+            /* A-SVGF: a stale history (gradient g) counts for less and weighs less */
+            const float g = f->gradient ? svgf_gradient_response(f->gradient[i]) : 0.0f;
+            const float len = found ? MINF(hist[5] * (1.0f - g) + 1.0f, MAX_HISTORY) : 1.0f;
+            float al = found ? MAXF(a->alpha, 1.0f / len) : 1.0f;
+            float am = found ? MAXF(a->moments_alpha, 1.0f / len) : 1.0f;
+            al += g * (1.0f - al);
+            am += g * (1.0f - am);
             for (int k = 0; k < 3; k++)
                 f->illum[k][i] = found ? (1.0f - al) * hist[k] + al * c[k] : c[k];
             a->m1[i] = found ? (1.0f - am) * hist[3] + am * l : l;

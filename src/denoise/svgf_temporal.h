@@ -21,6 +21,16 @@ struct svgf_accumulation {
     float *m1, *m2, *len;            /* out: moments and history length (0 on unused pixels) */
 };
 
+/* How much of the history a temporal gradient lambda (A-SVGF) discards: 1 - (1 - lambda)^10, Q2RTX's
+ * response (its history length N' = N (1 - a)^10 + 1): a 7% change discards half, a 50% one all but
+ * 0.1%. Used for the moving averages' weights, the history length and the antialiasing's weight. */
+static inline float svgf_gradient_response(float lambda)
+{
+    const float k = 1.0f - (lambda < 0.0f ? 0.0f : lambda > 1.0f ? 1.0f : lambda);
+    const float k2 = k * k, k4 = k2 * k2, k8 = k4 * k4;
+    return 1.0f - k8 * k2;
+}
+
 /* The pass over every pixel, on all threads. Returns the number of used pixels without history. */
 long long svgf_accumulate(const struct svgf_accumulation *a);
 

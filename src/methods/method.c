@@ -110,6 +110,12 @@ int method_check_settings(const struct method *m, const struct render_params *p,
             return -1;
         }
     }
+    if (p->denoise.svgf_temporal_gradient && !method_has(m, METHOD_TEMPORAL_GRADIENT)) {
+        method_names_with(METHOD_TEMPORAL_GRADIENT, names, sizeof names);
+        snprintf(msg, RESTIR_MSG_LEN, "denoise.svgf.temporal_gradient=on: %s hands the denoiser no temporal gradient (methods that do: %s)",
+                 m->name, names);
+        return -1;
+    }
     if (s && scene_is_animated(s) && !method_has(m, METHOD_ANIMATED_EMITTERS)) {
         method_names_with(METHOD_ANIMATED_EMITTERS, names, sizeof names);
         snprintf(msg, RESTIR_MSG_LEN,

@@ -38,6 +38,9 @@ enum method_caps {
     /* every sample it reuses from an earlier frame is evaluated under this frame's lights (or it reuses
      * none): renders scenes with animated emitters (scene/scene_animation.h) */
     METHOD_ANIMATED_EMITTERS = 1u << 7,
+    /* hands the denoiser a temporal gradient (renderer_inspect.temporal_gradient): takes
+     * denoise.svgf.temporal_gradient=on */
+    METHOD_TEMPORAL_GRADIENT = 1u << 8,
 };
 
 /* What the harness does with an output a method declares (struct method_output). */

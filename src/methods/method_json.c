@@ -16,6 +16,7 @@ static const struct {
     {METHOD_HISTORY, "history"},               {METHOD_CAMERA_EFFECTS, "camera-effects"},
     {METHOD_PATH_RESERVOIRS, "path-reservoirs"}, {METHOD_BUDGET_BY_SPP, "budget-by-spp"},
     {METHOD_SELECTION_STUDY, "selection-study"}, {METHOD_ANIMATED_EMITTERS, "animated-emitters"},
+    {METHOD_TEMPORAL_GRADIENT, "temporal-gradient"},
 };
 enum { N_CAPS = sizeof cap_names / sizeof cap_names[0] };
 

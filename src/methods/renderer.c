@@ -118,7 +118,7 @@ void renderer_set_shutter_open(struct renderer *r, const struct camera *open)
 void renderer_denoise_guide(const struct gbuffer *g, struct denoise_guide *out)
 {
     *out = (struct denoise_guide){g->width, g->height, g->position, g->normal,  g->depth,
-                                  g->object, g->albedo, g->emission, g->motion, g->valid};
+                                  g->object, g->albedo, g->emission, g->motion, g->valid, NULL};
 }
 
 /* The frame in r->image denoised into r->denoised, guided by the method's G-buffer, or by one
@@ -139,6 +139,7 @@ static void renderer_denoise(struct renderer *r, const struct camera_view *view,
     }
     struct denoise_guide guide;
     renderer_denoise_guide(g, &guide);
+    guide.temporal_gradient = in.gbuffer ? in.temporal_gradient : NULL;
     RESTIR_CHECK(denoiser_run(r->denoiser, r->image, &guide, r->denoised, &st->denoise) == 0);
     r->denoise_frames++;
 }

@@ -63,6 +63,7 @@ struct renderer_inspect {
     int neighbors_per_pixel;
     const struct spmis_frame *spmis; /* spatial.reuse=spmis: the last frame's cells */
     const unsigned char *temporal_flags; /* path reservoirs: TEMPORAL_* bits per pixel (pt_splat.h) */
+    const float *temporal_gradient; /* A-SVGF's lambda per pixel for the denoiser, or NULL (restir-di) */
     const void *reservoirs;        /* the last frame's final reservoirs, read by confidence() */
     float (*confidence)(const void *reservoirs, int pixel);
 };

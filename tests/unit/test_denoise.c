@@ -58,7 +58,7 @@ static void plane_scene(struct scene_buf *b, int w, int h, float alb)
 
 static struct denoise_guide guide_of(const struct scene_buf *b)
 {
-    struct denoise_guide g = {b->w, b->h, b->pos, b->nrm, b->depth, b->obj, b->alb, NULL, b->motion, b->valid};
+    struct denoise_guide g = {b->w, b->h, b->pos, b->nrm, b->depth, b->obj, b->alb, NULL, b->motion, b->valid, NULL};
     return g;
 }
 

@@ -7,6 +7,7 @@
 
 #include "core/check.h"
 #include "methods/screen_history.h"
+#include "methods/restir_di/di_gradient.h"
 #include "methods/restir_di/di_sample.h"
 #include "methods/restir_di/light_pool.h"
 #include "methods/restir_di/regir.h"
@@ -26,6 +27,7 @@ struct restir_di_state {
     struct light_pool lights;     /* this frame's light candidates (initial RIS, di.initial=pool) */
     struct regir_grid *regir;     /* or this frame's grid of light reservoirs (di.initial=regir) */
     float *boil;                  /* di.boiling_filter's weights (allocated by its first frame) */
+    float *grad, *grad_tmp;       /* denoise.svgf.temporal_gradient: lambda per pixel, and its scratch */
 };
 
 static void *restir_di_create(const struct renderer *r)
@@ -59,6 +61,8 @@ static void restir_di_destroy(void *state)
     free(d->hist[0]);
     free(d->hist[1]);
     free(d->boil);
+    free(d->grad);
+    free(d->grad_tmp);
     free(d);
 }
 
@@ -120,6 +124,13 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
         st->rays += di_initial_pass(s, &d->lights, d->regir, p, frame, g, d->work);
         st->nonfinite += nonfinite_discard_di(d->work, n);
     });
+    if (p->denoise.method == 1 && p->denoise.svgf_temporal_gradient) { /* svgf's A-SVGF lambda */
+        if (!d->grad) {
+            d->grad = xmalloc(sizeof(float) * n);
+            d->grad_tmp = xmalloc(4 * sizeof(float) * n);
+        }
+        di_temporal_gradient(s, g, prev_g, d->work, h->has_history ? prev_res : NULL, frame, d->grad, d->grad_tmp);
+    }
     if (p->reuse.temporal && h->has_history)
         RENDERER_TIMED(st, PASS_TEMPORAL, if (scene_is_animated(s)) di_relight(s, prev_res, n);
                        st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, d->work, &st->rays);
@@ -161,6 +172,7 @@ static void restir_di_inspect(const void *state, struct renderer_inspect *out)
     const struct restir_di_state *d = state;
     screen_history_inspect(&d->h, out);
     out->reservoirs = d->hist[1 - d->h.cur];
+    out->temporal_gradient = d->grad;
     out->confidence = di_confidence;
 }
 
@@ -196,7 +208,8 @@ static const char *const restir_di_passes[] = {"gbuffer", "initial",     "tempor
 const struct method method_restir_di = {
     .name = "restir-di",
     .description = "ReSTIR DI: initial RIS, temporal and spatial reuse by GRIS (pairwise MIS default)",
-    .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY | METHOD_SELECTION_STUDY | METHOD_ANIMATED_EMITTERS,
+    .caps = METHOD_DIRECT_ONLY | METHOD_HISTORY | METHOD_SELECTION_STUDY | METHOD_ANIMATED_EMITTERS |
+            METHOD_TEMPORAL_GRADIENT,
     .viewer_order = 1,
     .blocks = (const struct param_block *const[]){RESTIR_DI_BLOCKS, NULL},
     .passes = restir_di_passes,
