@@ -22,7 +22,7 @@
 #include "unbiased_util.h"
 
 /* seconds alone on the 2-core machine of docs/BENCHMARKS.md: ctest starts the longest tests first */
-#define TEST_COST_SECONDS 80
+#define TEST_COST_SECONDS 95
 
 #define RUNS 1024
 #define W 24
@@ -106,6 +106,10 @@ int main(void)
     check(&s, "restir-di", 4, reuse, 2, 1);
     check(&s, "restir-di", 8, reuse, 2, 1);
     check(&s, "restir-di", 6, reuse, 2, 1);
+    /* di.gradient_confidence (BIASED): history confidence from the samples' own temporal gradient;
+     * measured right after the switch-on, not judged */
+    const char *confidence[] = {"mis=pairwise", "jitter=off", "di.gradient_confidence=on"};
+    check(&s, "restir-di", 6, confidence, 3, 0);
     scene_destroy(&s);
     return test_finish();
 }

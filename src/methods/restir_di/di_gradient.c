@@ -3,6 +3,7 @@
 
 #include <math.h>
 
+#include "denoise/svgf_temporal.h"
 #include "scene/scene_animation.h"
 
 /* A sample's estimate now and before: target x W now, and the same with its emitter at the other
@@ -89,5 +90,16 @@ void di_temporal_gradient(const struct scene *s, const struct gbuffer *g, const 
         const float big = fmaxf(delta[i], sum_now[i]);
         const float lambda = big > 0.0f ? fabsf(grad[i]) / big : 0.0f;
         grad[i] = lambda < 1.0f ? lambda : 1.0f;
+    }
+}
+
+void di_gradient_confidence(const struct gbuffer *g, const struct gbuffer *prev_g, const float *grad,
+                            struct di_reservoir *prev)
+{
+    const int n = g->width * g->height;
+    for (int i = 0; i < n; i++) { /* serial: two pixels may reach one previous reservoir */
+        const int q = grad[i] > 0.0f ? gbuffer_motion_pixel(g, i, prev_g) : -1;
+        if (q >= 0)
+            prev[q].c *= 1.0f - svgf_gradient_response(grad[i]);
     }
 }

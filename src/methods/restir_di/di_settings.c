@@ -51,6 +51,12 @@ static const struct param_def di_reuse_rows[] = {
      "the non-empty ones) 10 / di.boiling_strength - 9 times (RTXDI's boiling filter): fewer blotches, less "
      "energy",
      NULL},
+    {"di.gradient_confidence", P_BOOL, offsetof(struct di_reuse_settings, gradient_confidence), 0, 1, "off", "on",
+     "BIASED: before temporal reuse, each previous reservoir's confidence times (1 - lambda)^10, lambda the "
+     "temporal gradient of denoise.svgf.temporal_gradient (the relative change of the lighting its samples see, "
+     "di_gradient.h): after a light changes, histories stop outweighing new samples (RTXDI's confidence from "
+     "gradients); the weights then depend on the samples",
+     NULL},
     {"di.boiling_strength", P_FLOAT, offsetof(struct di_reuse_settings, boiling_strength), 1e-6, 1, "0.2", NULL,
      "di.boiling_filter: strength s in (0, 1]; 0.2 drops reservoirs above 41 times the group's mean", NULL},
 };

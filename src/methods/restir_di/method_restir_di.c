@@ -124,12 +124,15 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
         st->rays += di_initial_pass(s, &d->lights, d->regir, p, frame, g, d->work);
         st->nonfinite += nonfinite_discard_di(d->work, n);
     });
-    if (p->denoise.method == 1 && p->denoise.svgf_temporal_gradient) { /* svgf's A-SVGF lambda */
+    const int confidence = di_reuse_settings_of(p)->gradient_confidence;
+    if ((p->denoise.method == 1 && p->denoise.svgf_temporal_gradient) || confidence) { /* A-SVGF's lambda */
         if (!d->grad) {
             d->grad = xmalloc(sizeof(float) * n);
             d->grad_tmp = xmalloc(4 * sizeof(float) * n);
         }
         di_temporal_gradient(s, g, prev_g, d->work, h->has_history ? prev_res : NULL, frame, d->grad, d->grad_tmp);
+        if (confidence && h->has_history) /* di.gradient_confidence (BIASED) */
+            di_gradient_confidence(g, prev_g, d->grad, prev_res);
     }
     if (p->reuse.temporal && h->has_history)
         RENDERER_TIMED(st, PASS_TEMPORAL, if (scene_is_animated(s)) di_relight(s, prev_res, n);
