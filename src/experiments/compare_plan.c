@@ -395,7 +395,7 @@ int compare_merge(const char *dir)
             memcpy(res[k].ms_pass, t.ms_pass, sizeof t.ms_pass);
             res[k].spp = t.spp;
             res[k].instances = t.instances;
-            res[k].temporal_cov = res[k].temporal_cov_dn = NAN; /* not planned: it needs every run's frames */
+            compare_result_clear_sequence(&res[k]); /* not planned: they need every run's frames */
             if (st.o.report) {
                 res[k].image = image;
                 res[k].image_dn = denoised;

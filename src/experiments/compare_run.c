@@ -340,6 +340,15 @@ void compare_keep_fastest(struct compare_result *res, const struct compare_resul
     }
 }
 
+void compare_result_clear_sequence(struct compare_result *res)
+{
+    res->temporal_cov = res->temporal_cov_dn = NAN;
+    for (int k = 0; k < COMPARE_FLICKER_COLS; k++)
+        res->flicker[k] = res->flicker_dn[k] = NAN;
+    for (int k = 0; k < COMPARE_MAX_CHANGES; k++)
+        res->lag[k] = res->lag_dn[k] = NAN;
+}
+
 int compare_run_spec(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
                      int instances, int runs, const float *ref, const char *out_dir, int keep_image,
                      struct compare_track *track, struct compare_result *res, char *msg)
@@ -367,11 +376,8 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
             compare_keep_fastest(res, &one);
     }
     compare_runs_finish(&acc, res);
+    compare_result_clear_sequence(res);
     res->temporal_cov = track ? compare_track_end(track, c->label) : NAN;
-    for (int k = 0; k < COMPARE_FLICKER_COLS; k++)
-        res->flicker[k] = res->flicker_dn[k] = NAN;
-    for (int k = 0; k < COMPARE_MAX_CHANGES; k++)
-        res->lag[k] = res->lag_dn[k] = NAN;
     if (track) {
         compare_track_lag(track, 0, res->lag);
         compare_track_lag(track, 1, res->lag_dn);

@@ -90,6 +90,9 @@ struct compare_result {
 #define COMPARE_RUN_COLS 10
 /* The names of per_run's columns, as runs.csv heads them. */
 extern const char *const compare_run_columns[COMPARE_RUN_COLS];
+/* Sets the measures a planned merge cannot take (they need every run's frame sequence) to NaN:
+ * temporal_cov, flicker and lag, as rendered and denoised. */
+void compare_result_clear_sequence(struct compare_result *res);
 /* Frees res's images and per-run values. */
 void compare_result_free(struct compare_result *res);
 

@@ -130,7 +130,8 @@ static void print_lag(const struct compare_setup *st, const struct compare_resul
            100.0 * COMPARE_LAG_TOLERANCE, w, "method");
     int any_dn = 0;
     for (int k = 0; k < st->n; k++)
-        any_dn |= isfinite(res[k].lag_dn[nc - 1]);
+        for (int c = 0; c < nc; c++)
+            any_dn |= isfinite(res[k].lag_dn[c]);
     for (int d = 0; d <= any_dn; d++)
         for (int c = 0; c < nc; c++)
             printf("  %s frame %3d", d ? "denoised, after" : "after", changes[c]);
@@ -276,7 +277,7 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                  "gradient_relmse_sem,gradient_relmse_trim1,gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem,"
                  "relmse_denoised,relmse_denoised_sem,mape_denoised,mape_denoised_sem,smape_denoised,"
                  "smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem,temporal_cov_denoised,"
-                 "ref_relmse,ref_mape,ref_smape,relmse_net,flip,flip_sem,ref_mape_disoccluded,relmse_time,flicker1,flicker4,"
+                 "ref_relmse,ref_mape,ref_smape,relmse_net,flip,flip_sem,ref_mape_disoccluded,flicker1,flicker4,"
                  "flicker16,boiling_index,flicker1_denoised,flicker4_denoised,flicker16_denoised,"
                  "boiling_index_denoised,lag_frames,lag_frames_denoised",
                  msg) != 0) {
@@ -397,11 +398,11 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
             }
             csv_row(&csv,
                     "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,"
-                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%.6g,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s",
+                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s",
                     field, c->ms_per_frame, c->spp, c->instances, c->err.relmse, c->err.mape, c->err.smape,
                     c->err.luma_rmse, c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1],
                     gr[0], gr[1], gr[2], gr[3], gr[4], gr[5], dn[0], dn[1], dn[2], dn[3], dn[4], dn[5], dn[6], dn[7],
-                    dn[8], own[0], own[1], own[2], net, fl[0], fl[1], own[3], c->err.relmse * c->ms_per_frame, fk[0], fk[1], fk[2], fk[3], fk[4], fk[5], fk[6], fk[7], lag[0], lag[1]);
+                    dn[8], own[0], own[1], own[2], net, fl[0], fl[1], own[3], fk[0], fk[1], fk[2], fk[3], fk[4], fk[5], fk[6], fk[7], lag[0], lag[1]);
         }
     }
     print_denoised(specs, res, n, w, runs, p->denoise.method);

@@ -163,7 +163,8 @@ double compare_track_end(struct compare_track *t, const char *label)
 void compare_track_lag(const struct compare_track *t, int denoised, double *lag)
 {
     for (int c = 0; c < t->nchanges; c++) {
-        const int from = t->change[c], end = c + 1 < t->nchanges ? t->change[c + 1] : t->frames;
+        const int next = c + 1 < t->nchanges ? t->change[c + 1] : t->frames;
+        const int from = t->change[c], end = next < t->frames ? next : t->frames;
         lag[c] = NAN;
         if (end - from < 4 || from < 0 || (denoised && !t->has_dn))
             continue;
@@ -176,7 +177,6 @@ void compare_track_lag(const struct compare_track *t, int denoised, double *lag)
         double steady = 0.0;
         for (int f = end - tail; f < end; f++)
             steady += (denoised ? t->sums[f].relmse_dn : t->sums[f].err.relmse) / (double)(t->runs * tail);
-        lag[c] = end - from;
         for (int f = from; f < end; f++)
             if ((denoised ? t->sums[f].relmse_dn : t->sums[f].err.relmse) / t->runs <=
                 (1.0 + COMPARE_LAG_TOLERANCE) * steady) {

@@ -78,8 +78,10 @@ double compare_track_end(struct compare_track *t, const char *label);
 /* Before the next spec's compare_track_begin: the lag after each change of the lights (t->change):
  * the frames from the change until the image's relMSE (mean over the runs, against each frame's own
  * reference) is within COMPARE_LAG_TOLERANCE of its steady state, the mean relMSE of the last quarter
- * of the frames before the next change (or the end); the segment's length when it never is (it did
- * not settle). NaN without a reference at every frame (--ref-every 1) or a segment of under 4 frames.
+ * of the frames before the next change (or the end). Since that quarter holds the steady state, some
+ * frame always qualifies: a method still drifting at the segment's end is measured against its own
+ * drift (compare its last frame's error). NaN without a reference at every frame (--ref-every 1) or
+ * a segment of under 4 frames.
  * denoised: of the denoised frames (NaN without them). Writes t->nchanges values into lag. */
 void compare_track_lag(const struct compare_track *t, int denoised, double *lag);
 /* Before compare_track_end_denoised: flicker at compare_flicker_block's scales and the boiling index

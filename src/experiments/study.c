@@ -5,6 +5,7 @@
  * Writes study.csv, study.md, pareto.svg, hard_pixels.png and strip.png. Must never implement a method:
  * it drives the renderer through study_run.h. */
 #include "experiments/study.h"
+#include "scene/scene_animation.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -233,7 +234,15 @@ int study_setup(const struct cli_options *desc, int need_out, struct study_setup
         cli_error("%s", msg);
         return EXIT_USAGE;
     }
-    return run_prepare(o, st->method, RUN_CHECK_SETS | RUN_CHECK_MEMORY, &st->s);
+    const int rc = run_prepare(o, st->method, RUN_CHECK_SETS | RUN_CHECK_MEMORY, &st->s);
+    if (rc == 0 && scene_is_animated(&st->s)) { /* its reference is one still frame's */
+        cli_error("study: scene %s has animated emitters; 000's study measures a still scene (restir compare "
+                  "measures animated ones, --ref-every 1 for the lag)",
+                  st->s.name);
+        scene_destroy(&st->s);
+        return EXIT_USAGE;
+    }
+    return rc;
 }
 
 /* The study's own reference: pt over the method's integrand from a still camera, independently

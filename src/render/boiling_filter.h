@@ -1,9 +1,9 @@
 /* boiling_filter.h: RTXDI's boiling filter (issue 58), BIASED by design: in each 8 x 8 pixel group,
  * a reservoir whose weight exceeds the group's mean non-zero weight by a factor 10 / s - 9 (s the
  * strength, 0.2 by default: 41x) is an outlier that would spread into a blotch through reuse, and is
- * dropped. The methods say what a reservoir's weight is (ReSTIR DI: its contribution weight W, as
- * RTXDI: the factor by which reuse multiplies the sample's target everywhere it goes) and empty the
- * ones marked. Trades boiling
+ * dropped. The methods say what a reservoir's weight is (its target x W, the pixel's unshadowed
+ * estimate, for DI and paths alike: a DI sample's W alone is per area on a light, per solid angle on
+ * the sky, and grows with the light's distance) and empty the ones marked. Trades boiling
  * for a darkening bias (the dropped samples' energy is lost). Must never trace rays. */
 #ifndef RESTIR_RENDER_BOILING_FILTER_H
 #define RESTIR_RENDER_BOILING_FILTER_H

@@ -66,9 +66,9 @@ static const struct param_def denoise_rows[] = {
     {"denoise.svgf.temporal_gradient", P_BOOL, F(denoise.svgf_temporal_gradient), 0, 1, "off", NULL,
      "svgf: A-SVGF (Schied et al. 2018): where the method's temporal gradient lambda (the relative change of "
      "the lighting its reused samples see between frames, 7x7 box-filtered) is high, the colour's, moments' "
-     "and antialiasing's weights of this frame rise toward 1 (weight + lambda (1 - weight)) and the history "
-     "length shrinks by 1 - lambda, so the history of a changed light fades in a frame or two; restir-di "
-     "provides the gradient",
+     "and antialiasing's weights of this frame rise toward 1 (weight + g (1 - weight), g = 1 - (1 - lambda)^10, "
+     "Q2RTX's response) and the colour history's length shrinks by (1 - lambda)^10, so the history of a changed "
+     "light fades in a frame or two; restir-di provides the gradient",
      NULL},
     {"denoise.svgf.taa_clamp", P_NAMES, F(denoise.svgf_taa_clamp), 0, 0, "moving", NULL,
      "svgf: where the antialiasing's history is clamped to this frame's 3x3 neighbourhood (Karis 2014), "

@@ -172,7 +172,7 @@ int main(void)
                        "gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem,relmse_denoised,relmse_denoised_sem,"
                        "mape_denoised,mape_denoised_sem,smape_denoised,smape_denoised_sem,mape_disoccluded_denoised,"
                        "mape_disoccluded_denoised_sem,temporal_cov_denoised,ref_relmse,ref_mape,ref_smape,relmse_net,flip,"
-                       "flip_sem,ref_mape_disoccluded,relmse_time,flicker1,flicker4,flicker16,boiling_index,"
+                       "flip_sem,ref_mape_disoccluded,flicker1,flicker4,flicker16,boiling_index,"
                          "flicker1_denoised,flicker4_denoised,flicker16_denoised,boiling_index_denoised,lag_frames,lag_frames_denoised\n") != NULL,
            "compare.csv header: %.300s", csv);
     c = strstr(csv, "\nrestir-pt,");
@@ -185,7 +185,7 @@ int main(void)
     }
     /* flicker (issue 58): a moving camera's rows leave it empty; a static camera's pt row has it, with
      * 16 px block means flickering far less than pixels (independent noise: about 1/256) */
-    field(c ? c + 1 : "", 39, a, sizeof a);
+    field(c ? c + 1 : "", 38, a, sizeof a);
     EXPECT(c && a[0] == '\0', "a moving camera has no flicker ('%s')", a);
     char still[2 * CLI_PATH_MAX];
     snprintf(still, sizeof still, "%s/still", tmp);
@@ -198,8 +198,8 @@ int main(void)
     cli_read_text(path, csv, sizeof csv);
     for (int k = 0; k < 2; k++) {
         const char *row = strstr(csv, k ? "\nrestir-di," : "\npt,");
-        const double f1 = row ? number(row + 1, 39) : NAN, f4 = row ? number(row + 1, 40) : NAN;
-        const double f16 = row ? number(row + 1, 41) : NAN, bi = row ? number(row + 1, 42) : NAN;
+        const double f1 = row ? number(row + 1, 38) : NAN, f4 = row ? number(row + 1, 39) : NAN;
+        const double f16 = row ? number(row + 1, 40) : NAN, bi = row ? number(row + 1, 41) : NAN;
         printf("static camera, %s: flicker %.4g %.4g %.4g, boiling index %.3g\n", k ? "restir-di" : "pt", f1, f4, f16,
                bi);
         EXPECT(f1 > 0.0 && f4 > 0.0 && f4 < f1 && f16 > 0.0 && f16 < f4, "%s: flicker %g %g %g", k ? "restir-di" : "pt",
@@ -225,7 +225,7 @@ int main(void)
     cli_read_text(path, csv, sizeof csv);
     for (int k = 0; k < 2; k++) {
         const char *row = strstr(csv, k ? "\nrestir-di," : "\npt,");
-        const double lag = row ? number(row + 1, 47) : NAN;
+        const double lag = row ? number(row + 1, 46) : NAN;
         printf("animated scene, %s: lag_frames %g\n", k ? "restir-di" : "pt", lag);
         EXPECT(lag >= 0.0 && lag <= 6.0, "%s: lag_frames %g, want a whole number of frames in [0, 6]",
                k ? "restir-di" : "pt", lag);
@@ -245,7 +245,7 @@ int main(void)
     snprintf(path, sizeof path, "%s/compare.csv", lagdir);
     cli_read_text(path, csv, sizeof csv);
     const char *plain = strstr(csv, "\nrestir-di,"), *grad = strstr(csv, "\nrestir-di:denoise");
-    const double lag_plain = plain ? number(plain + 1, 48) : NAN, lag_grad = grad ? number(grad + 1, 48) : NAN;
+    const double lag_plain = plain ? number(plain + 1, 47) : NAN, lag_grad = grad ? number(grad + 1, 47) : NAN;
     printf("switch_room, denoised lag: %g frames, %g with the temporal gradient\n", lag_plain, lag_grad);
     EXPECT(lag_grad >= 0.0 && lag_plain > lag_grad, "denoised lag %g with the gradient, %g without", lag_grad,
            lag_plain);

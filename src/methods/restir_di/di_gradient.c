@@ -3,7 +3,6 @@
 
 #include <math.h>
 
-#include "denoise/svgf_temporal.h"
 #include "scene/scene_animation.h"
 
 /* A sample's estimate now and before: target x W now, and the same with its emitter at the other
@@ -93,13 +92,3 @@ void di_temporal_gradient(const struct scene *s, const struct gbuffer *g, const 
     }
 }
 
-void di_gradient_confidence(const struct gbuffer *g, const struct gbuffer *prev_g, const float *grad,
-                            struct di_reservoir *prev)
-{
-    const int n = g->width * g->height;
-    for (int i = 0; i < n; i++) { /* serial: two pixels may reach one previous reservoir */
-        const int q = grad[i] > 0.0f ? gbuffer_motion_pixel(g, i, prev_g) : -1;
-        if (q >= 0)
-            prev[q].c *= 1.0f - svgf_gradient_response(grad[i]);
-    }
-}

@@ -20,9 +20,4 @@ void di_temporal_gradient(const struct scene *s, const struct gbuffer *g, const 
                           const struct di_reservoir *initial, const struct di_reservoir *prev, int frame, float *grad,
                           float *tmp);
 
-/* di.gradient_confidence (BIASED): each previous reservoir that pixel i's backward motion vector reaches
- * gets its confidence times 1 - svgf_gradient_response(lambda_i) = (1 - lambda_i)^10. */
-void di_gradient_confidence(const struct gbuffer *g, const struct gbuffer *prev_g, const float *grad,
-                            struct di_reservoir *prev);
-
 #endif

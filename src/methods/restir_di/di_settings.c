@@ -47,12 +47,12 @@ static const struct param_def di_reuse_rows[] = {
      "merge (rays, unbiased), or not (none: BIASED, darkens where neighbors cannot see the light; no rays)",
      visibility_mis_names},
     {"di.boiling_filter", P_BOOL, offsetof(struct di_reuse_settings, boiling_filter), 0, 1, "off", "on",
-     "BIASED: after temporal reuse, empty each reservoir whose W exceeds its 8 x 8 pixel group's mean W (over "
-     "the non-empty ones) 10 / di.boiling_strength - 9 times (RTXDI's boiling filter): fewer blotches, less "
-     "energy",
+     "BIASED: after temporal reuse, empty each reservoir whose target x W (its unshadowed estimate) exceeds its "
+     "8 x 8 pixel group's mean (over the non-empty ones) 10 / di.boiling_strength - 9 times (RTXDI's boiling "
+     "filter): fewer blotches, less energy",
      NULL},
     {"di.gradient_confidence", P_BOOL, offsetof(struct di_reuse_settings, gradient_confidence), 0, 1, "off", "on",
-     "BIASED: before temporal reuse, each previous reservoir's confidence times (1 - lambda)^10, lambda the "
+     "BIASED: in temporal reuse, the previous reservoir's confidence times (1 - lambda)^10, lambda the pixel's "
      "temporal gradient of denoise.svgf.temporal_gradient (the relative change of the lighting its samples see, "
      "di_gradient.h): after a light changes, histories stop outweighing new samples (RTXDI's confidence from "
      "gradients); the weights then depend on the samples",

@@ -40,7 +40,7 @@ struct di_settings {
 struct di_reuse_settings {
     enum di_visibility_mis visibility_mis;
     int boiling_filter;     /* BIASED: drop the temporal pass's outliers (render/boiling_filter.h) */
-    float boiling_strength; /* its s: outliers exceed 10 / s - 9 times their group's mean W */
+    float boiling_strength; /* its s: outliers exceed 10 / s - 9 times their group's mean target x W */
     int gradient_confidence; /* BIASED: history confidence scaled down where the temporal gradient is high */
 };
 

@@ -85,14 +85,16 @@ static void di_relight(const struct scene *s, struct di_reservoir *prev, size_t 
     }
 }
 
-/* di.boiling_filter (BIASED): the temporal pass's outliers by W, per 8 x 8 group, emptied. */
+/* di.boiling_filter (BIASED): the temporal pass's outliers by target x W (the pixel's unshadowed estimate:
+ * W alone is per area for a light point, per solid angle for the sky, and grows with distance), per 8 x 8
+ * group, emptied. */
 static void di_boiling_filter(struct restir_di_state *d, const struct gbuffer *g, const struct render_params *p)
 {
     const size_t n = (size_t)g->width * (size_t)g->height;
     if (!d->boil)
         d->boil = xmalloc(sizeof(float) * n);
     for (size_t i = 0; i < n; i++)
-        d->boil[i] = d->work[i].y.tri >= 0 ? d->work[i].W : 0.0f; /* DI_ENV_TRI is >= 0 too */
+        d->boil[i] = d->work[i].y.tri >= 0 ? d->work[i].target * d->work[i].W : 0.0f; /* DI_ENV_TRI too */
     if (boiling_filter_mark(d->boil, g->width, g->height, di_reuse_settings_of(p)->boiling_strength) == 0)
         return;
     for (size_t i = 0; i < n; i++)
@@ -131,12 +133,11 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
             d->grad_tmp = xmalloc(4 * sizeof(float) * n);
         }
         di_temporal_gradient(s, g, prev_g, d->work, h->has_history ? prev_res : NULL, frame, d->grad, d->grad_tmp);
-        if (confidence && h->has_history) /* di.gradient_confidence (BIASED) */
-            di_gradient_confidence(g, prev_g, d->grad, prev_res);
     }
     if (p->reuse.temporal && h->has_history)
         RENDERER_TIMED(st, PASS_TEMPORAL, if (scene_is_animated(s)) di_relight(s, prev_res, n);
-                       st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res, d->work, &st->rays);
+                       st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res,
+                                                                confidence ? d->grad : NULL, d->work, &st->rays);
                        st->nonfinite += nonfinite_discard_di(d->work, n);
                        if (di_reuse_settings_of(p)->boiling_filter) di_boiling_filter(d, g, p));
     if (p->reuse.spatial && h->spmis) {

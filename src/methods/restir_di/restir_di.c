@@ -3,6 +3,7 @@
  * selectable resampling MIS (004 Eq. 5-12), and shading (initial RIS is in di_initial.c).
  * Must never allocate per pixel (one merge batch per thread and pass). */
 #include "methods/restir_di/restir_di.h"
+#include "denoise/svgf_temporal.h"
 #include "scene/scene_animation.h"
 
 #include <stdlib.h>
@@ -53,10 +54,11 @@ struct di_merge_batch {
 
 /* Queues the merge: its cached targets set, its cross-domain ones queued. prev_scale multiplies
  * domain 1's target at domain 0's sample (P[1][0]): in a temporal merge with animated emitters,
- * domain 1 (the previous frame) saw that sample's emitter at another strength (1 otherwise). */
+ * domain 1 (the previous frame) saw that sample's emitter at another strength (1 otherwise).
+ * c1_scale multiplies domain 1's confidence (di.gradient_confidence; 1 otherwise). */
 static void merge_begin(struct di_merge_batch *b, const struct render_params *p, int n,
                         const struct shading_point *const *sp, const struct di_reservoir *const *in, pcg32 rng,
-                        float prev_scale, struct di_reservoir *out)
+                        float prev_scale, float c1_scale, struct di_reservoir *out)
 {
     struct di_merge *mg = &b->mg[b->merges++];
     mg->n = n;
@@ -64,7 +66,7 @@ static void merge_begin(struct di_merge_batch *b, const struct render_params *p,
     mg->out = out;
     for (int j = 0; j < n; j++) {
         mg->in[j] = in[j];
-        mg->c[j] = fminf(in[j]->c, p->reuse.confidence_cap);
+        mg->c[j] = fminf(in[j]->c, p->reuse.confidence_cap) * (j == 1 ? c1_scale : 1.0f);
     }
     for (int k = 0; k < n; k++) {
         for (int j = 0; j < n; j++) {
@@ -141,7 +143,8 @@ static long long merge_batch_reserve(struct di_merge_batch *b, const struct scen
 
 long long di_temporal_pass(const struct scene *s, const struct render_params *p, int frame,
                            const struct gbuffer *g, const struct gbuffer *prev_g,
-                           const struct di_reservoir *prev_res, struct di_reservoir *io, long long *rays)
+                           const struct di_reservoir *prev_res, const float *confidence_grad, struct di_reservoir *io,
+                           long long *rays)
 {
     long long accepted = 0, traced = 0;
     const int w = g->width, h = g->height, ntiles = tile_count(w, h);
@@ -181,7 +184,8 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
                     const float now = scene_emission_strength(s, io[i].y.tri, (float)frame);
                     prev_scale = now > 0.0f ? scene_emission_strength(s, io[i].y.tri, (float)(frame - 1)) / now : 0.0f;
                 }
-                merge_begin(b, p, 2, sp, in, rng, prev_scale, &io[i]);
+                const float c1 = confidence_grad ? 1.0f - svgf_gradient_response(confidence_grad[i]) : 1.0f;
+                merge_begin(b, p, 2, sp, in, rng, prev_scale, c1, &io[i]);
                 accepted++;
             }
             traced += merge_batch_flush(b, s, p);
@@ -233,7 +237,7 @@ long long di_spatial_pass(const struct scene *s, const struct render_params *p, 
                     src[n++] = &in[j];
                 }
                 rays += merge_batch_reserve(b, s, p);
-                merge_begin(b, p, n, sp, src, rng, 1.0f, &out[i]);
+                merge_begin(b, p, n, sp, src, rng, 1.0f, 1.0f, &out[i]);
             }
             rays += merge_batch_flush(b, s, p);
         }

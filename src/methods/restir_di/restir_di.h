@@ -21,10 +21,13 @@ long long di_initial_pass(const struct scene *s, const struct light_pool *lp, co
 /* Temporal reuse (001): reprojects each pixel into the previous frame, validates against the
  * previous G-buffer and merges the history reservoir by GRIS. io holds the initial reservoirs on
  * entry and the temporal outputs on return. Returns the number of pixels whose history was
- * accepted and adds the shadow rays of visibility-aware targets (di_visibility.h) to *rays. */
+ * accepted and adds the shadow rays of visibility-aware targets (di_visibility.h) to *rays.
+ * confidence_grad: NULL, or per pixel the temporal gradient lambda (di_gradient.h) that scales the
+ * history's confidence by (1 - lambda)^10 in pixel i's merge (di.gradient_confidence, BIASED). */
 long long di_temporal_pass(const struct scene *s, const struct render_params *p, int frame,
                            const struct gbuffer *g, const struct gbuffer *prev_g,
-                           const struct di_reservoir *prev_res, struct di_reservoir *io, long long *rays);
+                           const struct di_reservoir *prev_res, const float *confidence_grad, struct di_reservoir *io,
+                           long long *rays);
 
 /* Spatial reuse: GRIS merge of the neighbors' reservoirs; neighbors holds the selection pass's
  * lists (render_params_spatial_neighbors(p, 0) per pixel, -1 for none). Returns shadow rays traced. */
