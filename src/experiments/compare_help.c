@@ -70,7 +70,7 @@ void compare_usage(FILE *out)
             "crosses 0; stderr says what share was clamped); run 0's frames are the ones written, and the times\n"
             "are the fastest run's (runs on a shared machine only ever get slower). --plan DIR makes\n"
             "each SPEC's run a job of its own; the merge then has the same errors and standard errors, but\n"
-            "no temporal_cov (it needs every run's frame sequence). --ref-every and --equal-time cannot be\n"
+            "no temporal_cov or flicker (they need every run's frame sequence). --ref-every and --equal-time cannot be\n"
             "planned.\n"
             "The table's relMSE*t/first is relMSE x ms/frame over the first row's: the error at equal time if\n"
             "variance falls as 1/time, for rows that an integer spp leaves below the budget.\n"
