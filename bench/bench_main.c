@@ -507,8 +507,8 @@ static void section_spmis(struct bench_run *r)
 
 /* `restir_bench frame-ratio SCENE METHOD[:key=value...][,...] [--res WxH] [--frames N]`: only the
  * per-pass table (with Frame / Embree-only) of the methods named, on one scene, without the
- * equal-time references the sections add: the number issue 57 tracks, cheap enough to take before
- * and after a change, or for two settings of one method in one run. */
+ * equal-time references the sections add: the ratio docs/BENCHMARKS.md tracks for ReSTIR DI and
+ * PT, cheap enough to take before and after a change, or for two settings of one method in one run. */
 static int bench_frame_ratio(int argc, char **argv)
 {
     struct bench_config c = {NULL, 640, 360, 17, 0, 0};

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """lights_sample_compare.py: pt's time per sample and variance per sample under several settings
-(issue 57: lights.sample=area against solid-angle), measured in one run on the same machine.
+(lights.sample=area against solid-angle), measured in one run on the same machine.
 
     bench/lights_sample_compare.py [--bin build/restir] [--scenes a,b,...] [--res WxH] [--spp N]
         [--seeds N] [--threads N] [--out DIR] [--config NAME=key=value,key=value ...]

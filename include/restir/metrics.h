@@ -155,7 +155,7 @@ double restir_metrics_spatial_covariance(const float *runs, int n_runs, int widt
 double restir_metrics_temporal_autocovariance(const float *seq, int n_runs, int frames, int width, int height, int lag,
                                       float eps, const unsigned char *mask);
 
-/* Flicker of a static camera's frames at block scale `block` (issue 58): per run and block of
+/* Flicker of a static camera's frames at block scale `block`: per run and block of
  * block x block pixels, the block's mean luminance in each frame and its variance over the frames
  * (1 / (frames - 1), about that run's own temporal mean), divided by (R^2 + 1e-3), R the reference's
  * mean over the norm_block x norm_block block that holds it (relMSE's normalisation, taken at one

@@ -402,7 +402,8 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                     field, c->ms_per_frame, c->spp, c->instances, c->err.relmse, c->err.mape, c->err.smape,
                     c->err.luma_rmse, c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1],
                     gr[0], gr[1], gr[2], gr[3], gr[4], gr[5], dn[0], dn[1], dn[2], dn[3], dn[4], dn[5], dn[6], dn[7],
-                    dn[8], own[0], own[1], own[2], net, fl[0], fl[1], own[3], fk[0], fk[1], fk[2], fk[3], fk[4], fk[5], fk[6], fk[7], lag[0], lag[1]);
+                    dn[8], own[0], own[1], own[2], net, fl[0], fl[1], own[3], fk[0], fk[1], fk[2], fk[3], fk[4], fk[5],
+                    fk[6], fk[7], lag[0], lag[1]);
         }
     }
     print_denoised(specs, res, n, w, runs, p->denoise.method);

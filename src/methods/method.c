@@ -112,7 +112,8 @@ int method_check_settings(const struct method *m, const struct render_params *p,
     }
     if (p->denoise.svgf_temporal_gradient && !method_has(m, METHOD_TEMPORAL_GRADIENT)) {
         method_names_with(METHOD_TEMPORAL_GRADIENT, names, sizeof names);
-        snprintf(msg, RESTIR_MSG_LEN, "denoise.svgf.temporal_gradient=on: %s hands the denoiser no temporal gradient (methods that do: %s)",
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "denoise.svgf.temporal_gradient=on: %s hands the denoiser no temporal gradient (methods that do: %s)",
                  m->name, names);
         return -1;
     }

@@ -1,4 +1,4 @@
-/* boiling_filter.h: RTXDI's boiling filter (issue 58), BIASED by design: in each 8 x 8 pixel group,
+/* boiling_filter.h: RTXDI's boiling filter, BIASED by design: in each 8 x 8 pixel group,
  * a reservoir whose weight exceeds the group's mean non-zero weight by a factor 10 / s - 9 (s the
  * strength, 0.2 by default: 41x) is an outlier that would spread into a blotch through reuse, and is
  * dropped. The methods say what a reservoir's weight is (its target x W, the pixel's unshadowed

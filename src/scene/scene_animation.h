@@ -1,4 +1,4 @@
-/* scene_animation.h: emitters whose strength changes along the frames (issue 58): a material's
+/* scene_animation.h: emitters whose strength changes along the frames: a material's
  * "animation" in a scene file, keys of (frame, strength) that scale the emission the file gives,
  * linear between keys or held until the next ("step"), the first and last values held before and
  * after them. Sampling never sees the change: the emitters' power tables and light BVH are built

@@ -1,4 +1,4 @@
-/* test_animated_unbiased.c: scenes with animated emitters (issue 58; scene/scene_animation.h) render
+/* test_animated_unbiased.c: scenes with animated emitters (scene/scene_animation.h) render
  * every frame under that frame's lights: K independently seeded runs of a method's first F frames,
  * static camera, against K runs of the direct-lighting (or full) pt rendered at frame F - 1 alone,
  * per pixel (Welch, Sidak) and pooled. tests/data/scenes/switch_lamp.json holds a steady lamp, a lamp

@@ -539,7 +539,7 @@ static void check_scene_files(void)
     EXPECT(cli_count_entries(out, "frame_0000.exr") == 1, "the warned render wrote no frame");
     snprintf(fmt, sizeof fmt, "scene info '%s' --set scene.missing_textures=warn", missing);
     EXPECT(cli_run(tmp, fmt, err) == 0 && strstr(err, "no-such-image.png"), "scene info with warn: %s", err);
-    /* Animated emitters (issue 58): bad keys are refused by the reader with the file and the key; a
+    /* Animated emitters: bad keys are refused by the reader with the file and the key; a
      * method whose history would keep old lights refuses the scene by name */
     static const struct {
         const char *what, *animation, *material, *key, *why;

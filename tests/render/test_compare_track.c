@@ -172,8 +172,9 @@ int main(void)
                        "gradient_relmse_trim1_sem,gradient_mape,gradient_mape_sem,relmse_denoised,relmse_denoised_sem,"
                        "mape_denoised,mape_denoised_sem,smape_denoised,smape_denoised_sem,mape_disoccluded_denoised,"
                        "mape_disoccluded_denoised_sem,temporal_cov_denoised,ref_relmse,ref_mape,ref_smape,relmse_net,flip,"
-                       "flip_sem,ref_mape_disoccluded,flicker1,flicker4,flicker16,boiling_index,"
-                         "flicker1_denoised,flicker4_denoised,flicker16_denoised,boiling_index_denoised,lag_frames,lag_frames_denoised\n") != NULL,
+                       "flip_sem,ref_mape_disoccluded,flicker1,flicker4,flicker16,boiling_index,flicker1_denoised,"
+                       "flicker4_denoised,flicker16_denoised,boiling_index_denoised,lag_frames,lag_frames_denoised\n") !=
+               NULL,
            "compare.csv header: %.300s", csv);
     c = strstr(csv, "\nrestir-pt,");
     static const int mean_col[4] = {4, 5, 6, 13}, sem_col[4] = {10, 11, 12, 14};
@@ -183,7 +184,7 @@ int main(void)
         printf("--runs 2, metric %d: mean %.6g, run 0 %.6g, standard error %.6g (want %.6g)\n", k, m, x0[k], sem, want);
         EXPECT(fabs(sem - want) <= tol && want > 0.0, "metric %d: standard error %g, |mean - run 0| = %g", k, sem, want);
     }
-    /* flicker (issue 58): a moving camera's rows leave it empty; a static camera's pt row has it, with
+    /* flicker: a moving camera's rows leave it empty; a static camera's pt row has it, with
      * 16 px block means flickering far less than pixels (independent noise: about 1/256) */
     field(c ? c + 1 : "", 38, a, sizeof a);
     EXPECT(c && a[0] == '\0', "a moving camera has no flicker ('%s')", a);
@@ -207,7 +208,7 @@ int main(void)
         EXPECT(fabs(bi - 256.0 * f16 / f1) <= 1e-4 * bi, "%s: boiling index %g is not 256 flicker16 / flicker1",
                k ? "restir-di" : "pt", bi);
     }
-    /* lag (issue 58): an animated scene's lights change at frames 2, 5 and 6 (switch_lamp.json); with a
+    /* lag: an animated scene's lights change at frames 2, 5 and 6 (switch_lamp.json); with a
      * reference at every frame the segment after frame 6 (6 frames) has a lag in [0, 6], the shorter
      * ones none */
     const char *data = getenv("RESTIR_TEST_DATA");
@@ -230,7 +231,7 @@ int main(void)
         EXPECT(lag >= 0.0 && lag <= 6.0, "%s: lag_frames %g, want a whole number of frames in [0, 6]",
                k ? "restir-di" : "pt", lag);
     }
-    /* A-SVGF (denoise.svgf.temporal_gradient, issue 58): on switch_room.json (a lamp off at 16, on at 32)
+    /* A-SVGF (denoise.svgf.temporal_gradient): on switch_room.json (a lamp off at 16, on at 32)
      * the denoised frames settle sooner with the gradient (at 48x36 when this was written: 9 frames after
      * the switch-off, 0 after the switch-on, against 13 and 3 without; after the switch-off the raw frames
      * themselves stay noisy for 11 frames, restir-di's histories keeping confidence 20 though their
@@ -238,7 +239,8 @@ int main(void)
     snprintf(lagdir, sizeof lagdir, "%s/asvgf", tmp);
     snprintf(args, sizeof args,
              "compare --scene '%s/scenes/switch_room.json' --res 48x36 --frames 40 --ref-every 1 --ref-spp 16 --seed 5 "
-             "--threads 1 --set denoise=svgf --methods restir-di,restir-di:denoise.svgf.temporal_gradient=on --out '%s'",
+             "--threads 1 --set denoise=svgf --methods restir-di,restir-di:denoise.svgf.temporal_gradient=on "
+             "--out '%s'",
              data ? data : ".", lagdir);
     rc = cli_run_capture(tmp, args, out, err);
     EXPECT(rc == 0, "compare with the temporal gradient exited %d: %s", rc, err);

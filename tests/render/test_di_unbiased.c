@@ -132,7 +132,7 @@ int main(int argc, char **argv)
     /* Each pixel's own candidates down the light BVH (di.initial=bvh), 8 of them: a descent each */
     const char *bvh_ris[] = {"di.initial=bvh", "di.light_candidates=8", "jitter=off"};
     check_method(method_named("ris-di"), "many-lights", 24, 16, bvh_ris, 3, 1);
-    /* temporal.permutation (issue 58): the history of a neighbour mirrored inside 4 x 4 tiles, where
+    /* temporal.permutation: the history of a neighbour mirrored inside 4 x 4 tiles, where
      * the pillars' shadows make neighbours differ */
     const char *permutation[] = {"mis=pairwise", "temporal.permutation=on"};
     check_scene("pillars", 24, 16, permutation, 2, 1);

@@ -1,4 +1,4 @@
-/* test_boiling_filter.c: render/boiling_filter.h's outlier marks (issue 58; RTXDI's rule): the
+/* test_boiling_filter.c: render/boiling_filter.h's outlier marks (RTXDI's rule): the
  * threshold 10 / s - 9 times the group's mean non-zero weight, empty reservoirs left out of the mean,
  * groups of 8 x 8 from the top-left corner (smaller at the edges), non-finite weights marked. */
 #include <math.h>

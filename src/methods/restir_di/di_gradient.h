@@ -1,4 +1,4 @@
-/* di_gradient.h: restir-di's temporal gradient for A-SVGF (Schied et al. 2018; issue 58), from the
+/* di_gradient.h: restir-di's temporal gradient for A-SVGF (Schied et al. 2018), from the
  * samples its reuse already holds instead of re-shaded strata: per pixel, the history sample (the
  * previous frame's reservoir under the backward motion vector) and the current initial sample, each
  * shaded unshadowed (target x W, visibility as the targets have it) under the previous and under this
