@@ -28,12 +28,14 @@ struct denoise_guide {
 
 /* denoise_settings.svgf_lum_weight and svgf_taa_clamp, in the order of their names in params.c. */
 enum { DENOISE_LUM_SYMMETRIC, DENOISE_LUM_PAPER };
+/* denoise_settings.method, in the order of denoise_names (denoise.c). */
+enum { DENOISE_OFF, DENOISE_SVGF, DENOISE_ATROUS };
 enum { DENOISE_TAA_CLAMP_MOVING, DENOISE_TAA_CLAMP_ALWAYS, DENOISE_TAA_CLAMP_OFF };
 
 /* What the denoisers read (render_params' denoise.* keys; the defaults are the papers' but where
  * docs/DENOISE.md says why not). */
 struct denoise_settings {
-    int method; /* index into denoise_names: 0 off, 1 svgf, 2 atrous */
+    int method; /* index into denoise_names: DENOISE_OFF, DENOISE_SVGF, DENOISE_ATROUS */
     /* SVGF (Schied et al. 2017, Sec. 4) */
     float svgf_alpha;         /* colour's exponential moving average weight (0.2) */
     float svgf_moments_alpha; /* moments' weight (0.2) */

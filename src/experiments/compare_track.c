@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "core/vec3.h"
 
 #define COV_EPS 1e-4f /* 000 Appendix A */
 
@@ -88,7 +89,7 @@ static void store_luminance(struct compare_track *t, float *seq, int run, int f,
     const size_t npix = (size_t)t->width * (size_t)t->height, window = (size_t)(t->frames - t->cov_first);
     float *out = &seq[((size_t)run * window + (size_t)(f - t->cov_first)) * npix];
     for (size_t i = 0; i < npix; i++) {
-        const float l = 0.2126f * image[3 * i] + 0.7152f * image[3 * i + 1] + 0.0722f * image[3 * i + 2];
+        const float l = v3_luminance(v3(image[3 * i], image[3 * i + 1], image[3 * i + 2]));
         t->clamped += l < 0.0f;
         out[i] = l < 0.0f ? 0.0f : l;
     }
@@ -197,7 +198,7 @@ void compare_track_flicker(const struct compare_track *t, int denoised, double o
     const float *rgb = t->ref[t->nref - 1];
     float *ref = xmalloc(sizeof(float) * npix);
     for (size_t i = 0; i < npix; i++) /* Rec. 709 luminance, as the window's frames */
-        ref[i] = 0.2126f * rgb[3 * i] + 0.7152f * rgb[3 * i + 1] + 0.0722f * rgb[3 * i + 2];
+        ref[i] = v3_luminance(v3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]));
     for (int k = 0; k < COMPARE_FLICKER_SCALES; k++)
         out[k] = restir_metrics_flicker(seq, t->runs, t->frames - t->cov_first, t->width, t->height, ref,
                                         compare_flicker_block[k], compare_flicker_block[COMPARE_FLICKER_SCALES - 1]);

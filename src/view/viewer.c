@@ -132,7 +132,7 @@ static void press(struct view *v, char key)
         break;
     case 'v': v->mode = (v->mode + 1) % view_count(&v->r); break;
     case 'o': /* raw / denoised; the first time turns SVGF on */
-        if (v->p.denoise.method == 0) {
+        if (v->p.denoise.method == DENOISE_OFF) {
             q.denoise.method = 1;
             if (switch_to(v, v->method, &q))
                 v->show_denoised = 1;

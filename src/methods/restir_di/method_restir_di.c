@@ -127,7 +127,7 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
         st->nonfinite += nonfinite_discard_di(d->work, n);
     });
     const int confidence = di_reuse_settings_of(p)->gradient_confidence;
-    if ((p->denoise.method == 1 && p->denoise.svgf_temporal_gradient) || confidence) { /* A-SVGF's lambda */
+    if ((p->denoise.method == DENOISE_SVGF && p->denoise.svgf_temporal_gradient) || confidence) { /* A-SVGF */
         if (!d->grad) {
             d->grad = xmalloc(sizeof(float) * n);
             d->grad_tmp = xmalloc(4 * sizeof(float) * n);
