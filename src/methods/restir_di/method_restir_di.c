@@ -43,9 +43,9 @@ static void *restir_di_create(const struct renderer *r)
     if (di_initial_uses_regir(ds->initial, r->scene->num_emitters)) {
         d->regir = xmalloc(sizeof(*d->regir));
         regir_init(d->regir, r->scene, ds);
-    } else {
-        light_pool_init(&d->lights, ds->light_candidates);
     }
+    if (ds->initial != DI_INITIAL_REGIR) /* auto falls back to the pool where the grid does not pay */
+        light_pool_init(&d->lights, ds->light_candidates);
     return d;
 }
 
@@ -117,13 +117,18 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
                    st->rays += gbuffer_pass(g, s, view, h->has_history ? &r->prev_view : NULL, p->jitter, p->seed,
                                             frame));
     RENDERER_TIMED(st, PASS_INITIAL, {
+        const struct di_settings *ds = di_settings_of(p);
+        const struct regir_grid *rg = NULL;
         if (d->regir) {
-            regir_build(d->regir, g, di_settings_of(p));
-            regir_fill(d->regir, s, di_settings_of(p), p->seed, frame);
-        } else if (di_settings_of(p)->initial != DI_INITIAL_BVH) { /* bvh: each pixel draws its own */
-            light_pool_fill(&d->lights, s, p->seed, frame);
+            regir_build(d->regir, g, ds);
+            if (ds->initial == DI_INITIAL_REGIR || regir_fill_share(d->regir, ds, n) <= DI_AUTO_REGIR_MAX_FILL_SHARE) {
+                regir_fill(d->regir, s, ds, p->seed, frame);
+                rg = d->regir;
+            }
         }
-        st->rays += di_initial_pass(s, &d->lights, d->regir, p, frame, g, d->work);
+        if (!rg && ds->initial != DI_INITIAL_BVH) /* bvh: each pixel draws its own */
+            light_pool_fill(&d->lights, s, p->seed, frame);
+        st->rays += di_initial_pass(s, &d->lights, rg, p, frame, g, d->work);
         st->nonfinite += nonfinite_discard_di(d->work, n);
     });
     const int confidence = di_reuse_settings_of(p)->gradient_confidence;

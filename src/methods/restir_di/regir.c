@@ -269,6 +269,15 @@ void regir_fill(struct regir_grid *r, const struct scene *s, const struct di_set
     }
 }
 
+double regir_fill_share(const struct regir_grid *r, const struct di_settings *ds, size_t pixels)
+{
+    double slots = 0.0;
+    for (int b = 0; b < r->n_blocks; b++)
+        slots += r->block_slots[b];
+    const double own = (double)pixels * ds->light_candidates;
+    return own > 0.0 ? slots * ds->regir_candidates / own : 0.0;
+}
+
 float regir_light_pdf(const struct regir_grid *r, const struct scene *s, const struct di_settings *ds, int b, int tri)
 {
     const int e = tri >= 0 && tri < s->num_tris ? s->tri_emitter[tri] : -1;

@@ -58,6 +58,11 @@ struct regir_grid {
     struct light_cut *cuts;       /* and per block the cut through the tree at its cell's centre */
 };
 
+/* The grid's fill work this frame over the pixels' own: the slots' candidates (sum of block_slots x
+ * di.regir_candidates, after regir_build) over `pixels` x di.light_candidates. di.initial=auto
+ * compares it with DI_AUTO_REGIR_MAX_FILL_SHARE. */
+double regir_fill_share(const struct regir_grid *r, const struct di_settings *ds, size_t pixels);
+
 /* Sizes the grid for ds and scene s (allocating the slots of the first frame's cells happens in
  * regir_build). */
 void regir_init(struct regir_grid *r, const struct scene *s, const struct di_settings *ds);
