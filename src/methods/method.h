@@ -35,8 +35,9 @@ enum method_caps {
     METHOD_BUDGET_BY_SPP = 1u << 5,
     /* 000's study (restir study) runs it: spatial reuse from the neighbor selection pass */
     METHOD_SELECTION_STUDY = 1u << 6,
-    /* every sample it reuses from an earlier frame is evaluated under this frame's lights (or it reuses
-     * none): renders scenes with animated emitters (scene/scene_animation.h) */
+    /* renders scenes with animated emitters (scene/scene_animation.h) without bias: it reuses no earlier
+     * frame, measures each reused sample's domain under that domain's frame's lights (restir-di), or
+     * drops its temporal reuse on a frame whose lights changed (renderer_history_reusable) */
     METHOD_ANIMATED_EMITTERS = 1u << 7,
     /* hands the denoiser a temporal gradient (renderer_inspect.temporal_gradient): takes
      * denoise.svgf.temporal_gradient=on */

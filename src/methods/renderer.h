@@ -41,6 +41,8 @@ struct renderer {
     const struct method *method;
     void *state;                  /* the method's (struct method.create) */
     int frame;                    /* the frame being rendered, or the last one */
+    int lights_changed;           /* 1 when this frame's animated emitters differ from the previous rendered
+                                     frame's (scene_lights_differ); 0 on the first frame */
     struct camera_view prev_view; /* the previous frame's view (valid after the first frame) */
     struct camera prev_cam;       /* the last frame's camera: where the next frame's shutter opens */
     int has_prev_cam;
@@ -67,6 +69,18 @@ struct renderer_inspect {
     const void *reservoirs;        /* the last frame's final reservoirs, read by confidence() */
     float (*confidence)(const void *reservoirs, int pixel);
 };
+
+/* Whether temporal reuse may read last frame's reservoirs in a method that cannot measure an old sample
+ * under the old frame's lights (restir-pt, restir-gi and the gradient methods over restir-pt): there is
+ * a history and this frame's animated emitters are the previous frame's. On a frame whose lights
+ * changed such a method drops its temporal reuse (the frame is its own samples and spatial reuse,
+ * unbiased: render.animated_unbiased, where keeping the history instead is off by -30% right after a
+ * switch-on), and the next frame's history holds only the current lights. restir-di instead measures
+ * each domain under its own frame's lights (di_relight). */
+static inline int renderer_history_reusable(const struct renderer *r, int has_history)
+{
+    return has_history && !r->lights_changed;
+}
 
 /* p must have passed render_params_validate and method_check_settings. Allocates the method's
  * state; aborts when memory runs out. */

@@ -36,6 +36,16 @@ float scene_emission_strength(const struct scene *s, int tri, float t)
     return a->n > 0 ? emission_animation_at(a, t) : 1.0f;
 }
 
+int scene_lights_differ(const struct scene *s, float t0, float t1)
+{
+    for (int m = 0; s->emission_anim && m < s->num_materials; m++) {
+        const struct emission_animation *a = &s->emission_anim[m];
+        if (a->n > 0 && emission_animation_at(a, t0) != emission_animation_at(a, t1))
+            return 1;
+    }
+    return 0;
+}
+
 void scene_set_frame(const struct scene *s, float t)
 {
     if (!s->emission_anim)

@@ -30,6 +30,9 @@ float scene_emission_strength(const struct scene *s, int tri, float t);
  * without repeats, at most max of them into frames. Returns how many (0 for a still scene). */
 int scene_animation_changes(const struct scene *s, int *frames, int max);
 
+/* 1 when some animated emitter's strength at frame t1 differs from its strength at t0. */
+int scene_lights_differ(const struct scene *s, float t0, float t1);
+
 /* Sets every animated material's emission, and the Le of its emitters, to frame t's (the loaded
  * scene's frame 0 otherwise). The one change a loaded scene takes: its materials' and emitters'
  * arrays are written through the const scene. Not thread-safe with anything that reads the scene;

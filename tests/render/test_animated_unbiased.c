@@ -3,13 +3,16 @@
  * static camera, against K runs of the direct-lighting (or full) pt rendered at frame F - 1 alone,
  * per pixel (Welch, Sidak) and pooled. tests/data/scenes/switch_lamp.json holds a steady lamp, a lamp
  * switched off at frame 2 and on again at 5 (step keys) and a lamp ramped linearly over frames 0-6.
- * Cases: pt itself (its lights follow the frame), ris-di (no history) and restir-di, whose temporal
- * merge measures each domain under its own frame's lights (di_relight, merge_begin's prev_scale):
- * one frame after the switch-off (frame 3), right after the switch-on (frame 5) and after the ramp
- * (frame 7). Re-evaluating the previous domain under this frame's lights instead, as the history's
- * targets would be if relit, fails frame 5 by -30% of the image mean and frame 7 by -17% (seen).
- * Bad keys (order, negative strength, an animation on a non-emitter, a transform) are refused by the
- * reader: render.cli_errors. */
+ * Cases: pt itself (its lights follow the frame); ris-di, gpt and ris-gi (no history); restir-di,
+ * whose temporal merge measures each domain under its own frame's lights (di_relight, merge_begin's
+ * prev_scale), one frame after the switch-off (frame 3), right after the switch-on (frame 5) and after
+ * the ramp (frame 7); restir-pt, restir-gi and grestir-pt, which drop their temporal reuse on a frame
+ * whose lights changed (renderer_history_reusable), at frame 5 and restir-pt at 8 too.
+ * The cases have power (seen): re-evaluating restir-di's previous domain under this frame's lights
+ * fails frame 5 by -30% of the image mean and frame 7 by -17%; keeping the history of restir-pt across
+ * the changes fails frame 5 by -30% and frame 8 by -16%, restir-gi's frame 5 by -7%, grestir-pt's by
+ * -30%. Bad keys (order, negative strength, an animation on a non-emitter, a transform) are refused by
+ * the reader: render.cli_errors. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -22,7 +25,7 @@
 #include "unbiased_util.h"
 
 /* seconds alone on the 2-core machine of docs/BENCHMARKS.md: ctest starts the longest tests first */
-#define TEST_COST_SECONDS 95
+#define TEST_COST_SECONDS 60
 
 #define RUNS 1024
 #define W 24
@@ -110,6 +113,17 @@ int main(void)
      * measured right after the switch-on, not judged */
     const char *confidence[] = {"mis=pairwise", "jitter=off", "di.gradient_confidence=on"};
     check(&s, "restir-di", 6, confidence, 3, 0);
+    /* The methods that drop their temporal reuse on a frame whose lights changed: right after the
+     * switch-on (frame 5), and restir-pt two frames after the ramp's end (frame 8: history from frames
+     * 6 and 7, shaded under the lights of frame 8). gpt and ris-gi reuse nothing. */
+    const char *walk[] = {"jitter=off"};
+    check(&s, "restir-pt", 6, walk, 1, 1);
+    check(&s, "restir-pt", 9, walk, 1, 1);
+    check(&s, "restir-gi", 6, walk, 1, 1);
+    const char *l2[] = {"jitter=off", "recon=l2"};
+    check(&s, "grestir-pt", 6, l2, 2, 1);
+    check(&s, "gpt", 4, l2, 2, 1);
+    check(&s, "ris-gi", 4, walk, 1, 1);
     scene_destroy(&s);
     return test_finish();
 }

@@ -574,9 +574,6 @@ static void check_scene_files(void)
         snprintf(what, sizeof what, "animated emitter with %s", anim[k].what);
         expect_failure(what, fmt, 2, anim[k].key, anim[k].why);
     }
-    snprintf(fmt, sizeof fmt, "render --scene '%s/scenes/switch_lamp.json' --method restir-pt --res 16x16 --out '%%1$s'",
-             getenv("RESTIR_TEST_DATA") ? getenv("RESTIR_TEST_DATA") : ".");
-    expect_failure("restir-pt on animated emitters", fmt, 2, "animated emitters", "restir-di");
     /* Environment light: an unreadable --env names the file; every kind of method
      * renders an environment-lit scene. */
     expect_failure("--env of a missing image",

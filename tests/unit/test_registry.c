@@ -9,6 +9,7 @@
 #include "methods/settings.h"
 #include "render/params.h"
 #include "render/tiles.h"
+#include "scene/scene.h"
 #include "test_util.h"
 
 struct toy_settings {
@@ -84,6 +85,18 @@ int main(void)
     expect_refused(outputs[1], 1, "a one-channel output", "toy-e", "1 channels");
     expect_refused(outputs[2], 1, "an output named as a path", "toy-f", "'../x'");
     expect_refused(outputs[3], 1, "outputs without an output function", "toy-g", "no output function");
+
+    /* A method that does not say it renders animated emitters is refused on a scene that has them, by
+     * name, with the methods that do (method_check_settings). */
+    struct emission_animation anim = {0};
+    struct scene lit = {0};
+    strcpy(lit.name, "lit");
+    lit.emission_anim = &anim;
+    struct render_params p;
+    render_params_defaults(&p);
+    EXPECT(method_check_settings(&toy_b, &p, &lit, msg) != 0 && strstr(msg, "animated emitters") &&
+               strstr(msg, "toy-b") && strstr(msg, "restir-pt"),
+           "a method without METHOD_ANIMATED_EMITTERS on an animated scene: %s", msg);
 
     /* Named streams never take a toolkit pass id, and differ by name. */
     EXPECT(rng_stream_id("toy.shade") >= RNG_PASS_COUNT, "a named stream below the toolkit's ids");

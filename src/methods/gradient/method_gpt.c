@@ -63,7 +63,7 @@ const struct method method_gpt = {
     .name = "gpt",
     .description = "gradient-domain path tracing (Kettunen et al. 2015, 002 B.2): pt base paths shifted to the 4 "
                    "neighbors (hybrid shift), Poisson reconstruction",
-    .caps = METHOD_GRADIENT | METHOD_BUDGET_BY_SPP,
+    .caps = METHOD_GRADIENT | METHOD_BUDGET_BY_SPP | METHOD_ANIMATED_EMITTERS,
     .blocks = (const struct param_block *const[]){&params_block_spp, &params_block_depth, &params_block_roulette,
                                                   &params_block_lights, &params_block_shift, &recon_block, NULL},
     .passes = (const char *const[]){"gpt", GRAD_METHOD_PASSES, NULL},

@@ -61,7 +61,7 @@ static void paired_passes(struct renderer *r, struct grad_restir_state *gs_, con
         }
         st->rays += grestir_initial_pass(fr, g, gf->base, gs);
     });
-    if (p->reuse.temporal && grad_settings_of(p)->temporal && has_history)
+    if (p->reuse.temporal && grad_settings_of(p)->temporal && renderer_history_reusable(r, has_history))
         RENDERER_TIMED(st, PASS_GRAD_TEMPORAL,
                        st->rays += grestir_temporal_pass(fr, g, prev_g, gs, 1 - cur, &accepted));
     RENDERER_TIMED(st, PASS_GRAD_SELECT, grestir_select_pass(fr, g, gs));
@@ -123,7 +123,8 @@ _Static_assert(offsetof(struct grad_restir_state, grad) == 0, "grad_method_outpu
 /* What the two rows share: gradients beside the area-ReSTIR primal, one state, frame, reconstruction and
  * set of outputs. */
 #define GRAD_RESTIR_SHARED                                                                                        \
-    .caps = METHOD_GRADIENT | METHOD_HISTORY | METHOD_PATH_RESERVOIRS, .defaults = restir_pt_area_defaults,        \
+    .caps = METHOD_GRADIENT | METHOD_HISTORY | METHOD_PATH_RESERVOIRS | METHOD_ANIMATED_EMITTERS,                  \
+    .defaults = restir_pt_area_defaults,                                                                           \
     .destroy = grad_restir_destroy, .render_frame = grad_restir_render_frame,                                      \
     .reconstruct = grad_restir_reconstruct, .inspect = grad_restir_inspect, .outputs = grad_method_outputs,        \
     .output = grad_method_output

@@ -68,7 +68,7 @@ static void restir_gi_render_frame(struct renderer *r, void *state, const struct
                                             p->seed, r->frame));
     RENDERER_TIMED(st, PASS_INITIAL, st->rays += gi_initial_pass(&fr, g, t->x1[cur], t->base, t->work);
                    st->nonfinite += gi_nonfinite_discard(t->work, n));
-    if (p->reuse.temporal && h->has_history)
+    if (p->reuse.temporal && renderer_history_reusable(r, h->has_history))
         RENDERER_TIMED(st, PASS_TEMPORAL,
                        st->rays += gi_temporal_pass(&fr, g, prev_g, t->x1[cur], t->x1[1 - cur], t->hist[1 - cur],
                                                     t->work, &st->temporal_accepted);
@@ -117,7 +117,7 @@ const struct method method_restir_gi = {
     .name = "restir-gi",
     .description = "ReSTIR GI (Ouyang et al. 2021) as GRIS: one secondary vertex per pixel with its path suffix, "
                    "temporal and spatial reuse by reconnection; gi.radiance=reevaluate (unbiased) or stored",
-    .caps = METHOD_HISTORY,
+    .caps = METHOD_HISTORY | METHOD_ANIMATED_EMITTERS,
     .blocks = (const struct param_block *const[]){&params_block_depth, &params_block_roulette, &params_block_lights,
                                                   &params_block_reuse, &gi_block, NULL},
     .passes = (const char *const[]){"gbuffer", "initial", "temporal", "select", "spatial", "shade", NULL},

@@ -86,7 +86,7 @@ void restir_pt_frame(struct renderer *r, struct restir_pt_state *t, const struct
     if (base)
         memcpy(base, t->work, sizeof(*out) * n);
     memset(t->temporal_flags, 0, n);
-    if (p->reuse.temporal && h->has_history)
+    if (p->reuse.temporal && renderer_history_reusable(r, h->has_history))
         RENDERER_TIMED(st, PASS_TEMPORAL, {
             if (t->splat)
                 st->rays += pt_temporal_splat_pass(&fr, g, prev_g, prev_res, t->work, t->splat, t->temporal_flags);
@@ -171,7 +171,7 @@ static void restir_pt_inspect_state(const void *state, struct renderer_inspect *
     restir_pt_inspect(state, out);
 }
 
-#define RESTIR_PT_CAPS (METHOD_HISTORY | METHOD_CAMERA_EFFECTS | METHOD_PATH_RESERVOIRS)
+#define RESTIR_PT_CAPS (METHOD_HISTORY | METHOD_CAMERA_EFFECTS | METHOD_PATH_RESERVOIRS | METHOD_ANIMATED_EMITTERS)
 
 const struct method method_restir_pt = {
     .name = "restir-pt",

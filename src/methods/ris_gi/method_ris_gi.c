@@ -21,7 +21,7 @@ const struct method method_ris_gi = {
     .name = "ris-gi",
     .description = "RIS over K BSDF directions at the primary hit, each traced with its path suffix, no reuse (the "
                    "no-reuse baseline of ReSTIR GI)",
-    .caps = METHOD_CAMERA_EFFECTS | METHOD_BUDGET_BY_SPP,
+    .caps = METHOD_CAMERA_EFFECTS | METHOD_BUDGET_BY_SPP | METHOD_ANIMATED_EMITTERS,
     .blocks = (const struct param_block *const[]){&params_block_spp, &params_block_depth, &params_block_roulette,
                                                   &params_block_lights, &ris_gi_block, NULL},
     .streams = (const char *const[]){RIS_GI_STREAM, NULL},
