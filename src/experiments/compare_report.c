@@ -119,6 +119,43 @@ static void frames_plot(struct html_page *pg, int n, const struct compare_report
     svg_xy_plot(pg->f, &ax, series, ns);
 }
 
+/* Flicker against block size, a line per row (raw and denoised), as s^2 flicker(s) / flicker(1): a
+ * frame-to-frame variance of s x s block means relative to what independent per-pixel noise would leave
+ * (1 at every scale), up to s^2 where whole blocks move together (blotches; at 16 px this is the table's
+ * boiling index). Leaves the page alone when no row has a flicker. */
+static void flicker_plot(struct html_page *pg, int n, const struct compare_report_method *m)
+{
+    struct plot_series series[MAX_REPORT_METHODS];
+    const char *labels[MAX_REPORT_METHODS];
+    double xs[MAX_REPORT_METHODS][8], ys[MAX_REPORT_METHODS][8];
+    int ns = 0;
+    for (int k = 0; k < n; k++) {
+        if (m[k].nflicker < 2 || m[k].nflicker > 8 || !(m[k].flicker[0] > 0.0))
+            continue;
+        int np = 0;
+        for (int j = 0; j < m[k].nflicker; j++) {
+            const double s = m[k].flicker_block[j];
+            if (!isfinite(m[k].flicker[j]))
+                continue;
+            xs[ns][np] = log2(s);
+            ys[ns][np++] = s * s * m[k].flicker[j] / m[k].flicker[0];
+        }
+        series[ns] = (struct plot_series){m[k].label, palette[ns % PALETTE], np, xs[ns], ys[ns], NULL};
+        labels[ns++] = m[k].label;
+    }
+    if (ns == 0)
+        return;
+    html_raw(pg, "<h2>Flicker against scale</h2>\n<p>The frame-to-frame variance of s x s block means over the "
+                 "second half's frames (compare.csv's flicker1, flicker4, flicker16), as s<sup>2</sup> "
+                 "flicker(s) / flicker(1): 1 at every scale for independent per-pixel noise, rising towards "
+                 "s<sup>2</sup> where blocks change together (boiling; at s = 16 this is the boiling index, at "
+                 "most 256). x is log<sub>2</sub> s: 0 is 1 px, 2 is 4 px, 4 is 16 px; log scale.</p>\n");
+    const int legend_w = label_width(ns, labels, 150, 460) + 40;
+    const struct svg_xy_axes ax = {"flicker relative to independent noise", "log2 block size (px)",
+                                   "s^2 flicker(s) / flicker(1) (log scale)", 520 + legend_w, 340, legend_w, 1, 1};
+    svg_xy_plot(pg->f, &ax, series, ns);
+}
+
 /* Each method's ms per frame by pass (passes.csv) as stacked bars; the passes no method spent time in
  * are left out. */
 static void passes_plot(struct html_page *pg, const struct compare_report_run *run, int n,
@@ -385,6 +422,7 @@ int compare_write_report(const struct compare_report_run *run, int n, const stru
     table(&pg, n, m);
     relmse_plot(&pg, n, m);
     frames_plot(&pg, n, m);
+    flicker_plot(&pg, n, m);
     passes_plot(&pg, run, n, m);
     const char *labels[MAX_REPORT_METHODS + 1], *srcs[MAX_REPORT_METHODS + 1];
     labels[0] = "reference";

@@ -8,10 +8,11 @@
 #include "restir/metrics.h"
 
 /* The page: the run's command, commit and machine, its table and a relMSE bar plot (each denoised
- * row right after its method's), relMSE against frame from frames.csv, the time per pass from
- * passes.csv as stacked bars, every method's image (and denoised image) and the reference in a
- * synchronized viewer with an A/B flip, per-pixel relative-error and HDR-FLIP heat maps with colour
- * bars, and crops of the regions where the first two methods' errors differ most. */
+ * row right after its method's), relMSE against frame from frames.csv, flicker against block size (a
+ * static camera's), the time per pass from passes.csv as stacked bars, every method's image (and
+ * denoised image) and the reference in a synchronized viewer with an A/B flip, per-pixel
+ * relative-error and HDR-FLIP heat maps with colour bars, and crops of the regions where the first two
+ * methods' errors differ most. */
 
 struct compare_report_method {
     const char *label;  /* the method spec */
@@ -28,6 +29,9 @@ struct compare_report_method {
     const double *ms_pass; /* the method's ms per frame of each pass (passes.csv's row); NULL: none */
     int nframes;           /* frames with an error in frames.csv: their numbers and relMSE */
     const double *frame, *frame_relmse;
+    int nflicker;               /* block sizes with a flicker (0: not measured, as for a moving camera) */
+    const int *flicker_block;   /* their sizes in pixels, ascending, the first 1 */
+    const double *flicker;      /* the row's flicker at each (restir_metrics_flicker; NaN: not measured) */
 };
 
 struct compare_report_run {

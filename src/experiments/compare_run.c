@@ -343,7 +343,7 @@ void compare_keep_fastest(struct compare_result *res, const struct compare_resul
 void compare_result_clear_sequence(struct compare_result *res)
 {
     res->temporal_cov = res->temporal_cov_dn = NAN;
-    for (int k = 0; k < COMPARE_FLICKER_COLS; k++)
+    for (int k = 0; k < FLICKER_COLS; k++)
         res->flicker[k] = res->flicker_dn[k] = NAN;
     for (int k = 0; k < COMPARE_MAX_CHANGES; k++)
         res->lag[k] = res->lag_dn[k] = NAN;

@@ -65,7 +65,7 @@ struct compare_result {
     double temporal_cov_dn;  /* the same of the denoised frames; NaN without denoising */
     /* flicker at 1, 4 and 16 px and the boiling index (compare_track_flicker) over the second half's
      * frames, of the frames as rendered and denoised (NaN without denoising or a reference) */
-    double flicker[COMPARE_FLICKER_COLS], flicker_dn[COMPARE_FLICKER_COLS];
+    double flicker[FLICKER_COLS], flicker_dn[FLICKER_COLS];
     /* frames until relMSE settles after each change of an animated scene's lights (compare_track_lag; NaN
      * where it cannot be measured) */
     double lag[COMPARE_MAX_CHANGES], lag_dn[COMPARE_MAX_CHANGES]; /* as rendered, denoised */

@@ -99,13 +99,13 @@ static void print_flicker(const struct compare_spec *specs, const struct compare
     printf("%-*s %11s %11s %11s %8s%s\n", w, "method", "flicker1", "flicker4", "flicker16", "boiling",
            any_dn ? "   denoised: flicker1   flicker4  flicker16  boiling" : "");
     for (int k = 0; k < n; k++) {
-        char v[2][COMPARE_FLICKER_COLS][32];
+        char v[2][FLICKER_COLS][32];
         for (int d = 0; d < 2; d++) {
             const double *f = d ? res[k].flicker_dn : res[k].flicker;
-            for (int j = 0; j < COMPARE_FLICKER_SCALES; j++)
+            for (int j = 0; j < FLICKER_SCALES; j++)
                 table_cell(v[d][j], sizeof v[d][j], " %10.4g", 11, f[j]);
-            table_cell(v[d][COMPARE_FLICKER_SCALES], sizeof v[d][COMPARE_FLICKER_SCALES], " %8.2f", 9,
-                       f[COMPARE_FLICKER_SCALES]);
+            table_cell(v[d][FLICKER_SCALES], sizeof v[d][FLICKER_SCALES], " %8.2f", 9,
+                       f[FLICKER_SCALES]);
         }
         printf("%-*s %s%s%s%s", w, specs[k].label, v[0][0], v[0][1], v[0][2], v[0][3]);
         if (any_dn)
@@ -231,7 +231,9 @@ static int write_report(const struct compare_setup *st, const char *out_dir, con
                                                .ms_per_frame = res[k].ms_per_frame,
                                                .spp = res[k].spp, .instances = res[k].instances, .err = res[k].err,
                                                .flip = res[k].flip, .ms_pass = res[k].ms_pass, .nframes = nframes,
-                                               .frame = fx, .frame_relmse = fy};
+                                               .frame = fx, .frame_relmse = fy,
+                                               .nflicker = FLICKER_SCALES,
+                                               .flicker_block = flicker_block, .flicker = res[k].flicker};
         if (!res[k].image_dn)
             continue;
         snprintf(labels[k], sizeof labels[k], "%.*s, denoised (BIASED)", SPEC_MAX, specs[k].label);
@@ -240,7 +242,8 @@ static int write_report(const struct compare_setup *st, const char *out_dir, con
         rm[i] = (struct compare_report_method){.label = labels[k], .png = pngs[i], .image = res[k].image_dn,
                                                .ms_per_frame = res[k].ms_per_frame, .spp = res[k].spp,
                                                .instances = res[k].instances, .err = res[k].err_dn, .flip = NAN,
-                                               .denoised = 1};
+                                               .denoised = 1, .nflicker = FLICKER_SCALES,
+                                               .flicker_block = flicker_block, .flicker = res[k].flicker_dn};
     }
     if (have_frames)
         csv_table_free(&frames);
@@ -389,9 +392,9 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
             for (int d = 0; d < 2; d++)
                 if (isfinite(worst_lag(d ? c->lag_dn : c->lag)))
                     snprintf(lag[d], sizeof lag[d], "%.0f", worst_lag(d ? c->lag_dn : c->lag));
-            char fk[2 * COMPARE_FLICKER_COLS][32]; /* flicker and boiling index, as rendered then denoised */
-            for (int j = 0; j < 2 * COMPARE_FLICKER_COLS; j++) {
-                const double v = j < COMPARE_FLICKER_COLS ? c->flicker[j] : c->flicker_dn[j - COMPARE_FLICKER_COLS];
+            char fk[2 * FLICKER_COLS][32]; /* flicker and boiling index, as rendered then denoised */
+            for (int j = 0; j < 2 * FLICKER_COLS; j++) {
+                const double v = j < FLICKER_COLS ? c->flicker[j] : c->flicker_dn[j - FLICKER_COLS];
                 fk[j][0] = '\0';
                 if (!p->camera_path && isfinite(v))
                     snprintf(fk[j], sizeof fk[j], "%.6g", v);

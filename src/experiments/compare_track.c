@@ -12,8 +12,6 @@
 
 #define COV_EPS 1e-4f /* 000 Appendix A */
 
-const int compare_flicker_block[COMPARE_FLICKER_SCALES] = {1, 4, 16};
-
 void compare_track_init(struct compare_track *t, int frames, int runs, int ref_every, int w, int h,
                         float *last_ref)
 {
@@ -187,23 +185,14 @@ void compare_track_lag(const struct compare_track *t, int denoised, double *lag)
     }
 }
 
-void compare_track_flicker(const struct compare_track *t, int denoised, double out[COMPARE_FLICKER_COLS])
+void compare_track_flicker(const struct compare_track *t, int denoised, double out[FLICKER_COLS])
 {
     const float *seq = denoised ? t->seq_dn : t->seq;
-    for (int k = 0; k < COMPARE_FLICKER_COLS; k++)
+    for (int k = 0; k < FLICKER_COLS; k++)
         out[k] = NAN;
     if (!seq || t->nref < 1)
         return;
-    const size_t npix = (size_t)t->width * (size_t)t->height;
-    const float *rgb = t->ref[t->nref - 1];
-    float *ref = xmalloc(sizeof(float) * npix);
-    for (size_t i = 0; i < npix; i++) /* Rec. 709 luminance, as the window's frames */
-        ref[i] = v3_luminance(v3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]));
-    for (int k = 0; k < COMPARE_FLICKER_SCALES; k++)
-        out[k] = restir_metrics_flicker(seq, t->runs, t->frames - t->cov_first, t->width, t->height, ref,
-                                        compare_flicker_block[k], compare_flicker_block[COMPARE_FLICKER_SCALES - 1]);
-    out[COMPARE_FLICKER_SCALES] = restir_metrics_boiling_index(out[0], out[COMPARE_FLICKER_SCALES - 1]);
-    free(ref);
+    flicker_measure(seq, t->runs, t->frames - t->cov_first, t->width, t->height, t->ref[t->nref - 1], out);
 }
 
 double compare_track_end_denoised(struct compare_track *t)

@@ -9,6 +9,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "experiments/flicker_scales.h"
 #include "io/report.h"
 #include "methods/renderer.h"
 #include "restir/metrics.h"
@@ -18,10 +19,6 @@
 #define COMPARE_RUN_SEED_STRIDE 0x9E3779B97F4A7C15ull
 #define COMPARE_INSTANCE_SEED_STRIDE 1000003ull
 #define COMPARE_COV_LAG 3 /* 000 Appendix A: autocovariance at a lag of 3 frames */
-/* Flicker (restir_metrics_flicker) at these block sizes in pixels, then the boiling index. */
-#define COMPARE_FLICKER_SCALES 3
-#define COMPARE_FLICKER_COLS (COMPARE_FLICKER_SCALES + 1)
-extern const int compare_flicker_block[COMPARE_FLICKER_SCALES];
 #define COMPARE_MAX_CHANGES 8 /* lights' changes a lag is measured after */
 #define COMPARE_LAG_TOLERANCE 0.1 /* back "within 10%" of the steady state */
 
@@ -84,11 +81,11 @@ double compare_track_end(struct compare_track *t, const char *label);
  * a segment of under 4 frames.
  * denoised: of the denoised frames (NaN without them). Writes t->nchanges values into lag. */
 void compare_track_lag(const struct compare_track *t, int denoised, double *lag);
-/* Before compare_track_end_denoised: flicker at compare_flicker_block's scales and the boiling index
+/* Before compare_track_end_denoised: flicker at flicker_block's scales and the boiling index
  * (restir_metrics_flicker, _boiling_index) of the window's frames (denoised: the denoised ones)
  * against the last frame's reference, over the runs; NaN without a reference or those frames. Meant
  * for a static camera (a moving one's block means change with the view). */
-void compare_track_flicker(const struct compare_track *t, int denoised, double out[COMPARE_FLICKER_COLS]);
+void compare_track_flicker(const struct compare_track *t, int denoised, double out[FLICKER_COLS]);
 /* After compare_track_end: the relative autocovariance of the denoised frames, as compare_track_end's
  * (NaN without them). */
 double compare_track_end_denoised(struct compare_track *t);

@@ -76,15 +76,19 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
             &csv, path,
             "config,radius,K,M,smape_all,smape_hard,temporal_cov,spatial_cov,ms_select,ms_spatial,ms_frame,"
             "smape_all_sem,smape_hard_sem,temporal_cov_sem,spatial_cov_sem,temporal_cov_hard,temporal_cov_hard_sem,"
-            "ref_smape_all,ref_smape_hard",
+            "ref_smape_all,ref_smape_hard,flicker1,flicker4,flicker16,boiling_index",
             msg) != 0)
         return -1;
+    _Static_assert(FLICKER_COLS == 4, "study.csv's flicker columns");
     for (int k = 0; k < n; k++)
-        csv_row(&csv, "%s,%g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g",
+        csv_row(&csv,
+                "%s,%g,%d,%d,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,"
+                "%.6g,%.6g",
                 cfg[k].name, cfg[k].radius, cfg[k].candidates, m, res[k].smape_all, res[k].smape_hard,
                 res[k].temporal_cov, res[k].spatial_cov, res[k].ms_select, res[k].ms_spatial, res[k].ms_frame,
                 res[k].smape_all_sem, res[k].smape_hard_sem, res[k].temporal_cov_sem, res[k].spatial_cov_sem,
-                res[k].temporal_cov_hard, res[k].temporal_cov_hard_sem, res[k].ref_smape[0], res[k].ref_smape[1]);
+                res[k].temporal_cov_hard, res[k].temporal_cov_hard_sem, res[k].ref_smape[0], res[k].ref_smape[1],
+                res[k].flicker[0], res[k].flicker[1], res[k].flicker[2], res[k].flicker[3]);
     if (csv_close(&csv, msg) != 0 || write_runs(dir, cfg, res, n, msg) != 0)
         return -1;
     snprintf(path, sizeof(path), "%s/study.md", dir);
@@ -111,6 +115,13 @@ static int write_tables(const char *dir, const struct study_config *cfg, const s
     }
     fprintf(f, "\nSMAPE: mean over the runs +- its standard error (the runs' SMAPEs, each over its frames); the "
                "covariances +- their jackknife standard errors over the runs (nan under 3 runs).\n");
+    fprintf(f, "\nFlicker over the measured frames: the frame-to-frame variance of s x s block means over the "
+               "reference's (restir_metrics_flicker); boiling index = 256 flicker16 / flicker1, about 1 for "
+               "independent noise, up to 256 for blotches.\n\n| config | flicker 1 px | flicker 4 px | "
+               "flicker 16 px | boiling index |\n|---|---|---|---|---|\n");
+    for (int k = 0; k < n; k++)
+        fprintf(f, "| %s | %.4g | %.4g | %.4g | %.2f |\n", cfg[k].name, res[k].flicker[0], res[k].flicker[1],
+                res[k].flicker[2], res[k].flicker[3]);
     if (base >= 0) {
         const struct study_result *b = &res[base];
         fprintf(f,
@@ -299,13 +310,16 @@ static int study_write_outputs(const struct study_setup *st, const char *dir, co
                o->method, o->scene, w, h, o->runs, o->warmup, o->frames, nhard, strip_y);
         for (int k = 0; k < st->ncfg; k++)
             printf("  %-16s R %-5g SMAPE %.3f +- %.2g hard %.3f +- %.2g  temporal cov %.4g  spatial cov %.4g  "
-                   "select %.2f ms  frame %.2f ms\n",
+                   "boiling %.2f  select %.2f ms  frame %.2f ms\n",
                    st->cfg[k].name, st->cfg[k].radius, res[k].smape_all, res[k].smape_all_sem, res[k].smape_hard,
-                   res[k].smape_hard_sem, res[k].temporal_cov, res[k].spatial_cov, res[k].ms_select, res[k].ms_frame);
+                   res[k].smape_hard_sem, res[k].temporal_cov, res[k].spatial_cov, res[k].flicker[FLICKER_SCALES],
+                   res[k].ms_select, res[k].ms_frame);
         for (int k = 0; res_dn && k < st->ncfg; k++)
-            printf("  %-16s after %s (BIASED): SMAPE %.3f +- %.2g hard %.3f  temporal cov %.4g  spatial cov %.4g\n",
+            printf("  %-16s after %s (BIASED): SMAPE %.3f +- %.2g hard %.3f  temporal cov %.4g  spatial cov %.4g  "
+                   "flicker16 %.4g (raw %.4g)\n",
                    st->cfg[k].name, denoise_names[o->params.denoise.method], res_dn[k].smape_all,
-                   res_dn[k].smape_all_sem, res_dn[k].smape_hard, res_dn[k].temporal_cov, res_dn[k].spatial_cov);
+                   res_dn[k].smape_all_sem, res_dn[k].smape_hard, res_dn[k].temporal_cov, res_dn[k].spatial_cov,
+                   res_dn[k].flicker[FLICKER_SCALES - 1], res[k].flicker[FLICKER_SCALES - 1]);
         printf("output: %s\n", dir);
     }
     if (rc == 0 && o->report) {

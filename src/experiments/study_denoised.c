@@ -51,14 +51,17 @@ static int write_csv(const char *dir, const struct study_config *cfg, const stru
     if (csv_open(&csv, path,
                  "config,radius,K,smape_all,smape_all_denoised,smape_all_denoised_sem,smape_hard,"
                  "smape_hard_denoised,temporal_cov,temporal_cov_denoised,temporal_cov_denoised_sem,spatial_cov,"
-                 "spatial_cov_denoised,spatial_cov_denoised_sem",
+                 "spatial_cov_denoised,spatial_cov_denoised_sem,flicker16,flicker16_denoised,boiling_index,"
+                 "boiling_index_denoised",
                  msg) != 0)
         return -1;
+    const int s16 = FLICKER_SCALES - 1, boil = FLICKER_SCALES;
     for (int k = 0; k < n; k++)
-        csv_row(&csv, "%s,%g,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g", cfg[k].name, cfg[k].radius,
-                cfg[k].candidates, raw[k].smape_all, dn[k].smape_all, dn[k].smape_all_sem, raw[k].smape_hard,
-                dn[k].smape_hard, raw[k].temporal_cov, dn[k].temporal_cov, dn[k].temporal_cov_sem, raw[k].spatial_cov,
-                dn[k].spatial_cov, dn[k].spatial_cov_sem);
+        csv_row(&csv, "%s,%g,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g",
+                cfg[k].name, cfg[k].radius, cfg[k].candidates, raw[k].smape_all, dn[k].smape_all, dn[k].smape_all_sem,
+                raw[k].smape_hard, dn[k].smape_hard, raw[k].temporal_cov, dn[k].temporal_cov, dn[k].temporal_cov_sem,
+                raw[k].spatial_cov, dn[k].spatial_cov, dn[k].spatial_cov_sem, raw[k].flicker[s16], dn[k].flicker[s16],
+                raw[k].flicker[boil], dn[k].flicker[boil]);
     return csv_close(&csv, msg);
 }
 

@@ -309,6 +309,7 @@ void study_row_add(struct study_row *row, const struct study_unit *u, const floa
     const size_t npix = (size_t)row->w * row->h;
     const int n = row->added++, frames = row->frames;
     RESTIR_CHECK(n < row->runs && u->frames == frames && u->npix == npix);
+    row->ref = ref;
     struct study_result *res = &row->res;
     const double k = 1.0 / ((double)row->runs * frames);
     for (int t = 0; t < frames; t++) {
@@ -397,6 +398,7 @@ void study_row_end(struct study_row *row, const unsigned char *hard, struct stud
         }
     }
     free(at_t);
+    flicker_measure(row->seq, runs, frames, w, h, row->ref, res->flicker);
     res->runs = runs;
     res->per_run = xmalloc(sizeof(double) * STUDY_RUN_COLS * (size_t)runs);
     for (int n = 0; n < runs; n++) {

@@ -6,6 +6,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "experiments/flicker_scales.h"
 #include "experiments/options.h"
 #include "methods/renderer.h"
 #include "scene/scene.h"
@@ -41,6 +42,9 @@ struct study_result {
      * under 3 runs). Allocated by study_row_end; study_result_free frees it. */
     int runs;
     double *per_run;
+    /* flicker at flicker_block's sizes and the boiling index over the measured frames of every run
+     * (flicker_measure; NaN under 2 frames or below 16 x 16 pixels) */
+    double flicker[FLICKER_COLS];
     /* the reference's own SMAPE over all and the hard pixels, from its halves (NaN without): the
      * share of smape_all and smape_hard that is the reference's noise, the same for every row */
     double ref_smape[2];
@@ -99,6 +103,7 @@ int study_unit_read(const char *path, uint64_t id, int frames, size_t npix, stru
 struct study_row {
     int runs, frames, w, h, added;
     float *seq;       /* runs * frames * w * h, run-major then frame */
+    const float *ref; /* the reference (RGB) study_row_add was given */
     double *run_smape; /* runs * 2: each run's SMAPE all and hard, means over its frames */
     double *run_ms;    /* runs * 3: each run's mean select, spatial and frame times */
     struct study_result res;

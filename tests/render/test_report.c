@@ -1,8 +1,8 @@
 /* test_report.c: `restir compare --report` writes a page whose every image exists beside it, that
  * fetches nothing from a network, and that a real browser (headless Chromium) loads with every image
  * and plot in place and no script error (the page records both on its body once loaded): the table,
- * the relMSE bars, relMSE against frame (with --ref-every) and the time per pass; with --denoise each
- * method's denoised row (compare.csv's errors) and image right after its own. With --self-contained
+ * the relMSE bars, relMSE against frame (with --ref-every), flicker against scale and the time per pass;
+ * with --denoise each method's denoised row (compare.csv's errors) and image right after its own. With --self-contained
  * every image is a data: URI, and the page copied alone into an empty folder loads with none broken (the study's
  * page too).
  * The reports and the browser's screenshots stay in RESTIR_TEST_OUTPUT. */
@@ -190,7 +190,7 @@ static void check_self_contained(const char *tmp, const char *out_root, const ch
            "without --ref-every the page does not say frames.csv holds the last frame's error only");
     copy_alone(dir, alone, sizeof alone);
     if (file_size(browser) > 0)
-        check_in_browser(browser, alone, images, 2);
+        check_in_browser(browser, alone, images, 3); /* relMSE, flicker (raw and denoised rows), passes */
 }
 
 /* Gradient methods: the page adds their primal and gradient layers. */
@@ -263,7 +263,10 @@ int main(void)
         EXPECT(strstr(page, must[k]) != NULL, "the page lacks '%s'", must[k]);
     /* relMSE against frame: a point per method at each of frames 0, 1, 2 (--ref-every 1); pass times: a bar per
      * method (one segment for pt's one pass) */
-    EXPECT(count(page, "<circle") == 9, "%d points in the error-against-frame plot, want 3 methods x 3 frames",
+    /* and flicker against scale (a static camera): a point per method at 1, 4 and 16 px */
+    EXPECT(strstr(page, "<h2>Flicker against scale</h2>") != NULL, "the page lacks the flicker plot");
+    EXPECT(count(page, "<circle") == 9 + 9,
+           "%d points in the error-against-frame and flicker plots, want 3 methods x 3 frames + 3 methods x 3 scales",
            count(page, "<circle"));
     EXPECT(strstr(page, "<title>pt, pt: ") != NULL, "the pass-time bars lack pt's pt pass");
 
@@ -271,7 +274,7 @@ int main(void)
     const char *browser = getenv("CHROMIUM") ? getenv("CHROMIUM") : "/usr/bin/chromium";
     EXPECT(file_size(browser) > 0, "%s is missing (make test installs Debian's chromium)", browser);
     if (file_size(browser) > 0)
-        check_in_browser(browser, dir, images, 3);
+        check_in_browser(browser, dir, images, 4);
     check_self_contained(tmp, out_root, browser);
     check_study(tmp, out_root, browser);
     check_gradient(tmp, out_root, browser);

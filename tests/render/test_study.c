@@ -78,7 +78,8 @@ int main(void)
     if (csv) {
         const char *header = "config,radius,K,M,smape_all,smape_hard,temporal_cov,spatial_cov,ms_select,ms_spatial,"
                              "ms_frame,smape_all_sem,smape_hard_sem,temporal_cov_sem,spatial_cov_sem,temporal_cov_hard,"
-                             "temporal_cov_hard_sem,ref_smape_all,ref_smape_hard\n";
+                             "temporal_cov_hard_sem,ref_smape_all,ref_smape_hard,flicker1,flicker4,flicker16,"
+                             "boiling_index\n";
         EXPECT(strncmp(csv, header, strlen(header)) == 0, "study.csv header: %.120s", csv);
         const char *names[] = {"bitterli,",    "fast,",     "compat-binary,", "bitterli-r6,6,",
                                "bitterli@4,", "compat@4,", "bitterli@8,",    "compat@8,"};
@@ -90,13 +91,17 @@ int main(void)
             /* radius, K, M, then 7 metrics, 4 standard errors, the hard pixels' temporal covariance and
              * its standard error: all finite and not negative except the covariances */
             const char *p = strchr(row, ',');
-            double v[18];
+            double v[22];
             int nv = 0;
-            while (p && nv < 18) {
+            while (p && nv < 22) {
                 v[nv++] = strtod(p + 1, NULL);
                 p = strchr(p + 1, ',');
             }
-            EXPECT(nv == 18, "row %d has %d numbers", rows, nv);
+            EXPECT(nv == 22, "row %d has %d numbers", rows, nv);
+            /* flicker at 1, 4 and 16 px falls with the block size (means of more pixels vary less), and the
+             * boiling index 256 flicker16 / flicker1 lies in (0, 256] */
+            EXPECT(v[18] > 0.0 && v[19] < v[18] && v[20] <= v[19] && v[21] > 0.0 && v[21] <= 256.0,
+                   "row %d: flicker %g %g %g, boiling index %g", rows, v[18], v[19], v[20], v[21]);
             /* the reference's own SMAPE (two independent halves, SMAPE(a, b) / 2): positive, and the same
              * for every row since all rows share the reference */
             EXPECT(v[16] > 0.0 && v[16] < 100.0 && v[17] > 0.0 && v[17] < 100.0,
