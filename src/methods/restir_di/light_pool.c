@@ -19,7 +19,10 @@ void light_pool_reserve(struct light_pool *lp, int entries, int with_W)
     RESTIR_CHECK(entries >= 0);
     if (entries <= lp->size && (!with_W || lp->W))
         return;
-    const size_t n = (size_t)(entries > lp->size ? entries : lp->size);
+    /* grown by half again at least, so that a grid whose cells fill up frame by frame reallocates (and
+     * copies) a few times, not every frame */
+    const size_t grown = (size_t)lp->size + (size_t)lp->size / 2;
+    const size_t n = entries <= lp->size ? (size_t)lp->size : (size_t)entries > grown ? (size_t)entries : grown;
     lp->tri = xrealloc(lp->tri, sizeof(int) * n);
     float **f[] = {&lp->b1, &lp->b2, &lp->px, &lp->py, &lp->pz, &lp->nx, &lp->ny, &lp->nz,
                    &lp->Lr, &lp->Lg, &lp->Lb, &lp->pdf, &lp->at_point};

@@ -125,8 +125,7 @@ void regir_build(struct regir_grid *r, const struct gbuffer *g, const struct di_
         r->block_first[b] = entries;
         entries += r->block_slots[b] + r->window;
     }
-    light_pool_reserve(&r->store, entries, 1);
-    r->store.window = r->window;
+    r->entries = entries; /* the store grows to them in regir_fill, which di.initial=auto may skip */
 }
 
 /* The centre of grid cell c. */
@@ -248,6 +247,8 @@ void regir_fill(struct regir_grid *r, const struct scene *s, const struct di_set
         return;
     const uint64_t stream = rng_stream_id(REGIR_STREAM);
     struct light_pool *st = &r->store;
+    light_pool_reserve(st, r->entries, 1);
+    st->window = r->window;
 #pragma omp parallel for schedule(static)
     for (int b = 0; b < r->n_blocks; b++) {
         pcg32 rng = rng_for(seed, (uint64_t)frame, (uint64_t)b, stream);

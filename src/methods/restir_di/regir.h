@@ -53,6 +53,7 @@ struct regir_grid {
                          seen by few pixels needs no more distinct slots than their windows take. The
                          block is block_slots + window entries long, the tail repeating its first
                          slots so that no window wraps */
+    int entries;             /* the store's entries this frame: every block's slots and window tail */
     struct light_pool store; /* the slots, block after block, with W */
     struct light_cut_order order; /* di.regir_source=bvh: the scene's emitters in tree order (else n = 0) */
     struct light_cut *cuts;       /* and per block the cut through the tree at its cell's centre */
