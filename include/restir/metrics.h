@@ -37,6 +37,13 @@ int restir_metrics_luminance(const float *image, size_t n_pixels, double *out);
 int restir_metrics_smape_luminance(const double *luminance, const float *reference, size_t n_pixels,
                            const unsigned char *mask, double *smape);
 
+/* The per-pixel terms of relMSE: out[i] = mean over channels of (I - R)^2 / (R^2 + 1e-3), so the mean
+ * of out over the image is restir_metrics_error's relmse (per-block errors, the lag of
+ * `restir compare`). Returns 0 (n_pixels = 0: nothing written), or -1 without writing for a NULL
+ * image, reference or out or a count whose RGB arrays cannot be addressed. Any thread; reads and
+ * writes only its arguments. */
+int restir_metrics_relmse_map(const float *image, const float *reference, size_t n_pixels, float *out);
+
 /* The per-pixel terms of MAPE: out[i] = mean over channels of |I - R| / (R + 0.01 mean(R)), so
  * the mean of out over the image is restir_metrics_error's mape (heat maps of reports). Returns 0
  * (n_pixels = 0: nothing written), or -1 without writing for a NULL image, reference or out. */

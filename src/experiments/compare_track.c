@@ -28,6 +28,7 @@ void compare_track_init(struct compare_track *t, int frames, int runs, int ref_e
         t->ref_frame[t->nref] = frames - 1;
         t->ref[t->nref++] = last_ref;
     }
+    t->blocks = (w / COMPARE_LAG_BLOCK) * (h / COMPARE_LAG_BLOCK);
     t->cov_first = frames / 2;
     t->sums = xcalloc((size_t)frames, sizeof *t->sums);
     const size_t window = (size_t)(frames - t->cov_first);
@@ -51,6 +52,11 @@ int compare_track_open(struct compare_track *t, const char *out_dir, char *msg)
 void compare_track_begin(struct compare_track *t)
 {
     memset(t->sums, 0, sizeof(*t->sums) * (size_t)t->frames);
+    const size_t block_sums = sizeof(double) * (size_t)t->frames * (size_t)t->blocks;
+    if (t->block_err)
+        memset(t->block_err, 0, block_sums);
+    if (t->block_err_dn)
+        memset(t->block_err_dn, 0, block_sums);
     t->clamped = t->measured = 0;
     t->has_dn = 0;
 }
@@ -94,6 +100,30 @@ static void store_luminance(struct compare_track *t, float *seq, int run, int f,
     t->measured += npix;
 }
 
+/* With changes of the lights, frame f's relMSE per COMPARE_LAG_BLOCK block (the mean of its pixels'
+ * terms) added to *sums (frames x blocks, allocated here at the first). */
+static void add_block_errors(struct compare_track *t, double **sums, int f, const float *image, const float *ref)
+{
+    if (t->nchanges < 1 || t->blocks < 1)
+        return;
+    const int w = t->width, bw = w / COMPARE_LAG_BLOCK;
+    if (!*sums)
+        *sums = xcalloc((size_t)t->frames * (size_t)t->blocks, sizeof(double));
+    if (!t->err_map)
+        t->err_map = xmalloc(sizeof(float) * (size_t)w * (size_t)t->height);
+    restir_metrics_relmse_map(image, ref, (size_t)w * (size_t)t->height, t->err_map);
+    double *out = *sums + (size_t)f * (size_t)t->blocks;
+    const double per_pixel = 1.0 / (COMPARE_LAG_BLOCK * COMPARE_LAG_BLOCK);
+    for (int b = 0; b < t->blocks; b++) {
+        const int x0 = (b % bw) * COMPARE_LAG_BLOCK, y0 = (b / bw) * COMPARE_LAG_BLOCK;
+        double e = 0.0;
+        for (int y = y0; y < y0 + COMPARE_LAG_BLOCK; y++)
+            for (int x = x0; x < x0 + COMPARE_LAG_BLOCK; x++)
+                e += t->err_map[(size_t)y * (size_t)w + (size_t)x];
+        out[b] += e * per_pixel;
+    }
+}
+
 void compare_track_denoised(struct compare_track *t, int run, int f, const float *denoised)
 {
     if (reference_index(t, f) >= 0) {
@@ -101,6 +131,7 @@ void compare_track_denoised(struct compare_track *t, int run, int f, const float
         restir_metrics_compute(denoised, t->ref[reference_index(t, f)], (size_t)t->width * (size_t)t->height, NULL, &e);
         t->sums[f].relmse_dn += e.relmse;
         t->has_dn = 1;
+        add_block_errors(t, &t->block_err_dn, f, denoised, t->ref[reference_index(t, f)]);
     }
     if (!t->seq || f < t->cov_first)
         return;
@@ -122,6 +153,7 @@ void compare_track_image(struct compare_track *t, int run, int f, const float *i
         s->mape += e.mape;
         s->smape += e.smape;
         s->luma_rmse += e.luma_rmse;
+        add_block_errors(t, &t->block_err, f, image, t->ref[k]);
     }
     if (t->seq && f >= t->cov_first) {
         /* Rec. 709 luminance, as restir_metrics_luminance, clamped at 0. 000 Eq. 17 divides each pixel's deviation
@@ -159,12 +191,37 @@ double compare_track_end(struct compare_track *t, const char *label)
                                           NULL);
 }
 
-void compare_track_lag(const struct compare_track *t, int denoised, double *lag)
+/* The frames from `from` until series[f * stride] (f in [from, end)) is within COMPARE_LAG_TOLERANCE of
+ * its steady state, the mean of the segment's last quarter. */
+static double settle_frames(const double *series, size_t stride, int from, int end)
 {
+    const int tail = (end - from) / 4 > 1 ? (end - from) / 4 : 1;
+    double steady = 0.0;
+    for (int f = end - tail; f < end; f++)
+        steady += series[(size_t)f * stride] / tail;
+    for (int f = from; f < end; f++)
+        if (series[(size_t)f * stride] <= (1.0 + COMPARE_LAG_TOLERANCE) * steady)
+            return f - from;
+    return NAN; /* only where the series holds a NaN */
+}
+
+static int by_value(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+void compare_track_lag(const struct compare_track *t, int denoised, double *lag, double *block)
+{
+    const double *block_err = denoised ? t->block_err_dn : t->block_err;
+    double *image = xmalloc(sizeof(double) * (size_t)t->frames);
+    double *lags = xmalloc(sizeof(double) * (size_t)(t->blocks + 1));
+    for (int f = 0; f < t->frames; f++)
+        image[f] = (denoised ? t->sums[f].relmse_dn : t->sums[f].err.relmse) / t->runs;
     for (int c = 0; c < t->nchanges; c++) {
         const int next = c + 1 < t->nchanges ? t->change[c + 1] : t->frames;
         const int from = t->change[c], end = next < t->frames ? next : t->frames;
-        lag[c] = NAN;
+        lag[c] = block[c] = NAN;
         if (end - from < 4 || from < 0 || (denoised && !t->has_dn))
             continue;
         int measured = 1;
@@ -172,17 +229,23 @@ void compare_track_lag(const struct compare_track *t, int denoised, double *lag)
             measured &= reference_index(t, f) >= 0;
         if (!measured)
             continue;
-        const int tail = (end - from) / 4 > 1 ? (end - from) / 4 : 1;
-        double steady = 0.0;
-        for (int f = end - tail; f < end; f++)
-            steady += (denoised ? t->sums[f].relmse_dn : t->sums[f].err.relmse) / (double)(t->runs * tail);
-        for (int f = from; f < end; f++)
-            if ((denoised ? t->sums[f].relmse_dn : t->sums[f].err.relmse) / t->runs <=
-                (1.0 + COMPARE_LAG_TOLERANCE) * steady) {
-                lag[c] = f - from;
-                break;
-            }
+        lag[c] = settle_frames(image, 1, from, end);
+        if (!block_err)
+            continue;
+        int n = 0;
+        for (int b = 0; b < t->blocks; b++) {
+            const double l = settle_frames(block_err + b, (size_t)t->blocks, from, end);
+            if (isfinite(l))
+                lags[n++] = l;
+        }
+        if (n > 0) { /* the quantile: the smallest lag at least that share of the blocks reach */
+            qsort(lags, (size_t)n, sizeof(double), by_value);
+            const int q = (int)ceil(COMPARE_LAG_QUANTILE * n) - 1;
+            block[c] = lags[q < 0 ? 0 : q];
+        }
     }
+    free(image);
+    free(lags);
 }
 
 void compare_track_flicker(const struct compare_track *t, int denoised, double out[FLICKER_COLS])
@@ -225,5 +288,8 @@ void compare_track_fini(struct compare_track *t)
     free(t->sums);
     free(t->seq);
     free(t->seq_dn);
+    free(t->block_err);
+    free(t->block_err_dn);
+    free(t->err_map);
     memset(t, 0, sizeof *t);
 }

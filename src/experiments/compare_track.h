@@ -21,6 +21,8 @@
 #define COMPARE_COV_LAG 3 /* 000 Appendix A: autocovariance at a lag of 3 frames */
 #define COMPARE_MAX_CHANGES 8 /* lights' changes a lag is measured after */
 #define COMPARE_LAG_TOLERANCE 0.1 /* back "within 10%" of the steady state */
+#define COMPARE_LAG_BLOCK 16        /* the blocks whose lag compare_track_lag measures too, in pixels */
+#define COMPARE_LAG_QUANTILE 0.9    /* ... and the quantile of their lags it reports */
 
 /* One frame of one spec, summed over its runs (compare_track_end divides). */
 struct compare_frame_sums {
@@ -44,6 +46,10 @@ struct compare_track {
     int has_dn;        /* the spec being run measured denoised frames */
     int nchanges;      /* animated emitters: frames at which the lights stop changing (scene_animation_changes) */
     int change[COMPARE_MAX_CHANGES];
+    int blocks;        /* whole COMPARE_LAG_BLOCK blocks from the top-left corner (0: the image is smaller) */
+    double *block_err, *block_err_dn; /* with changes: frames x blocks, each block's mean relMSE summed over
+                                         the runs at every reference frame (allocated by the first) */
+    float *err_map;    /* scratch: one frame's per-pixel relMSE terms */
     struct csv_writer csv; /* DIR/frames.csv */
     int csv_open;
 };
@@ -78,9 +84,11 @@ double compare_track_end(struct compare_track *t, const char *label);
  * of the frames before the next change (or the end). Since that quarter holds the steady state, some
  * frame always qualifies: a method still drifting at the segment's end is measured against its own
  * drift (compare its last frame's error). NaN without a reference at every frame (--ref-every 1) or
- * a segment of under 4 frames.
- * denoised: of the denoised frames (NaN without them). Writes t->nchanges values into lag. */
-void compare_track_lag(const struct compare_track *t, int denoised, double *lag);
+ * a segment of under 4 frames. block: the same measured on each COMPARE_LAG_BLOCK x COMPARE_LAG_BLOCK
+ * block's own relMSE, and its COMPARE_LAG_QUANTILE quantile over the blocks (a change seen by a part of
+ * the image lags there, however little it moves the whole image's error); NaN without a whole block.
+ * denoised: of the denoised frames (NaN without them). Writes t->nchanges values into lag and block. */
+void compare_track_lag(const struct compare_track *t, int denoised, double *lag, double *block);
 /* Before compare_track_end_denoised: flicker at flicker_block's scales and the boiling index
  * (restir_metrics_flicker, _boiling_index) of the window's frames (denoised: the denoised ones)
  * against the last frame's reference, over the runs; NaN without a reference or those frames. Meant

@@ -59,6 +59,13 @@ int restir_metrics_smape_luminance(const double *luminance, const float *referen
     return 0;
 }
 
+/* One channel's relMSE term: (I - R)^2 / (R^2 + 1e-3). */
+static inline double relmse_term(double image, double reference)
+{
+    const double d = image - reference;
+    return d * d / (reference * reference + 1e-3);
+}
+
 int restir_metrics_compute(const float *image, const float *reference, size_t n_pixels,
                          const unsigned char *mask, struct restir_metrics_error *out)
 {
@@ -88,7 +95,7 @@ int restir_metrics_compute(const float *image, const float *reference, size_t n_
         for (int c = 0; c < 3; c++) {
             double iv = (double)p[c], rv = (double)r[c];
             double d = iv - rv;
-            relmse += d * d / (rv * rv + 1e-3);
+            relmse += relmse_term(iv, rv);
             /* An exact match contributes 0 even where the denominator vanishes. */
             if (d != 0.0)
                 mape += fabs(d) / (rv + mape_offset);
@@ -349,6 +356,19 @@ const char *restir_metrics_definitions(void)
            "              derivative filters (sigma 0.041 degrees) of the luminance; the maximum over exposures\n"
            "              log2(2.119 / Y_max) to log2(2.119 / Y_median) of R, max(2, ceil(span)) of them; in [0, 1]\n"
            "  L(x)      = 0.2126 x_r + 0.7152 x_g + 0.0722 x_b (Rec. 709 luminance)\n";
+}
+
+int restir_metrics_relmse_map(const float *image, const float *reference, size_t n_pixels, float *out)
+{
+    if (!image || !reference || !out || metrics_too_many(n_pixels))
+        return -1;
+    for (size_t i = 0; i < n_pixels; i++) {
+        double e = 0.0;
+        for (int c = 0; c < 3; c++)
+            e += relmse_term((double)image[3 * i + (size_t)c], (double)reference[3 * i + (size_t)c]);
+        out[i] = (float)(e / 3.0);
+    }
+    return 0;
 }
 
 int restir_metrics_mape_map(const float *image, const float *reference, size_t n_pixels, float *out)

@@ -173,7 +173,8 @@ int main(void)
                        "mape_denoised,mape_denoised_sem,smape_denoised,smape_denoised_sem,mape_disoccluded_denoised,"
                        "mape_disoccluded_denoised_sem,temporal_cov_denoised,ref_relmse,ref_mape,ref_smape,relmse_net,flip,"
                        "flip_sem,ref_mape_disoccluded,flicker1,flicker4,flicker16,boiling_index,flicker1_denoised,"
-                       "flicker4_denoised,flicker16_denoised,boiling_index_denoised,lag_frames,lag_frames_denoised\n") !=
+                       "flicker4_denoised,flicker16_denoised,boiling_index_denoised,lag_frames,lag_frames_denoised,"
+                       "lag_frames_blocks,lag_frames_blocks_denoised\n") !=
                NULL,
            "compare.csv header: %.300s", csv);
     c = strstr(csv, "\nrestir-pt,");
@@ -221,15 +222,20 @@ int main(void)
              data ? data : ".", lagdir);
     rc = cli_run_capture(tmp, args, out, err);
     EXPECT(rc == 0, "compare of an animated scene exited %d: %s", rc, err);
-    EXPECT(strstr(out, "after frame   2") && strstr(out, "after frame   6"), "no lag table: %s", out);
+    EXPECT(strstr(out, "after frame   2") && strstr(out, "after frame   6") && strstr(out, "lag of 16 px blocks"),
+           "no lag tables: %s", out);
     snprintf(path, sizeof path, "%s/compare.csv", lagdir);
     cli_read_text(path, csv, sizeof csv);
     for (int k = 0; k < 2; k++) {
         const char *row = strstr(csv, k ? "\nrestir-di," : "\npt,");
-        const double lag = row ? number(row + 1, 46) : NAN;
-        printf("animated scene, %s: lag_frames %g\n", k ? "restir-di" : "pt", lag);
+        const double lag = row ? number(row + 1, 46) : NAN, block = row ? number(row + 1, 48) : NAN;
+        printf("animated scene, %s: lag_frames %g, lag_frames_blocks %g\n", k ? "restir-di" : "pt", lag, block);
         EXPECT(lag >= 0.0 && lag <= 6.0, "%s: lag_frames %g, want a whole number of frames in [0, 6]",
                k ? "restir-di" : "pt", lag);
+        /* 24 x 16 holds one whole 16 px block: its lag, also in [0, 6] (unit.compare_track_lag checks the
+         * blocks' quantile) */
+        EXPECT(block >= 0.0 && block <= 6.0 && block == floor(block), "%s: lag_frames_blocks %g",
+               k ? "restir-di" : "pt", block);
     }
     /* A-SVGF (denoise.svgf.temporal_gradient): on switch_room.json (a lamp off at 16, on at 32) the
      * denoised frames settle sooner with the gradient where the raw frames allow it. Measured at 48x36

@@ -23,6 +23,12 @@ static void test_two_pixels(void)
     double relmse = (0.25 / 1e-3 + 1.0 / 4.001 + 1.0 / 0.251) / 6.0;
     EXPECT_NEAR(e.relmse, relmse, 1e-12, "relmse");
     EXPECT_NEAR(e.relmse, 42.37233354, 1e-7, "relmse decimal");
+    /* the per-pixel terms: (0 + 250 + 1 / 4.001) / 3 and (0 + 0 + 1 / 0.251) / 3, whose mean is relMSE */
+    float map[2];
+    EXPECT(restir_metrics_relmse_map(img2, ref2, 2, map) == 0, "relmse_map failed");
+    EXPECT_NEAR(map[0], (250.0 + 1.0 / 4.001) / 3.0, 1e-4, "relmse_map pixel 0");
+    EXPECT_NEAR(map[1], (1.0 / 0.251) / 3.0, 1e-6, "relmse_map pixel 1");
+    EXPECT_NEAR(0.5 * ((double)map[0] + map[1]), e.relmse, 1e-4, "relmse_map's mean is relmse");
 
     /* MAPE: mean(R) = (1 + 0 + 2 + 0.5 + 1 + 0.5) / 6 = 5/6, so the offset is 1/120.
      * Nonzero terms: 0.5 / (0 + 1/120) = 60, 1 / (2 + 1/120) = 120/241, 1 / (0.5 + 1/120) = 120/61;
