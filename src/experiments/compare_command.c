@@ -44,6 +44,8 @@ static int run_specs(const struct compare_setup *st, const struct reference_pair
     struct compare_track track;
     compare_track_init(&track, st->o.frames, st->o.runs, st->o.ref_every, st->p.width, st->p.height, pair->mean);
     track.nchanges = scene_animation_changes(&st->s, track.change, COMPARE_MAX_CHANGES);
+    for (int f = track.cov_first + 1; f < st->o.frames; f++) /* flicker would measure the lights' own change */
+        track.lights_change_in_window |= scene_lights_differ(&st->s, (float)(f - 1), (float)f);
     int rc = render_earlier_references(st, &track, out_dir);
     if (rc != 0) {
         compare_track_fini(&track);

@@ -253,7 +253,7 @@ void compare_track_flicker(const struct compare_track *t, int denoised, double o
     const float *seq = denoised ? t->seq_dn : t->seq;
     for (int k = 0; k < FLICKER_COLS; k++)
         out[k] = NAN;
-    if (!seq || t->nref < 1)
+    if (!seq || t->nref < 1 || t->lights_change_in_window)
         return;
     flicker_measure(seq, t->runs, t->frames - t->cov_first, t->width, t->height, t->ref[t->nref - 1], out);
 }

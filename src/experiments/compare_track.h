@@ -46,6 +46,7 @@ struct compare_track {
     int has_dn;        /* the spec being run measured denoised frames */
     int nchanges;      /* animated emitters: frames at which the lights stop changing (scene_animation_changes) */
     int change[COMPARE_MAX_CHANGES];
+    int lights_change_in_window; /* the lights differ between two of the window's frames: no flicker */
     int blocks;        /* whole COMPARE_LAG_BLOCK blocks from the top-left corner (0: the image is smaller) */
     double *block_err, *block_err_dn; /* with changes: frames x blocks, each block's mean relMSE summed over
                                          the runs at every reference frame (allocated by the first) */
@@ -91,8 +92,9 @@ double compare_track_end(struct compare_track *t, const char *label);
 void compare_track_lag(const struct compare_track *t, int denoised, double *lag, double *block);
 /* Before compare_track_end_denoised: flicker at flicker_block's scales and the boiling index
  * (restir_metrics_flicker, _boiling_index) of the window's frames (denoised: the denoised ones)
- * against the last frame's reference, over the runs; NaN without a reference or those frames. Meant
- * for a static camera (a moving one's block means change with the view). */
+ * against the last frame's reference, over the runs; NaN without a reference or those frames, or when
+ * the lights change in the window (lights_change_in_window). Meant for a static camera (a moving one's
+ * block means change with the view). */
 void compare_track_flicker(const struct compare_track *t, int denoised, double out[FLICKER_COLS]);
 /* After compare_track_end: the relative autocovariance of the denoised frames, as compare_track_end's
  * (NaN without them). */
