@@ -251,7 +251,7 @@ static int write_report(const struct compare_setup *st, const char *out_dir, con
                                                .spp = res[k].spp, .instances = res[k].instances, .err = res[k].err,
                                                .flip = res[k].flip, .ms_pass = res[k].ms_pass, .nframes = nframes,
                                                .frame = fx, .frame_relmse = fy,
-                                               .nflicker = FLICKER_SCALES,
+                                               .nflicker = p->camera_path ? 0 : FLICKER_SCALES,
                                                .flicker_block = flicker_block, .flicker = res[k].flicker};
         if (!res[k].image_dn)
             continue;
@@ -261,7 +261,7 @@ static int write_report(const struct compare_setup *st, const char *out_dir, con
         rm[i] = (struct compare_report_method){.label = labels[k], .png = pngs[i], .image = res[k].image_dn,
                                                .ms_per_frame = res[k].ms_per_frame, .spp = res[k].spp,
                                                .instances = res[k].instances, .err = res[k].err_dn, .flip = NAN,
-                                               .denoised = 1, .nflicker = FLICKER_SCALES,
+                                               .denoised = 1, .nflicker = p->camera_path ? 0 : FLICKER_SCALES,
                                                .flicker_block = flicker_block, .flicker = res[k].flicker_dn};
     }
     if (have_frames)

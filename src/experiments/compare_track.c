@@ -104,7 +104,7 @@ static void store_luminance(struct compare_track *t, float *seq, int run, int f,
  * terms) added to *sums (frames x blocks, allocated here at the first). */
 static void add_block_errors(struct compare_track *t, double **sums, int f, const float *image, const float *ref)
 {
-    if (t->nchanges < 1 || t->blocks < 1)
+    if (t->nchanges < 1 || t->blocks < 1 || t->nref < t->frames) /* the lag needs every frame's error */
         return;
     const int w = t->width, bw = w / COMPARE_LAG_BLOCK;
     if (!*sums)

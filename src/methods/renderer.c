@@ -149,7 +149,8 @@ void renderer_render(struct renderer *r, int frame, const struct camera *cam, st
     memset(st, 0, sizeof(*st));
     struct camera_view view;
     renderer_camera_view(&r->p, cam, r->has_prev_cam ? &r->prev_cam : NULL, &view);
-    r->lights_changed = r->has_prev_cam && scene_lights_differ(r->scene, (float)r->frame, (float)frame);
+    r->lights_changed = r->rendered > 0 && scene_lights_differ(r->scene, (float)r->frame, (float)frame);
+    r->rendered++;
     r->prev_cam = *cam;
     r->has_prev_cam = 1;
     simd_allow(r->p.simd); /* process-wide */

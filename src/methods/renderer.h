@@ -43,6 +43,7 @@ struct renderer {
     int frame;                    /* the frame being rendered, or the last one */
     int lights_changed;           /* 1 when this frame's animated emitters differ from the previous rendered
                                      frame's (scene_lights_differ); 0 on the first frame */
+    int rendered;                 /* frames rendered so far */
     struct camera_view prev_view; /* the previous frame's view (valid after the first frame) */
     struct camera prev_cam;       /* the last frame's camera: where the next frame's shutter opens */
     int has_prev_cam;

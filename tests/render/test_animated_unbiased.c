@@ -31,9 +31,14 @@
 #define W 24
 #define H 16
 
-/* Returns the number of pixels that fail; expects none (and |pooled z| < 4.5) when expect_unbiased. */
-static int check(const struct scene *s, const char *method, int frames, const char *const *sets, int nsets,
-                 int expect_unbiased)
+/* Whether the last frame must have reused history: REUSE_ANY (not checked), REUSE_NONE (no pixel
+ * accepted a temporal neighbour: its lights changed) or REUSE_SOME (some did). */
+enum reuse { REUSE_ANY, REUSE_NONE, REUSE_SOME };
+
+/* Returns the number of pixels that fail; expects none (and |pooled z| < 4.5) when expect_unbiased, and
+ * the last frame's temporal reuse as `reuse` says in every run. */
+static int check_reuse(const struct scene *s, const char *method, int frames, const char *const *sets, int nsets,
+                       int expect_unbiased, enum reuse reuse)
 {
     const struct method *m = method_named(method);
     char msg[512];
@@ -46,6 +51,7 @@ static int check(const struct scene *s, const char *method, int frames, const ch
     EXPECT(method_check_settings(m, &p, s, msg) == 0, "%s: %s", method, msg);
     const struct camera cam = scene_camera_at(s, 0, 0.0f);
     struct pixel_stats a, b;
+    int reused_wrong = 0; /* runs whose last frame reused history against `reuse` */
     pixel_stats_init(&a, W * H);
     pixel_stats_init(&b, W * H);
     for (int k = 0; k < RUNS; k++) {
@@ -56,6 +62,8 @@ static int check(const struct scene *s, const char *method, int frames, const ch
         struct frame_stats fs;
         for (int f = 0; f < frames; f++)
             renderer_render(&r, f, &cam, &fs);
+        if (reuse != REUSE_ANY && (fs.temporal_accepted > 0) != (reuse == REUSE_SOME))
+            reused_wrong++;
         pixel_stats_add(&a, r.image);
         renderer_fini(&r);
         /* the reference: pt over the method's integrand, pinned, 4 spp, at the last frame only */
@@ -75,6 +83,8 @@ static int check(const struct scene *s, const char *method, int frames, const ch
         printf(" %s", sets[k]);
     printf("\n  %d pixels, %d failed, worst |t| %.2f; pooled z %.2f, relative bias of the image mean %+.4f%%\n",
            rep.pixels_tested, rep.pixels_failed, rep.worst_t, rep.pooled_z, 100.0 * rep.mean_rel_bias);
+    EXPECT(reused_wrong == 0, "%s, %d frames: in %d runs the last frame %s temporal reuse", method, frames,
+           reused_wrong, reuse == REUSE_NONE ? "kept" : "had no");
     if (expect_unbiased) {
         EXPECT(rep.pixels_failed == 0, "%s, %d frames: %d pixels fail", method, frames, rep.pixels_failed);
         EXPECT(fabs(rep.pooled_z) < 4.5, "%s, %d frames: pooled z %.2f", method, frames, rep.pooled_z);
@@ -82,6 +92,12 @@ static int check(const struct scene *s, const char *method, int frames, const ch
     pixel_stats_free(&a);
     pixel_stats_free(&b);
     return rep.pixels_failed;
+}
+
+static int check(const struct scene *s, const char *method, int frames, const char *const *sets, int nsets,
+                 int expect_unbiased)
+{
+    return check_reuse(s, method, frames, sets, nsets, expect_unbiased, REUSE_ANY);
 }
 
 int main(void)
@@ -114,14 +130,15 @@ int main(void)
     const char *confidence[] = {"mis=pairwise", "jitter=off", "di.gradient_confidence=on"};
     check(&s, "restir-di", 6, confidence, 3, 0);
     /* The methods that drop their temporal reuse on a frame whose lights changed: right after the
-     * switch-on (frame 5), and restir-pt two frames after the ramp's end (frame 8: history from frames
-     * 6 and 7, shaded under the lights of frame 8). gpt and ris-gi reuse nothing. */
+     * switch-on (frame 5: no history taken), and restir-pt two frames after the ramp's end (frame 8:
+     * history taken, from frames 6 and 7, shaded under the lights of frame 8). gpt and ris-gi reuse
+     * nothing. */
     const char *walk[] = {"jitter=off"};
-    check(&s, "restir-pt", 6, walk, 1, 1);
-    check(&s, "restir-pt", 9, walk, 1, 1);
-    check(&s, "restir-gi", 6, walk, 1, 1);
+    check_reuse(&s, "restir-pt", 6, walk, 1, 1, REUSE_NONE);
+    check_reuse(&s, "restir-pt", 9, walk, 1, 1, REUSE_SOME);
+    check_reuse(&s, "restir-gi", 6, walk, 1, 1, REUSE_NONE);
     const char *l2[] = {"jitter=off", "recon=l2"};
-    check(&s, "grestir-pt", 6, l2, 2, 1);
+    check_reuse(&s, "grestir-pt", 6, l2, 2, 1, REUSE_NONE);
     check(&s, "gpt", 4, l2, 2, 1);
     check(&s, "ris-gi", 4, walk, 1, 1);
     scene_destroy(&s);

@@ -14,15 +14,15 @@ enum di_visibility_mis { DI_VIS_MIS_RAYS = 0, DI_VIS_MIS_NONE };
  * slots of ReGIR's grid cell that holds the pixel's point (regir.h), or the pixel's own draws down
  * the light BVH at its point (pt's emitter choice; no sharing, no grid). */
 enum di_initial { DI_INITIAL_POOL = 0, DI_INITIAL_REGIR, DI_INITIAL_BVH, DI_INITIAL_AUTO };
+/* di.initial=auto fills the grid in a frame only when its slots' candidates are at most this share of
+ * the valid pixels' own (regir_fill_share), else takes the pool. Measured on many-lights
+ * (docs/BENCHMARKS.md): share 0.12 at 640x360, the grid's frame +10% for 14% lower relMSE per frame;
+ * share 0.41 at 320x180, +29..69% for 7% lower; cornell's one lamp at 320x180, share 0.93, +80%. Tiny
+ * images, whose cells hold few pixels each, get the pool. */
+#define DI_AUTO_REGIR_MAX_FILL_SHARE 0.15
 /* Whether a renderer builds ReGIR's grid: for regir and auto where the scene has emitters (the cells
  * hold emitter samples); auto uses the pool elsewhere, and an explicit regir without emitters is
  * refused by the method's check (a renderer made without it falls back to the pool too). */
-/* di.initial=auto fills the grid in a frame only when its slots' candidates are at most this share of
- * the pixels' own (regir_fill_share), else takes the pool. Measured on many-lights (docs/BENCHMARKS.md):
- * share 0.076 at 640x360, the grid's frame +10% for 14% lower relMSE per frame; share 0.26 at 320x180,
- * +37..70% for 7% lower; cornell's one lamp at 320x180, share 0.60, +80%. Tiny images, whose cells hold
- * few pixels each, get the pool. */
-#define DI_AUTO_REGIR_MAX_FILL_SHARE 0.1
 static inline int di_initial_uses_regir(enum di_initial initial, int num_emitters)
 {
     return num_emitters > 0 && (initial == DI_INITIAL_REGIR || initial == DI_INITIAL_AUTO);

@@ -14,14 +14,15 @@
 /* Entries drawn per random stream; chunks are filled in parallel. */
 #define LIGHT_POOL_CHUNK 1024
 
-void light_pool_reserve(struct light_pool *lp, int entries, int with_W)
+void light_pool_reserve(struct light_pool *lp, int entries, int max_entries, int with_W)
 {
-    RESTIR_CHECK(entries >= 0);
+    RESTIR_CHECK(entries >= 0 && max_entries >= entries);
     if (entries <= lp->size && (!with_W || lp->W))
         return;
-    /* grown by half again at least, so that a grid whose cells fill up frame by frame reallocates (and
-     * copies) a few times, not every frame */
-    const size_t grown = (size_t)lp->size + (size_t)lp->size / 2;
+    /* grown by half again at least (never past max_entries), so that a grid whose cells fill up frame by
+     * frame reallocates (and copies) a few times, not every frame */
+    size_t grown = (size_t)lp->size + (size_t)lp->size / 2;
+    grown = grown < (size_t)max_entries ? grown : (size_t)max_entries;
     const size_t n = entries <= lp->size ? (size_t)lp->size : (size_t)entries > grown ? (size_t)entries : grown;
     lp->tri = xrealloc(lp->tri, sizeof(int) * n);
     float **f[] = {&lp->b1, &lp->b2, &lp->px, &lp->py, &lp->pz, &lp->nx, &lp->ny, &lp->nz,
@@ -38,7 +39,7 @@ void light_pool_init(struct light_pool *lp, int window)
     RESTIR_CHECK(window >= 0 && window <= LIGHT_POOL_SIZE);
     memset(lp, 0, sizeof(*lp));
     lp->window = window;
-    light_pool_reserve(lp, LIGHT_POOL_SIZE + window, 0);
+    light_pool_reserve(lp, LIGHT_POOL_SIZE + window, LIGHT_POOL_SIZE + window, 0);
 }
 
 void light_pool_fini(struct light_pool *lp)

@@ -37,9 +37,10 @@ struct light_pool {
 
 /* Allocates a pool for windows of up to `window` (<= LIGHT_POOL_SIZE) candidates. */
 void light_pool_init(struct light_pool *lp, int window);
-/* Grows lp's arrays to hold at least `entries` entries (never shrinks; contents kept), and W too
- * when with_W. For ReGIR's slots (regir.c), which use the same layout for the same batch kernel. */
-void light_pool_reserve(struct light_pool *lp, int entries, int with_W);
+/* Grows lp's arrays to hold at least `entries` entries (never shrinks; contents kept), by half again
+ * at least but to no more than max_entries (>= entries), and W too when with_W. For ReGIR's slots
+ * (regir.c), which use the same layout for the same batch kernel. */
+void light_pool_reserve(struct light_pool *lp, int entries, int max_entries, int with_W);
 /* Writes entry i: the point b1, b2 of emitter em (pdf: its power-sampling area density times the
  * emitters' share 1 - env_prob), or an environment direction from the scene's sampler at u1, u2
  * (DI_ENV_TRI, p = direction, n = -p; pdf: env_prob times its solid-angle density). W untouched. */

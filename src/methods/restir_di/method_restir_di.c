@@ -44,7 +44,7 @@ static void *restir_di_create(const struct renderer *r)
         d->regir = xmalloc(sizeof(*d->regir));
         regir_init(d->regir, r->scene, ds);
     }
-    if (ds->initial != DI_INITIAL_REGIR) /* auto falls back to the pool where the grid does not pay */
+    if (!d->regir || ds->initial == DI_INITIAL_AUTO) /* auto takes the pool where the grid does not pay */
         light_pool_init(&d->lights, ds->light_candidates);
     return d;
 }
@@ -121,7 +121,7 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
         const struct regir_grid *rg = NULL;
         if (d->regir) {
             regir_build(d->regir, g, ds);
-            if (ds->initial == DI_INITIAL_REGIR || regir_fill_share(d->regir, ds, n) <= DI_AUTO_REGIR_MAX_FILL_SHARE) {
+            if (ds->initial == DI_INITIAL_REGIR || regir_fill_share(d->regir, ds) <= DI_AUTO_REGIR_MAX_FILL_SHARE) {
                 regir_fill(d->regir, s, ds, p->seed, frame);
                 rg = d->regir;
             }

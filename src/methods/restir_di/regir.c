@@ -3,6 +3,7 @@
 #include "methods/restir_di/regir.h"
 
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -64,14 +65,17 @@ void regir_build(struct regir_grid *r, const struct gbuffer *g, const struct di_
 {
     const int n = g->width * g->height;
     vec3 lo = v3s(FLT_MAX), hi = v3s(-FLT_MAX);
+    r->valid_pixels = 0;
     for (int i = 0; i < n; i++) {
         const struct shading_point *sp = gbuffer_shading(g, i);
         if (!sp->valid)
             continue;
+        r->valid_pixels++;
         lo = v3_min(lo, sp->p);
         hi = v3_max(hi, sp->p);
     }
     r->n_blocks = 0;
+    r->entries = r->max_entries = 0;
     if (lo.x > hi.x) { /* no valid pixel: no cell */
         r->dims[0] = r->dims[1] = r->dims[2] = 1;
         r->lo = v3s(0.0f);
@@ -126,6 +130,9 @@ void regir_build(struct regir_grid *r, const struct gbuffer *g, const struct di_
         entries += r->block_slots[b] + r->window;
     }
     r->entries = entries; /* the store grows to them in regir_fill, which di.initial=auto may skip */
+    const long long most_cells = (long long)ds->regir_grid * ds->regir_grid * ds->regir_grid;
+    const long long most = (most_cells < n ? most_cells : n) * (long long)(r->slots + r->window);
+    r->max_entries = most > entries ? (most < INT_MAX ? (int)most : INT_MAX) : entries;
 }
 
 /* The centre of grid cell c. */
@@ -247,7 +254,7 @@ void regir_fill(struct regir_grid *r, const struct scene *s, const struct di_set
         return;
     const uint64_t stream = rng_stream_id(REGIR_STREAM);
     struct light_pool *st = &r->store;
-    light_pool_reserve(st, r->entries, 1);
+    light_pool_reserve(st, r->entries, r->max_entries, 1);
     st->window = r->window;
 #pragma omp parallel for schedule(static)
     for (int b = 0; b < r->n_blocks; b++) {
@@ -270,12 +277,12 @@ void regir_fill(struct regir_grid *r, const struct scene *s, const struct di_set
     }
 }
 
-double regir_fill_share(const struct regir_grid *r, const struct di_settings *ds, size_t pixels)
+double regir_fill_share(const struct regir_grid *r, const struct di_settings *ds)
 {
     double slots = 0.0;
     for (int b = 0; b < r->n_blocks; b++)
         slots += r->block_slots[b];
-    const double own = (double)pixels * ds->light_candidates;
+    const double own = (double)r->valid_pixels * ds->light_candidates;
     return own > 0.0 ? slots * ds->regir_candidates / own : 0.0;
 }
 

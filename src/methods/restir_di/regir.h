@@ -54,27 +54,30 @@ struct regir_grid {
                          block is block_slots + window entries long, the tail repeating its first
                          slots so that no window wraps */
     int entries;             /* the store's entries this frame: every block's slots and window tail */
+    int max_entries;         /* the most any frame of this size can need: min(grid cells, pixels) x
+                                (slots + window), what di.initial's memory check bounds */
+    int valid_pixels;        /* this frame's pixels with a shading point */
     struct light_pool store; /* the slots, block after block, with W */
     struct light_cut_order order; /* di.regir_source=bvh: the scene's emitters in tree order (else n = 0) */
     struct light_cut *cuts;       /* and per block the cut through the tree at its cell's centre */
 };
 
 /* The grid's fill work this frame over the pixels' own: the slots' candidates (sum of block_slots x
- * di.regir_candidates, after regir_build) over `pixels` x di.light_candidates. di.initial=auto
- * compares it with DI_AUTO_REGIR_MAX_FILL_SHARE. */
-double regir_fill_share(const struct regir_grid *r, const struct di_settings *ds, size_t pixels);
+ * di.regir_candidates, after regir_build) over the valid pixels x di.light_candidates (0 without a
+ * valid pixel). di.initial=auto compares it with DI_AUTO_REGIR_MAX_FILL_SHARE. */
+double regir_fill_share(const struct regir_grid *r, const struct di_settings *ds);
 
-/* Sizes the grid for ds and scene s (allocating the slots of the first frame's cells happens in
- * regir_build). */
+/* Sizes the grid for ds and scene s (the slots are allocated by regir_fill). */
 void regir_init(struct regir_grid *r, const struct scene *s, const struct di_settings *ds);
 void regir_fini(struct regir_grid *r);
 /* Lays this frame's grid over g's valid shading points (di.regir_grid cells along the longest axis of
  * their bounding box) and gives every occupied cell a slot block. Serial (three passes over the
- * pixels: bounds, occupancy, slot counts; one over the grid); grows the store when more cells are
- * occupied than before. */
+ * pixels: bounds, occupancy, slot counts; one over the grid); counts the store's entries, which
+ * regir_fill allocates. */
 void regir_build(struct regir_grid *r, const struct gbuffer *g, const struct di_settings *ds);
 /* Fills every block's slots for this frame (seeded by seed, frame and block, whatever the thread
- * count). Threads: OpenMP over blocks. */
+ * count), first growing the store to this frame's entries (by half again at least, never past the
+ * largest the frame's cells and pixels allow). Threads: OpenMP over blocks. */
 void regir_fill(struct regir_grid *r, const struct scene *s, const struct di_settings *ds, uint64_t seed, int frame);
 /* The slot block of the cell that holds point p, which must be one of the shading points the grid was
  * built over (another point is clamped to a border cell, whose block may be -1 or not cover it). */
