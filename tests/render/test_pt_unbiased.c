@@ -91,7 +91,8 @@ int main(int argc, char **argv)
     /* The built-in forest: alpha-masked leaf cards, normal-mapped trunks and a sky with
      * a sun as the only light, along its walk. */
     const char *forest[] = {"shift=hybrid", "mis=pairwise"};
-    check("forest", RUNS, forest, 2, 1);
+    /* at 16 x 10: 48 CPU-s at 20 x 12 made it the test's longest case by three */
+    unbiased_check_path_at("forest", method_named("restir-pt"), 16, 10, RUNS, forest, 2, 1);
     /* The hybrid rule's length relative to each domain's camera distance, along the camera path
      * (temporal shifts cross cameras, each domain judging by its own), and in scene units. */
     const char *relative[] = {"shift=hybrid", "mis=pairwise", "shift.distance_mode=relative", "shift.distance=0.1"};

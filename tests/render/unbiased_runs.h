@@ -102,18 +102,25 @@ static inline int unbiased_check(const struct unbiased_case *c, const char *cons
     return rep.pixels_failed;
 }
 
-/* The camera-path case of the path-reuse tests (test_pt_unbiased, test_splat_unbiased): 20x12,
+/* The camera-path case of the path-reuse tests (test_pt_unbiased, test_splat_unbiased) at w x h:
  * `runs` sequences of 4 frames 6 path frames apart against runs x 8 spp of pt, family-wise alpha
  * 0.01 per case and pooled |z| < 4.5 (~1e-5), with pt.max_bounces=4 before sets. The seeds are
  * fixed, so the outcome is deterministic. Returns the number of pixels that fail. */
-static inline int unbiased_check_path(const char *scene_name, const struct method *m, int runs, const char *const *sets,
-                                      int nsets, int expect_unbiased)
+static inline int unbiased_check_path_at(const char *scene_name, const struct method *m, int w, int h, int runs,
+                                         const char *const *sets, int nsets, int expect_unbiased)
 {
-    const struct unbiased_case c = {scene_name, m, 20, 12, runs, 4, 6, 8, 0.01, 4.5};
+    const struct unbiased_case c = {scene_name, m, w, h, runs, 4, 6, 8, 0.01, 4.5};
     const char *all[16] = {"pt.max_bounces=4"};
     for (int k = 0; k < nsets && k < 15; k++)
         all[k + 1] = sets[k];
     return unbiased_check(&c, all, nsets + 1, expect_unbiased);
+}
+
+/* unbiased_check_path_at at 20 x 12. */
+static inline int unbiased_check_path(const char *scene_name, const struct method *m, int runs, const char *const *sets,
+                                      int nsets, int expect_unbiased)
+{
+    return unbiased_check_path_at(scene_name, m, 20, 12, runs, sets, nsets, expect_unbiased);
 }
 
 #endif
