@@ -742,7 +742,8 @@ static void test_metrics(void)
     CHECK(restir_metrics_mape_map(img_nan, ref, 2, map) == 0 && isnan(map[0]));
     map[0] = map[1] = 7.0f;
     CHECK(restir_metrics_relmse_map(NULL, ref, 2, map) == -1 && restir_metrics_relmse_map(img, NULL, 2, map) == -1);
-    CHECK(restir_metrics_relmse_map(img, ref, 2, NULL) == -1 && restir_metrics_relmse_map(img, ref, SIZE_MAX, map) == -1);
+    CHECK(restir_metrics_relmse_map(img, ref, 2, NULL) == -1 &&
+          restir_metrics_relmse_map(img, ref, SIZE_MAX, map) == -1);
     CHECK(restir_metrics_relmse_map(img, ref, 0, map) == 0 && all_equal(map, 2, 7.0f));
     CHECK(restir_metrics_relmse_map(img, ref, 2, map) == 0 && all_finite(map, 2) && map[0] > 0.0f);
     CHECK(restir_metrics_relmse_map(img_nan, ref, 2, map) == 0 && isnan(map[0]));

@@ -26,7 +26,8 @@ static const struct param_def di_rows[] = {
      "where initial RIS draws its light candidates: auto (regir in a frame whose grid fill costs at most 0.15 "
      "of the valid pixels' own candidates, else pool; chosen by measurement, docs/BENCHMARKS.md), pool (a "
      "frame's shared draws by power), regir (a world-space grid of light reservoirs over the visible points, "
-     "each cell's slots resampled toward the lights that matter there; Boksansky et al. 2021, unbiased by GRIS; needs emitters) or bvh (each pixel's own "
+     "each cell's slots resampled toward the lights that matter there; Boksansky et al. 2021, unbiased by GRIS; "
+     "needs emitters) or bvh (each pixel's own "
      "draws down the light BVH at its point, as pt chooses emitters: no grid, a tree descent per candidate)",
      initial_names},
     {"di.regir_grid", P_INT, D(regir_grid), 1, 64, "16", NULL,
