@@ -31,6 +31,7 @@ static inline vec3 v3_normalize(vec3 a)
     return l > 0.0f ? v3_scale(a, 1.0f / l) : a;
 }
 static inline float v3_max_component(vec3 a) { return fmaxf(a.x, fmaxf(a.y, a.z)); }
+static inline int v3_equal(vec3 a, vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 static inline int v3_is_finite(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 
 /* max/min as plain comparisons: unlike fmaxf/fminf (IEEE NaN rules) they vectorize to

@@ -11,6 +11,7 @@
 
 #include "core/check.h"
 #include "scene/scene_animation.h"
+#include "scene/scene_motion.h"
 #include "io/exr.h"
 #include "io/png.h"
 #include "methods/memory_estimate.h"

@@ -2,6 +2,7 @@
  * (method.h). Must never depend on the passes or the ray tracer. */
 #include "methods/method.h"
 #include "scene/scene_animation.h"
+#include "scene/scene_motion.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -115,6 +116,13 @@ int method_check_settings(const struct method *m, const struct render_params *p,
         snprintf(msg, RESTIR_MSG_LEN,
                  "denoise.svgf.temporal_gradient=on: %s hands the denoiser no temporal gradient (methods that do: %s)",
                  m->name, names);
+        return -1;
+    }
+    if (s && scene_has_moving_emitters(s) && p->camera_shutter > 0.0f) {
+        snprintf(msg, RESTIR_MSG_LEN,
+                 "camera.shutter: scene %s has moving emitters, and motion blur sees the scene at one instant "
+                 "(the ray-tracing BVH holds one pose): render it with camera.shutter=0",
+                 s->name);
         return -1;
     }
     if (s && scene_is_animated(s) && !method_has(m, METHOD_ANIMATED_EMITTERS)) {

@@ -3,6 +3,7 @@
  * or write files or name a method. */
 #include "methods/renderer.h"
 #include "scene/scene_animation.h"
+#include "scene/scene_motion.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -150,6 +151,7 @@ void renderer_render(struct renderer *r, int frame, const struct camera *cam, st
     struct camera_view view;
     renderer_camera_view(&r->p, cam, r->has_prev_cam ? &r->prev_cam : NULL, &view);
     r->lights_changed = r->rendered > 0 && scene_lights_differ(r->scene, (float)r->frame, (float)frame);
+    r->lights_moved = r->rendered > 0 && scene_lights_moved(r->scene, (float)r->frame, (float)frame);
     r->rendered++;
     r->prev_cam = *cam;
     r->has_prev_cam = 1;

@@ -9,9 +9,11 @@
 #include <string.h>
 
 #include "core/check.h"
+#include "scene/scene_animation.h"
 #include "scene/scene_env.h"
 #include "scene/scene_light_bvh.h"
 #include "scene/scene_lights.h"
+#include "scene/scene_motion.h"
 #include "scene/scene_rt.h"
 
 static void *grow_to(void *p, int cap, size_t elem)
@@ -388,14 +390,18 @@ int scene_builder_end(struct scene_builder *b, char *msg)
         s->normals = NULL;
         s->tangents = NULL;
     }
-    if (derive_triangle_data(s, msg) != 0 || scene_lights_build(s, msg) != 0)
+    if (derive_triangle_data(s, msg) != 0 || scene_lights_build(s, msg) != 0 || scene_motion_prepare(s, msg) != 0)
         return -1;
     s->diagonal = vertex_bounds_diagonal(s);
     double t0 = omp_get_wtime();
-    int rc = scene_rt_build(s, msg);
+    const int *moving_tris;
+    const int moving = scene_motion_tris(s, &moving_tris);
+    int rc = scene_rt_build(s, moving_tris, moving, msg);
     s->bvh_ms = 1e3 * (omp_get_wtime() - t0);
-    if (rc == 0)
+    if (rc == 0) {
         scene_set_ray_streams(s, !b->desc.ray_streams_off);
+        scene_set_frame(s, 0.0f); /* animated emitters (s->emission_anim, set by the reader): frame 0 */
+    }
     return rc;
 }
 
@@ -426,11 +432,10 @@ void scene_destroy(struct scene *s)
     free(s->textures);
     free(s->texture_keys);
     free(s->load_notes);
-    for (int m = 0; s->emission_anim && m < s->num_materials; m++) {
-        free(s->emission_anim[m].frame);
-        free(s->emission_anim[m].strength);
-    }
+    for (int m = 0; s->emission_anim && m < s->num_materials; m++)
+        emission_animation_free(&s->emission_anim[m]);
     free(s->emission_anim);
+    scene_motion_free(s);
     if (s->num_emitters > 0)
         alias_table_fini(&s->emitter_table);
     scene_light_bvh_free(&s->light_bvh);

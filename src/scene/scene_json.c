@@ -617,13 +617,13 @@ int scene_json_parse_with(const char *text, size_t len, const char *file, const 
     r.b = &b;
     int rc = read_scene(&r, root);
     cJSON_Delete(root);
+    json_animation_attach(&r, rc == 0 ? s : NULL); /* before the build: it poses moving emitters */
     if (rc == 0 && scene_builder_end(&b, msg) != 0) {
         char inner[RESTIR_MSG_LEN];
         memcpy(inner, msg, sizeof inner);
         json_msgf(msg, RESTIR_MSG_LEN, "%s: %s", file, inner);
         rc = -1;
     }
-    json_animation_attach(&r, rc == 0 ? s : NULL);
     if (r.env && rc == 0) {
         char inner[RESTIR_MSG_LEN];
         if (scene_set_environment(s, r.env, inner) != 0) {

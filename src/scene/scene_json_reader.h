@@ -21,7 +21,7 @@ struct json_reader {
     cJSON *materials; /* the "materials" array (names resolve through it) */
     struct environment *env; /* the "environment", read (attached after the build), or NULL */
     struct emission_animation *anim; /* per material id (anim_cap of them): its "animation" (n = 0: none) */
-    int anim_cap, animated;          /* ... and whether any has keys (then attached after the build) */
+    int anim_cap, animated;          /* ... and whether any has keys (then attached before the build) */
 };
 
 /* A material's "animation" (scene_json_animation.c): read into *a (a->n = 0 when absent; freed on
@@ -31,8 +31,8 @@ int json_read_animation(struct json_reader *r, const cJSON *m, const char *mkey,
                         struct emission_animation *a);
 /* Keeps material id's animation while the file is read (r->anim grows with the materials). */
 void json_keep_animation(struct json_reader *r, int id, const struct emission_animation *a);
-/* After the build: moves the kept keys into scene s (NULL: the build failed, nothing moves) with frame 0
- * set, and frees what the reader kept. */
+/* Before the build: moves the kept keys into scene s (NULL: reading failed, nothing moves), which
+ * scene_builder_end poses at frame 0, and frees what the reader kept. */
 void json_animation_attach(struct json_reader *r, struct scene *s);
 
 /* vsnprintf into out: a message too long for the buffer is cut, never left unterminated. */

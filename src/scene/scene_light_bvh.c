@@ -182,6 +182,19 @@ static int partition(struct item *items, int n, const struct split *sp)
     return left;
 }
 
+/* What a node holds of its bounds. */
+static void node_set(struct light_bvh_node *nd, const struct bounds *bd)
+{
+    const vec3 diag = v3_sub(bd->hi, bd->lo);
+    nd->center = v3_scale(v3_add(bd->lo, bd->hi), 0.5f);
+    nd->radius2 = 0.25f * v3_length2(diag);
+    nd->d2_min = 0.5f * v3_length(diag);
+    nd->axis = bd->axis;
+    nd->cos_o = bd->cos_o;
+    nd->sin_o = sqrtf(fmaxf(0.0f, 1.0f - bd->cos_o * bd->cos_o));
+    nd->power = bd->power;
+}
+
 struct builder {
     struct light_bvh *t;
     struct item *items;
@@ -214,15 +227,23 @@ static struct bounds build(struct builder *b, int first, int n, int parent, int 
         bd = bounds_add(left, &right);
         nd = &b->t->nodes[at];
     }
-    const vec3 diag = v3_sub(bd.hi, bd.lo);
-    nd->center = v3_scale(v3_add(bd.lo, bd.hi), 0.5f);
-    nd->radius2 = 0.25f * v3_length2(diag);
-    nd->d2_min = 0.5f * v3_length(diag);
-    nd->axis = bd.axis;
-    nd->cos_o = bd.cos_o;
-    nd->sin_o = sqrtf(fmaxf(0.0f, 1.0f - bd.cos_o * bd.cos_o));
-    nd->power = bd.power;
+    node_set(nd, &bd);
     return bd;
+}
+
+/* Emitter e of s as a leaf item of the given power. */
+static struct item emitter_item(const struct scene *s, int e, float power)
+{
+    const struct emitter *em = &s->emitters[e];
+    const vec3 v1 = v3_add(em->v0, em->e1), v2 = v3_add(em->v0, em->e2);
+    struct item it;
+    it.lo = v3_min(em->v0, v3_min(v1, v2));
+    it.hi = v3_max(em->v0, v3_max(v1, v2));
+    it.centroid = v3_scale(v3_add(em->v0, v3_add(v1, v2)), 1.0f / 3.0f);
+    it.axis = em->n;
+    it.power = power;
+    it.emitter = e;
+    return it;
 }
 
 void scene_light_bvh_build(struct scene *s, const float *power)
@@ -233,21 +254,32 @@ void scene_light_bvh_build(struct scene *s, const float *power)
     if (n < 1)
         return;
     struct item *items = xmalloc(sizeof(*items) * (size_t)n);
-    for (int e = 0; e < n; e++) {
-        const struct emitter *em = &s->emitters[e];
-        const vec3 v1 = v3_add(em->v0, em->e1), v2 = v3_add(em->v0, em->e2);
-        items[e].lo = v3_min(em->v0, v3_min(v1, v2));
-        items[e].hi = v3_max(em->v0, v3_max(v1, v2));
-        items[e].centroid = v3_scale(v3_add(em->v0, v3_add(v1, v2)), 1.0f / 3.0f);
-        items[e].axis = em->n;
-        items[e].power = power[e];
-        items[e].emitter = e;
-    }
+    for (int e = 0; e < n; e++)
+        items[e] = emitter_item(s, e, power[e]);
     t->nodes = xmalloc(sizeof(*t->nodes) * (size_t)(2 * n - 1));
     t->emitter_leaf = xmalloc(sizeof(int) * (size_t)n);
     struct builder b = {t, items};
     build(&b, 0, n, -1, 0);
     free(items);
+}
+
+void scene_light_bvh_refit(struct scene *s)
+{
+    struct light_bvh *t = &s->light_bvh;
+    if (t->num_nodes < 1)
+        return;
+    struct bounds *b = xmalloc(sizeof(*b) * (size_t)t->num_nodes);
+    for (int i = t->num_nodes - 1; i >= 0; i--) { /* depth-first order: children after their parent */
+        struct light_bvh_node *nd = &t->nodes[i];
+        if (nd->second < 0) {
+            const struct item it = emitter_item(s, nd->emitter, nd->power);
+            b[i] = item_bounds(&it);
+        } else {
+            b[i] = bounds_add(b[i + 1], &b[nd->second]);
+        }
+        node_set(nd, &b[i]);
+    }
+    free(b);
 }
 
 void scene_light_bvh_free(struct light_bvh *t)

@@ -10,6 +10,9 @@
  * finite: scene_lights_build checks that first). Leaves an empty tree when there are no emitters.
  * Deterministic: the same emitters give the same tree. */
 void scene_light_bvh_build(struct scene *s, const float *power);
+/* The bounds of every node of s's tree recomputed from its emitters where they are now (moving
+ * emitters, scene_motion.h); the tree, its powers and its leaves stay. */
+void scene_light_bvh_refit(struct scene *s);
 /* Frees the tree's arrays and empties it; an empty tree is fine. */
 void scene_light_bvh_free(struct light_bvh *t);
 

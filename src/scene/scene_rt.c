@@ -25,11 +25,13 @@ struct scene_rt {
     scene_ray_hook hook; /* the ray log's (scene_rt_embree.h), NULL unless a benchmark logs */
     void *hook_user;
     int streams; /* scene_set_ray_streams; set at load from scene_load_desc.ray_streams_off */
-    struct alpha_filter alpha_masked, alpha_emitters;
+    struct alpha_filter alpha_masked, alpha_emitters, alpha_moving;
     /* The main scene holds the opaque triangles as geometry 0 and, where some material is
-     * alpha-masked, the masked ones as geometry 1, so that only hits on those call the filter.
-     * geom_tris[g][primID] is the triangle (NULL: primID is the triangle). */
-    int *geom_tris[2];
+     * alpha-masked, the masked ones as geometry 1, so that only hits on those call the filter, and
+     * the moving emitters' as geometry 2 (build_main). geom_tris[g][primID] is the triangle (NULL:
+     * primID is the triangle). */
+    int *geom_tris[3];
+    int num_moving; /* triangles in geometry 2 */
     RTCDevice device;
     RTCScene scene;
     RTCScene emitters; /* emissive triangles only (NULL without lights); primID = emitter index */
@@ -111,30 +113,56 @@ static RTCScene new_scene(RTCDevice device)
     return scene;
 }
 
-/* The main scene: all triangles as one geometry when nothing is masked, else the opaque ones
- * (geometry 0) apart from the masked ones (geometry 1, filtered). */
-static RTCScene build_main(struct scene_rt *rt, const struct scene *s)
+/* Geometry id of scene refits its BVH when its vertices move (a dynamic scene keeps the others'). */
+static void set_refit(RTCScene scene, unsigned id)
 {
-    int masked = 0;
-    for (int t = 0; t < s->num_tris; t++)
-        masked += s->materials[s->tri_material[t]].alpha_mask != 0;
+    RTCGeometry geom = rtcGetGeometry(scene, id);
+    rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_REFIT);
+    rtcCommitGeometry(geom);
+}
+
+/* The main scene's geometries (struct scene_rt's geom_tris). */
+enum { GEOM_OPAQUE, GEOM_MASKED, GEOM_MOVING, GEOM_COUNT };
+
+static int tri_masked(const struct scene *s, int t) { return s->materials[s->tri_material[t]].alpha_mask != 0; }
+
+/* The main scene: all triangles as one geometry when nothing is masked or moves, else the opaque
+ * ones (geometry 0) apart from the masked ones (geometry 1, filtered) and the moving emitters'
+ * (geometry 2, filtered where one of them is masked), in a dynamic scene whose build keeps the
+ * still geometries' BVHs when the moving one is refitted (scene_rt_update_moving). */
+static RTCScene build_main(struct scene_rt *rt, const struct scene *s, const int *moving_tris, int moving)
+{
+    int n[GEOM_COUNT] = {0, 0, 0}, moving_masked = 0;
+    for (int t = 0, i = 0; t < s->num_tris; t++) {
+        if (i < moving && moving_tris[i] == t) {
+            n[GEOM_MOVING]++, i++;
+            moving_masked |= tri_masked(s, t);
+        } else {
+            n[tri_masked(s, t) ? GEOM_MASKED : GEOM_OPAQUE]++;
+        }
+    }
     RTCScene scene = new_scene(rt->device);
     int rc = 0;
-    if (masked == 0) {
+    if (n[GEOM_MASKED] == 0 && moving == 0) {
         rc = attach_triangles(rt->device, scene, 0, s, NULL, s->num_tris, NULL);
     } else {
-        const int opaque = s->num_tris - masked;
-        rt->geom_tris[0] = xmalloc(sizeof(int) * (size_t)(opaque > 0 ? opaque : 1));
-        rt->geom_tris[1] = xmalloc(sizeof(int) * (size_t)masked);
-        int n[2] = {0, 0};
-        for (int t = 0; t < s->num_tris; t++) {
-            const int g = s->materials[s->tri_material[t]].alpha_mask != 0;
-            rt->geom_tris[g][n[g]++] = t;
+        if (moving > 0)
+            rtcSetSceneFlags(scene, RTC_SCENE_FLAG_DYNAMIC);
+        for (int g = 0; g < GEOM_COUNT; g++)
+            rt->geom_tris[g] = xmalloc(sizeof(int) * (size_t)(n[g] > 0 ? n[g] : 1));
+        int at[GEOM_COUNT] = {0, 0, 0};
+        for (int t = 0, i = 0; t < s->num_tris; t++) {
+            const int g = i < moving && moving_tris[i] == t ? (i++, GEOM_MOVING) : tri_masked(s, t);
+            rt->geom_tris[g][at[g]++] = t;
         }
-        if (opaque > 0)
-            rc = attach_triangles(rt->device, scene, 0, s, rt->geom_tris[0], opaque, NULL);
-        if (rc == 0)
-            rc = attach_triangles(rt->device, scene, 1, s, rt->geom_tris[1], masked, &rt->alpha_masked);
+        struct alpha_filter *filter[GEOM_COUNT] = {NULL, &rt->alpha_masked,
+                                                   moving_masked ? &rt->alpha_moving : NULL};
+        for (int g = 0; g < GEOM_COUNT && rc == 0; g++)
+            if (n[g] > 0)
+                rc = attach_triangles(rt->device, scene, (unsigned)g, s, rt->geom_tris[g], n[g], filter[g]);
+        if (rc == 0 && moving > 0)
+            set_refit(scene, GEOM_MOVING);
+        rt->num_moving = moving;
     }
     if (rc != 0) {
         rtcReleaseScene(scene);
@@ -144,20 +172,65 @@ static RTCScene build_main(struct scene_rt *rt, const struct scene *s)
     return scene;
 }
 
-/* The emissive triangles alone (primID = emitter index), filtered when any material is masked. */
+/* Writes triangles tris[0 .. count-1] of s (NULL: all) where they are now into geometry id of scene
+ * and commits the geometry (the scene's commit is the caller's). */
+static void update_vertices(RTCScene scene, unsigned id, const struct scene *s, const int *tris, int count)
+{
+    RTCGeometry geom = rtcGetGeometry(scene, id);
+    float *vb = rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0);
+    for (int i = 0; i < count; i++) {
+        const int t = tris ? tris[i] : i;
+        for (int k = 0; k < 3; k++) {
+            const vec3 v = s->verts[s->indices[3 * t + k]];
+            vb[9 * i + 3 * k + 0] = v.x;
+            vb[9 * i + 3 * k + 1] = v.y;
+            vb[9 * i + 3 * k + 2] = v.z;
+        }
+    }
+    rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(geom);
+}
+
+void scene_rt_update_moving(struct scene *s)
+{
+    struct scene_rt *rt = s->rt;
+    if (!rt || rt->num_moving == 0)
+        return;
+    update_vertices(rt->scene, GEOM_MOVING, s, rt->geom_tris[GEOM_MOVING], rt->num_moving);
+    rtcCommitScene(rt->scene);
+    update_vertices(rt->emitters, 0, s, s->emitter_tri, s->num_emitters);
+    rtcCommitScene(rt->emitters);
+}
+
+/* The emissive triangles alone (primID = emitter index), filtered when any material is masked; refitted
+ * when some of them move. */
 static RTCScene build_emitters(struct scene_rt *rt, const struct scene *s, int masked)
 {
     RTCScene scene = new_scene(rt->device);
+    if (rt->num_moving > 0)
+        rtcSetSceneFlags(scene, RTC_SCENE_FLAG_DYNAMIC);
     if (attach_triangles(rt->device, scene, 0, s, s->emitter_tri, s->num_emitters,
                          masked ? &rt->alpha_emitters : NULL) != 0) {
         rtcReleaseScene(scene);
         return NULL;
     }
+    if (rt->num_moving > 0)
+        set_refit(scene, 0);
     rtcCommitScene(scene);
     return scene;
 }
 
-int scene_rt_build(struct scene *s, char *msg)
+static void rt_free(struct scene_rt *rt)
+{
+    for (int g = 0; g < GEOM_COUNT; g++)
+        free(rt->geom_tris[g]);
+    free(rt->alpha_masked.tris);
+    free(rt->alpha_emitters.tris);
+    free(rt->alpha_moving.tris);
+    free(rt);
+}
+
+int scene_rt_build(struct scene *s, const int *moving_tris, int moving, char *msg)
 {
     struct scene_rt *rt = xcalloc(1, sizeof(*rt));
     rt->device = rtcNewDevice(NULL);
@@ -172,18 +245,14 @@ int scene_rt_build(struct scene *s, char *msg)
     int masked = 0; /* filters only where some material is alpha-masked: they cost every hit a call */
     for (int m = 0; m < s->num_materials; m++)
         masked |= s->materials[m].alpha_mask;
-    rt->scene = build_main(rt, s);
+    rt->scene = build_main(rt, s, moving_tris, moving);
     rt->emitters = s->num_emitters > 0 ? build_emitters(rt, s, masked) : NULL;
     if (!rt->scene || (s->num_emitters > 0 && !rt->emitters)) {
         snprintf(msg, RESTIR_MSG_LEN, "scene '%s': Embree BVH construction failed", s->name);
         if (rt->scene)
             rtcReleaseScene(rt->scene);
         rtcReleaseDevice(rt->device);
-        free(rt->geom_tris[0]);
-        free(rt->geom_tris[1]);
-        free(rt->alpha_masked.tris);
-        free(rt->alpha_emitters.tris);
-        free(rt);
+        rt_free(rt);
         return -1;
     }
     s->rt = rt;
@@ -198,11 +267,7 @@ void scene_rt_destroy(struct scene *s)
     if (s->rt->emitters)
         rtcReleaseScene(s->rt->emitters);
     rtcReleaseDevice(s->rt->device);
-    free(s->rt->geom_tris[0]);
-    free(s->rt->geom_tris[1]);
-    free(s->rt->alpha_masked.tris);
-    free(s->rt->alpha_emitters.tris);
-    free(s->rt);
+    rt_free(s->rt);
     s->rt = NULL;
 }
 

@@ -10,10 +10,15 @@
 #include "core/vec3.h"
 #include "scene/scene_types.h"
 
-/* Builds the acceleration structure over s's triangles (scene_builder_end). Returns 0, or -1 with
- * msg. */
-int scene_rt_build(struct scene *s, char *msg);
+/* Builds the acceleration structure over s's triangles (scene_builder_end), the moving emitters'
+ * triangles moving_tris[0 .. moving-1] (ascending; scene_motion.h) apart, to be refitted by
+ * scene_rt_update_moving. Returns 0, or -1 with msg. */
+int scene_rt_build(struct scene *s, const int *moving_tris, int moving, char *msg);
 void scene_rt_destroy(struct scene *s);
+/* Moves the moving emitters' triangles (scene_motion.h) to where s->verts has them now, in the main
+ * BVH and the emitters' (a refit). Nothing for a scene whose emitters stand still. Not thread-safe
+ * with any query. */
+void scene_rt_update_moving(struct scene *s);
 
 /* Surface point reconstructed from a triangle hit. */
 struct surface_hit {

@@ -68,13 +68,18 @@ struct camera_path {
 struct scene_rt; /* Embree back end, opaque (scene_rt.c) */
 struct environment;  /* environment.h */
 struct env_sampler;  /* env_light.h */
+struct scene_motion; /* scene_motion.c */
 
-/* An emissive material's strength keys (scene_animation.h). */
+/* An emissive material's keys (scene_animation.h): strength, and a rigid motion of its triangles. */
 struct emission_animation {
     int n;          /* keys; 0: the material is still */
-    int step;       /* 1: each key's strength holds until the next key; 0: linear between keys */
+    int step;       /* 1: each key's values hold until the next key; 0: linear between keys */
     float *frame;   /* n frames, strictly increasing */
-    float *strength; /* n strengths >= 0 */
+    float *strength; /* n strengths >= 0 (1 where the keys give none) */
+    vec3 *translate; /* n offsets from where the file puts the triangles, or NULL: no translation keys */
+    vec3 *rotate;    /* n rotations in degrees about x, then y, then z, around pivot, or NULL: none */
+    vec3 pivot;      /* the rotations' centre, in the file's coordinates */
+    int pivot_given; /* 0: the file gave none, and the pivot is the centre of the material's triangles */
     vec3 emission;  /* the file's emission (times emissive_strength): what strength 1 gives */
 };
 
@@ -178,6 +183,9 @@ struct scene {
     /* Animated emission strength (scene_animation.h): num_materials entries (n = 0: a still material),
      * or NULL when nothing is animated. */
     struct emission_animation *emission_anim;
+    /* Moving emitters (scene_motion.h): where their triangles rest and what moves with them, or NULL
+     * when no material has translation or rotation keys. */
+    struct scene_motion *motion;
 
     struct camera camera;           /* default static camera */
     struct camera_path camera_path; /* default moving camera */

@@ -550,8 +550,19 @@ static void check_scene_files(void)
          "materials[1].animation.keys[0].strength", "out of range"},
         {"an animation on a non-emitter", "{\"keys\": [{\"frame\": 0, \"strength\": 1}]}", "wall",
          "materials[0].animation", "emits nothing"},
-        {"a moving emitter", "{\"keys\": [{\"frame\": 0, \"strength\": 1}], \"transform\": {}}", "lamp",
-         "materials[1].animation.transform", "not supported yet"},
+        {"a whole-animation transform", "{\"keys\": [{\"frame\": 0, \"strength\": 1}], \"transform\": {}}",
+         "lamp", "materials[1].animation.transform", "per key"},
+        {"a scale key", "{\"keys\": [{\"frame\": 0, \"scale\": [2, 2, 2]}]}", "lamp",
+         "materials[1].animation.keys[0].scale", "rigidly"},
+        {"a channel missing from a key",
+         "{\"keys\": [{\"frame\": 0, \"translate\": [0, 0, 0]}, {\"frame\": 2, \"strength\": 1}]}", "lamp",
+         "materials[1].animation.keys[1].strength", "every key"},
+        {"a key with no channel", "{\"keys\": [{\"frame\": 0}]}", "lamp", "materials[1].animation.keys[0]",
+         "besides its frame"},
+        {"a translation out of range", "{\"keys\": [{\"frame\": 0, \"translate\": [0, 1e30, 0]}]}", "lamp",
+         "materials[1].animation.keys[0].translate", NULL},
+        {"a moving emitter with motion blur", "{\"keys\": [{\"frame\": 0, \"rotate\": [0, 0, 0]}]}", "lamp",
+         "camera.shutter", "one instant"},
         {"an unknown interpolation", "{\"keys\": [{\"frame\": 0, \"strength\": 1}], \"interpolation\": \"cubic\"}",
          "lamp", "materials[1].animation.interpolation", "step"},
     };
@@ -570,7 +581,8 @@ static void check_scene_files(void)
                  on_wall ? ", \"animation\": " : "", on_wall ? anim[k].animation : "", on_wall ? "" : ", \"animation\": ",
                  on_wall ? "" : anim[k].animation);
         write_text(file, text);
-        snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --out '%%1$s'", file);
+        snprintf(fmt, sizeof fmt, "render --scene '%s' --method pt --res 16x16 --out '%%1$s'%s", file,
+                 strstr(anim[k].what, "motion blur") ? " --set camera.shutter=0.5" : "");
         snprintf(what, sizeof what, "animated emitter with %s", anim[k].what);
         expect_failure(what, fmt, 2, anim[k].key, anim[k].why);
     }

@@ -21,7 +21,7 @@
 
 static char tmp[CLI_PATH_MAX];
 
-#define EVAL_ARGS "--res 208x208 --runs 2 --frames 4 --warmup 2 --ref-spp 8 --scenes cornell"
+#define EVAL_ARGS "--res 208x208 --runs 2 --frames 4 --warmup 1 --ref-spp 4 --scenes cornell"
 /* 000's configurations in the whole evaluation: the baseline, a preset and the one its finding on spatial
  * reuse needs (all 17 would triple the test's time for the same code paths) */
 #define EVAL_CONFIGS "--configs bitterli,fast,spatial-off"
@@ -243,7 +243,7 @@ static void test_tables_are_compares(char *err)
     char out[2 * CLI_PATH_MAX], args[8 * CLI_PATH_MAX], path[3 * CLI_PATH_MAX];
     snprintf(out, sizeof out, "%s/compare_004", tmp);
     snprintf(args, sizeof args,
-             "compare --scene cornell --res 208x208 --runs 2 --ref-spp 8 --frames 4 --camera path --methods "
+             "compare --scene cornell --res 208x208 --runs 2 --ref-spp 4 --frames 4 --camera path --methods "
              "'restir-pt,restir-pt:spatial.reuse=spmis,restir-pt:spatial.reuse=spmis:spmis.search_score=compat,"
              "restir-pt:spatial.reuse=spmis:spmis.search_steps=0,restir-pt:spatial.reuse=spmis:spmis.search=low-"
              "confidence' "

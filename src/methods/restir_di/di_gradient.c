@@ -4,12 +4,13 @@
 #include <math.h>
 
 #include "scene/scene_animation.h"
+#include "scene/scene_motion.h"
 
 /* A sample's estimate now and before: target x W now, and the same with its emitter at the other
- * frame's strength. now_is_cached: the cached target is this frame's (an initial sample) or the
+ * frame's strength and, for a moving one, scaled by the unshadowed targets at sp of both frames' poses. now_is_cached: the cached target is this frame's (an initial sample) or the
  * previous frame's (a history sample). */
-static void shaded(const struct scene *s, const struct di_reservoir *r, int frame, int now_is_cached, float *now,
-                   float *before)
+static void shaded(const struct scene *s, const struct shading_point *sp, const struct di_reservoir *r, int frame,
+                   int now_is_cached, float *now, float *before)
 {
     *now = *before = 0.0f;
     if (r->y.tri < 0 || !(r->W > 0.0f) || !(r->target > 0.0f))
@@ -19,8 +20,15 @@ static void shaded(const struct scene *s, const struct di_reservoir *r, int fram
         *now = *before = cached;
         return;
     }
-    const float s_now = scene_emission_strength(s, r->y.tri, (float)frame);
-    const float s_before = scene_emission_strength(s, r->y.tri, (float)(frame - 1));
+    float s_now = scene_emission_strength(s, r->y.tri, (float)frame);
+    float s_before = scene_emission_strength(s, r->y.tri, (float)(frame - 1));
+    if (scene_has_moving_emitters(s) && sp) { /* a moved emitter: the unshadowed targets of both poses */
+        struct di_sample y[2] = {r->y, r->y}; /* [0] at this frame, [1] at the previous */
+        for (int k = 0; k < 2; k++)
+            scene_motion_point_at(s, r->y.tri, r->y.b1, r->y.b2, (float)(frame - k), &y[k].p, &y[k].n);
+        s_now *= di_target(sp, &y[0]);
+        s_before *= di_target(sp, &y[1]);
+    }
     if (now_is_cached) {
         *now = cached;
         *before = s_now > 0.0f ? cached * (s_before / s_now) : 0.0f;
@@ -65,13 +73,13 @@ void di_temporal_gradient(const struct scene *s, const struct gbuffer *g, const 
     for (int i = 0; i < (int)n; i++) {
         float now, before, d = 0.0f, m = 0.0f, b = 0.0f;
         if (g->valid[i]) {
-            shaded(s, &initial[i], frame, 1, &now, &before);
+            shaded(s, gbuffer_shading(g, i), &initial[i], frame, 1, &now, &before);
             d += now - before;
             m += now;
             b += before;
             const int q = prev ? gbuffer_motion_pixel(g, i, prev_g) : -1;
             if (q >= 0) {
-                shaded(s, &prev[q], frame, 0, &now, &before);
+                shaded(s, gbuffer_shading(prev_g, q), &prev[q], frame, 0, &now, &before);
                 d += now - before;
                 m += now;
                 b += before;

@@ -82,6 +82,8 @@ static void di_relight(const struct scene *s, struct di_reservoir *prev, size_t 
         struct light_sample ls;
         lights_point(s, y->tri, y->b1, y->b2, &ls);
         y->Le = ls.Le;
+        y->p = ls.p; /* where the emitter is now: the pose of the frame it was drawn in (restir-di drops its */
+        y->n = ls.n; /* history on a frame whose emitters moved) */
     }
 }
 
@@ -139,7 +141,7 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
         }
         di_temporal_gradient(s, g, prev_g, d->work, h->has_history ? prev_res : NULL, frame, d->grad, d->grad_tmp);
     }
-    if (p->reuse.temporal && h->has_history)
+    if (p->reuse.temporal && h->has_history && !r->lights_moved)
         RENDERER_TIMED(st, PASS_TEMPORAL, if (scene_is_animated(s)) di_relight(s, prev_res, n);
                        st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res,
                                                                 confidence ? d->grad : NULL, d->work, &st->rays);
