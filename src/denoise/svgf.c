@@ -26,12 +26,17 @@
 #include "denoise/svgf_temporal.h"
 
 /* A few per-pixel planes of one frame. */
+/* The kinds of pixel the antialiasing keeps apart: a surface the filter used, and the sky (a pixel that
+ * sees nothing, with its direction's motion), whose history never blends into the other's. */
+#define TAA_SURFACE 1.0f
+#define TAA_SKY 2.0f
+
 enum {
     H_C0, H_C1, H_C2, H_M1, H_M2, H_LEN, H_GROUP, H_P0, H_P1, H_P2, H_N0, H_N1, H_N2, /* history */
     C_M1, C_M2, C_LEN, C_VAR,                                                     /* this frame */
     T_C0, T_C1, T_C2, T_VAR, T_LUM, T_INVL, T_WS, T_TMP,                          /* à-trous scratch */
     V_FIRST,                                                                      /* Sec. 4.2's variance */
-    A_USE, /* antialiasing: which pixels of its history (taa_rgb) were used */
+    A_USE, /* antialiasing: each pixel's kind in its history (taa_rgb): TAA_SURFACE, TAA_SKY or 0 (none) */
     A_LEN, /* antialiasing: frames its history holds at each pixel */
     R_LO0, R_LO1, R_LO2, R_HI0, R_HI1, R_HI2, /* antialiasing: this frame's 3x3 range */
     SVGF_PLANES
@@ -244,9 +249,10 @@ static void svgf_run(void *state, const struct denoise_settings *s, struct denoi
 }
 
 /* The antialiasing history at pixel i's reprojected position: bilinear over the previous frame's
- * used pixels, and into *len the frames it holds (the least of the taps'). Returns 0 where none is
- * there. */
-static int taa_history(const struct svgf *v, const struct denoise_frame *f, int x, int y, float h[3], float *len)
+ * pixels of the same kind (TAA_SURFACE or TAA_SKY), and into *len the frames it holds (the least of
+ * the taps'). Returns 0 where none is there. */
+static int taa_history(const struct svgf *v, const struct denoise_frame *f, int x, int y, float kind, float h[3],
+                       float *len)
 {
     const int i = y * v->w + x;
     const float mx = f->motion[2 * i], my = f->motion[2 * i + 1];
@@ -266,7 +272,7 @@ static int taa_history(const struct svgf *v, const struct denoise_frame *f, int 
         const float bw = ((t & 1) ? fx : 1.0f - fx) * ((t >> 1) ? fy : 1.0f - fy);
         if (bw == 0.0f || qx < 0 || qy < 0 || qx >= v->w || qy >= v->h) /* (snapped: three taps) */
             continue;
-        const float wt = hu[q] * bw;
+        const float wt = hu[q] == kind ? bw : 0.0f;
         for (int c = 0; c < 3; c++)
             h[c] += wt * v->taa_rgb[3 * q + c];
         wsum += wt;
@@ -320,7 +326,10 @@ static void neighbourhood_range(const struct denoise_frame *f, const float *rgb,
 }
 
 /* Schied et al.'s last step, temporal antialiasing (Karis 2014): each used pixel's reprojected
- * output blended with this frame's output by max(svgf_taa_alpha, 1 / frames), so that a short
+ * output, and each sky pixel's (one that sees nothing: its history from sky pixels only, through its
+ * direction's motion; an emitter's silhouette against it otherwise flickers with the jitter, 0.0086 of
+ * pillars' per-pixel flicker at 320x180, docs/BENCHMARKS.md), blended with this frame's output by
+ * max(svgf_taa_alpha, 1 / frames), so that a short
  * history is the plain mean of its frames (as Sec. 4.1's moving average). Where a jittered pixel
  * straddles an edge, its sample lands on one surface in one frame and on the other in the next; the
  * feature-tested history (Sec. 4.1) cannot average the two, this can. Only where the pixel moved at
@@ -342,6 +351,7 @@ static void svgf_post(void *state, const struct denoise_settings *s, const struc
     float *restrict len = P[T_TMP]; /* this frame's history lengths (free after run, too) */
     if (on && clamp != DENOISE_TAA_CLAMP_OFF)
         neighbourhood_range(f, rgb, tmp, range);
+    float *restrict taa_kind = P[T_C0]; /* each pixel's kind for the next frame (tmp is free again) */
 #pragma omp parallel for schedule(static)
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
@@ -351,21 +361,27 @@ static void svgf_post(void *state, const struct denoise_settings *s, const struc
             const float m2 = mx * mx + my * my;
             const int still = m2 <= s->svgf_taa_motion * s->svgf_taa_motion;
             len[i] = 1.0f;
-            if (!(on && still && f->use[i] != 0.0f && taa_history(v, f, x, y, hc, &frames)))
+            /* the sky too (a pixel that sees nothing): its silhouettes alias as much as the surfaces' */
+            const float kind = f->use[i] != 0.0f                                               ? TAA_SURFACE
+                               : mx < DENOISE_NO_MOTION && isfinite(rgb[3 * i] + rgb[3 * i + 1] + rgb[3 * i + 2]) ? TAA_SKY
+                                                                                                            : 0.0f;
+            taa_kind[i] = kind;
+            if (!(on && still && kind != 0.0f && taa_history(v, f, x, y, kind, hc, &frames)))
                 continue; /* the output stays this frame's */
             len[i] = MINF(frames + 1.0f, 1e6f);
             float weight = MAXF(a, 1.0f / len[i]);
             if (f->gradient) /* A-SVGF: a stale history weighs less here too */
                 weight += svgf_gradient_response(f->gradient[i]) * (1.0f - weight);
-            const int clamped =
-                clamp == DENOISE_TAA_CLAMP_ALWAYS || (clamp == DENOISE_TAA_CLAMP_MOVING && m2 > moved2);
+            /* (the range is the used surfaces': the sky's history, a function of direction, is not clamped) */
+            const int clamped = kind == TAA_SURFACE && (clamp == DENOISE_TAA_CLAMP_ALWAYS ||
+                                                        (clamp == DENOISE_TAA_CLAMP_MOVING && m2 > moved2));
             for (int c = 0; c < 3; c++) {
                 const float old = clamped ? MINF(MAXF(hc[c], range[c][i]), range[3 + c][i]) : hc[c];
                 rgb[3 * i + c] = old + weight * (rgb[3 * i + c] - old);
             }
         }
     memcpy(v->taa_rgb, rgb, sizeof(float) * 3 * v->n); /* this frame's output is the next one's history */
-    memcpy(P[A_USE], f->use, sizeof(float) * v->n);
+    memcpy(P[A_USE], taa_kind, sizeof(float) * v->n);
     memcpy(P[A_LEN], len, sizeof(float) * v->n);
     v->has_taa = 1;
 }

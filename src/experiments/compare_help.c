@@ -48,7 +48,13 @@ void compare_usage(FILE *out)
             "before the next change, and lag_frames_denoised the same of the denoised frames;\n"
             "lag_frames_blocks and its _denoised: the same measured on each whole 16 x 16 block's own relMSE,\n"
             "the 90%% quantile over the blocks (a change seen by part of the image lags there however little it\n"
-            "moves the whole image's error); the tables print each change's)\n"
+            "moves the whole image's error); ghost_frames and its _denoised: the frames after a change until,\n"
+            "in 90%% of the 16 x 16 blocks (those at least 1%% of the image's mean), the mean's deviation\n"
+            "from the reference's stays within 10%% of the reference above the block's steady deviation\n"
+            "(last quarter of the frames before the next change): how long an old light shows, apart from\n"
+            "noise and a denoiser's bias; the tables print each change's)\n",
+            by_spp);
+    fprintf(out,
             "and each row's last frame to DIR/FOLDER/, where FOLDER is the SPEC with every character other\n"
             "than A-Z a-z 0-9 . _ - replaced by _ (and _2, _3, ... appended when two SPECs give the same\n"
             "name). Default DIR: a new folder out/compare-SCENE (-2, -3, ... appended when taken); a given\n"
@@ -56,8 +62,7 @@ void compare_usage(FILE *out)
             "$HOME or the current folder; links inside are removed, not followed). --ref without --res: the\n"
             "reference's size. For gradient rows DIR/FOLDER_grad_worst1.png shows where\n"
             "the worst 1%% of gradient_relmse's pixel pairs are, over the dimmed reference: red the\n"
-            "pair with the right neighbour, cyan with the one below, white both.\n",
-            by_spp);
+            "pair with the right neighbour, cyan with the one below, white both.\n");
     fprintf(out,
             "DIR/frames.csv has a row per SPEC and frame: frame time, temporal pass time, the shares of\n"
             "valid pixels whose history shifted in (temporal_accept) and, for path reservoirs, that were\n"

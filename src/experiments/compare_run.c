@@ -346,7 +346,7 @@ void compare_result_clear_sequence(struct compare_result *res)
     for (int k = 0; k < FLICKER_COLS; k++)
         res->flicker[k] = res->flicker_dn[k] = NAN;
     for (int k = 0; k < COMPARE_MAX_CHANGES; k++)
-        res->lag[k] = res->lag_dn[k] = res->lag_block[k] = res->lag_block_dn[k] = NAN;
+        res->lag[k] = res->lag_dn[k] = res->lag_block[k] = res->lag_block_dn[k] = res->ghost[k] = res->ghost_dn[k] = NAN;
 }
 
 int compare_run_spec(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,
@@ -381,6 +381,8 @@ int compare_run_spec(const struct scene *s, const struct compare_spec *c, const 
     if (track) {
         compare_track_lag(track, 0, res->lag, res->lag_block);
         compare_track_lag(track, 1, res->lag_dn, res->lag_block_dn);
+        compare_track_ghost(track, 0, res->ghost);
+        compare_track_ghost(track, 1, res->ghost_dn);
     }
     if (track) {
         compare_track_flicker(track, 0, res->flicker);

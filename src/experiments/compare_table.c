@@ -114,23 +114,39 @@ static void print_flicker(const struct compare_spec *specs, const struct compare
     }
 }
 
-/* One table of the lags after each change (compare_track_lag): of the whole image, or (blocks) the
- * COMPARE_LAG_QUANTILE quantile of the blocks' own. */
+/* The lag tables: the whole image's (compare_track_lag), the COMPARE_LAG_QUANTILE quantile of the blocks' own, and
+ * the ghost (compare_track_ghost). */
+enum lag_kind { LAG_IMAGE, LAG_BLOCKS, LAG_GHOST };
+
+static const double *lag_values(const struct compare_result *r, enum lag_kind kind, int denoised)
+{
+    if (kind == LAG_BLOCKS)
+        return denoised ? r->lag_block_dn : r->lag_block;
+    if (kind == LAG_GHOST)
+        return denoised ? r->ghost_dn : r->ghost;
+    return denoised ? r->lag_dn : r->lag;
+}
+
+/* One table of the lags after each change. */
 static void print_lag_table(const struct compare_setup *st, const struct compare_result *res, int w, const int *changes,
-                            int nc, int blocks)
+                            int nc, enum lag_kind kind)
 {
     int any = 0, any_dn = 0;
     for (int k = 0; k < st->n; k++)
         for (int c = 0; c < nc; c++) {
-            any |= isfinite(blocks ? res[k].lag_block[c] : res[k].lag[c]);
-            any_dn |= isfinite(blocks ? res[k].lag_block_dn[c] : res[k].lag_dn[c]);
+            any |= isfinite(lag_values(&res[k], kind, 0)[c]);
+            any_dn |= isfinite(lag_values(&res[k], kind, 1)[c]);
         }
     if (!any && !any_dn)
         return;
-    if (blocks)
+    if (kind == LAG_BLOCKS)
         printf("lag of %d px blocks: the same measured on each block's own relMSE, the %.0f%% quantile over the "
                "blocks:\n%-*s",
                COMPARE_LAG_BLOCK, 100.0 * COMPARE_LAG_QUANTILE, w, "method");
+    else if (kind == LAG_GHOST)
+        printf("ghost: frames from a change until %.0f%% of the %d px blocks' means stay within %.0f%% of the "
+               "reference above their steady deviation (an old light's trace, apart from noise and bias):\n%-*s",
+               100.0 * COMPARE_LAG_QUANTILE, COMPARE_LAG_BLOCK, 100.0 * COMPARE_LAG_TOLERANCE, w, "method");
     else
         printf("lag: frames from a change of the lights until relMSE is within %.0f%% of its steady state (the mean "
                "of the last quarter of the frames before the next change):\n%-*s",
@@ -143,8 +159,7 @@ static void print_lag_table(const struct compare_setup *st, const struct compare
         printf("%-*s", w, st->specs[k].label);
         for (int d = 0; d <= any_dn; d++)
             for (int c = 0; c < nc; c++) {
-                const double v = blocks ? (d ? res[k].lag_block_dn[c] : res[k].lag_block[c])
-                                        : (d ? res[k].lag_dn[c] : res[k].lag[c]);
+                const double v = lag_values(&res[k], kind, d)[c];
                 char cell[32];
                 table_cell(cell, sizeof cell, d ? " %24.0f" : " %14.0f", d ? 25 : 15, v);
                 printf(" %s", cell);
@@ -153,7 +168,7 @@ static void print_lag_table(const struct compare_setup *st, const struct compare
     }
 }
 
-/* The lag after each change of an animated scene's lights: the image's, then its blocks'. */
+/* The lag after each change of an animated scene's lights: the image's, its blocks', the ghost. */
 static void print_lag(const struct compare_setup *st, const struct compare_result *res, int w)
 {
     int changes[COMPARE_MAX_CHANGES];
@@ -164,8 +179,9 @@ static void print_lag(const struct compare_setup *st, const struct compare_resul
         printf("(the scene's lights change: --ref-every 1 measures the lag after each change)\n");
         return;
     }
-    print_lag_table(st, res, w, changes, nc, 0);
-    print_lag_table(st, res, w, changes, nc, 1);
+    print_lag_table(st, res, w, changes, nc, LAG_IMAGE);
+    print_lag_table(st, res, w, changes, nc, LAG_BLOCKS);
+    print_lag_table(st, res, w, changes, nc, LAG_GHOST);
 }
 
 /* The largest of a row's lags (NaN without one). */
@@ -301,7 +317,8 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                  "smape_denoised_sem,mape_disoccluded_denoised,mape_disoccluded_denoised_sem,temporal_cov_denoised,"
                  "ref_relmse,ref_mape,ref_smape,relmse_net,flip,flip_sem,ref_mape_disoccluded,flicker1,flicker4,"
                  "flicker16,boiling_index,flicker1_denoised,flicker4_denoised,flicker16_denoised,"
-                 "boiling_index_denoised,lag_frames,lag_frames_denoised,lag_frames_blocks,lag_frames_blocks_denoised",
+                 "boiling_index_denoised,lag_frames,lag_frames_denoised,lag_frames_blocks,lag_frames_blocks_denoised,"
+                 "ghost_frames,ghost_frames_denoised",
                  msg) != 0) {
         cli_error("%s", msg);
         rc = EXIT_RUNTIME;
@@ -407,10 +424,10 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
                 snprintf(fl[0], sizeof fl[0], "%.6g", c->flip);
             if (c->runs > 1 && isfinite(c->flip_sem))
                 snprintf(fl[1], sizeof fl[1], "%.6g", c->flip_sem);
-            /* the largest lag after a change of the lights, then denoised; the same of the blocks' */
-            char lag[4][32] = {"", "", "", ""};
-            const double *lags[4] = {c->lag, c->lag_dn, c->lag_block, c->lag_block_dn};
-            for (int d = 0; d < 4; d++)
+            /* the largest lag after a change of the lights, then denoised; the same of the blocks', the ghost's */
+            char lag[6][32] = {"", "", "", "", "", ""};
+            const double *lags[6] = {c->lag, c->lag_dn, c->lag_block, c->lag_block_dn, c->ghost, c->ghost_dn};
+            for (int d = 0; d < 6; d++)
                 if (isfinite(worst_lag(lags[d])))
                     snprintf(lag[d], sizeof lag[d], "%.0f", worst_lag(lags[d]));
             char fk[2 * FLICKER_COLS][32]; /* flicker and boiling index, as rendered then denoised */
@@ -422,12 +439,12 @@ int compare_write_table(const struct compare_setup *st, const char *out_dir, con
             }
             csv_row(&csv,
                     "%s,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,"
-                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s",
+                    "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s",
                     field, c->ms_per_frame, c->spp, c->instances, c->err.relmse, c->err.mape, c->err.smape,
                     c->err.luma_rmse, c->runs > 0 ? c->runs : 1, cov, sem[0], sem[1], sem[2], dis[0], sem[3], dis[1],
                     gr[0], gr[1], gr[2], gr[3], gr[4], gr[5], dn[0], dn[1], dn[2], dn[3], dn[4], dn[5], dn[6], dn[7],
                     dn[8], own[0], own[1], own[2], net, fl[0], fl[1], own[3], fk[0], fk[1], fk[2], fk[3], fk[4], fk[5],
-                    fk[6], fk[7], lag[0], lag[1], lag[2], lag[3]);
+                    fk[6], fk[7], lag[0], lag[1], lag[2], lag[3], lag[4], lag[5]);
         }
     }
     print_denoised(specs, res, n, w, runs, p->denoise.method);

@@ -53,10 +53,10 @@ void compare_track_begin(struct compare_track *t)
 {
     memset(t->sums, 0, sizeof(*t->sums) * (size_t)t->frames);
     const size_t block_sums = sizeof(double) * (size_t)t->frames * (size_t)t->blocks;
-    if (t->block_err)
-        memset(t->block_err, 0, block_sums);
-    if (t->block_err_dn)
-        memset(t->block_err_dn, 0, block_sums);
+    double *const block[4] = {t->block_err, t->block_err_dn, t->block_lum, t->block_lum_dn};
+    for (int k = 0; k < 4; k++)
+        if (block[k])
+            memset(block[k], 0, block_sums);
     t->clamped = t->measured = 0;
     t->has_dn = 0;
 }
@@ -72,6 +72,13 @@ void compare_track_stats(struct compare_track *t, int f, double ms, const struct
     s->bp_accepted += (double)st->temporal.bp_accepted / vp;
     s->splat_received += (double)st->temporal.splat_received / vp;
     s->splat_accepted += (double)st->temporal.splat_accepted / vp;
+}
+
+/* Rec. 709 luminance of each of an RGB image's n pixels. */
+static void luminance_map(const float *rgb, size_t n, float *out)
+{
+    for (size_t i = 0; i < n; i++)
+        out[i] = 0.2126f * rgb[3 * i] + 0.7152f * rgb[3 * i + 1] + 0.0722f * rgb[3 * i + 2];
 }
 
 static int reference_index(const struct compare_track *t, int f)
@@ -100,28 +107,39 @@ static void store_luminance(struct compare_track *t, float *seq, int run, int f,
     t->measured += npix;
 }
 
-/* With changes of the lights, frame f's relMSE per COMPARE_LAG_BLOCK block (the mean of its pixels'
- * terms) added to *sums (frames x blocks, allocated here at the first). */
-static void add_block_errors(struct compare_track *t, double **sums, int f, const float *image, const float *ref)
+/* The mean of map (w wide) over block b (COMPARE_LAG_BLOCK wide, bw of them per row). */
+static double block_mean(const float *map, int w, int bw, int b)
+{
+    const int x0 = (b % bw) * COMPARE_LAG_BLOCK, y0 = (b / bw) * COMPARE_LAG_BLOCK;
+    double e = 0.0;
+    for (int y = y0; y < y0 + COMPARE_LAG_BLOCK; y++)
+        for (int x = x0; x < x0 + COMPARE_LAG_BLOCK; x++)
+            e += map[(size_t)y * (size_t)w + (size_t)x];
+    return e / (COMPARE_LAG_BLOCK * COMPARE_LAG_BLOCK);
+}
+
+/* With changes of the lights, frame f's relMSE and mean luminance per COMPARE_LAG_BLOCK block added to
+ * *sums and *lum (frames x blocks each, allocated here at the first). */
+static void add_block_errors(struct compare_track *t, double **sums, double **lum, int f, const float *image,
+                             const float *ref)
 {
     if (t->nchanges < 1 || t->blocks < 1 || t->nref < t->frames) /* the lag needs every frame's error */
         return;
     const int w = t->width, bw = w / COMPARE_LAG_BLOCK;
-    if (!*sums)
+    const size_t n = (size_t)w * (size_t)t->height;
+    if (!*sums) {
         *sums = xcalloc((size_t)t->frames * (size_t)t->blocks, sizeof(double));
-    if (!t->err_map)
-        t->err_map = xmalloc(sizeof(float) * (size_t)w * (size_t)t->height);
-    restir_metrics_relmse_map(image, ref, (size_t)w * (size_t)t->height, t->err_map);
-    double *out = *sums + (size_t)f * (size_t)t->blocks;
-    const double per_pixel = 1.0 / (COMPARE_LAG_BLOCK * COMPARE_LAG_BLOCK);
-    for (int b = 0; b < t->blocks; b++) {
-        const int x0 = (b % bw) * COMPARE_LAG_BLOCK, y0 = (b / bw) * COMPARE_LAG_BLOCK;
-        double e = 0.0;
-        for (int y = y0; y < y0 + COMPARE_LAG_BLOCK; y++)
-            for (int x = x0; x < x0 + COMPARE_LAG_BLOCK; x++)
-                e += t->err_map[(size_t)y * (size_t)w + (size_t)x];
-        out[b] += e * per_pixel;
+        *lum = xcalloc((size_t)t->frames * (size_t)t->blocks, sizeof(double));
     }
+    if (!t->err_map)
+        t->err_map = xmalloc(sizeof(float) * n);
+    restir_metrics_relmse_map(image, ref, n, t->err_map);
+    double *out = *sums + (size_t)f * (size_t)t->blocks, *out_lum = *lum + (size_t)f * (size_t)t->blocks;
+    for (int b = 0; b < t->blocks; b++)
+        out[b] += block_mean(t->err_map, w, bw, b);
+    luminance_map(image, n, t->err_map);
+    for (int b = 0; b < t->blocks; b++)
+        out_lum[b] += block_mean(t->err_map, w, bw, b);
 }
 
 void compare_track_denoised(struct compare_track *t, int run, int f, const float *denoised)
@@ -131,7 +149,7 @@ void compare_track_denoised(struct compare_track *t, int run, int f, const float
         restir_metrics_compute(denoised, t->ref[reference_index(t, f)], (size_t)t->width * (size_t)t->height, NULL, &e);
         t->sums[f].relmse_dn += e.relmse;
         t->has_dn = 1;
-        add_block_errors(t, &t->block_err_dn, f, denoised, t->ref[reference_index(t, f)]);
+        add_block_errors(t, &t->block_err_dn, &t->block_lum_dn, f, denoised, t->ref[reference_index(t, f)]);
     }
     if (!t->seq || f < t->cov_first)
         return;
@@ -153,7 +171,7 @@ void compare_track_image(struct compare_track *t, int run, int f, const float *i
         s->mape += e.mape;
         s->smape += e.smape;
         s->luma_rmse += e.luma_rmse;
-        add_block_errors(t, &t->block_err, f, image, t->ref[k]);
+        add_block_errors(t, &t->block_err, &t->block_lum, f, image, t->ref[k]);
     }
     if (t->seq && f >= t->cov_first) {
         /* Rec. 709 luminance, as restir_metrics_luminance, clamped at 0. 000 Eq. 17 divides each pixel's deviation
@@ -211,6 +229,14 @@ static int by_value(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* The COMPARE_LAG_QUANTILE quantile of vals[0 .. n-1] (n >= 1; sorts them). */
+static double quantile(double *vals, int n)
+{
+    qsort(vals, (size_t)n, sizeof(double), by_value);
+    const int q = (int)ceil(COMPARE_LAG_QUANTILE * n) - 1;
+    return vals[q < 0 ? 0 : q];
+}
+
 void compare_track_lag(const struct compare_track *t, int denoised, double *lag, double *block)
 {
     const double *block_err = denoised ? t->block_err_dn : t->block_err;
@@ -238,14 +264,65 @@ void compare_track_lag(const struct compare_track *t, int denoised, double *lag,
             if (isfinite(l))
                 lags[n++] = l;
         }
-        if (n > 0) { /* the quantile: the smallest lag at least that share of the blocks reach */
-            qsort(lags, (size_t)n, sizeof(double), by_value);
-            const int q = (int)ceil(COMPARE_LAG_QUANTILE * n) - 1;
-            block[c] = lags[q < 0 ? 0 : q];
-        }
+        if (n > 0) /* the quantile: the smallest lag at least that share of the blocks reach */
+            block[c] = quantile(lags, n);
     }
     free(image);
     free(lags);
+}
+
+void compare_track_ghost(const struct compare_track *t, int denoised, double *ghost)
+{
+    const double *lum = denoised ? t->block_lum_dn : t->block_lum;
+    double *dev = xmalloc(sizeof(double) * (size_t)t->frames * (size_t)(t->blocks + 1));
+    double *excess = xmalloc(sizeof(double) * (size_t)t->frames), *vals = xmalloc(sizeof(double) * (t->blocks + 1));
+    float *ref_lum = xmalloc(sizeof(float) * (size_t)t->width * (size_t)t->height);
+    const int bw = t->width / COMPARE_LAG_BLOCK;
+    for (int c = 0; c < t->nchanges; c++) {
+        const int next = c + 1 < t->nchanges ? t->change[c + 1] : t->frames;
+        const int from = t->change[c], end = next < t->frames ? next : t->frames;
+        ghost[c] = NAN;
+        if (!lum || end - from < 4 || from < 0 || (denoised && !t->has_dn))
+            continue;
+        /* each lit block's deviation |mean - reference| / reference at every frame of the segment */
+        for (int f = from; f < end; f++) {
+            luminance_map(t->ref[reference_index(t, f)], (size_t)t->width * (size_t)t->height, ref_lum);
+            double image_mean = 0.0;
+            for (int b = 0; b < t->blocks; b++)
+                image_mean += block_mean(ref_lum, t->width, bw, b) / t->blocks;
+            for (int b = 0; b < t->blocks; b++) {
+                const double r = block_mean(ref_lum, t->width, bw, b);
+                dev[(size_t)f * (size_t)t->blocks + (size_t)b] =
+                    r > COMPARE_GHOST_DARK * image_mean ? fabs(lum[(size_t)f * (size_t)t->blocks + (size_t)b] / t->runs - r) / r
+                                                         : NAN;
+            }
+        }
+        /* its excess over the block's own steady deviation (the mean of the segment's last quarter: noise and
+         * a denoiser's bias stay in it), and the quantile of the excess over the blocks per frame */
+        const int tail = (end - from) / 4 > 1 ? (end - from) / 4 : 1;
+        for (int b = 0; b < t->blocks; b++) {
+            double steady = 0.0;
+            for (int f = end - tail; f < end; f++)
+                steady += dev[(size_t)f * (size_t)t->blocks + (size_t)b] / tail;
+            for (int f = from; f < end; f++)
+                dev[(size_t)f * (size_t)t->blocks + (size_t)b] -= steady;
+        }
+        for (int f = from; f < end; f++) {
+            int n = 0;
+            for (int b = 0; b < t->blocks; b++)
+                if (isfinite(dev[(size_t)f * (size_t)t->blocks + (size_t)b]))
+                    vals[n++] = dev[(size_t)f * (size_t)t->blocks + (size_t)b];
+            excess[f] = n > 0 ? quantile(vals, n) : 0.0;
+        }
+        int settled = end; /* the first frame from which the quantile stays within the tolerance */
+        while (settled > from && excess[settled - 1] <= COMPARE_LAG_TOLERANCE)
+            settled--;
+        ghost[c] = settled < end ? settled - from : NAN;
+    }
+    free(dev);
+    free(excess);
+    free(vals);
+    free(ref_lum);
 }
 
 void compare_track_flicker(const struct compare_track *t, int denoised, double out[FLICKER_COLS])
@@ -290,6 +367,8 @@ void compare_track_fini(struct compare_track *t)
     free(t->seq_dn);
     free(t->block_err);
     free(t->block_err_dn);
+    free(t->block_lum);
+    free(t->block_lum_dn);
     free(t->err_map);
     memset(t, 0, sizeof *t);
 }

@@ -23,6 +23,7 @@
 #define COMPARE_LAG_TOLERANCE 0.1 /* back "within 10%" of the steady state */
 #define COMPARE_LAG_BLOCK 16        /* the blocks whose lag compare_track_lag measures too, in pixels */
 #define COMPARE_LAG_QUANTILE 0.9    /* ... and the quantile of their lags it reports */
+#define COMPARE_GHOST_DARK 0.01     /* compare_track_ghost leaves out blocks darker than this share of the mean */
 
 /* One frame of one spec, summed over its runs (compare_track_end divides). */
 struct compare_frame_sums {
@@ -50,6 +51,7 @@ struct compare_track {
     int blocks;        /* whole COMPARE_LAG_BLOCK blocks from the top-left corner (0: the image is smaller) */
     double *block_err, *block_err_dn; /* with changes: frames x blocks, each block's mean relMSE summed over
                                          the runs at every reference frame (allocated by the first) */
+    double *block_lum, *block_lum_dn; /* ... and each block's mean luminance, the same way */
     float *err_map;    /* scratch: one frame's per-pixel relMSE terms */
     struct csv_writer csv; /* DIR/frames.csv */
     int csv_open;
@@ -90,6 +92,16 @@ double compare_track_end(struct compare_track *t, const char *label);
  * the image lags there, however little it moves the whole image's error); NaN without a whole block.
  * denoised: of the denoised frames (NaN without them). Writes t->nchanges values into lag and block. */
 void compare_track_lag(const struct compare_track *t, int denoised, double *lag, double *block);
+/* Before the next spec's compare_track_begin: the ghost after each change of the lights, the frames from
+ * the change until, in COMPARE_LAG_QUANTILE of the COMPARE_LAG_BLOCK blocks (those at least
+ * COMPARE_GHOST_DARK of the image's mean), the deviation of the block's mean luminance (over the runs)
+ * from the reference's, relative to it, is at most COMPARE_LAG_TOLERANCE above the block's own steady
+ * deviation (the mean of the segment's last quarter, which holds the noise of its mean and a denoiser's
+ * bias), from that frame to the next change: how long an old light shows, apart from the noise that
+ * compare_track_lag's relMSE counts (a denoiser that starts its history again after a change has no
+ * ghost, and lags while its history regrows). NaN as compare_track_lag's. Writes t->nchanges values into
+ * ghost. */
+void compare_track_ghost(const struct compare_track *t, int denoised, double *ghost);
 /* Before compare_track_end_denoised: flicker at flicker_block's scales and the boiling index
  * (restir_metrics_flicker, _boiling_index) of the window's frames (denoised: the denoised ones)
  * against the last frame's reference, over the runs; NaN without a reference or those frames, or when

@@ -97,6 +97,14 @@ long long gbuffer_pass(struct gbuffer *g, const struct scene *s, const struct ca
             g->motion[2 * i] = g->motion[2 * i + 1] = prev_view ? GBUFFER_NO_MOTION : 0.0f;
             float *key = &g->select_key[(size_t)i * GBUFFER_KEY];
             if (!hit[k]) {
+                /* the sky's motion: where its direction (a point at infinity) was in the previous view,
+                 * for the denoisers' antialiasing of the silhouettes against it */
+                float qx, qy;
+                if (prev_view && camera_view_project(prev_view, v3_madd(view->position, dir, GBUFFER_SKY_DISTANCE),
+                                                     &qx, &qy)) {
+                    g->motion[2 * i] = qx - px;
+                    g->motion[2 * i + 1] = qy - py;
+                }
                 memset(key, 0, sizeof(float) * GBUFFER_KEY);
                 g->valid[i] = 0;
                 g->emission[i] = scene_env_radiance(s, dir); /* the sky seen */

@@ -9,6 +9,7 @@
 #include "shading/bsdf.h"
 
 #define GBUFFER_NO_MOTION 1e30f
+#define GBUFFER_SKY_DISTANCE 1e6f /* how far along its ray a pixel that sees nothing is reprojected from */
 
 /* A surface point as the passes shade it: position, normals, outgoing direction and the BSDF
  * prepared for that direction (its frame and wo-dependent factors). */
@@ -29,7 +30,8 @@ struct gbuffer {
     int *material;
     int *object;
     float *motion;        /* 2 per pixel: backward motion (previous - current image position), pixels;
-                             GBUFFER_NO_MOTION when the point was behind the previous camera */
+                             GBUFFER_NO_MOTION when the point was behind the previous camera; for a pixel
+                             that sees nothing, its direction's (from GBUFFER_SKY_DISTANCE away) */
     vec3 *emission;       /* radiance emitted toward the camera by the primary hit */
     vec3 *sub_pixel;      /* x, y: image position of the primary ray (pixel units); z unused */
     unsigned char *valid; /* 1 when the primary ray hit geometry */

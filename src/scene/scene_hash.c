@@ -40,6 +40,21 @@ uint64_t scene_content_hash(const struct scene *s)
         if (e->rgb)
             h = fnv1a64(h, e->rgb, 3 * sizeof(float) * (size_t)e->width * (size_t)e->height);
     }
+    for (int m = 0; s->emission_anim && m < s->num_materials; m++) { /* animated emitters: their keys */
+        const struct emission_animation *a = &s->emission_anim[m];
+        const int head[3] = {a->n, a->step, (a->translate != NULL) + 2 * (a->rotate != NULL)};
+        h = fnv1a64(h, head, sizeof head);
+        if (a->n < 1)
+            continue;
+        h = fnv1a64(h, a->frame, sizeof(float) * (size_t)a->n);
+        h = fnv1a64(h, a->strength, sizeof(float) * (size_t)a->n);
+        if (a->translate)
+            h = fnv1a64(h, a->translate, sizeof(vec3) * (size_t)a->n);
+        if (a->rotate)
+            h = fnv1a64(h, a->rotate, sizeof(vec3) * (size_t)a->n);
+        h = fnv1a64(h, &a->pivot, sizeof(vec3));
+        h = fnv1a64(h, &a->emission, sizeof(vec3));
+    }
     for (int t = 0; t < s->num_textures; t++) {
         const struct texture *x = &s->textures[t];
         const int size[2] = {x->width, x->height};

@@ -411,7 +411,8 @@ static void check_compare(void)
                          "temporal_cov_denoised,ref_relmse,ref_mape,ref_smape,relmse_net,flip,flip_sem,"
                          "ref_mape_disoccluded,flicker1,flicker4,flicker16,boiling_index,"
                          "flicker1_denoised,flicker4_denoised,flicker16_denoised,boiling_index_denoised,lag_frames,"
-                         "lag_frames_denoised,lag_frames_blocks,lag_frames_blocks_denoised\n";
+                         "lag_frames_denoised,lag_frames_blocks,lag_frames_blocks_denoised,ghost_frames,"
+                         "ghost_frames_denoised\n";
     double grad_relmse[4], grad_trim[4], grad_mape[4], flip[4];
     EXPECT(strncmp(csv, header, strlen(header)) == 0, "%s: wrong header:\n%s", path, csv);
     int rows = 0;
