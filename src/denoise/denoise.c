@@ -33,6 +33,7 @@ void denoise_settings_defaults(struct denoise_settings *s)
     s->svgf_plane_max = 0.01f;
     s->svgf_taa_alpha = 0.1f;
     s->svgf_taa_motion = 0.5f;
+    s->svgf_taa_sky = 1;
     s->atrous_iterations = 5;
     s->atrous_sigma_color = 1.0f;
     s->atrous_sigma_normal = 0.3f;

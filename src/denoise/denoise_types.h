@@ -54,6 +54,7 @@ struct denoise_settings {
     float svgf_taa_motion;    /* ... only where the pixel moved at most this many pixels (0.5; 1e6: all) */
     int svgf_temporal_gradient; /* 1: the method's temporal gradient raises the moving averages' weights
                                    (A-SVGF, Schied et al. 2018) */
+    int svgf_taa_sky;         /* ... also on the pixels that see nothing, from the history's own (1) */
     int svgf_taa_clamp;       /* ... its history clamped to the 3x3 neighbourhood's range: where the pixel
                                  moved (DENOISE_TAA_CLAMP_MOVING), everywhere (_ALWAYS, Karis), nowhere (_OFF) */
     /* edge-avoiding à-trous (Dammertz et al. 2010, Sec. 3) */

@@ -361,10 +361,10 @@ static void svgf_post(void *state, const struct denoise_settings *s, const struc
             const float m2 = mx * mx + my * my;
             const int still = m2 <= s->svgf_taa_motion * s->svgf_taa_motion;
             len[i] = 1.0f;
-            /* the sky too (a pixel that sees nothing): its silhouettes alias as much as the surfaces' */
-            const float kind = f->use[i] != 0.0f                                               ? TAA_SURFACE
-                               : mx < DENOISE_NO_MOTION && isfinite(rgb[3 * i] + rgb[3 * i + 1] + rgb[3 * i + 2]) ? TAA_SKY
-                                                                                                            : 0.0f;
+            /* the sky too (a pixel that sees nothing: svgf_taa_sky): its silhouettes alias as the surfaces' do */
+            const int sky = s->svgf_taa_sky && mx < DENOISE_NO_MOTION &&
+                            isfinite(rgb[3 * i] + rgb[3 * i + 1] + rgb[3 * i + 2]);
+            const float kind = f->use[i] != 0.0f ? TAA_SURFACE : sky ? TAA_SKY : 0.0f;
             taa_kind[i] = kind;
             if (!(on && still && kind != 0.0f && taa_history(v, f, x, y, kind, hc, &frames)))
                 continue; /* the output stays this frame's */

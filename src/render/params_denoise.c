@@ -63,6 +63,12 @@ static const struct param_def denoise_rows[] = {
      "frame; under camera motion the history lets light bleed across silhouettes (docs/DENOISE.md); 1e6: "
      "everywhere, as Karis 2014",
      NULL},
+    {"denoise.svgf.taa_sky", P_BOOL, F(denoise.svgf_taa_sky), 0, 1, "on", NULL,
+     "svgf: the antialiasing also on the pixels that see nothing, from the sky pixels of its history (through "
+     "their direction's motion, never clamped): where a jittered pixel straddles a silhouette against the sky "
+     "(an emitter's edge, a leaf) its output otherwise alternates between the two (docs/DENOISE.md); off: the "
+     "sky is left raw, as before issue 58",
+     NULL},
     {"denoise.svgf.temporal_gradient", P_BOOL, F(denoise.svgf_temporal_gradient), 0, 1, "off", NULL,
      "svgf: A-SVGF (Schied et al. 2018): where the method's temporal gradient lambda (the relative change of "
      "the lighting its reused samples see between frames, 7x7 box-filtered) is high, the colour's, moments' "
