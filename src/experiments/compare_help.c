@@ -49,10 +49,11 @@ void compare_usage(FILE *out)
             "lag_frames_blocks and its _denoised: the same measured on each whole 16 x 16 block's own relMSE,\n"
             "the 90%% quantile over the blocks (a change seen by part of the image lags there however little it\n"
             "moves the whole image's error); ghost_frames and its _denoised: the frames after a change until,\n"
-            "in 90%% of the 16 x 16 blocks (those at least 1%% of the image's mean), the mean's deviation\n"
-            "from the reference's stays within 10%% of the reference above the block's steady deviation\n"
-            "(last quarter of the frames before the next change): how long an old light shows, apart from\n"
-            "noise and a denoiser's bias; the tables print each change's)\n",
+            "in 90%% of the 16 x 16 blocks (those at least 1%% of the image's mean before the change or\n"
+            "after), the mean's deviation from the reference's stays within 10%% of the block's brighter\n"
+            "reference (before the change or then) above its steady deviation (last quarter of the frames\n"
+            "before the next change): how long an old light shows, apart from noise and a denoiser's bias;\n"
+            "the tables print each change's)\n",
             by_spp);
     fprintf(out,
             "and each row's last frame to DIR/FOLDER/, where FOLDER is the SPEC with every character other\n"

@@ -276,6 +276,7 @@ void compare_track_ghost(const struct compare_track *t, int denoised, double *gh
     const double *lum = denoised ? t->block_lum_dn : t->block_lum;
     double *dev = xmalloc(sizeof(double) * (size_t)t->frames * (size_t)(t->blocks + 1));
     double *excess = xmalloc(sizeof(double) * (size_t)t->frames), *vals = xmalloc(sizeof(double) * (t->blocks + 1));
+    double *before = xmalloc(sizeof(double) * (size_t)(t->blocks + 1));
     float *ref_lum = xmalloc(sizeof(float) * (size_t)t->width * (size_t)t->height);
     const int bw = t->width / COMPARE_LAG_BLOCK;
     for (int c = 0; c < t->nchanges; c++) {
@@ -284,17 +285,32 @@ void compare_track_ghost(const struct compare_track *t, int denoised, double *gh
         ghost[c] = NAN;
         if (!lum || end - from < 4 || from < 0 || (denoised && !t->has_dn))
             continue;
-        /* each lit block's deviation |mean - reference| / reference at every frame of the segment */
+        /* each block's deviation |mean - reference| at every frame of the segment, over the brighter of
+         * the block's reference then and just before the change (so that a block a switch-off leaves dark
+         * is measured against the light it had); blocks dark at both, below COMPARE_GHOST_DARK of the
+         * image's mean, are left out */
+        int measured = 1;
+        for (int f = from - (from > 0); f < end; f++)
+            measured &= reference_index(t, f) >= 0;
+        if (!measured)
+            continue;
+        const size_t npix = (size_t)t->width * (size_t)t->height;
+        luminance_map(t->ref[reference_index(t, from > 0 ? from - 1 : from)], npix, ref_lum);
+        double before_mean = 0.0;
+        for (int b = 0; b < t->blocks; b++) {
+            before[b] = block_mean(ref_lum, t->width, bw, b);
+            before_mean += before[b] / t->blocks;
+        }
         for (int f = from; f < end; f++) {
-            luminance_map(t->ref[reference_index(t, f)], (size_t)t->width * (size_t)t->height, ref_lum);
+            luminance_map(t->ref[reference_index(t, f)], npix, ref_lum);
             double image_mean = 0.0;
             for (int b = 0; b < t->blocks; b++)
                 image_mean += block_mean(ref_lum, t->width, bw, b) / t->blocks;
             for (int b = 0; b < t->blocks; b++) {
-                const double r = block_mean(ref_lum, t->width, bw, b);
+                const double r = block_mean(ref_lum, t->width, bw, b), scale = fmax(r, before[b]);
+                const int lit = r > COMPARE_GHOST_DARK * image_mean || before[b] > COMPARE_GHOST_DARK * before_mean;
                 dev[(size_t)f * (size_t)t->blocks + (size_t)b] =
-                    r > COMPARE_GHOST_DARK * image_mean ? fabs(lum[(size_t)f * (size_t)t->blocks + (size_t)b] / t->runs - r) / r
-                                                         : NAN;
+                    lit ? fabs(lum[(size_t)f * (size_t)t->blocks + (size_t)b] / t->runs - r) / scale : NAN;
             }
         }
         /* its excess over the block's own steady deviation (the mean of the segment's last quarter: noise and
@@ -312,7 +328,7 @@ void compare_track_ghost(const struct compare_track *t, int denoised, double *gh
             for (int b = 0; b < t->blocks; b++)
                 if (isfinite(dev[(size_t)f * (size_t)t->blocks + (size_t)b]))
                     vals[n++] = dev[(size_t)f * (size_t)t->blocks + (size_t)b];
-            excess[f] = n > 0 ? quantile(vals, n) : 0.0;
+            excess[f] = n > 0 ? quantile(vals, n) : NAN;
         }
         int settled = end; /* the first frame from which the quantile stays within the tolerance */
         while (settled > from && excess[settled - 1] <= COMPARE_LAG_TOLERANCE)
@@ -321,6 +337,7 @@ void compare_track_ghost(const struct compare_track *t, int denoised, double *gh
     }
     free(dev);
     free(excess);
+    free(before);
     free(vals);
     free(ref_lum);
 }

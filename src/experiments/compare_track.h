@@ -94,13 +94,14 @@ double compare_track_end(struct compare_track *t, const char *label);
 void compare_track_lag(const struct compare_track *t, int denoised, double *lag, double *block);
 /* Before the next spec's compare_track_begin: the ghost after each change of the lights, the frames from
  * the change until, in COMPARE_LAG_QUANTILE of the COMPARE_LAG_BLOCK blocks (those at least
- * COMPARE_GHOST_DARK of the image's mean), the deviation of the block's mean luminance (over the runs)
- * from the reference's, relative to it, is at most COMPARE_LAG_TOLERANCE above the block's own steady
+ * COMPARE_GHOST_DARK of the image's mean then or in the frame before the change), the deviation of the
+ * block's mean luminance (over the runs) from the reference's, relative to the brighter of the block's
+ * reference then and before the change, is at most COMPARE_LAG_TOLERANCE above the block's own steady
  * deviation (the mean of the segment's last quarter, which holds the noise of its mean and a denoiser's
  * bias), from that frame to the next change: how long an old light shows, apart from the noise that
  * compare_track_lag's relMSE counts (a denoiser that starts its history again after a change has no
- * ghost, and lags while its history regrows). NaN as compare_track_lag's. Writes t->nchanges values into
- * ghost. */
+ * ghost, and lags while its history regrows). NaN as compare_track_lag's, and where a frame has no such
+ * block. Writes t->nchanges values into ghost. */
 void compare_track_ghost(const struct compare_track *t, int denoised, double *ghost);
 /* Before compare_track_end_denoised: flicker at flicker_block's scales and the boiling index
  * (restir_metrics_flicker, _boiling_index) of the window's frames (denoised: the denoised ones)

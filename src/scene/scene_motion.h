@@ -4,7 +4,7 @@
  * vertices, shading normals and tangents, the triangles' normals, the emitters' records and
  * rectangles, the emitter BVH's bounds (refitted: its tree and leaf order stay, which ReGIR's cut
  * order relies on) and the ray-tracing BVH (scene_rt_update_moving: the moving triangles are their
- * own Embree geometry). The scene keeps the triangles' rest pose, where the file put them, and
+ * own Embree geometry, refitted, in a two-level scene). The scene keeps the triangles' rest pose, where the file put them, and
  * poses every frame from it, so no rounding accumulates. */
 #ifndef RESTIR_SCENE_SCENE_MOTION_H
 #define RESTIR_SCENE_SCENE_MOTION_H
@@ -37,7 +37,8 @@ static inline int scene_has_moving_emitters(const struct scene *s) { return s->m
 /* Called by scene_builder_end after the emitter table is built and before the ray-tracing BVH:
  * keeps the rest pose of every triangle whose material has translation or rotation keys. Nothing
  * to do (0) without s->emission_anim. Returns 0, or -1 with msg when a moving triangle shares a
- * vertex with a triangle that stays (the motion would tear the other). */
+ * vertex with any other triangle (each corner is posed on its own; the scene builder gives every
+ * triangle its own three). */
 int scene_motion_prepare(struct scene *s, char *msg);
 
 /* The moving triangles, ascending; returns how many (0 for a scene whose emitters stand still). */

@@ -113,12 +113,22 @@ static RTCScene new_scene(RTCDevice device)
     return scene;
 }
 
-/* Geometry id of scene refits its BVH when its vertices move (a dynamic scene keeps the others'). */
-static void set_refit(RTCScene scene, unsigned id)
+/* Geometry id of scene gets a BVH of its own built at `quality` (RTC_BUILD_QUALITY_REFIT: refitted when
+ * its vertices move). Embree reads a geometry's quality only in a scene of low build quality, whose
+ * commit builds a two-level BVH: each geometry's own, rebuilt only when it changed, under a quickly
+ * built top level (Embree 3's rtcSetGeometryBuildQuality). */
+static void set_quality(RTCScene scene, unsigned id, enum RTCBuildQuality quality)
 {
     RTCGeometry geom = rtcGetGeometry(scene, id);
-    rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_REFIT);
+    rtcSetGeometryBuildQuality(geom, quality);
     rtcCommitGeometry(geom);
+}
+
+/* A scene whose geometries keep their own BVHs (set_quality), for one that holds moving emitters. */
+static void make_two_level(RTCScene scene)
+{
+    rtcSetSceneFlags(scene, RTC_SCENE_FLAG_DYNAMIC);
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_LOW);
 }
 
 /* The main scene's geometries (struct scene_rt's geom_tris). */
@@ -128,8 +138,8 @@ static int tri_masked(const struct scene *s, int t) { return s->materials[s->tri
 
 /* The main scene: all triangles as one geometry when nothing is masked or moves, else the opaque
  * ones (geometry 0) apart from the masked ones (geometry 1, filtered) and the moving emitters'
- * (geometry 2, filtered where one of them is masked), in a dynamic scene whose build keeps the
- * still geometries' BVHs when the moving one is refitted (scene_rt_update_moving). */
+ * (geometry 2, filtered where one of them is masked); with moving emitters a two-level scene whose
+ * commit keeps the still geometries' BVHs and refits the moving one's (scene_rt_update_moving). */
 static RTCScene build_main(struct scene_rt *rt, const struct scene *s, const int *moving_tris, int moving)
 {
     int n[GEOM_COUNT] = {0, 0, 0}, moving_masked = 0;
@@ -147,7 +157,7 @@ static RTCScene build_main(struct scene_rt *rt, const struct scene *s, const int
         rc = attach_triangles(rt->device, scene, 0, s, NULL, s->num_tris, NULL);
     } else {
         if (moving > 0)
-            rtcSetSceneFlags(scene, RTC_SCENE_FLAG_DYNAMIC);
+            make_two_level(scene);
         for (int g = 0; g < GEOM_COUNT; g++)
             rt->geom_tris[g] = xmalloc(sizeof(int) * (size_t)(n[g] > 0 ? n[g] : 1));
         int at[GEOM_COUNT] = {0, 0, 0};
@@ -160,8 +170,9 @@ static RTCScene build_main(struct scene_rt *rt, const struct scene *s, const int
         for (int g = 0; g < GEOM_COUNT && rc == 0; g++)
             if (n[g] > 0)
                 rc = attach_triangles(rt->device, scene, (unsigned)g, s, rt->geom_tris[g], n[g], filter[g]);
-        if (rc == 0 && moving > 0)
-            set_refit(scene, GEOM_MOVING);
+        for (int g = 0; g < GEOM_COUNT && rc == 0 && moving > 0; g++)
+            if (n[g] > 0)
+                set_quality(scene, (unsigned)g, g == GEOM_MOVING ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
         rt->num_moving = moving;
     }
     if (rc != 0) {
@@ -198,8 +209,10 @@ void scene_rt_update_moving(struct scene *s)
         return;
     update_vertices(rt->scene, GEOM_MOVING, s, rt->geom_tris[GEOM_MOVING], rt->num_moving);
     rtcCommitScene(rt->scene);
-    update_vertices(rt->emitters, 0, s, s->emitter_tri, s->num_emitters);
-    rtcCommitScene(rt->emitters);
+    if (rt->emitters) { /* none where every emitter's emission is 0 (an environment lights the scene) */
+        update_vertices(rt->emitters, 0, s, s->emitter_tri, s->num_emitters);
+        rtcCommitScene(rt->emitters);
+    }
 }
 
 /* The emissive triangles alone (primID = emitter index), filtered when any material is masked; refitted
@@ -208,14 +221,14 @@ static RTCScene build_emitters(struct scene_rt *rt, const struct scene *s, int m
 {
     RTCScene scene = new_scene(rt->device);
     if (rt->num_moving > 0)
-        rtcSetSceneFlags(scene, RTC_SCENE_FLAG_DYNAMIC);
+        make_two_level(scene);
     if (attach_triangles(rt->device, scene, 0, s, s->emitter_tri, s->num_emitters,
                          masked ? &rt->alpha_emitters : NULL) != 0) {
         rtcReleaseScene(scene);
         return NULL;
     }
     if (rt->num_moving > 0)
-        set_refit(scene, 0);
+        set_quality(scene, 0, RTC_BUILD_QUALITY_REFIT);
     rtcCommitScene(scene);
     return scene;
 }

@@ -267,8 +267,8 @@ int main(void)
            "the switch-off",
            lags[1][2], lags[1][3], lags[0][2], lags[0][3]);
     /* The ghost (how long the old light shows in the 16 px blocks' means, apart from noise and the
-     * denoiser's bias): measured at 48x36, raw 6 0, denoised 14 4 without the gradient and 4 0 with it
-     * (at 160x120, 2 runs: denoised 14 10 and 0 0, docs/BENCHMARKS.md) */
+     * denoiser's bias): measured at 48x36, raw 6 0, denoised 11 4 without the gradient and 0 0 with it
+     * (at 160x120, 2 runs: denoised 11 10 and 0 0, docs/BENCHMARKS.md) */
     double ghosts[2][4] = {{NAN, NAN, NAN, NAN}, {NAN, NAN, NAN, NAN}};
     table = strstr(out, "\nghost: frames");
     for (int k = 0; k < 2 && table; k++) {
