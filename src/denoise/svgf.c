@@ -327,8 +327,8 @@ static void neighbourhood_range(const struct denoise_frame *f, const float *rgb,
 
 /* Schied et al.'s last step, temporal antialiasing (Karis 2014): each used pixel's reprojected
  * output, and each sky pixel's (one that sees nothing: its history from sky pixels only, through its
- * direction's motion; an emitter's silhouette against it otherwise flickers with the jitter, 0.0086 of
- * pillars' per-pixel flicker at 320x180, docs/BENCHMARKS.md), blended with this frame's output by
+ * direction's motion; a silhouette against it otherwise flickers with the jitter: pillars' lit wall
+ * edge was 0.0086 of its per-pixel flicker at 320x180, docs/BENCHMARKS.md), blended with this frame's output by
  * max(svgf_taa_alpha, 1 / frames), so that a short
  * history is the plain mean of its frames (as Sec. 4.1's moving average). Where a jittered pixel
  * straddles an edge, its sample lands on one surface in one frame and on the other in the next; the
