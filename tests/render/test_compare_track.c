@@ -17,6 +17,20 @@
 
 static char tmp[CLI_PATH_MAX];
 
+/* The four values (raw and denoised after each of two changes) of the rows restir-di and
+ * restir-di:denoise.svgf.temporal_gradient=on of compare's table titled `title` in out (NaN where absent). */
+static void gradient_rows(const char *out, const char *title, double v[2][4])
+{
+    const char *table = strstr(out, title);
+    for (int k = 0; k < 2; k++) {
+        v[k][0] = v[k][1] = v[k][2] = v[k][3] = NAN;
+        const char *row = table ? strstr(table, k ? "\nrestir-di:denoise.svgf.temporal_gradient=on " : "\nrestir-di ")
+                                : NULL;
+        if (row)
+            sscanf(strchr(row + 1, ' '), "%lf %lf %lf %lf", &v[k][0], &v[k][1], &v[k][2], &v[k][3]);
+    }
+}
+
 /* Field `col` (0-based) of a CSV line without quoted fields, into out (empty when missing). */
 static void field(const char *line, int col, char *out, size_t n)
 {
@@ -252,13 +266,8 @@ int main(void)
              data ? data : ".", lagdir);
     rc = cli_run_capture(tmp, args, out, err);
     EXPECT(rc == 0, "compare with the temporal gradient exited %d: %s", rc, err);
-    double lags[2][4] = {{NAN, NAN, NAN, NAN}, {NAN, NAN, NAN, NAN}};
-    const char *table = strstr(out, "\nlag: frames");
-    for (int k = 0; k < 2 && table; k++) {
-        const char *row = strstr(table, k ? "\nrestir-di:denoise.svgf.temporal_gradient=on " : "\nrestir-di ");
-        if (row)
-            sscanf(strchr(row + 1, ' '), "%lf %lf %lf %lf", &lags[k][0], &lags[k][1], &lags[k][2], &lags[k][3]);
-    }
+    double lags[2][4];
+    gradient_rows(out, "\nlag: frames", lags);
     printf("switch_room, denoised lag after the switch-off and the switch-on: %g %g without the temporal gradient, "
            "%g %g with it\n",
            lags[0][2], lags[0][3], lags[1][2], lags[1][3]);
@@ -269,13 +278,8 @@ int main(void)
     /* The ghost (how long the old light shows in the 16 px blocks' means, apart from noise and the
      * denoiser's bias): measured at 48x36, raw 6 0, denoised 11 4 without the gradient and 0 0 with it
      * (at 160x120, 2 runs: denoised 11 10 and 0 0, docs/BENCHMARKS.md) */
-    double ghosts[2][4] = {{NAN, NAN, NAN, NAN}, {NAN, NAN, NAN, NAN}};
-    table = strstr(out, "\nghost: frames");
-    for (int k = 0; k < 2 && table; k++) {
-        const char *row = strstr(table, k ? "\nrestir-di:denoise.svgf.temporal_gradient=on " : "\nrestir-di ");
-        if (row)
-            sscanf(strchr(row + 1, ' '), "%lf %lf %lf %lf", &ghosts[k][0], &ghosts[k][1], &ghosts[k][2], &ghosts[k][3]);
-    }
+    double ghosts[2][4];
+    gradient_rows(out, "\nghost: frames", ghosts);
     printf("switch_room, denoised ghost after the switch-off and the switch-on: %g %g without the temporal gradient, "
            "%g %g with it\n",
            ghosts[0][2], ghosts[0][3], ghosts[1][2], ghosts[1][3]);
