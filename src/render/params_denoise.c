@@ -67,7 +67,7 @@ static const struct param_def denoise_rows[] = {
      "svgf: the antialiasing also on the pixels that see nothing, from the sky pixels of its history (through "
      "their direction's motion, never clamped): where a jittered pixel straddles a silhouette against the sky "
      "(an emitter's edge, a leaf) its output otherwise alternates between the two (docs/DENOISE.md); off: the "
-     "sky is left raw, as before issue 58",
+     "sky is left raw (what SVGF did before this setting existed)",
      NULL},
     {"denoise.svgf.temporal_gradient", P_BOOL, F(denoise.svgf_temporal_gradient), 0, 1, "off", NULL,
      "svgf: A-SVGF (Schied et al. 2018): where the method's temporal gradient lambda (the relative change of "
