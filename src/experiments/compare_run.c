@@ -345,8 +345,10 @@ void compare_result_clear_sequence(struct compare_result *res)
     res->temporal_cov = res->temporal_cov_dn = NAN;
     for (int k = 0; k < FLICKER_COLS; k++)
         res->flicker[k] = res->flicker_dn[k] = NAN;
-    for (int k = 0; k < COMPARE_MAX_CHANGES; k++)
-        res->lag[k] = res->lag_dn[k] = res->lag_block[k] = res->lag_block_dn[k] = res->ghost[k] = res->ghost_dn[k] = NAN;
+    for (int k = 0; k < COMPARE_MAX_CHANGES; k++) {
+        res->lag[k] = res->lag_dn[k] = res->lag_block[k] = res->lag_block_dn[k] = NAN;
+        res->ghost[k] = res->ghost_dn[k] = NAN;
+    }
 }
 
 int compare_run_spec(const struct scene *s, const struct compare_spec *c, const struct render_params *p, int frames,

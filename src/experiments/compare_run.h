@@ -70,7 +70,8 @@ struct compare_result {
      * where it cannot be measured) */
     double lag[COMPARE_MAX_CHANGES], lag_dn[COMPARE_MAX_CHANGES]; /* as rendered, denoised */
     double lag_block[COMPARE_MAX_CHANGES], lag_block_dn[COMPARE_MAX_CHANGES]; /* the blocks' quantile */
-    double ghost[COMPARE_MAX_CHANGES], ghost_dn[COMPARE_MAX_CHANGES]; /* frames an old light shows (compare_track_ghost) */
+    /* frames an old light shows (compare_track_ghost) */
+    double ghost[COMPARE_MAX_CHANGES], ghost_dn[COMPARE_MAX_CHANGES];
     float *image;            /* the last frame, kept for --report (else NULL) */
     float *image_dn;         /* and the denoised one (else NULL) */
     /* Each run's own values, for pairing rows by seed (runs.csv): runs * COMPARE_RUN_COLS doubles,

@@ -74,11 +74,11 @@ void compare_track_stats(struct compare_track *t, int f, double ms, const struct
     s->splat_accepted += (double)st->temporal.splat_accepted / vp;
 }
 
-/* Rec. 709 luminance of each of an RGB image's n pixels. */
+/* The luminance (v3_luminance) of each of an RGB image's n pixels. */
 static void luminance_map(const float *rgb, size_t n, float *out)
 {
     for (size_t i = 0; i < n; i++)
-        out[i] = 0.2126f * rgb[3 * i] + 0.7152f * rgb[3 * i + 1] + 0.0722f * rgb[3 * i + 2];
+        out[i] = v3_luminance(v3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]));
 }
 
 static int reference_index(const struct compare_track *t, int f)
@@ -277,6 +277,7 @@ void compare_track_ghost(const struct compare_track *t, int denoised, double *gh
     double *dev = xmalloc(sizeof(double) * (size_t)t->frames * (size_t)(t->blocks + 1));
     double *excess = xmalloc(sizeof(double) * (size_t)t->frames), *vals = xmalloc(sizeof(double) * (t->blocks + 1));
     double *before = xmalloc(sizeof(double) * (size_t)(t->blocks + 1));
+    double *now = xmalloc(sizeof(double) * (size_t)(t->blocks + 1));
     float *ref_lum = xmalloc(sizeof(float) * (size_t)t->width * (size_t)t->height);
     const int bw = t->width / COMPARE_LAG_BLOCK;
     for (int c = 0; c < t->nchanges; c++) {
@@ -304,10 +305,12 @@ void compare_track_ghost(const struct compare_track *t, int denoised, double *gh
         for (int f = from; f < end; f++) {
             luminance_map(t->ref[reference_index(t, f)], npix, ref_lum);
             double image_mean = 0.0;
-            for (int b = 0; b < t->blocks; b++)
-                image_mean += block_mean(ref_lum, t->width, bw, b) / t->blocks;
             for (int b = 0; b < t->blocks; b++) {
-                const double r = block_mean(ref_lum, t->width, bw, b), scale = fmax(r, before[b]);
+                now[b] = block_mean(ref_lum, t->width, bw, b);
+                image_mean += now[b] / t->blocks;
+            }
+            for (int b = 0; b < t->blocks; b++) {
+                const double r = now[b], scale = fmax(r, before[b]);
                 const int lit = r > COMPARE_GHOST_DARK * image_mean || before[b] > COMPARE_GHOST_DARK * before_mean;
                 dev[(size_t)f * (size_t)t->blocks + (size_t)b] =
                     lit ? fabs(lum[(size_t)f * (size_t)t->blocks + (size_t)b] / t->runs - r) / scale : NAN;
@@ -338,6 +341,7 @@ void compare_track_ghost(const struct compare_track *t, int denoised, double *gh
     free(dev);
     free(excess);
     free(before);
+    free(now);
     free(vals);
     free(ref_lum);
 }

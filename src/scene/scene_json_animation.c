@@ -41,7 +41,8 @@ static int read_key(struct json_reader *r, const cJSON *e, const char *ek, int i
             char ck[224];
             json_child_key(ck, sizeof ck, ek, channel_name[c], 0);
             return json_fail(r, ck, here ? "is not in the first key: a channel must be in every key or in none"
-                                         : "missing: the first key has it, and a channel must be in every key or in none");
+                                         : "missing: the first key has it, and a channel must be in every key or "
+                                           "in none");
         }
     }
     if (!has[CH_STRENGTH] && !has[CH_TRANSLATE] && !has[CH_ROTATE])

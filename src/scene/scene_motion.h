@@ -4,8 +4,8 @@
  * vertices, shading normals and tangents, the triangles' normals, the emitters' records and
  * rectangles, the emitter BVH's bounds (refitted: its tree and leaf order stay, which ReGIR's cut
  * order relies on) and the ray-tracing BVH (scene_rt_update_moving: the moving triangles are their
- * own Embree geometry, refitted, in a two-level scene). The scene keeps the triangles' rest pose, where the file put them, and
- * poses every frame from it, so no rounding accumulates. */
+ * own Embree geometry, refitted, in a two-level scene). The scene keeps the triangles' rest pose,
+ * where the file put them, and poses every frame from it, so no rounding accumulates. */
 #ifndef RESTIR_SCENE_SCENE_MOTION_H
 #define RESTIR_SCENE_SCENE_MOTION_H
 

@@ -62,6 +62,21 @@ static void alpha_filter(const struct RTCFilterFunctionNArguments *args)
     }
 }
 
+/* The un-indexed vertex buffer of triangles tris[0 .. count-1] of s (NULL: all, in order) where s->verts
+ * has them now: three vertices per triangle. */
+static void copy_vertices(float *vb, const struct scene *s, const int *tris, int count)
+{
+    for (int i = 0; i < count; i++) {
+        const int t = tris ? tris[i] : i;
+        for (int k = 0; k < 3; k++) {
+            const vec3 v = s->verts[s->indices[3 * t + k]];
+            vb[9 * i + 3 * k + 0] = v.x;
+            vb[9 * i + 3 * k + 1] = v.y;
+            vb[9 * i + 3 * k + 2] = v.z;
+        }
+    }
+}
+
 /* Attaches triangles tris[0 .. count-1] of s (NULL: all, in order) to scene as geometry id, with
  * the alpha filter when filter is not NULL. Returns 0, or -1 when Embree cannot allocate. */
 static int attach_triangles(RTCDevice device, RTCScene scene, unsigned id, const struct scene *s, const int *tris,
@@ -76,17 +91,9 @@ static int attach_triangles(RTCDevice device, RTCScene scene, unsigned id, const
         rtcReleaseGeometry(geom);
         return -1;
     }
-    /* Un-indexed copy: three vertices per triangle, in the order of tris[] (or all triangles). */
-    for (int i = 0; i < count; i++) {
-        int t = tris ? tris[i] : i;
-        for (int k = 0; k < 3; k++) {
-            vec3 v = s->verts[s->indices[3 * t + k]];
-            vb[9 * i + 3 * k + 0] = v.x;
-            vb[9 * i + 3 * k + 1] = v.y;
-            vb[9 * i + 3 * k + 2] = v.z;
-            ib[3 * i + k] = (unsigned)(3 * i + k);
-        }
-    }
+    copy_vertices(vb, s, tris, count);
+    for (int i = 0; i < 3 * count; i++)
+        ib[i] = (unsigned)i;
     if (filter) {
         filter->s = *s;
         filter->tris = aligned_alloc(32, sizeof(struct alpha_tri) * (size_t)count);
@@ -188,16 +195,7 @@ static RTCScene build_main(struct scene_rt *rt, const struct scene *s, const int
 static void update_vertices(RTCScene scene, unsigned id, const struct scene *s, const int *tris, int count)
 {
     RTCGeometry geom = rtcGetGeometry(scene, id);
-    float *vb = rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0);
-    for (int i = 0; i < count; i++) {
-        const int t = tris ? tris[i] : i;
-        for (int k = 0; k < 3; k++) {
-            const vec3 v = s->verts[s->indices[3 * t + k]];
-            vb[9 * i + 3 * k + 0] = v.x;
-            vb[9 * i + 3 * k + 1] = v.y;
-            vb[9 * i + 3 * k + 2] = v.z;
-        }
-    }
+    copy_vertices(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0), s, tris, count);
     rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0);
     rtcCommitGeometry(geom);
 }

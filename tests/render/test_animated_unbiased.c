@@ -14,9 +14,9 @@
  * -30%. tests/data/scenes/moving_lamp.json's lamp moves (translation and rotation keys, scene_motion.h):
  * pt renders the pose of the frame, restir-di and restir-pt drop their history while it moves
  * (renderer.h's lights_moved and lights_changed) and reuse it once it stands (power, seen: restir-di
- * keeping its history, re-evaluated at the new pose, fails frame 4 by -4.5% and frame 8 by -1.8%). Bad keys (order, negative
- * strength, an animation on a non-emitter, a scale, a channel missing from a key) are refused by the
- * reader: render.cli_errors. */
+ * keeping its history, re-evaluated at the new pose, fails frame 4 by -4.5% and frame 8 by -1.8%).
+ * Bad keys (order, negative strength, an animation on a non-emitter, a scale, a channel missing from a
+ * key) are refused by the reader: render.cli_errors. */
 #include <stdio.h>
 #include <stdlib.h>
 

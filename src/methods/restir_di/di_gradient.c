@@ -7,8 +7,9 @@
 #include "scene/scene_motion.h"
 
 /* A sample's estimate now and before: target x W now, and the same with its emitter at the other
- * frame's strength and, for a moving one, scaled by the unshadowed targets at sp of both frames' poses. now_is_cached: the cached target is this frame's (an initial sample) or the
- * previous frame's (a history sample). */
+ * frame's strength and, for a moving one, scaled by the unshadowed targets at sp of both frames' poses.
+ * now_is_cached: the cached target is this frame's (an initial sample) or the previous frame's (a history
+ * sample). */
 static void shaded(const struct scene *s, const struct shading_point *sp, const struct di_reservoir *r, int frame,
                    int now_is_cached, float *now, float *before)
 {
