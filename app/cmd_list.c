@@ -37,11 +37,11 @@ static int list_json(void)
     RESTIR_CHECK(root != NULL);
     cJSON *scenes = cJSON_AddArrayToObject(root, "scenes");
     RESTIR_CHECK(scenes != NULL);
-    for (int i = 0; scene_builtin_names[i]; i++) {
+    for (int i = 0; scene_builtins[i].name; i++) {
         cJSON *o = cJSON_CreateObject();
         RESTIR_CHECK(o != NULL);
-        RESTIR_CHECK(cJSON_AddStringToObject(o, "name", scene_builtin_names[i]) != NULL);
-        RESTIR_CHECK(cJSON_AddStringToObject(o, "description", scene_builtin_descriptions[i]) != NULL);
+        RESTIR_CHECK(cJSON_AddStringToObject(o, "name", scene_builtins[i].name) != NULL);
+        RESTIR_CHECK(cJSON_AddStringToObject(o, "description", scene_builtins[i].description) != NULL);
         cJSON_AddItemToArray(scenes, o);
     }
     method_registry_to_json(root);
@@ -65,8 +65,8 @@ int cmd_list(int argc, char **argv)
         cli_error("list takes no arguments but --json, got '%s'", argv[0]);
         return EXIT_USAGE;
     }
-    for (int i = 0; scene_builtin_names[i]; i++)
-        printf("scene %s\t%s\n", scene_builtin_names[i], scene_builtin_descriptions[i]);
+    for (int i = 0; scene_builtins[i].name; i++)
+        printf("scene %s\t%s\n", scene_builtins[i].name, scene_builtins[i].description);
     for (int k = 0; k < method_count(); k++)
         printf("method %s\t%s\n", method_at(k)->name, method_at(k)->description);
     return 0;

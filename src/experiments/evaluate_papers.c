@@ -211,8 +211,8 @@ static int paper_steps(const struct eval_options *o, const struct eval_paper *p,
             return -1;
         }
         int known = 0;
-        for (int i = 0; scene_builtin_names[i] && !known; i++)
-            known = !strcmp(scene_builtin_names[i], t);
+        for (int i = 0; scene_builtins[i].name && !known; i++)
+            known = !strcmp(scene_builtins[i].name, t);
         if (!known) {
             snprintf(msg, RESTIR_MSG_LEN, "--scenes: '%.40s' is not a built-in scene name (see restir list)", t);
             return -1;

@@ -51,9 +51,9 @@ static int restir_name(const char *name)
     const size_t n = strlen(name);
     if (n > 10 && !strcmp(name + n - 10, ".mesh.json"))
         return 1;
-    for (int k = 0; scene_builtin_names[k]; k++) { /* scene export NAME: NAME.json */
-        const size_t s = strlen(scene_builtin_names[k]);
-        if (n == s + 5 && !strncmp(name, scene_builtin_names[k], s) && !strcmp(name + s, ".json"))
+    for (int k = 0; scene_builtins[k].name; k++) { /* scene export NAME: NAME.json */
+        const size_t s = strlen(scene_builtins[k].name);
+        if (n == s + 5 && !strncmp(name, scene_builtins[k].name, s) && !strcmp(name + s, ".json"))
             return 1;
     }
     return 0;

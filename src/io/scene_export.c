@@ -60,6 +60,29 @@ static cJSON *camera_json(const struct camera *c, const float *frame)
     return j;
 }
 
+/* A material's "animation" (docs/SCENES.md): its keys with every channel it has, the pivot only
+ * where the scene gave one (the default, the triangles' centre, is computed again on reading). */
+static cJSON *animation_json(const struct emission_animation *a)
+{
+    cJSON *j = cJSON_CreateObject();
+    if (a->step)
+        cJSON_AddStringToObject(j, "interpolation", "step");
+    if (a->pivot_given)
+        cJSON_AddItemToObject(j, "pivot", vec(a->pivot));
+    cJSON *keys = cJSON_AddArrayToObject(j, "keys");
+    for (int k = 0; k < a->n; k++) {
+        cJSON *key = cJSON_CreateObject();
+        cJSON_AddItemToObject(key, "frame", number(a->frame[k]));
+        cJSON_AddItemToObject(key, "strength", number(a->strength[k]));
+        if (a->translate)
+            cJSON_AddItemToObject(key, "translate", vec(a->translate[k]));
+        if (a->rotate)
+            cJSON_AddItemToObject(key, "rotate", vec(a->rotate[k]));
+        cJSON_AddItemToArray(keys, key);
+    }
+    return j;
+}
+
 static cJSON *materials_json(const struct scene *s)
 {
     cJSON *list = cJSON_CreateArray();
@@ -72,8 +95,13 @@ static cJSON *materials_json(const struct scene *s)
         cJSON_AddItemToObject(j, "base_color", vec(mt->base_color));
         cJSON_AddItemToObject(j, "metallic", number(mt->metallic));
         cJSON_AddItemToObject(j, "roughness", number(mt->roughness));
-        if (v3_max_component(mt->emission) > 0.0f)
+        const struct emission_animation *a = s->emission_anim ? &s->emission_anim[m] : NULL;
+        if (a && a->n > 0) { /* what strength 1 gives, and the keys */
+            cJSON_AddItemToObject(j, "emission", vec(a->emission));
+            cJSON_AddItemToObject(j, "animation", animation_json(a));
+        } else if (v3_max_component(mt->emission) > 0.0f) {
             cJSON_AddItemToObject(j, "emission", vec(mt->emission));
+        }
         if (mt->lambert_only)
             cJSON_AddBoolToObject(j, "lambert", 1);
         cJSON_AddItemToArray(list, j);

@@ -26,6 +26,14 @@ static void *grow_to(void *p, int cap, size_t elem)
     return q;
 }
 
+/* p (n elements of elem bytes) grown to cap elements, the new ones zeroed. */
+static void *grow_to_zeroed(void *p, int n, int cap, size_t elem)
+{
+    char *q = grow_to(p, cap, elem);
+    memset(q + (size_t)n * elem, 0, (size_t)(cap - n) * elem);
+    return q;
+}
+
 /* The default triangle budget (scene_load_desc.max_triangles). */
 #define DEFAULT_MAX_TRIANGLES (1 << 26)
 
@@ -55,8 +63,51 @@ int scene_add_material(struct scene_builder *b, struct material m)
         b->cap_materials = b->cap_materials ? 2 * b->cap_materials : 16;
         s->materials = grow_to(s->materials, b->cap_materials, sizeof(*s->materials));
     }
+    if (s->emission_anim) /* kept as long as the materials, for scene_destroy */
+        s->emission_anim = grow_to_zeroed(s->emission_anim, s->num_materials, b->cap_materials,
+                                          sizeof(*s->emission_anim));
     s->materials[s->num_materials] = m;
     return s->num_materials++;
+}
+
+/* 1 when every component of v is within [-lim, lim] (0 for NaN). */
+static int v3_within(vec3 v, float lim) { return fabsf(v.x) <= lim && fabsf(v.y) <= lim && fabsf(v.z) <= lim; }
+
+int scene_animate_material(struct scene_builder *b, int m, struct emission_animation *a, char *msg)
+{
+    struct scene *s = b->s;
+    const char *why = NULL;
+    if (m < 0 || m >= s->num_materials)
+        why = "no such material";
+    else if (!(v3_max_component(s->materials[m].emission) > 0.0f))
+        why = "the material emits nothing: only an emitter can be animated";
+    else if (s->emission_anim && s->emission_anim[m].n > 0)
+        why = "the material is animated already";
+    else if (a->n < 1 || !a->frame || !a->strength)
+        why = "an animation needs at least one key";
+    for (int k = 0; !why && k < a->n; k++) {
+        if (!(a->strength[k] >= 0.0f && a->strength[k] <= 1e6f))
+            why = "a strength is negative, not finite or above 1e6";
+        else if (k > 0 && !(a->frame[k] > a->frame[k - 1]))
+            why = "the keys' frames are not increasing";
+        else if ((a->translate && !v3_within(a->translate[k], 1e6f)) || (a->rotate && !v3_within(a->rotate[k], 1e6f)))
+            why = "a translation or rotation is not finite or beyond 1e6";
+    }
+    const vec3 sampled = why ? v3s(0.0f) : v3_scale(s->materials[m].emission, emission_animation_max(a));
+    if (!why && !(v3_max_component(sampled) <= 1e18f))
+        why = "emission times its largest strength exceeds 1e18";
+    if (why) {
+        snprintf(msg, RESTIR_MSG_LEN, "scene '%s': animation of material %d: %s", s->name, m, why);
+        emission_animation_free(a);
+        return -1;
+    }
+    if (!s->emission_anim)
+        s->emission_anim = grow_to_zeroed(NULL, 0, b->cap_materials, sizeof(*s->emission_anim));
+    a->emission = s->materials[m].emission;
+    s->materials[m].emission = sampled; /* sampling's tables see the largest strength; scene_set_frame the frame's */
+    s->emission_anim[m] = *a;
+    memset(a, 0, sizeof *a);
+    return 0;
 }
 
 int scene_new_object(struct scene_builder *b) { return b->s->num_objects++; }

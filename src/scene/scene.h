@@ -71,6 +71,13 @@ void scene_builder_begin_with(struct scene_builder *b, struct scene *s, const ch
 /* scene_builder_begin_with with the defaults. */
 void scene_builder_begin(struct scene_builder *b, struct scene *s, const char *name);
 int scene_add_material(struct scene_builder *b, struct material m);
+/* Animates material m's emission along the frames (scene_animation.h): a holds n >= 1 keys with
+ * increasing frames, strengths in [0, 1e6], and translate / rotate / pivot (NULL arrays: no such
+ * channel); its key arrays (malloc'ed) become the scene's, and *a is left empty, whatever the
+ * result. m's emission is what strength 1 gives; the material keeps it times the largest strength
+ * (what sampling sees), and scene_builder_end poses frame 0. Returns 0, or -1 with msg when m is
+ * not an emitting material of the scene, is animated already, or the keys are out of order or range. */
+int scene_animate_material(struct scene_builder *b, int m, struct emission_animation *a, char *msg);
 /* Takes ownership of t; returns its map id for struct material (>= 1). key names where it came
  * from (a resolved file path, or a model path and an embedded index) and srgb how it was decoded,
  * so that every later material naming the same image, in any file or instance, shares it. */

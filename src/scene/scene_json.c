@@ -180,10 +180,8 @@ static int read_materials(struct json_reader *r)
             texture_map(r, m, key, "emission_texture", 1, &mt.emission_map) != 0 ||
             texture_map(r, m, key, "normal_texture", 0, &mt.normal_map) != 0)
             return -1;
-        struct emission_animation anim;
-        if (json_read_animation(r, m, key, &mt.emission, &anim) != 0)
+        if (json_animate_material(r, m, key, scene_add_material(r->b, mt)) != 0)
             return -1;
-        json_keep_animation(r, scene_add_material(r->b, mt), &anim);
     }
     return 0;
 }
@@ -617,7 +615,6 @@ int scene_json_parse_with(const char *text, size_t len, const char *file, const 
     r.b = &b;
     int rc = read_scene(&r, root);
     cJSON_Delete(root);
-    json_animation_attach(&r, rc == 0 ? s : NULL); /* before the build: it poses moving emitters */
     if (rc == 0 && scene_builder_end(&b, msg) != 0) {
         char inner[RESTIR_MSG_LEN];
         memcpy(inner, msg, sizeof inner);

@@ -1,6 +1,6 @@
-/* scene_json_animation.c: a material's "animation" in a scene file (scene_animation.h): its
- * strength keys read and checked, kept per material while the file is read, and attached to the
- * scene once it is built. */
+/* scene_json_animation.c: a material's "animation" in a scene file (scene_animation.h): its keys
+ * read and checked, every error naming the file and the key, for the builder
+ * (scene_animate_material). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -128,50 +128,24 @@ static int read_animation(struct json_reader *r, const cJSON *m, const char *mke
     return 0;
 }
 
-/* Keeps material id's animation for the scene (r->anim grows with the materials). */
-void json_keep_animation(struct json_reader *r, int id, const struct emission_animation *a)
+int json_animate_material(struct json_reader *r, const cJSON *m, const char *mkey, int id)
 {
-    if (id >= r->anim_cap) {
-        const int cap = id + 16;
-        r->anim = xrealloc(r->anim, sizeof(*r->anim) * (size_t)cap);
-        memset(r->anim + r->anim_cap, 0, sizeof(*r->anim) * (size_t)(cap - r->anim_cap));
-        r->anim_cap = cap;
-    }
-    r->anim[id] = *a;
-    r->animated |= a->n > 0;
-}
-
-int json_read_animation(struct json_reader *r, const cJSON *m, const char *mkey, vec3 *emission,
-                        struct emission_animation *a)
-{
-    if (read_animation(r, m, mkey, v3_max_component(*emission) > 0.0f, a) != 0) {
-        emission_animation_free(a);
+    const vec3 emission = r->b->s->materials[id].emission;
+    struct emission_animation a;
+    if (read_animation(r, m, mkey, v3_max_component(emission) > 0.0f, &a) != 0) {
+        emission_animation_free(&a);
         return -1;
     }
-    if (a->n == 0)
+    if (a.n == 0)
         return 0;
-    /* sampling's tables see the largest strength; scene_set_frame the frame's */
-    a->emission = *emission;
-    *emission = v3_scale(*emission, emission_animation_max(a));
-    if (v3_max_component(*emission) > 1e18f) {
-        emission_animation_free(a);
-        char k[80];
-        json_child_key(k, sizeof k, mkey, "animation", 0);
+    char k[80];
+    json_child_key(k, sizeof k, mkey, "animation", 0);
+    if (v3_max_component(emission) * emission_animation_max(&a) > 1e18f) {
+        emission_animation_free(&a);
         return json_fail(r, k, "emission times its largest strength exceeds 1e18");
     }
+    char why[RESTIR_MSG_LEN];
+    if (scene_animate_material(r->b, id, &a, why) != 0) /* what the reader checked: not expected */
+        return json_fail(r, k, "%s", why);
     return 0;
-}
-
-void json_animation_attach(struct json_reader *r, struct scene *s)
-{
-    if (s && r->animated) { /* the keys move into the scene, which scene_builder_end poses at frame 0 */
-        s->emission_anim = xcalloc((size_t)s->num_materials, sizeof(*s->emission_anim));
-        for (int m = 0; m < s->num_materials && m < r->anim_cap; m++) {
-            s->emission_anim[m] = r->anim[m];
-            memset(&r->anim[m], 0, sizeof r->anim[m]);
-        }
-    }
-    for (int m = 0; m < r->anim_cap; m++)
-        emission_animation_free(&r->anim[m]);
-    free(r->anim);
 }

@@ -20,20 +20,12 @@ struct json_reader {
     struct scene_builder *b;
     cJSON *materials; /* the "materials" array (names resolve through it) */
     struct environment *env; /* the "environment", read (attached after the build), or NULL */
-    struct emission_animation *anim; /* per material id (anim_cap of them): its "animation" (n = 0: none) */
-    int anim_cap, animated;          /* ... and whether any has keys (then attached before the build) */
 };
 
-/* A material's "animation" (scene_json_animation.c): read into *a (a->n = 0 when absent; freed on
- * failure), with the emission the sampling tables will see (times the largest strength) written
- * back to *emission. Returns 0, or -1 with the message naming the key. */
-int json_read_animation(struct json_reader *r, const cJSON *m, const char *mkey, vec3 *emission,
-                        struct emission_animation *a);
-/* Keeps material id's animation while the file is read (r->anim grows with the materials). */
-void json_keep_animation(struct json_reader *r, int id, const struct emission_animation *a);
-/* Before the build: moves the kept keys into scene s (NULL: reading failed, nothing moves), which
- * scene_builder_end poses at frame 0, and frees what the reader kept. */
-void json_animation_attach(struct json_reader *r, struct scene *s);
+/* Material id's "animation" (scene_json_animation.c; m is its JSON object, mkey its key), read,
+ * checked and given to the builder (scene_animate_material); nothing without one. Returns 0, or -1
+ * with the message naming the key. */
+int json_animate_material(struct json_reader *r, const cJSON *m, const char *mkey, int id);
 
 /* vsnprintf into out: a message too long for the buffer is cut, never left unterminated. */
 void json_msgf(char *out, size_t len, const char *fmt, ...);

@@ -1,6 +1,7 @@
 /* scenes_builtin.c: the scenes made in code (cornell, ajar, many-lights, foliage, pillars, furnace;
- * forest in scenes_forest.c, night-forest in scenes_night_forest.c),
- * each with a default static camera and camera path. Must never read files. */
+ * forest in scenes_forest.c, night-forest in scenes_night_forest.c, the animated ones in
+ * scenes_animated.c), each with a default static camera and camera path, and their table. Must
+ * never read files. */
 #include "scene/scenes_builtin.h"
 
 #include <stdio.h>
@@ -8,21 +9,9 @@
 #include <string.h>
 
 #include "scene/builtin_shapes.h"
+#include "scene/scenes_animated.h"
 #include "scene/scenes_forest.h"
 #include "scene/scenes_night_forest.h"
-
-const char *const scene_builtin_names[] = {"many-lights", "cornell", "ajar",   "foliage",
-                                            "pillars",     "furnace", "forest", "night-forest", NULL};
-const char *const scene_builtin_descriptions[] = {
-    "floor and occluders lit by 1200 small emissive triangles of varied colour and power (default)",
-    "Cornell box with a ceiling light, a diffuse block and a glossy metal block",
-    "closed room lit only through the narrow gap of a door left ajar: glossy floor, rough metal, indirect light",
-    "thousands of thin leaf quads on a few stems over a ground, lit by two area lights (hard pixels)",
-    "a row of pillars before a lit wall; the camera path strafes sideways (disocclusion)",
-    "closed sphere of albedo 0.5 and emission 0.5 seen from inside: radiance is exactly 1 (test)",
-    "25 trees with 75000 alpha-masked leaf cards and normal-mapped trunks under a sky with a sun (walk)",
-    "the forest at night, no sky, lit only by strings of fairy lights: over 100,000 small emissive triangles (walk)",
-    NULL};
 
 static vec3 hue_color(float h)
 {
@@ -248,30 +237,48 @@ static void build_furnace(struct scene_builder *b)
     builtin_set_path(b->s, 2, keys);
 }
 
-static int find_builtin(const char *name)
+const struct scene_builtin scene_builtins[] = {
+    {"many-lights", "floor and occluders lit by 1200 small emissive triangles of varied colour and power (default)",
+     build_many_lights, NULL},
+    {"cornell", "Cornell box with a ceiling light, a diffuse block and a glossy metal block", build_cornell, NULL},
+    {"ajar", "closed room lit only through the narrow gap of a door left ajar: glossy floor, rough metal, indirect "
+             "light",
+     build_ajar, NULL},
+    {"foliage", "thousands of thin leaf quads on a few stems over a ground, lit by two area lights (hard pixels)",
+     build_foliage, NULL},
+    {"pillars", "a row of pillars before a lit wall; the camera path strafes sideways (disocclusion)", build_pillars,
+     NULL},
+    {"furnace", "closed sphere of albedo 0.5 and emission 0.5 seen from inside: radiance is exactly 1 (test)",
+     build_furnace, NULL},
+    {"forest", "25 trees with 75000 alpha-masked leaf cards and normal-mapped trunks under a sky with a sun (walk)",
+     scene_build_forest, scene_light_forest},
+    {"night-forest",
+     "the forest at night, no sky, lit only by strings of fairy lights: over 100,000 small emissive triangles (walk)",
+     scene_build_night_forest, NULL},
+    {"switch-room", "a room whose blue lamp switches off at frame 16 and on at 32 (lag and ghosting)",
+     scene_build_switch_room, NULL},
+    {"moving-lamp", "the same room, its blue lamp carried across it over frames 16-24 and back over 32-40",
+     scene_build_moving_lamp, NULL},
+    {NULL, NULL, NULL, NULL}};
+
+static const struct scene_builtin *find_builtin(const char *name)
 {
-    for (int i = 0; scene_builtin_names[i]; i++)
-        if (strcmp(name, scene_builtin_names[i]) == 0)
-            return i;
-    return -1;
+    for (const struct scene_builtin *e = scene_builtins; e->name; e++)
+        if (strcmp(name, e->name) == 0)
+            return e;
+    return NULL;
 }
 
-int scene_is_builtin(const char *name) { return find_builtin(name) >= 0; }
+int scene_is_builtin(const char *name) { return find_builtin(name) != NULL; }
 
 static int create_builtin(const char *name, const struct scene_load_desc *d, struct scene *s,
                           struct scene_shape_record **records, int *num_records, char *msg)
 {
-    static void (*const builders[])(struct scene_builder *) = {build_many_lights, build_cornell, build_ajar,
-                                                               build_foliage,     build_pillars, build_furnace,
-                                                               scene_build_forest, scene_build_night_forest};
-    /* Lights that need the finished scene (an environment's share depends on the emitters). */
-    static int (*const lights[])(struct scene *, char *) = {NULL, NULL, NULL,          NULL,
-                                                            NULL, NULL, scene_light_forest, NULL};
-    const int i = find_builtin(name);
-    if (i < 0) {
+    const struct scene_builtin *e = find_builtin(name);
+    if (!e) {
         int n = snprintf(msg, RESTIR_MSG_LEN, "unknown scene '%s' (built-in scenes:", name);
-        for (int k = 0; scene_builtin_names[k] && n < RESTIR_MSG_LEN; k++)
-            n += snprintf(msg + n, (size_t)(RESTIR_MSG_LEN - n), " %s", scene_builtin_names[k]);
+        for (int k = 0; scene_builtins[k].name && n < RESTIR_MSG_LEN; k++)
+            n += snprintf(msg + n, (size_t)(RESTIR_MSG_LEN - n), " %s", scene_builtins[k].name);
         if (n < RESTIR_MSG_LEN)
             snprintf(msg + n, (size_t)(RESTIR_MSG_LEN - n), "; or a scene file: .json, .gltf, .glb, .obj, .ply)");
         return -1;
@@ -279,8 +286,8 @@ static int create_builtin(const char *name, const struct scene_load_desc *d, str
     struct scene_builder b;
     scene_builder_begin_with(&b, s, name, d);
     b.record = records != NULL;
-    builders[i](&b);
-    if (scene_builder_end(&b, msg) != 0 || (lights[i] && lights[i](s, msg) != 0)) {
+    e->build(&b);
+    if (scene_builder_end(&b, msg) != 0 || (e->light && e->light(s, msg) != 0)) {
         free(b.records);
         scene_destroy(s);
         return -1;

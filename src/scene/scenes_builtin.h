@@ -1,5 +1,5 @@
-/* scenes_builtin.h: the scenes made in code (cornell, ajar, many-lights, foliage, pillars, furnace, forest,
- * night-forest), by name. Must never read files. */
+/* scenes_builtin.h: the scenes made in code, by name (the table scene_builtins). Must never read
+ * files. */
 #ifndef RESTIR_SCENE_SCENES_BUILTIN_H
 #define RESTIR_SCENE_SCENES_BUILTIN_H
 
@@ -13,8 +13,16 @@ int scene_create_builtin_with(const char *name, const struct scene_load_desc *d,
 int scene_create_builtin_recorded(const char *name, struct scene *s, struct scene_shape_record **records,
                                   int *num_records, char *msg);
 int scene_is_builtin(const char *name);
-/* Names of built-in scenes, NULL terminated. */
-extern const char *const scene_builtin_names[];
-extern const char *const scene_builtin_descriptions[];
+/* One built-in scene: a row of scene_builtins. */
+struct scene_builtin {
+    const char *name;        /* what --scene takes */
+    const char *description; /* one line, for `restir list` */
+    void (*build)(struct scene_builder *b);
+    /* Lights that need the finished scene (an environment's share depends on the emitters), or NULL.
+     * Returns 0, or -1 with msg. */
+    int (*light)(struct scene *s, char *msg);
+};
+/* Every built-in scene, the default (many-lights) first; a row whose name is NULL ends it. */
+extern const struct scene_builtin scene_builtins[];
 
 #endif

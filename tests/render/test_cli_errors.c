@@ -372,9 +372,9 @@ static void check_list_and_help(void)
     char out[CLI_ERR_MAX], err[CLI_ERR_MAX], line[512], want[128];
     int rc = cli_run_capture(tmp, "list", out, err);
     EXPECT(rc == 0, "restir list exited %d: %s", rc, err);
-    for (int i = 0; scene_builtin_names[i]; i++) {
-        snprintf(want, sizeof(want), "scene %s\t", scene_builtin_names[i]);
-        EXPECT(strstr(out, want) != NULL, "restir list does not list scene %s", scene_builtin_names[i]);
+    for (int i = 0; scene_builtins[i].name; i++) {
+        snprintf(want, sizeof(want), "scene %s\t", scene_builtins[i].name);
+        EXPECT(strstr(out, want) != NULL, "restir list does not list scene %s", scene_builtins[i].name);
     }
     for (int k = 0; k < method_count(); k++) {
         snprintf(want, sizeof(want), "method %s\t", method_at(k)->name);

@@ -19,13 +19,13 @@ int main(void)
         return test_finish();
     }
     int runs = 0;
-    for (int sc = 0; scene_builtin_names[sc]; sc++) {
+    for (int sc = 0; scene_builtins[sc].name; sc++) {
         for (int k = 0; k < method_count(); k++) {
             const struct method *m = method_at(k);
             char dir[2 * CLI_PATH_MAX], args[4 * CLI_PATH_MAX], err[CLI_ERR_MAX], path[3 * CLI_PATH_MAX];
-            snprintf(dir, sizeof dir, "%s/%s-%s", tmp, scene_builtin_names[sc], m->name);
+            snprintf(dir, sizeof dir, "%s/%s-%s", tmp, scene_builtins[sc].name, m->name);
             snprintf(args, sizeof args, "render --scene %s --method %s --res 24x16 --frames 3 --camera path --out '%s'",
-                     scene_builtin_names[sc], m->name, dir);
+                     scene_builtins[sc].name, m->name, dir);
             int rc = cli_run(tmp, args, err);
             EXPECT(rc == 0, "restir %s exited %d:\n%s", args, rc, err);
             snprintf(path, sizeof path, "%s/metrics.csv", dir);
@@ -45,7 +45,7 @@ int main(void)
                     if (*c == ',')
                         comma = c;
                 long long n = atoll(comma + 1);
-                EXPECT(n == 0, "%s %s frame %d: %lld non-finite values discarded", scene_builtin_names[sc],
+                EXPECT(n == 0, "%s %s frame %d: %lld non-finite values discarded", scene_builtins[sc].name,
                        m->name, rows, n);
                 line = end ? end + 1 : NULL;
             }

@@ -1,5 +1,6 @@
 /* test_scene_export.c: every built-in scene exported with `restir scene export` reads back as the
- * same scene, bit for bit (vertices, triangles, materials, objects, emitters, cameras), and
+ * same scene, bit for bit (vertices, triangles, materials, objects, emitters, cameras, animated
+ * emitters' keys and where they put the emitters along the frames), and
  * `restir render` of the exported file writes the same EXR and PNG bytes as of the built-in scene
  * with the same seed (restir-di and restir-pt along the camera path); a scene with what export does
  * not write yet (textures, UVs, shading normals, an environment) is refused, saying so. */
@@ -7,12 +8,45 @@
 
 #include "cli_util.h"
 #include "core/check.h"
+#include "scene/scene_animation.h"
 #include "scene/scene_file.h"
+#include "scene/scene_motion.h"
 #include "scene/scenes_builtin.h"
 #include "test_util.h"
 
 #define SAME_ARRAY(a, b, n, what)                                                                  \
     EXPECT(((n) == 0) || memcmp((a), (b), sizeof(*(a)) * (size_t)(n)) == 0, "%s: %s differ", name, what)
+
+/* The animated emitters' keys, and where every vertex and emitter is at frames where they change. */
+static void compare_animations(const char *name, const struct scene *a, const struct scene *b)
+{
+    EXPECT(!a->emission_anim == !b->emission_anim, "%s: animated %d, the file's %d", name, a->emission_anim != NULL,
+           b->emission_anim != NULL);
+    if (!a->emission_anim || !b->emission_anim)
+        return;
+    for (int m = 0; m < a->num_materials; m++) {
+        const struct emission_animation *p = &a->emission_anim[m], *q = &b->emission_anim[m];
+        EXPECT(p->n == q->n && p->step == q->step && p->pivot_given == q->pivot_given &&
+                   !memcmp(&p->pivot, &q->pivot, sizeof(vec3)) && !memcmp(&p->emission, &q->emission, sizeof(vec3)) &&
+                   !p->translate == !q->translate && !p->rotate == !q->rotate,
+               "%s: material %d's animation differs", name, m);
+        if (p->n != q->n || !p->translate != !q->translate || !p->rotate != !q->rotate)
+            continue;
+        SAME_ARRAY(p->frame, q->frame, p->n, "key frames");
+        SAME_ARRAY(p->strength, q->strength, p->n, "key strengths");
+        if (p->translate)
+            SAME_ARRAY(p->translate, q->translate, p->n, "key translations");
+        if (p->rotate)
+            SAME_ARRAY(p->rotate, q->rotate, p->n, "key rotations");
+    }
+    const float frames[] = {20.0f, 28.0f, 0.0f};
+    for (int f = 0; f < 3; f++) {
+        scene_set_frame(a, frames[f]);
+        scene_set_frame(b, frames[f]);
+        SAME_ARRAY(a->verts, b->verts, a->num_verts, "vertices along the animation");
+        SAME_ARRAY(a->emitters, b->emitters, a->num_emitters, "emitters along the animation");
+    }
+}
 
 /* The scene read from the exported file against the built-in one, field by field. */
 static void compare_scenes(const char *name, const struct scene *a, const struct scene *b)
@@ -37,6 +71,7 @@ static void compare_scenes(const char *name, const struct scene *a, const struct
                    x->lambert_only == y->lambert_only,
                "%s: material %d differs", name, m);
     }
+    compare_animations(name, a, b);
     EXPECT(!memcmp(&a->camera, &b->camera, sizeof(a->camera)), "%s: camera differs", name);
     EXPECT(a->camera_path.num_keys == b->camera_path.num_keys, "%s: camera path keys %d vs %d", name,
            a->camera_path.num_keys, b->camera_path.num_keys);
@@ -77,8 +112,8 @@ int main(void)
         EXPECT(0, "cannot set up (RESTIR_BIN or temporary folder)");
         return test_finish();
     }
-    for (int i = 0; scene_builtin_names[i]; i++) {
-        const char *name = scene_builtin_names[i];
+    for (int i = 0; scene_builtins[i].name; i++) {
+        const char *name = scene_builtins[i].name;
         char args[2 * CLI_PATH_MAX], err[CLI_ERR_MAX], file[2 * CLI_PATH_MAX], msg[RESTIR_MSG_LEN];
         snprintf(args, sizeof args, "scene export %s --out '%s/scenes'", name, tmp);
         int rc = cli_run(tmp, args, err);

@@ -99,7 +99,7 @@ static void check_scene(const char *name)
 
 int main(void)
 {
-    for (int k = 0; scene_builtin_names[k]; k++)
-        check_scene(scene_builtin_names[k]);
+    for (int k = 0; scene_builtins[k].name; k++)
+        check_scene(scene_builtins[k].name);
     return test_finish();
 }
