@@ -157,6 +157,7 @@ void renderer_render(struct renderer *r, int frame, const struct camera *cam, st
     r->has_prev_cam = 1;
     simd_allow(r->p.simd); /* process-wide */
     double t0 = omp_get_wtime();
+    r->prev_frame = r->frame;
     r->frame = frame;
     scene_set_frame(r->scene, (float)frame); /* animated emitters: this frame's lights */
     r->method->render_frame(r, r->state, &view, st);

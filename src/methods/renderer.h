@@ -41,12 +41,12 @@ struct renderer {
     const struct method *method;
     void *state;                  /* the method's (struct method.create) */
     int frame;                    /* the frame being rendered, or the last one */
+    int prev_frame;               /* the frame rendered before it (valid when rendered > 1) */
     int lights_changed;           /* 1 when this frame's animated emitters differ from the previous rendered
                                      frame's (scene_lights_differ); 0 on the first frame */
     int lights_moved;             /* 1 when some moving emitter's pose differs from the previous rendered frame's
-                                     (scene_lights_moved): restir-di, which measures an old sample under the
-                                     old strengths, drops its history then (it would need the old frame's
-                                     visibility, which the scene's one BVH no longer holds) */
+                                     (scene_lights_moved): restir-di then measures an old sample in the old
+                                     frame's geometry (scene_occluded_previous_batch) */
     int rendered;                 /* frames rendered so far */
     struct camera_view prev_view; /* the previous frame's view (valid after the first frame) */
     struct camera prev_cam;       /* the last frame's camera: where the next frame's shutter opens */

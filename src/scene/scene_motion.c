@@ -24,6 +24,8 @@ struct scene_motion {
     int num_materials;
     struct rigid_motion *pose; /* per material: where it is now (identity for one that stays) */
     float posed_at;            /* the frame the scene holds; NAN before the first pose */
+    vec3 *previous;            /* corners of the previous-frame geometry (scene_motion_pose_previous) */
+    float previous_at;         /* its frame; NAN before the first */
 };
 
 void emission_animation_motion(const struct emission_animation *a, float t, struct rigid_motion *m)
@@ -124,6 +126,8 @@ int scene_motion_prepare(struct scene *s, char *msg)
     mo->num_materials = s->num_materials;
     mo->pose = xmalloc(sizeof(*mo->pose) * (size_t)s->num_materials);
     mo->posed_at = NAN;
+    mo->previous = xmalloc(sizeof(vec3) * 3 * (size_t)n);
+    mo->previous_at = NAN;
     s->motion = mo;
     return 0;
 }
@@ -187,6 +191,25 @@ void scene_motion_apply(const struct scene *s, float t)
     scene_rt_update_moving(w);
 }
 
+void scene_motion_pose_previous(const struct scene *s, float t)
+{
+    struct scene_motion *mo = s->motion;
+    if (!mo || mo->previous_at == t || !scene_can_trace_previous(s))
+        return;
+    int m_posed = -1;
+    struct rigid_motion pose;
+    for (int i = 0; i < mo->num_tris; i++) {
+        const int m = s->tri_material[mo->tris[i]];
+        if (m != m_posed) /* triangles of one material come in runs: a pose per run */
+            emission_animation_motion(&s->emission_anim[m], t, &pose);
+        m_posed = m;
+        for (int k = 0; k < 3; k++)
+            mo->previous[3 * i + k] = rigid_point(&pose, mo->verts[3 * i + k]);
+    }
+    scene_rt_update_previous(s, mo->previous);
+    mo->previous_at = t;
+}
+
 void scene_motion_point_at(const struct scene *s, int tri, float b1, float b2, float t, vec3 *p, vec3 *n)
 {
     const struct scene_motion *mo = s->motion;
@@ -235,6 +258,7 @@ void scene_motion_free(struct scene *s)
     if (!mo)
         return;
     free(mo->tris);
+    free(mo->previous);
     free(mo->verts);
     free(mo->normals);
     free(mo->tangents);

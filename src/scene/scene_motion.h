@@ -48,6 +48,12 @@ int scene_motion_tris(const struct scene *s, const int **tris);
  * thread-safe with anything that reads the scene. */
 void scene_motion_apply(const struct scene *s, float t);
 
+/* Poses the moving emitters of the previous-frame queries (scene_occluded_previous_batch,
+ * scene_rt.h) at frame t, rigidly from their rest pose as scene_motion_apply does (nothing when
+ * they are there already, or where the scene cannot trace them: scene_can_trace_previous). Not
+ * thread-safe with any query; a method calls it before the pass that traces in frame t. */
+void scene_motion_pose_previous(const struct scene *s, float t);
+
 /* The point at barycentrics (b1, b2) of triangle tri, and its geometric normal, at frame t (where
  * the scene holds it now for a triangle that stays). */
 void scene_motion_point_at(const struct scene *s, int tri, float b1, float b2, float t, vec3 *p, vec3 *n);

@@ -25,7 +25,7 @@ struct scene_rt {
     scene_ray_hook hook; /* the ray log's (scene_rt_embree.h), NULL unless a benchmark logs */
     void *hook_user;
     int streams; /* scene_set_ray_streams; set at load from scene_load_desc.ray_streams_off */
-    struct alpha_filter alpha_masked, alpha_emitters, alpha_moving;
+    struct alpha_filter alpha_masked, alpha_emitters, alpha_moving, alpha_previous;
     /* The main scene holds the opaque triangles as geometry 0 and, where some material is
      * alpha-masked, the masked ones as geometry 1, so that only hits on those call the filter, and
      * the moving emitters' as geometry 2 (build_main). geom_tris[g][primID] is the triangle (NULL:
@@ -35,7 +35,15 @@ struct scene_rt {
     RTCDevice device;
     RTCScene scene;
     RTCScene emitters; /* emissive triangles only (NULL without lights); primID = emitter index */
+    /* The moving emitters' triangles alone where an earlier frame had them (scene_rt_update_previous),
+     * for scene_occluded_previous_batch; NULL where nothing moves or Embree has no ray masks. */
+    RTCScene previous;
 };
+
+/* The main scene's geometry masks where emitters move: a ray whose mask is MASK_STILL sees every
+ * triangle but the moving ones (scene_occluded_previous_batch), the others' (all bits) see all. */
+#define MASK_STILL 1u
+#define MASK_MOVING 2u
 
 static void embree_error(void *user, enum RTCError code, const char *str)
 {
@@ -124,10 +132,11 @@ static RTCScene new_scene(RTCDevice device)
  * its vertices move). Embree reads a geometry's quality only in a scene of low build quality, whose
  * commit builds a two-level BVH: each geometry's own, rebuilt only when it changed, under a quickly
  * built top level (Embree 3's rtcSetGeometryBuildQuality). */
-static void set_quality(RTCScene scene, unsigned id, enum RTCBuildQuality quality)
+static void set_quality(RTCScene scene, unsigned id, enum RTCBuildQuality quality, unsigned mask)
 {
     RTCGeometry geom = rtcGetGeometry(scene, id);
     rtcSetGeometryBuildQuality(geom, quality);
+    rtcSetGeometryMask(geom, mask);
     rtcCommitGeometry(geom);
 }
 
@@ -179,7 +188,8 @@ static RTCScene build_main(struct scene_rt *rt, const struct scene *s, const int
                 rc = attach_triangles(rt->device, scene, (unsigned)g, s, rt->geom_tris[g], n[g], filter[g]);
         for (int g = 0; g < GEOM_COUNT && rc == 0 && moving > 0; g++)
             if (n[g] > 0)
-                set_quality(scene, (unsigned)g, g == GEOM_MOVING ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
+                set_quality(scene, (unsigned)g, g == GEOM_MOVING ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH,
+                            g == GEOM_MOVING ? MASK_MOVING : MASK_STILL);
         rt->num_moving = moving;
     }
     if (rc != 0) {
@@ -226,10 +236,45 @@ static RTCScene build_emitters(struct scene_rt *rt, const struct scene *s, int m
         return NULL;
     }
     if (rt->num_moving > 0)
-        set_quality(scene, 0, RTC_BUILD_QUALITY_REFIT);
+        set_quality(scene, 0, RTC_BUILD_QUALITY_REFIT, ~0u);
     rtcCommitScene(scene);
     return scene;
 }
+
+/* The moving emitters' triangles alone (primID = their index in geom_tris[GEOM_MOVING]), filtered
+ * where one of them is alpha-masked, refitted when scene_rt_update_previous poses them. */
+static RTCScene build_previous(struct scene_rt *rt, const struct scene *s)
+{
+    RTCScene scene = new_scene(rt->device);
+    make_two_level(scene);
+    if (attach_triangles(rt->device, scene, 0, s, rt->geom_tris[GEOM_MOVING], rt->num_moving,
+                         rt->alpha_moving.tris ? &rt->alpha_previous : NULL) != 0) {
+        rtcReleaseScene(scene);
+        return NULL;
+    }
+    set_quality(scene, 0, RTC_BUILD_QUALITY_REFIT, ~0u);
+    rtcCommitScene(scene);
+    return scene;
+}
+
+void scene_rt_update_previous(const struct scene *s, const vec3 *corners)
+{
+    const struct scene_rt *rt = s->rt;
+    if (!rt || !rt->previous)
+        return;
+    RTCGeometry geom = rtcGetGeometry(rt->previous, 0);
+    float *vb = rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0);
+    for (int i = 0; i < 3 * rt->num_moving; i++) {
+        vb[3 * i + 0] = corners[i].x;
+        vb[3 * i + 1] = corners[i].y;
+        vb[3 * i + 2] = corners[i].z;
+    }
+    rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(geom);
+    rtcCommitScene(rt->previous);
+}
+
+int scene_can_trace_previous(const struct scene *s) { return s->rt && s->rt->previous != NULL; }
 
 static void rt_free(struct scene_rt *rt)
 {
@@ -238,6 +283,7 @@ static void rt_free(struct scene_rt *rt)
     free(rt->alpha_masked.tris);
     free(rt->alpha_emitters.tris);
     free(rt->alpha_moving.tris);
+    free(rt->alpha_previous.tris);
     free(rt);
 }
 
@@ -258,10 +304,18 @@ int scene_rt_build(struct scene *s, const int *moving_tris, int moving, char *ms
         masked |= s->materials[m].alpha_mask;
     rt->scene = build_main(rt, s, moving_tris, moving);
     rt->emitters = s->num_emitters > 0 ? build_emitters(rt, s, masked) : NULL;
-    if (!rt->scene || (s->num_emitters > 0 && !rt->emitters)) {
+    /* without ray masks (an Embree built without them) the previous frame's geometry cannot be
+     * traced, and the methods that would need it go without (scene_can_trace_previous) */
+    const int masks = rtcGetDeviceProperty(rt->device, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED) != 0;
+    rt->previous = rt->scene && rt->num_moving > 0 && masks ? build_previous(rt, s) : NULL;
+    if (!rt->scene || (s->num_emitters > 0 && !rt->emitters) || (rt->num_moving > 0 && masks && !rt->previous)) {
         snprintf(msg, RESTIR_MSG_LEN, "scene '%s': Embree BVH construction failed", s->name);
         if (rt->scene)
             rtcReleaseScene(rt->scene);
+        if (rt->emitters)
+            rtcReleaseScene(rt->emitters);
+        if (rt->previous)
+            rtcReleaseScene(rt->previous);
         rtcReleaseDevice(rt->device);
         rt_free(rt);
         return -1;
@@ -277,6 +331,8 @@ void scene_rt_destroy(struct scene *s)
     rtcReleaseScene(s->rt->scene);
     if (s->rt->emitters)
         rtcReleaseScene(s->rt->emitters);
+    if (s->rt->previous)
+        rtcReleaseScene(s->rt->previous);
     rtcReleaseDevice(s->rt->device);
     rt_free(s->rt);
     s->rt = NULL;
@@ -357,7 +413,7 @@ int scene_occluded(const struct scene *s, vec3 o, vec3 d, float tmin, float tmax
     return scene_rt_occluded(s->rt->scene, o, d, tmin, tmax);
 }
 
-static void fill_ray(struct RTCRay *ray, const struct ray_query *q)
+static void fill_ray(struct RTCRay *ray, const struct ray_query *q, unsigned mask)
 {
     ray->org_x = q->o.x;
     ray->org_y = q->o.y;
@@ -368,7 +424,7 @@ static void fill_ray(struct RTCRay *ray, const struct ray_query *q)
     ray->dir_z = q->d.z;
     ray->time = 0.0f;
     ray->tfar = q->tmax;
-    ray->mask = 0xffffffffu;
+    ray->mask = mask;
     ray->id = 0;
     ray->flags = 0;
 }
@@ -381,7 +437,7 @@ void scene_rt_closest_stream(RTCScene sc, int *const *geom_tris, const struct ra
     ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
     struct RTCRayHit rh[RAY_STREAM_MAX];
     for (int k = 0; k < n; k++) {
-        fill_ray(&rh[k].ray, &q[k]);
+        fill_ray(&rh[k].ray, &q[k], ~0u);
         rh[k].hit.geomID = rh[k].hit.primID = rh[k].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     }
     rtcIntersect1M(sc, &ctx, rh, (unsigned)n, sizeof(rh[0]));
@@ -397,17 +453,24 @@ void scene_rt_closest_stream(RTCScene sc, int *const *geom_tris, const struct ra
     }
 }
 
-void scene_rt_occluded_stream(RTCScene sc, const struct ray_query *q, int n, int coherent, unsigned char *occ)
+/* scene_rt_occluded_stream for rays of the given mask (n <= RAY_STREAM_MAX). */
+static void occluded_stream_masked(RTCScene sc, const struct ray_query *q, int n, int coherent, unsigned mask,
+                                   unsigned char *occ)
 {
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
     struct RTCRay ray[RAY_STREAM_MAX];
     for (int k = 0; k < n; k++)
-        fill_ray(&ray[k], &q[k]);
+        fill_ray(&ray[k], &q[k], mask);
     rtcOccluded1M(sc, &ctx, ray, (unsigned)n, sizeof(ray[0]));
     for (int k = 0; k < n; k++)
         occ[k] = ray[k].tfar == -INFINITY;
+}
+
+void scene_rt_occluded_stream(RTCScene sc, const struct ray_query *q, int n, int coherent, unsigned char *occ)
+{
+    occluded_stream_masked(sc, q, n, coherent, ~0u, occ);
 }
 
 void scene_set_ray_streams(struct scene *s, int on)
@@ -449,5 +512,31 @@ void scene_occluded_batch(const struct scene *s, const struct ray_query *q, int 
         const int m = n - first < RAY_STREAM_MAX ? n - first : RAY_STREAM_MAX;
         log_rays(s, q + first, m, RAY_OCCLUDED);
         scene_rt_occluded_stream(s->rt->scene, q + first, m, 0, occluded + first);
+    }
+}
+
+void scene_occluded_previous_batch(const struct scene *s, const struct ray_query *q, int n, unsigned char *occluded)
+{
+    const struct scene_rt *rt = s->rt;
+    if (!rt->previous) {
+        scene_occluded_batch(s, q, n, occluded);
+        return;
+    }
+    for (int first = 0; first < n; first += RAY_STREAM_MAX) {
+        const int m = n - first < RAY_STREAM_MAX ? n - first : RAY_STREAM_MAX;
+        log_rays(s, q + first, m, RAY_OCCLUDED);
+        occluded_stream_masked(rt->scene, q + first, m, 0, MASK_STILL, occluded + first); /* all but the movers */
+        struct ray_query open[RAY_STREAM_MAX];
+        int at[RAY_STREAM_MAX], k = 0;
+        for (int i = 0; i < m; i++)
+            if (!occluded[first + i]) {
+                open[k] = q[first + i];
+                at[k++] = first + i;
+            }
+        unsigned char occ[RAY_STREAM_MAX];
+        if (k > 0)
+            occluded_stream_masked(rt->previous, open, k, 0, ~0u, occ); /* the movers where they were */
+        for (int i = 0; i < k; i++)
+            occluded[at[i]] = occ[i];
     }
 }

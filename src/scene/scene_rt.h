@@ -19,6 +19,13 @@ void scene_rt_destroy(struct scene *s);
  * BVH and the emitters' (a refit). Nothing for a scene whose emitters stand still. Not thread-safe
  * with any query. */
 void scene_rt_update_moving(struct scene *s);
+/* Poses the moving emitters' triangles of the previous-frame queries (scene_occluded_previous_batch):
+ * corners holds 3 per moving triangle, in the ascending order of scene_motion_tris. Nothing where
+ * scene_can_trace_previous is 0. Not thread-safe with any query; scene_motion_pose_previous calls it. */
+void scene_rt_update_previous(const struct scene *s, const vec3 *corners);
+/* 1 when s can answer occlusion queries in an earlier frame's geometry (its emitters move, and
+ * Embree has ray masks). */
+int scene_can_trace_previous(const struct scene *s);
 
 /* Surface point reconstructed from a triangle hit. */
 struct surface_hit {
@@ -96,6 +103,12 @@ static inline int scene_visible(const struct scene *s, vec3 p0, vec3 n0, vec3 p1
 void scene_intersect_batch(const struct scene *s, const struct ray_query *q, int n, int coherent,
                            struct surface_hit *hits, unsigned char *hit);
 void scene_occluded_batch(const struct scene *s, const struct ray_query *q, int n, unsigned char *occluded);
+/* scene_occluded_batch in the geometry of the frame scene_motion_pose_previous last posed: every
+ * still triangle, and the moving emitters where that frame had them (not where they are now). The
+ * same as scene_occluded_batch for a scene whose emitters stand still. Thread-safe, as the other
+ * queries. */
+void scene_occluded_previous_batch(const struct scene *s, const struct ray_query *q, int n,
+                                   unsigned char *occluded);
 /* on = 0: the batched queries trace ray by ray; on = 1 (the default): as Embree streams. The
  * scene's owner's setting, not a renderer's: loading sets it (scene_load_desc.ray_streams_off,
  * from rays.streams), and an owner may change it while no query runs (the benchmark of streams

@@ -58,6 +58,12 @@ static const struct param_def di_reuse_rows[] = {
      "di_gradient.h): after a light changes, histories stop outweighing new samples (RTXDI's confidence from "
      "gradients); the weights then depend on the samples",
      NULL},
+    {"di.moved_confidence", P_FLOAT, offsetof(struct di_reuse_settings, moved_confidence), 0, 1e6, "1", NULL,
+     "temporal reuse on a frame whose emitters moved (translate / rotate keys): the previous reservoir's "
+     "confidence at most this (unbiased for any value: the previous frame's targets are measured in its own "
+     "geometry and pose); 0 drops the history on such frames; a value above confidence_cap keeps it whole, "
+     "noisier, as a sample that was good before the move may be poor after it",
+     NULL},
     {"di.boiling_strength", P_FLOAT, offsetof(struct di_reuse_settings, boiling_strength), 1e-6, 1, "0.2", NULL,
      "di.boiling_filter: strength s in (0, 1]; 0.2 drops reservoirs above 41 times the group's mean", NULL},
 };

@@ -48,6 +48,7 @@ struct di_reuse_settings {
     int boiling_filter;     /* BIASED: drop the temporal pass's outliers (render/boiling_filter.h) */
     float boiling_strength; /* its s: outliers exceed 10 / s - 9 times their group's mean target x W */
     int gradient_confidence; /* BIASED: history confidence scaled down where the temporal gradient is high */
+    float moved_confidence;  /* the history's confidence at most, on a frame whose emitters moved (0: dropped) */
 };
 
 extern struct param_block di_block; /* di: the initial candidates */

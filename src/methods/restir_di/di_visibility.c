@@ -26,25 +26,41 @@ float di_domain_target(const struct scene *s, int with_visibility, const struct 
     return di_sample_visible(s, sp, y) ? t : 0.0f;
 }
 
-long long di_domain_target_many(const struct scene *s, int with_visibility, int n,
-                                const struct shading_point *const *sp, const struct di_sample *const *y, float *out,
-                                struct ray_query *q, int *ray_entry, unsigned char *occluded)
+/* Traces the shadow rays of the entries e with out[e] > 0 and (previous == NULL ? 1 : previous[e] == which),
+ * zeroing those occluded; returns the rays counted. */
+static long long trace_entries(const struct scene *s, int n, const struct shading_point *const *sp,
+                               const struct di_sample *const *y, float *out, const unsigned char *previous, int which,
+                               struct ray_query *q, int *ray_entry, unsigned char *occluded)
 {
-    di_target_many(n, sp, y, out);
-    if (!with_visibility)
-        return 0;
     long long rays = 0;
     int traced = 0;
     for (int e = 0; e < n; e++) {
-        if (!(out[e] > 0.0f))
+        if (!(out[e] > 0.0f) || (previous ? previous[e] : 0) != which)
             continue;
         rays++; /* counted as di_domain_target counts it, also where the points coincide */
         if (di_visibility_query(sp[e], y[e], &q[traced]))
             ray_entry[traced++] = e;
     }
-    scene_occluded_batch(s, q, traced, occluded);
+    if (which)
+        scene_occluded_previous_batch(s, q, traced, occluded);
+    else
+        scene_occluded_batch(s, q, traced, occluded);
     for (int r = 0; r < traced; r++)
         if (occluded[r])
             out[ray_entry[r]] = 0.0f;
+    return rays;
+}
+
+long long di_domain_target_many(const struct scene *s, int with_visibility, int n,
+                                const struct shading_point *const *sp, const struct di_sample *const *y, float *out,
+                                const unsigned char *previous, struct ray_query *q, int *ray_entry,
+                                unsigned char *occluded)
+{
+    di_target_many(n, sp, y, out);
+    if (!with_visibility)
+        return 0;
+    long long rays = trace_entries(s, n, sp, y, out, previous, 0, q, ray_entry, occluded);
+    if (previous)
+        rays += trace_entries(s, n, sp, y, out, previous, 1, q, ray_entry, occluded);
     return rays;
 }

@@ -35,11 +35,14 @@ float di_domain_target(const struct scene *s, int with_visibility, const struct 
 /* di_domain_target for n pairs (sp[e], y[e]) into out[e], the same values bit for bit: the
  * targets across the pairs with vector instructions (di_target_many; simd=off runs its baseline
  * kernels) and, with visibility, the shadow rays of the positive ones traced together
- * (scene_occluded_batch: Embree streams unless rays.streams=off). q, ray_entry and occluded are the
- * caller's scratch of n each, so that nothing is allocated per call. Returns the rays counted, as
- * n calls of di_domain_target would. */
+ * (scene_occluded_batch: Embree streams unless rays.streams=off). previous: NULL, or per pair 1
+ * where the domain is the previous frame's and its ray is traced in that frame's geometry
+ * (scene_occluded_previous_batch: moving emitters where they were; y[e] must then hold the light
+ * point where it was). q, ray_entry and occluded are the caller's scratch of n each, so that
+ * nothing is allocated per call. Returns the rays counted, as n calls of di_domain_target would. */
 long long di_domain_target_many(const struct scene *s, int with_visibility, int n,
                                 const struct shading_point *const *sp, const struct di_sample *const *y, float *out,
-                                struct ray_query *q, int *ray_entry, unsigned char *occluded);
+                                const unsigned char *previous, struct ray_query *q, int *ray_entry,
+                                unsigned char *occluded);
 
 #endif

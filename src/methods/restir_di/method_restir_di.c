@@ -13,6 +13,8 @@
 #include "methods/restir_di/regir.h"
 #include "render/boiling_filter.h"
 #include "scene/scene_animation.h"
+#include "scene/scene_motion.h"
+#include "scene/scene_rt.h"
 #include "shading/lights.h"
 #include "render/nonfinite.h"
 #include "methods/restir_di/restir_di.h"
@@ -82,8 +84,8 @@ static void di_relight(const struct scene *s, struct di_reservoir *prev, size_t 
         struct light_sample ls;
         lights_point(s, y->tri, y->b1, y->b2, &ls);
         y->Le = ls.Le;
-        y->p = ls.p; /* where the emitter is now: the pose of the frame it was drawn in (restir-di drops its */
-        y->n = ls.n; /* history on a frame whose emitters moved) */
+        y->p = ls.p; /* where the emitter is now: a light sample is its triangle and barycentrics, */
+        y->n = ls.n; /* which a rigid motion maps to the same point of the moved triangle (Jacobian 1) */
     }
 }
 
@@ -141,10 +143,15 @@ static void restir_di_render_frame(struct renderer *r, void *state, const struct
         }
         di_temporal_gradient(s, g, prev_g, d->work, h->has_history ? prev_res : NULL, frame, d->grad, d->grad_tmp);
     }
-    if (p->reuse.temporal && h->has_history && !r->lights_moved)
+    /* emitters that moved: the previous frame's targets need its geometry (scene_occluded_previous_batch) */
+    const int moved = r->lights_moved;
+    const int keep = !moved || (scene_can_trace_previous(s) && di_reuse_settings_of(p)->moved_confidence > 0.0f);
+    if (p->reuse.temporal && h->has_history && keep)
         RENDERER_TIMED(st, PASS_TEMPORAL, if (scene_is_animated(s)) di_relight(s, prev_res, n);
-                       st->temporal_accepted = di_temporal_pass(s, p, frame, g, prev_g, prev_res,
-                                                                confidence ? d->grad : NULL, d->work, &st->rays);
+                       if (moved) scene_motion_pose_previous(s, (float)r->prev_frame);
+                       st->temporal_accepted =
+                           di_temporal_pass(s, p, frame, (float)r->prev_frame, moved, g, prev_g, prev_res,
+                                            confidence ? d->grad : NULL, d->work, &st->rays);
                        st->nonfinite += nonfinite_discard_di(d->work, n);
                        if (di_reuse_settings_of(p)->boiling_filter) di_boiling_filter(d, g, p));
     if (p->reuse.spatial && h->spmis) {

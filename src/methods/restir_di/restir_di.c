@@ -5,6 +5,7 @@
 #include "methods/restir_di/restir_di.h"
 #include "denoise/svgf_temporal.h"
 #include "scene/scene_animation.h"
+#include "scene/scene_motion.h"
 
 #include <stdlib.h>
 
@@ -46,6 +47,9 @@ struct di_merge_batch {
     const struct di_sample *entry_y[DI_BATCH_ENTRIES];
     float *entry_P[DI_BATCH_ENTRIES];
     float entry_scale[DI_BATCH_ENTRIES]; /* what the target is multiplied by (1 but for old lights) */
+    unsigned char entry_previous[DI_BATCH_ENTRIES]; /* 1: traced in the previous frame's geometry */
+    int any_previous;                               /* some entry_previous is 1 */
+    struct di_sample previous_y[DI_BATCH_MERGES];   /* canonical samples where moved emitters were */
     float target[DI_BATCH_ENTRIES];
     struct ray_query q[DI_BATCH_ENTRIES]; /* scratch of di_domain_target_many */
     int ray_entry[DI_BATCH_ENTRIES];
@@ -55,11 +59,17 @@ struct di_merge_batch {
 /* Queues the merge: its cached targets set, its cross-domain ones queued. prev_scale multiplies
  * domain 1's target at domain 0's sample (P[1][0]): in a temporal merge with animated emitters,
  * domain 1 (the previous frame) saw that sample's emitter at another strength (1 otherwise).
+ * prev_y: NULL, or domain 0's sample where the previous frame had its emitter, which moved: P[1][0]
+ * is then that point's target, its shadow ray traced in the previous frame's geometry.
  * c1_scale multiplies domain 1's confidence (di.gradient_confidence; 1 otherwise). */
 static void merge_begin(struct di_merge_batch *b, const struct render_params *p, int n,
                         const struct shading_point *const *sp, const struct di_reservoir *const *in, pcg32 rng,
-                        float prev_scale, float c1_scale, struct di_reservoir *out)
+                        float prev_scale, const struct di_sample *prev_y, float c1_scale, struct di_reservoir *out)
 {
+    if (prev_y) {
+        b->previous_y[b->merges] = *prev_y;
+        prev_y = &b->previous_y[b->merges];
+    }
     struct di_merge *mg = &b->mg[b->merges++];
     mg->n = n;
     mg->rng = rng;
@@ -79,9 +89,12 @@ static void merge_begin(struct di_merge_batch *b, const struct render_params *p,
                 *P = in[j]->target; /* cached p_hat_j(Y_j) */
                 continue;
             }
+            const int old_domain = k == 1 && j == 0; /* the previous frame's target of this frame's sample */
             b->entry_sp[b->entries] = sp[k];
-            b->entry_y[b->entries] = &in[j]->y;
-            b->entry_scale[b->entries] = k == 1 && j == 0 ? prev_scale : 1.0f;
+            b->entry_y[b->entries] = old_domain && prev_y ? prev_y : &in[j]->y;
+            b->entry_scale[b->entries] = old_domain ? prev_scale : 1.0f;
+            b->entry_previous[b->entries] = old_domain && prev_y;
+            b->any_previous |= old_domain && prev_y;
             b->entry_P[b->entries++] = P;
         }
     }
@@ -117,19 +130,20 @@ static void merge_end(const struct render_params *p, struct di_merge *mg)
 static long long merge_batch_flush(struct di_merge_batch *b, const struct scene *s, const struct render_params *p)
 {
     long long rays = di_domain_target_many(s, di_targets_visible(p), b->entries, b->entry_sp, b->entry_y, b->target,
-                                           b->q, b->ray_entry, b->occluded);
+                                           b->any_previous ? b->entry_previous : NULL, b->q, b->ray_entry,
+                                           b->occluded);
     for (int e = 0; e < b->entries; e++)
         *b->entry_P[e] = b->target[e] * b->entry_scale[e];
     for (int k = 0; k < b->merges; k++)
         merge_end(p, &b->mg[k]);
-    b->merges = b->entries = 0;
+    b->merges = b->entries = b->any_previous = 0;
     return rays;
 }
 
 static struct di_merge_batch *merge_batch_new(void)
 {
     struct di_merge_batch *b = xmalloc(sizeof(*b));
-    b->merges = b->entries = 0;
+    b->merges = b->entries = b->any_previous = 0;
     return b;
 }
 
@@ -141,8 +155,8 @@ static long long merge_batch_reserve(struct di_merge_batch *b, const struct scen
     return 0;
 }
 
-long long di_temporal_pass(const struct scene *s, const struct render_params *p, int frame,
-                           const struct gbuffer *g, const struct gbuffer *prev_g,
+long long di_temporal_pass(const struct scene *s, const struct render_params *p, int frame, float prev_t,
+                           int moved, const struct gbuffer *g, const struct gbuffer *prev_g,
                            const struct di_reservoir *prev_res, const float *confidence_grad, struct di_reservoir *io,
                            long long *rays)
 {
@@ -151,6 +165,7 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
     int ox = 0, oy = 0; /* temporal.permutation: this frame's tile offset */
     const int permute = p->reuse.temporal_permutation;
     const int animated = scene_is_animated(s);
+    const float moved_c = di_reuse_settings_of(p)->moved_confidence;
     if (permute)
         gbuffer_permutation_offset(p->seed, frame, &ox, &oy);
 #pragma omp parallel reduction(+ : accepted, traced)
@@ -177,15 +192,23 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
                 const struct di_reservoir *in[2] = {&io[i], hist};
                 traced += merge_batch_reserve(b, s, p);
                 /* animated emitters: the previous frame saw the canonical sample's emitter at its
-                 * strength then (di_relight gave the history this frame's radiance, and kept its
-                 * target, the previous frame's) */
+                 * strength then, and where it was then if it moved (di_relight gave the history this
+                 * frame's radiance and place, and kept its target, the previous frame's) */
                 float prev_scale = 1.0f;
-                if (animated && io[i].y.tri >= 0 && io[i].y.tri != DI_ENV_TRI) {
+                struct di_sample then;
+                const int light = io[i].y.tri >= 0 && io[i].y.tri != DI_ENV_TRI;
+                if (animated && light) {
                     const float now = scene_emission_strength(s, io[i].y.tri, (float)frame);
-                    prev_scale = now > 0.0f ? scene_emission_strength(s, io[i].y.tri, (float)(frame - 1)) / now : 0.0f;
+                    prev_scale = now > 0.0f ? scene_emission_strength(s, io[i].y.tri, prev_t) / now : 0.0f;
                 }
-                const float c1 = confidence_grad ? 1.0f - svgf_gradient_response(confidence_grad[i]) : 1.0f;
-                merge_begin(b, p, 2, sp, in, rng, prev_scale, c1, &io[i]);
+                if (moved && light) {
+                    then = io[i].y;
+                    scene_motion_point_at(s, then.tri, then.b1, then.b2, prev_t, &then.p, &then.n);
+                }
+                float c1 = confidence_grad ? 1.0f - svgf_gradient_response(confidence_grad[i]) : 1.0f;
+                if (moved && hist->c > moved_c) /* di.moved_confidence: a function of c alone, so unbiased */
+                    c1 *= moved_c / hist->c;
+                merge_begin(b, p, 2, sp, in, rng, prev_scale, moved && light ? &then : NULL, c1, &io[i]);
                 accepted++;
             }
             traced += merge_batch_flush(b, s, p);
@@ -237,7 +260,7 @@ long long di_spatial_pass(const struct scene *s, const struct render_params *p, 
                     src[n++] = &in[j];
                 }
                 rays += merge_batch_reserve(b, s, p);
-                merge_begin(b, p, n, sp, src, rng, 1.0f, 1.0f, &out[i]);
+                merge_begin(b, p, n, sp, src, rng, 1.0f, NULL, 1.0f, &out[i]);
             }
             rays += merge_batch_flush(b, s, p);
         }

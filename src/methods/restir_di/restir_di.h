@@ -22,10 +22,13 @@ long long di_initial_pass(const struct scene *s, const struct light_pool *lp, co
  * previous G-buffer and merges the history reservoir by GRIS. io holds the initial reservoirs on
  * entry and the temporal outputs on return. Returns the number of pixels whose history was
  * accepted and adds the shadow rays of visibility-aware targets (di_visibility.h) to *rays.
+ * prev_t is the previous frame's time (animated emitters' strengths and poses then); moved: 1 when
+ * emitters moved since, and the previous frame's geometry is posed for its shadow rays
+ * (scene_motion_pose_previous at prev_t; scene_can_trace_previous must hold).
  * confidence_grad: NULL, or per pixel the temporal gradient lambda (di_gradient.h) that scales the
  * history's confidence by (1 - lambda)^10 in pixel i's merge (di.gradient_confidence, BIASED). */
-long long di_temporal_pass(const struct scene *s, const struct render_params *p, int frame,
-                           const struct gbuffer *g, const struct gbuffer *prev_g,
+long long di_temporal_pass(const struct scene *s, const struct render_params *p, int frame, float prev_t,
+                           int moved, const struct gbuffer *g, const struct gbuffer *prev_g,
                            const struct di_reservoir *prev_res, const float *confidence_grad, struct di_reservoir *io,
                            long long *rays);
 

@@ -69,7 +69,7 @@ static void di_canonical_targets_from(const void *ctx, int n, const int *c, cons
             sp[e] = gbuffer_shading(k->g, i[first + e]);
             y[e] = &k->in[c[first + e]].y;
         }
-        *rays += di_domain_target_many(k->s, k->with_visibility, m, sp, y, out + first, q, ray_entry, occluded);
+        *rays += di_domain_target_many(k->s, k->with_visibility, m, sp, y, out + first, NULL, q, ray_entry, occluded);
     }
 }
 
@@ -144,7 +144,7 @@ static void reuse_merge_end(struct reuse_merge *mg, const struct reuse_queue *q,
 static long long reuse_flush(struct reuse_queue *q, const struct scene *s, int with_visibility,
                              const struct di_reservoir *in, const struct spmis_frame *f, struct di_reservoir *out)
 {
-    long long rays = di_domain_target_many(s, with_visibility, q->draws, q->sp, q->y, q->p_c, q->q, q->ray_entry,
+    long long rays = di_domain_target_many(s, with_visibility, q->draws, q->sp, q->y, q->p_c, NULL, q->q, q->ray_entry,
                                            q->occluded);
     for (int j = 0, first = 0; j < q->merges; first = q->mg[j++].end)
         reuse_merge_end(&q->mg[j], q, first, in, f, out);
