@@ -25,6 +25,7 @@ struct scene_motion {
     struct rigid_motion *pose; /* per material: where it is now (identity for one that stays) */
     float posed_at;            /* the frame the scene holds; NAN before the first pose */
     vec3 *previous;            /* corners of the previous-frame geometry (scene_motion_pose_previous) */
+    struct rigid_motion *previous_pose; /* per material: where that frame had it */
     float previous_at;         /* its frame; NAN before the first */
 };
 
@@ -127,6 +128,7 @@ int scene_motion_prepare(struct scene *s, char *msg)
     mo->pose = xmalloc(sizeof(*mo->pose) * (size_t)s->num_materials);
     mo->posed_at = NAN;
     mo->previous = xmalloc(sizeof(vec3) * 3 * (size_t)n);
+    mo->previous_pose = xmalloc(sizeof(*mo->previous_pose) * (size_t)s->num_materials);
     mo->previous_at = NAN;
     s->motion = mo;
     return 0;
@@ -196,21 +198,22 @@ void scene_motion_pose_previous(const struct scene *s, float t)
     struct scene_motion *mo = s->motion;
     if (!mo || mo->previous_at == t || !scene_can_trace_previous(s))
         return;
-    int m_posed = -1;
-    struct rigid_motion pose;
+    for (int m = 0; m < mo->num_materials; m++)
+        if (material_moves(s, m))
+            emission_animation_motion(&s->emission_anim[m], t, &mo->previous_pose[m]);
     for (int i = 0; i < mo->num_tris; i++) {
-        const int m = s->tri_material[mo->tris[i]];
-        if (m != m_posed) /* triangles of one material come in runs: a pose per run */
-            emission_animation_motion(&s->emission_anim[m], t, &pose);
-        m_posed = m;
+        const struct rigid_motion *pose = &mo->previous_pose[s->tri_material[mo->tris[i]]];
         for (int k = 0; k < 3; k++)
-            mo->previous[3 * i + k] = rigid_point(&pose, mo->verts[3 * i + k]);
+            mo->previous[3 * i + k] = rigid_point(pose, mo->verts[3 * i + k]);
     }
     scene_rt_update_previous(s, mo->previous);
     mo->previous_at = t;
 }
 
-void scene_motion_point_at(const struct scene *s, int tri, float b1, float b2, float t, vec3 *p, vec3 *n)
+/* The point at (b1, b2) of triangle tri and its normal, where pose (NULL: frame t's, computed) puts
+ * a moving one; where the scene holds it now for one that stays. */
+static void point_posed(const struct scene *s, int tri, float b1, float b2, float t,
+                        const struct rigid_motion *pose, vec3 *p, vec3 *n)
 {
     const struct scene_motion *mo = s->motion;
     vec3 v[3];
@@ -226,13 +229,29 @@ void scene_motion_point_at(const struct scene *s, int tri, float b1, float b2, f
             else
                 hi = mid;
         }
-        struct rigid_motion pose;
-        emission_animation_motion(&s->emission_anim[s->tri_material[tri]], t, &pose);
+        struct rigid_motion at;
+        if (!pose) {
+            emission_animation_motion(&s->emission_anim[s->tri_material[tri]], t, &at);
+            pose = &at;
+        }
         for (int k = 0; k < 3; k++)
-            v[k] = rigid_point(&pose, mo->verts[3 * lo + k]);
-        *n = rigid_dir(&pose, mo->tri_normal[lo]);
+            v[k] = rigid_point(pose, mo->verts[3 * lo + k]);
+        *n = rigid_dir(pose, mo->tri_normal[lo]);
     }
     *p = v3_add(v[0], v3_add(v3_scale(v3_sub(v[1], v[0]), b1), v3_scale(v3_sub(v[2], v[0]), b2)));
+}
+
+void scene_motion_point_previous(const struct scene *s, int tri, float b1, float b2, vec3 *p, vec3 *n)
+{
+    const struct scene_motion *mo = s->motion;
+    const int posed = mo && !isnan(mo->previous_at);
+    point_posed(s, tri, b1, b2, posed ? mo->previous_at : 0.0f,
+                posed ? &mo->previous_pose[s->tri_material[tri]] : NULL, p, n);
+}
+
+void scene_motion_point_at(const struct scene *s, int tri, float b1, float b2, float t, vec3 *p, vec3 *n)
+{
+    point_posed(s, tri, b1, b2, t, NULL, p, n);
 }
 
 void scene_set_frame(const struct scene *s, float t)
@@ -259,6 +278,7 @@ void scene_motion_free(struct scene *s)
         return;
     free(mo->tris);
     free(mo->previous);
+    free(mo->previous_pose);
     free(mo->verts);
     free(mo->normals);
     free(mo->tangents);

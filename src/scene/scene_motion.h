@@ -54,6 +54,10 @@ void scene_motion_apply(const struct scene *s, float t);
  * thread-safe with any query; a method calls it before the pass that traces in frame t. */
 void scene_motion_pose_previous(const struct scene *s, float t);
 
+/* scene_motion_point_at at the frame scene_motion_pose_previous last posed, from its poses (no
+ * trigonometry per call: the temporal pass asks it for every pixel); before any, frame 0's. */
+void scene_motion_point_previous(const struct scene *s, int tri, float b1, float b2, vec3 *p, vec3 *n);
+
 /* The point at barycentrics (b1, b2) of triangle tri, and its geometric normal, at frame t (where
  * the scene holds it now for a triangle that stays). */
 void scene_motion_point_at(const struct scene *s, int tri, float b1, float b2, float t, vec3 *p, vec3 *n);

@@ -203,7 +203,7 @@ long long di_temporal_pass(const struct scene *s, const struct render_params *p,
                 }
                 if (moved && light) {
                     then = io[i].y;
-                    scene_motion_point_at(s, then.tri, then.b1, then.b2, prev_t, &then.p, &then.n);
+                    scene_motion_point_previous(s, then.tri, then.b1, then.b2, &then.p, &then.n); /* at prev_t */
                 }
                 float c1 = confidence_grad ? 1.0f - svgf_gradient_response(confidence_grad[i]) : 1.0f;
                 if (moved && hist->c > moved_c) /* di.moved_confidence: a function of c alone, so unbiased */
