@@ -35,7 +35,8 @@ void light_cone_union(vec3 wa, float cos_a, vec3 wb, float cos_b, vec3 *w, float
     *cos_o = -1.0f;
     if (cos_a <= -1.0f || cos_b <= -1.0f)
         return;
-    const double ta = acos(fmin(1.0, cos_a)), tb = acos(fmin(1.0, cos_b));
+    /* a single direction (every emitter's own cone) needs no acos: acos(1) is exactly 0 */
+    const double ta = cos_a >= 1.0f ? 0.0 : acos(fmin(1.0, cos_a)), tb = cos_b >= 1.0f ? 0.0 : acos(fmin(1.0, cos_b));
     const double dot = fmax(-1.0, fmin(1.0, (double)v3_dot(wa, wb)));
     const double td = acos(dot);
     if (fmin(td + tb, pi) <= ta) { /* b inside a */
@@ -150,11 +151,11 @@ static int best_split(const struct item *items, int n, struct split *best_split)
             count[k]++;
         }
         const double k_r = axis_of(ext, a) > 0.0f ? (double)longest / axis_of(ext, a) : 1.0;
+        struct bounds left = bounds_empty(); /* grown bucket by bucket: the same unions, in the same order */
+        int nl = 0;
         for (int s = 1; s < SPLIT_BUCKETS; s++) {
-            struct bounds left = bounds_empty(), right = bounds_empty();
-            int nl = 0;
-            for (int k = 0; k < s; k++)
-                left = bounds_add(left, &bucket[k]), nl += count[k];
+            left = bounds_add(left, &bucket[s - 1]), nl += count[s - 1];
+            struct bounds right = bounds_empty();
             for (int k = s; k < SPLIT_BUCKETS; k++)
                 right = bounds_add(right, &bucket[k]);
             if (nl == 0 || nl == n)
