@@ -58,9 +58,16 @@ asan: deps test-deps
 # BSDF chi-square test, 43 s under ASan for arithmetic the render tests here shade with (CI's time).
 SANITIZE_TESTS = ^(unit|stat|core)\.|cli_errors|scene_export|report|determinism|reference_resume|reference_target|interrupt|plans|params_replay
 SANITIZE_SKIP = ^stat\.bsdf_chi2$$
+# Only what those tests run is built: the restir binary and their executables (a test named
+# GROUP.NAME is built from the target GROUP_test_NAME; script tests have none).
 sanitize: deps test-deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DRESTIR_SANITIZE=ON
-	cmake --build build-asan -j $(JOBS)
+	@targets=$$(cd build-asan && ctest -N -R '$(SANITIZE_TESTS)' -E '$(SANITIZE_SKIP)' | \
+	  sed -n 's/^ *Test *#[0-9]*: \([a-z]*\)\.\([a-z0-9_]*\)$$/\1_test_\2/p'); \
+	known=$$(cmake --build build-asan --target help | sed -n 's/^\.\.\. //p'); \
+	build=restir; for t in $$targets; do echo "$$known" | grep -qx "$$t" && build="$$build $$t"; done; \
+	echo "cmake --build build-asan -j $(JOBS) --target $$build"; \
+	cmake --build build-asan -j $(JOBS) --target $$build
 	cd build-asan && ctest --output-on-failure -j $(JOBS) -R '$(SANITIZE_TESTS)' -E '$(SANITIZE_SKIP)'
 
 # Every libFuzzer harness of fuzz/ (one per reader: fuzz/fuzz_NAME.c) under ASan and UBSan for
