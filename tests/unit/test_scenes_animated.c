@@ -13,43 +13,8 @@
 #include "scene/scene_file.h"
 #include "scene/scene_motion.h"
 #include "scene/scenes_builtin.h"
+#include "scene_compare.h"
 #include "test_util.h"
-
-#define SAME(a, b, n, what) EXPECT(memcmp((a), (b), sizeof(*(a)) * (size_t)(n)) == 0, "switch-room: %s differ", what)
-
-static void compare_with_file(const struct scene *a, const struct scene *b)
-{
-    EXPECT(a->num_verts == b->num_verts && a->num_tris == b->num_tris && a->num_materials == b->num_materials &&
-               a->num_emitters == b->num_emitters,
-           "switch-room: %d/%d vertices, %d/%d triangles, %d/%d materials, %d/%d emitters", a->num_verts,
-           b->num_verts, a->num_tris, b->num_tris, a->num_materials, b->num_materials, a->num_emitters,
-           b->num_emitters);
-    if (a->num_verts != b->num_verts || a->num_tris != b->num_tris || a->num_materials != b->num_materials ||
-        a->num_emitters != b->num_emitters)
-        return;
-    SAME(a->verts, b->verts, a->num_verts, "vertices");
-    SAME(a->indices, b->indices, 3 * a->num_tris, "indices");
-    SAME(a->tri_material, b->tri_material, a->num_tris, "triangle materials");
-    SAME(a->tri_object, b->tri_object, a->num_tris, "triangle objects");
-    SAME(a->emitters, b->emitters, a->num_emitters, "emitters");
-    SAME(&a->camera, &b->camera, 1, "cameras");
-    for (int m = 0; m < a->num_materials; m++) {
-        const struct material *x = &a->materials[m], *y = &b->materials[m];
-        EXPECT(!memcmp(&x->base_color, &y->base_color, sizeof(vec3)) && x->metallic == y->metallic &&
-                   x->roughness == y->roughness && !memcmp(&x->emission, &y->emission, sizeof(vec3)),
-               "switch-room: material %d differs from the file's", m);
-        const struct emission_animation *p = &a->emission_anim[m], *q = &b->emission_anim[m];
-        EXPECT(p->n == q->n && p->step == q->step && !memcmp(&p->emission, &q->emission, sizeof(vec3)),
-               "switch-room: material %d's animation differs (%d/%d keys)", m, p->n, q->n);
-        if (p->n == q->n && p->n > 0) {
-            SAME(p->frame, q->frame, p->n, "key frames");
-            SAME(p->strength, q->strength, p->n, "key strengths");
-        }
-    }
-    scene_set_frame(a, 20.0f);
-    scene_set_frame(b, 20.0f);
-    SAME(a->emitters, b->emitters, a->num_emitters, "emitters at frame 20 (lamp off)");
-}
 
 /* The strength of material m's first emitter triangle at frame t. */
 static float lamp_strength(const struct scene *s, int m, float t)
@@ -70,7 +35,7 @@ static void check_switch_room(const char *data)
     }
     snprintf(path, sizeof path, "%s/scenes/switch_room.json", data);
     if (scene_load(path, &b, msg) == 0) {
-        compare_with_file(&a, &b);
+        compare_scenes("switch-room", &a, &b); /* with its keys and the lamp off at frame 20 */
         scene_destroy(&b);
     } else {
         EXPECT(0, "%s", msg);
