@@ -1,4 +1,5 @@
-/* gi_settings.h: ReSTIR GI's own setting (gi.radiance): what a reused sample point's outgoing radiance is. */
+/* gi_settings.h: ReSTIR GI's own settings: what a reused sample point's outgoing radiance is (gi.radiance), and
+ * the boiling filter after its temporal reuse (gi.boiling_filter, gi.boiling_strength). */
 #ifndef RESTIR_METHODS_RESTIR_GI_GI_SETTINGS_H
 #define RESTIR_METHODS_RESTIR_GI_GI_SETTINGS_H
 
@@ -12,6 +13,8 @@ enum gi_radiance_mode { GI_RADIANCE_REEVALUATE = 0, GI_RADIANCE_STORED };
 
 struct gi_settings {
     enum gi_radiance_mode radiance;
+    int boiling_filter;     /* BIASED: drop the temporal pass's outliers (render/boiling_filter.h) */
+    float boiling_strength; /* its s: outliers exceed 10 / s - 9 times their group's mean target x W */
 };
 
 extern struct param_block gi_block;

@@ -13,6 +13,7 @@
 #include "methods/restir_gi/restir_gi.h"
 #include "render/spatial_select.h"
 #include "methods/restir_gi/gi_settings.h"
+#include "render/boiling_filter.h"
 
 struct restir_gi_state {
     struct screen_history h;
@@ -20,6 +21,7 @@ struct restir_gi_state {
     struct gi_reservoir *hist[2]; /* spatial outputs: this frame's and the previous frame's */
     struct path_vertex *x1[2];    /* each pixel's shading point: this frame's and the previous one's */
     vec3 *base;                   /* emission seen directly plus direct light at x1 */
+    float *boil;                  /* gi.boiling_filter's weights (allocated by its first frame) */
 };
 
 static void *restir_gi_create(const struct renderer *r)
@@ -47,7 +49,23 @@ static void restir_gi_destroy(void *state)
         free(t->x1[k]);
     }
     free(t->base);
+    free(t->boil);
     free(t);
+}
+
+/* gi.boiling_filter (BIASED): the temporal pass's outliers by target x W, per 8 x 8 group, emptied. */
+static void gi_boiling_filter(struct restir_gi_state *t, const struct gbuffer *g, const struct render_params *p)
+{
+    const size_t n = (size_t)g->width * (size_t)g->height;
+    if (!t->boil)
+        t->boil = xmalloc(sizeof(float) * n);
+    for (size_t i = 0; i < n; i++)
+        t->boil[i] = gi_reservoir_has_sample(&t->work[i]) ? t->work[i].target * t->work[i].W : 0.0f;
+    if (boiling_filter_mark(t->boil, g->width, g->height, gi_settings_of(p)->boiling_strength) == 0)
+        return;
+    for (size_t i = 0; i < n; i++)
+        if (t->boil[i] < 0.0f)
+            gi_reservoir_clear(&t->work[i], t->work[i].c);
 }
 
 static void restir_gi_render_frame(struct renderer *r, void *state, const struct camera_view *view,
@@ -72,7 +90,8 @@ static void restir_gi_render_frame(struct renderer *r, void *state, const struct
         RENDERER_TIMED(st, PASS_TEMPORAL,
                        st->rays += gi_temporal_pass(&fr, g, prev_g, t->x1[cur], t->x1[1 - cur], t->hist[1 - cur],
                                                     t->work, &st->temporal_accepted);
-                       st->nonfinite += gi_nonfinite_discard(t->work, n));
+                       st->nonfinite += gi_nonfinite_discard(t->work, n);
+                       if (gi_settings_of(p)->boiling_filter) gi_boiling_filter(t, g, p));
     if (p->reuse.spatial) {
         RENDERER_TIMED(st, PASS_SELECT,
                        st->neighbors_selected = spatial_select_pass(p, 1, g, r->frame, h->disk_offsets, h->neighbors));
